@@ -1,0 +1,33 @@
+# The README's two commands: `make docs` and `make test`. Each creates .venv on first use.
+PYTHON ?= python3
+VENV   ?= .venv
+PY      = $(VENV)/bin/python
+
+.PHONY: test docs bench lint clean
+
+$(VENV)/.test-stamp: pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e ".[test]"
+	touch $@
+
+$(VENV)/.docs-stamp: pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e ".[test,docs]"
+	touch $@
+
+test: $(VENV)/.test-stamp
+	$(PY) -m pytest
+
+docs: $(VENV)/.docs-stamp
+	$(PY) -m sphinx -n -W --keep-going -b html docs docs/_build/html
+
+bench: $(VENV)/.test-stamp
+	$(PY) benchmarks/bench_bases.py
+
+lint:
+	$(PY) -m ruff check pitheorem tests matlab_ports benchmarks
+
+clean:
+	rm -rf $(VENV) docs/_build docs/jupyter_execute
