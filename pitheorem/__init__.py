@@ -1,0 +1,44 @@
+"""pitheorem: exact dimensional analysis and similarity scaling for simulations.
+
+Examples
+--------
+>>> import pitheorem as pt
+>>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2"})
+>>> rod.rank
+3
+"""
+
+from .dimensions import DEFAULT_BASE_DIMENSIONS, Dimension
+from .errors import (
+    DependentRepeatingSetError,
+    DimensionSyntaxError,
+    DuplicateVariableError,
+    EmptySystemError,
+    InvalidRequestError,
+    PiTheoremError,
+    RepeatingCountError,
+    UnitError,
+    UnknownVariableError,
+)
+from .groups import PiGroup, PiSet
+from .system import System
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "DEFAULT_BASE_DIMENSIONS",
+    "DependentRepeatingSetError",
+    "Dimension",
+    "DimensionSyntaxError",
+    "DuplicateVariableError",
+    "EmptySystemError",
+    "InvalidRequestError",
+    "PiGroup",
+    "PiSet",
+    "PiTheoremError",
+    "RepeatingCountError",
+    "System",
+    "UnitError",
+    "UnknownVariableError",
+    "__version__",
+]

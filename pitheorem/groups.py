@@ -1,0 +1,318 @@
+"""Dimensionless groups: :class:`PiGroup` and the immutable :class:`PiSet`.
+
+A group is stored as its integer exponent vector, normalised to the
+smallest integers with a positive exponent on its defining variable (or,
+for a group not tied to one variable, on the first variable it uses).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+
+import sympy
+
+from .errors import InvalidRequestError
+from .linalg import primitive_integer_vector, rank
+
+__all__ = ["PiGroup", "PiSet"]
+
+
+def _symbol(name: str) -> sympy.Symbol:
+    return sympy.Symbol(name, positive=True)
+
+
+@dataclass(frozen=True, slots=True)
+class PiGroup:
+    """A dimensionless product of powers of variables.
+
+    Parameters
+    ----------
+    powers : tuple of (str, int)
+        Variables and their integer exponents (zeros omitted), in system order.
+    variable : str or None
+        The non-repeating variable this group was built for, if any.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2"})
+    >>> pi_g = rod.pi_groups(repeating=("m", "l", "k_theta"))[0]
+    >>> pi_g
+    PiGroup.from_exponents({'m': 1, 'l': 1, 'g': 1, 'k_theta': -1}, variable='g')
+    >>> print(pi_g)
+    Pi_g = g*l*m/k_theta
+    >>> pi_g.evaluate({"m": 1, "l": 2, "g": 10, "k_theta": 4})
+    5
+    """
+
+    powers: tuple[tuple[str, int], ...]
+    variable: str | None = None
+
+    @classmethod
+    def from_exponents(
+        cls, exponents: Mapping[str, object], *, variable: str | None = None, order: Sequence[str] | None = None
+    ) -> PiGroup:
+        """Normalise rational exponents to the canonical group.
+
+        Parameters
+        ----------
+        exponents : mapping of str to number
+            Exponent of each variable (rational allowed).
+        variable : str, optional
+            Variable whose exponent is made positive.
+        order : sequence of str, optional
+            Order of variables in the group (default: as given).
+
+        Returns
+        -------
+        PiGroup
+
+        Examples
+        --------
+        >>> from fractions import Fraction
+        >>> from pitheorem import PiGroup
+        >>> PiGroup.from_exponents({"a": Fraction(-1, 2), "b": 1}).powers
+        (('a', 1), ('b', -2))
+        """
+        names = list(order) if order is not None else list(exponents)
+        vec = primitive_integer_vector([exponents.get(n, 0) for n in names])
+        pivot = names.index(variable) if variable in names and vec[names.index(variable)] else None
+        if pivot is None:
+            pivot = next((i for i, v in enumerate(vec) if v), None)
+        if pivot is not None and vec[pivot] < 0:
+            vec = [-v for v in vec]
+        return cls(tuple((n, v) for n, v in zip(names, vec, strict=True) if v), variable)
+
+    @property
+    def exponents(self) -> dict[str, int]:
+        """Exponent of each variable in the group (nonzero ones only).
+
+        Examples
+        --------
+        >>> from pitheorem import PiGroup
+        >>> PiGroup((("t", 2), ("l", -1))).exponents
+        {'t': 2, 'l': -1}
+        """
+        return dict(self.powers)
+
+    @property
+    def name(self) -> str:
+        """``Pi_<variable>`` when tied to a variable, else ``Pi``.
+
+        Examples
+        --------
+        >>> from pitheorem import PiGroup
+        >>> PiGroup((("g", 1),), "g").name
+        'Pi_g'
+        """
+        return f"Pi_{self.variable}" if self.variable else "Pi"
+
+    @property
+    def expr(self) -> sympy.Expr:
+        """The group as a sympy expression in positive symbols.
+
+        Examples
+        --------
+        >>> from pitheorem import PiGroup
+        >>> PiGroup((("t", 2), ("l", -1))).expr
+        t**2/l
+        """
+        return sympy.Mul(*(_symbol(n) ** p for n, p in self.powers))
+
+    @property
+    def latex(self) -> str:
+        r"""LaTeX of the group's expression.
+
+        Examples
+        --------
+        >>> from pitheorem import PiGroup
+        >>> PiGroup((("c_theta", 2), ("m", -1))).latex
+        '\\frac{c_{\\theta}^{2}}{m}'
+        """
+        return sympy.latex(self.expr)
+
+    @property
+    def is_trivial(self) -> bool:
+        """True for the empty product (the number 1)."""
+        return not self.powers
+
+    def reciprocal(self) -> PiGroup:
+        """The group with every exponent negated.
+
+        Examples
+        --------
+        >>> from pitheorem import PiGroup
+        >>> PiGroup((("a", 1), ("b", -2))).reciprocal().powers
+        (('a', -1), ('b', 2))
+        """
+        return PiGroup(tuple((n, -p) for n, p in self.powers), self.variable)
+
+    def is_power_of(self, other: PiGroup) -> bool:
+        """True when one group is a rational power of the other (e.g. its reciprocal).
+
+        Examples
+        --------
+        >>> from pitheorem import PiGroup
+        >>> a = PiGroup((("g", 1), ("l", -1)))
+        >>> a.is_power_of(PiGroup((("l", 2), ("g", -2))))
+        True
+        """
+        names = sorted({n for n, _ in self.powers} | {n for n, _ in other.powers})
+        a, b = self.exponents, other.exponents
+        return rank([[a.get(n, 0) for n in names], [b.get(n, 0) for n in names]]) <= 1
+
+    def evaluate(self, values: Mapping[str, object]):
+        """Value of the group for given variable values.
+
+        Exact (a sympy Rational) when every value is an int, Fraction or
+        sympy Rational; a float otherwise.
+
+        Parameters
+        ----------
+        values : mapping of str to number
+            Must contain every variable of the group.
+
+        Returns
+        -------
+        sympy.Rational or float
+
+        Examples
+        --------
+        >>> from fractions import Fraction
+        >>> from pitheorem import PiGroup
+        >>> PiGroup((("t", 2), ("l", -1))).evaluate({"t": Fraction(1, 2), "l": 3})
+        1/12
+        >>> PiGroup((("t", 2), ("l", -1))).evaluate({"t": 0.5, "l": 3.0})
+        0.08333333333333333
+        """
+        missing = [n for n, _ in self.powers if n not in values]
+        if missing:
+            raise InvalidRequestError(f"evaluate needs a value for {', '.join(map(repr, missing))} of {self}")
+        exact = all(isinstance(values[n], int | Fraction | sympy.Rational) for n, _ in self.powers)
+        result = sympy.Integer(1) if exact else 1.0
+        for n, p in self.powers:
+            v = sympy.Rational(values[n]) if exact else float(values[n])
+            if v == 0 and p < 0:
+                raise InvalidRequestError(f"{n!r} = 0 appears with exponent {p} in {self}: the group is undefined")
+            result = result * v**p
+        return result
+
+    def __str__(self) -> str:
+        return f"{self.name} = {sympy.sstr(self.expr)}"
+
+    def __repr__(self) -> str:
+        var = f", variable={self.variable!r}" if self.variable else ""
+        return f"PiGroup.from_exponents({dict(self.powers)!r}{var})"
+
+    def _latex_equation(self) -> str:
+        name = rf"\Pi_{{{sympy.latex(_symbol(self.variable))}}}" if self.variable else r"\Pi"
+        return f"{name} = {self.latex}"
+
+    def _repr_latex_(self) -> str:
+        return f"$\\displaystyle {self._latex_equation()}$"
+
+
+class PiSet(Sequence):
+    """An immutable sequence of independent Pi groups.
+
+    Parameters
+    ----------
+    groups : iterable of PiGroup
+    variables : sequence of str
+        All variables of the system, in order.
+    repeating : sequence of str
+        The repeating variables the groups were built from.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"})
+    >>> groups = rod.pi_groups(repeating=("m", "l", "g"))
+    >>> print(groups)
+    Pi_t = g*t**2/l
+    >>> groups.equivalent(rod.pi_groups(repeating=("m", "l", "t")))
+    True
+    """
+
+    __slots__ = ("_groups", "_repeating", "_variables")
+
+    def __init__(self, groups: Iterable[PiGroup], variables: Sequence[str], repeating: Sequence[str] = ()):
+        self._groups = tuple(groups)
+        self._variables = tuple(variables)
+        self._repeating = tuple(repeating)
+
+    @property
+    def repeating(self) -> tuple[str, ...]:
+        """The repeating variables."""
+        return self._repeating
+
+    @property
+    def variables(self) -> tuple[str, ...]:
+        """Every variable of the system, in order."""
+        return self._variables
+
+    def __getitem__(self, index):
+        if isinstance(index, str):
+            for g in self._groups:
+                if g.variable == index:
+                    return g
+            raise InvalidRequestError(
+                f"no group for {index!r}; groups exist for {', '.join(str(g.variable) for g in self._groups)}"
+            )
+        return self._groups[index]
+
+    def __len__(self) -> int:
+        return len(self._groups)
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, PiSet) and (self._groups, self._variables) == (other._groups, other._variables)
+
+    def __hash__(self) -> int:
+        return hash((self._groups, self._variables))
+
+    def exponent_matrix(self) -> list[list[int]]:
+        """Rows are groups, columns are the system's variables.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"l": "L", "x": "L"}).pi_groups(repeating=("l",)).exponent_matrix()
+        [[-1, 1]]
+        """
+        return [[g.exponents.get(v, 0) for v in self._variables] for g in self._groups]
+
+    def equivalent(self, other: PiSet) -> bool:
+        """True when both sets generate the same dimensionless products.
+
+        Two sets are equivalent when each group of one is a product of
+        rational powers of the groups of the other: they describe the same
+        physics, whatever repeaters produced them.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> s = pt.System({"a": "L", "b": "L", "c": "L"})
+        >>> s.pi_groups(repeating=("a",)).equivalent(s.pi_groups(repeating=("c",)))
+        True
+        """
+        if set(self._variables) != set(other._variables):
+            return False
+        order = self._variables
+        mine = self.exponent_matrix()
+        theirs = [[g.exponents.get(v, 0) for v in order] for g in other]
+        r = rank(mine) if mine else 0
+        return r == (rank(theirs) if theirs else 0) == (rank(mine + theirs) if mine + theirs else 0)
+
+    def __str__(self) -> str:
+        return "\n".join(map(str, self._groups))
+
+    def __repr__(self) -> str:
+        return f"PiSet({list(self._groups)!r}, variables={self._variables!r}, repeating={self._repeating!r})"
+
+    def _repr_latex_(self) -> str:
+        if not self._groups:
+            return r"$\text{(no dimensionless groups)}$"
+        body = r" \\ ".join(line.replace(" = ", " &= ", 1) for line in map(PiGroup._latex_equation, self._groups))
+        return f"$\\displaystyle \\begin{{aligned}} {body} \\end{{aligned}}$"

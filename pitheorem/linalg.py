@@ -1,0 +1,159 @@
+"""Exact linear algebra over the rationals.
+
+Small, dependency-free kernels on matrices given as lists of rows of
+``int`` or :class:`fractions.Fraction`.  Dimension matrices are tiny (a few
+rows, tens of columns), so plain Gauss-Jordan elimination with exact
+fractions is both simple and fast enough; the only hot loop, testing
+millions of column subsets for independence, lives in :mod:`pitheorem.bases`.
+No sympy in here: sympy objects are built at the edges, for display.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from fractions import Fraction
+from math import gcd, lcm
+
+__all__ = [
+    "Matrix",
+    "nullspace",
+    "primitive_integer_vector",
+    "rank",
+    "row_space_basis",
+    "rref",
+    "solve",
+]
+
+Matrix = list[list[Fraction]]
+
+
+def _as_fractions(rows: Sequence[Sequence]) -> Matrix:
+    return [[Fraction(x) for x in row] for row in rows]
+
+
+def rref(rows: Sequence[Sequence]) -> tuple[Matrix, tuple[int, ...]]:
+    """Reduced row echelon form and pivot columns.
+
+    Examples
+    --------
+    >>> from pitheorem.linalg import rref
+    >>> rref([[2, 4], [1, 3]])[1]
+    (0, 1)
+    """
+    a = _as_fractions(rows)
+    n_rows = len(a)
+    n_cols = len(a[0]) if a else 0
+    pivots: list[int] = []
+    r = 0
+    for c in range(n_cols):
+        p = next((i for i in range(r, n_rows) if a[i][c] != 0), None)
+        if p is None:
+            continue
+        a[r], a[p] = a[p], a[r]
+        inv = 1 / a[r][c]
+        a[r] = [x * inv for x in a[r]]
+        for i in range(n_rows):
+            if i != r and a[i][c] != 0:
+                f = a[i][c]
+                a[i] = [x - f * y for x, y in zip(a[i], a[r], strict=True)]
+        pivots.append(c)
+        r += 1
+        if r == n_rows:
+            break
+    return a, tuple(pivots)
+
+
+def rank(rows: Sequence[Sequence]) -> int:
+    """Exact rank over the rationals.
+
+    Examples
+    --------
+    >>> from pitheorem.linalg import rank
+    >>> rank([[1, 2], [2, 4]])
+    1
+    """
+    return len(rref(rows)[1])
+
+
+def row_space_basis(rows: Sequence[Sequence]) -> Matrix:
+    """The nonzero rows of the RREF: a basis of the row space.
+
+    Examples
+    --------
+    >>> from pitheorem.linalg import row_space_basis
+    >>> row_space_basis([[1, 1], [2, 2]])
+    [[Fraction(1, 1), Fraction(1, 1)]]
+    """
+    a, pivots = rref(rows)
+    return a[: len(pivots)]
+
+
+def nullspace(rows: Sequence[Sequence], n_cols: int | None = None) -> Matrix:
+    """A basis of the right null space, one vector per free column.
+
+    The vector for free column ``j`` has a 1 in position ``j`` and zeros
+    in the other free positions, so the basis is canonical.
+
+    Examples
+    --------
+    >>> from pitheorem.linalg import nullspace
+    >>> [[int(x) for x in v] for v in nullspace([[1, 1, 0]])]
+    [[-1, 1, 0], [0, 0, 1]]
+    """
+    if n_cols is None:
+        n_cols = len(rows[0])
+    if not rows:
+        return [[Fraction(int(i == j)) for i in range(n_cols)] for j in range(n_cols)]
+    a, pivots = rref(rows)
+    free = [j for j in range(n_cols) if j not in pivots]
+    basis = []
+    for j in free:
+        v = [Fraction(0)] * n_cols
+        v[j] = Fraction(1)
+        for i, p in enumerate(pivots):
+            v[p] = -a[i][j]
+        basis.append(v)
+    return basis
+
+
+def solve(rows: Sequence[Sequence], rhs: Sequence) -> list[Fraction] | None:
+    """One exact solution x of A x = b, or None when there is none.
+
+    Free variables are set to zero.
+
+    Examples
+    --------
+    >>> from pitheorem.linalg import solve
+    >>> solve([[1, 1], [0, 2]], [3, 2])
+    [Fraction(2, 1), Fraction(1, 1)]
+    >>> solve([[1, 1], [2, 2]], [1, 3]) is None
+    True
+    """
+    n_cols = len(rows[0]) if rows else 0
+    aug = [list(row) + [b] for row, b in zip(rows, rhs, strict=True)]
+    a, pivots = rref(aug)
+    if n_cols in pivots:
+        return None
+    x = [Fraction(0)] * n_cols
+    for i, p in enumerate(pivots):
+        x[p] = a[i][n_cols]
+    return x
+
+
+def primitive_integer_vector(v: Sequence) -> list[int]:
+    """Scale a rational vector to coprime integers, first nonzero entry kept in sign.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem.linalg import primitive_integer_vector
+    >>> primitive_integer_vector([Fraction(1, 2), Fraction(-3, 4), 0])
+    [2, -3, 0]
+    """
+    fr = [Fraction(x) for x in v]
+    den = lcm(*(x.denominator for x in fr)) if fr else 1
+    ints = [int(x * den) for x in fr]
+    g = 0
+    for x in ints:
+        g = gcd(g, x)
+    return [x // g for x in ints] if g else ints

@@ -1,0 +1,462 @@
+"""The :class:`System`: named variables with dimensions, and its dimension matrix.
+
+This is the friendly layer: it validates names and formulas, reads pint
+unit strings, and turns questions about Pi groups and bases into calls of
+the exact kernels in :mod:`pitheorem.linalg` and :mod:`pitheorem.bases`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator, Mapping
+from fractions import Fraction
+
+import sympy
+
+from .bases import count_independent_subsets, independent_subsets
+from .dimensions import DEFAULT_BASE_DIMENSIONS, Dimension
+from .errors import (
+    DependentRepeatingSetError,
+    DimensionSyntaxError,
+    DuplicateVariableError,
+    EmptySystemError,
+    InvalidRequestError,
+    RepeatingCountError,
+    UnitError,
+    UnknownVariableError,
+)
+from .groups import PiGroup, PiSet
+from .linalg import nullspace, rank, row_space_basis, solve
+
+__all__ = ["System"]
+
+# pint's names for the SI base dimensions, mapped to ours
+_PINT_BASES = {
+    "[mass]": "M",
+    "[length]": "L",
+    "[time]": "T",
+    "[temperature]": "Theta",
+    "[current]": "I",
+    "[substance]": "N",
+    "[luminosity]": "J",
+}
+
+
+def _pairs(variables) -> list[tuple[str, object]]:
+    if isinstance(variables, Mapping):
+        return list(variables.items())
+    try:
+        return [tuple(item) for item in variables]  # type: ignore[misc]
+    except TypeError:
+        raise InvalidRequestError(
+            f"variables must be a mapping of names to dimensions, got {type(variables).__name__}"
+        ) from None
+
+
+class System:
+    """Variables with dimensions: the input of every dimensional analysis.
+
+    Parameters
+    ----------
+    variables : mapping of str to dimension, or iterable of (name, dimension)
+        Each dimension is a formula string (``"M L^2 T^-2"``), a
+        :class:`Dimension`, or a mapping of base names to exponents.
+    base_dimensions : iterable of str, optional
+        Names allowed as base dimensions, in display order.  Default:
+        ``M L T Theta I N J A``.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2",
+    ...                  "c_theta": "M L^2 T^-1", "theta_r": "1", "t": "T"})
+    >>> rod.base_dimensions, rod.rank, rod.n_groups
+    (('M', 'L', 'T'), 3, 4)
+    >>> rod.matrix
+    Matrix([
+    [1, 0,  0,  1,  1, 0, 0],
+    [0, 1,  1,  2,  2, 0, 0],
+    [0, 0, -2, -2, -1, 0, 1]])
+    >>> print(rod.pi_groups(repeating=("m", "l", "k_theta")))
+    Pi_g = g*l*m/k_theta
+    Pi_c_theta = c_theta**2/(k_theta*l**2*m)
+    Pi_theta_r = theta_r
+    Pi_t = k_theta*t**2/(l**2*m)
+    """
+
+    __slots__ = ("_allowed", "_base_dimensions", "_columns", "_dimensions", "_reduced", "_variables")
+
+    def __init__(self, variables, *, base_dimensions: Iterable[str] | None = None):
+        allowed = tuple(DEFAULT_BASE_DIMENSIONS if base_dimensions is None else base_dimensions)
+        for b in allowed:
+            if not isinstance(b, str) or not b.isidentifier():
+                raise InvalidRequestError(f"base dimension names must be identifiers, got {b!r}")
+        if len(set(allowed)) != len(allowed):
+            dup = next(b for b in allowed if allowed.count(b) > 1)
+            raise DuplicateVariableError(dup, "base_dimensions")
+        pairs = _pairs(variables)
+        if not pairs:
+            raise EmptySystemError()
+        names: list[str] = []
+        dims: list[Dimension] = []
+        for item in pairs:
+            if len(item) != 2:
+                raise InvalidRequestError(f"expected (name, dimension) pairs, got {item!r}")
+            name, spec = item
+            if not isinstance(name, str) or not name.isidentifier():
+                raise InvalidRequestError(
+                    f"variable name {name!r} is not valid: use a Python identifier such as 'k_theta'"
+                )
+            if name in names:
+                raise DuplicateVariableError(name, "the system")
+            names.append(name)
+            dims.append(self._read_dimension(name, spec, allowed))
+        used = {b for d in dims for b in d.bases}
+        order = [b for b in allowed if b in used]
+        self._allowed = allowed
+        self._variables = tuple(names)
+        self._dimensions = tuple(dims)
+        self._base_dimensions = tuple(order)
+        self._columns = tuple(tuple(d.exponent(b) for b in order) for d in dims)
+        rows = [[col[i] for col in self._columns] for i in range(len(order))]
+        self._reduced = row_space_basis(rows) if rows else []
+
+    @staticmethod
+    def _read_dimension(name: str, spec, allowed) -> Dimension:
+        if isinstance(spec, Dimension):
+            dim = spec
+        elif isinstance(spec, str):
+            try:
+                dim = Dimension.parse(spec, base_dimensions=allowed)
+            except DimensionSyntaxError as err:
+                raise DimensionSyntaxError(err.text, err.position, f"{err.reason} (dimension of {name!r})") from None
+        elif isinstance(spec, Mapping):
+            try:
+                dim = Dimension(spec)
+            except (TypeError, ValueError):
+                raise InvalidRequestError(
+                    f"dimension of {name!r} must map base names to numbers, got {spec!r}"
+                ) from None
+        else:
+            raise InvalidRequestError(
+                f"dimension of {name!r} must be a formula string like 'M L^2 T^-2', got {spec!r}"
+            )
+        unknown = [b for b in dim.bases if b not in allowed]
+        if unknown:
+            raise InvalidRequestError(
+                f"dimension of {name!r} uses base {unknown[0]!r}; allowed bases are {', '.join(allowed)}"
+            )
+        return dim
+
+    @classmethod
+    def from_units(cls, units: Mapping[str, str], *, angle_as_base: bool = False) -> System:
+        """Build a system from unit strings, read by pint.
+
+        Parameters
+        ----------
+        units : mapping of str to str
+            Unit of each variable, e.g. ``{"k_theta": "N*m/rad"}``.
+        angle_as_base : bool
+            Treat radians as a base dimension ``A`` instead of as 1.
+
+        Returns
+        -------
+        System
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> s = pt.System.from_units({"k_theta": "N*m/rad", "rho": "kg/m^3", "t": "s"})
+        >>> str(s.dimension("k_theta")), str(s.dimension("rho"))
+        ('M L^2 T^-2', 'M L^-3')
+        """
+        import pint
+
+        registry = _unit_registry(angle_as_base)
+        dims = {}
+        for name, text in dict(units).items():
+            if not isinstance(text, str):
+                raise UnitError(f"unit of {name!r} must be a string such as 'kg*m/s^2', got {text!r}")
+            try:
+                quantity = registry.parse_expression(text) if text.strip() else registry.Quantity(1)
+                dimensionality = quantity.dimensionality
+            except (pint.errors.PintError, AttributeError, TypeError, ValueError, SyntaxError) as err:
+                raise UnitError(f"cannot read the unit {text!r} of {name!r}: {err}") from None
+            powers = {}
+            for key, p in dimensionality.items():
+                if key == "[angle]":
+                    powers["A"] = Fraction(p).limit_denominator()
+                elif key in _PINT_BASES:
+                    powers[_PINT_BASES[key]] = Fraction(p).limit_denominator()
+                else:
+                    raise UnitError(f"unit {text!r} of {name!r} has dimension {key}, which pitheorem does not know")
+            dims[name] = Dimension(powers)
+        return cls(dims)
+
+    # -- basic properties -------------------------------------------------
+    @property
+    def variables(self) -> tuple[str, ...]:
+        """Variable names, in the order given."""
+        return self._variables
+
+    @property
+    def base_dimensions(self) -> tuple[str, ...]:
+        """Base dimensions that occur in some variable, in display order."""
+        return self._base_dimensions
+
+    @property
+    def dimensions(self) -> dict[str, Dimension]:
+        """Each variable's :class:`Dimension`."""
+        return dict(zip(self._variables, self._dimensions, strict=True))
+
+    def dimension(self, name: str) -> Dimension:
+        """The dimension of one variable.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> str(pt.System({"g": "L/T^2"}).dimension("g"))
+        'L T^-2'
+        """
+        return self._dimensions[self.index(name)]
+
+    def index(self, name: str, context: str = "") -> int:
+        """Position of a variable; raises UnknownVariableError for other names.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"a": "L", "b": "T"}).index("b")
+        1
+        """
+        try:
+            return self._variables.index(name)
+        except ValueError:
+            raise UnknownVariableError(str(name), self._variables, context) from None
+
+    def check_names(self, names, context: str) -> tuple[str, ...]:
+        """Validate a collection of variable names: known, distinct, strings.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"a": "L", "b": "T"}).check_names(["b"], "exclude")
+        ('b',)
+        """
+        if isinstance(names, str):
+            names = (names,)
+        try:
+            names = tuple(names)
+        except TypeError:
+            raise InvalidRequestError(f"{context} must be a sequence of variable names, got {names!r}") from None
+        seen = set()
+        for n in names:
+            if not isinstance(n, str):
+                raise InvalidRequestError(f"{context} must contain variable names, got {n!r}")
+            self.index(n, context)
+            if n in seen:
+                raise DuplicateVariableError(n, context)
+            seen.add(n)
+        return names
+
+    @property
+    def matrix(self) -> sympy.Matrix:
+        """Dimension matrix: rows are base dimensions, columns variables."""
+        return sympy.Matrix(
+            len(self._base_dimensions),
+            len(self._variables),
+            lambda i, j: sympy.Rational(self._columns[j][i].numerator, self._columns[j][i].denominator),
+        )
+
+    @property
+    def rank(self) -> int:
+        """Rank of the dimension matrix: the number of repeating variables."""
+        return len(self._reduced)
+
+    @property
+    def n_groups(self) -> int:
+        """Number of independent dimensionless groups, ``n - rank``."""
+        return len(self._variables) - self.rank
+
+    def _submatrix(self, cols) -> list[list[Fraction]]:
+        return [[self._columns[j][i] for j in cols] for i in range(len(self._base_dimensions))]
+
+    def dimensionless_products(self) -> list[list[Fraction]]:
+        """A basis of exponent vectors of dimensionless products (null space).
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"a": "L", "b": "L"}).dimensionless_products()
+        [[Fraction(-1, 1), Fraction(1, 1)]]
+        """
+        rows = self._submatrix(range(len(self._variables)))
+        return nullspace(rows, len(self._variables)) if rows else nullspace([], len(self._variables))
+
+    # -- groups -----------------------------------------------------------
+    def pi_groups(self, repeating: Iterable[str] | None = None) -> PiSet:
+        """The Pi groups for a choice of repeating variables.
+
+        Parameters
+        ----------
+        repeating : iterable of str, optional
+            ``rank`` variables with independent dimensions.  Default: the
+            first basis of :meth:`bases`, preferring bases without
+            variables of dimension time alone.
+
+        Returns
+        -------
+        PiSet
+            One group per non-repeating variable, in system order.
+
+        Raises
+        ------
+        RepeatingCountError, DependentRepeatingSetError, UnknownVariableError
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> s = pt.System({"F": "M L T^-2", "rho": "M L^-3", "v": "L/T", "d": "L"})
+        >>> print(s.pi_groups(repeating=("rho", "v", "d")))
+        Pi_F = F/(d**2*rho*v**2)
+        """
+        if repeating is None:
+            repeating = self.default_repeating()
+        rep = self.check_names(repeating, "repeating")
+        if len(rep) != self.rank:
+            raise RepeatingCountError(rep, self.rank)
+        cols = [self.index(n) for n in rep]
+        sub = self._submatrix(cols)
+        if rep and rank(sub) < len(rep):
+            dependency = nullspace(sub, len(rep))[0]
+            product = PiGroup.from_exponents(dict(zip(rep, dependency, strict=True)))
+            raise DependentRepeatingSetError(rep, str(sympy.sstr(product.expr)))
+        groups = []
+        for j, name in enumerate(self._variables):
+            if name in rep:
+                continue
+            a = solve(sub, self._columns[j]) if rep else []
+            exps = dict.fromkeys(self._variables, Fraction(0))
+            exps[name] = Fraction(1)
+            for n, x in zip(rep, a, strict=True):
+                exps[n] -= x
+            groups.append(PiGroup.from_exponents(exps, variable=name, order=self._variables))
+        return PiSet(groups, self._variables, rep)
+
+    def default_repeating(self) -> tuple[str, ...]:
+        """The repeaters :meth:`pi_groups` uses when none are given.
+
+        The first basis (in :meth:`bases` order) that avoids variables
+        whose dimension is time alone, since time is hard to rescale in a
+        running simulation; the first basis if every basis needs time.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"t": "T", "l": "L", "g": "L/T^2"}).default_repeating()
+        ('l', 'g')
+        """
+        timelike = tuple(n for n in self._variables if self.dimension(n) == Dimension({"T": 1}))
+        for basis in self.iter_bases(exclude=timelike):
+            return basis
+        return next(self.iter_bases())
+
+    # -- bases ------------------------------------------------------------
+    def _basis_arguments(self, exclude, require):
+        exclude = self.check_names(exclude, "exclude")
+        require = self.check_names(require, "require")
+        both = set(exclude) & set(require)
+        if both:
+            raise InvalidRequestError(f"variable {sorted(both)[0]!r} is both excluded and required")
+        if len(require) > self.rank:
+            raise RepeatingCountError(require, self.rank)
+        req = [self.index(n) for n in require]
+        if req and rank(self._submatrix(req)) < len(req):
+            dependency = nullspace(self._submatrix(req), len(req))[0]
+            product = PiGroup.from_exponents(dict(zip(require, dependency, strict=True)))
+            raise DependentRepeatingSetError(require, str(sympy.sstr(product.expr)))
+        cand = [j for j, n in enumerate(self._variables) if n not in exclude and n not in require]
+        return self._reduced, cand, req, self.rank
+
+    def iter_bases(self, *, exclude: Iterable[str] = (), require: Iterable[str] = ()) -> Iterator[tuple[str, ...]]:
+        """Lazily yield every valid repeating set (see :meth:`bases`).
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> next(pt.System({"l": "L", "t": "T", "v": "L/T"}).iter_bases())
+        ('l', 't')
+        """
+        names = self._variables
+        for subset in independent_subsets(*self._basis_arguments(exclude, require)):
+            yield tuple(names[j] for j in subset)
+
+    def bases(self, *, exclude: Iterable[str] = (), require: Iterable[str] = ()) -> list[tuple[str, ...]]:
+        """Every valid repeating-variable set, in deterministic order.
+
+        A valid set has ``rank`` variables with independent dimensions.
+        Sets are ordered lexicographically by the variables' positions, and
+        each set lists its variables in system order.
+
+        Parameters
+        ----------
+        exclude : iterable of str
+            Variables never to use as repeaters (e.g. time).
+        require : iterable of str
+            Variables every set must contain.
+
+        Returns
+        -------
+        list of tuple of str
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> s = pt.System({"l": "L", "t": "T", "v": "L/T", "x": "L"})
+        >>> s.bases()
+        [('l', 't'), ('l', 'v'), ('t', 'v'), ('t', 'x'), ('v', 'x')]
+        >>> s.bases(exclude=("t",))
+        [('l', 'v'), ('v', 'x')]
+        """
+        return list(self.iter_bases(exclude=exclude, require=require))
+
+    def count_bases(self, *, exclude: Iterable[str] = (), require: Iterable[str] = ()) -> int:
+        """Number of valid repeating sets, without building them.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"l": "L", "t": "T", "v": "L/T", "x": "L"}).count_bases()
+        5
+        """
+        return count_independent_subsets(*self._basis_arguments(exclude, require))
+
+    # -- display ----------------------------------------------------------
+    def __repr__(self) -> str:
+        body = ", ".join(f"{n!r}: {str(d)!r}" for n, d in zip(self._variables, self._dimensions, strict=True))
+        return f"System({{{body}}})"
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, System) and self.dimensions == other.dimensions and self._variables == other._variables
+
+    def __hash__(self) -> int:
+        return hash((self._variables, self._dimensions))
+
+    def __len__(self) -> int:
+        return len(self._variables)
+
+
+def _unit_registry(angle_as_base: bool):
+    import pint
+
+    key = bool(angle_as_base)
+    cached = _REGISTRIES.get(key)
+    if cached is None:
+        cached = pint.UnitRegistry()
+        if angle_as_base:
+            cached.define("radian = [angle] = rad")
+            cached.define("degree = pi / 180 * radian = deg")
+        _REGISTRIES[key] = cached
+    return cached
+
+
+_REGISTRIES: dict[bool, object] = {}
