@@ -96,6 +96,9 @@ class _Enumerator:
     """Shared set-up for iterating and counting independent subsets."""
 
     def __init__(self, rows, candidates: Sequence[int], required: Sequence[int], size: int):
+        self.size = size
+        if size == 0:  # every variable dimensionless: the empty set is the one basis
+            return
         self.int_rows = _integer_rows(rows)
         self.columns = np.array(self.int_rows, dtype=np.int64).reshape(len(self.int_rows), -1)
         # a zero column (a dimensionless variable) can never be in a basis
@@ -103,7 +106,6 @@ class _Enumerator:
             [j for j in candidates if self.columns[:, j].any()], dtype=np.int64
         )
         self.required = np.array(sorted(required), dtype=np.int64)
-        self.size = size
         norms = sorted((sqrt(float((self.columns[:, j] ** 2).sum())) for j in range(self.columns.shape[1])), reverse=True)
         # Hadamard: |det| <= product of column norms; below p, "0 mod p" means 0
         self.mod_p_decides_zero = prod(norms[:size]) < _PRIME / 2
@@ -111,18 +113,16 @@ class _Enumerator:
 
     def chunks(self) -> Iterator[tuple[np.ndarray, np.ndarray]]:
         """Yield (subsets as sorted index rows, independence mask) in lex order."""
-        free = self.size - len(self.required)
-        if free < 0:
+        if self.size == 0:
+            yield np.zeros((1, 0), dtype=np.int64), np.ones(1, dtype=bool)
             return
+        free = self.size - len(self.required)
         cand = self.candidates
         pick = lex_combinations(len(cand), free)
         for start in range(0, len(pick), _CHUNK):
             chosen = cand[pick[start : start + _CHUNK]]
             subsets = np.hstack([chosen, np.broadcast_to(self.required, (len(chosen), len(self.required)))])
             subsets.sort(axis=1)
-            if self.size == 0:
-                yield subsets, np.ones(len(subsets), dtype=bool)
-                continue
             mask = _full_rank_mod_p(self.mod, subsets)
             if not self.mod_p_decides_zero:
                 for i in np.flatnonzero(~mask):

@@ -235,7 +235,8 @@ class _Parser:
         return tok
 
     def fail(self, tok, reason: str):
-        raise DimensionSyntaxError(self.text, tok[2], reason)
+        found = "the end of the formula" if tok[0] == "end" else repr(tok[1])
+        raise DimensionSyntaxError(self.text, tok[2], f"{reason}; found {found}")
 
     def parse(self) -> Dimension:
         if not self.tokens:

@@ -171,24 +171,27 @@ class System:
         """
         import pint
 
-        registry = _unit_registry(angle_as_base)
+        registry = _unit_registry()
         dims = {}
         for name, text in dict(units).items():
             if not isinstance(text, str):
                 raise UnitError(f"unit of {name!r} must be a string such as 'kg*m/s^2', got {text!r}")
             try:
                 quantity = registry.parse_expression(text) if text.strip() else registry.Quantity(1)
-                dimensionality = quantity.dimensionality
-            except (pint.errors.PintError, AttributeError, TypeError, ValueError, SyntaxError) as err:
+                dimensionality = dict(quantity.dimensionality)
+                root = dict(registry.get_root_units(quantity.units)[1]._units) if hasattr(quantity, "units") else {}
+            except Exception as err:  # pint's parser can fail with almost anything, even AssertionError
+                if isinstance(err, pint.errors.DefinitionSyntaxError | AssertionError | SyntaxError):
+                    err = "malformed unit expression"  # its own message is empty or cryptic
                 raise UnitError(f"cannot read the unit {text!r} of {name!r}: {err}") from None
             powers = {}
             for key, p in dimensionality.items():
-                if key == "[angle]":
-                    powers["A"] = Fraction(p).limit_denominator()
-                elif key in _PINT_BASES:
-                    powers[_PINT_BASES[key]] = Fraction(p).limit_denominator()
-                else:
+                if key not in _PINT_BASES:
                     raise UnitError(f"unit {text!r} of {name!r} has dimension {key}, which pitheorem does not know")
+                powers[_PINT_BASES[key]] = Fraction(p).limit_denominator()
+            if angle_as_base and root.get("radian"):
+                # pint treats angles as dimensionless; its root unit still records radians
+                powers["A"] = Fraction(root["radian"]).limit_denominator()
             dims[name] = Dimension(powers)
         return cls(dims)
 
@@ -445,18 +448,14 @@ class System:
         return len(self._variables)
 
 
-def _unit_registry(angle_as_base: bool):
-    import pint
+def _unit_registry():
+    # one registry per process: building pint's registry takes a noticeable moment
+    global _REGISTRY
+    if _REGISTRY is None:
+        import pint
 
-    key = bool(angle_as_base)
-    cached = _REGISTRIES.get(key)
-    if cached is None:
-        cached = pint.UnitRegistry()
-        if angle_as_base:
-            cached.define("radian = [angle] = rad")
-            cached.define("degree = pi / 180 * radian = deg")
-        _REGISTRIES[key] = cached
-    return cached
+        _REGISTRY = pint.UnitRegistry()
+    return _REGISTRY
 
 
-_REGISTRIES: dict[bool, object] = {}
+_REGISTRY = None

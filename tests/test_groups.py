@@ -1,0 +1,115 @@
+"""The paper's Pi groups come out of the code (white paper, Sections 2 and 4)."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import pytest
+import sympy
+
+import pitheorem as pt
+
+
+def group_of(pi_set: pt.PiSet, name: str) -> dict[str, int]:
+    return pi_set[name].exponents
+
+
+def same_up_to_reciprocal(got: dict[str, int], want: dict[str, int]) -> bool:
+    return got == want or got == {k: -v for k, v in want.items()}
+
+
+def test_rod_groups_match_paper(rod):
+    groups = rod.pi_groups(repeating=("m", "l", "k_theta"))
+    assert len(groups) == rod.n_groups == 6
+    # Pi_g = g m l / k_theta ; Pi_c = c^2 / (m l^2 k) ; Pi_t = t^2 k / (m l^2)
+    assert same_up_to_reciprocal(group_of(groups, "g"), {"g": 1, "m": 1, "l": 1, "k_theta": -1})
+    assert same_up_to_reciprocal(group_of(groups, "c_theta"), {"c_theta": 2, "m": -1, "l": -2, "k_theta": -1})
+    assert same_up_to_reciprocal(group_of(groups, "t"), {"t": 2, "k_theta": 1, "m": -1, "l": -2})
+    # the dimensionless rest angle is a group of its own
+    assert group_of(groups, "theta_r") == {"theta_r": 1}
+    # force and torque, the paper's "invisible" terms, have groups too
+    assert group_of(groups, "tau") == {"tau": 1, "k_theta": -1}
+    assert group_of(groups, "F") == {"F": 1, "l": 1, "k_theta": -1}
+
+
+SUPERBALL_PAPER = {
+    # Section 4, repeaters (m, l, k); Pi_v corrected: the paper prints a stray "d"
+    "x_r": {"x_r": 1, "l": -1},
+    "g": {"g": 1, "m": 1, "k": -1, "l": -1},
+    "c": {"k": 1, "m": 1, "c": -2},
+    "F": {"F": 1, "k": -1, "l": -1},
+    "t": {"t": 2, "k": 1, "m": -1},
+    "G": {"G": 1, "l": 1, "k": -1},
+    "E": {"E": 1, "l": 1, "k": -1},
+    "v": {"v": 2, "m": 1, "k": -1, "l": -2},
+    "rho": {"rho": 1, "l": 3, "m": -1},
+}
+
+
+@pytest.mark.parametrize("variable", sorted(SUPERBALL_PAPER))
+def test_superball_groups_match_paper(superball, variable):
+    groups = superball.pi_groups(repeating=("m", "l", "k"))
+    assert same_up_to_reciprocal(group_of(groups, variable), SUPERBALL_PAPER[variable])
+
+
+def test_group_canonical_form_positive_on_own_variable(superball):
+    for group in superball.pi_groups(repeating=("m", "l", "k")):
+        assert group.exponents[group.variable] > 0
+
+
+def test_group_display_and_evaluate(rod):
+    pi_g = rod.pi_groups(repeating=("m", "l", "k_theta"))["g"]
+    assert str(pi_g) == "Pi_g = g*l*m/k_theta"
+    assert pi_g.latex == r"\frac{g l m}{k_{\theta}}"
+    assert pi_g._repr_latex_().startswith("$\\displaystyle \\Pi_{g} =")
+    values = {"m": Fraction(3, 2), "l": 2, "g": Fraction(981, 100), "k_theta": 100}
+    assert pi_g.evaluate(values) == sympy.Rational(2943, 10000)
+    assert pi_g.evaluate({k: float(v) for k, v in values.items()}) == pytest.approx(0.2943)
+    assert eval(repr(pi_g), {"PiGroup": pt.PiGroup}) == pi_g
+
+
+def test_piset_latex_is_aligned(rod):
+    text = rod.pi_groups(repeating=("m", "l", "k_theta"))._repr_latex_()
+    assert text.count("&=") == 6 and "aligned" in text
+
+
+def test_equivalent_across_bases(rod):
+    first = rod.pi_groups(repeating=("m", "l", "k_theta"))
+    for basis in rod.bases():
+        assert first.equivalent(rod.pi_groups(repeating=basis))
+
+
+def test_not_equivalent_when_groups_differ():
+    a = pt.System({"x": "L", "y": "L", "z": "L"})
+    groups = a.pi_groups(repeating=("x",))
+    partial = pt.PiSet(groups[:1], a.variables)
+    assert not groups.equivalent(partial)
+
+
+def test_rank_deficient_system_uses_rank_repeaters():
+    # only force and length occur: rank 2 inside M, L, T
+    s = pt.System({"F1": "M L T^-2", "F2": "M L T^-2", "a": "L", "b": "L"})
+    assert s.rank == 2 and s.n_groups == 2
+    assert s.bases() == [("F1", "a"), ("F1", "b"), ("F2", "a"), ("F2", "b")]
+    groups = s.pi_groups(repeating=("F1", "a"))
+    assert [g.exponents for g in groups] == [{"F1": -1, "F2": 1}, {"a": -1, "b": 1}]
+
+
+def test_default_repeaters_avoid_time(rod):
+    assert "t" not in rod.default_repeating()
+    assert rod.pi_groups().repeating == rod.default_repeating()
+
+
+def test_from_units_matches_formulas():
+    s = pt.System.from_units(
+        {"m": "kg", "l": "m", "g": "m/s^2", "k_theta": "N*m/rad", "c_theta": "N*m*s/rad", "t": "s"}
+    )
+    assert s.dimensions == pt.System(
+        {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "t": "T"}
+    ).dimensions
+
+
+def test_from_units_angle_as_base():
+    s = pt.System.from_units({"k_theta": "N*m/rad", "theta": "rad"}, angle_as_base=True)
+    assert str(s.dimension("k_theta")) == "M L^2 T^-2 A^-1"
+    assert str(s.dimension("theta")) == "A"
