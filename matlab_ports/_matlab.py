@@ -34,9 +34,9 @@ def colon(a: float, d: float, b: float) -> np.ndarray:
     Examples
     --------
     >>> t = colon(0.0, 1e-4, 10.0)
-    >>> len(t), t[-1], t[3]
-    (100001, 10.0, 0.0003)
-    >>> bool(t[-3] == 10.0 - 2 * 1e-4)
+    >>> len(t), float(t[-1]), float(t[3])  # front half: 0 + 3*1e-4
+    (100001, 10.0, 0.00030000000000000003)
+    >>> bool(t[-3] == 10.0 - 2 * 1e-4)  # back half: counted down from the end point
     True
     """
     if d <= 0:

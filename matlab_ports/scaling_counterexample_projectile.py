@@ -1,0 +1,171 @@
+"""Projectile under scaled gravity: port of ``scaling_counterexample_projectile.m``.
+
+A point mass (``m = 2``, unused by the kinematics) is launched at speed ``v0 = 10`` and angle
+``pi/2`` (straight up) under gravity ``g = 9.81``.  The flight time is
+``tf = 2 v0 sin(angle) / g``, sampled at 100 points (``linspace(0, tf, 100)``)::
+
+    y = v0 sin(angle) t - g t^2 / 2
+    x = v0 sin(angle) t        # QUIRK: sin, not cos
+
+QUIRK (kept): the original computes the horizontal position with ``sin(angle)`` instead of
+``cos(angle)``.  With the vertical launch the true ``x`` would be (numerically) zero; the port
+keeps ``x = v0 sin(angle) t``, so the plotted "trajectory" is an arc whose width is ``v0 tf``.
+
+Three plots of ``y`` against ``x``:
+
+1. "Original, unscaled simulation".
+2. "With only gravity scaled": ``g`` times 10 (and the new, 10 times shorter ``tf``).
+3. "With both gravity and length scaled, post-hoc": the gravity-scaled ``x`` and ``y`` times 10,
+   which lands back on the original arc (``10 y(t/10)`` with ``10 g`` equals ``y(t)`` with
+   ``g``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+__all__ = ["PARAMS", "TITLES", "flight_time", "main", "plot_runs", "simulate", "trajectory"]
+
+PARAMS = {"m": 2.0, "v0": 10.0, "g": 9.81, "angle": math.pi / 2}
+N_POINTS = 100
+SCALE = 10.0
+
+TITLES = {
+    "original": "Original, unscaled simulation",
+    "gravity": "With only gravity scaled",
+    "gravity_length": "With both gravity and length scaled, post-hoc",
+}
+
+
+def flight_time(v0, g, angle):
+    """Time of flight back to launch height, ``2 v0 sin(angle) / g``.
+
+    Examples
+    --------
+    >>> flight_time(10.0, 10.0, math.pi / 2)
+    2.0
+    """
+    return 2 * v0 * math.sin(angle) / g
+
+
+def trajectory(v0, g, angle, n=N_POINTS):
+    """Sample times and positions over the flight, as in the original.
+
+    Parameters
+    ----------
+    v0, g, angle : float
+        Launch speed, gravitational acceleration and launch angle from the horizontal.
+    n : int
+        Number of samples, ``linspace(0, tf, n)``.
+
+    Returns
+    -------
+    t, x, y : numpy.ndarray
+        ``x = v0 sin(angle) t`` (QUIRK: sin, as in the original) and
+        ``y = v0 sin(angle) t - g t^2/2``.
+
+    Examples
+    --------
+    >>> t, x, y = trajectory(10.0, 10.0, math.pi / 2, n=3)
+    >>> t.tolist(), x.tolist(), y.tolist()
+    ([0.0, 1.0, 2.0], [0.0, 10.0, 20.0], [0.0, 5.0, 0.0])
+    """
+    t = np.linspace(0.0, flight_time(v0, g, angle), n)
+    y = v0 * math.sin(angle) * t - g * t**2 / 2
+    x = v0 * math.sin(angle) * t  # QUIRK: the original uses sin here too (cos would be correct)
+    return t, x, y
+
+
+def simulate():
+    """The three runs of the original script.
+
+    Returns
+    -------
+    dict
+        ``{"original": (t, x, y), "gravity": (t, x, y), "gravity_length": (t, x, y)}``; the last
+        is the gravity-scaled run with ``x`` and ``y`` multiplied by 10 (``t`` unchanged).
+
+    Examples
+    --------
+    >>> runs = simulate()
+    >>> t, x, y = runs["original"]
+    >>> len(t), bool(t[-1] == 2 * 10.0 * math.sin(math.pi / 2) / 9.81)
+    (100, True)
+    >>> _, x3, y3 = runs["gravity_length"]
+    >>> bool(np.allclose(x3, x) and np.allclose(y3, y, atol=1e-12))
+    True
+    """
+    p = dict(PARAMS)
+    runs = {"original": trajectory(p["v0"], p["g"], p["angle"])}
+    p["g"] = SCALE * p["g"]
+    t, x, y = trajectory(p["v0"], p["g"], p["angle"])
+    runs["gravity"] = (t, x, y)
+    runs["gravity_length"] = (t, SCALE * x, SCALE * y)  # post-hoc length scaling
+    return runs
+
+
+def plot_runs(runs):
+    """One Figure per run, ``y`` against ``x``.
+
+    Parameters
+    ----------
+    runs : dict
+        Output of :func:`simulate`.
+
+    Returns
+    -------
+    dict of matplotlib.figure.Figure
+        Same keys as ``runs``.
+
+    Examples
+    --------
+    >>> figs = plot_runs(simulate())
+    >>> figs["gravity_length"].axes[0].get_title()
+    'With both gravity and length scaled, post-hoc'
+    """
+    figs = {}
+    for name, (_t, x, y) in runs.items():
+        fig = Figure(figsize=(8, 6))
+        FigureCanvasAgg(fig)
+        ax = fig.add_subplot()
+        ax.plot(x, y)
+        ax.set_title(TITLES[name])
+        ax.set_xlabel("x = v0 sin(angle) t (sic)")  # labels: additions of the port
+        ax.set_ylabel("y")
+        figs[name] = fig
+    return figs
+
+
+def main(argv=None):
+    """Command line: write ``projectile_<run>.png`` for the three runs to ``--outdir``.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Arguments (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--outdir", type=Path, default=Path("."), help="directory for the PNG files")
+    args = parser.parse_args(argv)
+    args.outdir.mkdir(parents=True, exist_ok=True)
+    written = []
+    for name, fig in plot_runs(simulate()).items():
+        path = args.outdir / f"projectile_{name}.png"
+        fig.savefig(path)
+        written.append(path)
+    return written
+
+
+if __name__ == "__main__":
+    main()
