@@ -26,7 +26,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["FigContents", "read_fig_lines", "sample_reference"]
+__all__ = ["FigContents", "provenance", "read_fig_lines", "sample_reference"]
 
 LINE_TYPES = ("graph2d.lineseries", "line")
 
@@ -165,6 +165,27 @@ def sample_reference(paths, step=1000):
     return result
 
 
+def provenance(paths, step):
+    """Where a sampled reference comes from, for the ``"provenance"`` entry of the JSON."""
+    names = " ".join(Path(p).name for p in paths)
+    return {
+        "source": (
+            "MATLAB figure files of the white paper 'Scaling Analysis for Rigid Body Simulations' "
+            "(A. P. Sabelhaus, 2014), from NTRTsim src/dev/apsabelhaus/scaling_analysis/ "
+            "(January 2015 version), read from shared/reference/ntrt_scaling_analysis/ beside "
+            "the repository; the .fig files themselves are not in this repository"
+        ),
+        "extraction": (
+            "matlab_ports.figdata.read_fig_lines: scipy.io.loadmat, key hgS_070000, walk "
+            "children, XData/YData of the graph2d.lineseries node (the only line); title and "
+            "labels from the axes' text children indexed by its 'special' field; XLim/YLim"
+        ),
+        "indices": f"0, {step}, 2*{step}, ... of the 0-based point index (every {step}th point)",
+        "format": "x and y as repr() strings of IEEE doubles; float() restores them exactly",
+        "command": f"python matlab_ports/figdata.py --sample {step} OUT.json {names}",
+    }
+
+
 def main(argv=None):
     """Print a summary of ``.fig`` files, or write a sampled reference JSON (``--sample``)."""
     parser = argparse.ArgumentParser(description="Summarise MATLAB .fig files.")
@@ -173,7 +194,8 @@ def main(argv=None):
     args = parser.parse_args(argv)
     if args.sample:
         step, out = int(args.sample[0]), Path(args.sample[1])
-        out.write_text(json.dumps(sample_reference(args.files, step), indent=1) + "\n")
+        doc = {"provenance": provenance(args.files, step), "files": sample_reference(args.files, step)}
+        out.write_text(json.dumps(doc, indent=1) + "\n")
         return
     for path in args.files:
         c = read_fig_lines(path)
