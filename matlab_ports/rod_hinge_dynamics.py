@@ -14,6 +14,8 @@ longitudinal spring) is unused by the active variant and ``theta_r`` by the long
 in the original.
 """
 
+# ruff: noqa: E741  -- `l` (rod length) is the MATLAB name, kept in the ported signatures
+
 from __future__ import annotations
 
 import math

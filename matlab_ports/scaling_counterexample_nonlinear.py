@@ -102,7 +102,7 @@ def simulate(params, t, dt=DT, theta_0=THETA_0):
     True
     """
     p = params
-    m, l, g, k, c, theta_r = p["m"], p["l"], p["g"], p["k"], p["c"], p["theta_r"]
+    m, l, g, k, c, theta_r = p["m"], p["l"], p["g"], p["k"], p["c"], p["theta_r"]  # noqa: E741
     n = len(t)
     y = np.empty((2, n))
     theta, theta_dot = float(theta_0), 0.0

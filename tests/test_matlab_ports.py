@@ -96,7 +96,7 @@ def test_curves_match_full_fig_data(figure_data, name):
 
 def test_figure5_time_axis_runs_to_20(figure_data):
     t5, theta5 = figure_data["figure5"]
-    t4, theta4 = figure_data["figure4"]
+    _, theta4 = figure_data["figure4"]
     assert t5[0] == 0.0
     assert t5[-1] == 20.0
     np.testing.assert_array_equal(t5, 2 * figure_data["figure1"][0])
@@ -184,13 +184,13 @@ def test_rod_dynamics_restoring_spring():
 
 
 def test_rod_dynamics_longitudinal_variants():
-    y, m, x_r, l, g, k, c = [0.4, 0.9], 1.5, 1.0, 2.0, 9.81, 100.0, 10.0
+    y, m, x_r, L, g, k, c = [0.4, 0.9], 1.5, 1.0, 2.0, 9.81, 100.0, 10.0
     s, co = np.sin(0.4), np.cos(0.4)
-    base = (m * g * l / 2) * co + k * l**2 * s * co - k * x_r * l * s
-    a = rod_hinge_dynamics.rod_hinge_dynamics_longitudinal(y, m, x_r, l, g, k, c, 0.0)
-    b = rod_hinge_dynamics.rod_hinge_dynamics_longitudinal_rotational_damper(y, m, x_r, l, g, k, c, 0.0)
-    np.testing.assert_allclose(a, [0.9, 3 / (m * l**3) * (base - c * l * 0.9 * s**2)], rtol=1e-13)
-    np.testing.assert_allclose(b, [0.9, 3 / (m * l**3) * (base - c * 0.9)], rtol=1e-13)
+    base = (m * g * L / 2) * co + k * L**2 * s * co - k * x_r * L * s
+    a = rod_hinge_dynamics.rod_hinge_dynamics_longitudinal(y, m, x_r, L, g, k, c, 0.0)
+    b = rod_hinge_dynamics.rod_hinge_dynamics_longitudinal_rotational_damper(y, m, x_r, L, g, k, c, 0.0)
+    np.testing.assert_allclose(a, [0.9, 3 / (m * L**3) * (base - c * L * 0.9 * s**2)], rtol=1e-13)
+    np.testing.assert_allclose(b, [0.9, 3 / (m * L**3) * (base - c * 0.9)], rtol=1e-13)
 
 
 # --- (c) linear port: superposition ----------------------------------------------------------
@@ -201,15 +201,16 @@ def test_linear_superposition():
     t, x1 = runs["original"]
     _, x2 = runs["gravity"]
     _, x3 = runs["gravity_length"]
-    assert len(t) == 401 and t[0] == 0.0 and t[-1] == 4.0
+    assert len(t) == 401
+    assert (t[0], t[-1]) == (0.0, 4.0)
     assert x1.shape == x2.shape == x3.shape == (2, 401)
     np.testing.assert_allclose(x3, x1, rtol=0, atol=1e-12)  # scaled and divided back: the same
     assert np.max(np.abs(x2 - x1)) > 0.5  # gravity alone: different
-    assert x1[0, 0] == 1.0 and x1[1, 0] == 0.0
+    assert (x1[0, 0], x1[1, 0]) == (1.0, 0.0)
 
 
 def test_linear_settles_at_static_equilibrium():
-    t, x = scaling_counterexample.simulate()["original"]
+    _, x = scaling_counterexample.simulate()["original"]
     p = scaling_counterexample.PARAMS
     assert x[0, -1] == pytest.approx(p["y_rest"] - p["m"] * p["g"] / p["k"], abs=1e-4)
 
@@ -226,7 +227,8 @@ def test_projectile_flight_time_and_x_quirk():
     assert t[-1] == 2 * v0 * np.sin(angle) / g == P.flight_time(v0, g, angle)
     np.testing.assert_array_equal(x, v0 * np.sin(angle) * t)  # quirk: sin, not cos
     assert np.max(np.abs(x - v0 * np.cos(angle) * t)) > 10  # what cos would have given: ~0
-    assert y[0] == 0.0 and abs(y[-1]) < 1e-12
+    assert y[0] == 0.0
+    assert abs(y[-1]) < 1e-12
     tg, _, _ = runs["gravity"]
     assert tg[-1] == pytest.approx(t[-1] / 10, rel=1e-15)
     _, x3, y3 = runs["gravity_length"]
@@ -273,3 +275,20 @@ def test_script_writes_pngs(tmp_path, module, pngs):
     assert sorted(p.name for p in outdir.iterdir()) == sorted(pngs)
     for name in pngs:
         assert (outdir / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+# --- the fast scalar loop is the MATLAB vector update, bit for bit ----------------------------
+
+
+def test_scalar_loop_equals_vector_update():
+    """simulate() works on floats; MATLAB's y(:,i) = y(:,i-1) + f(y(:,i-1))*dt on 2-vectors
+    (rod_hinge_dynamics) gives the same bits."""
+    p = NONLINEAR.PARAMS
+    n = 3000
+    fast = NONLINEAR.simulate(p, np.zeros(n))
+    y = np.empty((2, n))
+    y[:, 0] = (NONLINEAR.THETA_0, 0.0)
+    args = (p["m"], p["x_r"], p["l"], p["g"], p["k"], p["c"], p["theta_r"])
+    for i in range(1, n):
+        y[:, i] = y[:, i - 1] + rod_hinge_dynamics.rod_hinge_dynamics(y[:, i - 1], *args) * NONLINEAR.DT
+    np.testing.assert_array_equal(fast, y)
