@@ -20,7 +20,10 @@ from .errors import (
     UnitError,
     UnknownVariableError,
 )
+from . import plotting
 from .groups import PiGroup, PiSet
+from .scaling import Scaling
+from .search import SearchResult, search
 from .system import System
 
 __version__ = "0.1.0"
@@ -37,8 +40,12 @@ __all__ = [
     "PiSet",
     "PiTheoremError",
     "RepeatingCountError",
+    "Scaling",
+    "SearchResult",
     "System",
     "UnitError",
     "UnknownVariableError",
     "__version__",
+    "plotting",
+    "search",
 ]

@@ -1,0 +1,386 @@
+"""Exhaustive search for similarity scalings: :func:`search` and :class:`SearchResult`.
+
+Every similarity scaling is a change of base units ``u`` (see
+:mod:`pitheorem.scaling`), with exponents ``a = D^T u``.  A request
+prescribes some exponents (``g -> s g``: ``a_g = 1``) and holds others at
+zero, which is a linear system ``C u = b``:
+
+* it has no solution exactly when some row combination ``y`` gives
+  ``y^T C = 0`` but ``y^T b != 0``; then the product of the constrained
+  variables with exponents ``y`` is dimensionless and the request would
+  multiply it by ``s^(y.b)``: the certificate of impossibility;
+* otherwise its solutions form an affine space ``a0 + span(V)`` of exponent
+  vectors.  A solution is *support-minimal* (no other solution changes a
+  strict subset of its variables) exactly when holding every variable it
+  leaves unchanged fixes it uniquely, so the minimal solutions are the
+  distinct points obtained by holding ``dim V`` further variables with
+  independent directions at zero.  Enumerating those subsets reuses the
+  exact basis enumerator of :mod:`pitheorem.bases`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator, Mapping
+from fractions import Fraction
+from math import comb
+
+from .bases import independent_subsets
+from .dimensions import Dimension
+from .display import power_text
+from .errors import InvalidRequestError
+from .groups import PiGroup
+from .linalg import nullspace, rank, solve
+from .scaling import Scaling, as_exponent
+from .system import System
+
+__all__ = ["SearchResult", "search"]
+
+
+def _time_variables(system: System) -> tuple[str, ...]:
+    time = Dimension({"T": 1})
+    return tuple(n for n in system.variables if system.dimension(n) == time)
+
+
+def _dot(x, y) -> Fraction:
+    return sum((a * b for a, b in zip(x, y, strict=True)), Fraction(0))
+
+
+class SearchResult:
+    """The answer of :func:`search`: every minimal scaling, or a proof of none.
+
+    Attributes
+    ----------
+    system : System
+    scale : dict of str to Fraction
+        The prescribed exponents.
+    fixed : tuple of str
+        Variables held unchanged (including those outside `allow`).
+    feasible : bool
+    certificate : PiGroup or None
+        When infeasible: a dimensionless product of prescribed and fixed
+        variables that the request would change.
+    notes : tuple of str
+        Assumptions made, e.g. that time was held fixed by default.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "t": "T"})
+    >>> res = pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta"))
+    >>> res.feasible, str(res.certificate)
+    (False, 'Pi = g**2*m*t**2/k_theta')
+    """
+
+    __slots__ = ("_points", "_units", "_v_w", "certificate", "certificate_power", "directions",
+                 "feasible", "fixed", "notes", "particular", "scale", "system")
+
+    def __init__(self, system, scale, fixed, notes):
+        self.system = system
+        self.scale = dict(scale)
+        self.fixed = tuple(fixed)
+        self.notes = tuple(notes)
+        self.certificate = None
+        self.certificate_power = Fraction(0)
+        self.particular = None
+        self.directions: tuple[Scaling, ...] = ()
+        self.feasible = False
+        self._points = None
+        self._units = None
+        self._v_w = None
+
+    # -- the general solution --------------------------------------------
+    def _solve(self):
+        system = self.system
+        bases = system.base_dimensions
+        names = list(self.scale) + list(self.fixed)
+        rhs = [self.scale[n] for n in self.scale] + [Fraction(0)] * len(self.fixed)
+        rows = [[system.dimension(n).exponent(b) for b in bases] for n in names]
+        w0 = solve(rows, rhs) if bases else ([] if not any(rhs) else None)
+        if w0 is None:
+            self._certify(names, rows, rhs)
+            return
+        self.feasible = True
+        self.particular = Scaling.from_unit_change(system, dict(zip(bases, w0, strict=True)))
+        # directions that keep every constraint: unit changes in null(C)
+        null_w = nullspace(rows, len(bases)) if rows else nullspace([], len(bases))
+        kept, images = [], []
+        for w in null_w:
+            image = list(Scaling.from_unit_change(system, dict(zip(bases, w, strict=True))).powers)
+            if rank([*images, image]) > len(images):
+                kept.append(w)
+                images.append(image)
+        self._v_w = kept
+        self.directions = tuple(Scaling.from_unit_change(system, dict(zip(bases, w, strict=True))) for w in kept)
+
+    def _certify(self, names, rows, rhs):
+        # y with y^T C = 0 and y.b != 0: a dimensionless product the request changes
+        transposed = [list(col) for col in zip(*rows, strict=True)] if rows and rows[0] else []
+        candidates = nullspace(transposed, len(names)) if transposed else nullspace([], len(names))
+        changing = [y for y in candidates if _dot(y, rhs) != 0]
+        best = min(changing, key=lambda y: (sum(1 for x in y if x), [i for i, x in enumerate(y) if x]))
+        scaled = [n for n, y in zip(names, best, strict=True) if y and n in self.scale]
+        group = PiGroup.from_exponents(dict(zip(names, best, strict=True)), variable=scaled[0] if scaled else None,
+                                       order=[n for n in self.system.variables if n in names])
+        group = PiGroup(group.powers, None)
+        self.certificate = group
+        self.certificate_power = _dot([group.exponents.get(n, 0) for n in names], rhs)
+
+    # -- minimal solutions ------------------------------------------------
+    def _enumerate(self) -> list[tuple[Fraction, ...]]:
+        if self._points is not None:
+            return self._points
+        if not self.feasible:
+            self._points, self._units = [], []
+            return self._points
+        system = self.system
+        a0 = list(self.particular.powers)
+        u0 = list(self.particular.units)
+        dirs = [list(d.powers) for d in self.directions]
+        d = len(dirs)
+        constrained = set(self.scale) | set(self.fixed)
+        free = [i for i, n in enumerate(system.variables) if n not in constrained]
+        found: dict[tuple[Fraction, ...], tuple[Fraction, ...]] = {}
+        if d == 0:
+            found[tuple(a0)] = tuple(u0)
+        else:
+            rows = [[v[i] for i in free] for v in dirs]
+            for subset in independent_subsets(rows, range(len(free)), [], d):
+                zero = [free[k] for k in subset]
+                z = solve([[v[i] for v in dirs] for i in zero], [-a0[i] for i in zero])
+                point = tuple(a + _dot(z, [v[i] for v in dirs]) for i, a in enumerate(a0))
+                if point not in found:
+                    found[point] = tuple(u + _dot(z, [w[j] for w in self._v_w]) for j, u in enumerate(u0))
+
+        def order(point):
+            support = [i for i, p in enumerate(point) if p]
+            return (len(support), support, [abs(p) for p in point], point)
+
+        self._points = sorted(found, key=order)
+        self._units = [found[p] for p in self._points]
+        return self._points
+
+    @property
+    def count(self) -> int:
+        """Number of support-minimal scalings (computed exactly, not built).
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "t": "T"})
+        >>> pt.search(rod, scale={"g": 1}).count
+        2
+        """
+        return len(self._enumerate())
+
+    @property
+    def max_count(self) -> int:
+        """Upper bound C(#free, dim) on :attr:`count`, known without enumerating.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "t": "T"})
+        >>> pt.search(rod, scale={"g": 1}).max_count
+        3
+        """
+        if not self.feasible:
+            return 0
+        n_free = len(self.system.variables) - len(self.scale) - len(self.fixed)
+        return comb(n_free, len(self.directions))
+
+    def iter_scalings(self) -> Iterator[Scaling]:
+        """Yield the minimal scalings in order (see :attr:`scalings`).
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "t": "T"})
+        >>> print(next(pt.search(rod, scale={"g": 1}).iter_scalings()))
+        m -> m/s^2, l -> s l, g -> s g
+        """
+        points = self._enumerate()
+        for point, units in zip(points, self._units, strict=True):
+            yield Scaling(self.system, point, units)
+
+    @property
+    def scalings(self) -> list[Scaling]:
+        """Every support-minimal scaling, fewest changed variables first.
+
+        Ties are broken by the positions of the changed variables, then by
+        the size of the exponents.
+        """
+        return list(self.iter_scalings())
+
+    # -- display ----------------------------------------------------------
+    def explanation(self) -> str:
+        """One sentence saying what was found, or why nothing can be.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> s = pt.System({"theta_r": "1", "l": "L"})
+        >>> print(pt.search(s, scale={"theta_r": 1}).explanation())
+        Impossible: theta_r is dimensionless and built only from prescribed and fixed variables, but the request would multiply it by s, so no change of units (and hence no similarity scaling) can do it.
+        """
+        request = ", ".join(f"{n} by {power_text(p)}" for n, p in self.scale.items())
+        held = f" with {', '.join(self.fixed)} fixed" if self.fixed else ""
+        if self.feasible:
+            extra = f" (a family of dimension {len(self.directions)})" if self.directions else " (unique)"
+            return f"Scaling {request}{held}: {self.count} minimal solution(s){extra}."
+        return (
+            f"Impossible: {self.certificate.expr} is dimensionless and built only from prescribed and fixed "
+            f"variables, but the request would multiply it by {power_text(self.certificate_power)}, so no change "
+            "of units (and hence no similarity scaling) can do it."
+        )
+
+    def table(self) -> str:
+        """Plain-text table: variables down, minimal solutions across.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> s = pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"})
+        >>> print(pt.search(s, scale={"g": 1}).table())
+        variable  role   #1
+        m         free   -
+        l         free   s
+        g         scale  s
+        t         fixed  -
+        """
+        rows = [["variable", "role", *(f"#{k + 1}" for k in range(self.count))]]
+        for i, n in enumerate(self.system.variables):
+            role = "scale" if n in self.scale else "fixed" if n in self.fixed else "free"
+            rows.append([n, role, *(power_text(p[i]) for p in self._enumerate())])
+        widths = [max(len(r[c]) for r in rows) for c in range(len(rows[0]))]
+        return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in rows)
+
+    def __str__(self) -> str:
+        lines = [self.explanation(), *self.notes]
+        if self.feasible:
+            lines += ["", self.table()]
+        return "\n".join(lines)
+
+    def __repr__(self) -> str:
+        return f"<SearchResult feasible={self.feasible} count={self.count if self.feasible else 0}>"
+
+    def _repr_html_(self) -> str:
+        head = "".join(f"<th>#{k + 1}</th>" for k in range(self.count))
+        body = []
+        for i, n in enumerate(self.system.variables):
+            role = "scale" if n in self.scale else "fixed" if n in self.fixed else ""
+            cells = "".join(f"<td>{power_text(p[i])}</td>" for p in self._enumerate())
+            body.append(f"<tr><th>{n}</th><td><em>{role}</em></td>{cells}</tr>")
+        notes = "".join(f"<p>{note}</p>" for note in self.notes)
+        table = f"<table><tr><th>variable</th><th></th>{head}</tr>{''.join(body)}</table>" if self.feasible else ""
+        return f"<p>{self.explanation()}</p>{notes}{table}"
+
+    def plot(self, ax=None):
+        """Chart of the table, one colour per exponent (see :func:`pitheorem.plotting.plot_search`).
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> s = pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"})
+        >>> fig = pt.search(s, scale={"g": 1}).plot()
+        >>> len(fig.axes) >= 1
+        True
+        """
+        from .plotting import plot_search
+
+        return plot_search(self, ax=ax)
+
+
+def search(
+    system: System,
+    scale: Mapping[str, object],
+    fixed: Iterable[str] | None = None,
+    *,
+    allow: Iterable[str] | None = None,
+) -> SearchResult:
+    """Find every minimal similarity scaling meeting a request, or prove none exists.
+
+    Parameters
+    ----------
+    system : System
+    scale : mapping of str to number
+        Prescribed exponents of the scale factor ``s``: ``{"g": 1}`` means
+        ``g -> s g``, ``{"l": -1}`` means ``l -> l / s``.
+    fixed : iterable of str, optional
+        Variables that must not change.  Default: every variable whose
+        dimension is exactly time (T), so the scaled model runs in the same
+        time; pass ``fixed=()`` to let time change.
+    allow : iterable of str, optional
+        If given, only these variables (besides `scale`) may change; all
+        others are held fixed.
+
+    Returns
+    -------
+    SearchResult
+
+    Raises
+    ------
+    InvalidRequestError, UnknownVariableError, DuplicateVariableError
+        For an empty request, unknown names, non-numeric or zero exponents,
+        or a variable both scaled and fixed.
+
+    Examples
+    --------
+    The white paper's hinged rod, with the force and torque it leaves
+    implicit: gravity can be scaled without touching time, in three
+    minimal ways.
+
+    >>> import pitheorem as pt
+    >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2",
+    ...                  "c_theta": "M L^2 T^-1", "t": "T", "F": "M L T^-2", "tau": "M L^2 T^-2"})
+    >>> res = pt.search(rod, scale={"g": 1})
+    >>> print(res)
+    Scaling g by s with t fixed: 3 minimal solution(s) (a family of dimension 1).
+    time variables ('t',) are held fixed by default; pass fixed=() to let time change
+    <BLANKLINE>
+    variable  role   #1     #2   #3
+    m         free   1/s^2  1/s  -
+    l         free   s      s    s
+    g         scale  s      s    s
+    k_theta   free   -      s    s^2
+    c_theta   free   -      s    s^2
+    t         fixed  -      -    -
+    F         free   1/s    -    s
+    tau       free   -      s    s^2
+
+    Holding the paper's repeaters m and k_theta as well makes it impossible,
+    and the certificate says why:
+
+    >>> print(pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta")).certificate)
+    Pi = g**2*m*t**2/k_theta
+    """
+    if not isinstance(system, System):
+        raise InvalidRequestError(f"search needs a System, got {type(system).__name__}")
+    if not isinstance(scale, Mapping):
+        raise InvalidRequestError(f"scale must be a mapping such as {{'g': 1}}, got {scale!r}")
+    if not scale:
+        raise InvalidRequestError("empty request: scale must prescribe at least one variable, e.g. scale={'g': 1}")
+    scaled = system.check_names(tuple(scale), "scale")
+    exponents = {n: as_exponent(scale[n], repr(n)) for n in scaled}
+    for n, p in exponents.items():
+        if p == 0:
+            raise InvalidRequestError(f"scale gives {n!r} exponent 0: to keep {n!r} unchanged, put it in fixed")
+    notes = []
+    if fixed is None:
+        held = tuple(n for n in _time_variables(system) if n not in exponents)
+        if held:
+            notes.append(f"time variables {held} are held fixed by default; pass fixed=() to let time change")
+    else:
+        held = system.check_names(fixed, "fixed")
+    both = [n for n in held if n in exponents]
+    if both:
+        raise InvalidRequestError(f"variable {both[0]!r} is both scaled and fixed; a variable can be only one")
+    if allow is not None:
+        allowed = system.check_names(allow, "allow")
+        clash = [n for n in allowed if n in held]
+        if clash:
+            raise InvalidRequestError(f"variable {clash[0]!r} is both fixed and allowed to change")
+        extra = tuple(n for n in system.variables if n not in allowed and n not in exponents and n not in held)
+        held = held + extra
+    result = SearchResult(system, exponents, held, notes)
+    result._solve()
+    return result
