@@ -1,0 +1,215 @@
+"""pitheorem.search: the white paper's cases, properties against brute force, bad requests."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from itertools import combinations
+
+import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+import pitheorem as pt
+from pitheorem.linalg import nullspace, solve
+from tests.test_properties import dimension_of_group, systems
+
+
+def exps(scaling: pt.Scaling) -> dict[str, Fraction]:
+    return {n: Fraction(p) for n, p in zip(scaling.system.variables, scaling.powers, strict=True) if p}
+
+
+# -- the paper's questions ------------------------------------------------------------
+def test_rod_gravity_time_free_has_exactly_three_minimal_solutions(rod):
+    res = pt.search(rod, scale={"g": 1})
+    assert res.feasible and res.fixed == ("t",) and "fixed by default" in res.notes[0]
+    assert [exps(s) for s in res.scalings] == [
+        {"m": -2, "l": 1, "g": 1, "F": -1},
+        {"m": -1, "l": 1, "g": 1, "k_theta": 1, "c_theta": 1, "tau": 1},
+        {"l": 1, "g": 1, "k_theta": 2, "c_theta": 2, "F": 1, "tau": 2},
+    ]
+    assert res.count == 3 and len(res.directions) == 1
+
+
+def test_rod_gravity_with_paper_repeaters_fixed_is_impossible(rod):
+    res = pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta"))
+    assert not res.feasible and res.scalings == [] and res.count == 0
+    assert res.certificate.is_power_of(pt.PiGroup((("g", 2), ("t", 2), ("m", 1), ("k_theta", -1))))
+    assert res.certificate_power != 0
+    assert "g**2*m*t**2/k_theta" in res.explanation()
+
+
+def test_paper_final_scaling_runs_s_times_faster(rod):
+    res = pt.search(rod, scale={"g": 1, "l": -1}, fixed=("m", "k_theta"))
+    assert res.notes == ()  # an explicit fixed replaces the default
+    (only,) = res.scalings
+    assert exps(only) == {"l": -1, "g": 1, "c_theta": -1, "t": -1, "F": 1}
+    assert only.unit_change == {"M": 0, "L": -1, "T": -1}
+
+
+def test_dimensionless_variable_cannot_be_scaled(rod):
+    res = pt.search(rod, scale={"theta_r": 1})
+    assert not res.feasible
+    assert res.certificate.exponents == {"theta_r": 1}
+
+
+def test_superball_length_scaling_is_unique(superball):
+    res = pt.search(superball, scale={"l": 1}, fixed=("t", "m"))
+    (only,) = res.scalings
+    assert exps(only) == {"l": 1, "g": 1, "x_r": 1, "F": 1, "v": 1, "rho": -3, "G": -1, "E": -1}
+
+
+def test_allow_restricts_changes(rod):
+    res = pt.search(rod, scale={"g": 1}, allow=("l", "m", "F"))
+    assert [exps(s) for s in res.scalings] == [{"m": -2, "l": 1, "g": 1, "F": -1}]
+    assert set(res.fixed) >= {"t", "k_theta", "c_theta", "tau", "theta_r"}
+
+
+def test_table_chart_and_html(rod):
+    res = pt.search(rod, scale={"g": 1})
+    table = res.table().splitlines()
+    assert table[0].split() == ["variable", "role", "#1", "#2", "#3"]
+    assert table[1].split() == ["m", "free", "1/s^2", "1/s", "-"]
+    html = res._repr_html_()
+    assert html.count("<tr>") == len(rod.variables) + 1
+    fig = res.plot()
+    assert [t.get_text() for t in fig.axes[0].get_xticklabels()] == ["#1", "#2", "#3"]
+    infeasible = pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta"))
+    assert "impossible" in infeasible.plot().axes[0].get_title()
+    assert "<table>" not in infeasible._repr_html_()
+
+
+def test_scaling_apply_and_map_back(rod):
+    (sc,) = pt.search(rod, scale={"g": 1, "l": -1}, fixed=("m", "k_theta")).scalings
+    params = {"m": Fraction(3, 2), "l": 2, "g": Fraction(981, 100), "c_theta": 10}
+    scaled = sc.apply(params, s=2)
+    assert scaled == {"m": Fraction(3, 2), "l": 1, "g": Fraction(981, 50), "c_theta": 5}
+    for group in rod.pi_groups(repeating=("m", "l", "k_theta")):
+        values = dict.fromkeys(rod.variables, 3) | params
+        new = values | sc.apply(values, s=2)
+        assert group.evaluate(values) == group.evaluate(new)
+    t, y = sc.map_back([0.0, 1.0], [[0.5, 1.0], [0.6, 2.0]], 2, time="t", states=["1", "1/T"])
+    assert t.tolist() == [0.0, 2.0] and y.tolist() == [[0.5, 0.5], [0.6, 1.0]]
+    assert (sc * sc.inverse()).changed == ()
+    assert (sc**2).exponents["l"] == -2
+    assert pt.Scaling.from_exponents(rod, {"l": -1, "g": 1, "c_theta": -1, "t": -1, "F": 1}) == sc
+    assert sc.factors(2.0)["t"] == 0.5
+
+
+# -- properties -----------------------------------------------------------------------
+def point_set(system, scale, fixed):
+    """Brute force: every subset of free variables held at zero; keep unique points; filter minimal."""
+    bases = system.base_dimensions
+    names = system.variables
+    col = {n: [system.dimension(n).exponent(b) for b in bases] for n in names}
+    free = [n for n in names if n not in scale and n not in fixed]
+    points = set()
+    for k in range(len(free) + 1):
+        for zero in combinations(free, k):
+            held = list(scale) + list(fixed) + list(zero)
+            rows = [col[n] for n in held]
+            rhs = [scale.get(n, Fraction(0)) for n in held]
+            if not bases:
+                continue
+            w = solve(rows, rhs)
+            if w is None:
+                continue
+            directions = nullspace(rows, len(bases))
+            if any(any(sum(c * x for c, x in zip(col[n], d, strict=True)) for n in names) for d in directions):
+                continue  # not a single point
+            points.add(tuple(sum((c * x for c, x in zip(col[n], w, strict=True)), Fraction(0)) for n in names))
+    supports = {p: {i for i, x in enumerate(p) if x} for p in points}
+    return {p for p in points if not any(supports[q] < supports[p] for q in points)}
+
+
+@st.composite
+def requests(draw):
+    system = draw(systems(max_vars=8))
+    names = system.variables
+    target = draw(st.sampled_from(names))
+    power = draw(st.sampled_from([Fraction(1), Fraction(-1), Fraction(2), Fraction(1, 2)]))
+    others = [n for n in names if n != target]
+    fixed = draw(st.lists(st.sampled_from(others), unique=True, max_size=3)) if others else []
+    return system, {target: power}, tuple(fixed)
+
+
+@settings(max_examples=150, deadline=None)
+@given(requests())
+def test_minimal_scalings_equal_brute_force(request):
+    system, scale, fixed = request
+    res = pt.search(system, scale=scale, fixed=fixed)
+    got = {s.powers for s in res.scalings}
+    assert len(got) == len(res.scalings)
+    assert got == point_set(system, scale, fixed)
+    assert res.feasible == bool(got) or not system.base_dimensions
+
+
+@settings(max_examples=150, deadline=None)
+@given(requests())
+def test_scalings_keep_groups_and_respect_request(request):
+    system, scale, fixed = request
+    res = pt.search(system, scale=scale, fixed=fixed)
+    groups = system.pi_groups()
+    for sc in res.scalings:
+        for group in groups:
+            assert sum(sc.powers[system.index(n)] * p for n, p in group.powers) == 0
+        for n, p in scale.items():
+            assert sc.powers[system.index(n)] == p
+        for n in fixed:
+            assert sc.powers[system.index(n)] == 0
+        # a = D^T u
+        for n, p in zip(system.variables, sc.powers, strict=True):
+            assert sc.exponent_of(system.dimension(n)) == p
+
+
+@settings(max_examples=150, deadline=None)
+@given(requests())
+def test_certificates_prove_impossibility(request):
+    system, scale, fixed = request
+    res = pt.search(system, scale=scale, fixed=fixed)
+    assume(not res.feasible)
+    cert = res.certificate
+    assert dimension_of_group(system, cert).is_dimensionless
+    assert set(cert.exponents) <= set(scale) | set(fixed)
+    change = sum(scale.get(n, 0) * p for n, p in cert.powers)
+    assert change != 0 and change == res.certificate_power
+
+
+# -- bad requests ---------------------------------------------------------------------
+BAD = [
+    ({"scale": {}}, pt.InvalidRequestError, "empty request"),
+    ({"scale": {"gravity": 1}}, pt.UnknownVariableError, "'gravity'"),
+    ({"scale": {"g": 1}, "fixed": ("g",)}, pt.InvalidRequestError, "'g' is both scaled and fixed"),
+    ({"scale": {"g": "fast"}}, pt.InvalidRequestError, "'fast'"),
+    ({"scale": {"g": None}}, pt.InvalidRequestError, "None"),
+    ({"scale": {"g": True}}, pt.InvalidRequestError, "True"),
+    ({"scale": {"g": float("nan")}}, pt.InvalidRequestError, "nan"),
+    ({"scale": {"g": 0}}, pt.InvalidRequestError, "put it in fixed"),
+    ({"scale": {"g": 1}, "fixed": ("time",)}, pt.UnknownVariableError, "'time'"),
+    ({"scale": {"g": 1}, "fixed": ("t", "t")}, pt.DuplicateVariableError, "'t'"),
+    ({"scale": {"g": 1}, "fixed": ("t",), "allow": ("t",)}, pt.InvalidRequestError, "'t'"),
+    ({"scale": {"g": 1}, "allow": ("nope",)}, pt.UnknownVariableError, "'nope'"),
+    ({"scale": [("g", 1)]}, pt.InvalidRequestError, "mapping"),
+]
+
+
+@pytest.mark.parametrize(("kwargs", "kind", "culprit"), BAD)
+def test_bad_requests(rod, kwargs, kind, culprit):
+    with pytest.raises(kind) as info:
+        pt.search(rod, **kwargs)
+    assert culprit in str(info.value)
+
+
+def test_bad_scaling_use(rod):
+    with pytest.raises(pt.InvalidRequestError, match="not a similarity scaling"):
+        pt.Scaling.from_exponents(rod, {"g": 1})
+    with pytest.raises(pt.InvalidRequestError, match="'Q'"):
+        pt.Scaling.from_unit_change(rod, {"Q": 1})
+    sc = pt.Scaling.from_unit_change(rod, {"L": 1})
+    with pytest.raises(pt.InvalidRequestError, match="positive"):
+        sc.apply({"l": 1}, s=-2)
+    with pytest.raises(pt.UnknownVariableError, match="'length'"):
+        sc.apply({"length": 1}, s=2)
+    with pytest.raises(pt.InvalidRequestError, match="shape"):
+        sc.map_back([0, 1], [[1, 2, 3]], 2, time="t", states=["1"])
+    with pytest.raises(pt.InvalidRequestError, match="System"):
+        pt.search({"g": "L"}, scale={"g": 1})
