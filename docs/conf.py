@@ -205,6 +205,9 @@ html_theme_options = {
     "use_fullscreen_button": True,
     "launch_buttons": {},
     "icon_links": [],
+    # The sidebar has the search field; without this the theme adds a second one in a
+    # header bar above the page.
+    "navbar_persistent": [],
     "show_toc_level": 2,
     "home_page_in_toc": True,
     "show_navbar_depth": 1,
