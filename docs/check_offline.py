@@ -42,11 +42,26 @@ _FETCHING = {
     "input": ("src",),
 }
 # <link rel=...> values that are only metadata and make no request.
-_NON_FETCHING_REL = {"canonical", "author", "license", "alternate", "help", "search",
-                     "index", "next", "prev", "previous", "up", "copyright", "glossary"}
+_NON_FETCHING_REL = {
+    "canonical",
+    "author",
+    "license",
+    "alternate",
+    "help",
+    "search",
+    "index",
+    "next",
+    "prev",
+    "previous",
+    "up",
+    "copyright",
+    "glossary",
+}
 
 _REMOTE = re.compile(r"^\s*(?:[a-z][a-z0-9+.-]*:)?//", re.IGNORECASE)
-_CSS_URL = re.compile(r"""(?:@import\s+|url\(\s*)(['"]?)([^'")\s;]+)\1""", re.IGNORECASE)
+_CSS_URL = re.compile(
+    r"""(?:@import\s+(?:url\(\s*)?|url\(\s*)(['"]?)([^'")\s;]+)\1""", re.IGNORECASE
+)
 
 
 def is_remote(address: str) -> bool:
@@ -172,11 +187,15 @@ def main(argv: list[str] | None = None) -> int:
     if len(args) > 1:
         print("usage: python docs/check_offline.py [BUILD_DIR]", file=sys.stderr)
         return 2
-    root = Path(args[0]) if args else Path(__file__).resolve().parent / "_build" / "html"
+    root = (
+        Path(args[0]) if args else Path(__file__).resolve().parent / "_build" / "html"
+    )
     pages = sorted(root.rglob("*.html")) if root.is_dir() else []
     if not pages:
-        print(f"check_offline: no HTML files under {root}; build the docs first",
-              file=sys.stderr)
+        print(
+            f"check_offline: no HTML files under {root}; build the docs first",
+            file=sys.stderr,
+        )
         return 2
 
     problems: list[str] = []
@@ -205,7 +224,9 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _inline_styles(html: str) -> list[str]:
-    return re.findall(r"<style[^>]*>(.*?)</style>", html, flags=re.IGNORECASE | re.DOTALL)
+    return re.findall(
+        r"<style[^>]*>(.*?)</style>", html, flags=re.IGNORECASE | re.DOTALL
+    )
 
 
 if __name__ == "__main__":
