@@ -2,20 +2,24 @@
 
 A basis is a set of ``r = rank(D)`` variables whose columns of the
 dimension matrix ``D`` are linearly independent.  There can be millions of
-candidate subsets, so they are tested in vectorised batches:
+candidate subsets, so they are tested in vectorised batches, exactly:
 
-1. ``D`` is reduced to ``r`` independent integer rows (same column
-   dependencies, smaller matrices).
-2. Each candidate ``r x r`` submatrix is triangularised by fraction-free
-   Gaussian elimination modulo the prime ``p = 2^31 - 1``.  A nonzero
-   determinant mod ``p`` proves the integer determinant nonzero: those
-   subsets are bases, exactly.
-3. A zero determinant mod ``p`` proves the subset dependent when the
-   Hadamard bound on ``|det|`` is below ``p`` (the usual case for dimension
-   matrices); otherwise the subset is re-checked with exact fractions.
+* Usually (small integer exponents, the normal case for dimension
+  matrices) the subsets are grown column by column in lexicographic order,
+  carrying for each prefix its exterior product: the vector of all its
+  maximal minors.  Extending a prefix by one column is a Laplace expansion,
+  a prefix whose minors all vanish is dependent and pruned with everything
+  that extends it, and the last column of every subset is handled by one
+  matrix product (the determinant is linear in that column).  All values
+  are integers bounded by the Hadamard bound, which is checked to be below
+  2^53 first, so float64 arithmetic on them is exact.
+* Otherwise each candidate ``r x r`` submatrix is triangularised by
+  fraction-free elimination modulo the prime ``p = 2^31 - 1``: a nonzero
+  result proves independence; a zero one proves dependence when the
+  Hadamard bound is below ``p``, and is re-checked with exact fractions
+  when it is not.
 
-So the numerics only decide what is cheap to decide; every answer is exact.
-Subsets are visited in lexicographic order of variable positions, which
+Subsets are visited in lexicographic order of column positions, which
 makes the output order deterministic.
 """
 
@@ -23,6 +27,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
 from fractions import Fraction
+from itertools import combinations
 from math import lcm, prod, sqrt
 
 import numpy as np
@@ -33,6 +38,7 @@ __all__ = ["count_independent_subsets", "independent_subsets"]
 
 _PRIME = 2_147_483_647  # 2^31 - 1: products of two residues fit in int64
 _CHUNK = 1 << 17
+_EXACT_FLOAT = float(2**53)
 
 
 def _integer_rows(rows: Sequence[Sequence[Fraction]]) -> list[list[int]]:
@@ -110,25 +116,116 @@ class _Enumerator:
         # Hadamard: |det| <= product of column norms; below p, "0 mod p" means 0
         self.mod_p_decides_zero = prod(norms[:size]) < _PRIME / 2
         self.mod = self.columns % _PRIME
+        # every minor and every partial Laplace sum stays below this bound
+        biggest = float(np.abs(self.columns).max()) if self.columns.size else 0.0
+        self.float_is_exact = size * biggest * prod(norms[:size]) < _EXACT_FLOAT
 
     def chunks(self) -> Iterator[tuple[np.ndarray, np.ndarray]]:
         """Yield (subsets as sorted index rows, independence mask) in lex order."""
         if self.size == 0:
             yield np.zeros((1, 0), dtype=np.int64), np.ones(1, dtype=bool)
             return
-        free = self.size - len(self.required)
-        cand = self.candidates
-        pick = lex_combinations(len(cand), free)
+        if self.float_is_exact:
+            yield from self._wedge_chunks()
+        else:
+            yield from self._mod_p_chunks()
+
+    def _finish(self, chosen: np.ndarray) -> np.ndarray:
+        """Candidate positions -> sorted column indices, with the required columns."""
+        subsets = np.hstack([self.candidates[chosen], np.broadcast_to(self.required, (len(chosen), len(self.required)))])
+        subsets.sort(axis=1)
+        return subsets
+
+    def _mod_p_chunks(self):
+        pick = lex_combinations(len(self.candidates), self.size - len(self.required))
         for start in range(0, len(pick), _CHUNK):
-            chosen = cand[pick[start : start + _CHUNK]]
-            subsets = np.hstack([chosen, np.broadcast_to(self.required, (len(chosen), len(self.required)))])
-            subsets.sort(axis=1)
+            subsets = self._finish(pick[start : start + _CHUNK])
             mask = _full_rank_mod_p(self.mod, subsets)
             if not self.mod_p_decides_zero:
                 for i in np.flatnonzero(~mask):
                     sub = [[row[j] for j in subsets[i]] for row in self.int_rows]
                     mask[i] = rank(sub) == self.size
             yield subsets, mask
+
+    def _wedge_chunks(self):
+        r = self.size
+        a = self.columns[:, self.candidates].astype(float)  # (r, m)
+        m = a.shape[1]
+        tables = _LaplaceTables.get(r)
+        # exterior product of the required columns: the state every prefix starts from
+        wedge = np.ones((1, 1))
+        for j, col in enumerate(self.required):
+            wedge = tables.extend(wedge, np.zeros(1, dtype=np.int64), self.columns[:, [col]].T.astype(float), j)
+        start = len(self.required)
+        if start == r:
+            yield self._finish(np.zeros((1, 0), dtype=np.int64)), np.ones(1, dtype=bool)
+            return
+        prefixes = np.zeros((1, 0), dtype=np.int64)
+        for j in range(start, r - 1):
+            last = prefixes[:, -1] if prefixes.shape[1] else np.full(len(prefixes), -1)
+            counts = np.maximum(m - (r - j - 1) - (last + 1), 0)
+            parents = np.repeat(np.arange(len(prefixes)), counts)
+            offsets = np.repeat(np.cumsum(counts) - counts, counts)
+            new_col = np.arange(len(parents)) - offsets + np.repeat(last + 1, counts)
+            wedge = tables.extend(wedge, parents, a[:, new_col].T, j)
+            alive = wedge.any(axis=1)  # a prefix with all minors zero is dependent: prune it
+            prefixes = np.hstack([prefixes[parents], new_col[:, None]])[alive]
+            wedge = wedge[alive]
+        signed = tables.last_column_weights(wedge)  # det(prefix + c) = signed @ a[:, c]
+        last = prefixes[:, -1] if prefixes.shape[1] else np.full(len(prefixes), -1)
+        step = max(1, _CHUNK // max(m, 1))
+        for lo in range(0, len(prefixes), step):
+            dets = signed[lo : lo + step] @ a
+            later = np.arange(m)[None, :] > last[lo : lo + step, None]
+            rows, cols = np.nonzero(later)
+            chosen = np.hstack([prefixes[lo + rows], cols[:, None]])
+            yield self._finish(chosen), dets[rows, cols] != 0
+
+
+class _LaplaceTables:
+    """Index tables for exterior products of columns with ``r`` entries.
+
+    Level ``j`` holds, for a prefix of ``j`` columns, its minors on every
+    ``j``-subset of the ``r`` rows (in lexicographic order of row subsets).
+    """
+
+    _cache: dict[int, _LaplaceTables] = {}
+
+    def __init__(self, r: int):
+        self.r = r
+        self.levels = [list(combinations(range(r), j)) for j in range(r + 1)]
+        self.position = [{rows: k for k, rows in enumerate(level)} for level in self.levels]
+
+    @classmethod
+    def get(cls, r: int) -> _LaplaceTables:
+        if r not in cls._cache:
+            cls._cache[r] = cls(r)
+        return cls._cache[r]
+
+    def extend(self, wedge: np.ndarray, parents: np.ndarray, cols: np.ndarray, j: int) -> np.ndarray:
+        """Minors of (prefix + new column) by Laplace expansion along the new column.
+
+        ``wedge`` has one row per prefix of length ``j``; ``cols`` one row
+        (the new column's entries) per extended prefix.
+        """
+        base = wedge[parents]
+        out = np.zeros((len(parents), len(self.levels[j + 1])))
+        for k, rows in enumerate(self.levels[j + 1]):
+            for q, i in enumerate(rows):
+                minor = base[:, self.position[j][rows[:q] + rows[q + 1 :]]]
+                if (q + j) % 2:
+                    out[:, k] -= cols[:, i] * minor
+                else:
+                    out[:, k] += cols[:, i] * minor
+        return out
+
+    def last_column_weights(self, wedge: np.ndarray) -> np.ndarray:
+        """Signed cofactors: det(prefix + c) = weights @ c for a prefix of r-1 columns."""
+        r = self.r
+        everything = tuple(range(r))
+        order = [self.position[r - 1][everything[:i] + everything[i + 1 :]] for i in range(r)]
+        signs = np.array([(-1.0) ** (i + r - 1) for i in range(r)])
+        return wedge[:, order] * signs
 
 
 def independent_subsets(rows, candidates, required, size) -> Iterator[tuple[int, ...]]:

@@ -25,7 +25,7 @@ from .errors import (
     UnknownVariableError,
 )
 from .groups import PiGroup, PiSet
-from .linalg import nullspace, rank, row_space_basis, solve
+from .linalg import nullspace, rank, rref, solve
 
 __all__ = ["System"]
 
@@ -118,7 +118,11 @@ class System:
         self._base_dimensions = tuple(order)
         self._columns = tuple(tuple(d.exponent(b) for b in order) for d in dims)
         rows = [[col[i] for col in self._columns] for i in range(len(order))]
-        self._reduced = row_space_basis(rows) if rows else []
+        # keep r independent rows of D itself (not its RREF): same column
+        # dependencies, but small integer entries, which keeps the Hadamard
+        # bound of the fast basis test low
+        keep = rref([list(c) for c in zip(*rows, strict=True)])[1] if rows else ()
+        self._reduced = [rows[i] for i in keep]
 
     @staticmethod
     def _read_dimension(name: str, spec, allowed) -> Dimension:

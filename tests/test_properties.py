@@ -108,3 +108,23 @@ def test_dimension_string_round_trip(powers):
     dim = pt.Dimension(powers)
     assert pt.Dimension.parse(str(dim)) == dim
     assert all(isinstance(p, Fraction) and p != 0 for _, p in dim.powers)
+
+
+@settings(max_examples=60, deadline=None)
+@given(systems(exponent=st.integers(-(10**6), 10**6), max_vars=8))
+def test_huge_exponents_take_the_modular_path_and_stay_exact(system):
+    # Hadamard bounds far beyond 2^53: the float path is refused, mod-p + exact fallback decide
+    assert system.bases() == brute_force_bases(system)
+
+
+@settings(max_examples=60, deadline=None)
+@given(systems(max_vars=9))
+def test_modular_path_equals_brute_force(system):
+    import pitheorem.bases as bases_module
+
+    saved = bases_module._EXACT_FLOAT
+    bases_module._EXACT_FLOAT = 0.0  # force the modular path on ordinary systems
+    try:
+        assert system.bases() == brute_force_bases(system)
+    finally:
+        bases_module._EXACT_FLOAT = saved
