@@ -20,10 +20,13 @@ from .errors import (
     UnitError,
     UnknownVariableError,
 )
+from . import models
 from . import plotting
 from .groups import PiGroup, PiSet
+from .models import Model
 from .scaling import Scaling
 from .search import SearchResult, search
+from .simulate import SimilarityReport, SystemMismatchError, Trajectory, simulate, verify_similarity
 from .system import System
 
 __version__ = "0.1.0"
@@ -36,16 +39,23 @@ __all__ = [
     "DuplicateVariableError",
     "EmptySystemError",
     "InvalidRequestError",
+    "Model",
     "PiGroup",
     "PiSet",
     "PiTheoremError",
     "RepeatingCountError",
     "Scaling",
     "SearchResult",
+    "SimilarityReport",
     "System",
+    "SystemMismatchError",
+    "Trajectory",
     "UnitError",
     "UnknownVariableError",
     "__version__",
+    "models",
     "plotting",
     "search",
+    "simulate",
+    "verify_similarity",
 ]
