@@ -22,7 +22,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Mapping
 from fractions import Fraction
-from math import comb
+from math import comb, gcd, lcm
 
 from .bases import independent_subsets
 from .dimensions import Dimension
@@ -143,13 +143,26 @@ class SearchResult:
         if d == 0:
             found[tuple(a0)] = tuple(u0)
         else:
-            rows = [[v[i] for i in free] for v in dirs]
+            # integer arithmetic in the hot loop: a = (A0 * den_z + sum_j zn_j * V_j) / (den * den_z)
+            den = lcm(*(x.denominator for x in a0), *(x.denominator for v in dirs for x in v))
+            a0_int = [int(x * den) for x in a0]
+            dirs_int = [[int(x * den) for x in v] for v in dirs]
+            rows = [[v[i] for i in free] for v in dirs_int]
+            seen: dict[tuple[int, ...], tuple[int, ...]] = {}
             for subset in independent_subsets(rows, range(len(free)), [], d):
                 zero = [free[k] for k in subset]
-                z = solve([[v[i] for v in dirs] for i in zero], [-a0[i] for i in zero])
-                point = tuple(a + _dot(z, [v[i] for v in dirs]) for i, a in enumerate(a0))
-                if point not in found:
-                    found[point] = tuple(u + _dot(z, [w[j] for w in self._v_w]) for j, u in enumerate(u0))
+                z = solve([[v[i] for v in dirs_int] for i in zero], [-a0_int[i] for i in zero])
+                z_den = lcm(*(x.denominator for x in z))
+                z_num = [int(x * z_den) for x in z]
+                point = [a * z_den + sum(c * v[i] for c, v in zip(z_num, dirs_int, strict=True))
+                         for i, a in enumerate(a0_int)]
+                g = gcd(den * z_den, *point)
+                key = (den * z_den // g, *(p // g for p in point))
+                if key not in seen:
+                    seen[key] = tuple(z)
+            for (scale_den, *point), z in seen.items():
+                exact = tuple(Fraction(p, scale_den) for p in point)
+                found[exact] = tuple(u + _dot(z, [w[j] for w in self._v_w]) for j, u in enumerate(u0))
 
         def order(point):
             support = [i for i, p in enumerate(point) if p]

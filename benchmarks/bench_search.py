@@ -1,0 +1,76 @@
+"""Time pitheorem.search against a brute-force baseline, in one run, and print ratios.
+
+The baseline finds the minimal scalings the obvious way: for every subset
+of the free variables, hold it at zero as well, solve exactly, keep the
+unique solutions, then discard those whose support contains another's.
+That is 2^(free) exact solves, so for larger systems it is timed on a
+sample of subsets and scaled up to the full count (marked "~").
+
+Request: scale one variable by s, hold four others fixed (seeded random
+choices), on synthetic systems of n variables over k = 7 base dimensions.
+
+Run: python benchmarks/bench_search.py [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import time
+from fractions import Fraction
+from itertools import combinations, islice
+
+from bench_bases import synthetic_system
+
+import pitheorem as pt
+from pitheorem.linalg import nullspace, solve
+
+
+def request(system: pt.System, seed: int = 1):
+    rng = random.Random(seed)
+    names = list(system.variables)
+    rng.shuffle(names)
+    return {names[0]: 1}, tuple(names[1:5])
+
+
+def brute_force_seconds(system, scale, fixed, sample: int | None):
+    bases = system.base_dimensions
+    col = {n: [system.dimension(n).exponent(b) for b in bases] for n in system.variables}
+    free = [n for n in system.variables if n not in scale and n not in fixed]
+    total = 2 ** len(free)
+    subsets = (z for k in range(len(free) + 1) for z in combinations(free, k))
+    if sample is not None and total > sample:
+        subsets = islice(subsets, sample)
+    else:
+        sample = total
+    start = time.perf_counter()
+    for zero in subsets:
+        held = [*scale, *fixed, *zero]
+        rows = [col[n] for n in held]
+        if solve(rows, [scale.get(n, Fraction(0)) for n in held]) is not None:
+            nullspace(rows, len(bases))
+    return (time.perf_counter() - start) * total / sample, sample < total
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="smaller systems only")
+    args = parser.parse_args(argv)
+    sizes = (10, 14, 20) if args.quick else (10, 14, 20, 30, 40, 50, 60)
+    print(f"{'n':>3} {'minimal':>8} {'pitheorem s':>12} {'brute s':>14} {'speed-up':>12}")
+    for n in sizes:
+        system = synthetic_system(n, seed=n)
+        scale, fixed = request(system)
+        start = time.perf_counter()
+        result = pt.search(system, scale=scale, fixed=fixed)
+        count = result.count
+        ours = time.perf_counter() - start
+        brute, estimated = brute_force_seconds(system, scale, fixed, sample=2_000)
+        mark = "~" if estimated else " "
+        print(f"{n:>3} {count:>8} {ours:>12.4f} {mark}{brute:>13.3g} {brute / ours:>11.3g}x")
+    print("\nspeed-up = brute-force time / pitheorem time; ~ = extrapolated from 2,000 subsets."
+          "  Target: n = 40 under 0.5 s.")
+
+
+if __name__ == "__main__":
+    main()
