@@ -135,6 +135,11 @@ class Model:
         object.__setattr__(self, "defaults", defaults)
         object.__setattr__(self, "initial", initial)
 
+    def __reduce__(self):
+        # read-only mappings do not pickle; rebuild from plain dicts
+        return (type(self), (self.system, self.parameters, self.states, self.rhs, self.time,
+                             dict(self.defaults), dict(self.initial), self.name, self.description))
+
     def __hash__(self) -> int:
         return hash((self.system, self.parameters, self.states, self.time, self.rhs,
                      tuple(self.defaults.items()), tuple(self.initial.items()), self.name))
@@ -363,8 +368,8 @@ def _longitudinal_rhs(t, y, p):
     theta, omega = map(float, y)
     m, l, g, k, x_r = p["m"], p["l"], p["g"], p["k"], p["x_r"]  # noqa: E741
     cos = math.cos(theta)
-    x = l * math.sqrt(2.0 + 2.0 * math.sin(theta))  # spring length, tip to anchor
-    arm = l * l * cos / x  # dx/dtheta; torque of a tension T about the hinge is -T * arm
+    x = l * math.sqrt(5.0 + 4.0 * math.sin(theta))  # spring length, tip to the anchor at (0, -2 l)
+    arm = 2.0 * l * l * cos / x  # dx/dtheta; the torque of a tension T about the hinge is -T * arm
     tension = k * (x - x_r)
     if "c" in p:
         tension += p["c"] * arm * omega  # damper force c * x_dot along the spring
@@ -444,20 +449,22 @@ def hinged_rod_longitudinal(damper: bool = True) -> Model:
     horizontal, positive in the direction gravity turns it, so the tip is
     at ``l (cos theta, sin theta)`` with the second axis pointing down.  A
     spring (constant ``k ~ M T^-2``, rest length ``x_r ~ L``) joins the tip
-    to an anchor a distance ``l`` above the hinge, at ``(0, -l)``.  Its
-    length and the lever arm of its tension about the hinge are::
+    to an anchor a distance ``2 l`` above the hinge, at ``(0, -2 l)``, out
+    of the tip's reach.  The spring's length and its rate of change with
+    the angle are::
 
-        x = l sqrt(2 + 2 sin(theta)),     dx/dtheta = l^2 cos(theta) / x
+        x = l sqrt(5 + 4 sin(theta)),     dx/dtheta = 2 l^2 cos(theta) / x
 
     The tension ``T = k (x - x_r) + c x'`` (``x' = dx/dtheta * omega``; the
-    damper ``c ~ M T^-1`` only with ``damper=True``) acts along the spring,
-    so its torque is ``-T dx/dtheta`` (force times lever arm, by virtual
-    work).  With ``I = m l^2 / 3``::
+    damper ``c ~ M T^-1`` only with ``damper=True``) acts along the spring.
+    Its torque about the hinge, force times lever arm (the cross product of
+    the tip position with the force), is ``-T dx/dtheta``, as virtual work
+    requires.  With ``I = m l^2 / 3``::
 
-        theta'' = 3/(m l^2) ((m g l / 2) cos(theta) - T l^2 cos(theta) / x)
+        theta'' = 3/(m l^2) ((m g l / 2) cos(theta) - 2 T l^2 cos(theta) / x)
 
-    Every term in the bracket is a torque ``M L^2 T^-2``.  The model is
-    singular only at ``theta = -pi/2`` (tip on the anchor, ``x = 0``).
+    Every term in the bracket is a torque ``M L^2 T^-2``, and ``x >= l``
+    never vanishes, so the model has no singular angle.
 
     Parameters
     ----------
@@ -468,8 +475,9 @@ def hinged_rod_longitudinal(damper: bool = True) -> Model:
     -------
     Model
         Parameters ``m, l, g, k, x_r`` (and ``c``); states ``theta``,
-        ``omega``.  Defaults ``m=1.5, l=2, g=9.81, k=50, x_r=1, c=5``,
-        from ``theta=pi/4``, ``omega=0``.
+        ``omega``.  Defaults ``m=1.5, l=2, g=9.81`` as for
+        :func:`hinged_rod`, ``k=20, x_r=4, c=2`` (equilibrium close to the
+        horizontal, ``theta = -0.037``), from ``theta=pi/4``, ``omega=0``.
 
     Examples
     --------
@@ -481,10 +489,10 @@ def hinged_rod_longitudinal(damper: bool = True) -> Model:
     ('M T^-2', 'L')
     """
     dims = {"m": "M", "l": "L", "g": "L T^-2", "k": "M T^-2", "x_r": "L"}
-    defaults = {"m": 1.5, "l": 2.0, "g": 9.81, "k": 50.0, "x_r": 1.0}
+    defaults = {"m": 1.5, "l": 2.0, "g": 9.81, "k": 20.0, "x_r": 4.0}
     if damper:
         dims["c"] = "M T^-1"
-        defaults["c"] = 5.0
+        defaults["c"] = 2.0
     system = System({**dims, "t": "T", "theta": "1", "omega": "T^-1"})
     return Model(
         system=system,
