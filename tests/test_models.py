@@ -74,7 +74,7 @@ def test_hinged_rod_spring_is_restoring():
 
 def _longitudinal_energy(model, p, y):
     theta, omega = y[:, 0], y[:, 1]
-    m, l, g, k, x_r = p["m"], p["l"], p["g"], p["k"], p["x_r"]
+    m, l, g, k, x_r = p["m"], p["l"], p["g"], p["k"], p["x_r"]  # noqa: E741
     x = l * np.sqrt(5 + 4 * np.sin(theta))
     # theta grows in the direction gravity turns the rod: the centre of mass sinks by (l/2) sin(theta)
     return m * l**2 / 6 * omega**2 + k / 2 * (x - x_r) ** 2 - m * g * l / 2 * np.sin(theta)
@@ -155,7 +155,8 @@ def test_every_model_declares_every_variable(name):
     assert set(model.defaults) == set(model.parameters)
     assert set(model.initial) == set(model.states)
     assert str(model.system.dimension(model.time)) == "T"
-    assert model.name and model.description
+    assert model.name
+    assert model.description
     out = model.rhs(0.0, model.resolve_initial(), dict(model.defaults))
     assert np.asarray(out).shape == (len(model.states),)
 
@@ -231,7 +232,8 @@ def test_model_validation(kw, error, culprit):
 def test_resolve_params_and_initial():
     rod = models.hinged_rod()
     p = rod.resolve_params({"g": 1.62})
-    assert p["g"] == 1.62 and p["m"] == 1.5
+    assert p["g"] == 1.62
+    assert p["m"] == 1.5
     assert list(p) == list(rod.parameters)
     with pytest.raises(pt.UnknownVariableError, match="'mass'"):
         rod.resolve_params({"mass": 2.0})
@@ -242,16 +244,16 @@ def test_resolve_params_and_initial():
     with pytest.raises(pt.InvalidRequestError, match="mapping"):
         rod.resolve_params([1.0, 2.0])
     no_default = _decay(defaults={})
-    with pytest.raises(pt.InvalidRequestError, match="'tau'.*no default"):
+    with pytest.raises(pt.InvalidRequestError, match=r"'tau'.*no default"):
         no_default.resolve_params()
     assert rod.resolve_initial().tolist() == [math.pi / 4, 0.0]
     assert rod.resolve_initial({"omega": 1.0}).tolist() == [math.pi / 4, 1.0]
     assert rod.resolve_initial([0.1, 0.2]).tolist() == [0.1, 0.2]
-    with pytest.raises(pt.InvalidRequestError, match="3 values.*2 states"):
+    with pytest.raises(pt.InvalidRequestError, match=r"3 values.*2 states"):
         rod.resolve_initial([0.1, 0.2, 0.3])
     with pytest.raises(pt.UnknownVariableError, match="'phi'"):
         rod.resolve_initial({"phi": 0.0})
-    with pytest.raises(pt.InvalidRequestError, match="'x'.*no initial value"):
+    with pytest.raises(pt.InvalidRequestError, match=r"'x'.*no initial value"):
         _decay(initial={}).resolve_initial()
     with pytest.raises(pt.InvalidRequestError):
         rod.resolve_initial(["a", "b"])

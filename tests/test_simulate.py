@@ -1,0 +1,405 @@
+"""Tests for pitheorem.simulate: integrators and numerical similarity checks."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import pickle
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import pitheorem as pt
+from matlab_ports import scaling_counterexample_nonlinear as nonlinear
+from pitheorem import models
+
+#: the paper's wrong scalings of the hinged rod (Figures 2-4), time unchanged
+WRONG = {
+    "figure2": {"g": 1},
+    "figure3": {"g": 1, "l": -1},
+    "figure4": {"g": 1, "l": -1, "c_theta": -1},
+}
+
+
+@pytest.fixture(scope="module")
+def hinged():
+    return models.hinged_rod()
+
+
+@pytest.fixture(scope="module")
+def figure5(hinged):
+    """The search's answer for g by s, l by 1/s with m, k_theta fixed (the paper's Figure 5)."""
+    res = pt.search(hinged.system, scale={"g": 1, "l": -1}, fixed=("m", "k_theta"))
+    assert len(res.scalings) == 1
+    return res.scalings[0]
+
+
+@pytest.fixture(scope="module")
+def figure1():
+    return nonlinear.simulate_figures()["figure1"]
+
+
+# -- (a) valid scalings agree to solver tolerance ------------------------------------------------
+
+
+def test_search_scaling_is_figure5(figure5):
+    assert figure5.exponents == {"m": 0, "l": -1, "g": 1, "k_theta": 0, "c_theta": -1, "theta_r": 0,
+                                 "t": -1, "theta": 0, "omega": 1}
+
+
+@pytest.mark.parametrize("s", [2.0, 3.0, 0.37])
+def test_search_scaling_reproduces_the_original(hinged, figure5, s):
+    rep = pt.verify_similarity(hinged, figure5, s=s, t_final=10.0)
+    assert rep.passed
+    assert rep.max_deviation < 1e-7
+    assert rep.is_similarity
+    assert rep.scaling is figure5
+    assert rep.exponents["t"] == -1
+    # mapped back to original time
+    np.testing.assert_allclose(rep.mapped.t, rep.original.t, rtol=1e-14, atol=1e-14)
+    assert rep.original.t[-1] == 10.0
+
+
+def test_time_free_scalings_of_the_papers_rod_all_agree(hinged, rod):
+    # the paper's nine variables plus the states: three minimal ways to scale g with time fixed
+    with_states = pt.System({**rod.dimensions, "theta": "1", "omega": "T^-1"})
+    res = pt.search(with_states, scale={"g": 1})
+    assert "t" in res.fixed
+    assert len(res.scalings) == 3
+    for sc in res.scalings:
+        assert sc.exponents["t"] == 0
+        rep = pt.verify_similarity(hinged, sc, s=2.5, t_final=10.0)
+        assert rep.max_deviation < 1e-7, str(sc)
+
+
+def test_dict_of_exponents_is_completed_from_the_units(hinged):
+    rep = pt.verify_similarity(hinged, {"g": 1, "l": -1, "c_theta": -1, "t": -1}, s=3, t_final=2.0)
+    assert rep.passed
+    assert rep.is_similarity
+    assert rep.exponents["omega"] == 1  # states follow from the change of units
+    assert isinstance(rep.scaling, pt.Scaling)
+    # the same with check=False: a similarity scaling stays one
+    rep2 = pt.verify_similarity(hinged, {"g": 1, "l": -1, "c_theta": -1, "t": -1}, s=3, t_final=2.0, check=False)
+    assert rep2.is_similarity
+    assert rep2.passed
+    # exponents given as strings or Fractions
+    rep3 = pt.verify_similarity(hinged, {"g": "1", "l": -1, "c_theta": -1, "t": -1, "omega": 1}, s=3, t_final=1.0)
+    assert rep3.passed
+
+
+# -- (b) the paper's wrong scalings fail --------------------------------------------------------
+
+
+@pytest.mark.parametrize("figure", sorted(WRONG))
+def test_papers_wrong_scalings_fail(hinged, figure):
+    rep = pt.verify_similarity(hinged, WRONG[figure], s=2, t_final=10.0, check=False)
+    assert not rep.passed
+    assert not rep.is_similarity
+    assert rep.deviation["theta"] > 0.05
+    assert rep.max_deviation >= rep.deviation["theta"]
+    assert rep.exponents["t"] == 0
+    assert rep.exponents["omega"] == 0
+    assert "FAILED" in str(rep)
+    assert "NOT a similarity" in str(rep)
+
+
+@pytest.mark.parametrize("figure", sorted(WRONG))
+def test_wrong_scalings_are_refused_when_checked(hinged, figure):
+    with pytest.raises(pt.InvalidRequestError, match="not a similarity scaling"):
+        pt.verify_similarity(hinged, WRONG[figure], s=2, t_final=1.0)
+
+
+def test_wrong_scaling_matches_the_matlab_figures(hinged):
+    # Figure 3 of the port (g*s, l/s, Euler, time unchanged) is exactly the scaled run here
+    data = nonlinear.simulate_figures(n_points=20001)
+    rep = pt.verify_similarity(hinged, WRONG["figure3"], s=2, t_final=2.0, method="euler", dt=1e-4, check=False)
+    np.testing.assert_allclose(rep.mapped["theta"], data["figure3"][1], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(rep.original["theta"], data["figure1"][1], rtol=0, atol=1e-9)
+
+
+# -- (c) fixed-step Euler: dt is a parameter of dimension T --------------------------------------
+
+
+def test_euler_exact_only_with_scaled_dt(hinged, figure5, figure1):
+    exact = pt.verify_similarity(hinged, figure5, s=2, t_final=10.0, method="euler", dt=1e-4)
+    assert exact.max_deviation < 1e-12
+    assert exact.scaled_dt
+    assert len(exact.original) == 100001
+    gap = pt.verify_similarity(hinged, figure5, s=2, t_final=10.0, method="euler", dt=1e-4, scale_dt=False)
+    assert 5e-5 < gap.deviation["theta"] < 5e-4
+    assert not gap.passed
+    assert not gap.scaled_dt
+    assert len(gap.mapped) == len(gap.original)
+    # the port's Figure 5 is the same unscaled-dt run (plotted against t*s): the same gap
+    p5 = dict(nonlinear.PARAMS, g=2 * nonlinear.PARAMS["g"], l=nonlinear.PARAMS["l"] / 2, c=nonlinear.PARAMS["c"] / 2)
+    t5, theta5 = figure1[0] * 2, nonlinear.simulate(p5, figure1[0])[0]
+    port_gap = np.abs(np.interp(figure1[0], t5, theta5) - figure1[1]).max()
+    assert gap.deviation["theta"] == pytest.approx(port_gap, rel=0.05)
+
+
+def test_euler_scaled_dt_is_exact_for_any_s(hinged, figure5):
+    # s = 3 is not a power of two, so agreement is to rounding, not bit for bit
+    rep = pt.verify_similarity(hinged, figure5, s=3.0, t_final=5.0, method="euler", dt=1e-3)
+    assert rep.max_deviation < 1e-10
+
+
+def test_euler_gap_is_first_order_in_dt(hinged, figure5):
+    gaps = [
+        pt.verify_similarity(hinged, figure5, s=2, t_final=5.0, method="euler", dt=dt, scale_dt=False).deviation["theta"]
+        for dt in (2e-3, 1e-3)
+    ]
+    assert gaps[0] / gaps[1] == pytest.approx(2.0, rel=0.1)
+
+
+def test_euler_with_time_fixed_scaling_needs_no_dt_change(hinged, rod):
+    with_states = pt.System({**rod.dimensions, "theta": "1", "omega": "T^-1"})
+    sc = pt.search(with_states, scale={"g": 1}).scalings[0]
+    for scale_dt in (True, False):
+        rep = pt.verify_similarity(hinged, sc, s=3, t_final=2.0, method="euler", dt=1e-3, scale_dt=scale_dt)
+        assert rep.max_deviation < 1e-10
+
+
+# -- (e) Euler reproduces the MATLAB program -----------------------------------------------------
+
+
+def test_euler_reproduces_figure1(hinged, figure1):
+    t, theta = figure1
+    tr = pt.simulate(hinged, t_final=10.0, method="euler", dt=1e-4)
+    assert len(tr) == len(t) == 100001
+    np.testing.assert_allclose(tr.t, t, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(tr["theta"], theta, rtol=0, atol=1e-9)
+
+
+def test_solve_ivp_is_close_to_euler(hinged, figure1):
+    t, theta = figure1
+    tr = pt.simulate(hinged, t_final=10.0, t_eval=t[::1000])
+    # Euler at dt = 1e-4 is first order: the two agree to about 1e-4
+    np.testing.assert_allclose(tr["theta"], theta[::1000], atol=5e-4)
+
+
+# -- simulate ------------------------------------------------------------------------------------
+
+
+def test_simulate_defaults_and_overrides(hinged):
+    tr = pt.simulate(hinged, t_final=1.0)
+    assert len(tr) == 1001
+    assert tr.t[0] == 0.0
+    assert tr.t[-1] == 1.0
+    assert tr.states == ("theta", "omega")
+    assert tr.time == "t"
+    assert tr["theta"][0] == math.pi / 4
+    lighter = pt.simulate(hinged, {"g": 1.62}, t_final=1.0)
+    assert not np.allclose(lighter["theta"], tr["theta"])
+    moved = pt.simulate(hinged, y0={"omega": 1.0}, t_final=1.0)
+    assert moved["omega"][0] == 1.0
+    seq = pt.simulate(hinged, y0=[0.0, 0.0], t_final=1.0)
+    assert seq["theta"][0] == 0.0
+
+
+def test_euler_grid_and_step_count(hinged):
+    tr = pt.simulate(hinged, t_final=1.0, method="euler", dt=0.1)
+    assert len(tr) == 11
+    np.testing.assert_allclose(tr.t, np.arange(11) * 0.1)
+    # not a multiple of dt: one more step, ending after t_final
+    tr = pt.simulate(hinged, t_final=1.05, method="euler", dt=0.1)
+    assert len(tr) == 12
+    assert tr.t[-1] >= 1.05
+    # one step by hand
+    p = dict(hinged.defaults)
+    y0 = hinged.resolve_initial()
+    tr = pt.simulate(hinged, t_final=0.1, method="euler", dt=0.1)
+    np.testing.assert_array_equal(tr.y[1], y0 + hinged.rhs(0.0, y0, p) * 0.1)
+
+
+def test_euler_passes_time_to_the_rhs():
+    seen = []
+
+    def rhs(t, y, p):
+        seen.append(t)
+        return np.array([p["a"]])
+
+    model = pt.Model(pt.System({"a": "L/T", "t": "T", "x": "L"}), ("a",), ("x",), rhs,
+                     defaults={"a": 2.0}, initial={"x": 0.0})
+    tr = pt.simulate(model, t_final=0.3, method="euler", dt=0.1)
+    np.testing.assert_allclose(seen, [0.0, 0.1, 0.2])
+    np.testing.assert_allclose(tr["x"], [0.0, 0.2, 0.4, 0.6])
+
+
+def test_trajectory_is_read_only(hinged):
+    tr = pt.simulate(hinged, t_final=0.1)
+    with pytest.raises(ValueError, match="read-only"):
+        tr.y[0, 0] = 1.0
+    with pytest.raises(ValueError, match="read-only"):
+        tr.t[0] = 1.0
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        tr.t = np.zeros(3)
+    with pytest.raises(pt.UnknownVariableError, match="'phi'"):
+        tr["phi"]
+    assert "Trajectory" in repr(tr)
+    with pytest.raises(pt.InvalidRequestError, match="shape"):
+        pt.Trajectory([0.0, 1.0], [[1.0, 2.0]], ("a", "b"))
+
+
+def test_report_is_frozen(hinged, figure5):
+    rep = pt.verify_similarity(hinged, figure5, s=2, t_final=0.5)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        rep.passed = False
+    with pytest.raises(TypeError):
+        rep.deviation["theta"] = 1.0
+    assert rep.difference.shape == rep.original.y.shape
+    assert "PASSED" in str(rep)
+
+
+def test_scaling_of_a_superset_system_is_accepted(hinged, rod, figure5):
+    # the same change of units, built on a larger system (force, torque, an extra state)
+    big = pt.System({**rod.dimensions, "theta": "1", "omega": "T^-1", "alpha": "T^-2"})
+    sc = pt.Scaling.from_unit_change(big, figure5.unit_change)
+    assert pt.verify_similarity(hinged, sc, s=2, t_final=1.0).passed
+
+
+# -- (f) bad inputs -----------------------------------------------------------------------------
+
+
+def test_bad_simulate_inputs(hinged):
+    with pytest.raises(pt.UnknownVariableError, match="'mass'") as info:
+        pt.simulate(hinged, {"mass": 1.0})
+    assert "m, l, g" in str(info.value)
+    with pytest.raises(pt.InvalidRequestError, match="'rk4'"):
+        pt.simulate(hinged, method="rk4")
+    with pytest.raises(pt.InvalidRequestError, match="dt"):
+        pt.simulate(hinged, method="euler")
+    with pytest.raises(pt.InvalidRequestError, match="dt"):
+        pt.simulate(hinged, method="euler", dt=-1e-3)
+    with pytest.raises(pt.InvalidRequestError, match="dt"):
+        pt.simulate(hinged, dt=1e-3)
+    with pytest.raises(pt.InvalidRequestError, match="t_eval"):
+        pt.simulate(hinged, method="euler", dt=1e-3, t_eval=[0.0])
+    with pytest.raises(pt.InvalidRequestError, match="t_final"):
+        pt.simulate(hinged, t_final=0)
+    with pytest.raises(pt.InvalidRequestError, match="t_final"):
+        pt.simulate(hinged, t_final="long")
+    with pytest.raises(pt.InvalidRequestError, match=r"3 values.*2 states"):
+        pt.simulate(hinged, y0=[0.1, 0.2, 0.3])
+    with pytest.raises(pt.UnknownVariableError, match="'phi'"):
+        pt.simulate(hinged, y0={"phi": 0.1})
+    with pytest.raises(pt.InvalidRequestError, match="t_eval"):
+        pt.simulate(hinged, t_final=1.0, t_eval=[0.0, 2.0])
+    with pytest.raises(pt.InvalidRequestError, match="t_eval"):
+        pt.simulate(hinged, t_final=1.0, t_eval=[0.5, 0.1])
+    with pytest.raises(pt.InvalidRequestError, match="Model"):
+        pt.simulate("hinged_rod")
+    with pytest.raises(TypeError):
+        pt.simulate(hinged, 1.0, None, 1.0, "euler")  # options are keyword-only
+
+
+def test_missing_parameter_is_named():
+    model = pt.Model(pt.System({"a": "L/T", "t": "T", "x": "L"}), ("a",), ("x",), lambda t, y, p: [p["a"]],
+                     initial={"x": 0.0}, name="drift")
+    with pytest.raises(pt.InvalidRequestError, match=r"'a'.*no default"):
+        pt.simulate(model, t_final=1.0)
+    with pytest.raises(pt.InvalidRequestError, match=r"'a'.*no default"):
+        pt.verify_similarity(model, {"a": 1}, s=2, t_final=1.0)
+    assert pt.simulate(model, {"a": 1.0}, t_final=1.0)["x"][-1] == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize("s", [0, -2, float("nan"), float("inf"), "two", None, True])
+def test_bad_scale_factor(hinged, figure5, s):
+    with pytest.raises(pt.InvalidRequestError, match="scale factor s"):
+        pt.verify_similarity(hinged, figure5, s=s, t_final=0.1)
+    with pytest.raises(pt.InvalidRequestError, match="scale factor s"):
+        pt.verify_similarity(hinged, {"g": 1}, s=s, t_final=0.1, check=False)
+
+
+def test_bad_verify_inputs(hinged, figure5):
+    with pytest.raises(pt.InvalidRequestError, match="dt"):
+        pt.verify_similarity(hinged, figure5, s=2, method="euler")
+    with pytest.raises(pt.InvalidRequestError, match="'leapfrog'"):
+        pt.verify_similarity(hinged, figure5, s=2, method="leapfrog")
+    with pytest.raises(pt.UnknownVariableError, match="'gravity'"):
+        pt.verify_similarity(hinged, {"gravity": 1}, s=2, check=False)
+    with pytest.raises(pt.UnknownVariableError, match="'mass'"):
+        pt.verify_similarity(hinged, figure5, s=2, params={"mass": 1.0})
+    with pytest.raises(pt.InvalidRequestError, match="3 values"):
+        pt.verify_similarity(hinged, figure5, s=2, y0=[1.0, 2.0, 3.0])
+    with pytest.raises(pt.InvalidRequestError, match="tol"):
+        pt.verify_similarity(hinged, figure5, s=2, tol=0)
+    with pytest.raises(pt.InvalidRequestError, match="Scaling or a dict"):
+        pt.verify_similarity(hinged, [1, 2], s=2)
+    with pytest.raises(pt.InvalidRequestError, match="'g'"):
+        pt.verify_similarity(hinged, {"g": "big"}, s=2, check=False)
+    with pytest.raises(pt.InvalidRequestError, match=r"'omega'.*contradicts"):
+        pt.verify_similarity(hinged, {"g": 1, "l": -1, "c_theta": -1, "t": -1, "omega": 2}, s=2)
+
+
+def test_scaling_of_another_system_is_refused(hinged, figure5):
+    # same variables, one dimension differs
+    dims = {n: str(d) for n, d in hinged.system.dimensions.items()}
+    dims["c_theta"] = "M L T^-1"
+    other = pt.System(dims)
+    sc = pt.Scaling.from_unit_change(other, {"L": 1})
+    with pytest.raises(pt.SystemMismatchError, match=r"'c_theta'.*M L\^2 T\^-1.*M L T\^-1") as info:
+        pt.verify_similarity(hinged, sc, s=2, t_final=0.1)
+    assert info.value.name == "c_theta"
+    assert isinstance(info.value, pt.PiTheoremError)
+    assert isinstance(info.value, ValueError)
+    # a system without the states
+    sc = pt.Scaling.from_unit_change(models.rod_system(), {"L": 1})
+    with pytest.raises(pt.SystemMismatchError, match=r"'theta'.*missing"):
+        pt.verify_similarity(hinged, sc, s=2, t_final=0.1)
+    # a scaling of another model
+    sc = pt.Scaling.from_unit_change(models.spring_mass_damper().system, {"L": 1})
+    with pytest.raises(pt.SystemMismatchError, match="'l'"):
+        pt.verify_similarity(hinged, sc, s=2, t_final=0.1)
+
+
+def test_system_mismatch_error_pickles():
+    err = pt.SystemMismatchError("theta", "variable 'theta' is missing")
+    again = pickle.loads(pickle.dumps(err))
+    assert again.name == "theta"
+    assert str(again) == str(err)
+
+
+# -- (g) the report's plot ----------------------------------------------------------------------
+
+
+def test_report_plot(hinged):
+    rep = pt.verify_similarity(hinged, WRONG["figure2"], s=2, t_final=1.0, check=False)
+    fig = rep.plot()
+    top, bottom = fig.axes
+    labels = [line.get_label() for line in top.get_lines()]
+    assert labels == ["theta (original)", "theta (scaled, mapped back)", "omega (original)",
+                      "omega (scaled, mapped back)"]
+    assert top.get_legend() is not None
+    assert bottom.get_legend() is not None
+    diff_labels = [line.get_label() for line in bottom.get_lines()]
+    assert "|theta difference|" in diff_labels
+    assert "|omega difference|" in diff_labels
+    assert bottom.get_xlabel() == "t, original units"
+    assert "NOT similar" in top.get_title()
+    np.testing.assert_array_equal(top.get_lines()[0].get_ydata(), rep.original["theta"])
+    np.testing.assert_array_equal(top.get_lines()[1].get_ydata(), rep.mapped["theta"])
+    one = rep.plot(states=["omega"]).axes[0]
+    assert [line.get_label() for line in one.get_lines()] == ["omega (original)", "omega (scaled, mapped back)"]
+    with pytest.raises(pt.UnknownVariableError, match="'phi'"):
+        rep.plot(states=["phi"])
+
+
+# -- hypothesis -----------------------------------------------------------------------------------
+
+unit_exponent = st.integers(-2, 2)
+
+
+@settings(max_examples=12, deadline=None)
+@given(
+    s=st.floats(0.5, 4.0),
+    u_m=unit_exponent,
+    u_l=unit_exponent,
+    u_t=unit_exponent,
+)
+def test_any_change_of_units_is_similar(s, u_m, u_l, u_t):
+    smd = models.spring_mass_damper()
+    sc = pt.Scaling.from_unit_change(smd.system, {"M": u_m, "L": u_l, "T": u_t})
+    rep = pt.verify_similarity(smd, sc, s=s, t_final=2.0)
+    assert rep.passed, (s, u_m, u_l, u_t, rep.max_deviation)
