@@ -24,7 +24,7 @@ docs: $(VENV)/.docs-stamp
 	$(PY) -m sphinx -n -W --keep-going -b html docs docs/_build/html
 
 bench: $(VENV)/.test-stamp
-	$(PY) benchmarks/bench_bases.py
+	cd benchmarks && ../$(PY) bench_bases.py && ../$(PY) bench_search.py
 
 lint:
 	$(PY) -m ruff check pitheorem tests matlab_ports benchmarks
