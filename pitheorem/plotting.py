@@ -46,10 +46,17 @@ def plot_search(result, ax=None):
     ax.imshow(data if data.size else np.zeros((len(names), 1)), cmap="RdBu_r", vmin=-limit, vmax=limit, aspect="auto")
     for i in range(len(names)):
         for j in range(len(points)):
-            ax.text(j, i, power_text(Fraction(points[j][i])), ha="center", va="center", fontsize=10)
+            p = Fraction(points[j][i])
+            dark = abs(float(p)) > 0.6 * limit
+            ax.text(j, i, power_text(p), ha="center", va="center", fontsize=10, color="white" if dark else "black")
     roles = ["scale" if n in result.scale else "fixed" if n in result.fixed else "" for n in names]
     ax.set_yticks(range(len(names)), [f"{n} ({r})" if r else n for n, r in zip(names, roles, strict=True)])
     ax.set_xticks(range(len(points)), [f"#{k + 1}" for k in range(len(points))])
     ax.set_xlabel("minimal scaling")
-    ax.set_title("feasible" if result.feasible else f"impossible: {result.certificate.expr} would change", fontsize=10)
+    request = ", ".join(f"{n} by {power_text(p)}" for n, p in result.scale.items())
+    if result.feasible:
+        title = f"{request}: {len(points)} minimal scaling(s)"
+    else:
+        title = f"{request}: impossible, {result.certificate.expr} would change"
+    ax.set_title(title, fontsize=10)
     return fig
