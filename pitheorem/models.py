@@ -309,9 +309,9 @@ _SUPERBALL = {
 
 
 def rod_system() -> System:
-    """The paper's nine rod variables (Section 2.1), force and torque included.
+    """The paper's nine rod variables (Section 2.1).
 
-    ``m, theta_r, l, g, k_theta, c_theta, t, F, tau``, in the paper's order.
+    Force and torque included: ``m, theta_r, l, g, k_theta, c_theta, t, F, tau``, in the paper's order.
 
     Returns
     -------
@@ -328,7 +328,7 @@ def rod_system() -> System:
 
 
 def superball_parameters() -> System:
-    """The NTRT SUPERball CONFIG parameters of Section 4, plus ``m`` and ``l``.
+    """The NTRT SUPERball parameters of Section 4, plus m and l.
 
     Longitudinal spring ``k ~ M T^-2`` and damper ``c ~ M T^-1``, rest length
     ``x_r``, gravity, pretension ``F``, time, the Corde moduli ``G`` and
@@ -391,7 +391,7 @@ def _projectile_rhs(t, y, p):
 
 
 def hinged_rod() -> Model:
-    r"""The paper's rod on a hinge with a rotational spring and damper (Eq. 1).
+    r"""The paper's hinged rod, rotational spring and damper (Eq. 1).
 
     A uniform rod (mass ``m``, length ``l``, ``I = m l^2 / 3`` about the
     hinge) makes the angle ``theta`` with the horizontal, measured in the

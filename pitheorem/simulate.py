@@ -366,7 +366,7 @@ def _factor(s: float, power: Fraction) -> float:
 
 @dataclass(frozen=True, eq=False)
 class SimilarityReport:
-    """Result of :func:`verify_similarity`: original vs scaled-and-mapped-back run.
+    """Result of :func:`verify_similarity`: the two runs compared.
 
     Attributes
     ----------
