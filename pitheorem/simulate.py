@@ -342,7 +342,17 @@ def _exponents_from_dict(model: Model, exponents: Mapping, check: bool):
     # the parameters and time determine the change of units; states follow from it
     core = (*model.parameters, model.time)
     sub = System({n: model.system.dimension(n) for n in core})
+    free = [n for n in model.states if System({**sub.dimensions, n: model.system.dimension(n)}).rank > sub.rank]
+    if free:  # states whose dimension the parameters and time cannot build: their exponents must be given
+        core = (*core, *free)
+        sub = System({n: model.system.dimension(n) for n in core})
     try:
+        for n in free:
+            if n not in given:
+                raise InvalidRequestError(
+                    f"the exponents of the parameters and time do not determine the scaling of state {n!r} "
+                    f"(dimension {model.system.dimension(n)}); give its exponent too"
+                )
         partial = Scaling.from_exponents(sub, {n: given.get(n, 0) for n in core})
         scaling = Scaling.from_unit_change(model.system, dict(zip(sub.base_dimensions, partial.units, strict=True)))
         bad = [n for n in model.states if n in given and given[n] != scaling.powers[model.system.index(n)]]
@@ -519,7 +529,9 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
     scaling : Scaling or mapping of str to number
         A scaling of ``model.system`` (or of a system holding all of the
         model's variables with the same dimensions), or exponents of ``s``
-        per parameter and time (states follow; unlisted: 0).
+        per parameter and time (unlisted: 0).  The states' exponents follow
+        from the change of units; list one only when the parameters and
+        time cannot determine it (or to have it checked).
     s : float
         Scale factor, positive.
     params, y0, t_final, method, dt, rtol, atol, ivp_method

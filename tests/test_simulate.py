@@ -403,3 +403,17 @@ def test_any_change_of_units_is_similar(s, u_m, u_l, u_t):
     sc = pt.Scaling.from_unit_change(smd.system, {"M": u_m, "L": u_l, "T": u_t})
     rep = pt.verify_similarity(smd, sc, s=s, t_final=2.0)
     assert rep.passed, (s, u_m, u_l, u_t, rep.max_deviation)
+
+
+def test_state_exponent_must_be_determined():
+    # the parameters and time carry no length: the exponent of x is not fixed by them
+    model = pt.Model(pt.System({"r": "T^-1", "t": "T", "x": "L"}), ("r",), ("x",), lambda t, y, p: -p["r"] * y,
+                     defaults={"r": 1.0}, initial={"x": 1.0})
+    with pytest.raises(pt.InvalidRequestError, match=r"state 'x'"):
+        pt.verify_similarity(model, {"t": 1, "r": -1}, s=2, t_final=1.0)
+    rep = pt.verify_similarity(model, {"t": 1, "r": -1, "x": 3}, s=2, t_final=1.0)
+    assert rep.passed
+    assert rep.exponents["x"] == 3
+    unchecked = pt.verify_similarity(model, {"t": 1, "r": -1}, s=2, t_final=1.0, check=False)
+    assert unchecked.exponents["x"] == 0  # applied as given
+    assert not unchecked.is_similarity
