@@ -22,6 +22,7 @@ from .errors import (
 )
 from . import models
 from . import plotting
+from .equations import DimensionReport, SymmetryReport, check_dimensions, scaling_symmetries
 from .groups import PiGroup, PiSet
 from .models import Model
 from .scaling import Scaling
@@ -35,6 +36,7 @@ __all__ = [
     "DEFAULT_BASE_DIMENSIONS",
     "DependentRepeatingSetError",
     "Dimension",
+    "DimensionReport",
     "DimensionSyntaxError",
     "DuplicateVariableError",
     "EmptySystemError",
@@ -47,14 +49,17 @@ __all__ = [
     "Scaling",
     "SearchResult",
     "SimilarityReport",
+    "SymmetryReport",
     "System",
     "SystemMismatchError",
     "Trajectory",
     "UnitError",
     "UnknownVariableError",
     "__version__",
+    "check_dimensions",
     "models",
     "plotting",
+    "scaling_symmetries",
     "search",
     "simulate",
     "verify_similarity",
