@@ -197,7 +197,11 @@ def check_dimensions(equation, system: System, *, time: str | None = "t") -> Dim
     walker = _DimensionWalker(system, time)
     sides = _as_sides(equation)
     dims = [walker.dim(side) for side in sides]
+    if len(sides) == 2 and sides[0] == 0:
+        sides, dims = sides[::-1], dims[::-1]
     for side, d in zip(sides[1:], dims[1:], strict=True):
+        if side == 0:  # zero has every dimension: Eq(x'', 0) is consistent
+            continue
         if d != dims[0]:
             walker.flag(side, d, dims[0])
     return DimensionReport(not walker.offending, dims[0], tuple(walker.offending))

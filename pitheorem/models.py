@@ -33,6 +33,7 @@ __all__ = [
     "Model",
     "hinged_rod",
     "hinged_rod_longitudinal",
+    "model_equations",
     "projectile",
     "rod_system",
     "spring_mass_damper",
@@ -579,3 +580,77 @@ def projectile() -> Model:
         name="projectile",
         description="point mass under gravity, launched at 10 m/s and 45 degrees",
     )
+
+
+# -- the same models as sympy equations ------------------------------------------------------
+
+
+def model_equations(model: Model) -> list:
+    """The shipped model's equations of motion as sympy equations.
+
+    States are functions of the time symbol; the first-order form matches
+    the model's ``rhs``, so :func:`pitheorem.check_dimensions` and
+    :func:`pitheorem.scaling_symmetries` can analyse exactly what is
+    simulated.
+
+    Parameters
+    ----------
+    model : Model
+        One of :func:`hinged_rod`, :func:`hinged_rod_longitudinal`,
+        :func:`spring_mass_damper`, :func:`projectile`.
+
+    Returns
+    -------
+    list of sympy.Eq
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> rod = pt.models.hinged_rod()
+    >>> [str(pt.check_dimensions(eq, rod.system)) for eq in pt.models.model_equations(rod)]
+    ['consistent: dimension T^-1', 'consistent: dimension T^-2']
+    """
+    import sympy
+
+    builders = {
+        "hinged_rod": _rod_equations,
+        "hinged_rod_longitudinal": _longitudinal_equations,
+        "spring_mass_damper": _smd_equations,
+        "projectile": _projectile_equations,
+    }
+    name = getattr(model, "name", None)
+    if name not in builders:
+        raise InvalidRequestError(
+            f"no equations are known for model {name!r}; shipped models are {', '.join(sorted(builders))}"
+        )
+    t = sympy.Symbol(model.time, positive=True)
+    states = {n: sympy.Function(n)(t) for n in model.states}
+    params = {n: sympy.Symbol(n, positive=True) for n in model.parameters}
+    return builders[name](sympy, t, states, params)
+
+
+def _rod_equations(sp, t, x, p):
+    theta, omega = x["theta"], x["omega"]
+    torque = p["m"] * p["g"] * p["l"] / 2 * sp.cos(theta) - p["c_theta"] * omega - p["k_theta"] * (theta - p["theta_r"])
+    return [sp.Eq(theta.diff(t), omega), sp.Eq(omega.diff(t), 3 / (p["m"] * p["l"] ** 2) * torque)]
+
+
+def _longitudinal_equations(sp, t, x, p):
+    theta, omega = x["theta"], x["omega"]
+    m, l, g, k, x_r = p["m"], p["l"], p["g"], p["k"], p["x_r"]  # noqa: E741
+    length = l * sp.sqrt(5 + 4 * sp.sin(theta))
+    arm = 2 * l**2 * sp.cos(theta) / length
+    tension = k * (length - x_r) + (p["c"] * arm * omega if "c" in p else 0)
+    return [sp.Eq(theta.diff(t), omega),
+            sp.Eq(omega.diff(t), 3 / (m * l**2) * (m * g * l / 2 * sp.cos(theta) - tension * arm))]
+
+
+def _smd_equations(sp, t, x, p):
+    y, v = x["y"], x["v"]
+    return [sp.Eq(y.diff(t), v),
+            sp.Eq(p["m"] * v.diff(t), -p["k"] * (y - p["y_rest"]) - p["c"] * v - p["m"] * p["g"])]
+
+
+def _projectile_equations(sp, t, x, p):
+    return [sp.Eq(x["x"].diff(t), x["vx"]), sp.Eq(x["y"].diff(t), x["vy"]),
+            sp.Eq(x["vx"].diff(t), 0), sp.Eq(x["vy"].diff(t), -p["g"])]

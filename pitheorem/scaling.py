@@ -76,8 +76,10 @@ class Scaling:
     system : System
     powers : tuple of Fraction
         Exponent of ``s`` for each variable, in system order.
-    units : tuple of Fraction
-        A change of base units producing it, one per base dimension.
+    units : tuple of Fraction or None
+        A change of base units producing it, one per base dimension; None
+        for a symmetry of particular equations that no change of units
+        gives (see :func:`pitheorem.scaling_symmetries`).
 
     Examples
     --------
@@ -92,7 +94,7 @@ class Scaling:
 
     system: System
     powers: tuple[Fraction, ...]
-    units: tuple[Fraction, ...]
+    units: tuple[Fraction, ...] | None
 
     @classmethod
     def from_unit_change(cls, system: System, unit_change: Mapping[str, object]) -> Scaling:
@@ -193,7 +195,15 @@ class Scaling:
         >>> pt.Scaling.from_unit_change(pt.System({"l": "L"}), {"L": 2}).unit_change
         {'L': 2}
         """
-        return {b: sympy.Rational(x.numerator, x.denominator) for b, x in zip(self.system.base_dimensions, self.units, strict=True)}
+        return {b: sympy.Rational(x.numerator, x.denominator) for b, x in zip(self.system.base_dimensions, self._need_units(), strict=True)}
+
+    def _need_units(self) -> tuple[Fraction, ...]:
+        if self.units is None:
+            raise InvalidRequestError(
+                f"{self} is a symmetry of particular equations, not a change of units: "
+                "it has no unit change, and quantities outside the system have no defined exponent"
+            )
+        return self.units
 
     @property
     def changed(self) -> tuple[str, ...]:
@@ -232,7 +242,7 @@ class Scaling:
             raise InvalidRequestError(
                 f"dimension {dim} uses base {extra[0]!r}, which no variable of the system has"
             )
-        return sum((dim.exponent(b) * u for b, u in zip(bases, self.units, strict=True)), Fraction(0))
+        return sum((dim.exponent(b) * u for b, u in zip(bases, self._need_units(), strict=True)), Fraction(0))
 
     def factors(self, s) -> dict[str, object]:
         """The factor ``s^a`` for each variable.
@@ -349,7 +359,7 @@ class Scaling:
         >>> sc.inverse().exponents
         {'l': -1}
         """
-        return Scaling(self.system, tuple(-p for p in self.powers), tuple(-u for u in self.units))
+        return self**-1
 
     def __mul__(self, other: Scaling) -> Scaling:
         """Compose: apply both (exponents add).
@@ -369,12 +379,14 @@ class Scaling:
         return Scaling(
             self.system,
             tuple(a + b for a, b in zip(self.powers, other.powers, strict=True)),
-            tuple(a + b for a, b in zip(self.units, other.units, strict=True)),
+            None if self.units is None or other.units is None
+            else tuple(a + b for a, b in zip(self.units, other.units, strict=True)),
         )
 
     def __pow__(self, k) -> Scaling:
         k = as_exponent(k, "the power of a scaling")
-        return Scaling(self.system, tuple(p * k for p in self.powers), tuple(u * k for u in self.units))
+        units = None if self.units is None else tuple(u * k for u in self.units)
+        return Scaling(self.system, tuple(p * k for p in self.powers), units)
 
     def __eq__(self, other) -> bool:
         return isinstance(other, Scaling) and self.system == other.system and self.powers == other.powers

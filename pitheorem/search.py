@@ -71,11 +71,18 @@ class SearchResult:
     (False, 'Pi = g**2*m*t**2/k_theta')
     """
 
-    __slots__ = ("_points", "_units", "_v_w", "certificate", "certificate_power", "directions",
-                 "feasible", "fixed", "notes", "particular", "scale", "system")
+    __slots__ = ("_coords", "_generators", "_is_units", "_points", "certificate", "certificate_power",
+                 "directions", "feasible", "fixed", "notes", "particular", "scale", "system")
 
-    def __init__(self, system, scale, fixed, notes):
+    def __init__(self, system, scale, fixed, notes, generators=None):
         self.system = system
+        # allowed exponent vectors are combinations of these rows: the rows of
+        # the dimension matrix (changes of units), or a symmetry basis
+        self._is_units = generators is None
+        self._generators = (
+            [[system.dimension(v).exponent(b) for v in system.variables] for b in system.base_dimensions]
+            if generators is None else [list(g) for g in generators]
+        )
         self.scale = dict(scale)
         self.fixed = tuple(fixed)
         self.notes = tuple(notes)
@@ -85,32 +92,37 @@ class SearchResult:
         self.directions: tuple[Scaling, ...] = ()
         self.feasible = False
         self._points = None
-        self._units = None
-        self._v_w = None
+        self._coords = None
 
     # -- the general solution --------------------------------------------
+    def _scaling(self, coords) -> Scaling:
+        gens = self._generators
+        powers = tuple(_dot(coords, [g[i] for g in gens]) for i in range(len(self.system.variables)))
+        return Scaling(self.system, powers, tuple(coords) if self._is_units else None)
+
     def _solve(self):
         system = self.system
-        bases = system.base_dimensions
+        gens = self._generators
         names = list(self.scale) + list(self.fixed)
         rhs = [self.scale[n] for n in self.scale] + [Fraction(0)] * len(self.fixed)
-        rows = [[system.dimension(n).exponent(b) for b in bases] for n in names]
-        w0 = solve(rows, rhs) if bases else ([] if not any(rhs) else None)
+        rows = [[g[system.index(n)] for g in gens] for n in names]
+        w0 = solve(rows, rhs) if gens else ([] if not any(rhs) else None)
         if w0 is None:
             self._certify(names, rows, rhs)
             return
         self.feasible = True
-        self.particular = Scaling.from_unit_change(system, dict(zip(bases, w0, strict=True)))
-        # directions that keep every constraint: unit changes in null(C)
-        null_w = nullspace(rows, len(bases)) if rows else nullspace([], len(bases))
+        self.particular = self._scaling(w0)
+        # directions that keep every constraint: coordinates in null(C), kept
+        # only while their exponent vectors stay independent
+        null_w = nullspace(rows, len(gens)) if rows else nullspace([], len(gens))
         kept, images = [], []
         for w in null_w:
-            image = list(Scaling.from_unit_change(system, dict(zip(bases, w, strict=True))).powers)
+            image = list(self._scaling(w).powers)
             if rank([*images, image]) > len(images):
                 kept.append(w)
                 images.append(image)
-        self._v_w = kept
-        self.directions = tuple(Scaling.from_unit_change(system, dict(zip(bases, w, strict=True))) for w in kept)
+        self._coords = (w0, kept)
+        self.directions = tuple(self._scaling(w) for w in kept)
 
     def _certify(self, names, rows, rhs):
         # y with y^T C = 0 and y.b != 0: a dimensionless product the request changes
@@ -126,15 +138,15 @@ class SearchResult:
         self.certificate_power = _dot([group.exponents.get(n, 0) for n in names], rhs)
 
     # -- minimal solutions ------------------------------------------------
-    def _enumerate(self) -> list[tuple[Fraction, ...]]:
+    def _enumerate(self) -> list[tuple[tuple[Fraction, ...], tuple[Fraction, ...]]]:
         if self._points is not None:
             return self._points
         if not self.feasible:
-            self._points, self._units = [], []
+            self._points = []
             return self._points
         system = self.system
         a0 = list(self.particular.powers)
-        u0 = list(self.particular.units)
+        u0, kept = self._coords
         dirs = [list(d.powers) for d in self.directions]
         d = len(dirs)
         constrained = set(self.scale) | set(self.fixed)
@@ -162,15 +174,17 @@ class SearchResult:
                     seen[key] = tuple(z)
             for (scale_den, *point), z in seen.items():
                 exact = tuple(Fraction(p, scale_den) for p in point)
-                found[exact] = tuple(u + _dot(z, [w[j] for w in self._v_w]) for j, u in enumerate(u0))
+                found[exact] = tuple(u + _dot(z, [w[j] for w in kept]) for j, u in enumerate(u0))
 
         def order(point):
             support = [i for i, p in enumerate(point) if p]
             return (len(support), support, [abs(p) for p in point], point)
 
-        self._points = sorted(found, key=order)
-        self._units = [found[p] for p in self._points]
+        self._points = [(p, found[p]) for p in sorted(found, key=order)]
         return self._points
+
+    def _vectors(self) -> list[tuple[Fraction, ...]]:
+        return [point for point, _ in self._enumerate()]
 
     @property
     def count(self) -> int:
@@ -211,9 +225,8 @@ class SearchResult:
         >>> print(next(pt.search(rod, scale={"g": 1}).iter_scalings()))
         m -> m/s^2, l -> s l, g -> s g
         """
-        points = self._enumerate()
-        for point, units in zip(points, self._units, strict=True):
-            yield Scaling(self.system, point, units)
+        for point, coords in self._enumerate():
+            yield Scaling(self.system, point, coords if self._is_units else None)
 
     @property
     def scalings(self) -> list[Scaling]:
@@ -263,7 +276,7 @@ class SearchResult:
         rows = [["variable", "role", *(f"#{k + 1}" for k in range(self.count))]]
         for i, n in enumerate(self.system.variables):
             role = "scale" if n in self.scale else "fixed" if n in self.fixed else "free"
-            rows.append([n, role, *(power_text(p[i]) for p in self._enumerate())])
+            rows.append([n, role, *(power_text(p[i]) for p in self._vectors())])
         widths = [max(len(r[c]) for r in rows) for c in range(len(rows[0]))]
         return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in rows)
 
@@ -281,7 +294,7 @@ class SearchResult:
         body = []
         for i, n in enumerate(self.system.variables):
             role = "scale" if n in self.scale else "fixed" if n in self.fixed else ""
-            cells = "".join(f"<td>{power_text(p[i])}</td>" for p in self._enumerate())
+            cells = "".join(f"<td>{power_text(p[i])}</td>" for p in self._vectors())
             body.append(f"<tr><th>{n}</th><td><em>{role}</em></td>{cells}</tr>")
         notes = "".join(f"<p>{note}</p>" for note in self.notes)
         table = f"<table><tr><th>variable</th><th></th>{head}</tr>{''.join(body)}</table>" if self.feasible else ""
@@ -309,6 +322,7 @@ def search(
     fixed: Iterable[str] | None = None,
     *,
     allow: Iterable[str] | None = None,
+    within=None,
 ) -> SearchResult:
     """Find every minimal similarity scaling meeting a request, or prove none exists.
 
@@ -325,6 +339,11 @@ def search(
     allow : iterable of str, optional
         If given, only these variables (besides `scale`) may change; all
         others are held fixed.
+    within : SymmetryReport, optional
+        Search the scaling symmetries of particular equations (from
+        :func:`pitheorem.scaling_symmetries`) instead of the changes of
+        units.  Variables that do not appear in the equations are held
+        fixed.  Solutions beyond changes of units have ``units=None``.
 
     Returns
     -------
@@ -394,6 +413,30 @@ def search(
             raise InvalidRequestError(f"variable {clash[0]!r} is both fixed and allowed to change")
         extra = tuple(n for n in system.variables if n not in allowed and n not in exponents and n not in held)
         held = held + extra
-    result = SearchResult(system, exponents, held, notes)
+    generators = None
+    if within is not None:
+        generators, outside = _symmetry_generators(system, within, exponents)
+        extra = tuple(n for n in outside if n not in held)
+        if extra:
+            notes.append(f"variables {extra} do not appear in the equations and are held fixed")
+            held = held + extra
+    result = SearchResult(system, exponents, held, notes, generators)
     result._solve()
     return result
+
+
+def _symmetry_generators(system: System, within, exponents):
+    variables = getattr(within, "variables", None)
+    basis = getattr(within, "basis", None)
+    if variables is None or basis is None:
+        raise InvalidRequestError(f"within must be a SymmetryReport from scaling_symmetries, got {within!r}")
+    for n in variables:
+        system.index(n, "within (the equations' symbols)")
+    for n in exponents:
+        if n not in variables:
+            raise InvalidRequestError(
+                f"{n!r} does not appear in the equations, so their symmetries say nothing about scaling it"
+            )
+    generators = [[Fraction(vec.get(n, 0)) for n in system.variables] for vec in basis]
+    outside = tuple(n for n in system.variables if n not in variables)
+    return generators, outside

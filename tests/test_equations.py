@@ -1,0 +1,210 @@
+"""Dimensional consistency and scaling symmetries of equations (issue 6, parts 1-2)."""
+
+from __future__ import annotations
+
+import random
+from fractions import Fraction
+
+import pytest
+import sympy
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import pitheorem as pt
+from pitheorem.linalg import primitive_integer_vector
+from tests.test_properties import systems
+
+t = sympy.Symbol("t")
+m, l, g, k, c, x_r, th_r, k_th, c_th = sympy.symbols("m l g k c x_r theta_r k_theta c_theta")
+theta = sympy.Function("theta")(t)
+ROD_DIMS = {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1",
+            "theta_r": "1", "t": "T", "theta": "1"}
+
+
+def test_paper_eq1_is_consistent_with_either_sign():
+    rodx = pt.System(ROD_DIMS)
+    for sign in (+1, -1):  # the paper prints +k theta; the code uses -k theta: both are consistent
+        rhs = 3 / (m * l**2) * (m * g * l / 2 * sympy.cos(theta) + sign * k_th * (theta - th_r) - c_th * theta.diff(t))
+        report = pt.check_dimensions(sympy.Eq(theta.diff(t, 2), rhs), rodx)
+        assert report.consistent and report.dimension == pt.Dimension.parse("T^-2")
+
+
+def longitudinal_system(damper_dimension: str) -> pt.System:
+    return pt.System({"m": "M", "l": "L", "g": "L T^-2", "k": "M T^-2", "c": damper_dimension, "x_r": "L",
+                      "t": "T", "theta": "1"})
+
+
+def test_longitudinal_variant_with_longitudinal_damper_is_flagged():
+    # matlab_ports.rod_hinge_dynamics.rod_hinge_dynamics_longitudinal, as written in the original
+    damping = c * l * theta.diff(t) * sympy.sin(theta) ** 2
+    bracket = (m * g * l / 2 * sympy.cos(theta) - damping + k * l**2 * sympy.sin(theta) * sympy.cos(theta)
+               - k * x_r * l * sympy.sin(theta))
+    rhs = 3 / (m * l**3) * bracket
+    report = pt.check_dimensions(sympy.Eq(theta.diff(t, 2), rhs), longitudinal_system("M T^-1"))
+    assert not report.consistent
+    assert [(term, str(got), str(want)) for term, got, want in report.offending] == [
+        (-damping, "M L T^-2", "M L^2 T^-2"),  # one length short of a torque
+        (rhs, "L^-1 T^-2", "T^-2"),  # the 3/(m l^3) prefactor
+    ]
+
+
+def test_longitudinal_variant_with_rotational_damper_is_flagged_for_its_prefactor():
+    bracket = (m * g * l / 2 * sympy.cos(theta) - c * theta.diff(t) + k * l**2 * sympy.sin(theta) * sympy.cos(theta)
+               - k * x_r * l * sympy.sin(theta))
+    rhs = 3 / (m * l**3) * bracket
+    report = pt.check_dimensions(sympy.Eq(theta.diff(t, 2), rhs), longitudinal_system("M L^2 T^-1"))
+    assert [(term, str(got), str(want)) for term, got, want in report.offending] == [(rhs, "L^-1 T^-2", "T^-2")]
+
+
+def test_transcendental_arguments_must_be_dimensionless():
+    s = pt.System({"x": "L", "l": "L", "t": "T"})
+    x, ll = sympy.symbols("x l")
+    assert pt.check_dimensions(sympy.exp(x / ll) + sympy.log(x / ll), s).consistent
+    report = pt.check_dimensions(sympy.sin(x) + sympy.cos(x / ll), s)
+    assert [(term, str(got)) for term, got, _ in report.offending] == [(x, "L")]
+
+
+@pytest.mark.parametrize("model", ["hinged_rod", "hinged_rod_longitudinal", "spring_mass_damper", "projectile"])
+def test_shipped_models_are_consistent(model):
+    mdl = getattr(pt.models, model)()
+    for eq in pt.models.model_equations(mdl):
+        assert pt.check_dimensions(eq, mdl.system).consistent
+
+
+# -- random consistent equations, and perturbed ones ------------------------------
+@settings(max_examples=60, deadline=None)
+@given(systems(max_vars=6), st.integers(0, 2**32 - 1))
+def test_random_consistent_equations_pass_and_perturbed_fail(system, seed):
+    rng = random.Random(seed)
+    names = system.variables
+    symbols = [sympy.Symbol(n) for n in names]
+    null = [primitive_integer_vector(v) for v in system.dimensionless_products()]
+    base = [rng.randint(-2, 2) for _ in names]
+
+    def monomial(vec):
+        return sympy.Mul(*(s**e for s, e in zip(symbols, vec, strict=True)))
+
+    terms = []
+    for _ in range(rng.randint(1, 4)):
+        vec = list(base)
+        for nv in null:
+            coef = rng.randint(-2, 2)
+            vec = [a + coef * b for a, b in zip(vec, nv, strict=True)]
+        terms.append(rng.randint(1, 5) * monomial(vec))
+    equation = sympy.Eq(monomial(base), sympy.Add(*terms), evaluate=False)
+    assert pt.check_dimensions(equation, system, time=None).consistent
+    dimensional = [s for s in symbols if not system.dimension(s.name).is_dimensionless]
+    if dimensional:
+        culprit = rng.choice(dimensional)
+        perturbed = sympy.Eq(monomial(base), sympy.Add(*terms[1:]) + terms[0] * culprit, evaluate=False)
+        report = pt.check_dimensions(perturbed, system, time=None)
+        assert not report.consistent
+        assert all(got != want for _, got, want in report.offending)
+
+
+# -- symmetries -------------------------------------------------------------------
+def vec(d):
+    return {k_: v for k_, v in d.items() if v}
+
+
+@pytest.mark.parametrize(
+    ("model", "dimension", "units"),
+    [("hinged_rod", 3, 3), ("hinged_rod_longitudinal", 3, 3), ("spring_mass_damper", 3, 3), ("projectile", 3, 2)],
+)
+def test_symmetry_subspace_of_each_shipped_model(model, dimension, units):
+    mdl = getattr(pt.models, model)()
+    sym = pt.scaling_symmetries(pt.models.model_equations(mdl), mdl.system)
+    assert sym.dimension == dimension and len(sym.unit_changes) == units
+    assert sym.contains_units
+    for u in sym.unit_changes:
+        assert sym.contains(u)
+
+
+def test_spring_mass_damper_has_no_symmetry_beyond_units():
+    # Section 5: "scale gravity with lengths" is the change of length unit, not superposition magic
+    smd = pt.models.spring_mass_damper()
+    sym = pt.scaling_symmetries(pt.models.model_equations(smd), smd.system)
+    assert sym.beyond_units == ()
+    assert sym.contains({"g": 1, "y_rest": 1, "y": 1, "v": 1})  # L -> s L
+
+
+def test_small_angle_rod_without_gravity_has_amplitude_scaling():
+    s = pt.System({"m": "M", "l": "L", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "theta_r": "1",
+                   "t": "T", "theta": "1", "omega": "T^-1"})
+    omega = sympy.Function("omega")(t)
+    eqs = [sympy.Eq(theta.diff(t), omega),
+           sympy.Eq(omega.diff(t), 3 / (m * l**2) * (-c_th * omega - k_th * (theta - th_r)))]
+    sym = pt.scaling_symmetries(eqs, s)
+    amplitude = {"theta_r": 1, "theta": 1, "omega": 1}
+    assert len(sym.beyond_units) == 1 and sym.contains(amplitude)
+    assert not pt.search(s, scale={"theta": 1}).feasible  # no change of units moves an angle
+
+
+def test_full_rod_has_no_symmetry_beyond_units():
+    rod = pt.models.hinged_rod()
+    sym = pt.scaling_symmetries(pt.models.model_equations(rod), rod.system)
+    assert sym.beyond_units == ()
+    assert not sym.contains({"theta": 1, "theta_r": 1, "omega": 1})  # cos(theta) forbids it
+
+
+def test_projectile_lengths_scale_independently():
+    proj = pt.models.projectile()
+    sym = pt.scaling_symmetries(pt.models.model_equations(proj), proj.system)
+    assert [vec(v) for v in sym.beyond_units] == [{"x": 1, "vx": 1}]
+    assert sym.contains({"x": 1, "vx": 1}) and sym.contains({"y": 1, "vy": 1, "g": 1})
+    # search within the symmetries: stretch x alone, time and gravity fixed
+    res = pt.search(proj.system, scale={"x": 1}, fixed=("t", "g"), within=sym)
+    assert [vec(dict(zip(proj.system.variables, sc.powers, strict=True))) for sc in res.scalings] == [
+        {"x": 1, "vx": 1}
+    ]
+    assert res.scalings[0].units is None
+    assert any("do not appear" in note for note in res.notes)  # m is not in the equations
+    with pytest.raises(pt.InvalidRequestError, match="not a change of units"):
+        res.scalings[0].unit_change
+    # with changes of units only, the same request is impossible
+    assert not pt.search(proj.system, scale={"x": 1}, fixed=("t", "g")).feasible
+
+
+def test_symmetry_search_agrees_with_unit_search_when_nothing_beyond():
+    smd = pt.models.spring_mass_damper()
+    sym = pt.scaling_symmetries(pt.models.model_equations(smd), smd.system)
+    a = pt.search(smd.system, scale={"g": 1}, within=sym)
+    b = pt.search(smd.system, scale={"g": 1})
+    assert {s.powers for s in a.scalings} == {s.powers for s in b.scalings}
+
+
+# -- bad input ---------------------------------------------------------------------
+def test_bad_equation_inputs():
+    s = pt.System({"x": "L", "t": "T"})
+    x, q = sympy.symbols("x q")
+    with pytest.raises(pt.UnknownVariableError, match="'q'"):
+        pt.check_dimensions(x + q, s)
+    with pytest.raises(pt.InvalidRequestError, match="strings"):
+        pt.check_dimensions("x + 1", s)
+    with pytest.raises(pt.UnknownVariableError, match="'tau'"):
+        pt.check_dimensions(x, s, time="tau")
+    with pytest.raises(pt.InvalidRequestError, match="at least one equation"):
+        pt.scaling_symmetries([], s)
+    with pytest.raises(pt.UnknownVariableError, match="'q'"):
+        pt.scaling_symmetries([sympy.Eq(x, q)], s)
+    with pytest.raises(pt.InvalidRequestError, match="System"):
+        pt.check_dimensions(x, {"x": "L"})
+    sym = pt.scaling_symmetries([sympy.Eq(x, 0)], s)
+    with pytest.raises(pt.InvalidRequestError, match="SymmetryReport"):
+        pt.search(s, scale={"x": 1}, within="symmetries")
+    with pytest.raises(pt.InvalidRequestError, match="'t' does not appear"):
+        pt.search(pt.System({"x": "L", "t": "T", "u": "T"}), scale={"t": 1}, within=pt.scaling_symmetries(
+            [sympy.Eq(x, 0)], pt.System({"x": "L", "t": "T", "u": "T"}), time=None))
+    assert sym.variables == ("x", "t")
+    with pytest.raises(pt.InvalidRequestError, match="no equations"):
+        pt.models.model_equations(pt.Model(system=s, parameters=(), states=("x",), rhs=lambda t, y, p: y))
+
+
+def test_reports_print():
+    s = pt.System({"x": "L", "y": "L", "t": "T"})
+    x, y = sympy.symbols("x y")
+    assert str(pt.check_dimensions(x + y, s)) == "consistent: dimension L"
+    proj = pt.models.projectile()
+    text = str(pt.scaling_symmetries(pt.models.model_equations(proj), proj.system))
+    assert "beyond changes of units" in text and "x: 1, vx: 1" in text
+    assert Fraction(1) in pt.scaling_symmetries(pt.models.model_equations(proj), proj.system).beyond_units[0].values()
