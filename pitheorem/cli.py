@@ -1,0 +1,523 @@
+"""The ``pitheorem`` command line: groups, bases, search and apply on a model file.
+
+Four subcommands work on a TOML model file (format: :mod:`pitheorem.modelfile`;
+``example:hinged_rod`` and ``example:superball`` name the shipped examples)::
+
+    pitheorem groups FILE [--repeating m l k_theta]
+    pitheorem bases  FILE [--exclude t] [--require m] [--count]
+    pitheorem search FILE --scale g=1 [l=-1 ...] [--fixed [t m ...]] [--allow ...] [--no-default-fixed]
+    pitheorem apply  FILE --scale g=1 [--fixed ...] --s 2 [--solution K] [--output FILE.toml|FILE.json]
+
+Every subcommand takes ``--format text|json|latex`` (default ``text``: aligned
+plain text).  JSON is meant for programs: keys come in a fixed order (the
+file's variable order), Pi-group exponents are integers, and every exact
+rational (scaling exponents, unit changes, rational values) is a string
+such as ``"1/2"`` or ``"-2"``.
+
+Exponents on the command line are exact: ``g=1``, ``l=-1``, ``m=1/2``.
+Without ``--fixed``, a search holds every variable of dimension T fixed (so
+the scaled model runs in the same time); ``--fixed`` with no names, or
+``--no-default-fixed``, lets time change too.
+
+Exit codes
+----------
+0
+    Success; for ``search``, at least one scaling exists.
+1
+    The request is valid but no similarity scaling meets it: ``search``
+    prints the certificate of impossibility, ``apply`` writes nothing.
+    (Like ``grep``, which exits 1 when nothing matches.)
+2
+    Bad input: an unreadable or malformed model file, an unknown variable,
+    a bad exponent, a contradictory request, or a usage error.  The
+    message on stderr is one line, ``pitheorem: error: ...``, naming the
+    culprit.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from collections.abc import Sequence
+from fractions import Fraction
+from pathlib import Path
+
+import sympy
+
+from . import __version__
+from .display import power_latex, power_text
+from .errors import InvalidRequestError, PiTheoremError
+from .modelfile import ModelFile, load_model_file, write_model_file
+from .scaling import as_exponent
+from .search import SearchResult, search
+
+__all__ = ["EXIT_ERROR", "EXIT_INFEASIBLE", "EXIT_OK", "build_parser", "main"]
+
+#: exit code of a successful run
+EXIT_OK = 0
+#: exit code when no similarity scaling meets a valid request
+EXIT_INFEASIBLE = 1
+#: exit code of bad input (and of argparse's usage errors)
+EXIT_ERROR = 2
+
+_TIME_NOTE = "pass fixed=() to let time change"
+_TIME_NOTE_CLI = "give --fixed with no names to let time change"
+
+
+class _CommandError(PiTheoremError, ValueError):
+    """A bad command-line request that no library call caught."""
+
+
+# -- helpers ---------------------------------------------------------------------------------
+
+
+def _frac_text(x) -> str:
+    return str(Fraction(x))
+
+
+def _exponent_text(p) -> str:
+    return str(Fraction(int(p.p), int(p.q))) if isinstance(p, sympy.Rational) else str(Fraction(p))
+
+
+def _json_number(value):
+    """int and float as they are; exact rationals as strings."""
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, sympy.Basic):
+        value = Fraction(int(value.p), int(value.q)) if value.is_Rational else float(value)
+    if isinstance(value, Fraction):
+        return int(value) if value.denominator == 1 else str(value)
+    return value
+
+
+def _value_text(value) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, sympy.Basic):
+        value = _json_number(value)
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return str(value)
+
+
+def _value_latex(value) -> str:
+    value = _json_number(value) if isinstance(value, sympy.Basic) else value
+    if isinstance(value, Fraction) and value.denominator != 1:
+        return f"${sympy.latex(sympy.Rational(value.numerator, value.denominator))}$"
+    return _value_text(value)
+
+
+def _align(rows: list[list[str]]) -> str:
+    widths = [max(len(r[c]) for r in rows) for c in range(len(rows[0]))]
+    return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in rows)
+
+
+def _latex_name(name: str) -> str:
+    return sympy.latex(sympy.Symbol(name))
+
+
+def _dump_json(doc) -> str:
+    return json.dumps(doc, indent=2, ensure_ascii=False)
+
+
+def _load(path: str) -> ModelFile:
+    try:
+        return load_model_file(path)
+    except IsADirectoryError:
+        raise _CommandError(f"cannot read model file {path!r}: it is a directory") from None
+    except OSError as err:
+        raise _CommandError(f"cannot read model file {path!r}: {err.strerror or err}") from None
+
+
+def _parse_scale(entries: Sequence[str]) -> dict[str, Fraction]:
+    scale: dict[str, Fraction] = {}
+    for entry in entries:
+        name, sep, text = entry.partition("=")
+        name, text = name.strip(), text.strip()
+        if not sep or not name or not text:
+            raise _CommandError(f"--scale entry {entry!r} must look like NAME=EXPONENT, e.g. g=1 or l=-1/2")
+        if name in scale:
+            raise _CommandError(f"--scale names {name!r} twice; give each variable one exponent")
+        scale[name] = as_exponent(text, f"{name!r} in --scale")
+    return scale
+
+
+def _parse_s(text: str) -> Fraction:
+    try:
+        s = Fraction(text.strip())
+    except (ValueError, ZeroDivisionError):
+        raise _CommandError(f"--s must be a positive number such as 2, 0.5 or 1/3, got {text!r}") from None
+    if s <= 0:
+        raise _CommandError(f"--s must be a positive number such as 2, 0.5 or 1/3, got {text!r}")
+    return int(s) if s.denominator == 1 else s
+
+
+def _run_search(model: ModelFile, args) -> SearchResult:
+    scale = _parse_scale(args.scale)
+    if args.fixed is not None:
+        fixed = tuple(args.fixed)
+    elif args.no_default_fixed:
+        fixed = ()
+    else:
+        fixed = None
+    return search(model.system, scale, fixed, allow=args.allow)
+
+
+def _notes(result: SearchResult) -> list[str]:
+    return [note.replace(_TIME_NOTE, _TIME_NOTE_CLI) for note in result.notes]
+
+
+# -- groups ----------------------------------------------------------------------------------
+
+
+def _cmd_groups(args) -> int:
+    model = _load(args.file)
+    system = model.system
+    groups = system.pi_groups(repeating=args.repeating)
+    values = []
+    for g in groups:
+        if all(n in model.values for n in g.exponents):
+            values.append(g.evaluate({n: model.values[n] for n in g.exponents}))
+        else:
+            values.append(None)
+    if args.format == "json":
+        doc = {
+            "model": model.name,
+            "variables": list(system.variables),
+            "rank": system.rank,
+            "repeating": list(groups.repeating),
+            "groups": [
+                {"name": g.name, "variable": g.variable, "expression": sympy.sstr(g.expr), "latex": g.latex,
+                 "exponents": g.exponents, "value": _json_number(v)}
+                for g, v in zip(groups, values, strict=True)
+            ],
+        }
+        print(_dump_json(doc))
+    elif args.format == "latex":
+        lines = [
+            rf"\Pi_{{{_latex_name(g.variable)}}} &= {g.latex}" if g.variable else rf"\Pi &= {g.latex}"
+            for g in groups
+        ]
+        print(r"\begin{align*}")
+        print(" \\\\\n".join(lines))
+        print(r"\end{align*}")
+    else:
+        print(f"{model.name}: {len(system)} variables, rank {system.rank}, {system.n_groups} dimensionless groups")
+        print(f"repeating variables: {', '.join(groups.repeating) or '(none)'}")
+        if len(groups):
+            rows = [["group", "expression", "value"]]
+            rows += [[g.name, sympy.sstr(g.expr), _value_text(v)] for g, v in zip(groups, values, strict=True)]
+            print()
+            print(_align(rows))
+    return EXIT_OK
+
+
+# -- bases -----------------------------------------------------------------------------------
+
+
+def _cmd_bases(args) -> int:
+    model = _load(args.file)
+    system = model.system
+    if args.count:
+        count = system.count_bases(exclude=args.exclude, require=args.require)
+        bases = None
+    else:
+        bases = system.bases(exclude=args.exclude, require=args.require)
+        count = len(bases)
+    if args.format == "json":
+        doc = {"model": model.name, "rank": system.rank, "exclude": list(args.exclude),
+               "require": list(args.require), "count": count}
+        if bases is not None:
+            doc["bases"] = [list(b) for b in bases]
+        print(_dump_json(doc))
+        return EXIT_OK
+    if args.format == "latex":
+        if bases is None:
+            print(count)
+            return EXIT_OK
+        print(r"\begin{tabular}{rl}")
+        for k, b in enumerate(bases, 1):
+            print(f"{k} & ${', '.join(map(_latex_name, b))}$ \\\\")
+        print(r"\end{tabular}")
+        return EXIT_OK
+    if bases is None:
+        print(count)
+        return EXIT_OK
+    conditions = []
+    if args.exclude:
+        conditions.append(f"without {', '.join(args.exclude)}")
+    if args.require:
+        conditions.append(f"with {', '.join(args.require)}")
+    condition = f" ({'; '.join(conditions)})" if conditions else ""
+    print(f"{model.name}: {count} valid repeating sets of {system.rank} variables{condition}")
+    width = len(str(count))
+    for k, b in enumerate(bases, 1):
+        print(f"{k:>{width}}  {' '.join(b)}")
+    return EXIT_OK
+
+
+# -- search ----------------------------------------------------------------------------------
+
+
+def _certificate_json(result: SearchResult):
+    cert = result.certificate
+    if cert is None:
+        return None
+    return {"expression": sympy.sstr(cert.expr), "latex": cert.latex, "exponents": cert.exponents,
+            "power": _frac_text(result.certificate_power)}
+
+
+def _scaling_json(sc) -> dict:
+    return {
+        "changed": list(sc.changed),
+        "exponents": {n: _exponent_text(p) for n, p in sc.exponents.items()},
+        "unit_change": {b: _exponent_text(u) for b, u in sc.unit_change.items()},
+    }
+
+
+def _cmd_search(args) -> int:
+    model = _load(args.file)
+    result = _run_search(model, args)
+    code = EXIT_OK if result.feasible else EXIT_INFEASIBLE
+    if args.format == "json":
+        doc = {
+            "model": model.name,
+            "scale": {n: _frac_text(p) for n, p in result.scale.items()},
+            "fixed": list(result.fixed),
+            "feasible": result.feasible,
+            "count": result.count if result.feasible else 0,
+            "scalings": [_scaling_json(sc) for sc in result.scalings],
+            "certificate": _certificate_json(result),
+            "explanation": result.explanation(),
+            "notes": _notes(result),
+        }
+        print(_dump_json(doc))
+        return code
+    if args.format == "latex":
+        if not result.feasible:
+            cert = result.certificate
+            print(f"% {result.explanation()}")
+            print(rf"\[ {cert.latex} \;\to\; {power_latex(result.certificate_power)}\,{cert.latex} \]")
+            return code
+        n = result.count
+        print(rf"\begin{{tabular}}{{ll{'c' * n}}}")
+        print("variable & role & " + " & ".join(rf"\#{k}" for k in range(1, n + 1)) + r" \\ \hline")
+        points = [sc.powers for sc in result.scalings]
+        for i, name in enumerate(model.system.variables):
+            role = "scale" if name in result.scale else "fixed" if name in result.fixed else "free"
+            cells = " & ".join(f"${power_latex(p[i])}$" for p in points)
+            print(f"${_latex_name(name)}$ & {role} & {cells} \\\\")
+        print(r"\end{tabular}")
+        return code
+    print(result.explanation())
+    for note in _notes(result):
+        print(note)
+    if result.feasible:
+        print()
+        print(result.table())
+    else:
+        print(f"certificate: {result.certificate} (the request multiplies it by "
+              f"{power_text(result.certificate_power)})")
+    return code
+
+
+# -- apply -----------------------------------------------------------------------------------
+
+
+def _cmd_apply(args) -> int:
+    model = _load(args.file)
+    s = _parse_s(args.s)
+    if not model.values:
+        raise _CommandError(f"{args.file}: no variable has a value, so there is nothing to scale; "
+                            "give values in the model file, e.g. m = { dimension = \"M\", value = 1.5 }")
+    result = _run_search(model, args)
+    if not result.feasible:
+        print(f"pitheorem: {result.explanation()} Nothing written.", file=sys.stderr)
+        return EXIT_INFEASIBLE
+    count = result.count
+    k = args.solution
+    if not 1 <= k <= count:
+        raise _CommandError(
+            f"--solution {k} is out of range: the request has {count} minimal scaling(s); choose 1 to {count}"
+        )
+    sc = result.scalings[k - 1]
+    scaled_model = model.with_values(sc.apply(model.values, s), name=f"{model.name}, scaled with s = {s}")
+    scaled = scaled_model.values
+    output = None
+    if args.output:
+        out = Path(args.output)
+        if model.path and out.exists() and out.resolve() == Path(model.path).resolve():
+            raise _CommandError(f"--output {args.output!r} is the input file; choose another name")
+        try:
+            write_model_file(scaled_model, out)
+        except OSError as err:
+            raise _CommandError(f"cannot write {args.output!r}: {err.strerror or err}") from None
+        output = str(out)
+    exps = sc.exponents
+    if count == 1:
+        which = "the only minimal scaling"
+    else:
+        which = f"minimal scaling #{k} of {count} (choose another with --solution K)"
+    if args.format == "json":
+        doc = {
+            "model": model.name,
+            "s": _frac_text(s),
+            "solution": k,
+            "count": count,
+            "scaling": _scaling_json(sc),
+            "values": {n: _json_number(v) for n, v in model.values.items()},
+            "scaled": {n: _json_number(v) for n, v in scaled.items()},
+            "output": output,
+            "notes": _notes(result),
+        }
+        print(_dump_json(doc))
+        return EXIT_OK
+    if args.format == "latex":
+        print(f"% {model.name}: {which}, s = {s}")
+        print(r"\begin{tabular}{lcll}")
+        print(r"variable & factor & value & scaled value \\ \hline")
+        for n, v in model.values.items():
+            print(f"${_latex_name(n)}$ & ${power_latex(exps[n])}$ & {_value_latex(v)} & {_value_latex(scaled[n])} \\\\")
+        print(r"\end{tabular}")
+        return EXIT_OK
+    print(f"{model.name}, s = {s}: {which}")
+    print(f"  {sc}")
+    for note in _notes(result):
+        print(note)
+    rows = [["variable", "factor", "value", "scaled value"]]
+    rows += [[n, power_text(exps[n]), _value_text(v), _value_text(scaled[n])] for n, v in model.values.items()]
+    print()
+    print(_align(rows))
+    if output:
+        print()
+        print(f"wrote {output}")
+    return EXIT_OK
+
+
+# -- parser and entry point ------------------------------------------------------------------
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argparse parser of the ``pitheorem`` command.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+
+    Examples
+    --------
+    >>> from pitheorem.cli import build_parser
+    >>> args = build_parser().parse_args(["search", "rod.toml", "--scale", "g=1", "--fixed"])
+    >>> args.command, args.scale, args.fixed
+    ('search', ['g=1'], [])
+    """
+    parser = argparse.ArgumentParser(
+        prog="pitheorem",
+        description="Exact dimensional analysis and similarity-scaling search on a TOML model file.",
+        epilog="Exit codes: 0 success; 1 no similarity scaling meets the request (search, apply); "
+        "2 bad input. FILE may be example:hinged_rod or example:superball.",
+        allow_abbrev=False,
+    )
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    common = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
+    common.add_argument("file", metavar="FILE", help="TOML model file (or example:NAME)")
+    common.add_argument("--format", choices=("text", "json", "latex"), default="text",
+                        help="output format (default: text)")
+
+    request = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
+    request.add_argument("--scale", nargs="+", required=True, metavar="NAME=EXP",
+                         help="prescribed exponents of s, e.g. g=1 l=-1 m=1/2")
+    request.add_argument("--fixed", nargs="*", metavar="NAME",
+                         help="variables held unchanged (default: those of dimension T; no names: none)")
+    request.add_argument("--allow", nargs="*", metavar="NAME",
+                         help="only these variables (besides --scale) may change")
+    request.add_argument("--no-default-fixed", action="store_true",
+                         help="do not hold time fixed by default (same as --fixed with no names)")
+
+    p = sub.add_parser("groups", parents=[common], allow_abbrev=False, help="Pi groups of the model",
+                       description="Print the dimensionless (Pi) groups of the model.")
+    p.add_argument("--repeating", nargs="+", metavar="NAME",
+                   help="repeating variables (default: the first basis without time)")
+    p.set_defaults(run=_cmd_groups)
+
+    p = sub.add_parser("bases", parents=[common], allow_abbrev=False, help="every valid repeating set",
+                       description="List every valid set of repeating variables, with their count.")
+    p.add_argument("--exclude", nargs="*", default=[], metavar="NAME", help="never use these as repeaters")
+    p.add_argument("--require", nargs="*", default=[], metavar="NAME", help="every set must contain these")
+    p.add_argument("--count", action="store_true", help="print only the number of sets")
+    p.set_defaults(run=_cmd_bases)
+
+    p = sub.add_parser("search", parents=[common, request], allow_abbrev=False,
+                       help="every minimal similarity scaling, or a proof that none exists",
+                       description="Find every minimal similarity scaling meeting the request, "
+                       "or print a certificate that none exists (exit code 1).")
+    p.set_defaults(run=_cmd_search)
+
+    p = sub.add_parser("apply", parents=[common, request], allow_abbrev=False,
+                       help="write a scaled copy of the model's values",
+                       description="Scale the values of the model file by a minimal similarity scaling.")
+    p.add_argument("--s", required=True, metavar="S", help="the scale factor, e.g. 2 or 1/2")
+    p.add_argument("--solution", type=int, default=1, metavar="K",
+                   help="use the K-th minimal scaling (default 1)")
+    p.add_argument("--output", metavar="OUT", help="write the scaled model file (.toml or .json)")
+    p.set_defaults(run=_cmd_apply)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``pitheorem`` command; return its exit code.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments after the program name (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        0 on success, 1 when no similarity scaling meets the request, 2 on
+        bad input (after printing one line ``pitheorem: error: ...`` to
+        stderr).
+
+    Examples
+    --------
+    >>> from pitheorem.cli import main
+    >>> main(["groups", "example:hinged_rod", "--repeating", "m", "l", "k_theta"])
+    hinged rod: 9 variables, rank 3, 6 dimensionless groups
+    repeating variables: m, l, k_theta
+    <BLANKLINE>
+    group       expression                  value
+    Pi_theta_r  theta_r                     1.0472
+    Pi_g        g*l*m/k_theta               0.2943
+    Pi_c_theta  c_theta**2/(k_theta*l**2*m) 0.166667
+    Pi_t        k_theta*t**2/(l**2*m)
+    Pi_F        F*l/k_theta
+    Pi_tau      tau/k_theta
+    0
+    >>> main(["search", "example:hinged_rod", "--scale", "g=1", "--fixed", "t", "m", "k_theta"])
+    Impossible: g**2*m*t**2/k_theta is dimensionless and built only from prescribed and fixed variables, but the request would multiply it by s^2, so no change of units (and hence no similarity scaling) can do it.
+    certificate: Pi = g**2*m*t**2/k_theta (the request multiplies it by s^2)
+    1
+    """
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # --help, --version, and argparse's usage errors
+        return exc.code if isinstance(exc.code, int) else EXIT_ERROR
+    try:
+        return args.run(args)
+    except PiTheoremError as err:
+        message = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
+        print(f"pitheorem: error: {message}", file=sys.stderr)
+        return EXIT_ERROR
+    except BrokenPipeError:  # e.g. `pitheorem bases FILE | head`: the reader has gone, stay quiet
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return EXIT_OK
+    except OSError as err:
+        print(f"pitheorem: error: {err.filename!r}: {err.strerror or err}", file=sys.stderr)
+        return EXIT_ERROR
