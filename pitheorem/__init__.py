@@ -24,6 +24,7 @@ from . import models
 from . import plotting
 from .equations import DimensionReport, SymmetryReport, check_dimensions, scaling_symmetries
 from .groups import PiGroup, PiSet
+from .modelfile import ModelFile, ModelFileError, load_model_file
 from .models import Model
 from .scaling import Scaling
 from .search import SearchResult, search
@@ -42,6 +43,8 @@ __all__ = [
     "EmptySystemError",
     "InvalidRequestError",
     "Model",
+    "ModelFile",
+    "ModelFileError",
     "PiGroup",
     "PiSet",
     "PiTheoremError",
@@ -57,6 +60,7 @@ __all__ = [
     "UnknownVariableError",
     "__version__",
     "check_dimensions",
+    "load_model_file",
     "models",
     "plotting",
     "scaling_symmetries",

@@ -490,10 +490,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     hinged rod: 9 variables, rank 3, 6 dimensionless groups
     repeating variables: m, l, k_theta
     <BLANKLINE>
-    group       expression                  value
-    Pi_theta_r  theta_r                     1.0472
-    Pi_g        g*l*m/k_theta               0.2943
-    Pi_c_theta  c_theta**2/(k_theta*l**2*m) 0.166667
+    group       expression                   value
+    Pi_theta_r  theta_r                      1.0472
+    Pi_g        g*l*m/k_theta                0.2943
+    Pi_c_theta  c_theta**2/(k_theta*l**2*m)  0.166667
     Pi_t        k_theta*t**2/(l**2*m)
     Pi_F        F*l/k_theta
     Pi_tau      tau/k_theta
