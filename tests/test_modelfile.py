@@ -1,0 +1,247 @@
+"""Tests for pitheorem.modelfile: reading, checking and writing TOML model files."""
+
+from __future__ import annotations
+
+import json
+import pickle
+from fractions import Fraction
+
+import pytest
+
+import pitheorem as pt
+from pitheorem.modelfile import (
+    ModelFile,
+    ModelFileError,
+    dump_values,
+    example_path,
+    examples,
+    load_model_file,
+    write_model_file,
+)
+
+
+def write(tmp_path, text: str, name: str = "model.toml"):
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+# -- the shipped examples ------------------------------------------------------------------
+
+
+def test_examples_are_listed():
+    assert examples() == ("hinged_rod", "superball")
+    assert example_path("hinged_rod.toml") == example_path("hinged_rod")
+
+
+def test_hinged_rod_example_is_the_papers_rod():
+    rod = load_model_file(example_path("hinged_rod"))
+    assert rod.name == "hinged rod"
+    assert rod.system == pt.models.rod_system()
+    assert rod.values == {"m": 1.5, "theta_r": pytest.approx(1.0471975511965976), "l": 2, "g": 9.81,
+                          "k_theta": 100, "c_theta": 10}
+    assert rod.roles["t"] == "time" and rod.time == "t"
+    assert rod.roles["m"] == "parameter"
+    assert rod.path.endswith("hinged_rod.toml")
+
+
+def test_superball_example_has_the_section_4_list():
+    sb = load_model_file("example:superball")
+    assert sb.system.variables == ("g", "rho", "x_r", "k", "c", "F", "v", "t", "m", "l", "G", "E")
+    assert sb.system.dimensions == pt.models.superball_parameters().dimensions
+    assert sb.system.rank == 3
+
+
+def test_unknown_example():
+    with pytest.raises(ModelFileError, match="superball"):
+        example_path("superbal")
+
+
+# -- reading -------------------------------------------------------------------------------
+
+
+def test_minimal_file_defaults(tmp_path):
+    model = load_model_file(write(tmp_path, '[variables]\nl = { dimension = "L" }\n', "pendulum.toml"))
+    assert model.name == "pendulum"
+    assert model.description == ""
+    assert model.values == {}
+    assert model.roles == {"l": "parameter"}
+    assert model.time is None
+
+
+def test_values_exact_and_float(tmp_path):
+    model = load_model_file(write(tmp_path, """
+[variables]
+a = { dimension = "L", value = "1/3" }
+b = { dimension = "L", value = 2 }
+c = { dimension = "L", value = 2.5 }
+d = { dimension = "L", value = " -4/2 " }
+e = { dimension = "L", value = 1e-3 }
+"""))
+    assert model.values == {"a": Fraction(1, 3), "b": 2, "c": 2.5, "d": -2, "e": 0.001}
+    assert type(model.values["b"]) is int and type(model.values["d"]) is int
+
+
+def test_units_read_by_pint(tmp_path):
+    model = load_model_file(write(tmp_path, """
+[variables]
+k_theta = { unit = "N*m/rad", value = 100 }
+l = { unit = "cm" }
+t = { unit = "s", role = "time" }
+"""))
+    assert str(model.system.dimension("k_theta")) == "M L^2 T^-2"
+    assert str(model.system.dimension("l")) == "L"
+    assert model.units == {"k_theta": "N*m/rad", "l": "cm", "t": "s"}
+
+
+def test_custom_base_dimensions(tmp_path):
+    model = load_model_file(write(tmp_path, """
+base_dimensions = ["M", "L", "T", "A"]
+[variables]
+k_theta = { dimension = "M L^2 T^-2 A^-1" }
+theta = { dimension = "A", role = "state" }
+"""))
+    assert model.system.base_dimensions == ("M", "L", "T", "A")
+
+
+def test_order_of_variables_is_the_files(tmp_path):
+    model = load_model_file(write(tmp_path, """
+[variables]
+z = { dimension = "T" }
+a = { dimension = "L" }
+[variables.m]
+dimension = "M"
+"""))
+    assert model.system.variables == ("z", "a", "m")
+
+
+# -- writing -------------------------------------------------------------------------------
+
+
+def test_round_trip_toml(tmp_path):
+    rod = load_model_file("example:hinged_rod")
+    new = {**rod.values, "m": Fraction(3, 7), "l": 5}
+    out = write_model_file(rod, tmp_path / "copy.toml", new)
+    again = load_model_file(out)
+    assert again.values == new
+    assert again.system == rod.system
+    assert again.roles == rod.roles
+    assert again.descriptions == rod.descriptions
+
+
+def test_round_trip_units_and_odd_names(tmp_path):
+    model = load_model_file(write(tmp_path, """
+name = "quote \\" and backslash \\\\"
+[variables]
+"θ" = { dimension = "1" }
+l = { unit = "m", value = 1.5 }
+"""))
+    again = load_model_file(write(tmp_path, dump_values(model), "again.toml"))
+    assert again.name == 'quote " and backslash \\'
+    assert again.system == model.system
+    assert again.units == {"l": "m"}
+
+
+def test_json_output(tmp_path):
+    rod = load_model_file("example:hinged_rod")
+    out = write_model_file(rod, tmp_path / "copy.json", {**rod.values, "m": Fraction(1, 2)})
+    doc = json.loads(out.read_text())
+    assert list(doc["variables"]) == list(rod.system.variables)
+    assert doc["variables"]["m"] == {"dimension": "M", "value": "1/2", "description": "mass of the rod"}
+    assert doc["variables"]["t"]["role"] == "time"
+
+
+def test_with_values_converts_sympy_numbers():
+    import sympy
+
+    rod = load_model_file("example:hinged_rod")
+    new = rod.with_values({"l": sympy.Rational(4, 2), "m": sympy.Rational(1, 3), "g": sympy.sqrt(2)})
+    assert new.values == {"m": Fraction(1, 3), "l": 2, "g": pytest.approx(2**0.5)}
+    assert isinstance(new.values["g"], float)
+    with pytest.raises(ModelFileError, match="'nope'"):
+        rod.with_values({"nope": 1})
+
+
+def test_bad_output_suffix(tmp_path):
+    with pytest.raises(ModelFileError, match=r"\.yaml"):
+        write_model_file(load_model_file("example:superball"), tmp_path / "x.yaml")
+    with pytest.raises(ModelFileError, match="format"):
+        dump_values(load_model_file("example:superball"), format="yaml")
+
+
+def test_model_file_is_a_record():
+    model = ModelFile("x", "", pt.System({"l": "L"}))
+    assert model == ModelFile("x", "", pt.System({"l": "L"}))
+    with pytest.raises(TypeError):
+        hash(model)
+
+
+# -- every broken file gives a ModelFileError naming file, variable and problem -------------
+
+BROKEN = {
+    "bad_toml": ('[variables]\nm = { dimension = "M"\n', ["line 2", "invalid TOML"]),
+    "bad_toml_value": ("[variables]\nm = = 1\n", ["line 2", "invalid TOML"]),
+    "missing_variables": ('name = "x"\n', ["no [variables]"]),
+    "variables_not_table": ("variables = 3\n", ["must be a table"]),
+    "empty_variables": ("[variables]\n", ["empty"]),
+    "unknown_top_key": ('nmae = "x"\n[variables]\nl = { dimension = "L" }\n', ["'nmae'", "did you mean 'name'"]),
+    "unknown_key": ('[variables]\nl = { dimension = "L", vaule = 2 }\n', ["variable 'l'", "'vaule'", "'value'"]),
+    "both": ('[variables]\nl = { dimension = "L", unit = "m" }\n', ["variable 'l'", "both dimension and unit"]),
+    "neither": ('[variables]\nl = { value = 2 }\n', ["variable 'l'", "neither dimension nor unit"]),
+    "unknown_dimension": ('[variables]\nq = { dimension = "Q" }\n', ["variable 'q'", "'Q'"]),
+    "bad_dimension_syntax": ('[variables]\nq = { dimension = "L^^2" }\n', ["variable 'q'", "'L^^2'"]),
+    "dimension_not_string": ("[variables]\nq = { dimension = 1 }\n", ["variable 'q'", "string"]),
+    "bad_unit": ('[variables]\nq = { unit = "furlongz" }\n', ["variable 'q'", "furlongz"]),
+    "duplicate": ('[variables]\nm = { dimension = "M" }\nm = { dimension = "L" }\n',
+                  ["line 3", "variable 'm'", "twice"]),
+    "duplicate_table": ('[variables.m]\ndimension = "M"\n[variables.m]\ndimension = "L"\n',
+                        ["line 3", "variable 'm'", "twice"]),
+    "duplicate_key_in_entry": ('[variables]\nm = { dimension = "M", dimension = "L" }\n', ["line 2"]),
+    "bad_role": ('[variables]\nt = { dimension = "T", role = "clock" }\n', ["variable 't'", "'clock'", "time"]),
+    "time_not_T": ('[variables]\nl = { dimension = "L", role = "time" }\n', ["variable 'l'", "dimension T"]),
+    "two_times": ('[variables]\nt = { dimension = "T", role = "time" }\ns = { dimension = "T", role = "time" }\n',
+                  ["variable 's'", "at most one"]),
+    "value_not_number": ('[variables]\nm = { dimension = "M", value = "heavy" }\n', ["variable 'm'", "'heavy'"]),
+    "value_bool": ('[variables]\nm = { dimension = "M", value = true }\n', ["variable 'm'", "true"]),
+    "value_list": ('[variables]\nm = { dimension = "M", value = [1, 2] }\n', ["variable 'm'", "number"]),
+    "value_zero_denominator": ('[variables]\nm = { dimension = "M", value = "1/0" }\n', ["variable 'm'", "1/0"]),
+    "value_nan": ('[variables]\nm = { dimension = "M", value = nan }\n', ["variable 'm'", "finite"]),
+    "entry_not_table": ('[variables]\nm = "M"\n', ["variable 'm'", "must be a table"]),
+    "bad_name": ('[variables]\n"k-theta" = { dimension = "M" }\n', ["variable 'k-theta'", "valid name"]),
+    "name_not_string": ('name = 3\n[variables]\nm = { dimension = "M" }\n', ["name must be a string"]),
+    "bad_base_dimensions": ('base_dimensions = "MLT"\n[variables]\nm = { dimension = "M" }\n', ["base_dimensions"]),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BROKEN))
+def test_broken_file(tmp_path, case):
+    text, fragments = BROKEN[case]
+    path = write(tmp_path, text, f"{case}.toml")
+    with pytest.raises(ModelFileError) as info:
+        load_model_file(path)
+    message = str(info.value)
+    assert "\n" not in message
+    assert message.startswith(str(path))
+    for fragment in fragments:
+        assert fragment in message, (fragment, message)
+    assert isinstance(info.value, ValueError) and isinstance(info.value, pt.PiTheoremError)
+
+
+def test_not_utf8(tmp_path):
+    path = tmp_path / "latin1.toml"
+    path.write_bytes('[variables]\n"\u00e9" = { dimension = "M" }\n'.encode("latin-1"))
+    with pytest.raises(ModelFileError, match="UTF-8"):
+        load_model_file(path)
+
+
+def test_missing_file_is_an_os_error(tmp_path):
+    with pytest.raises(FileNotFoundError):
+        load_model_file(tmp_path / "nope.toml")
+
+
+def test_error_fields_and_pickling():
+    err = ModelFileError("rod.toml", "unknown role 'clock'", variable="t", line=4)
+    assert (err.path, err.variable, err.line) == ("rod.toml", "t", 4)
+    assert str(err) == "rod.toml, line 4: variable 't': unknown role 'clock'"
+    again = pickle.loads(pickle.dumps(err))
+    assert str(again) == str(err) and again.variable == "t"
