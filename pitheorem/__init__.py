@@ -17,6 +17,7 @@ from .errors import (
     InvalidRequestError,
     PiTheoremError,
     RepeatingCountError,
+    SystemMismatchError,
     UnitError,
     UnknownVariableError,
 )
@@ -28,7 +29,7 @@ from .modelfile import ModelFile, ModelFileError, load_model_file
 from .models import Model
 from .scaling import Scaling
 from .search import SearchResult, search
-from .simulate import SimilarityReport, SystemMismatchError, Trajectory, simulate, verify_similarity
+from .simulate import SimilarityReport, Trajectory, simulate, verify_similarity
 from .system import System
 
 __version__ = "0.1.0"

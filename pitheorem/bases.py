@@ -29,6 +29,7 @@ from collections.abc import Iterator, Sequence
 from fractions import Fraction
 from itertools import combinations
 from math import lcm, prod, sqrt
+from typing import ClassVar
 
 import numpy as np
 
@@ -189,7 +190,7 @@ class _LaplaceTables:
     ``j``-subset of the ``r`` rows (in lexicographic order of row subsets).
     """
 
-    _cache: dict[int, _LaplaceTables] = {}
+    _cache: ClassVar[dict[int, _LaplaceTables]] = {}
 
     def __init__(self, r: int):
         self.r = r

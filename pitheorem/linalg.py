@@ -130,7 +130,7 @@ def solve(rows: Sequence[Sequence], rhs: Sequence) -> list[Fraction] | None:
     True
     """
     n_cols = len(rows[0]) if rows else 0
-    aug = [list(row) + [b] for row, b in zip(rows, rhs, strict=True)]
+    aug = [[*row, b] for row, b in zip(rows, rhs, strict=True)]
     a, pivots = rref(aug)
     if n_cols in pivots:
         return None

@@ -20,53 +20,14 @@ from types import MappingProxyType
 
 import numpy as np
 
-from .errors import InvalidRequestError, PiTheoremError, UnknownVariableError
+from .errors import InvalidRequestError, PiTheoremError, SystemMismatchError, UnknownVariableError
 from .models import Model
 from .scaling import Scaling, as_exponent
 from .system import System
 
-__all__ = ["SimilarityReport", "SystemMismatchError", "Trajectory", "simulate", "verify_similarity"]
+__all__ = ["SimilarityReport", "Trajectory", "simulate", "verify_similarity"]
 
 _METHODS = ("solve_ivp", "euler")
-
-
-class SystemMismatchError(InvalidRequestError):
-    """A scaling built for a system that does not fit the model.
-
-    The scaling's system must contain every parameter, state and the time
-    variable of the model, each with the same dimension.
-
-    Parameters
-    ----------
-    name : str
-        The variable that is missing or has another dimension.
-    reason : str
-        What differs.
-
-    Examples
-    --------
-    >>> import pitheorem as pt
-    >>> other = pt.System({"l": "L", "t": "T"})
-    >>> sc = pt.Scaling.from_unit_change(other, {"L": 1})
-    >>> try:
-    ...     pt.verify_similarity(pt.models.projectile(), sc, s=2, t_final=0.1)
-    ... except pt.SystemMismatchError as err:
-    ...     print(err.name)
-    m
-    """
-
-    def __init__(self, name: str, reason: str):
-        self.name, self.reason = name, reason
-        PiTheoremError.__init__(self, str(self))
-
-    def __str__(self) -> str:
-        return (
-            f"the scaling does not belong to the model's system: {self.reason}; build the scaling "
-            "from model.system (e.g. pt.search(model.system, ...))"
-        )
-
-    def __reduce__(self):
-        return (type(self), (self.name, self.reason))
 
 
 @dataclass(frozen=True, eq=False)

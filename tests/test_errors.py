@@ -43,7 +43,8 @@ def test_bad_formula(formula, culprit):
 def test_bad_formula_in_system_names_variable(formula, culprit):
     with pytest.raises(pt.DimensionSyntaxError) as info:
         pt.System({"ok": "L", "bad_one": formula})
-    assert "'bad_one'" in str(info.value) and culprit in str(info.value)
+    assert "'bad_one'" in str(info.value)
+    assert culprit in str(info.value)
 
 
 BAD_SYSTEMS = [
@@ -156,4 +157,5 @@ def test_errors_are_builtin_subclasses():
 )
 def test_errors_pickle_with_their_message(error):
     copy = pickle.loads(pickle.dumps(error))
-    assert type(copy) is type(error) and str(copy) == str(error)
+    assert type(copy) is type(error)
+    assert str(copy) == str(error)
