@@ -1,0 +1,356 @@
+"""Tests for the pitheorem command line (pitheorem.cli, python -m pitheorem, the console script).
+
+Most cases call :func:`pitheorem.cli.main` in-process (fast); a few run the real
+program in a subprocess, to check the entry points, exit codes and stderr.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import sys
+from fractions import Fraction
+
+import pytest
+
+import pitheorem as pt
+from pitheorem.cli import EXIT_ERROR, EXIT_INFEASIBLE, EXIT_OK, main
+from pitheorem.modelfile import example_path, load_model_file
+
+ROD = str(example_path("hinged_rod"))
+SUPERBALL = str(example_path("superball"))
+
+
+def run(capsys, *argv):
+    code = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def run_json(capsys, *argv):
+    code, out, err = run(capsys, *argv, "--format", "json")
+    assert err == ""
+    return code, json.loads(out)
+
+
+def subprocess_run(*argv, program=None):
+    cmd = [*(program or [sys.executable, "-m", "pitheorem"]), *map(str, argv)]
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=60, check=False)
+
+
+# -- groups --------------------------------------------------------------------------------
+
+
+def test_groups_default_repeaters(capsys):
+    code, out, _ = run(capsys, "groups", ROD)
+    assert code == EXIT_OK
+    assert "rank 3, 6 dimensionless groups" in out
+    assert f"repeating variables: {', '.join(load_model_file(ROD).system.default_repeating())}" in out
+
+
+def test_groups_json_matches_the_library(capsys):
+    code, doc = run_json(capsys, "groups", ROD, "--repeating", "m", "l", "k_theta")
+    assert code == EXIT_OK
+    expected = pt.models.rod_system().pi_groups(repeating=("m", "l", "k_theta"))
+    assert [g["exponents"] for g in doc["groups"]] == [g.exponents for g in expected]
+    assert doc["repeating"] == ["m", "l", "k_theta"]
+    by_name = {g["name"]: g for g in doc["groups"]}
+    assert by_name["Pi_g"]["expression"] == "g*l*m/k_theta"
+    assert by_name["Pi_g"]["value"] == pytest.approx(1.5 * 2 * 9.81 / 100)
+    assert by_name["Pi_t"]["value"] is None  # t has no value in the file
+
+
+def test_groups_latex(capsys):
+    code, out, _ = run(capsys, "groups", ROD, "--repeating", "m", "l", "k_theta", "--format", "latex")
+    assert code == EXIT_OK
+    assert r"\frac" in out
+    assert r"\Pi_{g} &= \frac{g l m}{k_{\theta}}" in out
+    assert out.startswith(r"\begin{align*}")
+
+
+# -- bases ---------------------------------------------------------------------------------
+
+
+def test_bases_count_and_list(capsys):
+    system = pt.models.rod_system()
+    code, out, _ = run(capsys, "bases", ROD, "--count")
+    assert (code, out.strip()) == (EXIT_OK, str(system.count_bases()))
+    code, doc = run_json(capsys, "bases", ROD, "--exclude", "t", "--require", "m")
+    assert doc["count"] == len(doc["bases"]) == system.count_bases(exclude=("t",), require=("m",))
+    assert [tuple(b) for b in doc["bases"]] == system.bases(exclude=("t",), require=("m",))
+    code, out, _ = run(capsys, "bases", ROD, "--exclude", "t")
+    assert out.splitlines()[0] == "hinged rod: 27 valid repeating sets of 3 variables (without t)"
+    assert len(out.splitlines()) == 28
+    code, out, _ = run(capsys, "bases", ROD, "--format", "latex")
+    assert r"\begin{tabular}" in out and r"k_{\theta}" in out
+
+
+# -- search --------------------------------------------------------------------------------
+
+
+def test_search_gravity_has_three_minimal_solutions(capsys):
+    code, out, _ = run(capsys, "search", ROD, "--scale", "g=1")
+    assert code == EXIT_OK
+    assert "3 minimal solution(s)" in out
+    assert "give --fixed with no names to let time change" in out
+    code, doc = run_json(capsys, "search", ROD, "--scale", "g=1")
+    assert doc["feasible"] is True and doc["count"] == 3 and doc["fixed"] == ["t"]
+    assert doc["scalings"][0]["exponents"]["m"] == "-2"
+    assert doc["scalings"][0]["unit_change"] == {"M": "-2", "L": "1", "T": "0"}
+    assert all(sc["exponents"]["t"] == "0" for sc in doc["scalings"])
+
+
+def test_search_certificate(capsys):
+    argv = ("search", ROD, "--scale", "g=1", "--fixed", "t", "m", "k_theta")
+    code, out, _ = run(capsys, *argv)
+    assert code == EXIT_INFEASIBLE
+    assert "certificate: Pi = g**2*m*t**2/k_theta" in out
+    code, doc = run_json(capsys, *argv)
+    assert code == EXIT_INFEASIBLE
+    assert doc["feasible"] is False and doc["scalings"] == []
+    assert doc["certificate"]["expression"] == "g**2*m*t**2/k_theta"
+    assert doc["certificate"]["power"] == "2"
+    code, out, _ = run(capsys, *argv, "--format", "latex")
+    assert r"\frac{g^{2} m t^{2}}{k_{\theta}}" in out
+
+
+def test_search_superball_density(capsys):
+    code, doc = run_json(capsys, "search", SUPERBALL, "--scale", "l=1", "--fixed", "t", "m")
+    assert code == EXIT_OK and doc["count"] == 1
+    exps = doc["scalings"][0]["exponents"]
+    assert exps["rho"] == "-3" and exps["G"] == "-1" and exps["k"] == "0"
+
+
+def test_search_fixed_without_names_lets_time_change(capsys):
+    _, held = run_json(capsys, "search", ROD, "--scale", "g=1")
+    for extra in (["--fixed"], ["--no-default-fixed"]):
+        code, doc = run_json(capsys, "search", ROD, "--scale", "g=1", *extra)
+        assert code == EXIT_OK
+        assert doc["fixed"] == [] and doc["notes"] == []
+        assert doc["count"] > held["count"]
+        assert any(sc["exponents"]["t"] != "0" for sc in doc["scalings"])
+
+
+def test_search_exact_exponents_and_allow(capsys):
+    code, doc = run_json(capsys, "search", ROD, "--scale", "g=1/2", "l=-1", "--fixed")
+    assert code == EXIT_OK
+    assert doc["scale"] == {"g": "1/2", "l": "-1"}
+    code, doc = run_json(capsys, "search", ROD, "--scale", "g=1", "--allow", "l", "m", "F")
+    assert code == EXIT_OK and doc["count"] == 1
+    assert doc["scalings"][0]["changed"] == ["m", "l", "g", "F"]
+    code, doc = run_json(capsys, "search", ROD, "--scale", "g=1", "--allow", "l")
+    assert code == EXIT_INFEASIBLE and doc["certificate"] is not None
+
+
+def test_search_latex_table(capsys):
+    code, out, _ = run(capsys, "search", ROD, "--scale", "g=1", "--format", "latex")
+    assert code == EXIT_OK
+    assert r"$m$ & free & $s^{-2}$ & $s^{-1}$ & $1$ \\" in out
+
+
+def test_json_is_deterministic(capsys):
+    first = run(capsys, "search", SUPERBALL, "--scale", "g=1", "--format", "json")
+    assert run(capsys, "search", SUPERBALL, "--scale", "g=1", "--format", "json") == first
+
+
+# -- apply ---------------------------------------------------------------------------------
+
+
+def _groups_with_values(model):
+    """Every Pi group, over all bases without time, whose variables all have values."""
+    seen = {}
+    for basis in model.system.bases():
+        for g in model.system.pi_groups(repeating=basis):
+            if all(n in model.values for n in g.exponents):
+                seen[g.powers] = g
+    return list(seen.values())
+
+
+@pytest.mark.parametrize(("solution", "s"), [(1, "2"), (2, "1/3"), (3, "0.5")])
+def test_apply_keeps_every_group(capsys, tmp_path, solution, s):
+    out = tmp_path / "scaled.toml"
+    code, text, _ = run(capsys, "apply", ROD, "--scale", "g=1", "--s", s, "--solution", solution,
+                        "--output", out)
+    assert code == EXIT_OK
+    assert f"minimal scaling #{solution} of 3" in text
+    assert f"wrote {out}" in text
+    before, after = load_model_file(ROD), load_model_file(out)
+    assert after.values["g"] == pytest.approx(9.81 * float(Fraction(s)))
+    groups = _groups_with_values(before)
+    assert len(groups) >= 3
+    for g in groups:
+        assert g.evaluate(after.values) == pytest.approx(g.evaluate(before.values), rel=1e-12)
+    assert after.system == before.system and after.roles == before.roles
+
+
+def test_apply_is_exact_for_exact_values(capsys, tmp_path):
+    model = tmp_path / "exact.toml"
+    model.write_text('[variables]\nm = { dimension = "M", value = "3/2" }\nl = { dimension = "L", value = 2 }\n'
+                     'g = { dimension = "L T^-2", value = 10 }\nt = { dimension = "T", role = "time" }\n')
+    code, doc = run_json(capsys, "apply", model, "--scale", "g=1", "--s", "1/3")
+    assert code == EXIT_OK
+    assert doc["count"] == 1 and doc["solution"] == 1 and doc["s"] == "1/3"
+    assert doc["scaled"] == {"m": "3/2", "l": "2/3", "g": "10/3"}
+    out = tmp_path / "scaled.json"
+    code, _, _ = run(capsys, "apply", model, "--scale", "g=1", "--s", "1/3", "--output", out)
+    assert json.loads(out.read_text())["variables"]["l"]["value"] == "2/3"
+    code, out, _ = run(capsys, "apply", model, "--scale", "g=1", "--s", "1/3", "--format", "latex")
+    assert r"$\frac{2}{3}$" in out
+
+
+def test_apply_only_scaling_is_named(capsys):
+    code, out, _ = run(capsys, "apply", ROD, "--scale", "g=1", "--allow", "l", "m", "F", "--s", "2")
+    assert code == EXIT_OK
+    assert "the only minimal scaling" in out
+
+
+def test_apply_infeasible_writes_nothing(capsys, tmp_path):
+    out = tmp_path / "never.toml"
+    code, text, err = run(capsys, "apply", ROD, "--scale", "g=1", "--fixed", "t", "m", "k_theta", "--s", "2",
+                          "--output", out)
+    assert code == EXIT_INFEASIBLE
+    assert text == "" and err.count("\n") == 1 and "g**2*m*t**2/k_theta" in err
+    assert not out.exists()
+
+
+# -- bad input: exit code 2, one line on stderr naming the culprit --------------------------
+
+BAD_REQUESTS = {
+    "scale_and_fixed": (["search", ROD, "--scale", "g=1", "--fixed", "g"], "'g'"),
+    "unknown_scale_variable": (["search", ROD, "--scale", "gravity=1"], "'gravity'"),
+    "unknown_fixed_variable": (["search", ROD, "--scale", "g=1", "--fixed", "time"], "'time'"),
+    "bad_exponent": (["search", ROD, "--scale", "g=two"], "'two'"),
+    "zero_denominator": (["search", ROD, "--scale", "g=1/0"], "'1/0'"),
+    "no_equals": (["search", ROD, "--scale", "g"], "'g'"),
+    "empty_exponent": (["search", ROD, "--scale", "g="], "'g='"),
+    "scale_twice": (["search", ROD, "--scale", "g=1", "g=2"], "'g'"),
+    "zero_exponent": (["search", ROD, "--scale", "g=0"], "'g'"),
+    "fixed_and_allowed": (["search", ROD, "--scale", "g=1", "--fixed", "l", "--allow", "l"], "'l'"),
+    "wrong_repeating_count": (["groups", ROD, "--repeating", "m", "l"], "('m', 'l')"),
+    "dependent_repeating": (["groups", ROD, "--repeating", "m", "k_theta", "tau"], "k_theta"),
+    "unknown_repeating": (["groups", ROD, "--repeating", "m", "l", "mass"], "'mass'"),
+    "exclude_unknown": (["bases", ROD, "--exclude", "T"], "'T'"),
+    "exclude_and_require": (["bases", ROD, "--exclude", "m", "--require", "m"], "'m'"),
+    "missing_file": (["groups", "no_such_model.toml"], "no_such_model.toml"),
+    "directory": (["groups", "."], "'.'"),
+    "unknown_example": (["groups", "example:rod"], "example:rod"),
+    "bad_s": (["apply", ROD, "--scale", "g=1", "--s", "big"], "'big'"),
+    "negative_s": (["apply", ROD, "--scale", "g=1", "--s", "-2"], "'-2'"),
+    "solution_out_of_range": (["apply", ROD, "--scale", "g=1", "--s", "2", "--solution", "4"], "--solution 4"),
+    "bad_output_suffix": (["apply", ROD, "--scale", "g=1", "--s", "2", "--output", "out.yaml"], "out.yaml"),
+    "overwrite_input": (["apply", ROD, "--scale", "g=1", "--s", "2", "--output", ROD], "input file"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_REQUESTS))
+def test_bad_request(capsys, case, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    argv, culprit = BAD_REQUESTS[case]
+    code, out, err = run(capsys, *argv)
+    assert code == EXIT_ERROR, (out, err)
+    assert out == ""
+    assert err.startswith("pitheorem: error: ") and err.count("\n") == 1, err
+    assert culprit in err, err
+    assert "Traceback" not in err
+
+
+def test_apply_without_values(capsys, tmp_path):
+    path = tmp_path / "bare.toml"
+    path.write_text('[variables]\nl = { dimension = "L" }\nt = { dimension = "T" }\n')
+    code, out, err = run(capsys, "apply", path, "--scale", "l=1", "--s", "2")
+    assert code == EXIT_ERROR and out == ""
+    assert err.startswith(f"pitheorem: error: {path}: no variable has a value") and err.count("\n") == 1
+
+
+BROKEN_FILES = {
+    "bad_toml.toml": ('[variables]\nm = { dimension = "M"\n', ["line 2", "invalid TOML"]),
+    "unknown_dimension.toml": ('[variables]\nq = { dimension = "Q" }\n', ["variable 'q'", "'Q'"]),
+    "duplicate.toml": ('[variables]\nm = { dimension = "M" }\nm = { dimension = "L" }\n',
+                       ["line 3", "variable 'm'"]),
+    "no_variables.toml": ('name = "x"\n', ["[variables]"]),
+    "bad_role.toml": ('[variables]\nt = { dimension = "T", role = "clock" }\n', ["variable 't'", "'clock'"]),
+    "bad_value.toml": ('[variables]\nm = { dimension = "M", value = "heavy" }\n', ["variable 'm'", "'heavy'"]),
+    "both.toml": ('[variables]\nl = { dimension = "L", unit = "m" }\n', ["variable 'l'", "both"]),
+    "bad_unit.toml": ('[variables]\nl = { unit = "furlongz" }\n', ["variable 'l'", "furlongz"]),
+    "unknown_key.toml": ('[variables]\nl = { dim = "L" }\n', ["variable 'l'", "'dim'"]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(BROKEN_FILES))
+def test_broken_model_file(capsys, tmp_path, name):
+    text, fragments = BROKEN_FILES[name]
+    path = tmp_path / name
+    path.write_text(text)
+    code, out, err = run(capsys, "groups", path)
+    assert code == EXIT_ERROR and out == ""
+    assert err.startswith(f"pitheorem: error: {path}") and err.count("\n") == 1, err
+    for fragment in fragments:
+        assert fragment in err, err
+
+
+def test_usage_errors_and_help(capsys):
+    assert run(capsys, "search", ROD)[0] == EXIT_ERROR  # --scale is required
+    assert run(capsys, "frobnicate", ROD)[0] == EXIT_ERROR
+    assert run(capsys, "groups", ROD, "--format", "yaml")[0] == EXIT_ERROR
+    code, out, _ = run(capsys, "--help")
+    assert code == EXIT_OK and "Exit codes" in out
+    code, out, _ = run(capsys, "--version")
+    assert code == EXIT_OK and pt.__version__ in out
+
+
+# -- the real programs, in subprocesses ------------------------------------------------------
+
+
+def test_python_dash_m_search():
+    proc = subprocess_run("search", "example:hinged_rod", "--scale", "g=1", "--format", "json")
+    assert proc.returncode == EXIT_OK, proc.stderr
+    assert json.loads(proc.stdout)["count"] == 3
+
+
+def test_python_dash_m_infeasible_exit_code():
+    proc = subprocess_run("search", ROD, "--scale", "g=1", "--fixed", "t", "m", "k_theta")
+    assert proc.returncode == EXIT_INFEASIBLE
+    assert "g**2*m*t**2/k_theta" in proc.stdout and proc.stderr == ""
+
+
+@pytest.mark.parametrize(
+    ("argv", "culprit"),
+    [
+        (["groups", "missing.toml"], "missing.toml"),
+        (["search", ROD, "--scale", "gg=1"], "'gg'"),
+        (["search", ROD, "--scale", "g=1", "--fixed", "g"], "'g'"),
+    ],
+)
+def test_python_dash_m_errors_are_one_line(argv, culprit, tmp_path):
+    proc = subprocess_run(*argv)
+    assert proc.returncode == EXIT_ERROR
+    assert proc.stdout == ""
+    assert proc.stderr.startswith("pitheorem: error: ") and proc.stderr.count("\n") == 1
+    assert culprit in proc.stderr and "Traceback" not in proc.stderr
+
+
+def test_python_dash_m_broken_file(tmp_path):
+    path = tmp_path / "broken.toml"
+    path.write_text('[variables]\nm = { dimension = "M" }\nm = { dimension = "L" }\n')
+    proc = subprocess_run("groups", path)
+    assert proc.returncode == EXIT_ERROR
+    assert proc.stderr == f"pitheorem: error: {path}, line 3: variable 'm': is defined twice in [variables]; " \
+        "each variable may appear once\n"
+
+
+def test_python_dash_m_usage_error():
+    proc = subprocess_run("search", ROD)
+    assert proc.returncode == EXIT_ERROR
+    assert "--scale" in proc.stderr and "Traceback" not in proc.stderr
+
+
+@pytest.mark.skipif(shutil.which("pitheorem") is None, reason="the pitheorem console script is not installed")
+def test_console_script(tmp_path):
+    out = tmp_path / "scaled.toml"
+    proc = subprocess_run("apply", "example:hinged_rod", "--scale", "g=1", "--s", "2", "--output", out,
+                          program=[shutil.which("pitheorem")])
+    assert proc.returncode == EXIT_OK, proc.stderr
+    assert load_model_file(out).values["g"] == pytest.approx(19.62)
+    proc = subprocess_run("groups", tmp_path / "nope.toml", program=[shutil.which("pitheorem")])
+    assert proc.returncode == EXIT_ERROR and proc.stderr.count("\n") == 1
