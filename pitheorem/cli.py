@@ -48,7 +48,7 @@ import sympy
 
 from . import __version__
 from .display import power_latex, power_text
-from .errors import InvalidRequestError, PiTheoremError
+from .errors import PiTheoremError
 from .modelfile import ModelFile, load_model_file, write_model_file
 from .scaling import as_exponent
 from .search import SearchResult, search

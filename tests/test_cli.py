@@ -83,7 +83,8 @@ def test_bases_count_and_list(capsys):
     assert out.splitlines()[0] == "hinged rod: 27 valid repeating sets of 3 variables (without t)"
     assert len(out.splitlines()) == 28
     code, out, _ = run(capsys, "bases", ROD, "--format", "latex")
-    assert r"\begin{tabular}" in out and r"k_{\theta}" in out
+    assert r"\begin{tabular}" in out
+    assert r"k_{\theta}" in out
 
 
 # -- search --------------------------------------------------------------------------------
@@ -95,7 +96,9 @@ def test_search_gravity_has_three_minimal_solutions(capsys):
     assert "3 minimal solution(s)" in out
     assert "give --fixed with no names to let time change" in out
     code, doc = run_json(capsys, "search", ROD, "--scale", "g=1")
-    assert doc["feasible"] is True and doc["count"] == 3 and doc["fixed"] == ["t"]
+    assert doc["feasible"] is True
+    assert doc["count"] == 3
+    assert doc["fixed"] == ["t"]
     assert doc["scalings"][0]["exponents"]["m"] == "-2"
     assert doc["scalings"][0]["unit_change"] == {"M": "-2", "L": "1", "T": "0"}
     assert all(sc["exponents"]["t"] == "0" for sc in doc["scalings"])
@@ -108,7 +111,8 @@ def test_search_certificate(capsys):
     assert "certificate: Pi = g**2*m*t**2/k_theta" in out
     code, doc = run_json(capsys, *argv)
     assert code == EXIT_INFEASIBLE
-    assert doc["feasible"] is False and doc["scalings"] == []
+    assert doc["feasible"] is False
+    assert doc["scalings"] == []
     assert doc["certificate"]["expression"] == "g**2*m*t**2/k_theta"
     assert doc["certificate"]["power"] == "2"
     code, out, _ = run(capsys, *argv, "--format", "latex")
@@ -117,9 +121,12 @@ def test_search_certificate(capsys):
 
 def test_search_superball_density(capsys):
     code, doc = run_json(capsys, "search", SUPERBALL, "--scale", "l=1", "--fixed", "t", "m")
-    assert code == EXIT_OK and doc["count"] == 1
+    assert code == EXIT_OK
+    assert doc["count"] == 1
     exps = doc["scalings"][0]["exponents"]
-    assert exps["rho"] == "-3" and exps["G"] == "-1" and exps["k"] == "0"
+    assert exps["rho"] == "-3"
+    assert exps["G"] == "-1"
+    assert exps["k"] == "0"
 
 
 def test_search_fixed_without_names_lets_time_change(capsys):
@@ -127,7 +134,8 @@ def test_search_fixed_without_names_lets_time_change(capsys):
     for extra in (["--fixed"], ["--no-default-fixed"]):
         code, doc = run_json(capsys, "search", ROD, "--scale", "g=1", *extra)
         assert code == EXIT_OK
-        assert doc["fixed"] == [] and doc["notes"] == []
+        assert doc["fixed"] == []
+        assert doc["notes"] == []
         assert doc["count"] > held["count"]
         assert any(sc["exponents"]["t"] != "0" for sc in doc["scalings"])
 
@@ -137,10 +145,12 @@ def test_search_exact_exponents_and_allow(capsys):
     assert code == EXIT_OK
     assert doc["scale"] == {"g": "1/2", "l": "-1"}
     code, doc = run_json(capsys, "search", ROD, "--scale", "g=1", "--allow", "l", "m", "F")
-    assert code == EXIT_OK and doc["count"] == 1
+    assert code == EXIT_OK
+    assert doc["count"] == 1
     assert doc["scalings"][0]["changed"] == ["m", "l", "g", "F"]
     code, doc = run_json(capsys, "search", ROD, "--scale", "g=1", "--allow", "l")
-    assert code == EXIT_INFEASIBLE and doc["certificate"] is not None
+    assert code == EXIT_INFEASIBLE
+    assert doc["certificate"] is not None
 
 
 def test_search_latex_table(capsys):
@@ -181,7 +191,8 @@ def test_apply_keeps_every_group(capsys, tmp_path, solution, s):
     assert len(groups) >= 3
     for g in groups:
         assert g.evaluate(after.values) == pytest.approx(g.evaluate(before.values), rel=1e-12)
-    assert after.system == before.system and after.roles == before.roles
+    assert after.system == before.system
+    assert after.roles == before.roles
 
 
 def test_apply_is_exact_for_exact_values(capsys, tmp_path):
@@ -190,7 +201,9 @@ def test_apply_is_exact_for_exact_values(capsys, tmp_path):
                      'g = { dimension = "L T^-2", value = 10 }\nt = { dimension = "T", role = "time" }\n')
     code, doc = run_json(capsys, "apply", model, "--scale", "g=1", "--s", "1/3")
     assert code == EXIT_OK
-    assert doc["count"] == 1 and doc["solution"] == 1 and doc["s"] == "1/3"
+    assert doc["count"] == 1
+    assert doc["solution"] == 1
+    assert doc["s"] == "1/3"
     assert doc["scaled"] == {"m": "3/2", "l": "2/3", "g": "10/3"}
     out = tmp_path / "scaled.json"
     code, _, _ = run(capsys, "apply", model, "--scale", "g=1", "--s", "1/3", "--output", out)
@@ -210,7 +223,9 @@ def test_apply_infeasible_writes_nothing(capsys, tmp_path):
     code, text, err = run(capsys, "apply", ROD, "--scale", "g=1", "--fixed", "t", "m", "k_theta", "--s", "2",
                           "--output", out)
     assert code == EXIT_INFEASIBLE
-    assert text == "" and err.count("\n") == 1 and "g**2*m*t**2/k_theta" in err
+    assert text == ""
+    assert err.count("\n") == 1
+    assert "g**2*m*t**2/k_theta" in err
     assert not out.exists()
 
 
@@ -250,7 +265,8 @@ def test_bad_request(capsys, case, tmp_path, monkeypatch):
     code, out, err = run(capsys, *argv)
     assert code == EXIT_ERROR, (out, err)
     assert out == ""
-    assert err.startswith("pitheorem: error: ") and err.count("\n") == 1, err
+    assert err.startswith("pitheorem: error: "), err
+    assert err.count("\n") == 1, err
     assert culprit in err, err
     assert "Traceback" not in err
 
@@ -259,8 +275,10 @@ def test_apply_without_values(capsys, tmp_path):
     path = tmp_path / "bare.toml"
     path.write_text('[variables]\nl = { dimension = "L" }\nt = { dimension = "T" }\n')
     code, out, err = run(capsys, "apply", path, "--scale", "l=1", "--s", "2")
-    assert code == EXIT_ERROR and out == ""
-    assert err.startswith(f"pitheorem: error: {path}: no variable has a value") and err.count("\n") == 1
+    assert code == EXIT_ERROR
+    assert out == ""
+    assert err.startswith(f"pitheorem: error: {path}: no variable has a value")
+    assert err.count("\n") == 1
 
 
 BROKEN_FILES = {
@@ -283,8 +301,10 @@ def test_broken_model_file(capsys, tmp_path, name):
     path = tmp_path / name
     path.write_text(text)
     code, out, err = run(capsys, "groups", path)
-    assert code == EXIT_ERROR and out == ""
-    assert err.startswith(f"pitheorem: error: {path}") and err.count("\n") == 1, err
+    assert code == EXIT_ERROR
+    assert out == ""
+    assert err.startswith(f"pitheorem: error: {path}"), err
+    assert err.count("\n") == 1, err
     for fragment in fragments:
         assert fragment in err, err
 
@@ -294,9 +314,11 @@ def test_usage_errors_and_help(capsys):
     assert run(capsys, "frobnicate", ROD)[0] == EXIT_ERROR
     assert run(capsys, "groups", ROD, "--format", "yaml")[0] == EXIT_ERROR
     code, out, _ = run(capsys, "--help")
-    assert code == EXIT_OK and "Exit codes" in out
+    assert code == EXIT_OK
+    assert "Exit codes" in out
     code, out, _ = run(capsys, "--version")
-    assert code == EXIT_OK and pt.__version__ in out
+    assert code == EXIT_OK
+    assert pt.__version__ in out
 
 
 # -- the real programs, in subprocesses ------------------------------------------------------
@@ -311,7 +333,8 @@ def test_python_dash_m_search():
 def test_python_dash_m_infeasible_exit_code():
     proc = subprocess_run("search", ROD, "--scale", "g=1", "--fixed", "t", "m", "k_theta")
     assert proc.returncode == EXIT_INFEASIBLE
-    assert "g**2*m*t**2/k_theta" in proc.stdout and proc.stderr == ""
+    assert "g**2*m*t**2/k_theta" in proc.stdout
+    assert proc.stderr == ""
 
 
 @pytest.mark.parametrize(
@@ -326,8 +349,10 @@ def test_python_dash_m_errors_are_one_line(argv, culprit, tmp_path):
     proc = subprocess_run(*argv)
     assert proc.returncode == EXIT_ERROR
     assert proc.stdout == ""
-    assert proc.stderr.startswith("pitheorem: error: ") and proc.stderr.count("\n") == 1
-    assert culprit in proc.stderr and "Traceback" not in proc.stderr
+    assert proc.stderr.startswith("pitheorem: error: ")
+    assert proc.stderr.count("\n") == 1
+    assert culprit in proc.stderr
+    assert "Traceback" not in proc.stderr
 
 
 def test_python_dash_m_broken_file(tmp_path):
@@ -342,7 +367,8 @@ def test_python_dash_m_broken_file(tmp_path):
 def test_python_dash_m_usage_error():
     proc = subprocess_run("search", ROD)
     assert proc.returncode == EXIT_ERROR
-    assert "--scale" in proc.stderr and "Traceback" not in proc.stderr
+    assert "--scale" in proc.stderr
+    assert "Traceback" not in proc.stderr
 
 
 @pytest.mark.skipif(shutil.which("pitheorem") is None, reason="the pitheorem console script is not installed")
@@ -353,4 +379,5 @@ def test_console_script(tmp_path):
     assert proc.returncode == EXIT_OK, proc.stderr
     assert load_model_file(out).values["g"] == pytest.approx(19.62)
     proc = subprocess_run("groups", tmp_path / "nope.toml", program=[shutil.which("pitheorem")])
-    assert proc.returncode == EXIT_ERROR and proc.stderr.count("\n") == 1
+    assert proc.returncode == EXIT_ERROR
+    assert proc.stderr.count("\n") == 1

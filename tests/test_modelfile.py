@@ -40,7 +40,8 @@ def test_hinged_rod_example_is_the_papers_rod():
     assert rod.system == pt.models.rod_system()
     assert rod.values == {"m": 1.5, "theta_r": pytest.approx(1.0471975511965976), "l": 2, "g": 9.81,
                           "k_theta": 100, "c_theta": 10}
-    assert rod.roles["t"] == "time" and rod.time == "t"
+    assert rod.roles["t"] == "time"
+    assert rod.time == "t"
     assert rod.roles["m"] == "parameter"
     assert rod.path.endswith("hinged_rod.toml")
 
@@ -79,7 +80,8 @@ d = { dimension = "L", value = " -4/2 " }
 e = { dimension = "L", value = 1e-3 }
 """))
     assert model.values == {"a": Fraction(1, 3), "b": 2, "c": 2.5, "d": -2, "e": 0.001}
-    assert type(model.values["b"]) is int and type(model.values["d"]) is int
+    assert type(model.values["b"]) is int
+    assert type(model.values["d"]) is int
 
 
 def test_units_read_by_pint(tmp_path):
@@ -224,7 +226,8 @@ def test_broken_file(tmp_path, case):
     assert message.startswith(str(path))
     for fragment in fragments:
         assert fragment in message, (fragment, message)
-    assert isinstance(info.value, ValueError) and isinstance(info.value, pt.PiTheoremError)
+    assert isinstance(info.value, ValueError)
+    assert isinstance(info.value, pt.PiTheoremError)
 
 
 def test_not_utf8(tmp_path):
@@ -244,4 +247,5 @@ def test_error_fields_and_pickling():
     assert (err.path, err.variable, err.line) == ("rod.toml", "t", 4)
     assert str(err) == "rod.toml, line 4: variable 't': unknown role 'clock'"
     again = pickle.loads(pickle.dumps(err))
-    assert str(again) == str(err) and again.variable == "t"
+    assert str(again) == str(err)
+    assert again.variable == "t"
