@@ -247,13 +247,16 @@ def examples() -> tuple[str, ...]:
 
 
 def load_model_file(path) -> ModelFile:
-    """Read and check a TOML model file (format: see :mod:`pitheorem.modelfile`).
+    """Read and check a TOML model file.
+
+    The format is described in the docstring of the module
+    ``pitheorem.modelfile`` and in the how-to guide on the command line.
 
     Parameters
     ----------
     path : str or os.PathLike
-        The file.  ``example:NAME`` reads a shipped example (see
-        :func:`example_path`).
+        The file.  ``example:NAME`` reads a shipped example, e.g.
+        ``example:hinged_rod`` (see ``pitheorem.modelfile.example_path``).
 
     Returns
     -------
