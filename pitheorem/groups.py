@@ -113,6 +113,10 @@ class PiGroup:
     def expr(self) -> sympy.Expr:
         """The group as a sympy expression in positive symbols.
 
+        The symbols are created with ``positive=True`` (physical magnitudes),
+        so compare with ``sympy.Symbol(name, positive=True)``, or compare
+        :attr:`exponents` instead.
+
         Examples
         --------
         >>> from pitheorem import PiGroup

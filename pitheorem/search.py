@@ -290,14 +290,19 @@ class SearchResult:
         return f"<SearchResult feasible={self.feasible} count={self.count if self.feasible else 0}>"
 
     def _repr_html_(self) -> str:
-        head = "".join(f"<th>#{k + 1}</th>" for k in range(self.count))
+        cell = 'style="padding: 0.15em 0.9em; text-align: center"'
+        head = "".join(f"<th {cell}>#{k + 1}</th>" for k in range(self.count))
         body = []
         for i, n in enumerate(self.system.variables):
-            role = "scale" if n in self.scale else "fixed" if n in self.fixed else ""
-            cells = "".join(f"<td>{power_text(p[i])}</td>" for p in self._vectors())
-            body.append(f"<tr><th>{n}</th><td><em>{role}</em></td>{cells}</tr>")
+            role = "scale" if n in self.scale else "fixed" if n in self.fixed else "free"
+            cells = "".join(f"<td {cell}>{power_text(p[i])}</td>" for p in self._vectors())
+            body.append(f'<tr><th {cell}>{n}</th><td {cell}><em>{role}</em></td>{cells}</tr>')
         notes = "".join(f"<p>{note}</p>" for note in self.notes)
-        table = f"<table><tr><th>variable</th><th></th>{head}</tr>{''.join(body)}</table>" if self.feasible else ""
+        table = (
+            f'<table style="border-collapse: collapse"><tr><th {cell}>variable</th><th {cell}>role</th>{head}</tr>'
+            f"{''.join(body)}</table>"
+            if self.feasible else ""
+        )
         return f"<p>{self.explanation()}</p>{notes}{table}"
 
     def plot(self, ax=None):

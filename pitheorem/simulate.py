@@ -437,16 +437,13 @@ class SimilarityReport:
         >>> len(fig.axes), fig.axes[1].get_ylabel()
         (2, '|difference|')
         """
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
+        import matplotlib.pyplot as plt  # a pyplot figure, so Jupyter's inline backend shows it
 
         names = self.original.states if states is None else tuple(states)
         for n in names:
             if n not in self.original.states:
                 raise UnknownVariableError(str(n), self.original.states, "plot states")
-        fig = Figure(figsize=(8, 6), layout="constrained")
-        FigureCanvasAgg(fig)
-        top, bottom = fig.subplots(2, 1, sharex=True)
+        fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(8, 6), layout="constrained")
         t = self.original.t
         for n in names:
             line = top.plot(t, self.original[n], label=f"{n} (original)")[0]

@@ -160,7 +160,11 @@ class System:
         units : mapping of str to str
             Unit of each variable, e.g. ``{"k_theta": "N*m/rad"}``.
         angle_as_base : bool
-            Treat radians as a base dimension ``A`` instead of as 1.
+            Treat radians as a base dimension ``A`` instead of as 1.  Then a
+            change of the angle unit counts as a similarity scaling; models
+            with ``sin``/``cos`` of an angle are not invariant under it, so
+            hold angles fixed when searching (see
+            :func:`pitheorem.scaling_symmetries`).
 
         Returns
         -------
