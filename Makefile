@@ -8,13 +8,13 @@ PY      = $(VENV)/bin/python
 $(VENV)/.test-stamp: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e ".[test]"
+	$(PY) -m pip install --quiet -e ".[test,engines]"
 	touch $@
 
 $(VENV)/.docs-stamp: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e ".[test,docs]"
+	$(PY) -m pip install --quiet -e ".[test,docs,engines]"
 	touch $@
 
 test: $(VENV)/.test-stamp

@@ -1,0 +1,45 @@
+"""Physics engines: the paper's rod in PyBullet and MuJoCo, and their hidden constants.
+
+An optional part of pitheorem: ``import pitheorem`` never imports it, and
+nothing here imports an engine until a simulation is asked for.  Install the
+engines with ``pip install "pitheorem[engines]"`` (``pybullet`` and
+``mujoco``).
+
+* :mod:`pitheorem.engines.constants`: the catalogue of each engine's
+  built-in dimensional constants and searches that hold them fixed;
+* :mod:`pitheorem.engines.rod`: the hinged rod of the white paper built in
+  each engine, run, and compared after a similarity scaling.
+
+Examples
+--------
+>>> import pitheorem as pt
+>>> from pitheorem.engines import broken_constants
+>>> rod = pt.models.hinged_rod()
+>>> fig5 = pt.search(rod.system, scale={"g": 1, "l": -1}, fixed=("m", "k_theta")).scalings[0]
+>>> [c.name for c in broken_constants(fig5, "bullet", names=["bullet_time_step", "bullet_erp"])]
+['bullet_time_step']
+"""
+
+from .constants import (
+    CATALOGUE,
+    ENGINES,
+    HiddenConstant,
+    broken_constants,
+    engine_search,
+    hidden_constants,
+    with_hidden_constants,
+)
+from .rod import EngineSimilarityReport, simulate_rod, verify_engine_similarity
+
+__all__ = [
+    "CATALOGUE",
+    "ENGINES",
+    "EngineSimilarityReport",
+    "HiddenConstant",
+    "broken_constants",
+    "engine_search",
+    "hidden_constants",
+    "simulate_rod",
+    "verify_engine_similarity",
+    "with_hidden_constants",
+]

@@ -1,0 +1,437 @@
+"""Hidden dimensional constants of physics engines, and searches that hold them fixed.
+
+Every engine carries numbers that users rarely set: a default time step, a
+collision margin, sleep thresholds, constraint time constants.  Each has a
+dimension, and a scaled model is only similar to the original if every such
+constant scales like its dimension demands.  An engine that keeps them at
+their defaults silently holds them *fixed*: this module lists them
+(:data:`CATALOGUE`), adds them to a :class:`~pitheorem.System`
+(:func:`with_hidden_constants`), searches with them held fixed
+(:func:`engine_search`), and names the ones a given scaling breaks
+(:func:`broken_constants`).
+
+Nothing here imports an engine; the values were read from the sources named
+in each entry (and, where stated, measured with pybullet 3.2.7 and mujoco
+4.0.0).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from fractions import Fraction
+
+from ..dimensions import Dimension
+from ..errors import DuplicateVariableError, InvalidRequestError, UnknownVariableError
+from ..search import SearchResult, search
+from ..system import System
+
+__all__ = [
+    "CATALOGUE",
+    "ENGINES",
+    "HiddenConstant",
+    "broken_constants",
+    "engine_search",
+    "hidden_constants",
+    "with_hidden_constants",
+]
+
+#: engines with a catalogue
+ENGINES = ("bullet", "mujoco")
+
+
+@dataclass(frozen=True, slots=True)
+class HiddenConstant:
+    """One built-in constant of an engine, with its dimension and default.
+
+    Parameters
+    ----------
+    engine : str
+        ``"bullet"`` or ``"mujoco"``.
+    name : str
+        Identifier used as a variable name, e.g. ``"bullet_time_step"``.
+    dimension : str
+        Dimension formula over M, L, T (``"1"`` for dimensionless).
+    default : float
+        The value the engine uses unless told otherwise.
+    where : str
+        Where a user sets it (API call or MJCF attribute).
+    source : str
+        Where the default comes from: header or documentation page, version.
+    note : str
+        What it does and how it interacts with scaling.
+
+    Examples
+    --------
+    >>> from pitheorem.engines import hidden_constants
+    >>> dt = hidden_constants("bullet", names=["bullet_time_step"])[0]
+    >>> dt.dimension, round(1 / dt.default)
+    ('T', 240)
+    """
+
+    engine: str
+    name: str
+    dimension: str
+    default: float
+    where: str
+    source: str
+    note: str
+
+    @property
+    def dim(self) -> Dimension:
+        """The dimension as a :class:`~pitheorem.Dimension`.
+
+        Examples
+        --------
+        >>> from pitheorem.engines import hidden_constants
+        >>> str(hidden_constants("mujoco", names=["mujoco_solimp_width"])[0].dim)
+        'L'
+        """
+        return Dimension.parse(self.dimension)
+
+    @property
+    def dimensionless(self) -> bool:
+        """Whether the constant has no dimension (no change of units moves it).
+
+        Examples
+        --------
+        >>> from pitheorem.engines import hidden_constants
+        >>> [c.dimensionless for c in hidden_constants("bullet", names=["bullet_erp", "bullet_time_step"])]
+        [True, False]
+        """
+        return not self.dim.bases
+
+
+_PYBULLET = "measured with pybullet 3.2.7 (getPhysicsEngineParameters / getDynamicsInfo)"
+_MUJOCO = "mujoco 4.0.0 model defaults (MjModel.opt, MjSpec.default); MuJoCo XML Reference (mujoco.readthedocs.io)"
+_MULTIBODY = "bullet3 src/BulletDynamics/Featherstone/btMultiBody.cpp, btMultiBody constructor"
+
+CATALOGUE: tuple[HiddenConstant, ...] = (
+    # -- Bullet / pybullet ------------------------------------------------------------------
+    HiddenConstant(
+        "bullet", "bullet_time_step", "T", 1 / 240, "pybullet.setTimeStep",
+        f"pybullet Quickstart Guide (setTimeStep: default 1/240 s); {_PYBULLET}: fixedTimeStep = 1/240",
+        "fixed integration step (semi-implicit Euler); any scaling of time must scale it too"),
+    HiddenConstant(
+        "bullet", "bullet_collision_margin", "L", 0.04, "pybullet.changeDynamics(collisionMargin=...)",
+        "bullet3 src/BulletCollision/CollisionShapes/btCollisionMargin.h: CONVEX_DISTANCE_MARGIN = 0.04",
+        "default margin of convex shapes; contacts start this far out, so small objects need a smaller one"),
+    HiddenConstant(
+        "bullet", "bullet_contact_breaking_threshold", "L", 0.02,
+        "pybullet.setPhysicsEngineParameter(contactBreakingThreshold=...)",
+        "bullet3 src/BulletCollision/NarrowPhaseCollision/btPersistentManifold.cpp: gContactBreakingThreshold = 0.02",
+        "distance beyond which cached contact points are dropped"),
+    HiddenConstant(
+        "bullet", "bullet_linear_sleep_threshold", "L T^-1", 0.8, "btRigidBody::setSleepingThresholds",
+        "bullet3 src/BulletDynamics/Dynamics/btRigidBody.h: btRigidBodyConstructionInfo m_linearSleepingThreshold(0.8)",
+        "rigid bodies (maximal coordinates) slower than this may fall asleep"),
+    HiddenConstant(
+        "bullet", "bullet_angular_sleep_threshold", "T^-1", 1.0, "btRigidBody::setSleepingThresholds",
+        "bullet3 src/BulletDynamics/Dynamics/btRigidBody.h: btRigidBodyConstructionInfo m_angularSleepingThreshold(1)",
+        "rigid bodies turning slower than this may fall asleep"),
+    HiddenConstant(
+        "bullet", "bullet_multibody_sleep_epsilon", "L^2 T^-2", 0.05,
+        "pybullet.changeDynamics(activationState=...)",
+        f"{_MULTIBODY}: SLEEP_EPSILON = 0.05 ('a squared velocity (m^2 s^-2)')",
+        "multibodies (pybullet's default for URDF and createMultiBody) sleep below this squared speed"),
+    HiddenConstant(
+        "bullet", "bullet_multibody_sleep_timeout", "T", 2.0, "pybullet.changeDynamics(activationState=...)",
+        f"{_MULTIBODY}: SLEEP_TIMEOUT = 2 (seconds)",
+        "time a multibody must stay below the sleep threshold before it sleeps"),
+    HiddenConstant(
+        "bullet", "bullet_linear_damping_k1", "T^-1", 0.04, "pybullet.changeDynamics(bodyId, -1, linearDamping=...)",
+        f"{_MULTIBODY}: m_linearDamping(0.04); used as DAMPING_K1_LINEAR in "
+        "computeAccelerationsArticulatedBodyAlgorithmMultiDof",
+        "the damping force is m v (d + d |v|): the same number d acts as a rate (T^-1) ..."),
+    HiddenConstant(
+        "bullet", "bullet_linear_damping_k2", "L^-1", 0.04, "pybullet.changeDynamics(bodyId, -1, linearDamping=...)",
+        f"{_MULTIBODY}: m_linearDamping(0.04); used as DAMPING_K2_LINEAR",
+        "... and as an inverse length (L^-1): no change of length or time units keeps both; set it to 0"),
+    HiddenConstant(
+        "bullet", "bullet_angular_damping_k1", "T^-1", 0.04, "pybullet.changeDynamics(bodyId, -1, angularDamping=...)",
+        f"{_MULTIBODY}: m_angularDamping(0.04); used as DAMPING_K1_ANGULAR",
+        "damping torque I w (d + d |w|) on every link: a rate (T^-1) ..."),
+    HiddenConstant(
+        "bullet", "bullet_angular_damping_k2", "1", 0.04, "pybullet.changeDynamics(bodyId, -1, angularDamping=...)",
+        f"{_MULTIBODY}: m_angularDamping(0.04); used as DAMPING_K2_ANGULAR",
+        "... and a per-radian coefficient (dimensionless)"),
+    HiddenConstant(
+        "bullet", "bullet_max_joint_velocity", "T^-1", 100.0, "pybullet.changeDynamics(maxJointVelocity=...)",
+        f"{_MULTIBODY}: m_maxCoordinateVelocity(100)",
+        "joint speeds are clipped to this (rad/s for revolute joints; L T^-1 for prismatic ones)"),
+    HiddenConstant(
+        "bullet", "bullet_max_applied_impulse", "M L T^-1", 1000.0, "btMultiBody::setMaxAppliedImpulse",
+        f"{_MULTIBODY}: m_maxAppliedImpulse(1000)",
+        "cap on the impulse of multibody constraints and contacts (M L^2 T^-1 for angular rows)"),
+    HiddenConstant(
+        "bullet", "bullet_erp", "1", 0.2, "pybullet.setPhysicsEngineParameter(erp=...)",
+        "bullet3 src/BulletDynamics/ConstraintSolver/btContactSolverInfo.h (commit 0bdd9ace): m_erp = 0.2",
+        "fraction of a joint error corrected per step: a hidden time constant dt/erp, tied to the time step"),
+    HiddenConstant(
+        "bullet", "bullet_contact_erp", "1", 0.2, "pybullet.setPhysicsEngineParameter(contactERP=...)",
+        "bullet3 src/BulletDynamics/ConstraintSolver/btContactSolverInfo.h (commit 0bdd9ace): m_erp2 = 0.2",
+        "fraction of penetration corrected per step: hidden time constant dt/erp2"),
+    HiddenConstant(
+        "bullet", "bullet_global_cfm", "M^-1 T", 0.0, "pybullet.setPhysicsEngineParameter(globalCFM=...)",
+        "bullet3 src/BulletDynamics/ConstraintSolver/btContactSolverInfo.h (commit 0bdd9ace): m_globalCfm = 0",
+        "constraint force mixing (softness), added to an inverse mass per step; 0 breaks no scaling"),
+    HiddenConstant(
+        "bullet", "bullet_solver_iterations", "1", 50.0, "pybullet.setPhysicsEngineParameter(numSolverIterations=...)",
+        f"{_PYBULLET}: numSolverIterations = 50 (Bullet's own btContactSolverInfo default is 10)",
+        "an iteration count: dimensionless, but an unconverged solve differs between scaled runs in rounding"),
+    HiddenConstant(
+        "bullet", "bullet_split_impulse_penetration_threshold", "L", -0.04, "btContactSolverInfo",
+        "bullet3 src/BulletDynamics/ConstraintSolver/btContactSolverInfo.h: m_splitImpulsePenetrationThreshold = -0.04",
+        "penetrations deeper than this are resolved by split impulses"),
+    HiddenConstant(
+        "bullet", "bullet_restitution_velocity_threshold", "L T^-1", 0.2, "btContactSolverInfo",
+        "bullet3 src/BulletDynamics/ConstraintSolver/btContactSolverInfo.h: m_restitutionVelocityThreshold = 0.2",
+        "impacts slower than this do not bounce"),
+    # -- MuJoCo ------------------------------------------------------------------------------
+    HiddenConstant(
+        "mujoco", "mujoco_timestep", "T", 0.002, "<option timestep=...>",
+        f"{_MUJOCO}, option/timestep",
+        "fixed integration step; any scaling of time must scale it too"),
+    HiddenConstant(
+        "mujoco", "mujoco_gravity", "L T^-2", 9.81, "<option gravity=...>",
+        f"{_MUJOCO}, option/gravity (default 0 0 -9.81)",
+        "used whenever a model does not set gravity"),
+    HiddenConstant(
+        "mujoco", "mujoco_solref_timeconst", "T", 0.02, "solref=... on geoms, joints (solreflimit), <option o_solref>",
+        f"{_MUJOCO}, solref default (0.02, 1)",
+        "time constant of every soft constraint (contacts, limits, equalities); with the refsafe flag MuJoCo "
+        "raises it to at least 2 timesteps"),
+    HiddenConstant(
+        "mujoco", "mujoco_solref_dampratio", "1", 1.0, "solref=...",
+        f"{_MUJOCO}, solref default (0.02, 1)",
+        "damping ratio of the constraint's reference spring-damper"),
+    HiddenConstant(
+        "mujoco", "mujoco_solimp_width", "L", 0.001, "solimp=... (third number)",
+        f"{_MUJOCO}, solimp default (0.9, 0.95, 0.001, 0.5, 2)",
+        "penetration over which the impedance ramps from dmin to dmax (radians for joint limits)"),
+    HiddenConstant(
+        "mujoco", "mujoco_solimp_dmin", "1", 0.9, "solimp=... (first number)",
+        f"{_MUJOCO}, solimp default (0.9, 0.95, 0.001, 0.5, 2)",
+        "constraint impedance at zero violation"),
+    HiddenConstant(
+        "mujoco", "mujoco_geom_margin", "L", 0.0, "<geom margin=...>, <option o_margin>",
+        f"{_MUJOCO}, geom/margin",
+        "contacts activate this far apart; 0 breaks no scaling"),
+    HiddenConstant(
+        "mujoco", "mujoco_torsional_friction", "L", 0.005, "<geom friction=...> (second number)",
+        f"{_MUJOCO}, geom/friction default (1, 0.005, 0.0001)",
+        "torsional friction coefficient: a torque per normal force, so a length"),
+    HiddenConstant(
+        "mujoco", "mujoco_rolling_friction", "L", 0.0001, "<geom friction=...> (third number)",
+        f"{_MUJOCO}, geom/friction default (1, 0.005, 0.0001)",
+        "rolling friction coefficient: a length"),
+    HiddenConstant(
+        "mujoco", "mujoco_sliding_friction", "1", 1.0, "<geom friction=...> (first number)",
+        f"{_MUJOCO}, geom/friction default (1, 0.005, 0.0001)",
+        "Coulomb friction coefficient"),
+    HiddenConstant(
+        "mujoco", "mujoco_geom_density", "M L^-3", 1000.0, "<geom density=...>",
+        f"{_MUJOCO}, geom/density",
+        "gives geoms their mass when a body has no explicit inertial"),
+    HiddenConstant(
+        "mujoco", "mujoco_iterations", "1", 100.0, "<option iterations=...>",
+        f"{_MUJOCO}, option/iterations",
+        "constraint solver iterations (dimensionless)"),
+    HiddenConstant(
+        "mujoco", "mujoco_angle_unit", "1", 0.017453292519943295, "<compiler angle=...>",
+        f"{_MUJOCO}, compiler/angle (default 'degree' for MJCF)",
+        "MJCF reads angles (springref, ranges, euler) in degrees unless angle='radian': a hidden factor pi/180"),
+)
+
+
+def _check_engine(engine) -> str | None:
+    if engine is None:
+        return None
+    if engine not in ENGINES:
+        raise InvalidRequestError(f"unknown engine {engine!r}; the catalogue has {', '.join(map(repr, ENGINES))}")
+    return engine
+
+
+def hidden_constants(engine: str | None = None, *, names: Iterable[str] | None = None,
+                     dimensional: bool | None = None) -> tuple[HiddenConstant, ...]:
+    """The catalogued hidden constants of one engine (or of all).
+
+    Parameters
+    ----------
+    engine : {"bullet", "mujoco"}, optional
+        Default: every engine.
+    names : iterable of str, optional
+        Only these entries, in the order given.
+    dimensional : bool, optional
+        ``True``: only constants with a dimension; ``False``: only
+        dimensionless ones; default both.
+
+    Returns
+    -------
+    tuple of HiddenConstant
+
+    Raises
+    ------
+    InvalidRequestError
+        For an unknown engine.
+    UnknownVariableError
+        For a name that is not in the catalogue.
+
+    Examples
+    --------
+    >>> from pitheorem.engines import hidden_constants
+    >>> [c.name for c in hidden_constants("mujoco", dimensional=True)][:3]
+    ['mujoco_timestep', 'mujoco_gravity', 'mujoco_solref_timeconst']
+    """
+    engine = _check_engine(engine)
+    pool = [c for c in CATALOGUE if engine is None or c.engine == engine]
+    if names is not None:
+        by_name = {c.name: c for c in pool}
+        picked = []
+        for n in names:
+            if n not in by_name:
+                raise UnknownVariableError(str(n), tuple(by_name), f"the hidden constants of {engine or 'any engine'}")
+            picked.append(by_name[n])
+        pool = picked
+    if dimensional is not None:
+        pool = [c for c in pool if c.dimensionless != bool(dimensional)]
+    return tuple(pool)
+
+
+def with_hidden_constants(system: System, engine: str, *, names: Iterable[str] | None = None,
+                          include_dimensionless: bool = False) -> System:
+    """The system extended by an engine's hidden constants as variables.
+
+    Parameters
+    ----------
+    system : System
+    engine : {"bullet", "mujoco"}
+    names : iterable of str, optional
+        Only these constants (default: all of the engine's).
+    include_dimensionless : bool
+        Also add dimensionless constants (no unit change moves them, so
+        they never constrain a search).
+
+    Returns
+    -------
+    System
+
+    Raises
+    ------
+    DuplicateVariableError
+        When the system already has a variable of a constant's name.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.engines import with_hidden_constants
+    >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"})
+    >>> ext = with_hidden_constants(rod, "mujoco", names=["mujoco_timestep", "mujoco_solimp_width"])
+    >>> ext.variables
+    ('m', 'l', 'g', 't', 'mujoco_timestep', 'mujoco_solimp_width')
+    """
+    if not isinstance(system, System):
+        raise InvalidRequestError(f"with_hidden_constants needs a System, got {type(system).__name__}")
+    consts = hidden_constants(engine, names=names)
+    if not include_dimensionless and names is None:
+        consts = tuple(c for c in consts if not c.dimensionless)
+    dims = dict(system.dimensions)
+    for c in consts:
+        if c.name in dims:
+            raise DuplicateVariableError(c.name, "the system and the hidden constants")
+        dims[c.name] = c.dim
+    return System(dims)
+
+
+def engine_search(system: System, engine: str, scale: Mapping[str, object], fixed: Iterable[str] | None = None,
+                  *, names: Iterable[str] | None = None, allow: Iterable[str] | None = None) -> SearchResult:
+    """Search scalings while an engine's hidden constants stay at their defaults.
+
+    Runs :func:`pitheorem.search` on :func:`with_hidden_constants` with
+    every added constant held fixed, besides `fixed`.  An infeasible result
+    means the engine silently breaks every such scaling unless some of its
+    constants are changed too; the certificate says which.
+
+    Parameters
+    ----------
+    system : System
+    engine : {"bullet", "mujoco"}
+    scale : mapping of str to number
+        As in :func:`pitheorem.search`.
+    fixed : iterable of str, optional
+        Further fixed variables; default: the system's time variables, as
+        in :func:`pitheorem.search`.
+    names : iterable of str, optional
+        Hold only these constants (default: all dimensional ones).
+    allow : iterable of str, optional
+        As in :func:`pitheorem.search`.
+
+    Returns
+    -------
+    SearchResult
+
+    Examples
+    --------
+    The paper's rod with gravity doubled: impossible while the engine's
+    time step and collision margin keep their values.
+
+    >>> import pitheorem as pt
+    >>> from pitheorem.engines import engine_search
+    >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "t": "T"})
+    >>> res = engine_search(rod, "bullet", {"g": 1}, fixed=(),
+    ...                     names=["bullet_time_step", "bullet_collision_margin"])
+    >>> res.feasible, str(res.certificate)
+    (False, 'Pi = bullet_time_step**2*g/bullet_collision_margin')
+    """
+    ext = with_hidden_constants(system, engine, names=names)
+    added = tuple(n for n in ext.variables if n not in system.variables)
+    if fixed is None:
+        time = Dimension({"T": 1})
+        fixed = tuple(n for n in system.variables if system.dimension(n) == time)
+    fixed = tuple(fixed)
+    return search(ext, scale, fixed=(*fixed, *(n for n in added if n not in fixed)), allow=allow)
+
+
+def broken_constants(scaling, engine: str, *, names: Iterable[str] | None = None) -> tuple[HiddenConstant, ...]:
+    """The hidden constants a scaling would have to change, but the engine keeps.
+
+    A constant is broken when its dimension gets a nonzero exponent under
+    the scaling's change of units and its default is not zero (zero is
+    invariant under every scaling).
+
+    Parameters
+    ----------
+    scaling : Scaling
+        A change-of-units scaling (from :func:`pitheorem.search` or
+        :meth:`pitheorem.Scaling.from_unit_change`).
+    engine : {"bullet", "mujoco"}
+    names : iterable of str, optional
+        Check only these constants.
+
+    Returns
+    -------
+    tuple of HiddenConstant
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.engines import broken_constants
+    >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"})
+    >>> lengths_only = pt.Scaling.from_unit_change(rod, {"L": 1})
+    >>> [c.name for c in broken_constants(lengths_only, "mujoco")]
+    ['mujoco_gravity', 'mujoco_solimp_width', 'mujoco_torsional_friction', 'mujoco_rolling_friction', \
+'mujoco_geom_density']
+    """
+    if not all(hasattr(scaling, a) for a in ("system", "powers", "exponent_of")):
+        raise InvalidRequestError(f"broken_constants needs a Scaling, got {type(scaling).__name__}")
+    units = scaling.unit_change  # raises for a symmetry that is no change of units
+    out = []
+    for c in hidden_constants(engine, names=names):
+        if c.default == 0 or c.dimensionless:
+            continue
+        # a base the system lacks keeps its unit: it contributes nothing
+        exponent = sum((Fraction(p) * Fraction(int(units[b].p), int(units[b].q)) for b, p in c.dim.powers if b in units),
+                       Fraction(0))
+        if exponent != 0:
+            out.append(c)
+    return tuple(out)

@@ -1,0 +1,489 @@
+"""The white paper's hinged rod in PyBullet and in MuJoCo, and similarity checks of both.
+
+The rod (mass ``m``, length ``l``, hinged at one end, a rotational spring
+``k_theta`` with rest angle ``theta_r`` and a damper ``c_theta`` at the
+hinge, gravity ``g``) is :func:`pitheorem.models.hinged_rod`; here it is
+built in a real engine:
+
+* **PyBullet**: a fixed base with one link on a revolute joint about the
+  y axis (so a positive angle turns the rod towards -z, the way gravity
+  pulls), the link's centre of mass at ``l/2`` and its inertia set to
+  ``m l^2 / 12`` about the centre of mass (so ``m l^2 / 3`` about the
+  hinge), no collision shapes.  The default velocity motor is disabled and
+  the spring-damper torque ``-k_theta (theta - theta_r) - c_theta omega``
+  is applied before every step with ``TORQUE_CONTROL``.  Unless
+  ``engine_defaults=True``, the multibody's built-in damping (0.04, see
+  :mod:`pitheorem.engines.constants`) is set to zero, sleeping is disabled
+  and the joint-speed cap is lifted.
+* **MuJoCo**: an MJCF model with one hinge joint carrying ``stiffness``,
+  ``springref`` and ``damping``, an explicit ``fullinertia``, contacts
+  disabled and angles read in radians (MJCF's default is degrees).
+
+:func:`verify_engine_similarity` runs the engine on the original and on
+the scaled parameters (time step scaled with time, or not), maps the
+scaled run back with :meth:`pitheorem.Scaling.map_back` and compares, next
+to the pure-ODE answer of :func:`pitheorem.verify_similarity`.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import os
+import sys
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+import numpy as np
+
+from ..errors import InvalidRequestError, PiTheoremError
+from ..models import hinged_rod
+from ..scaling import Scaling
+from ..simulate import (
+    SimilarityReport,
+    Trajectory,
+    _check_scaling_system,
+    _euler_steps,
+    _exponents_from_dict,
+    _factor,
+    _positive,
+    verify_similarity,
+)
+from ..simulate import simulate as simulate_ode
+
+__all__ = ["DEFAULT_TIME_STEP", "EngineSimilarityReport", "EngineUnavailableError", "simulate_rod",
+           "verify_engine_similarity"]
+
+#: each engine's own default time step (see the catalogue in pitheorem.engines.constants)
+DEFAULT_TIME_STEP = MappingProxyType({"bullet": 1 / 240, "mujoco": 0.002})
+
+_PACKAGES = {"bullet": "pybullet", "mujoco": "mujoco"}
+_MUJOCO_INTEGRATORS = ("Euler", "RK4", "implicit", "implicitfast")
+
+
+class EngineUnavailableError(PiTheoremError, ImportError):
+    """An engine's Python package is not installed.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.rod import EngineUnavailableError
+    >>> print(EngineUnavailableError("bullet"))
+    engine 'bullet' needs the Python package 'pybullet': pip install "pitheorem[engines]"
+    """
+
+    def __init__(self, engine: str):
+        self.engine = engine
+        PiTheoremError.__init__(self, str(self))
+
+    def __str__(self) -> str:
+        package = _PACKAGES.get(self.engine, self.engine)
+        return f'engine {self.engine!r} needs the Python package {package!r}: pip install "pitheorem[engines]"'
+
+    def __reduce__(self):
+        return (type(self), (self.engine,))
+
+
+@contextlib.contextmanager
+def _quiet_stdout():
+    """Silence C-level writes to stdout and stderr (pybullet prints a banner on import)."""
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(AttributeError, OSError, ValueError):
+            stream.flush()
+    saved = []
+    try:
+        for fd in (1, 2):
+            saved.append((fd, os.dup(fd)))
+    except OSError:
+        for _, copy in saved:
+            os.close(copy)
+        yield
+        return
+    try:
+        with open(os.devnull, "w") as devnull:
+            for fd, _ in saved:
+                os.dup2(devnull.fileno(), fd)
+            yield
+    finally:
+        _flush_c_stdout()  # C's buffer may still hold the text when the stream is a pipe
+        for fd, copy in saved:
+            os.dup2(copy, fd)
+            os.close(copy)
+
+
+def _flush_c_stdout() -> None:
+    try:
+        import ctypes
+
+        ctypes.CDLL(None).fflush(None)
+    except (OSError, AttributeError, TypeError):  # no C library to flush (e.g. some Windows builds)
+        pass
+
+
+def _engine_module(engine: str):
+    if engine not in _PACKAGES:
+        raise InvalidRequestError(f"unknown engine {engine!r}; use 'bullet' or 'mujoco'")
+    try:
+        if engine == "bullet":
+            with _quiet_stdout():
+                import pybullet
+            return pybullet
+        import mujoco
+
+        return mujoco
+    except ImportError:
+        raise EngineUnavailableError(engine) from None
+
+
+# -- the rod in each engine --------------------------------------------------------------------
+
+
+def _run_bullet(p, y0, dt, n_steps, engine_defaults):
+    pb = _engine_module("bullet")
+    with _quiet_stdout():
+        client = pb.connect(pb.DIRECT)
+    try:
+        m, l, g = p["m"], p["l"], p["g"]  # noqa: E741
+        k, c, theta_r = p["k_theta"], p["c_theta"], p["theta_r"]
+        i_com = m * l * l / 12.0
+        ident = [0.0, 0.0, 0.0, 1.0]
+        body = pb.createMultiBody(
+            baseMass=0.0, baseCollisionShapeIndex=-1, baseVisualShapeIndex=-1, basePosition=[0.0, 0.0, 0.0],
+            linkMasses=[m], linkCollisionShapeIndices=[-1], linkVisualShapeIndices=[-1],
+            linkPositions=[[0.0, 0.0, 0.0]], linkOrientations=[ident],
+            linkInertialFramePositions=[[l / 2.0, 0.0, 0.0]], linkInertialFrameOrientations=[ident],
+            linkParentIndices=[0], linkJointTypes=[pb.JOINT_REVOLUTE], linkJointAxis=[[0.0, 1.0, 0.0]],
+            physicsClientId=client,
+        )
+        # one setting per call: pybullet 3.2.7 applies localInertiaDiagonal to the base instead of the
+        # link when it is combined with body-wide settings (damping, activation state) in one call
+        pb.changeDynamics(body, 0, jointDamping=0.0, physicsClientId=client)
+        if not engine_defaults:
+            pb.changeDynamics(body, -1, linearDamping=0.0, angularDamping=0.0, physicsClientId=client)
+            pb.changeDynamics(body, -1, activationState=pb.ACTIVATION_STATE_DISABLE_SLEEPING, physicsClientId=client)
+            pb.changeDynamics(body, 0, maxJointVelocity=1e30, physicsClientId=client)
+        pb.changeDynamics(body, 0, localInertiaDiagonal=[i_com, i_com, i_com], physicsClientId=client)
+        got = pb.getDynamicsInfo(body, 0, physicsClientId=client)[2]
+        if not np.allclose(got, i_com, rtol=1e-12, atol=0.0):
+            raise PiTheoremError(f"pybullet did not take the rod's inertia {i_com!r} (it reports {got!r})")
+        pb.setGravity(0.0, 0.0, -g, physicsClientId=client)
+        pb.setTimeStep(dt, physicsClientId=client)
+        pb.setPhysicsEngineParameter(numSubSteps=0, physicsClientId=client)
+        pb.resetJointState(body, 0, float(y0[0]), float(y0[1]), physicsClientId=client)
+        pb.setJointMotorControl2(body, 0, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=client)
+        out = np.empty((n_steps + 1, 2))
+        theta, omega = pb.getJointState(body, 0, physicsClientId=client)[:2]
+        out[0] = theta, omega
+        for i in range(1, n_steps + 1):
+            torque = -k * (theta - theta_r) - c * omega
+            pb.setJointMotorControl2(body, 0, pb.TORQUE_CONTROL, force=torque, physicsClientId=client)
+            pb.stepSimulation(physicsClientId=client)
+            theta, omega = pb.getJointState(body, 0, physicsClientId=client)[:2]
+            out[i] = theta, omega
+        return out
+    finally:
+        pb.disconnect(physicsClientId=client)
+
+
+def rod_mjcf(params: Mapping[str, float], *, dt: float = 0.002, integrator: str = "Euler") -> str:
+    """The MJCF text of the hinged rod for MuJoCo.
+
+    Parameters
+    ----------
+    params : mapping of str to float
+        ``m, l, g, k_theta, c_theta, theta_r`` (all needed).
+    dt : float
+        MuJoCo's time step.
+    integrator : {"Euler", "RK4", "implicit", "implicitfast"}
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.engines.rod import rod_mjcf
+    >>> text = rod_mjcf(pt.models.hinged_rod().defaults)
+    >>> 'angle="radian"' in text, 'contact="disable"' in text
+    (True, True)
+    """
+    if integrator not in _MUJOCO_INTEGRATORS:
+        raise InvalidRequestError(f"unknown MuJoCo integrator {integrator!r}; use one of {', '.join(_MUJOCO_INTEGRATORS)}")
+    missing = [n for n in ("m", "l", "g", "k_theta", "c_theta", "theta_r") if n not in params]
+    if missing:
+        raise InvalidRequestError(f"rod_mjcf needs parameter {missing[0]!r}")
+    m, l, g = (float(params[n]) for n in ("m", "l", "g"))  # noqa: E741
+    k, c, theta_r = (float(params[n]) for n in ("k_theta", "c_theta", "theta_r"))
+    i_com = m * l * l / 12.0
+    return (
+        '<mujoco model="hinged_rod">\n'
+        '  <compiler angle="radian"/>\n'
+        f'  <option timestep="{float(dt)!r}" gravity="0 0 {-g!r}" integrator="{integrator}">\n'
+        '    <flag contact="disable"/>\n'
+        "  </option>\n"
+        "  <worldbody>\n"
+        '    <body name="rod">\n'
+        f'      <joint name="hinge" type="hinge" axis="0 1 0" stiffness="{k!r}" springref="{theta_r!r}" '
+        f'damping="{c!r}"/>\n'
+        f'      <inertial pos="{l / 2.0!r} 0 0" mass="{m!r}" fullinertia="{i_com!r} {i_com!r} {i_com!r} 0 0 0"/>\n'
+        "    </body>\n"
+        "  </worldbody>\n"
+        "</mujoco>\n"
+    )
+
+
+def _run_mujoco(p, y0, dt, n_steps, integrator):
+    mj = _engine_module("mujoco")
+    model = mj.MjModel.from_xml_string(rod_mjcf(p, dt=dt, integrator=integrator))
+    data = mj.MjData(model)
+    data.qpos[0], data.qvel[0] = float(y0[0]), float(y0[1])
+    mj.mj_forward(model, data)
+    out = np.empty((n_steps + 1, 2))
+    out[0] = data.qpos[0], data.qvel[0]
+    for i in range(1, n_steps + 1):
+        mj.mj_step(model, data)
+        out[i] = data.qpos[0], data.qvel[0]
+    return out
+
+
+def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt: float | None = None,
+                 integrator: str | None = None, engine_defaults: bool = False) -> Trajectory:
+    """Run the paper's hinged rod in PyBullet or MuJoCo.
+
+    Parameters
+    ----------
+    engine : {"bullet", "mujoco"}
+    params : mapping of str to float, optional
+        Rod parameters; unlisted ones take the defaults of
+        :func:`pitheorem.models.hinged_rod`.
+    y0 : mapping or sequence of float, optional
+        Initial ``theta`` and ``omega`` (default ``pi/4, 0``).
+    t_final : float
+        End time; the run takes ``t_final / dt`` steps (rounded up).
+    dt : float, optional
+        Time step; default the engine's own (1/240 s, 0.002 s).
+    integrator : str, optional
+        MuJoCo only: ``"Euler"`` (its default), ``"RK4"``, ``"implicit"`` or
+        ``"implicitfast"``.
+    engine_defaults : bool
+        Bullet only: keep the multibody's built-in damping, sleeping and
+        joint-speed cap instead of switching them off.
+
+    Returns
+    -------
+    Trajectory
+        States ``theta`` and ``omega`` after every step.
+
+    Raises
+    ------
+    EngineUnavailableError
+        When the engine's package is not installed.
+    InvalidRequestError
+        For an unknown engine or integrator, or a bad number.
+
+    Examples
+    --------
+    >>> from pitheorem.engines import simulate_rod
+    >>> tr = simulate_rod("mujoco", t_final=0.01)  # doctest: +SKIP
+    >>> len(tr)  # doctest: +SKIP
+    6
+    """
+    if engine not in _PACKAGES:
+        raise InvalidRequestError(f"unknown engine {engine!r}; use 'bullet' or 'mujoco'")
+    if engine == "bullet" and integrator is not None:
+        raise InvalidRequestError("integrator is a MuJoCo option; Bullet always uses semi-implicit Euler")
+    if engine == "mujoco" and engine_defaults:
+        raise InvalidRequestError("engine_defaults is a Bullet option; the MuJoCo rod has no hidden setting to keep")
+    model = hinged_rod()
+    p = model.resolve_params(params)
+    y = model.resolve_initial(y0)
+    t_final = _positive(t_final, "t_final")
+    dt = DEFAULT_TIME_STEP[engine] if dt is None else _positive(dt, "dt")
+    n_steps = _euler_steps(t_final, dt)
+    if engine == "bullet":
+        states = _run_bullet(p, y, dt, n_steps, engine_defaults)
+    else:
+        states = _run_mujoco(p, y, dt, n_steps, integrator or "Euler")
+    return Trajectory(np.arange(n_steps + 1) * dt, states, model.states, model.time)
+
+
+@dataclass(frozen=True, eq=False)
+class EngineSimilarityReport:
+    """Result of :func:`verify_engine_similarity`: an engine's two runs compared.
+
+    Attributes
+    ----------
+    engine : str
+    original : Trajectory
+        The engine's run with the given parameters.
+    mapped : Trajectory
+        The engine's scaled run mapped back to original units, on the
+        original time grid.
+    max_deviation : float
+        Largest absolute difference, over both states and all times.
+    deviation : mapping of str to float
+        Largest difference per state.
+    passed : bool
+        ``max_deviation <= tol``.
+    tol : float
+    s : float
+    scaling : Scaling or mapping of str to Fraction
+    is_similarity : bool
+        Whether the exponents are a change of units.
+    dt, dt_scaled : float
+        Time step of the original and of the scaled run.
+    engine_vs_ode : float or None
+        Largest difference between the engine's original run and the exact
+        ODE solution (scipy, tight tolerances): the engine's own error.
+    ode_report : SimilarityReport or None
+        :func:`pitheorem.verify_similarity` on the same request (pure ODE).
+
+    Examples
+    --------
+    >>> from pitheorem.engines import EngineSimilarityReport
+    >>> "max_deviation" in EngineSimilarityReport.__dataclass_fields__
+    True
+    """
+
+    engine: str
+    original: Trajectory
+    mapped: Trajectory
+    max_deviation: float
+    deviation: Mapping[str, float]
+    passed: bool
+    tol: float
+    s: float
+    scaling: object
+    is_similarity: bool
+    dt: float
+    dt_scaled: float
+    engine_vs_ode: float | None = None
+    ode_report: SimilarityReport | None = field(default=None, repr=False)
+
+    @property
+    def scaled_dt(self) -> bool:
+        """Whether the scaled run used a different time step.
+
+        Examples
+        --------
+        >>> from pitheorem.engines import EngineSimilarityReport
+        >>> EngineSimilarityReport.scaled_dt.__doc__.split()[0]
+        'Whether'
+        """
+        return not math.isclose(self.dt, self.dt_scaled, rel_tol=1e-15, abs_tol=0.0)
+
+    def __str__(self) -> str:
+        verdict = "PASSED" if self.passed else "FAILED"
+        kind = "similarity scaling" if self.is_similarity else "NOT a similarity scaling"
+        ode = "" if self.ode_report is None else f"; pure ODE: {self.ode_report.max_deviation:.3g}"
+        own = "" if self.engine_vs_ode is None else f"; engine vs exact ODE: {self.engine_vs_ode:.3g}"
+        return (f"{self.engine}: {verdict}, max deviation {self.max_deviation:.3g} (tol {self.tol:g}) at "
+                f"s={self.s:g}, {kind}, dt {self.dt:.6g} -> {self.dt_scaled:.6g}{ode}{own}")
+
+
+def verify_engine_similarity(engine: str, scaling, s, params=None, y0=None, t_final: float = 5.0, *,
+                             dt: float | None = None, scale_dt: bool = True, tol: float = 1e-9,
+                             check: bool = True, integrator: str | None = None, engine_defaults: bool = False,
+                             compare_ode: bool = True) -> EngineSimilarityReport:
+    """Check in a real engine that a scaled rod reproduces the original.
+
+    Runs the rod in `engine` with `params`, then with
+    ``scaling.apply(params, s)``, the initial state and end time scaled,
+    and the time step multiplied by ``s^(a_t)`` (``scale_dt=True``) or kept;
+    maps the scaled run back to original units and compares step by step
+    (interpolating when the grids differ).
+
+    Parameters
+    ----------
+    engine : {"bullet", "mujoco"}
+    scaling : Scaling or mapping of str to number
+        As in :func:`pitheorem.verify_similarity`, for the system of
+        :func:`pitheorem.models.hinged_rod`.
+    s : float
+        Scale factor.
+    params, y0, t_final, dt, integrator, engine_defaults
+        As in :func:`simulate_rod`, for the original run.
+    scale_dt : bool
+        Scale the time step with time (default) or keep the engine's.
+    tol : float
+        Largest deviation that passes.
+    check : bool
+        With ``False`` a dict that is not a similarity scaling is applied
+        as given (to show wrong scalings).
+    compare_ode : bool
+        Also run :func:`pitheorem.verify_similarity` and measure the
+        engine's error against the exact ODE.
+
+    Returns
+    -------
+    EngineSimilarityReport
+
+    Raises
+    ------
+    EngineUnavailableError, InvalidRequestError, SystemMismatchError
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.engines import verify_engine_similarity
+    >>> rod = pt.models.hinged_rod()
+    >>> sc = pt.search(rod.system, scale={"g": 1}).scalings[0]   # time-free
+    >>> rep = verify_engine_similarity("bullet", sc, s=2, t_final=1.0)  # doctest: +SKIP
+    >>> rep.passed  # doctest: +SKIP
+    True
+    """
+    model = hinged_rod()
+    if isinstance(s, bool):
+        raise InvalidRequestError(f"the scale factor s must be a positive finite number, got {s!r}")
+    s = _positive(s, "the scale factor s")
+    tol = _positive(tol, "tol")
+    if isinstance(scaling, Scaling) or all(hasattr(scaling, a) for a in ("system", "powers", "apply", "map_back")):
+        _check_scaling_system(model, scaling)
+        sc = scaling
+        powers = {n: sc.powers[sc.system.index(n)] for n in (*model.parameters, model.time, *model.states)}
+    elif isinstance(scaling, Mapping):
+        sc, powers = _exponents_from_dict(model, scaling, check)
+    else:
+        raise InvalidRequestError(f"scaling must be a pitheorem Scaling or a dict of exponents, got {type(scaling).__name__}")
+
+    p = model.resolve_params(params)
+    y_init = model.resolve_initial(y0)
+    t_final = _positive(t_final, "t_final")
+    dt = DEFAULT_TIME_STEP.get(engine, None) if dt is None else _positive(dt, "dt")
+    opts = {"integrator": integrator, "engine_defaults": engine_defaults}
+    original = simulate_rod(engine, p, y_init, t_final, dt=dt, **opts)
+
+    f_t = _factor(s, powers[model.time])
+    f_y = np.array([_factor(s, powers[n]) for n in model.states])
+    if sc is not None:
+        p_scaled = {n: float(v) for n, v in sc.apply(p, s).items()}
+    else:
+        p_scaled = {n: v * _factor(s, powers[n]) for n, v in p.items()}
+    dt_scaled = dt * f_t if scale_dt else dt
+    run = simulate_rod(engine, p_scaled, y_init * f_y, t_final * f_t, dt=dt_scaled, **opts)
+
+    if sc is not None:
+        t_back, y_back = sc.map_back(run.t, run.y, s, time=model.time, states=list(model.states))
+    else:
+        t_back, y_back = run.t / f_t, run.y / f_y
+    if len(t_back) != len(original) or not np.allclose(t_back, original.t, rtol=1e-12, atol=1e-15):
+        y_back = np.column_stack([np.interp(original.t, t_back, y_back[:, j]) for j in range(y_back.shape[1])])
+        t_back = original.t
+    mapped = Trajectory(t_back, y_back, model.states, model.time)
+    diff = np.abs(mapped.y - original.y)
+    per_state = {n: float(diff[:, j].max()) for j, n in enumerate(model.states)}
+    worst = float(diff.max()) if np.all(np.isfinite(diff)) else math.inf
+
+    engine_vs_ode, ode_report = None, None
+    if compare_ode:
+        exact = simulate_ode(model, p, y_init, float(original.t[-1]), t_eval=original.t)
+        engine_vs_ode = float(np.abs(exact.y - original.y).max())
+        ode_report = verify_similarity(model, sc if sc is not None else dict(powers), s, p, y_init, t_final,
+                                       check=check and sc is not None, tol=max(tol, 1e-6))
+    return EngineSimilarityReport(
+        engine=engine, original=original, mapped=mapped, max_deviation=worst,
+        deviation=MappingProxyType(per_state), passed=worst <= tol, tol=tol, s=s,
+        scaling=sc if sc is not None else MappingProxyType(dict(powers)), is_similarity=sc is not None,
+        dt=float(dt), dt_scaled=float(dt_scaled), engine_vs_ode=engine_vs_ode, ode_report=ode_report,
+    )
