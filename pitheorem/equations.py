@@ -27,7 +27,8 @@ from sympy.core.function import AppliedUndef
 
 from .dimensions import Dimension
 from .errors import InvalidRequestError, UnknownVariableError
-from .linalg import nullspace, rank
+from .bases import independent_subsets
+from .linalg import nullspace, primitive_integer_vector, rank, row_space_basis, solve
 from .system import System
 
 __all__ = ["DimensionReport", "SymmetryReport", "check_dimensions", "scaling_symmetries"]
@@ -411,6 +412,8 @@ def scaling_symmetries(equations, system: System, *, time: str | None = "t") -> 
         if rank([*current, vec]) > rank(current) if current else any(vec):
             beyond.append(vec)
             current.append(vec)
+    if contains and beyond:
+        beyond = _canonical_complement(beyond, unit_basis)
 
     def as_dict(vec):
         return {n: Fraction(x) for n, x in zip(names, vec, strict=True)}
@@ -418,6 +421,35 @@ def scaling_symmetries(equations, system: System, *, time: str | None = "t") -> 
     return SymmetryReport(
         names, tuple(map(as_dict, basis)), tuple(map(as_dict, unit_basis)), tuple(map(as_dict, beyond)), contains
     )
+
+
+def _canonical_complement(vectors: list[list[Fraction]], units: list[list[Fraction]]) -> list[list[Fraction]]:
+    """The same complement of the unit changes, each vector in its simplest form.
+
+    Adding a change of units (itself a symmetry, when the equations are
+    consistent) to a vector beyond units gives another one.  Each vector is
+    replaced by the one with the fewest nonzero exponents that differs from
+    it by a change of units, as coprime integers.  A fewest-support
+    representative vanishes on some independent set of unit columns (else a
+    unit change vanishing on its zeros could clear one more entry), so
+    trying each such set, in lexicographic order, finds it.  For the
+    gravity-free rod this turns an arbitrary complement into the plain
+    amplitude scaling of theta, theta_r and omega.
+    """
+    out = []
+    rows = row_space_basis(units) if units else []
+    supports = list(independent_subsets(rows, range(len(vectors[0])), (), len(rows))) if rows else [()]
+    for vec in vectors:
+        best = list(vec)
+        for cols in supports:
+            # the unit change u^T rows that agrees with vec on cols
+            u = solve([[row[c] for row in rows] for c in cols], [vec[c] for c in cols])
+            cand = [x - sum((ui * row[j] for ui, row in zip(u, rows, strict=True)), Fraction(0))
+                    for j, x in enumerate(vec)]
+            if sum(map(bool, cand)) < sum(map(bool, best)):
+                best = cand
+        out.append([Fraction(x) for x in primitive_integer_vector(best)])
+    return out
 
 
 def _independent(rows: list[list[Fraction]]) -> list[list[Fraction]]:
