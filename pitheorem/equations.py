@@ -25,9 +25,9 @@ from fractions import Fraction
 import sympy
 from sympy.core.function import AppliedUndef
 
+from .bases import independent_subsets
 from .dimensions import Dimension
 from .errors import InvalidRequestError, UnknownVariableError
-from .bases import independent_subsets
 from .linalg import nullspace, primitive_integer_vector, rank, row_space_basis, solve
 from .system import System
 

@@ -11,6 +11,7 @@ import shutil
 import subprocess
 import sys
 from fractions import Fraction
+from pathlib import Path
 
 import pytest
 
@@ -371,13 +372,20 @@ def test_python_dash_m_usage_error():
     assert "Traceback" not in proc.stderr
 
 
-@pytest.mark.skipif(shutil.which("pitheorem") is None, reason="the pitheorem console script is not installed")
+def _console_script() -> str | None:
+    # pip puts the script beside the interpreter of the environment it installs into; the
+    # environment's bin folder need not be on PATH (make test runs .venv/bin/python directly)
+    beside = Path(sys.executable).with_name("pitheorem")
+    return str(beside) if beside.exists() else shutil.which("pitheorem")
+
+
+@pytest.mark.skipif(_console_script() is None, reason="pitheorem is not installed (pip install -e .), so no console script")
 def test_console_script(tmp_path):
     out = tmp_path / "scaled.toml"
     proc = subprocess_run("apply", "example:hinged_rod", "--scale", "g=1", "--s", "2", "--output", out,
-                          program=[shutil.which("pitheorem")])
+                          program=[_console_script()])
     assert proc.returncode == EXIT_OK, proc.stderr
     assert load_model_file(out).values["g"] == pytest.approx(19.62)
-    proc = subprocess_run("groups", tmp_path / "nope.toml", program=[shutil.which("pitheorem")])
+    proc = subprocess_run("groups", tmp_path / "nope.toml", program=[_console_script()])
     assert proc.returncode == EXIT_ERROR
     assert proc.stderr.count("\n") == 1

@@ -74,7 +74,7 @@ def test_hinged_rod_spring_is_restoring():
 
 def _longitudinal_energy(model, p, y):
     theta, omega = y[:, 0], y[:, 1]
-    m, l, g, k, x_r = p["m"], p["l"], p["g"], p["k"], p["x_r"]  # noqa: E741
+    m, l, g, k, x_r = p["m"], p["l"], p["g"], p["k"], p["x_r"]
     x = l * np.sqrt(5 + 4 * np.sin(theta))
     # theta grows in the direction gravity turns the rod: the centre of mass sinks by (l/2) sin(theta)
     return m * l**2 / 6 * omega**2 + k / 2 * (x - x_r) ** 2 - m * g * l / 2 * np.sin(theta)
