@@ -40,6 +40,13 @@ def subprocess_run(*argv, program=None):
     return subprocess.run(cmd, capture_output=True, text=True, timeout=60, check=False)
 
 
+def _console_script() -> str | None:
+    # pip puts the script beside the interpreter of the environment it installs into; the
+    # environment's bin folder need not be on PATH (make test runs .venv/bin/python directly)
+    beside = Path(sys.executable).with_name("pitheorem")
+    return str(beside) if beside.exists() else shutil.which("pitheorem")
+
+
 # -- groups --------------------------------------------------------------------------------
 
 
@@ -284,30 +291,63 @@ def test_apply_without_values(capsys, tmp_path):
 
 BROKEN_FILES = {
     "bad_toml.toml": ('[variables]\nm = { dimension = "M"\n', ["line 2", "invalid TOML"]),
+    "not_utf8.toml": ('\udcff[variables]\n', ["not UTF-8"]),
     "unknown_dimension.toml": ('[variables]\nq = { dimension = "Q" }\n', ["variable 'q'", "'Q'"]),
+    "bad_formula.toml": ('[variables]\nm = { dimension = "M L^^2" }\n', ["variable 'm'", "'M L^^2'", "position 4"]),
+    "outside_base_dimensions.toml": ('base_dimensions = ["M", "L"]\n[variables]\nt = { dimension = "T" }\n',
+                                     ["variable 't'", "unknown base dimension 'T'", "M, L"]),
+    "bad_base_dimensions.toml": ('base_dimensions = "M"\n[variables]\nm = { dimension = "M" }\n',
+                                 ["base_dimensions", "'M'"]),
     "duplicate.toml": ('[variables]\nm = { dimension = "M" }\nm = { dimension = "L" }\n',
                        ["line 3", "variable 'm'"]),
     "no_variables.toml": ('name = "x"\n', ["[variables]"]),
+    "empty_variables.toml": ("[variables]\n", ["[variables]", "empty"]),
+    "variables_not_a_table.toml": ("variables = 3\n", ["variables", "table", "3"]),
+    "variable_not_a_table.toml": ('[variables]\nm = "M"\n', ["variable 'm'", "table"]),
+    "bad_name.toml": ('[variables]\nk-theta = { dimension = "M" }\n', ["variable 'k-theta'", "k_theta"]),
+    "unknown_top_level_key.toml": ('nmae = "x"\n[variables]\nm = { dimension = "M" }\n', ["'nmae'", "'name'"]),
     "bad_role.toml": ('[variables]\nt = { dimension = "T", role = "clock" }\n', ["variable 't'", "'clock'"]),
+    "two_times.toml": ('[variables]\nt = { dimension = "T", role = "time" }\ntau = { dimension = "T", role = "time" }\n',
+                       ["variable 'tau'", "'t'", "at most one"]),
+    "time_not_T.toml": ('[variables]\nt = { dimension = "L", role = "time" }\n', ["variable 't'", "dimension L"]),
     "bad_value.toml": ('[variables]\nm = { dimension = "M", value = "heavy" }\n', ["variable 'm'", "'heavy'"]),
+    "zero_denominator_value.toml": ('[variables]\nm = { dimension = "M", value = "1/0" }\n', ["variable 'm'", "'1/0'"]),
+    "boolean_value.toml": ('[variables]\nm = { dimension = "M", value = true }\n', ["variable 'm'", "true"]),
+    "nan_value.toml": ('[variables]\nm = { dimension = "M", value = nan }\n', ["variable 'm'", "finite", "nan"]),
     "both.toml": ('[variables]\nl = { dimension = "L", unit = "m" }\n', ["variable 'l'", "both"]),
     "bad_unit.toml": ('[variables]\nl = { unit = "furlongz" }\n', ["variable 'l'", "furlongz"]),
     "unknown_key.toml": ('[variables]\nl = { dim = "L" }\n', ["variable 'l'", "'dim'"]),
+    "bad_description.toml": ('[variables]\nm = { dimension = "M", description = 3 }\n', ["variable 'm'", "description"]),
 }
 
 
 @pytest.mark.parametrize("name", sorted(BROKEN_FILES))
-def test_broken_model_file(capsys, tmp_path, name):
+def test_broken_model_file(tmp_path, name):
+    # the installed program, in its own process, as a user runs it
     text, fragments = BROKEN_FILES[name]
     path = tmp_path / name
-    path.write_text(text)
-    code, out, err = run(capsys, "groups", path)
-    assert code == EXIT_ERROR
-    assert out == ""
-    assert err.startswith(f"pitheorem: error: {path}"), err
-    assert err.count("\n") == 1, err
+    path.write_bytes(text.encode("utf-8", errors="surrogateescape"))
+    proc = subprocess_run("groups", path, program=[_console_script()] if _console_script() else None)
+    assert proc.returncode == EXIT_ERROR
+    assert proc.stdout == ""
+    assert proc.stderr.startswith(f"pitheorem: error: {path}"), proc.stderr
+    assert proc.stderr.count("\n") == 1, proc.stderr
+    assert "Traceback" not in proc.stderr
     for fragment in fragments:
-        assert fragment in err, err
+        assert fragment in proc.stderr, proc.stderr
+
+
+def test_contradictory_search_exits_infeasible_with_the_proof(tmp_path):
+    # a well-formed file and request whose constraints contradict each other: exit 1, not 2
+    path = tmp_path / "superball.toml"
+    path.write_text('[variables]\nm = { dimension = "M" }\nl = { dimension = "L" }\nk = { dimension = "M T^-2" }\n'
+                    't = { dimension = "T", role = "time" }\n')
+    proc = subprocess_run("search", path, "--scale", "k=1", "--fixed", "m", "t",
+                          program=[_console_script()] if _console_script() else None)
+    assert proc.returncode == EXIT_INFEASIBLE, proc.stderr
+    assert "Impossible" in proc.stdout
+    assert "k*t**2/m" in proc.stdout
+    assert proc.stderr == ""
 
 
 def test_usage_errors_and_help(capsys):
@@ -370,13 +410,6 @@ def test_python_dash_m_usage_error():
     assert proc.returncode == EXIT_ERROR
     assert "--scale" in proc.stderr
     assert "Traceback" not in proc.stderr
-
-
-def _console_script() -> str | None:
-    # pip puts the script beside the interpreter of the environment it installs into; the
-    # environment's bin folder need not be on PATH (make test runs .venv/bin/python directly)
-    beside = Path(sys.executable).with_name("pitheorem")
-    return str(beside) if beside.exists() else shutil.which("pitheorem")
 
 
 @pytest.mark.skipif(_console_script() is None, reason="pitheorem is not installed (pip install -e .), so no console script")
