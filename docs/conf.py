@@ -45,7 +45,7 @@ import pitheorem  # noqa: E402  (after the path set-up above)
 
 project = "pitheorem"
 author = "the pitheorem developers"
-copyright = "2025, the pitheorem developers"
+copyright = "2026, the pitheorem developers"
 version = pitheorem.__version__
 release = pitheorem.__version__
 
