@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import argparse
 import math
+from collections.abc import Callable, Mapping
+from pathlib import Path
 
 import numpy as np
 
-__all__ = ["colon"]
+__all__ = ["colon", "write_figures_main"]
 
 
 def colon(a: float, d: float, b: float) -> np.ndarray:
@@ -54,3 +57,50 @@ def colon(a: float, d: float, b: float) -> np.ndarray:
     if n % 2 == 0:
         v[n // 2] = (a + c) / 2
     return v
+
+
+def write_figures_main(description: str, make_figures: Callable[..., Mapping], prefix: str = "",
+                       argv=None, *, fast_mode: bool = False) -> list[Path]:
+    """The command line shared by the ports: make the figures and save each as PNG.
+
+    Parameters
+    ----------
+    description : str
+        The ``--help`` text.
+    make_figures : callable
+        Returns a dict of name to matplotlib Figure; called with the ``--n-points`` value when
+        `fast_mode` is set, with no argument otherwise.
+    prefix : str
+        Put before each name to make the file name, ``<prefix><name>.png``.
+    argv : list of str, optional
+        Arguments (default ``sys.argv[1:]``): ``--outdir DIR`` (default ``.``), and
+        ``--n-points N`` when `fast_mode` is set.
+    fast_mode : bool
+        Offer ``--n-points`` to truncate the simulations.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written, in the order of the figures.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from matplotlib.figure import Figure
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     [p.name for p in write_figures_main("demo", lambda: {"a": Figure()}, "x_", ["--outdir", d])]
+    ['x_a.png']
+    """
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("--outdir", type=Path, default=Path("."), help="directory for the PNG files")
+    if fast_mode:
+        parser.add_argument("--n-points", type=int, default=None, help="truncate the simulations")
+    args = parser.parse_args(argv)
+    args.outdir.mkdir(parents=True, exist_ok=True)
+    figures = make_figures(args.n_points) if fast_mode else make_figures()
+    written = []
+    for name, fig in figures.items():
+        path = args.outdir / f"{prefix}{name}.png"
+        fig.savefig(path)
+        written.append(path)
+    return written

@@ -23,17 +23,14 @@ and the red ``y_dot``).
 
 from __future__ import annotations
 
-import argparse
-from pathlib import Path
-
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 try:
-    from ._matlab import colon
+    from ._matlab import colon, write_figures_main
 except ImportError:  # run as a script: python matlab_ports/scaling_counterexample.py
-    from _matlab import colon
+    from _matlab import colon, write_figures_main
 
 __all__ = ["PARAMS", "TITLES", "euler", "main", "plot_runs", "simulate"]
 
@@ -163,16 +160,7 @@ def main(argv=None):
     list of pathlib.Path
         The files written.
     """
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--outdir", type=Path, default=Path("."), help="directory for the PNG files")
-    args = parser.parse_args(argv)
-    args.outdir.mkdir(parents=True, exist_ok=True)
-    written = []
-    for name, fig in plot_runs(simulate()).items():
-        path = args.outdir / f"linear_{name}.png"
-        fig.savefig(path)
-        written.append(path)
-    return written
+    return write_figures_main(__doc__.splitlines()[0], lambda: plot_runs(simulate()), "linear_", argv)
 
 
 if __name__ == "__main__":

@@ -37,19 +37,17 @@ QUIRKS of the original, kept:
 
 from __future__ import annotations
 
-import argparse
 import math
-from pathlib import Path
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 try:
-    from ._matlab import colon
+    from ._matlab import colon, write_figures_main
     from .rod_hinge_dynamics import theta_ddot
 except ImportError:  # run as a script: python matlab_ports/scaling_counterexample_nonlinear.py
-    from _matlab import colon
+    from _matlab import colon, write_figures_main
     from rod_hinge_dynamics import theta_ddot
 
 __all__ = ["PARAMS", "TITLES", "main", "plot_figures", "simulate", "simulate_figures"]
@@ -210,17 +208,8 @@ def main(argv=None):
     list of pathlib.Path
         The files written.
     """
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--outdir", type=Path, default=Path("."), help="directory for the PNG files")
-    parser.add_argument("--n-points", type=int, default=None, help="truncate the simulations")
-    args = parser.parse_args(argv)
-    args.outdir.mkdir(parents=True, exist_ok=True)
-    written = []
-    for name, fig in plot_figures(simulate_figures(args.n_points)).items():
-        path = args.outdir / f"{name}.png"
-        fig.savefig(path)
-        written.append(path)
-    return written
+    return write_figures_main(__doc__.splitlines()[0], lambda n: plot_figures(simulate_figures(n)), "", argv,
+                              fast_mode=True)
 
 
 if __name__ == "__main__":

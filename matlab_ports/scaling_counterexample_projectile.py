@@ -22,13 +22,16 @@ Three plots of ``y`` against ``x``:
 
 from __future__ import annotations
 
-import argparse
 import math
-from pathlib import Path
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+
+try:  # imported as part of the matlab_ports package, or run as a script
+    from ._matlab import write_figures_main
+except ImportError:
+    from _matlab import write_figures_main
 
 __all__ = ["PARAMS", "TITLES", "flight_time", "main", "plot_runs", "simulate", "trajectory"]
 
@@ -155,16 +158,7 @@ def main(argv=None):
     list of pathlib.Path
         The files written.
     """
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--outdir", type=Path, default=Path("."), help="directory for the PNG files")
-    args = parser.parse_args(argv)
-    args.outdir.mkdir(parents=True, exist_ok=True)
-    written = []
-    for name, fig in plot_runs(simulate()).items():
-        path = args.outdir / f"projectile_{name}.png"
-        fig.savefig(path)
-        written.append(path)
-    return written
+    return write_figures_main(__doc__.splitlines()[0], lambda: plot_runs(simulate()), "projectile_", argv)
 
 
 if __name__ == "__main__":
