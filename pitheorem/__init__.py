@@ -31,6 +31,7 @@ from .scaling import Scaling
 from .search import SearchResult, search
 from .simulate import SimilarityReport, Trajectory, simulate, verify_similarity
 from .system import System
+from .unitfit import RangeBound, UnitFit, fit_units
 
 __version__ = "0.1.0"
 
@@ -49,6 +50,7 @@ __all__ = [
     "PiGroup",
     "PiSet",
     "PiTheoremError",
+    "RangeBound",
     "RepeatingCountError",
     "Scaling",
     "SearchResult",
@@ -58,9 +60,11 @@ __all__ = [
     "SystemMismatchError",
     "Trajectory",
     "UnitError",
+    "UnitFit",
     "UnknownVariableError",
     "__version__",
     "check_dimensions",
+    "fit_units",
     "load_model_file",
     "models",
     "plotting",

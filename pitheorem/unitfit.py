@@ -1,0 +1,628 @@
+"""Choosing units for an engine: :func:`fit_units` and :class:`UnitFit`.
+
+Engines work best when the numbers they see lie in some range (Bullet's
+documentation suggests moving objects between 0.05 and 10 units).  A change
+of base units moves every parameter at once, so the question "which units
+put every parameter in its range?" is a linear program in the logarithms
+of the unit factors.
+
+Convention (the one of :meth:`pitheorem.Scaling.from_unit_change`): the
+*factor* ``f_b`` of base dimension ``b`` multiplies every reading of that
+dimension, so a variable of dimension ``prod_b b^(d_b)`` reads
+``x * prod_b f_b^(d_b)`` in the new units.  ``f_L = 100`` means lengths read
+100 times larger: the new length unit is 1/100 of the old (metres to
+centimetres).  Written as a scaling ``x -> s^a x``, the factors are
+``f_b = s^(u_b)`` with the unit change ``u`` of
+:meth:`~pitheorem.Scaling.from_unit_change`.
+
+The fit, in decades (base-10 logarithms), with ``y_b = log10 f_b``:
+
+1. minimise the worst violation ``t``: the largest distance, in decades, of a
+   value outside its range (0 when every value is in range);
+2. among those, minimise the sum over ranged variables of the distance of
+   the value from the centre of its range (geometric mean of the bounds),
+   each divided by the half-width of its range: values move to the middle;
+3. among those, minimise ``sum_b |y_b|``: the smallest unit change, so a
+   base dimension no range depends on keeps its unit.
+
+Each stage is one :func:`scipy.optimize.linprog` (HiGHS) call, with the
+variables held fixed as equality constraints; with ``nice=B`` the factors
+are restricted to integer powers of ``B`` and each stage is a
+:func:`scipy.optimize.milp`, after which the ranges are checked again in
+exact arithmetic.  When no unit change puts every value in range, a
+deletion filter over the feasibility of the bounds returns a minimal set
+of bounds that conflict: dropping any one of them makes the rest feasible.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from fractions import Fraction
+from types import MappingProxyType
+
+import numpy as np
+import sympy
+from scipy.optimize import Bounds, LinearConstraint, linprog, milp
+
+from .dimensions import Dimension
+from .errors import DimensionSyntaxError, DuplicateVariableError, InvalidRequestError
+from .linalg import nullspace
+from .scaling import Scaling
+from .system import System
+
+__all__ = ["RangeBound", "UnitFit", "fit_units"]
+
+#: a value counts as in range when it is within this many decades of it (continuous fit)
+TOL = 1e-9
+_HIGHS = {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10}
+
+
+@dataclass(frozen=True, slots=True)
+class RangeBound:
+    """One side of a variable's range: ``low <= x`` or ``x <= high``.
+
+    Parameters
+    ----------
+    name : str
+        The variable.
+    side : {"low", "high"}
+    bound : Fraction
+        The bound itself.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem import RangeBound
+    >>> print(RangeBound("l", "low", Fraction(1, 20)))
+    l >= 1/20
+    """
+
+    name: str
+    side: str
+    bound: Fraction
+
+    def __str__(self) -> str:
+        return f"{self.name} {'>=' if self.side == 'low' else '<='} {self.bound}"
+
+
+# -- reading the request ------------------------------------------------------------------
+
+
+def _exact(x, what: str) -> Fraction:
+    """A finite real number as a Fraction (floats as written: 0.1 -> 1/10)."""
+    if isinstance(x, bool):
+        raise InvalidRequestError(f"{what} must be a number, got {x!r}")
+    try:
+        if isinstance(x, sympy.Basic):
+            if not x.is_Rational:
+                x = float(x)
+            else:
+                return Fraction(int(x.p), int(x.q))
+        if isinstance(x, float | np.floating):
+            if not math.isfinite(float(x)):
+                raise ValueError
+            return Fraction(repr(float(x)))
+        if isinstance(x, np.integer):
+            return Fraction(int(x))
+        if isinstance(x, int | Fraction):
+            return Fraction(x)
+        if isinstance(x, str):
+            return Fraction(x)
+    except (TypeError, ValueError, ZeroDivisionError):
+        pass
+    raise InvalidRequestError(f"{what} must be a finite real number, got {x!r}")
+
+
+def _read_range(spec, what: str) -> tuple[Fraction, Fraction]:
+    try:
+        lo, hi = spec
+    except (TypeError, ValueError):
+        raise InvalidRequestError(f"{what} must be a pair (low, high), got {spec!r}") from None
+    lo, hi = _exact(lo, f"the low bound of {what}"), _exact(hi, f"the high bound of {what}")
+    if lo <= 0 or hi <= 0:
+        raise InvalidRequestError(f"{what} is ({lo}, {hi}): both bounds must be positive (a range of magnitudes)")
+    if lo >= hi:
+        raise InvalidRequestError(f"{what} is ({lo}, {hi}): the low bound must be below the high bound")
+    return lo, hi
+
+
+def _resolve_ranges(system: System, values, ranges, dimension_ranges):
+    """Per-variable ranges, in system order: per-variable entries override per-dimension ones."""
+    chosen: dict[str, tuple[Fraction, Fraction] | None] = {}
+    for key, spec in (dimension_ranges or {}).items():
+        try:
+            dim = key if isinstance(key, Dimension) else Dimension.parse(str(key))
+        except DimensionSyntaxError as err:
+            raise InvalidRequestError(f"dimension_ranges key {key!r} is not a dimension formula: {err.reason}") from None
+        rng = _read_range(spec, f"the range of dimension {dim}")
+        matched = [n for n in system.variables if system.dimension(n) == dim]
+        if not matched:
+            raise InvalidRequestError(
+                f"dimension_ranges names {dim}, but no variable has that dimension; the system's dimensions are "
+                + ", ".join(sorted({str(d) for d in system.dimensions.values()}))
+            )
+        for n in matched:
+            chosen[n] = rng
+    for name, spec in (ranges or {}).items():
+        system.index(name, "ranges")
+        chosen[name] = None if spec is None else _read_range(spec, f"the range of {name!r}")
+    out = []
+    for n in system.variables:
+        rng = chosen.get(n)
+        if rng is None:
+            continue
+        if n not in values:
+            raise InvalidRequestError(f"variable {n!r} has a range but no value: give its value in values")
+        if values[n] <= 0:
+            raise InvalidRequestError(
+                f"variable {n!r} has the value {values[n]}, but a range needs a positive value (use its magnitude)"
+            )
+        out.append((n, *rng))
+    return tuple(out)
+
+
+# -- the linear programs ------------------------------------------------------------------
+
+
+class _Problem:
+    """Rows ``w . v <= r`` (one per bound) over decision variables ``v``.
+
+    ``v`` are free coordinates of the unit change (decades, or integer powers
+    of `nice`); ``y = P v`` gives the decades of every base dimension.
+    """
+
+    def __init__(self, system, values, ranges, fixed, fixed_units, nice):
+        self.system = system
+        bases = system.base_dimensions
+        self.bases = bases
+        eq_rows = [[system.dimension(n).exponent(b) for b in bases] for n in fixed]
+        eq_rows += [[Fraction(int(b == c)) for b in bases] for c in fixed_units]
+        self.nice = nice
+        if nice is None:
+            # parametrise the unit changes that keep the fixed variables: y = N z, N exact
+            basis = nullspace(eq_rows, len(bases)) if eq_rows else nullspace([], len(bases))
+            self.P = np.array([[float(v[i]) for v in basis] for i in range(len(bases))]).reshape(len(bases), len(basis))
+            self.basis = basis
+            self.A_eq = None
+        else:
+            # integer powers of nice; fixed variables as equalities on them
+            self.P = np.eye(len(bases)) * math.log10(nice)
+            self.basis = None
+            self.A_eq = (np.array([[float(x) for x in row] for row in eq_rows]) if eq_rows
+                         else np.zeros((0, len(bases))))
+        self.n_v = self.P.shape[1]
+        # no unit needs to change by more than 10^100: bounded variables keep HiGHS away from
+        # unbounded (integer) directions
+        self.vmax = 100.0 if nice is None else math.ceil(100 / math.log10(nice))
+        self.ranges = ranges
+        self.bounds: list[RangeBound] = []
+        w_rows, rhs, centre, half = [], [], [], []
+        for name, lo, hi in ranges:
+            d = np.array([float(system.dimension(name).exponent(b)) for b in bases])
+            w = d @ self.P if len(bases) else np.zeros(self.n_v)
+            z0 = _log10(values[name])
+            a, b = _log10(lo), _log10(hi)
+            self.bounds.append(RangeBound(name, "low", lo))
+            w_rows.append(-w)
+            rhs.append(z0 - a)
+            self.bounds.append(RangeBound(name, "high", hi))
+            w_rows.append(w)
+            rhs.append(b - z0)
+            centre.append((a + b) / 2 - z0)
+            half.append((b - a) / 2)
+        self.W = np.array(w_rows).reshape(len(w_rows), self.n_v)
+        self.r = np.array(rhs)
+        self.centre = np.array(centre)
+        self.half = np.array(half)
+
+    # one solver entry point for both kinds
+    def _solve(self, c, A_ub, b_ub, lb, ub, n_int):
+        if self.nice is None:
+            res = linprog(c, A_ub=A_ub if len(b_ub) else None, b_ub=b_ub if len(b_ub) else None,
+                          bounds=list(zip(lb, ub, strict=True)), method="highs", options=_HIGHS)
+            return res.x if res.status == 0 else None
+        n = len(c)
+        cons = []
+        if len(b_ub):
+            cons.append(LinearConstraint(A_ub, -np.inf, b_ub))
+        if self.A_eq.shape[0]:
+            cons.append(LinearConstraint(np.hstack([self.A_eq, np.zeros((self.A_eq.shape[0], n - self.n_v))]), 0, 0))
+        integrality = np.zeros(n)
+        integrality[:n_int] = 1
+        res = milp(c, constraints=cons, integrality=integrality, bounds=Bounds(lb, ub),
+                   options={"presolve": True, "mip_rel_gap": 0.0})
+        return res.x if res.status == 0 else None
+
+    def worst(self, keep=None) -> tuple[float, np.ndarray | None]:
+        """Stage 1 over a subset of the bounds: (minimal worst violation, v)."""
+        idx = range(len(self.bounds)) if keep is None else keep
+        idx = list(idx)
+        n = self.n_v + 1
+        c = np.zeros(n)
+        c[-1] = 1.0
+        A = np.hstack([self.W[idx], -np.ones((len(idx), 1))]) if idx else np.zeros((0, n))
+        lb = [-self.vmax] * self.n_v + [0.0]
+        ub = [self.vmax] * self.n_v + [np.inf]
+        x = self._solve(c, A, self.r[idx], lb, ub, self.n_v)
+        if x is None:  # only when the integer equalities leave nothing (cannot happen: v = 0 works)
+            return math.inf, None
+        return float(x[-1]), x[: self.n_v]
+
+    def fit(self) -> tuple[float, np.ndarray]:
+        """All three stages; returns (worst violation, v)."""
+        m, nv, k = len(self.bounds), self.n_v, len(self.bases)
+        t_star, v1 = self.worst()
+        if m == 0 and nv == 0:
+            return 0.0, np.zeros(0)
+        n_e = len(self.ranges)
+        # variables: v (nv), t, e (n_e), p (k)
+        n = nv + 1 + n_e + k
+        lb = [-self.vmax] * nv + [0.0] + [0.0] * n_e + [0.0] * k
+        ub = [self.vmax] * nv + [t_star + 1e-10] + [np.inf] * (n_e + k)
+        rows, rhs = [], []
+        for i in range(m):
+            row = np.zeros(n)
+            row[:nv] = self.W[i]
+            row[nv] = -1.0
+            rows.append(row)
+            rhs.append(self.r[i])
+        w_centre = self.W[1::2]  # the "high" rows carry +w
+        for j in range(n_e):
+            for sign in (1.0, -1.0):
+                row = np.zeros(n)
+                row[:nv] = sign * w_centre[j]
+                row[nv + 1 + j] = -self.half[j]
+                rows.append(row)
+                rhs.append(sign * self.centre[j])
+        for b in range(k):
+            for sign in (1.0, -1.0):
+                row = np.zeros(n)
+                row[:nv] = sign * self.P[b]
+                row[nv + 1 + n_e + b] = -1.0
+                rows.append(row)
+                rhs.append(0.0)
+        A = np.array(rows).reshape(len(rows), n)
+        b_ub = np.array(rhs)
+        c2 = np.zeros(n)
+        c2[nv + 1: nv + 1 + n_e] = 1.0
+        x2 = self._solve(c2, A, b_ub, lb, ub, nv)
+        if x2 is None:
+            return t_star, v1
+        opt2 = float(c2 @ x2)
+        c3 = np.zeros(n)
+        c3[nv + 1 + n_e:] = 1.0
+        A3 = np.vstack([A, c2])
+        b3 = np.append(b_ub, opt2 + 1e-9 * max(1.0, abs(opt2)))
+        x3 = self._solve(c3, A3, b3, lb, ub, nv)
+        x = x3 if x3 is not None else x2
+        return t_star, x[:nv]
+
+    def conflict(self) -> tuple[RangeBound, ...]:
+        """A minimal infeasible set of bounds, by a deletion filter (in bound order)."""
+        keep = list(range(len(self.bounds)))
+        if self.worst(keep)[0] <= TOL:
+            return ()
+        for i in list(keep):
+            trial = [j for j in keep if j != i]
+            if self.worst(trial)[0] > TOL:
+                keep = trial
+        return tuple(self.bounds[j] for j in keep)
+
+
+def _log10(x) -> float:
+    x = Fraction(x)
+    # exact enough for huge or tiny Fractions: split off the powers of ten
+    return math.log10(x.numerator) - math.log10(x.denominator)
+
+
+# -- the result ---------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class UnitFit:
+    """The change of base units chosen by :func:`fit_units`.
+
+    Attributes
+    ----------
+    system : System
+    s : int or float
+        Scale factor of `scaling`: 10 (a float) for a continuous fit, the
+        integer `nice` for a rounded one.
+    unit_change : mapping of str to Fraction
+        Exponent of `s` for each base dimension: the factor of base ``b``
+        is ``s**unit_change[b]``.
+    scaling : Scaling
+        The similarity scaling this unit change is, for `s`:
+        ``scaling.apply(values, s)`` gives `scaled`.
+    values, scaled : mapping of str to number
+        The values given and the same values in the new units.
+    ranges : tuple of (str, Fraction, Fraction)
+        The range of each constrained variable, in system order.
+    satisfied, violated : tuple of str
+        Constrained variables in and out of range.
+    worst_violation : float
+        Largest distance of a scaled value outside its range, in decades
+        (0 when everything fits).
+    conflict : tuple of RangeBound
+        When not every value fits: a minimal set of bounds that no unit
+        change meets together (dropping any one makes the rest feasible).
+    fixed : tuple of str
+        Variables held unchanged.
+    fixed_units : tuple of str
+        Base dimensions whose unit is kept.
+    nice : int or None
+        The base the factors were rounded to, or None.
+    exact : bool
+        Whether `satisfied` was decided in exact arithmetic.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> ball = pt.System({"r": "L", "m": "M", "t": "T"})
+    >>> fit = pt.fit_units(ball, {"r": 0.02, "m": 0.17, "t": 1},
+    ...                    dimension_ranges={"L": (0.05, 10)}, nice=10)
+    >>> fit.feasible, fit.factors, fit.scaled["r"]
+    (True, {'M': 1, 'L': 100, 'T': 1}, 2)
+    """
+
+    system: System
+    s: object
+    unit_change: Mapping[str, Fraction]
+    scaling: Scaling
+    values: Mapping[str, object]
+    scaled: Mapping[str, object]
+    ranges: tuple[tuple[str, Fraction, Fraction], ...]
+    satisfied: tuple[str, ...]
+    violated: tuple[str, ...]
+    worst_violation: float
+    conflict: tuple[RangeBound, ...]
+    fixed: tuple[str, ...]
+    fixed_units: tuple[str, ...]
+    nice: int | None
+    exact: bool
+
+    @property
+    def feasible(self) -> bool:
+        """Whether every constrained value lies in its range.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.fit_units(pt.System({"l": "L"}), {"l": 500}, ranges={"l": (0.05, 10)}).feasible
+        True
+        """
+        return not self.violated
+
+    @property
+    def factors(self) -> dict[str, object]:
+        """Factor by which readings of each base dimension are multiplied.
+
+        Exact (int or Fraction) for a rounded fit, floats otherwise.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> fit = pt.fit_units(pt.System({"l": "L"}), {"l": 500}, ranges={"l": (1, 2)}, nice=2)
+        >>> fit.factors
+        {'L': Fraction(1, 256)}
+        """
+        out = {}
+        for b, u in self.unit_change.items():
+            if self.nice is not None and u.denominator == 1:
+                f = Fraction(self.nice) ** int(u)
+                out[b] = int(f) if f.denominator == 1 else f
+            else:
+                out[b] = float(self.s) ** float(u)
+        return out
+
+    @property
+    def new_units(self) -> dict[str, object]:
+        """Size of each new base unit in old units (``1 / factor``).
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> fit = pt.fit_units(pt.System({"l": "L"}), {"l": 0.004}, ranges={"l": (0.05, 10)}, nice=10)
+        >>> fit.new_units
+        {'L': Fraction(1, 100)}
+        """
+        return {b: (Fraction(1) / f if isinstance(f, int | Fraction) else 1.0 / f) for b, f in self.factors.items()}
+
+    def rounded(self, nice: int = 10) -> UnitFit:
+        """The same request with factors restricted to powers of `nice`.
+
+        Parameters
+        ----------
+        nice : int
+            Base of the allowed factors (10, 2, ...).
+
+        Returns
+        -------
+        UnitFit
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> fit = pt.fit_units(pt.System({"l": "L"}), {"l": 0.004}, ranges={"l": (0.05, 10)})
+        >>> fit.rounded(10).factors
+        {'L': 100}
+        """
+        return fit_units(self.system, dict(self.values), ranges={n: (lo, hi) for n, lo, hi in self.ranges},
+                         fixed=self.fixed, fixed_units=self.fixed_units, nice=nice)
+
+    def __str__(self) -> str:
+        kind = f"factors rounded to powers of {self.nice}" if self.nice else "continuous fit"
+        head = "every value in range" if self.feasible else (
+            f"NOT every value fits: worst violation {self.worst_violation:.3g} decades")
+        lines = [f"unit fit ({kind}): {head}"]
+        for b, f in self.factors.items():
+            u = self.unit_change[b]
+            power = f"{self.nice}^{u}" if self.nice else f"10^{float(u):.6g}"
+            lines.append(f"  {b}: readings x {float(f):.6g} ({power}), new unit = {1 / float(f):.6g} old units")
+        ranged = {n: (lo, hi) for n, lo, hi in self.ranges}
+        for n in self.system.variables:
+            if n not in self.values:
+                continue
+            old, new = float(self.values[n]), float(self.scaled[n])
+            if n in ranged:
+                lo, hi = ranged[n]
+                mark = "ok" if n in self.satisfied else "OUT OF RANGE"
+                lines.append(f"  {n:>8s} {old:12.6g} -> {new:12.6g}   in [{float(lo):g}, {float(hi):g}]  {mark}")
+            else:
+                lines.append(f"  {n:>8s} {old:12.6g} -> {new:12.6g}")
+        if self.conflict:
+            lines.append("  conflicting bounds: " + "; ".join(str(c) for c in self.conflict))
+        return "\n".join(lines)
+
+    def __repr__(self) -> str:
+        return (f"UnitFit(feasible={self.feasible}, s={self.s!r}, unit_change={dict(self.unit_change)!r}, "
+                f"violated={self.violated!r})")
+
+
+def _snap(problem: _Problem, v: np.ndarray, t_star: float) -> list[Fraction]:
+    """Exact decades of a continuous fit: the coarsest decimal grid that loses nothing."""
+    k = len(problem.bases)
+    if problem.n_v == 0:
+        return [Fraction(0)] * k
+
+    def decades(zq):
+        return [sum((problem.basis[j][i] * zq[j] for j in range(problem.n_v)), Fraction(0)) for i in range(k)]
+
+    def worst(zq):
+        if not len(problem.bounds):
+            return 0.0
+        viol = problem.W @ np.array([float(z) for z in zq]) - problem.r
+        return max(0.0, float(viol.max()))
+
+    for digits in (3, 6, 9, 12):
+        zq = [Fraction(round(float(z) * 10**digits), 10**digits) for z in v]
+        if worst(zq) <= max(t_star, 0.0) + TOL:
+            return decades(zq)
+    return decades([Fraction(float(z)) for z in v])
+
+
+def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[str, object] | None = None,
+              dimension_ranges: Mapping[str, object] | None = None, fixed: Iterable[str] = (),
+              fixed_units: Iterable[str] = (), nice: int | None = None) -> UnitFit:
+    """Find the change of base units that brings values into ranges.
+
+    Parameters
+    ----------
+    system : System
+    values : mapping of str to number
+        Parameter values in the current units.  Variables with a range need
+        a positive value; others may have any value (they are scaled too).
+    ranges : mapping of str to (low, high) or None, optional
+        Range per variable, ``0 < low < high``.  ``None`` removes a
+        variable from a dimension range.
+    dimension_ranges : mapping of str to (low, high), optional
+        Range for every variable of a dimension, e.g. ``{"L": (0.05, 10)}``.
+        A per-variable entry in `ranges` wins.
+    fixed : iterable of str, optional
+        Variables whose value must not change (e.g. the time step).
+    fixed_units : iterable of str, optional
+        Base dimensions whose unit must not change, e.g. ``("T",)``.
+    nice : int, optional
+        Restrict every factor to an integer power of `nice` (10, 2, ...) and
+        check the ranges again in exact arithmetic.
+
+    Returns
+    -------
+    UnitFit
+
+    Raises
+    ------
+    UnknownVariableError
+        For a name in `values`, `ranges` or `fixed` the system lacks.
+    InvalidRequestError
+        For a range with ``low >= high`` or a non-positive bound, a range
+        without a value or on a non-positive value, an unknown base in
+        `fixed_units`, a fixed variable whose value is outside its own
+        range, or a bad `nice`.
+
+    Examples
+    --------
+    A pool ball in metres is too small for Bullet; centimetres fit:
+
+    >>> import pitheorem as pt
+    >>> ball = pt.System({"r": "L", "m": "M", "g": "L T^-2", "dt": "T"})
+    >>> fit = pt.fit_units(ball, {"r": 0.028, "m": 0.17, "g": 9.81, "dt": 1 / 240},
+    ...                    ranges={"r": (0.05, 10)}, fixed=("dt",), nice=10)
+    >>> fit.factors, fit.scaled["g"]
+    ({'M': 1, 'L': 10, 'T': 1}, 981/10)
+
+    When nothing fits, the conflict names the bounds that fight:
+
+    >>> bad = pt.fit_units(ball, {"r": 0.028, "m": 0.17, "g": 9.81, "dt": 1 / 240},
+    ...                    ranges={"r": (0.05, 10), "g": (1, 10)}, fixed=("dt",))
+    >>> [str(b) for b in bad.conflict]
+    ['r >= 1/20', 'g <= 10']
+    """
+    if not isinstance(system, System):
+        raise InvalidRequestError(f"fit_units needs a System, got {type(system).__name__}")
+    if not isinstance(values, Mapping):
+        raise InvalidRequestError(f"values must be a mapping of variable names to numbers, got {type(values).__name__}")
+    exact_values = {}
+    for name, x in values.items():
+        system.index(name, "values")
+        exact_values[name] = _exact(x, f"the value of {name!r}")
+    if nice is not None and (isinstance(nice, bool) or not isinstance(nice, int | np.integer) or nice < 2):
+        raise InvalidRequestError(f"nice must be an integer base of at least 2 (10, 2, ...), got {nice!r}")
+    fixed = system.check_names(fixed, "fixed")
+    if isinstance(fixed_units, str):
+        fixed_units = (fixed_units,)
+    fixed_units = tuple(fixed_units)
+    for b in fixed_units:
+        if b not in system.base_dimensions:
+            raise InvalidRequestError(
+                f"unknown base dimension {b!r} in fixed_units; the system's base dimensions are "
+                f"{', '.join(system.base_dimensions)}"
+            )
+    if len(set(fixed_units)) != len(fixed_units):
+        raise DuplicateVariableError(next(b for b in fixed_units if fixed_units.count(b) > 1), "fixed_units")
+    rng = _resolve_ranges(system, exact_values, ranges, dimension_ranges)
+    for name, lo, hi in rng:
+        if name in fixed and not lo <= exact_values[name] <= hi:
+            raise InvalidRequestError(
+                f"variable {name!r} is held fixed at {exact_values[name]}, outside its own range [{lo}, {hi}]: "
+                "fixing it contradicts its range; drop it from fixed or widen the range"
+            )
+
+    problem = _Problem(system, exact_values, rng, fixed, fixed_units, None if nice is None else int(nice))
+    t_star, v = problem.fit()
+    if nice is None:
+        s = 10.0
+        units = _snap(problem, v, t_star)
+    else:
+        s = int(nice)
+        units = [Fraction(round(float(x))) for x in v]
+    scaling = Scaling.from_unit_change(system, dict(zip(system.base_dimensions, units, strict=True)))
+    exact = nice is not None and all(p.denominator == 1 for p in scaling.powers)
+    if exact:
+        scaled = scaling.apply({n: sympy.Rational(x.numerator, x.denominator) for n, x in exact_values.items()}, s)
+    else:
+        scaled = scaling.apply({n: float(values[n]) for n in values}, float(s))
+
+    satisfied, violated, worst = [], [], 0.0
+    for name, lo, hi in rng:
+        p = scaling.powers[system.index(name)]
+        if exact:
+            new = Fraction(int(scaled[name].p), int(scaled[name].q))
+            ok = lo <= new <= hi
+            z = _log10(new)
+        else:
+            z = _log10(exact_values[name]) + float(p) * math.log10(float(s))
+            ok = _log10(lo) - TOL <= z <= _log10(hi) + TOL
+        worst = max(worst, _log10(lo) - z, z - _log10(hi))
+        (satisfied if ok else violated).append(name)
+    conflict = problem.conflict() if violated else ()
+    return UnitFit(
+        system=system, s=s,
+        unit_change=MappingProxyType(dict(zip(system.base_dimensions, units, strict=True))),
+        scaling=scaling, values=MappingProxyType(dict(values)), scaled=MappingProxyType(dict(scaled)),
+        ranges=rng, satisfied=tuple(satisfied), violated=tuple(violated),
+        worst_violation=max(worst, 0.0) if violated else 0.0, conflict=conflict,
+        fixed=fixed, fixed_units=fixed_units, nice=None if nice is None else int(nice), exact=exact,
+    )
