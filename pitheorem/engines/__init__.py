@@ -8,7 +8,9 @@ engines with ``pip install "pitheorem[engines]"`` (``pybullet`` and
 * :mod:`pitheorem.engines.constants`: the catalogue of each engine's
   built-in dimensional constants and searches that hold them fixed;
 * :mod:`pitheorem.engines.rod`: the hinged rod of the white paper built in
-  each engine, run, and compared after a similarity scaling.
+  each engine, run, and compared after a similarity scaling;
+* :mod:`pitheorem.engines.rules`: the engines' published rules for scaling
+  the world, checked as changes of units.
 
 Examples
 --------
@@ -30,13 +32,29 @@ from .constants import (
     with_hidden_constants,
 )
 from .rod import EngineSimilarityReport, simulate_rod, verify_engine_similarity
+from .rules import (
+    BULLET_SCALE_THE_WORLD,
+    MUJOCO_FRAME_SIMILAR,
+    RULES,
+    RuleOfThumb,
+    RuleQuantity,
+    RuleVerdict,
+    check_rule,
+)
 
 __all__ = [
+    "BULLET_SCALE_THE_WORLD",
     "CATALOGUE",
     "ENGINES",
+    "MUJOCO_FRAME_SIMILAR",
+    "RULES",
     "EngineSimilarityReport",
     "HiddenConstant",
+    "RuleOfThumb",
+    "RuleQuantity",
+    "RuleVerdict",
     "broken_constants",
+    "check_rule",
     "engine_search",
     "hidden_constants",
     "simulate_rod",
