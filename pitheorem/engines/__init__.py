@@ -5,11 +5,11 @@ nothing here imports an engine until a simulation is asked for.  Install the
 engines with ``pip install "pitheorem[engines]"`` (``pybullet`` and
 ``mujoco``).
 
-* :mod:`pitheorem.engines.constants`: the catalogue of each engine's
+* ``pitheorem.engines.constants``: the catalogue of each engine's
   built-in dimensional constants and searches that hold them fixed;
-* :mod:`pitheorem.engines.rod`: the hinged rod of the white paper built in
+* ``pitheorem.engines.rod``: the hinged rod of the white paper built in
   each engine, run, and compared after a similarity scaling;
-* :mod:`pitheorem.engines.rules`: the engines' published rules for scaling
+* ``pitheorem.engines.rules``: the engines' published rules for scaling
   the world, checked as changes of units.
 
 Examples
