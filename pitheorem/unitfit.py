@@ -56,6 +56,8 @@ __all__ = ["RangeBound", "UnitFit", "fit_units"]
 
 #: a value counts as in range when it is within this many decades of it (continuous fit)
 TOL = 1e-9
+#: factors, and scaled values, stay within 10^(+-LIMIT): ordinary floats
+LIMIT = 300.0
 _HIGHS = {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10}
 
 
@@ -193,9 +195,9 @@ class _Problem:
             self.A_eq = (np.array([[float(x) for x in row] for row in eq_rows]) if eq_rows
                          else np.zeros((0, len(bases))))
         self.n_v = self.P.shape[1]
-        # no unit needs to change by more than 10^100: bounded variables keep HiGHS away from
-        # unbounded (integer) directions
-        self.vmax = 100.0 if nice is None else math.ceil(100 / math.log10(nice))
+        # integer variables get explicit bounds too, so that the branch and bound of HiGHS
+        # never chases an unbounded direction
+        self.vmax = np.inf if nice is None else math.floor(LIMIT / math.log10(nice))
         self.ranges = ranges
         self.bounds: list[RangeBound] = []
         w_rows, rhs, centre, half = [], [], [], []
@@ -214,6 +216,23 @@ class _Problem:
             half.append((b - a) / 2)
         self.W = np.array(w_rows).reshape(len(w_rows), self.n_v)
         self.r = np.array(rhs)
+        # hard limits, so that every number stays a float: each base factor, each variable's
+        # factor and each scaled value within 10^(+-LIMIT)
+        h_rows, h_rhs = [], []
+        for i in range(len(bases)):
+            h_rows += [self.P[i], -self.P[i]]
+            h_rhs += [LIMIT, LIMIT]
+        for name in system.variables:
+            d = np.array([float(system.dimension(name).exponent(b)) for b in bases])
+            w = d @ self.P if len(bases) else np.zeros(self.n_v)
+            h_rows += [w, -w]
+            h_rhs += [LIMIT, LIMIT]
+            if values.get(name):
+                z0 = _log10(abs(values[name]))
+                h_rows += [w, -w]
+                h_rhs += [LIMIT - z0, LIMIT + z0]
+        self.H = np.array(h_rows).reshape(len(h_rows), self.n_v)
+        self.h = np.array(h_rhs)
         self.centre = np.array(centre)
         self.half = np.array(half)
 
@@ -243,9 +262,10 @@ class _Problem:
         c = np.zeros(n)
         c[-1] = 1.0
         A = np.hstack([self.W[idx], -np.ones((len(idx), 1))]) if idx else np.zeros((0, n))
+        A = np.vstack([A, np.hstack([self.H, np.zeros((len(self.h), 1))])])
         lb = [-self.vmax] * self.n_v + [0.0]
         ub = [self.vmax] * self.n_v + [np.inf]
-        x = self._solve(c, A, self.r[idx], lb, ub, self.n_v)
+        x = self._solve(c, A, np.concatenate([self.r[idx], self.h]), lb, ub, self.n_v)
         if x is None:  # only when the integer equalities leave nothing (cannot happen: v = 0 works)
             return math.inf, None
         return float(x[-1]), x[: self.n_v]
@@ -283,6 +303,11 @@ class _Problem:
                 row[nv + 1 + n_e + b] = -1.0
                 rows.append(row)
                 rhs.append(0.0)
+        for hrow, hb in zip(self.H, self.h, strict=True):
+            row = np.zeros(n)
+            row[:nv] = hrow
+            rows.append(row)
+            rhs.append(hb)
         A = np.array(rows).reshape(len(rows), n)
         b_ub = np.array(rhs)
         c2 = np.zeros(n)
@@ -541,6 +566,13 @@ def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[s
         without a value or on a non-positive value, an unknown base in
         `fixed_units`, a fixed variable whose value is outside its own
         range, or a bad `nice`.
+
+    Notes
+    -----
+    Every number stays an ordinary float: the fit only considers unit
+    changes whose base factors, per-variable factors and scaled values lie
+    within ``10^(+-300)``.  A range that only a larger change could meet is
+    reported as not met, with the conflict computed under the same limits.
 
     Examples
     --------

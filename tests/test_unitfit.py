@@ -51,15 +51,48 @@ def fm_slack(rows, n):
             b = lp * bp + ln * bn
             scale = lp + ln
             new.append(([x / scale for x in a], b / scale))
-        rows = new
+        # drop duplicates, keeping the tightest right-hand side, so the row count stays small
+        tight = {}
+        for a, b in new:
+            key = tuple(round(x, 9) + 0.0 for x in a)
+            tight[key] = min(b, tight.get(key, math.inf))
+        rows = [(list(a), b) for a, b in tight.items()]
     return min((b for _, b in rows), default=math.inf)
+
+
+def fixed_rows(system, fixed, *, frozen=()):
+    """A fixed variable as two inequalities ``d . y <= 0`` and ``-d . y <= 0``."""
+    free = [b for b in system.base_dimensions if b not in frozen]
+    rows = []
+    for name in fixed:
+        d = [float(system.dimension(name).exponent(b)) for b in free]
+        rows += [(d, 0.0), ([-x for x in d], 0.0)]
+    return rows
+
+
+def float_rows(system, values, *, frozen=(), limit=300.0):
+    """fit_units keeps factors and scaled values within 10^(+-300): the same limits as rows."""
+    free = [b for b in system.base_dimensions if b not in frozen]
+    rows = []
+    for i in range(len(free)):
+        e = [float(i == j) for j in range(len(free))]
+        rows += [(e, limit), ([-x for x in e], limit)]
+    for name in system.variables:
+        d = [float(system.dimension(name).exponent(b)) for b in free]
+        rows += [(d, limit), ([-x for x in d], limit)]
+        if values.get(name):
+            z0 = math.log10(abs(float(values[name])))
+            rows += [(d, limit - z0), ([-x for x in d], limit + z0)]
+    return rows
 
 
 def check_conflict(fit, *, frozen=()):
     rows, n = rows_of(fit.system, fit.values, fit.conflict, frozen=frozen)
-    assert fm_slack(rows, n) < 1e-7, "the reported conflict is feasible"
+    hard = fixed_rows(fit.system, fit.fixed, frozen=frozen) + float_rows(fit.system, fit.values, frozen=frozen)
+    assert fm_slack(rows + hard, n) < 1e-7, "the reported conflict is feasible"
     for i in range(len(rows)):
-        assert fm_slack(rows[:i] + rows[i + 1:], n) > -1e-7, f"dropping {fit.conflict[i]} leaves it infeasible"
+        rest = rows[:i] + rows[i + 1:] + hard
+        assert fm_slack(rest, n) > -1e-7, f"dropping {fit.conflict[i]} leaves it infeasible"
 
 
 def in_range(fit):
@@ -180,6 +213,14 @@ def test_per_variable_range_overrides_dimension_range():
     assert fit.feasible
 
 
+def test_result_is_immutable(superball):
+    fit = pt.fit_units(superball, SB_VALUES, dimension_ranges={"L": BULLET})
+    with pytest.raises(AttributeError):
+        fit.s = 2
+    with pytest.raises(TypeError):
+        fit.scaled["m"] = 1
+
+
 def test_str_repr_and_no_ranges():
     fit = pt.fit_units(pt.System({"l": "L", "t": "T"}), {"l": 2})
     assert fit.feasible
@@ -256,20 +297,26 @@ def requests(draw):
             width = draw(st.integers(1, 30)) / 10
             ranges[nm] = (Fraction(10) ** int(lo) if lo == int(lo) else 10.0**lo, 10.0 ** (lo + width))
     nice = draw(st.sampled_from([None, None, 10, 2]))
-    return system, values, ranges, nice
+    fixed = ()
+    pick = draw(st.sampled_from([None, *names]))
+    if pick is not None and (pick not in ranges or ranges[pick][0] <= values[pick] <= ranges[pick][1]):
+        fixed = (pick,)
+    return system, values, ranges, nice, fixed
 
 
 @settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(requests())
 def test_property_fit(req):
-    system, values, ranges, nice = req
-    fit = pt.fit_units(system, values, ranges=ranges, nice=nice)
+    system, values, ranges, nice, fixed = req
+    fit = pt.fit_units(system, values, ranges=ranges, nice=nice, fixed=fixed)
+    for nm in fixed:
+        assert float(fit.scaled[nm]) == values[nm]
     # the scaled values are the reported scaling applied
     applied = fit.scaling.apply(values, float(fit.s))
     for nm in values:
         assert math.isclose(float(fit.scaled[nm]), float(applied[nm]), rel_tol=1e-9)
-        factor = math.prod(float(f) ** float(system.dimension(nm).exponent(b)) for b, f in fit.factors.items())
-        assert math.isclose(float(fit.scaled[nm]), values[nm] * factor, rel_tol=1e-9)
+        decades = sum(math.log10(float(f)) * float(system.dimension(nm).exponent(b)) for b, f in fit.factors.items())
+        assert math.log10(float(fit.scaled[nm])) == pytest.approx(math.log10(values[nm]) + decades, abs=1e-9)
     if fit.feasible:
         in_range(fit)
         assert not fit.conflict
