@@ -26,8 +26,8 @@ docs: $(VENV)/.docs-stamp
 bench: $(VENV)/.test-stamp
 	cd benchmarks && ../$(PY) bench_bases.py && ../$(PY) bench_search.py
 
-lint:
-	$(PY) -m ruff check pitheorem tests matlab_ports benchmarks
+lint: $(VENV)/.test-stamp
+	$(PY) -m ruff check pitheorem tests matlab_ports benchmarks docs/check_pages.py docs/check_offline.py
 
 clean:
 	rm -rf $(VENV) docs/_build docs/jupyter_execute

@@ -8,7 +8,9 @@ Examples
 3
 """
 
+from . import models, plotting
 from .dimensions import DEFAULT_BASE_DIMENSIONS, Dimension
+from .equations import DimensionReport, SymmetryReport, check_dimensions, scaling_symmetries
 from .errors import (
     DependentRepeatingSetError,
     DimensionSyntaxError,
@@ -21,9 +23,6 @@ from .errors import (
     UnitError,
     UnknownVariableError,
 )
-from . import models
-from . import plotting
-from .equations import DimensionReport, SymmetryReport, check_dimensions, scaling_symmetries
 from .groups import PiGroup, PiSet
 from .modelfile import ModelFile, ModelFileError, load_model_file
 from .models import Model
