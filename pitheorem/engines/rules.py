@@ -342,8 +342,11 @@ def check_rule(rule: RuleOfThumb, system: System | None = None, *, engine: str |
             if extra:
                 raise InvalidRequestError(
                     f"variable {name!r} has base dimension {extra[0]!r}, which the rule {rule.name!r} does not use")
-            p = sum((dim.exponent(b) * u for b, u in units.items()), Fraction(0))
-            (missing.append((name, str(dim), p)) if p else unchanged.append(name))
+            p = scaling.exponent_of(dim)
+            if p:
+                missing.append((name, str(dim), p))
+            else:
+                unchanged.append(name)
     covered = {c for q in rule.quantities for c in q.covers}
     engine = engine or rule.engine
     names = tuple(hidden) if hidden is not None else tuple(c.name for c in hidden_constants(engine))
