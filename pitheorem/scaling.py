@@ -22,7 +22,37 @@ from .errors import InvalidRequestError, PiTheoremError
 from .linalg import solve
 from .system import System
 
-__all__ = ["Scaling", "as_exponent"]
+__all__ = ["Scaling", "as_exponent", "exact_fraction"]
+
+
+def exact_fraction(value, *, irrational_ok: bool = False) -> Fraction:
+    """A real number as an exact Fraction; floats as written (0.1 -> 1/10).
+
+    Accepts int, Fraction, Decimal, numpy numbers, sympy Rationals, strings
+    such as ``"1/3"`` and finite floats; with `irrational_ok`, also other
+    real sympy numbers (``pi``), through their float value.  Raises
+    TypeError, ValueError or ZeroDivisionError otherwise; callers turn that
+    into a message that names their culprit.
+
+    Examples
+    --------
+    >>> from pitheorem.scaling import exact_fraction
+    >>> exact_fraction("1/3"), exact_fraction(0.1)
+    (Fraction(1, 3), Fraction(1, 10))
+    """
+    if isinstance(value, bool):
+        raise TypeError("a bool is not a number here")
+    if isinstance(value, sympy.Basic):
+        if value.is_Rational:
+            return Fraction(int(value.p), int(value.q))
+        if not irrational_ok:
+            raise TypeError("not a rational number")
+        value = float(value)
+    if isinstance(value, float):
+        if not np.isfinite(value):
+            raise ValueError("not finite")
+        return Fraction(repr(value))
+    return Fraction(value)
 
 
 def as_exponent(value, what: str) -> Fraction:
@@ -37,15 +67,7 @@ def as_exponent(value, what: str) -> Fraction:
     if isinstance(value, bool):
         raise InvalidRequestError(f"exponent of {what} must be a number, got {value!r}")
     try:
-        if isinstance(value, sympy.Basic):
-            if not value.is_Rational:
-                raise TypeError
-            return Fraction(int(value.p), int(value.q))
-        if isinstance(value, float):
-            if not np.isfinite(value):
-                raise TypeError
-            return Fraction(str(value))  # 0.1 -> 1/10, as written
-        return Fraction(value)
+        return exact_fraction(value)
     except (TypeError, ValueError, ZeroDivisionError):
         raise InvalidRequestError(
             f"exponent of {what} must be a rational number such as 1, -2 or '1/2', got {value!r}"

@@ -49,7 +49,7 @@ from scipy.optimize import Bounds, LinearConstraint, linprog, milp
 from .dimensions import Dimension
 from .errors import DimensionSyntaxError, DuplicateVariableError, InvalidRequestError
 from .linalg import nullspace
-from .scaling import Scaling
+from .scaling import Scaling, exact_fraction
 from .system import System
 
 __all__ = ["RangeBound", "UnitFit", "fit_units"]
@@ -97,24 +97,9 @@ def _exact(x, what: str) -> Fraction:
     if isinstance(x, bool):
         raise InvalidRequestError(f"{what} must be a number, got {x!r}")
     try:
-        if isinstance(x, sympy.Basic):
-            if not x.is_Rational:
-                x = float(x)
-            else:
-                return Fraction(int(x.p), int(x.q))
-        if isinstance(x, float | np.floating):
-            if not math.isfinite(float(x)):
-                raise ValueError
-            return Fraction(repr(float(x)))
-        if isinstance(x, np.integer):
-            return Fraction(int(x))
-        if isinstance(x, int | Fraction):
-            return Fraction(x)
-        if isinstance(x, str):
-            return Fraction(x)
+        return exact_fraction(x, irrational_ok=True)
     except (TypeError, ValueError, ZeroDivisionError):
-        pass
-    raise InvalidRequestError(f"{what} must be a finite real number, got {x!r}")
+        raise InvalidRequestError(f"{what} must be a finite real number, got {x!r}") from None
 
 
 def _read_range(spec, what: str) -> tuple[Fraction, Fraction]:
