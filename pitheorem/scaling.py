@@ -9,11 +9,11 @@ stored as an exponent per variable together with one such unit change.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
-import numpy as np
 import sympy
 
 from .dimensions import Dimension
@@ -49,7 +49,7 @@ def exact_fraction(value, *, irrational_ok: bool = False) -> Fraction:
             raise TypeError("not a rational number")
         value = float(value)
     if isinstance(value, float):
-        if not np.isfinite(value):
+        if not math.isfinite(value):
             raise ValueError("not finite")
         return Fraction(repr(value))
     return Fraction(value)
@@ -343,6 +343,8 @@ class Scaling:
         >>> t.tolist(), y.tolist()
         ([0.0, 1.0], [[0.0], [4.0]])
         """
+        import numpy as np  # only here: the rest of the module (and the CLI) runs without numpy
+
         self._check_s(s)
         t = np.asarray(t, dtype=float)
         y = np.asarray(y, dtype=float)
@@ -364,7 +366,7 @@ class Scaling:
     @staticmethod
     def _check_s(s):
         try:
-            ok = float(s) > 0 and np.isfinite(float(s))
+            ok = float(s) > 0 and math.isfinite(float(s))
         except (TypeError, ValueError):
             ok = False
         if not ok:

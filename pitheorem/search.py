@@ -24,7 +24,6 @@ from collections.abc import Iterable, Iterator, Mapping
 from fractions import Fraction
 from math import comb, gcd, lcm
 
-from .bases import independent_subsets
 from .dimensions import Dimension
 from .display import power_text
 from .errors import InvalidRequestError
@@ -160,6 +159,8 @@ class SearchResult:
             a0_int = [int(x * den) for x in a0]
             dirs_int = [[int(x * den) for x in v] for v in dirs]
             rows = [[v[i] for i in free] for v in dirs_int]
+            from .bases import independent_subsets  # numpy loads only when a family is enumerated
+
             seen: dict[tuple[int, ...], tuple[int, ...]] = {}
             for subset in independent_subsets(rows, range(len(free)), [], d):
                 zero = [free[k] for k in subset]
