@@ -100,9 +100,9 @@ def minimal_points(a0_int: Sequence[int], dirs_int: Sequence[Sequence[int]], fre
     Examples
     --------
     >>> from pitheorem.family import minimal_points
-    >>> keys, weights = minimal_points([1, 0, 0], [[0, 1, -1]], [1, 2], [0])
+    >>> keys, weights = minimal_points([1, 1, 0], [[0, 1, -1]], [1, 2], [0])
     >>> keys.tolist()
-    [[1, 1, 0, 1], [1, 1, 1, 0]]
+    [[1, 1, 1, 0], [1, 1, 0, 1]]
     """
     d = len(dirs_int)
     rows = [list(v) for v in dirs_int] + [list(a0_int)]
