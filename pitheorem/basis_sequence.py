@@ -72,9 +72,6 @@ class BasisSequence(Sequence):
     def __len__(self) -> int:
         return self._offsets[-1]
 
-    def _named(self, rows: np.ndarray) -> list[tuple[str, ...]]:
-        return list(map(tuple, self._names[rows].tolist()))
-
     def __getitem__(self, index):
         if isinstance(index, slice):
             return BasisSequence(self._names, [self.indices[index]], self._width)
@@ -87,8 +84,13 @@ class BasisSequence(Sequence):
 
     def __iter__(self) -> Iterator[tuple[str, ...]]:
         for block in self._blocks:
+            if not self._width:  # rank 0: the empty set is the one basis
+                yield from ((),) * len(block)
+                continue
             for lo in range(0, len(block), 4096):
-                yield from self._named(block[lo : lo + 4096])
+                rows = block[lo : lo + 4096]
+                # zip builds each tuple in C: several times faster than tuple() per row
+                yield from zip(*(self._names[rows[:, i]].tolist() for i in range(self._width)))
 
     def __eq__(self, other) -> bool:
         if isinstance(other, BasisSequence):

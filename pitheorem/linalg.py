@@ -56,9 +56,10 @@ def integer_rows(rows: Sequence[Sequence]) -> list[list[int]]:
     """
     out = []
     for row in rows:
-        fr = [Fraction(x) for x in row]
+        # ints and Fractions already have numerator and denominator: no new objects for them
+        fr = [x if isinstance(x, int | Fraction) else Fraction(x) for x in row]
         den = lcm(*(x.denominator for x in fr)) if fr else 1
-        out.append([x.numerator * (den // x.denominator) for x in fr])
+        out.append([x.numerator * (den // x.denominator) for x in fr] if den > 1 else [x.numerator for x in fr])
     return out
 
 

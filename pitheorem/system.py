@@ -7,6 +7,7 @@ the exact kernels in :mod:`pitheorem.linalg` and :mod:`pitheorem.bases`.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Iterator, Mapping
 from fractions import Fraction
 from functools import lru_cache
@@ -22,6 +23,7 @@ from .errors import (
     DuplicateVariableError,
     EmptySystemError,
     InvalidRequestError,
+    PiTheoremError,
     RepeatingCountError,
     UnitError,
     UnknownVariableError,
@@ -33,6 +35,7 @@ if TYPE_CHECKING:
     from .basis_sequence import BasisSequence
 
 _TIME = Dimension({"T": 1})
+_ZERO = Fraction(0)
 
 __all__ = ["System"]
 
@@ -48,10 +51,39 @@ _PINT_BASES = {
 }
 
 
+# "M L^2 T^-2": names with small integer powers, the formulas nearly every variable has.
+# They are read in one regular-expression pass, each name's meaning taken from the parser
+# itself (once per name), so that both ways agree; anything else goes to the parser.
+_SIMPLE_FACTOR = re.compile(r"([A-Za-z_][A-Za-z_0-9]*)(?:\^(-?[1-9][0-9]?))?")
+
+
+@lru_cache(maxsize=256)
+def _parse_name(name: str, allowed: tuple[str, ...]) -> Dimension | None:
+    try:
+        return Dimension.parse(name, base_dimensions=allowed)
+    except PiTheoremError:
+        return None  # let the parser report it, on the whole formula
+
+
+def _simple_dimension(text: str, allowed: tuple[str, ...]) -> Dimension | None:
+    powers: dict[str, int | Fraction] = {}
+    for word in text.split():
+        factor = _SIMPLE_FACTOR.fullmatch(word)
+        base = factor and _parse_name(factor[1], allowed)
+        if base is None:
+            return None
+        p = int(factor[2] or 1)
+        for b, q in base.powers:
+            # integer arithmetic where it can be: Fractions are slow to make
+            q = int(q) if q.denominator == 1 else q
+            powers[b] = powers.get(b, 0) + q * p
+    return Dimension(powers) if powers else None
+
+
 @lru_cache(maxsize=4096)
 def _parse(text: str, allowed: tuple[str, ...]) -> Dimension:
     # the same few formulas ("L", "M L^2 T^-2") recur in every model: parse each once
-    return Dimension.parse(text, base_dimensions=allowed)
+    return _simple_dimension(text, allowed) or Dimension.parse(text, base_dimensions=allowed)
 
 
 def _pairs(variables) -> list[tuple[str, object]]:
@@ -110,6 +142,7 @@ class System:
         if not pairs:
             raise EmptySystemError()
         names: list[str] = []
+        seen: set[str] = set()
         dims: list[Dimension] = []
         for item in pairs:
             if len(item) != 2:
@@ -119,17 +152,19 @@ class System:
                 raise InvalidRequestError(
                     f"variable name {name!r} is not valid: use a Python identifier such as 'k_theta'"
                 )
-            if name in names:
+            if name in seen:
                 raise DuplicateVariableError(name, "the system")
             names.append(name)
+            seen.add(name)
             dims.append(self._read_dimension(name, spec, allowed))
-        used = {b for d in dims for b in d.bases}
+        powers = [dict(d.powers) for d in dims]
+        used = {b for p in powers for b in p}
         order = [b for b in allowed if b in used]
         self._allowed = allowed
         self._variables = tuple(names)
         self._dimensions = tuple(dims)
         self._base_dimensions = tuple(order)
-        self._columns = tuple(tuple(d.exponent(b) for b in order) for d in dims)
+        self._columns = tuple(tuple(p.get(b, _ZERO) for b in order) for p in powers)
         self._reduced = None  # independent rows of D, found on first use
 
     def _independent_rows(self) -> list[list[Fraction]]:
