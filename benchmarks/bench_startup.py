@@ -33,7 +33,8 @@ HEAVY = ("sympy", "numpy", "scipy", "matplotlib", "pint")
 
 
 def loaded_modules(command: list[str]) -> list[str]:
-    code = command[2] + "\nimport sys as _s; print(','.join(m for m in %r if m in _s.modules), file=_s.stderr)" % (HEAVY,)
+    report = f"import sys as _s; print(','.join(m for m in {HEAVY!r} if m in _s.modules), file=_s.stderr)"
+    code = command[2] + "\n" + report
     probe = [command[0], "-c", f"try:\n    exec({code!r})\nexcept SystemExit:\n    pass", *command[3:]]
     out = subprocess.run(probe, capture_output=True, text=True, check=False)
     return [m for m in out.stderr.strip().splitlines()[-1].split(",") if m] if out.stderr.strip() else []

@@ -90,7 +90,7 @@ class BasisSequence(Sequence):
             for lo in range(0, len(block), 4096):
                 rows = block[lo : lo + 4096]
                 # zip builds each tuple in C: several times faster than tuple() per row
-                yield from zip(*(self._names[rows[:, i]].tolist() for i in range(self._width)))
+                yield from zip(*(self._names[rows[:, i]].tolist() for i in range(self._width)), strict=True)
 
     def __eq__(self, other) -> bool:
         if isinstance(other, BasisSequence):
