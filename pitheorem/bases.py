@@ -183,7 +183,11 @@ class _LaplaceTables:
         ``wedge`` (P, width[j]) and ``cols`` (P, r): the new column of each prefix.
         """
         entry, minor, sign = self.steps[j]
-        return (cols[:, entry] * wedge[:, minor] * sign).sum(axis=2)
+        # one term of the expansion at a time: (P, K) temporaries instead of one (P, K, j + 1)
+        out = cols[:, entry[:, 0]] * wedge[:, minor[:, 0]] * sign[:, 0]
+        for q in range(1, j + 1):
+            out += cols[:, entry[:, q]] * wedge[:, minor[:, q]] * sign[:, q]
+        return out
 
     def last_column_weights(self, wedge: np.ndarray) -> np.ndarray:
         """Signed cofactors: det(prefix + c) = weights @ c for a prefix of r-1 columns."""
@@ -250,6 +254,7 @@ class _Enumerator:
         self.candidates = np.array([j for j in candidates if nonzero[j]], dtype=np.int64)
         self.required = np.array(sorted(required), dtype=np.int64)
         self.fast = float_is_exact(self.int_rows, size)
+        self.dtype = np.min_scalar_type(max(n_cols - 1, 0))
 
     def chunks(self) -> Iterator[np.ndarray]:
         """Yield arrays of independent subsets (sorted column indices per row) in lex order."""
@@ -274,11 +279,16 @@ class _Enumerator:
         return sum(int(np.count_nonzero(mask)) for _, mask in self._last_column())
 
     def _finish(self, chosen: np.ndarray) -> np.ndarray:
-        """Candidate positions -> sorted column indices, with the required columns."""
-        if not len(self.required):
-            return self.candidates[chosen]
-        subsets = np.hstack([self.candidates[chosen], np.broadcast_to(self.required, (len(chosen), len(self.required)))])
-        subsets.sort(axis=1)
+        """Candidate positions -> sorted column indices, with the required columns.
+
+        In the smallest integer type that holds every column index: listing
+        millions of bases then takes a few bytes each.
+        """
+        subsets = self.candidates.astype(self.dtype)[chosen]
+        if len(self.required):
+            required = np.broadcast_to(self.required.astype(self.dtype), (len(chosen), len(self.required)))
+            subsets = np.hstack([subsets, required])
+            subsets.sort(axis=1)
         return subsets
 
     # -- exact in float64 -----------------------------------------------------------------
@@ -306,7 +316,10 @@ class _Enumerator:
         for prefixes, mask in self._last_column():
             rows, cols = np.nonzero(mask)
             if len(rows):
-                yield self._finish(np.hstack([prefixes[rows], cols[:, None]]))
+                chosen = np.empty((len(rows), prefixes.shape[1] + 1), dtype=self.dtype)
+                chosen[:, :-1] = prefixes[rows]
+                chosen[:, -1] = cols
+                yield self._finish(chosen)
 
     # -- exact by residues --------------------------------------------------------------
     def _mod_p_chunks(self):
