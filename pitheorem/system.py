@@ -520,8 +520,9 @@ class System:
         Returns
         -------
         BasisSequence
-            An immutable sequence of tuples of names, equal to the list of
-            them, held as an index array (:attr:`BasisSequence.indices`).
+            An immutable sequence of tuples of names that compares equal to
+            the list of them, held as a compact array of variable positions
+            (its ``indices``; the class is ``pitheorem.basis_sequence.BasisSequence``).
 
         Examples
         --------
