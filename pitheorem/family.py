@@ -37,10 +37,12 @@ class MinimalPoints(Sequence):
     """Minimal points with their coordinates, as exact fractions made on demand.
 
     Item ``i`` is ``(point, coords)``: tuples of Fraction, as
-    :class:`pitheorem.search.SearchResult` keeps them.
+    :class:`pitheorem.search.SearchResult` keeps them.  Counting them
+    makes none; the first iteration makes them all and keeps them, since
+    tables read them once per variable.
     """
 
-    __slots__ = ("_den", "_kept", "_keys", "_u0", "_weights")
+    __slots__ = ("_den", "_kept", "_keys", "_made", "_u0", "_weights")
 
     def __init__(self, keys: np.ndarray, weights: np.ndarray, den: int, u0, kept):
         self._keys = keys  # per point: [w_d, numerators...] in lowest terms, w_d > 0
@@ -48,6 +50,7 @@ class MinimalPoints(Sequence):
         self._den = den
         self._u0 = tuple(u0)
         self._kept = [list(w) for w in kept]
+        self._made: list | None = None
 
     def __len__(self) -> int:
         return len(self._keys)
@@ -62,7 +65,14 @@ class MinimalPoints(Sequence):
                        for j, u in enumerate(self._u0))
         return point, coords
 
+    def __iter__(self):
+        if self._made is None:
+            self._made = [self._item(i) for i in range(len(self))]
+        return iter(self._made)
+
     def __getitem__(self, index):
+        if self._made is not None:
+            return self._made[index]
         if isinstance(index, slice):
             return [self._item(i) for i in range(len(self))[index]]
         return self._item(range(len(self))[index])
