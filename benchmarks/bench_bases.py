@@ -105,6 +105,9 @@ def main(argv=None) -> None:
     print("\n'vs numpy' = pitheorem time / numpy-det time (target <= 2);"
           " 'vs plain' = plain time / pitheorem time (target >= 1); ~ = extrapolated from 20,000 subsets")
     listing(25 if args.quick else 30)
+    largest = synthetic_system(sizes[-1])
+    count, peak = peak_bytes(largest.count_bases)
+    print(f"  peak memory of count_bases() at n = {sizes[-1]}: {peak / 2**20:.2f} MiB for {count} bases")
 
 
 def peak_bytes(fn):
