@@ -51,6 +51,7 @@ __all__ = [
     "SuperballParameter",
     "bar_nodes",
     "cable_pairs",
+    "simulate_superball",
     "superball_mjcf",
     "superball_parameters",
     "superball_system",
@@ -311,7 +312,7 @@ def superball_mjcf(params=None) -> str:
     for i, (e0, e1) in enumerate(bars):
         centre = (e0 + e1) / 2
         lines += [
-            f'    <body name="bar{i}" pos="{_xyz(centre + (0, 0, lift))}">',
+            f'    <body name="bar{i}" pos="{_xyz(centre + np.array([0.0, 0.0, lift]))}">',
             f'      <freejoint name="bar{i}"/>',
             f'      <geom name="bar{i}" type="capsule" fromto="{_xyz(e0 - centre)} {_xyz(e1 - centre)}" '
             f'size="{p["r"]!r}" density="{p["rho"]!r}" {contact}/>',
@@ -442,6 +443,56 @@ class CableController:
         speed = np.clip(self.gain * (strain - self.targets(data)), -self.v, self.v)
         self.reeled = self.reeled + speed * step
         return -self.stiffness * self.reeled
+
+
+def simulate_superball(model, duration: float, *, controlled: bool = True, every: int = 10):
+    """Drop the robot (and run its controller) in MuJoCo; return the bar ends.
+
+    Parameters
+    ----------
+    model : str, Path or mujoco.MjModel
+        MJCF text, a path to an MJCF file, or a compiled model.
+    duration : float
+        Simulated time, in the model's own time unit.
+    controlled : bool
+        Run :class:`CableController`; ``False`` leaves the reels idle.
+    every : int
+        Keep one sample every ``every`` steps.
+
+    Returns
+    -------
+    times : ndarray, shape (n,)
+    ends : ndarray, shape (n, 6, 2, 3)
+        The positions of the twelve bar ends, in the model's own units.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.superball import simulate_superball, superball_mjcf
+    >>> times, ends = simulate_superball(superball_mjcf(), 0.5)
+    >>> ends.shape, bool(ends[-1, :, :, 2].min() < ends[0, :, :, 2].min())   # it fell
+    ((51, 6, 2, 3), True)
+    """
+    import mujoco
+
+    if isinstance(model, Path) or (isinstance(model, str) and not model.lstrip().startswith("<")):
+        model = mujoco.MjModel.from_xml_path(str(model))
+    elif isinstance(model, str):
+        model = mujoco.MjModel.from_xml_string(model)
+    data = mujoco.MjData(model)
+    controller = CableController(model) if controlled else None
+    n_steps = round(duration / model.opt.timestep)
+    times, ends = [], []
+    for step in range(n_steps + 1):
+        if step % every == 0:
+            mujoco.mj_forward(model, data)
+            times.append(data.time)
+            ends.append(np.array(data.site_xpos[:12], dtype=float).reshape(6, 2, 3))
+        if step == n_steps:
+            break
+        if controller is not None:
+            data.ctrl[:] = controller(model, data)
+        mujoco.mj_step(model, data)
+    return np.array(times), np.array(ends)
 
 
 def write_superball(path=None) -> Path:
