@@ -51,6 +51,7 @@ __all__ = [
     "SuperballParameter",
     "bar_nodes",
     "cable_pairs",
+    "draw_superball",
     "simulate_superball",
     "superball_mjcf",
     "superball_parameters",
@@ -445,7 +446,7 @@ class CableController:
         return -self.stiffness * self.reeled
 
 
-def simulate_superball(model, duration: float, *, controlled: bool = True, every: int = 10):
+def simulate_superball(model, duration: float, *, controlled: bool = True, every: int = 10, nudge: bool = False):
     """Drop the robot (and run its controller) in MuJoCo; return the bar ends.
 
     Parameters
@@ -458,6 +459,9 @@ def simulate_superball(model, duration: float, *, controlled: bool = True, every
         Run :class:`CableController`; ``False`` leaves the reels idle.
     every : int
         Keep one sample every ``every`` steps.
+    nudge : bool
+        Move every initial position coordinate up by one unit in the last
+        place: the run against the plain one is the model's own sensitivity.
 
     Returns
     -------
@@ -479,6 +483,8 @@ def simulate_superball(model, duration: float, *, controlled: bool = True, every
     elif isinstance(model, str):
         model = mujoco.MjModel.from_xml_string(model)
     data = mujoco.MjData(model)
+    if nudge:
+        data.qpos[:] = np.nextafter(data.qpos, np.inf)
     controller = CableController(model) if controlled else None
     n_steps = round(duration / model.opt.timestep)
     times, ends = [], []
@@ -493,6 +499,53 @@ def simulate_superball(model, duration: float, *, controlled: bool = True, every
             data.ctrl[:] = controller(model, data)
         mujoco.mj_step(model, data)
     return np.array(times), np.array(ends)
+
+
+def draw_superball(ends, ax=None, *, a: float | None = None, l: float | None = None, color="C0"):  # noqa: E741
+    """Draw one pose of the robot in 3-D: bars as thick lines, cables as thin ones.
+
+    Parameters
+    ----------
+    ends : array_like, shape (6, 2, 3)
+        Bar end positions, one sample of :func:`simulate_superball`.
+    ax : matplotlib 3-D axes, optional
+        Drawn into a new figure when omitted.
+    a, l : float, optional
+        Bar offset and length that fix which ends the cables join; the
+        defaults of :data:`PARAMETERS` when omitted.
+    color : str
+        Colour of the bars.
+
+    Returns
+    -------
+    matplotlib 3-D axes
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from pitheorem.engines.superball import draw_superball, simulate_superball, superball_mjcf
+    >>> _, ends = simulate_superball(superball_mjcf(), 0.0)
+    >>> ax = draw_superball(ends[0])
+    >>> len(ax.lines)    # 6 bars and 24 cables
+    30
+    """
+    import matplotlib.pyplot as plt
+
+    values = superball_parameters()
+    pairs, _ = cable_pairs(values["a"] if a is None else a, values["l"] if l is None else l)
+    ends = np.asarray(ends, dtype=float)
+    if ax is None:
+        ax = plt.figure(figsize=(4.5, 4.5)).add_subplot(projection="3d")
+    for bar in ends:
+        ax.plot(*bar.T, color=color, linewidth=4, solid_capstyle="round")
+    for (i, j), (k, m) in pairs:
+        ax.plot(*np.array([ends[i, j], ends[k, m]]).T, color="0.35", linewidth=0.8)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_zlabel("z (m)")
+    ax.set_aspect("equal")
+    return ax
 
 
 def write_superball(path=None) -> Path:
