@@ -1,0 +1,148 @@
+"""SUPERball as a MuJoCo tensegrity: the model, its analysis, and similarity in the engine."""
+
+from fractions import Fraction
+from itertools import combinations
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pitheorem as pt
+
+mujoco = pytest.importorskip("mujoco", reason="the engines extra (mujoco) is not installed")
+
+from pitheorem.engines import superball as sb  # noqa: E402
+
+SHIPPED = Path(sb.__file__).resolve().parent.parent / "examples" / "superball.xml"
+DURATION = 2.0  # a drop (about 0.5 s), a landing, and a second of controlled motion
+
+
+@pytest.fixture(scope="module")
+def original():
+    return sb.simulate_superball(sb.superball_mjcf(), DURATION)[1]
+
+
+def scaled_values(s, *, leave=()):
+    """The default values with the paper's Section 4 scaling applied, except the names in `leave`."""
+    values = sb.superball_parameters()
+    return {n: v if n in leave else v * s ** float(sb.PAPER_SCALING[n]) for n, v in values.items()}
+
+
+def deviation(original, values, s):
+    ends = sb.simulate_superball(sb.superball_mjcf(values), DURATION)[1]
+    return float(np.abs(original - ends / s).max())
+
+
+def test_shipped_file_is_what_the_generator_writes():
+    assert SHIPPED.read_text(encoding="utf-8") == sb.superball_mjcf()
+
+
+def test_shipped_file_has_six_bars_and_twenty_four_cables():
+    model = mujoco.MjModel.from_xml_path(str(SHIPPED))
+    assert model.nbody - 1 == 6
+    assert model.ntendon == 24
+    assert model.nu == 24
+    assert list(model.jnt_type) == [mujoco.mjtJoint.mjJNT_FREE] * 6
+
+
+def test_cables_form_an_icosahedron_without_the_parallel_edges():
+    pairs, span = sb.cable_pairs(0.75, 1.684)
+    ends = {(i, j) for i in range(6) for j in range(2)}
+    # every end carries exactly four cables, none to its own bar or the bar parallel to it
+    for end in ends:
+        partners = [b for a, b in pairs if a == end] + [a for a, b in pairs if b == end]
+        assert len(partners) == 4
+        assert all(p[0] // 2 != end[0] // 2 for p in partners)
+    # independent oracle: the cable length from the coordinates (a, l/2, 0) and (0, a, l/2)
+    a, h = 0.75, 0.842
+    assert span == pytest.approx(np.sqrt(a**2 + (h - a) ** 2 + h**2), rel=1e-15)
+    # the 24 cables plus the 6 short edges between parallel bars are the 30 edges of a polyhedron whose
+    # 12 vertices each have degree 5 and whose faces are 20 triangles (Euler: 12 - 30 + 20 = 2)
+    short = [((i, j), (i + 1, j)) for i in (0, 2, 4) for j in (0, 1)]
+    nodes = sb.bar_nodes(a, 2 * h)
+    edges = {frozenset(e) for e in pairs + short}
+    triangles = [t for t in combinations(sorted(ends), 3) if all(frozenset(p) in edges for p in combinations(t, 2))]
+    assert len(edges) == 30
+    assert len(triangles) == 20
+    assert all(np.linalg.norm(nodes[i][j] - nodes[k][m]) > 0 for (i, j), (k, m) in pairs)
+
+
+def test_pretension_sets_the_rest_length():
+    values = sb.superball_parameters()
+    model = mujoco.MjModel.from_xml_string(sb.superball_mjcf())
+    assert model.tendon_lengthspring[:, 1] == pytest.approx(values["x_r"], rel=1e-15)
+    # F = k (span - x_r) with NTRT's 2452 kg dm/s^2, that is 245.2 N
+    span = sb.cable_pairs(values["a"], values["l"])[1]
+    assert values["k"] * (span - values["x_r"]) == pytest.approx(245.2, rel=1e-12)
+    assert list(model.tendon_lengthspring[:, 0]) == [0.0] * 24  # slack below x_r: cables never push
+
+
+def test_unknown_parameter_is_named():
+    with pytest.raises(pt.PiTheoremError, match="'rod_length'"):
+        sb.superball_mjcf({"rod_length": 2.0})
+
+
+def test_search_reproduces_section_4_with_the_rest_length():
+    res = pt.search(sb.superball_system(), scale={"g": 1})
+    found = [{n: Fraction(e) for n, e in sc.exponents.items()} for sc in res.scalings]
+    assert sb.PAPER_SCALING in found
+    paper = found[found.index(sb.PAPER_SCALING)]
+    # Section 4 in words: lengths, F and v times s; rho by s^-3; time, k and c unchanged; and x_r times s
+    assert {n: paper[n] for n in ("g", "l", "F", "v", "x_r")} == dict.fromkeys(("g", "l", "F", "v", "x_r"), 1)
+    assert paper["rho"] == -3
+    assert paper["k"] == paper["c"] == paper["t"] == 0
+    # the controller's gain is a length per time: Section 6, it must be scaled with the model
+    assert paper["K_eps"] == 1
+
+
+def test_controller_reads_its_numbers_from_the_file():
+    values = sb.superball_parameters()
+    model = mujoco.MjModel.from_xml_string(sb.superball_mjcf({"K_eps": 7.0, "v": 0.25}))
+    control = sb.CableController(model)
+    assert (control.gain, control.v, control.amplitude) == (7.0, 0.25, values["A"])
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    assert np.all(control.targets(data) == 0)  # nothing before t_on
+    data.time = values["t_on"] + values["t_ramp"]
+    targets = control.targets(data)
+    assert np.all(targets <= 0)
+    assert targets.min() < -0.1 * values["A"]
+
+
+def test_missing_controller_numeric_is_named():
+    text = sb.superball_mjcf().replace('<numeric name="K_eps"', '<numeric name="gain"')
+    with pytest.raises(pt.PiTheoremError, match="'K_eps'"):
+        sb.CableController(mujoco.MjModel.from_xml_string(text))
+
+
+def test_controller_moves_the_robot(original):
+    uncontrolled = sb.simulate_superball(sb.superball_mjcf(), DURATION, controlled=False)[1]
+    assert np.abs(original[-1] - uncontrolled[-1]).max() > 0.02
+
+
+@pytest.fixture(scope="module")
+def sensitivity(original):
+    """The model's own sensitivity: the run with every initial coordinate one ulp higher."""
+    nudged = sb.simulate_superball(sb.superball_mjcf(), DURATION, nudge=True)[1]
+    return float(np.abs(nudged - original).max())
+
+
+def test_sensitivity_baseline_is_rounding_sized(original, sensitivity):
+    assert 0 < sensitivity < 1e-12 * float(np.ptp(original))
+
+
+@pytest.mark.parametrize("s", [10, 100])
+def test_paper_scaling_is_similar_in_mujoco(original, sensitivity, s):
+    assert deviation(original, scaled_values(s), s) <= 10 * sensitivity
+
+
+@pytest.mark.parametrize(
+    ("leave", "why"),
+    [
+        (("rho", "F", "x_r", "F_max", "v", "K_eps", "mu_roll", "w"), "the folk rule: g and the geometry only"),
+        (("x_r",), "the paper's list without the rest length"),
+        (("K_eps",), "the controller's gain left unscaled (Section 6)"),
+    ],
+)
+def test_contrasts_fail_by_a_visible_margin(original, leave, why):
+    assert deviation(original, scaled_values(10, leave=leave), 10) > 1e-2, why
