@@ -96,3 +96,52 @@ def test_corpus_exhaustive(name, s, controls, tmp_path):
     solver = "Newton" if name in PGS else None
     rep = check(prepared(name, tmp_path, solver=solver), tmp_path, s, controls)
     assert rep.similar, str(rep)
+
+
+# -- PyBullet: URDFs of pybullet_data, dropped from 1 m onto a ground plane ---------------------
+
+URDFS = ("cartpole.urdf", "pendulum5.urdf", "sphere2.urdf", "sphere_small.urdf", "sphere_with_restitution.urdf",
+         "soccerball.urdf", "cube.urdf", "cube_small.urdf", "lego/lego.urdf", "jenga/jenga.urdf", "table/table.urdf",
+         "kuka_iiwa/model.urdf")
+#: measured: not similar beyond the one-ulp baseline even at s = 2; the cause is not isolated (compound
+#: convex-hull meshes, merged fixed links)
+URDFS_NOT_SIMILAR = ("r2d2.urdf", "duck_vhacd.urdf", "teddy_vhacd.urdf", "TwoJointRobot_w_fixedJoints.urdf")
+
+
+def urdf_check(name, tmp_path, s, controls):
+    pybullet_data = pytest.importorskip("pybullet_data")
+    path = Path(pybullet_data.getDataPath()) / name
+    # PyBullet's multibody damping (0.04) mixes dimensions and its split-impulse threshold (a length) cannot be
+    # set from Python: both are switched off, in the original and in the scaled run alike
+    model = engines.load(path, base_position=(0, 0, 1), ground=True, damping=0.0, split_impulse=False)
+    res = pt.search(model.system(), scale={"g": 1}, fixed=("t",))
+    sc = res.scalings[0]
+    out = model.scaled(sc, s).save(tmp_path / "scaled.urdf")
+    assert Path(f"{out}.settings.json").is_file()
+    again = engines.load(out, base_position=(0, 0, 1), ground=True, damping=0.0, split_impulse=False)
+    masses = [p for p in model.parameters if p.name.endswith("_mass")]
+    for p in masses:  # the saved file holds the scaled masses
+        assert again.parameter(p.name).value[0] == pytest.approx(p.value[0] * float(s) ** sc.exponent_of("M"))
+    nj = len(model.backend.control_dimensions())
+    return engines.verify(model, sc, s, duration=1.0, controls=smooth(nj) if controls and nj else None)
+
+
+@pytest.mark.parametrize("name", URDFS)
+def test_urdf_is_similar_at_s10_with_controls(name, tmp_path):
+    rep = urdf_check(name, tmp_path, 10, controls=True)
+    assert rep.similar, str(rep)
+
+
+@pytest.mark.parametrize("name", URDFS_NOT_SIMILAR)
+def test_urdf_known_not_similar(name, tmp_path):
+    rep = urdf_check(name, tmp_path, 2, controls=False)
+    assert not rep.similar
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", URDFS)
+@pytest.mark.parametrize("s", [2, 10])
+@pytest.mark.parametrize("controls", [False, True])
+def test_urdf_exhaustive(name, s, controls, tmp_path):
+    rep = urdf_check(name, tmp_path, s, controls)
+    assert rep.similar, str(rep)

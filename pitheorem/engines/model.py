@@ -456,6 +456,30 @@ class EngineModel:
         self._backend.save(path)
         return path
 
+    def with_settings(self, **changes) -> EngineModel:
+        """A copy with other engine settings (PyBullet: ``split_impulse``, ``ground``, ...).
+
+        Raises
+        ------
+        InvalidRequestError
+            For an MJCF model (its settings are parameters: use
+            :meth:`with_values`) or an unknown setting.
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> try:
+        ...     engines.load(engines.example_path("pendulum.xml")).with_settings(ground=True)
+        ... except engines.EngineModelError:
+        ...     pass
+        ... except Exception as err:
+        ...     print(type(err).__name__)
+        InvalidRequestError
+        """
+        if not hasattr(self._backend, "with_settings"):
+            raise InvalidRequestError("an MJCF model keeps its settings in the file; use with_values(...)")
+        return EngineModel(self._backend.with_settings(**changes), self.engine, self.path)
+
     def settings(self) -> dict:
         """Engine settings the file cannot hold, as data (empty for MuJoCo).
 
@@ -532,7 +556,7 @@ def example_path(name: str) -> Path:
     return path
 
 
-def load(path) -> EngineModel:
+def load(path, **options) -> EngineModel:
     """Read an MJCF file (through MuJoCo) or a URDF file (through PyBullet).
 
     Parameters
@@ -540,6 +564,10 @@ def load(path) -> EngineModel:
     path : str or Path
         ``.xml``/``.mjcf`` for MuJoCo, ``.urdf`` for PyBullet.  An ``.xml``
         file whose root is ``<robot>`` is read as URDF.
+    **options
+        URDF only: the scene and settings of
+        :func:`pitheorem.engines.urdf.load_urdf` (``base_position``,
+        ``fixed_base``, ``ground``, ``split_impulse``, ``g``, ``damping``).
 
     Returns
     -------
@@ -565,7 +593,9 @@ def load(path) -> EngineModel:
     if kind == "urdf":
         from .urdf import load_urdf
 
-        return load_urdf(path)
+        return load_urdf(path, **options)
+    if options:
+        raise InvalidRequestError(f"options {sorted(options)} are for URDF files; an MJCF file holds its settings")
     from .mjcf import load_mjcf
 
     return load_mjcf(path)
