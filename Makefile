@@ -24,7 +24,7 @@ docs: $(VENV)/.docs-stamp
 	$(PY) -m sphinx -n -W --keep-going -b html docs docs/_build/html
 
 bench: $(VENV)/.test-stamp
-	cd benchmarks && ../$(PY) bench_bases.py && ../$(PY) bench_search.py
+	cd benchmarks && ../$(PY) bench_bases.py && ../$(PY) bench_search.py && ../$(PY) bench_engines.py
 
 lint: $(VENV)/.test-stamp
 	$(PY) -m ruff check pitheorem tests matlab_ports benchmarks docs/check_pages.py docs/check_offline.py

@@ -726,14 +726,16 @@ class MjcfBackend:
         if nudge:
             data.qpos[:] = nudged(data.qpos)
             data.qvel[:] = nudged(data.qvel)
-        width = m.nq + m.nv + m.na
-        out = np.empty((n_steps + 1, width))
-        out[0] = np.concatenate([data.qpos, data.qvel, data.act])
+        nq, nv = m.nq, m.nv
+        out = np.empty((n_steps + 1, nq + nv + m.na))
+        qpos, qvel, act = out[:, :nq], out[:, nq:nq + nv], out[:, nq + nv:]
+        qpos[0], qvel[0], act[0] = data.qpos, data.qvel, data.act
+        steer = controls is not None and m.nu
         for i in range(1, n_steps + 1):
-            if controls is not None and m.nu:
+            if steer:
                 data.ctrl[:] = controls(data.time)
             mj.mj_step(m, data)
-            out[i] = np.concatenate([data.qpos, data.qvel, data.act])
+            qpos[i], qvel[i], act[i] = data.qpos, data.qvel, data.act
         return out
 
 
