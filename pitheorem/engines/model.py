@@ -10,7 +10,7 @@ similarity scaling to every number at once; :meth:`~EngineModel.save`
 writes a file the engine loads as it is.
 
 The engine-specific work (reading, writing, running) lives in
-:mod:`pitheorem.engines.mjcf` and :mod:`pitheorem.engines.urdf`; this module
+``pitheorem.engines.mjcf`` and ``pitheorem.engines.urdf``; this module
 only holds what both share.
 """
 
@@ -272,7 +272,7 @@ class EngineModel:
 
     Build one with :func:`load`; :meth:`scaled` returns another.  The
     engine-specific part is a backend object (see
-    :mod:`pitheorem.engines.mjcf` and :mod:`pitheorem.engines.urdf`).
+    ``pitheorem.engines.mjcf`` and ``pitheorem.engines.urdf``).
 
     Attributes
     ----------
@@ -566,7 +566,7 @@ def load(path, **options) -> EngineModel:
         file whose root is ``<robot>`` is read as URDF.
     **options
         URDF only: the scene and settings of
-        :func:`pitheorem.engines.urdf.load_urdf` (``base_position``,
+        ``pitheorem.engines.urdf.load_urdf`` (``base_position``,
         ``fixed_base``, ``ground``, ``split_impulse``, ``g``, ``damping``).
 
     Returns

@@ -313,7 +313,7 @@ def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt:
 class EngineSimilarityReport(SimilarityReport):
     """Result of :func:`verify_engine_similarity`: a :class:`pitheorem.SimilarityReport` with the engine's details.
 
-    The comparison itself is :func:`pitheorem.simulate.similarity_report`,
+    The comparison itself is ``pitheorem.simulate.similarity_report``,
     shared with :func:`pitheorem.verify_similarity` and
     :func:`pitheorem.engines.verify`; this subclass only adds what the
     rod's engine runs know besides.

@@ -4,13 +4,13 @@
 for step (the scaled time step is the original's times ``s`` to the power
 of time), feeds both the same controls in original units, maps every
 recorded coordinate of the scaled run back by its own dimension, and
-hands both runs to :func:`pitheorem.simulate.similarity_report`, the one
+hands both runs to ``pitheorem.simulate.similarity_report``, the one
 comparison every simulator of pitheorem shares.  Next to them runs the
 original once more with its initial state nudged by one ulp: a chaotic
 model (a bouncing ball, a walker falling over) moves that far on its own,
 so a scaled run is judged against that baseline, not against zero.
 
-A backend (see :mod:`pitheorem.engines.mjcf`, :mod:`pitheorem.engines.urdf`)
+A backend (see ``pitheorem.engines.mjcf``, ``pitheorem.engines.urdf``)
 provides ``timestep()``, ``coordinate_dimensions()``,
 ``control_dimensions()`` and ``run(n_steps, controls, nudge)``.
 """
