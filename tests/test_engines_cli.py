@@ -58,8 +58,7 @@ def test_apply_urdf_writes_settings_or_names_the_mixed_damping(tmp_path, capsys)
     assert powers["link_cart_linearDamping_rate"] != powers["link_cart_linearDamping_per_length"]
 
 
-@pytest.mark.skipif(not SCRIPT.exists(), reason="the console script is not installed beside the interpreter")
-@pytest.mark.parametrize(("name", "text", "element"), [
+BAD_FILES = [
     ("absent.xml", None, "no such file"),
     ("junk.xml", "this is not XML", "junk.xml"),
     ("unknown_element.xml", (DATA / "unknown_element.xml").read_text(), "gizmo"),
@@ -67,17 +66,35 @@ def test_apply_urdf_writes_settings_or_names_the_mixed_damping(tmp_path, capsys)
     ("bad.urdf", '<robot name="r"><link name="a"><collision><geometry><mesh filename="gone.stl"/></geometry>'
      "</collision></link></robot>", "mesh 'gone.stl'"),
     ("junk.urdf", "<robot", "not well-formed XML"),
-])
-def test_bad_model_files_exit_2_with_one_line(tmp_path, name, text, element):
+]
+
+
+def write_bad(tmp_path, name, text):
     path = tmp_path / name
     if text is not None:
         path.write_text(text)
-    command = ["params", str(path)] if name.endswith(".xml") else ["search", str(path), "--scale", "g=1"]
-    if command:
-        done = subprocess.run([str(SCRIPT), *command], capture_output=True, text=True, timeout=120)
-        assert done.returncode == 2
-        lines = done.stderr.strip().splitlines()
-        assert len(lines) == 1, done.stderr
+    return path
+
+
+@pytest.mark.parametrize(("name", "text", "element"), BAD_FILES)
+def test_bad_model_files_exit_2_with_one_line(tmp_path, capsys, name, text, element):
+    path = write_bad(tmp_path, name, text)
+    for command in (["params", str(path)], ["search", str(path), "--scale", "g=1"]):
+        assert main(command) == 2
+        lines = capsys.readouterr().err.strip().splitlines()
+        assert len(lines) == 1
         assert lines[0].startswith("pitheorem: error: ")
         assert name in lines[0]
         assert element in lines[0]
+
+
+@pytest.mark.skipif(not SCRIPT.exists(), reason="the console script is not installed beside the interpreter")
+@pytest.mark.parametrize(("name", "text", "element"), [BAD_FILES[3], BAD_FILES[4]])
+def test_console_script_exits_2_on_bad_model_files(tmp_path, name, text, element):
+    path = write_bad(tmp_path, name, text)
+    done = subprocess.run([str(SCRIPT), "params", str(path)], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1, done.stderr
+    assert name in lines[0]
+    assert element in lines[0]
