@@ -25,7 +25,7 @@ from .models import Model
 from .scaling import Scaling, as_exponent
 from .system import System
 
-__all__ = ["SimilarityReport", "Trajectory", "similarity_report", "simulate", "verify_similarity"]
+__all__ = ["SimilarityReport", "Trajectory", "nudged", "similarity_report", "simulate", "verify_similarity"]
 
 _METHODS = ("solve_ivp", "euler")
 
@@ -509,7 +509,7 @@ class SimilarityReport:
 
 def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, method="solve_ivp", dt=None,
                       scale_dt=True, check=True, rtol=1e-10, atol=1e-12, tol=1e-6,
-                      ivp_method="DOP853") -> SimilarityReport:
+                      ivp_method="DOP853", baseline=False) -> SimilarityReport:
     """Check numerically that a scaled run reproduces the original.
 
     Simulates the model with `params`; then scales the parameters by
@@ -550,6 +550,10 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
         by its listed exponent (default 0) -- to demonstrate wrong scalings.
     tol : float
         Largest deviation (in original units) that passes.
+    baseline : bool
+        Also run the original with every initial state nudged by one ulp
+        (:func:`nudged`) and judge each state's deviation against that
+        run's, as :func:`pitheorem.engines.verify` does, instead of `tol`.
 
     Returns
     -------
@@ -639,11 +643,32 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
         t_back = original.t
     mapped = Trajectory(t_back, y_back, model.states, model.time)
 
+    reference = None
+    if baseline:  # the same run from a one-ulp nudged start, on the same grid
+        kwargs = {"dt": dt} if method == "euler" else {"t_eval": original.t, "rtol": rtol, "atol": atol}
+        reference = simulate(model, params, nudged(y_init), t_final, method=method, ivp_method=ivp_method, **kwargs)
     return similarity_report(
         original, mapped, s=s, scaling=sc if sc is not None else MappingProxyType(dict(powers)),
-        exponents=powers, tol=tol, is_similarity=sc is not None, method=method,
-        scaled_dt=bool(scale_dt) if method == "euler" else True,
+        exponents=powers, tol=None if baseline else tol, nudged=reference, is_similarity=sc is not None,
+        method=method, scaled_dt=bool(scale_dt) if method == "euler" else True,
     )
+
+
+def nudged(values) -> np.ndarray:
+    """Each value moved up by one ulp of itself, or of 1 where it is smaller than 1 in magnitude.
+
+    A coordinate at exactly 0 has a denormal ulp (5e-324) that no
+    computation feels; the ulp of 1 (2.2e-16) is the rounding every step
+    makes on numbers of order one.
+
+    Examples
+    --------
+    >>> from pitheorem.simulate import nudged
+    >>> [float(v) for v in nudged([0.0, 4.0])]
+    [2.220446049250313e-16, 4.000000000000001]
+    """
+    x = np.asarray(values, dtype=float)
+    return x + np.spacing(np.maximum(np.abs(x), 1.0))
 
 
 def _max_abs(diff: np.ndarray) -> float:

@@ -36,6 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..simulate import nudged
 from .model import EngineModel, EngineModelError, Parameter, dim, power_factor, warn_unscalable
 
 __all__ = ["MjcfBackend", "load_mjcf"]
@@ -737,23 +738,6 @@ class MjcfBackend:
             mj.mj_step(m, data)
             qpos[i], qvel[i], act[i] = data.qpos, data.qvel, data.act
         return out
-
-
-def nudged(values) -> np.ndarray:
-    """Each value moved up by one ulp of itself, or of 1 where it is smaller than 1 in magnitude.
-
-    A coordinate at exactly 0 has a denormal ulp (5e-324) that no
-    computation feels; the ulp of 1 (2.2e-16) is the rounding every step
-    makes on numbers of order one.
-
-    Examples
-    --------
-    >>> from pitheorem.engines.mjcf import nudged
-    >>> [float(v) for v in nudged([0.0, 4.0])]
-    [2.220446049250313e-16, 4.000000000000001]
-    """
-    x = np.asarray(values, dtype=float)
-    return x + np.spacing(np.maximum(np.abs(x), 1.0))
 
 
 def _absolute_asset_dirs(spec, source_dir: Path) -> None:

@@ -280,7 +280,9 @@ MUJOCO_FRAME_SIMILAR = RuleOfThumb(
         _q("time", "T", 0, ["mujoco_solref_timeconst", "mujoco_timestep"]),  # measured: solref, timestep x 1
         _q("angle", "1", 0),  # measured: hinge springref x 1
     ),
-    note="the frame does not touch option/gravity (a global setting): multiply it by X yourself",
+    note="the frame does not touch option/gravity (a global setting): multiply it by X yourself; with "
+         "massscale the frame also scales masses independently, which with scale gives any time-free change "
+         "of units (M and L), not only this policy's mass by volume",
 )
 
 #: every rule provided

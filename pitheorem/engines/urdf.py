@@ -35,6 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..simulate import nudged
 from .model import EngineModel, EngineModelError, Parameter, dim
 
 __all__ = ["UrdfBackend", "load_urdf"]
@@ -450,8 +451,6 @@ class UrdfBackend:
             for j in joints:
                 pb.setJointMotorControl2(body, j, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=client)
             if nudge:
-                from .mjcf import nudged
-
                 pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=client)
                 pb.resetBasePositionAndOrientation(body, nudged(pos).tolist(), orn, physicsClientId=client)
                 for j in joints:

@@ -18,6 +18,8 @@ provides ``timestep()``, ``coordinate_dimensions()``,
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
@@ -25,7 +27,32 @@ from ..errors import InvalidRequestError
 from ..simulate import SimilarityReport, Trajectory, _positive, similarity_report
 from .model import EngineModel, _check_s, _check_scaling, dim, power_factor
 
-__all__ = ["verify"]
+__all__ = ["EngineRunner", "verify"]
+
+
+@runtime_checkable
+class EngineRunner(Protocol):
+    """What :func:`verify` needs of an engine: the simulator protocol of MuJoCo's and PyBullet's backends.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.verify import EngineRunner
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).backend, EngineRunner)
+    True
+    """
+
+    def timestep(self) -> float:
+        """The fixed step of the engine, in the model's units."""
+
+    def coordinate_dimensions(self) -> tuple[list[str], list]:
+        """Names and dimensions of the recorded coordinates, in column order."""
+
+    def control_dimensions(self) -> list:
+        """The dimension of each control input."""
+
+    def run(self, n_steps: int, controls: Callable | None = None, nudge: bool = False) -> np.ndarray:
+        """Rows of coordinates after 0..n_steps steps; ``nudge`` moves the start by one ulp."""
 
 
 def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None, *, scaled: EngineModel | None = None,
