@@ -552,7 +552,7 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
         Largest deviation (in original units) that passes.
     baseline : bool
         Also run the original with every initial state nudged by one ulp
-        (:func:`nudged`) and judge each state's deviation against that
+        (``pitheorem.simulate.nudged``) and judge each state's deviation against that
         run's, as :func:`pitheorem.engines.verify` does, instead of `tol`.
 
     Returns
