@@ -28,7 +28,7 @@ from __future__ import annotations
 from collections.abc import Iterator, Sequence
 from fractions import Fraction
 from itertools import combinations
-from math import lcm, prod, sqrt
+from math import lcm, prod
 from typing import ClassVar
 
 import numpy as np
@@ -39,7 +39,7 @@ __all__ = ["count_independent_subsets", "independent_subsets"]
 
 _PRIME = 2_147_483_647  # 2^31 - 1: products of two residues fit in int64
 _CHUNK = 1 << 17
-_EXACT_FLOAT = float(2**53)
+_EXACT_FLOAT = 2**53  # floats hold every integer below this exactly
 
 
 def _integer_rows(rows: Sequence[Sequence[Fraction]]) -> list[list[int]]:
@@ -107,19 +107,25 @@ class _Enumerator:
         if size == 0:  # every variable dimensionless: the empty set is the one basis
             return
         self.int_rows = _integer_rows(rows)
-        self.columns = np.array(self.int_rows, dtype=np.int64).reshape(len(self.int_rows), -1)
+        # Issue 12: every bound below is computed in Python integers.  Entries
+        # may exceed int64 (lcm scaling of large denominators), and int64
+        # arithmetic wraps silently; such matrices keep object dtype and take
+        # the mod-p path with exact re-checks.
+        n_rows, n_cols = len(self.int_rows), (len(self.int_rows[0]) if self.int_rows else 0)
+        biggest = max((abs(x) for row in self.int_rows for x in row), default=0)
+        self.columns = np.array(self.int_rows, dtype=np.int64 if biggest < 2**62 else object).reshape(n_rows, n_cols)
         # a zero column (a dimensionless variable) can never be in a basis
         self.candidates = np.array(
-            [j for j in candidates if self.columns[:, j].any()], dtype=np.int64
+            [j for j in candidates if any(row[j] for row in self.int_rows)], dtype=np.int64
         )
         self.required = np.array(sorted(required), dtype=np.int64)
-        norms = sorted((sqrt(float((self.columns[:, j] ** 2).sum())) for j in range(self.columns.shape[1])), reverse=True)
-        # Hadamard: |det| <= product of column norms; below p, "0 mod p" means 0
-        self.mod_p_decides_zero = prod(norms[:size]) < _PRIME / 2
-        self.mod = self.columns % _PRIME
-        # every minor and every partial Laplace sum stays below this bound
-        biggest = float(np.abs(self.columns).max()) if self.columns.size else 0.0
-        self.float_is_exact = size * biggest * prod(norms[:size]) < _EXACT_FLOAT
+        squared_norms = sorted((sum(row[j] ** 2 for row in self.int_rows) for j in range(n_cols)), reverse=True)
+        hadamard_squared = prod(squared_norms[:size])  # |det| <= product of column norms (Hadamard)
+        # below p, "0 mod p" means 0
+        self.mod_p_decides_zero = 4 * hadamard_squared < _PRIME**2
+        self.mod = (self.columns % _PRIME).astype(np.int64)
+        # every minor and every partial Laplace sum stays below size * biggest * Hadamard
+        self.float_is_exact = (size * biggest) ** 2 * hadamard_squared < _EXACT_FLOAT**2
 
     def chunks(self) -> Iterator[tuple[np.ndarray, np.ndarray]]:
         """Yield (subsets as sorted index rows, independence mask) in lex order."""

@@ -19,6 +19,7 @@ import sympy
 from .dimensions import Dimension
 from .display import power_text
 from .errors import InvalidRequestError, PiTheoremError
+from .exact import read_exponent, read_number
 from .linalg import solve
 from .system import System
 
@@ -28,11 +29,8 @@ __all__ = ["Scaling", "as_exponent", "exact_fraction"]
 def exact_fraction(value, *, irrational_ok: bool = False) -> Fraction:
     """A real number as an exact Fraction; floats as written (0.1 -> 1/10).
 
-    Accepts int, Fraction, Decimal, numpy numbers, sympy Rationals, strings
-    such as ``"1/3"`` and finite floats; with `irrational_ok`, also other
-    real sympy numbers (``pi``), through their float value.  Raises
-    TypeError, ValueError or ZeroDivisionError otherwise; callers turn that
-    into a message that names their culprit.
+    The one number reader of the package, :func:`pitheorem.exact.read_number`
+    (see there for the rule); raises :class:`~pitheorem.errors.NumberError`.
 
     Examples
     --------
@@ -40,23 +38,11 @@ def exact_fraction(value, *, irrational_ok: bool = False) -> Fraction:
     >>> exact_fraction("1/3"), exact_fraction(0.1)
     (Fraction(1, 3), Fraction(1, 10))
     """
-    if isinstance(value, bool):
-        raise TypeError("a bool is not a number here")
-    if isinstance(value, sympy.Basic):
-        if value.is_Rational:
-            return Fraction(int(value.p), int(value.q))
-        if not irrational_ok:
-            raise TypeError("not a rational number")
-        value = float(value)
-    if isinstance(value, float):
-        if not np.isfinite(value):
-            raise ValueError("not finite")
-        return Fraction(repr(value))
-    return Fraction(value)
+    return read_number(value, irrational_ok=irrational_ok)
 
 
 def as_exponent(value, what: str) -> Fraction:
-    """Read an exact exponent: int, Fraction, sympy Rational, str, or finite float.
+    """Read an exact exponent (:func:`pitheorem.exact.read_exponent`).
 
     Examples
     --------
@@ -64,14 +50,7 @@ def as_exponent(value, what: str) -> Fraction:
     >>> as_exponent("1/2", "g"), as_exponent(0.25, "g")
     (Fraction(1, 2), Fraction(1, 4))
     """
-    if isinstance(value, bool):
-        raise InvalidRequestError(f"exponent of {what} must be a number, got {value!r}")
-    try:
-        return exact_fraction(value)
-    except (TypeError, ValueError, ZeroDivisionError):
-        raise InvalidRequestError(
-            f"exponent of {what} must be a rational number such as 1, -2 or '1/2', got {value!r}"
-        ) from None
+    return read_exponent(value, f"exponent of {what}")
 
 
 def _is_exact(x) -> bool:
