@@ -89,7 +89,7 @@ def test_scaled_value_out_of_float_range(model, capsys):
 
 
 def test_impossible_is_exit_1_and_only_that(model, capsys):
-    code, out, err = run(capsys, "search", model, "--scale", "g=1", "--fixed", "t", "l")
+    code, out, _err = run(capsys, "search", model, "--scale", "g=1", "--fixed", "t", "l")
     assert code == EXIT_INFEASIBLE
     assert "certificate" in out
 
@@ -112,14 +112,16 @@ def test_apply_writes_no_float_noise(model, capsys, tmp_path):
     code, out, err = run(capsys, "apply", model, "--scale", "g=1", "--fixed", "--s", "10", "--output", out_path)
     assert code == EXIT_OK, err
     text = out_path.read_text()
-    assert "98.1 " in text and "98.10000000000001" not in text
+    assert "98.1 " in text
+    assert "98.10000000000001" not in text
     assert "3.0 " in text  # 0.3 * 10, not 3.0000000000000004
     values = tomllib.loads(text)["variables"]
     assert values["g"]["value"] == 98.1
     assert values["l"]["value"] == 3.0
     assert Fraction(values["m"]["value"]) == Fraction(1, 3)  # exact values stay exact
     # the printed table too
-    assert "98.1" in out and "98.10000000000001" not in out
+    assert "98.1" in out
+    assert "98.10000000000001" not in out
 
 
 def test_apply_rounds_once_from_the_exact_product(model, capsys, tmp_path):
