@@ -119,6 +119,10 @@ def read_number(value, what: str = "the number", *, irrational_ok: bool = False)
         if value.is_Rational:
             return Fraction(int(value.p), int(value.q))
         if isinstance(value, sympy.Float) and value.is_finite:
+            # sympy.Float(0.1) carries a double's 53 bits: read it as that double;
+            # a Float made with more digits is read as the decimal it holds
+            if value._prec <= 53:
+                return read_number(float(value), what)
             return _from_text(str(value), value, what)
         if irrational_ok and value.is_number and value.is_extended_real and value.is_finite:
             return read_number(float(value), what)
