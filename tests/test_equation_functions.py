@@ -96,7 +96,8 @@ def test_tie_is_stated():
     report = pt.check_dimensions(X + t, SYSTEM)
     assert {term for term, _, _ in report.offending} == {X, t}
     assert len(report.ties) == 1
-    assert "L" in report.ties[0] and "T" in report.ties[0]
+    assert "L" in report.ties[0]
+    assert "T" in report.ties[0]
     assert "tie:" in str(report)
 
 
