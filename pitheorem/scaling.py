@@ -18,8 +18,8 @@ import sympy
 
 from .dimensions import Dimension
 from .display import power_text
-from .errors import InvalidRequestError, PiTheoremError
-from .exact import read_exponent, read_number
+from .errors import InvalidRequestError, LimitError, PiTheoremError
+from .exact import read_exponent, read_number, short_text
 from .linalg import solve
 from .system import System
 
@@ -286,12 +286,19 @@ class Scaling:
         out = {}
         for name, value in values.items():
             p = self.powers[self.system.index(name, "values")]
+            if not isinstance(value, np.ndarray):  # arrays (of samples) pass as they are
+                read_number(value, f"the value of {name!r}", irrational_ok=True)
             if p == 0:
                 out[name] = value
             elif _is_exact(value) and _is_exact(s):
                 out[name] = sympy.Rational(value) * _power(s, p)
             else:
-                out[name] = value * float(_power(s, p))
+                try:
+                    out[name] = value * float(_power(s, p))
+                except OverflowError:  # s^p itself is beyond floating point
+                    raise LimitError(f"s^{p} with s = {short_text(read_number(s, 's', irrational_ok=True))}",
+                                     f"the factor of {name!r}", "it is beyond the range of floating point",
+                                     "use an exact value (int or Fraction), or an s nearer to 1") from None
         return out
 
     def map_back(self, t, y, s, *, time: str, states: Sequence[object]):
@@ -343,11 +350,11 @@ class Scaling:
     @staticmethod
     def _check_s(s):
         try:
-            ok = float(s) > 0 and np.isfinite(float(s))
-        except (TypeError, ValueError):
+            ok = read_number(s, "the scale factor s", irrational_ok=True) > 0
+        except PiTheoremError:
             ok = False
         if not ok:
-            raise InvalidRequestError(f"the scale factor s must be a positive finite number, got {s!r}")
+            raise InvalidRequestError(f"the scale factor s must be a positive finite number, got {s!r}", culprit=s)
 
     # -- algebra ----------------------------------------------------------
     def inverse(self) -> Scaling:

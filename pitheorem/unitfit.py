@@ -627,7 +627,7 @@ def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[s
     if exact:
         scaled = scaling.apply({n: sympy.Rational(x.numerator, x.denominator) for n, x in exact_values.items()}, s)
     else:
-        scaled = scaling.apply({n: float(values[n]) for n in values}, float(s))
+        scaled = scaling.apply({n: float(x) for n, x in exact_values.items()}, float(s))
 
     satisfied, violated, worst = [], [], 0.0
     for name, lo, hi in rng:
