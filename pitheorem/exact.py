@@ -4,7 +4,7 @@ Every number a user passes (an exponent in a formula or a mapping, a scale
 exponent, a value, a bound, the scale factor on the command line) is read
 here, by :func:`read_number`, under one rule:
 
-* ``int``, :class:`~fractions.Fraction`, :class:`~decimal.Decimal`, sympy
+* ``int``, :class:`~fractions.Fraction`, ``Decimal``, sympy
   Rationals and numpy integers are exact already and kept as they are.
 * A float -- Python's or numpy's -- is read as the shortest decimal that
   prints as it (its ``repr``): the number the user typed.  So ``0.1`` is
@@ -184,11 +184,12 @@ def read_exponent(value, what: str) -> Fraction:
     >>> from pitheorem.exact import read_exponent
     >>> read_exponent("-1/2", "exponent of 'l'"), read_exponent(0.25, "exponent of 'g'")
     (Fraction(-1, 2), Fraction(1, 4))
-    >>> read_exponent(1 / 3, "exponent of 'g'")
-    Traceback (most recent call last):
-    ...
-    pitheorem.errors.LimitError: exponent of 'g' is 0.3333333333333333: its denominator 10000000000000000 exceeds \
-the limit 1000000000000; a float is read as the decimal it prints as; pass an exact exponent such as Fraction(1, 3) or '1/3'
+    >>> from pitheorem import LimitError
+    >>> try:
+    ...     read_exponent(1 / 3, "exponent of 'g'")
+    ... except LimitError as err:
+    ...     print(err.limit)
+    its denominator 10000000000000000 exceeds the limit 1000000000000
     """
     return check_exponent(read_number(value, what), what, shown=value)
 
