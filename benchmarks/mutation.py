@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import argparse
 import ast
+import os
 import random
 import subprocess
 import sys
@@ -163,21 +164,31 @@ def list_mutants(module: str) -> list[Mutant]:
     return [Mutant(module, i, line, kind, desc) for i, (line, kind, desc) in enumerate(finder.sites)]
 
 
-def mutated_source(mutant: Mutant) -> str:
-    tree = ast.parse((PACKAGE / f"{mutant.module}.py").read_text())
+def mutated_source(mutant: Mutant, original: str) -> str:
+    """The module's `original` source with the one mutation applied (never a mutant of a mutant)."""
+    tree = ast.parse(original)
     _Mutator(mutant.index).visit(tree)
     return ast.unparse(ast.fix_missing_locations(tree))
 
 
-def run_tests(module: str, timeout: float) -> str:
-    """'killed', 'survived' or 'timeout' for the module's current source."""
+def run_tests(module: str, timeout: float) -> tuple[str, str]:
+    """('killed', the first failing test) or ('survived', '') or ('timeout', '') for the module's current source."""
+    # Python trusts a cached .pyc whose recorded source size and mtime (in whole
+    # seconds) match; two mutants written within one second with the same size
+    # would share it.  So: no cached bytecode for the mutated module, ever.
+    for stale in (PACKAGE / "__pycache__").glob(f"{module}.*.pyc"):
+        stale.unlink()
+    env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
     cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", "-p", "no:randomly",
            "--hypothesis-seed=0", str(PACKAGE / f"{module}.py"), *TARGETS[module]]
     try:
-        proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=timeout, check=False)
+        proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=timeout, check=False, env=env)
     except subprocess.TimeoutExpired:
-        return "timeout"
-    return "survived" if proc.returncode == 0 else "killed"
+        return "timeout", ""
+    if proc.returncode == 0:
+        return "survived", ""
+    failed = [line for line in proc.stdout.splitlines() if line.startswith(("FAILED", "ERROR"))]
+    return "killed", (failed or proc.stdout.strip().splitlines()[-1:] or [""])[0][:100]
 
 
 def main(argv=None) -> int:
@@ -188,9 +199,16 @@ def main(argv=None) -> int:
     parser.add_argument("--timeout", type=float, default=120.0, help="seconds per mutant run (default 120)")
     args = parser.parse_args(argv)
 
-    for module in args.module:  # the unmutated code must pass its own selection
-        if run_tests(module, args.timeout) != "survived":
-            print(f"the tests of {module} fail before any mutation; fix them first", file=sys.stderr)
+    for module in args.module:  # the unmutated code, as ast.unparse writes it, must pass its own selection
+        path = PACKAGE / f"{module}.py"
+        original = path.read_text()
+        try:
+            path.write_text(ast.unparse(ast.parse(original)))
+            baseline, _ = run_tests(module, args.timeout)
+        finally:
+            path.write_text(original)
+        if baseline != "survived":
+            print(f"the tests of {module} fail without any mutation; fix them first", file=sys.stderr)
             return 2
     results: list[tuple[Mutant, str]] = []
     start = time.perf_counter()
@@ -202,10 +220,10 @@ def main(argv=None) -> int:
                         key=lambda m: m.index)
         try:
             for mutant in chosen:
-                path.write_text(mutated_source(mutant))
-                outcome = run_tests(module, args.timeout)
+                path.write_text(mutated_source(mutant, original))
+                outcome, by = run_tests(module, args.timeout)
                 results.append((mutant, outcome))
-                print(f"{outcome:8s} {module}.py:{mutant.line} [{mutant.kind}] {mutant.description}", flush=True)
+                print(f"{outcome:8s} {module}.py:{mutant.line} [{mutant.kind}] {mutant.description}  {by}", flush=True)
         finally:
             path.write_text(original)
         print(f"-- {module}: {len(chosen)} of {len(every)} sites", flush=True)

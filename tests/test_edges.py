@@ -8,14 +8,16 @@ known by hand.
 from __future__ import annotations
 
 import pickle
+from decimal import Decimal
 from fractions import Fraction
 
 import numpy as np
 import pytest
+import sympy
 
 import pitheorem as pt
 from pitheorem.bases import count_independent_subsets, independent_subsets
-from pitheorem.exact import MAX_DENOMINATOR, MAX_EXPONENT, MAX_NESTING, read_exponent, read_number
+from pitheorem.exact import MAX_DENOMINATOR, MAX_EXPONENT, MAX_NESTING, read_exponent, read_number, short_text
 
 ROD = {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "theta_r": "1", "t": "T"}
 LT = pt.System({"l": "L", "t": "T"})
@@ -281,3 +283,47 @@ def test_message_only_errors_pickle_their_culprit():
     err = pt.InvalidRequestError("bad thing", culprit="thing")
     copy = pickle.loads(pickle.dumps(err))
     assert (copy.culprit, str(copy)) == ("thing", "bad thing")
+
+
+# -- more of the number rule (kills mutants of pitheorem.exact) -----------------------------------
+
+
+def test_determinant_a_multiple_of_the_prime_is_rechecked_exactly():
+    p = 2**31 - 1  # the modulus of the fast path: a determinant p is 0 mod p but not 0
+    assert det2(p, 0, 0, 1) == p
+    assert count_independent_subsets([[p, 0], [0, 1]], [0, 1], [], 2) == 1
+    assert list(independent_subsets([[p, 0, 1], [0, 1, 0]], [0, 1, 2], [], 2)) == [(0, 1), (1, 2)]
+    assert count_independent_subsets([[3 * p, 2 * p], [1, 1]], [0, 1], [], 2) == 1
+
+
+def test_number_strings_have_a_length_limit():
+    assert read_number("1" * 1000) == int("1" * 1000)
+    with pytest.raises(pt.LimitError, match="1000 characters"):
+        read_number("1" * 1001)
+
+
+def test_long_exponent_text_is_shortened_in_the_message():
+    with pytest.raises(pt.LimitError) as info:
+        read_exponent("9" * 50, "x")
+    assert info.value.culprit == "9" * 40 + "..."
+
+
+@pytest.mark.parametrize("bad", [Decimal("NaN"), Decimal("Infinity"), Decimal("-Infinity"), sympy.oo, sympy.nan,
+                                 sympy.pi, sympy.Symbol("x")])
+def test_non_finite_or_irrational_exact_types_are_refused(bad):
+    with pytest.raises(pt.NumberError):
+        read_number(bad)
+
+
+def test_decimal_and_sympy_floats_follow_the_rule():
+    assert read_number(Decimal("0.25")) == Fraction(1, 4)
+    assert read_number(sympy.Float(1 / 3)) == read_number(1 / 3) == Fraction(3333333333333333, 10**16)
+    assert read_number(sympy.Float("0.1", 30)) == Fraction(1, 10)
+    assert read_number(sympy.sqrt(2), irrational_ok=True) == read_number(2**0.5)
+    assert read_number(sympy.pi, irrational_ok=True) == read_number(3.141592653589793)
+
+
+def test_short_text_switches_at_120_bits():
+    assert short_text(Fraction(2**118 - 1)) == str(2**118 - 1)  # 118 + 1 bits
+    assert short_text(Fraction(2**118)) == "about 10^36"  # 119 + 1 bits
+    assert short_text(Fraction(-(2**200))) == "about -10^60"
