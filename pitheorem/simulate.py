@@ -423,15 +423,15 @@ class SimilarityReport:
         Parameters
         ----------
         states : sequence of str, optional
-            States to show (default all).
+            The states drawn; all of them by default.
         units : mapping of str to str, optional
-            Unit to print on the axes for a state or the time, e.g.
-            ``{"theta": "rad", "t": "s"}``; others show their dimension.
+            Axis units by name, such as ``{"theta": "rad", "t": "s"}``; a
+            name without one shows its dimension.
 
         Returns
         -------
         matplotlib.figure.Figure
-            A pyplot figure, which Jupyter's inline backend shows once.
+            Made with pyplot: Jupyter shows it once, at the end of the cell.
 
         Examples
         --------
