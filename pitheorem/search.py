@@ -260,9 +260,14 @@ class SearchResult:
         )
 
     def _base_unit_rows(self) -> list[tuple[str, list[str]]]:
-        """``("[M]", powers...)`` for each base dimension: the change of units behind each scaling."""
-        changes = [sc.unit_change for sc in self.iter_scalings()]
-        return [(f"[{b}]", [power_text(u[b]) for u in changes]) for b in self.system.base_dimensions]
+        """``("[M]", powers...)`` for each base dimension: the change of units behind each scaling.
+
+        A symmetry of particular equations (``within=``) that is no change of units has none:
+        its cells read "none".
+        """
+        changes = [sc.unit_change if sc.units is not None else None for sc in self.iter_scalings()]
+        return [(f"[{b}]", [power_text(u[b]) if u is not None else "none" for u in changes])
+                for b in self.system.base_dimensions]
 
     def table(self) -> str:
         """Plain-text table: variables down, minimal solutions across.

@@ -250,3 +250,14 @@ def test_table_base_unit_rows_explain_every_column(rod, model, request_):
             assert power == sum(dim.exponent(b) * base[b][k] for b in base)
     html = res._repr_html_()
     assert html.count('<tr class="base-unit"') == len(system.base_dimensions)
+
+
+def test_table_of_symmetries_beyond_units_says_they_have_no_unit_change():
+    proj = pt.models.projectile()
+    sym = pt.scaling_symmetries(pt.models.model_equations(proj), proj.system)
+    res = pt.search(proj.system, scale={"x": 1}, fixed=("t", "g"), within=sym)
+    rows = [line.split() for line in res.table().splitlines()]
+    base = [r for r in rows if r[1] == "base"]
+    assert [r[0] for r in base] == [f"[{b}]" for b in proj.system.base_dimensions]
+    assert all(r[2:] == ["none"] for r in base)
+    assert res._repr_html_().count(">none</td>") == len(proj.system.base_dimensions)
