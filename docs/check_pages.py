@@ -20,7 +20,9 @@ BUILD_DIR defaults to ``docs/_build/html`` next to this file. The script reads e
   :data:`MAX_LINE` characters fill the text column of a 1280 px wide window; a longer line
   would run past the column there. (Narrow screens wrap code blocks instead, also in
   ``custom.css``.) Such a line is fixed where it is made: a shorter code line, or output
-  wrapped or shortened by the code that prints it.
+  wrapped or shortened by the code that prints it. The examples of docstrings
+  (``div.doctest``, on the API reference pages) are exempt: they follow the code's line
+  length, and ``custom.css`` wraps them at every width.
 
 Exit status: 0 when every check passes, 1 when one fails (each finding printed as
 ``page: what``), 2 when the build folder is missing or holds no HTML. Only the standard
@@ -55,7 +57,7 @@ class PageScan(HTMLParser):
     """Collects images, scripts, math markers, code blocks and visible text of a page.
 
     ``outputs`` holds the image sources of each executed cell's output (``div.cell_output``),
-    one list per cell; ``blocks`` the text of each ``<pre>`` block.
+    one list per cell; ``blocks`` the text of each ``<pre>`` block outside docstring examples.
     """
 
     def __init__(self) -> None:
@@ -69,6 +71,7 @@ class PageScan(HTMLParser):
         self._div_depth = 0
         self._output_depth: int | None = None  # div depth of the open cell output, if any
         self._pre: list[str] | None = None
+        self._doctest_depth: int | None = None  # div depth of the open docstring example
 
     def handle_starttag(self, tag, attrs):
         attrs = dict(attrs)
@@ -78,6 +81,8 @@ class PageScan(HTMLParser):
             if "cell_output" in classes and self._output_depth is None:
                 self._output_depth = self._div_depth
                 self.outputs.append([])
+            if "doctest" in classes and self._doctest_depth is None:
+                self._doctest_depth = self._div_depth
         if tag == "img" and attrs.get("src"):
             self.images.append(attrs["src"])
             if self._output_depth is not None:
@@ -93,9 +98,12 @@ class PageScan(HTMLParser):
         if tag == "div":
             if self._output_depth == self._div_depth:
                 self._output_depth = None
+            if self._doctest_depth == self._div_depth:
+                self._doctest_depth = None
             self._div_depth -= 1
         if tag == "pre" and self._pre is not None:
-            self.blocks.append("".join(self._pre))
+            if self._doctest_depth is None:  # docstring examples wrap (see the module docstring)
+                self.blocks.append("".join(self._pre))
             self._pre = None
 
     def handle_data(self, data):
