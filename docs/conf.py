@@ -295,7 +295,7 @@ def _titled_proof_index():
                 kind = entry["realtype"].capitalize()
                 title = entry.get("title") or label
                 page = env.titles[entry["docname"]].astext() if entry["docname"] in env.titles else ""
-                groups[kind].append((title, 0, entry["docname"], label, page, "", kind.lower()))
+                groups[kind].append((title.replace("$", ""), 0, entry["docname"], label, page, "", ""))
             return sorted((kind, sorted(items)) for kind, items in groups.items()), True
 
     return TitledProofIndex

@@ -83,3 +83,12 @@ def test_main_reports_and_fails(site, capsys):
     (site / "page.html").write_text(_cell("b.png", "b.png"), encoding="utf-8")
     assert check_pages.main([str(site)]) == 1
     assert "same figure twice" in capsys.readouterr().out
+
+
+def test_docstring_examples_are_exempt_from_the_line_limit(site):
+    # docstring examples wrap in the page (custom.css), so a long line there is no problem
+    long = "w" * (check_pages.MAX_LINE + 10)
+    body = f'<div class="doctest highlight-default"><div class="highlight"><pre>{long}</pre></div></div>'
+    assert _problems(site, body) == []
+    # but a code block after it is checked again
+    assert len(_problems(site, body + f'<div class="highlight"><pre>{long}</pre></div>')) == 1
