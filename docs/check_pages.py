@@ -15,6 +15,8 @@ BUILD_DIR defaults to ``docs/_build/html`` next to this file. The script reads e
 * a page with math (``class="math``) that does not load the bundled MathJax;
 * a figure shown twice in the output of one cell (a cell that ends with a call returning a
   Figure that pyplot has already shown: assign the result, ``fig = report.plot()``);
+* equation numbers that do not run (1), (2), ... down the page (each page numbers its own
+  equations; ``docs/conf.py`` arranges it);
 * a line of a code or output block (``<pre>``) longer than :data:`MAX_LINE`
   characters. ``_static/custom.css`` sets the size of the code font so that
   :data:`MAX_LINE` characters fill the text column of a 1280 px wide window; a longer line
@@ -72,6 +74,8 @@ class PageScan(HTMLParser):
         self._output_depth: int | None = None  # div depth of the open cell output, if any
         self._pre: list[str] | None = None
         self._doctest_depth: int | None = None  # div depth of the open docstring example
+        self.equation_numbers: list[str] = []
+        self._eqno: list[str] | None = None
 
     def handle_starttag(self, tag, attrs):
         attrs = dict(attrs)
@@ -91,6 +95,11 @@ class PageScan(HTMLParser):
             self.scripts.append(attrs["src"])
         if tag == "pre":
             self._pre = []
+        if tag == "span" and "eqno" in classes:
+            self._eqno = []
+        if tag == "a" and self._eqno is not None:  # the number ends where its link begins
+            self.equation_numbers.append("".join(self._eqno).strip())
+            self._eqno = None
         if "math" in classes:
             self.has_math = True
 
@@ -110,6 +119,8 @@ class PageScan(HTMLParser):
         self.text.append(data)
         if self._pre is not None:
             self._pre.append(data)
+        if self._eqno is not None:
+            self._eqno.append(data)
 
 
 def _image_key(src: str, page: Path) -> str:
@@ -134,6 +145,9 @@ def check_page(page: Path, root: Path) -> list[str]:
     for src in scan.images:
         if not src.startswith(("data:", "http:", "https:", "//")) and not (page.parent / src).is_file():
             problems.append(f"image {src} is missing from the build")
+    expected = [f"({k})" for k in range(1, len(scan.equation_numbers) + 1)]
+    if scan.equation_numbers != expected:
+        problems.append(f"equation numbers {', '.join(scan.equation_numbers)} do not run (1), (2), ...")
     for srcs in scan.outputs:
         keys = [_image_key(src, page) for src in srcs]
         if len(set(keys)) < len(keys):

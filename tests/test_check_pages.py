@@ -92,3 +92,15 @@ def test_docstring_examples_are_exempt_from_the_line_limit(site):
     assert _problems(site, body) == []
     # but a code block after it is checked again
     assert len(_problems(site, body + f'<div class="highlight"><pre>{long}</pre></div>')) == 1
+
+
+def _equation(number: int) -> str:
+    return f'<div class="eq"><span class="eqno">({number})<a class="headerlink" href="#e">#</a></span>x</div>'
+
+
+def test_equation_numbers_must_start_at_one_on_each_page(site):
+    assert _problems(site, _equation(1) + _equation(2)) == []
+    found = _problems(site, _equation(14) + _equation(15))  # numbered across the site
+    assert len(found) == 1
+    assert "(14), (15)" in found[0]
+    assert len(_problems(site, _equation(1) + _equation(3))) == 1
