@@ -23,8 +23,13 @@ test: $(VENV)/.test-stamp
 docs: $(VENV)/.docs-stamp
 	$(PY) -m sphinx -n -W --keep-going -b html docs docs/_build/html
 
-bench: $(VENV)/.test-stamp
-	cd benchmarks && ../$(PY) bench_bases.py && ../$(PY) bench_search.py
+$(VENV)/.bench-stamp: pyproject.toml $(VENV)/.test-stamp
+	$(PY) -m pip install --quiet -e ".[test,engines,bench]"
+	touch $@
+
+# every benchmark script, each timing pitheorem against its baselines in the same run
+bench: $(VENV)/.bench-stamp
+	cd benchmarks && for script in bench_*.py; do echo "== $$script"; ../$(PY) $$script || exit 1; done
 
 lint: $(VENV)/.test-stamp
 	$(PY) -m ruff check pitheorem tests matlab_ports benchmarks docs/check_pages.py docs/check_offline.py

@@ -11,14 +11,22 @@ Baselines:
 Synthetic systems: n variables over k = 7 base dimensions with small random
 integer exponents (seeded, so every run sees the same systems).
 
+A second table times listing every basis at n = 30, k = 7:
+``len(list(system.bases()))`` against the numpy-det count (target: within
+1.0 times), and the peak memory traced while ``bases()`` runs against the
+bytes of the index array it returns (target: within 1.2 times); and the
+peak memory of ``count_bases()`` against that of listing.
+
 Run: python benchmarks/bench_bases.py [--quick]
 """
 
 from __future__ import annotations
 
 import argparse
+import gc
 import random
 import time
+import tracemalloc
 from itertools import combinations, islice
 from math import comb
 
@@ -83,6 +91,9 @@ def main(argv=None) -> None:
     parser.add_argument("--quick", action="store_true", help="smaller systems only")
     args = parser.parse_args(argv)
     sizes = (10, 16, 20) if args.quick else (10, 16, 20, 25, 30, 35, 40)
+    warm_up = synthetic_system(8)  # one-off costs (module imports, index tables) are not per-size work
+    warm_up.count_bases()
+    numpy_det_count(warm_up)
     print(f"{'n':>3} {'subsets':>10} {'bases':>10} {'pitheorem s':>12} {'numpy-det s':>12} "
           f"{'plain s':>10} {'vs numpy':>9} {'vs plain':>9}")
     for n in sizes:
@@ -96,6 +107,40 @@ def main(argv=None) -> None:
               f"{mark}{plain:>9.2f} {ours / det:>8.2f}x {plain / ours:>8.1f}x")
     print("\n'vs numpy' = pitheorem time / numpy-det time (target <= 2);"
           " 'vs plain' = plain time / pitheorem time (target >= 1); ~ = extrapolated from 20,000 subsets")
+    listing(25 if args.quick else 30)
+    largest = synthetic_system(sizes[-1])
+    count, peak = peak_bytes(largest.count_bases)
+    print(f"  peak memory of count_bases() at n = {sizes[-1]}: {peak / 2**20:.2f} MiB for {count} bases")
+
+
+def peak_bytes(fn):
+    """Peak memory traced (Python objects and numpy buffers) while fn runs, and its value."""
+    gc.collect()
+    tracemalloc.start()
+    try:
+        value = fn()
+        return value, tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
+def listing(n: int) -> None:
+    system = synthetic_system(n)
+    print(f"\nListing every basis, n = {n}, k = 7")
+    length, ours = timed(lambda: len(list(system.bases())))
+    det_count, det = timed(lambda: numpy_det_count(system))
+    assert length == det_count, "the float determinant disagrees with the exact list"
+    print(f"  len(list(system.bases())) = {length}: {ours:.3f} s; numpy-det count {det:.3f} s; "
+          f"ratio {ours / det:.2f}x (target <= 1.0)")
+    bases, peak = peak_bytes(system.bases)
+    held = bases.indices.nbytes
+    as_int64 = len(bases) * system.rank * 8
+    print(f"  peak memory of bases(): {peak / 2**20:.1f} MiB; its index array ({bases.indices.dtype}) "
+          f"{held / 2**20:.1f} MiB; ratio {peak / held:.2f}x (target <= 1.2); "
+          f"the same array in int64 {as_int64 / 2**20:.1f} MiB")
+    del bases
+    count, count_peak = peak_bytes(system.count_bases)
+    print(f"  peak memory of count_bases(): {count_peak / 2**20:.2f} MiB for {count} bases (no prefix table kept)")
 
 
 if __name__ == "__main__":

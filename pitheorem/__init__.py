@@ -8,9 +8,14 @@ Examples
 3
 """
 
-from . import models, plotting
+# The exact core (System, its groups, dimensions, errors: sympy and no more) loads at once.
+# Everything else loads on first use through __getattr__ below, so that `import pitheorem`
+# and a command-line call of groups, bases or search pay for neither scipy nor matplotlib.
+import sys
+from importlib import import_module
+from types import ModuleType
+
 from .dimensions import DEFAULT_BASE_DIMENSIONS, Dimension
-from .equations import DimensionReport, SymmetryReport, check_dimensions, scaling_symmetries
 from .errors import (
     DependentRepeatingSetError,
     DimensionSyntaxError,
@@ -26,15 +31,63 @@ from .errors import (
     UnknownVariableError,
 )
 from .groups import PiGroup, PiSet
-from .modelfile import ModelFile, ModelFileError, load_model_file
-from .models import Model
-from .scaling import Scaling
-from .search import SearchResult, search
-from .simulate import SimilarityReport, Trajectory, simulate, verify_similarity
 from .system import System
-from .unitfit import RangeBound, UnitFit, fit_units
 
 __version__ = "0.1.0"
+
+# public name -> module that defines it (a module itself when the name is a submodule)
+_LAZY = {
+    "DimensionReport": "equations",
+    "SymmetryReport": "equations",
+    "check_dimensions": "equations",
+    "scaling_symmetries": "equations",
+    "ModelFile": "modelfile",
+    "ModelFileError": "modelfile",
+    "load_model_file": "modelfile",
+    "Model": "models",
+    "Scaling": "scaling",
+    "SearchResult": "search",
+    "search": "search",
+    "SimilarityReport": "simulate",
+    "Trajectory": "simulate",
+    "simulate": "simulate",
+    "verify_similarity": "simulate",
+    "RangeBound": "unitfit",
+    "UnitFit": "unitfit",
+    "fit_units": "unitfit",
+    "models": None,
+    "plotting": None,
+}
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module 'pitheorem' has no attribute {name!r}")
+    module = import_module(f".{_LAZY[name] or name}", __name__)
+    value = module if _LAZY[name] is None else getattr(module, name)
+    globals()[name] = value  # later look-ups skip this function
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
+
+
+class _Package(ModuleType):
+    """This package, where a function keeps its name over the submodule that defines it.
+
+    Importing a submodule binds it as an attribute of its package; for
+    ``search`` and ``simulate`` that would hide the functions of the same
+    names, which eager imports used to re-bind afterwards.
+    """
+
+    def __setattr__(self, name, value):
+        if isinstance(value, ModuleType) and _LAZY.get(name) == name:
+            value = getattr(value, name)
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package
 
 __all__ = [
     "DEFAULT_BASE_DIMENSIONS",

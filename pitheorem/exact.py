@@ -30,10 +30,10 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 from decimal import Decimal
 from fractions import Fraction
 
-import numpy as np
 import sympy
 
 from .errors import LimitError, NumberError
@@ -96,20 +96,21 @@ def read_number(value, what: str = "the number", *, irrational_ok: bool = False)
     >>> read_number(0.1), read_number(np.float64(0.5)), read_number("1/3"), read_number("2.5e-3")
     (Fraction(1, 10), Fraction(1, 2), Fraction(1, 3), Fraction(1, 400))
     """
-    if isinstance(value, bool | np.bool_):
+    np = _numpy()
+    if isinstance(value, bool) or (np is not None and isinstance(value, np.bool_)):
         raise NumberError(value, what, _EXPECTED + ", not a bool")
-    if isinstance(value, np.ndarray) and value.shape == ():
+    if np is not None and isinstance(value, np.ndarray) and value.shape == ():
         value = value[()]
-    if isinstance(value, int | np.integer):
+    if isinstance(value, int) or (np is not None and isinstance(value, np.integer)):
         return Fraction(int(value))
     if isinstance(value, Fraction):
         return value
-    if isinstance(value, float | np.floating):
+    if isinstance(value, float) or (np is not None and isinstance(value, np.floating)):
         if not math.isfinite(value):
             raise NumberError(value, what, _EXPECTED)
         # the shortest decimal that prints as this float; numpy's own str for
         # float32 and friends, whose shortest decimal differs from float64's
-        text = repr(float(value)) if isinstance(value, float | np.float64) else str(value)
+        text = repr(float(value)) if isinstance(value, float) else str(value)  # np.float64 is a float
         return _from_text(text, value, what)
     if isinstance(value, Decimal):
         if not value.is_finite():
@@ -130,6 +131,14 @@ def read_number(value, what: str = "the number", *, irrational_ok: bool = False)
     if isinstance(value, str):
         return _from_text(value, value, what)
     raise NumberError(value, what, _EXPECTED)
+
+
+def _numpy():
+    """numpy, if some code has imported it; a value cannot be a numpy scalar otherwise.
+
+    Looking it up instead of importing it keeps ``import pitheorem`` free of numpy.
+    """
+    return sys.modules.get("numpy")
 
 
 def _from_text(text: str, value, what: str) -> Fraction:
@@ -160,7 +169,8 @@ def check_exponent(exponent: Fraction, what: str, *, shown: object = None) -> Fr
     >>> check_exponent(Fraction(1, 3), "exponent of 'g'")
     Fraction(1, 3)
     """
-    from_decimal = isinstance(shown, float | np.floating | Decimal | sympy.Float)
+    np = _numpy()
+    from_decimal = isinstance(shown, float | Decimal | sympy.Float) or (np is not None and isinstance(shown, np.floating))
     if shown is None or isinstance(shown, int | Fraction):
         shown = short_text(Fraction(exponent))
     elif isinstance(shown, str) and len(shown) > 40:

@@ -3,7 +3,7 @@
 Small, dependency-free kernels on matrices given as lists of rows of
 ``int`` or :class:`fractions.Fraction`.  Dimension matrices are tiny (a few
 rows, tens of columns), so plain Gauss-Jordan elimination with exact
-fractions is both simple and fast enough; the only hot loop, testing
+fractions (computed fraction-free, in Python integers) is simple and fast enough; the only hot loop, testing
 millions of column subsets for independence, lives in :mod:`pitheorem.bases`.
 No sympy in here: sympy objects are built at the edges, for display.
 """
@@ -16,6 +16,8 @@ from math import gcd, lcm
 
 __all__ = [
     "Matrix",
+    "integer_rows",
+    "integer_rref",
     "nullspace",
     "primitive_integer_vector",
     "rank",
@@ -27,10 +29,6 @@ __all__ = [
 Matrix = list[list[Fraction]]
 
 
-def _as_fractions(rows: Sequence[Sequence]) -> Matrix:
-    return [[Fraction(x) for x in row] for row in rows]
-
-
 def rref(rows: Sequence[Sequence]) -> tuple[Matrix, tuple[int, ...]]:
     """Reduced row echelon form and pivot columns.
 
@@ -40,22 +38,65 @@ def rref(rows: Sequence[Sequence]) -> tuple[Matrix, tuple[int, ...]]:
     >>> rref([[2, 4], [1, 3]])[1]
     (0, 1)
     """
-    a = _as_fractions(rows)
+    a, pivots = integer_rref(rows)
+    # divide each pivot row by its pivot; the rows past the rank are zero
+    scaled = [[Fraction(x, row[p]) for x in row] for row, p in zip(a, pivots, strict=False)]
+    return scaled + [[Fraction(0)] * len(row) for row in a[len(pivots) :]], pivots
+
+
+def integer_rows(rows: Sequence[Sequence]) -> list[list[int]]:
+    """Each row times the lcm of its denominators: integers, same row space.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem.linalg import integer_rows
+    >>> integer_rows([[Fraction(1, 2), Fraction(1, 3)], [2, 0]])
+    [[3, 2], [2, 0]]
+    """
+    out = []
+    for row in rows:
+        # ints and Fractions already have numerator and denominator: no new objects for them
+        fr = [x if isinstance(x, int | Fraction) else Fraction(x) for x in row]
+        den = lcm(*(x.denominator for x in fr)) if fr else 1
+        out.append([x.numerator * (den // x.denominator) for x in fr] if den > 1 else [x.numerator for x in fr])
+    return out
+
+
+def integer_rref(rows: Sequence[Sequence]) -> tuple[list[list[int]], tuple[int, ...]]:
+    """Fraction-free reduced echelon form: integer rows and pivot columns.
+
+    Like :func:`rref`, except that each pivot row is scaled to coprime
+    integers with a positive pivot instead of a pivot of 1: the RREF
+    entry ``(i, j)`` is ``a[i][j] / a[i][pivots[i]]``.  Only Python
+    integers are used, which is several times faster than fractions.
+
+    Examples
+    --------
+    >>> from pitheorem.linalg import integer_rref
+    >>> integer_rref([[2, 4, 1], [1, 3, 0]])
+    ([[2, 0, 3], [0, 2, -1]], (0, 1))
+    """
+    a = integer_rows(rows)
     n_rows = len(a)
     n_cols = len(a[0]) if a else 0
     pivots: list[int] = []
     r = 0
     for c in range(n_cols):
-        p = next((i for i in range(r, n_rows) if a[i][c] != 0), None)
+        p = next((i for i in range(r, n_rows) if a[i][c]), None)
         if p is None:
             continue
         a[r], a[p] = a[p], a[r]
-        inv = 1 / a[r][c]
-        a[r] = [x * inv for x in a[r]]
+        top = a[r]
+        t = top[c]
         for i in range(n_rows):
-            if i != r and a[i][c] != 0:
-                f = a[i][c]
-                a[i] = [x - f * y for x, y in zip(a[i], a[r], strict=True)]
+            f = a[i][c]
+            if i != r and f:
+                row = [t * x - f * y for x, y in zip(a[i], top, strict=True)]
+                g = gcd(*row)
+                a[i] = [x // g for x in row] if g > 1 else row
+        g = gcd(*top)
+        a[r] = [x // g for x in top] if t > 0 else [-x // g for x in top]
         pivots.append(c)
         r += 1
         if r == n_rows:
@@ -72,7 +113,7 @@ def rank(rows: Sequence[Sequence]) -> int:
     >>> rank([[1, 2], [2, 4]])
     1
     """
-    return len(rref(rows)[1])
+    return len(integer_rref(rows)[1])
 
 
 def row_space_basis(rows: Sequence[Sequence]) -> Matrix:

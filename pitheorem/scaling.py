@@ -9,11 +9,11 @@ stored as an exponent per variable together with one such unit change.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
-import numpy as np
 import sympy
 
 from .dimensions import Dimension
@@ -329,6 +329,8 @@ class Scaling:
         >>> t.tolist(), y.tolist()
         ([0.0, 1.0], [[0.0], [4.0]])
         """
+        import numpy as np  # only here: the rest of the module (and the CLI) runs without numpy
+
         self._check_s(s)
         t = np.asarray(t, dtype=float)
         y = np.asarray(y, dtype=float)

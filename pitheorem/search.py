@@ -24,7 +24,6 @@ from collections.abc import Iterable, Iterator, Mapping
 from fractions import Fraction
 from math import comb, gcd, lcm
 
-from .bases import independent_subsets
 from .dimensions import Dimension
 from .display import power_text
 from .errors import InvalidRequestError
@@ -155,26 +154,17 @@ class SearchResult:
         if d == 0:
             found[tuple(a0)] = tuple(u0)
         else:
-            # integer arithmetic in the hot loop: a = (A0 * den_z + sum_j zn_j * V_j) / (den * den_z)
+            # one common denominator makes the particular point and the directions integers
             den = lcm(*(x.denominator for x in a0), *(x.denominator for v in dirs for x in v))
             a0_int = [int(x * den) for x in a0]
             dirs_int = [[int(x * den) for x in v] for v in dirs]
-            rows = [[v[i] for i in free] for v in dirs_int]
-            seen: dict[tuple[int, ...], tuple[int, ...]] = {}
-            for subset in independent_subsets(rows, range(len(free)), [], d):
-                zero = [free[k] for k in subset]
-                z = solve([[v[i] for v in dirs_int] for i in zero], [-a0_int[i] for i in zero])
-                z_den = lcm(*(x.denominator for x in z))
-                z_num = [int(x * z_den) for x in z]
-                point = [a * z_den + sum(c * v[i] for c, v in zip(z_num, dirs_int, strict=True))
-                         for i, a in enumerate(a0_int)]
-                g = gcd(den * z_den, *point)
-                key = (den * z_den // g, *(p // g for p in point))
-                if key not in seen:
-                    seen[key] = tuple(z)
-            for (scale_den, *point), z in seen.items():
-                exact = tuple(Fraction(p, scale_den) for p in point)
-                found[exact] = tuple(u + _dot(z, [w[j] for w in kept]) for j, u in enumerate(u0))
+            from .family import MinimalPoints, minimal_points  # numpy loads only when a family is enumerated
+
+            batched = minimal_points(a0_int, dirs_int, free, [i for i in range(len(a0)) if i not in set(free)])
+            if batched is not None:
+                self._points = MinimalPoints(*batched, den, u0, kept)
+                return self._points
+            found = self._exact_points(a0_int, dirs_int, den, free, u0, kept)
 
         def order(point):
             support = [i for i, p in enumerate(point) if p]
@@ -182,6 +172,30 @@ class SearchResult:
 
         self._points = [(p, found[p]) for p in sorted(found, key=order)]
         return self._points
+
+    @staticmethod
+    def _exact_points(a0_int, dirs_int, den, free, u0, kept) -> dict[tuple[Fraction, ...], tuple[Fraction, ...]]:
+        """Minimal points by one exact solve per subset: for families too large for exact floats."""
+        from .bases import independent_subsets
+
+        rows = [[v[i] for i in free] for v in dirs_int]
+        seen: dict[tuple[int, ...], tuple[int, ...]] = {}
+        for subset in independent_subsets(rows, range(len(free)), [], len(dirs_int)):
+            zero = [free[k] for k in subset]
+            z = solve([[v[i] for v in dirs_int] for i in zero], [-a0_int[i] for i in zero])
+            z_den = lcm(*(x.denominator for x in z))
+            z_num = [int(x * z_den) for x in z]
+            point = [a * z_den + sum(c * v[i] for c, v in zip(z_num, dirs_int, strict=True))
+                     for i, a in enumerate(a0_int)]
+            g = gcd(den * z_den, *point)
+            key = (den * z_den // g, *(p // g for p in point))
+            if key not in seen:
+                seen[key] = tuple(z)
+        found = {}
+        for (scale_den, *point), z in seen.items():
+            exact = tuple(Fraction(p, scale_den) for p in point)
+            found[exact] = tuple(u + _dot(z, [w[j] for w in kept]) for j, u in enumerate(u0))
+        return found
 
     def _vectors(self) -> list[tuple[Fraction, ...]]:
         return [point for point, _ in self._enumerate()]

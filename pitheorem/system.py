@@ -7,12 +7,15 @@ the exact kernels in :mod:`pitheorem.linalg` and :mod:`pitheorem.bases`.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Iterator, Mapping
 from fractions import Fraction
+from functools import lru_cache
+from math import gcd, lcm
+from typing import TYPE_CHECKING
 
 import sympy
 
-from .bases import count_independent_subsets, independent_subsets
 from .dimensions import DEFAULT_BASE_DIMENSIONS, OPT_IN_BASE_DIMENSIONS, Dimension, base_dimension_names
 from .errors import (
     DependentRepeatingSetError,
@@ -20,13 +23,20 @@ from .errors import (
     DuplicateVariableError,
     EmptySystemError,
     InvalidRequestError,
+    PiTheoremError,
     RepeatingCountError,
     UnitError,
     UnknownVariableError,
 )
 from .exact import read_exponent
 from .groups import PiGroup, PiSet
-from .linalg import nullspace, rank, rref, solve
+from .linalg import integer_rref, nullspace, rank
+
+if TYPE_CHECKING:
+    from .basis_sequence import BasisSequence
+
+_TIME = Dimension({"T": 1})
+_ZERO = Fraction(0)
 
 __all__ = ["System"]
 
@@ -40,6 +50,41 @@ _PINT_BASES = {
     "[substance]": "N",
     "[luminosity]": "J",
 }
+
+
+# "M L^2 T^-2": names with small integer powers, the formulas nearly every variable has.
+# They are read in one regular-expression pass, each name's meaning taken from the parser
+# itself (once per name), so that both ways agree; anything else goes to the parser.
+_SIMPLE_FACTOR = re.compile(r"([A-Za-z_][A-Za-z_0-9]*)(?:\^(-?[1-9][0-9]?))?")
+
+
+@lru_cache(maxsize=256)
+def _parse_name(name: str, allowed: tuple[str, ...]) -> Dimension | None:
+    try:
+        return Dimension.parse(name, base_dimensions=allowed)
+    except PiTheoremError:
+        return None  # let the parser report it, on the whole formula
+
+
+def _simple_dimension(text: str, allowed: tuple[str, ...]) -> Dimension | None:
+    powers: dict[str, int | Fraction] = {}
+    for word in text.split():
+        factor = _SIMPLE_FACTOR.fullmatch(word)
+        base = factor and _parse_name(factor[1], allowed)
+        if base is None:
+            return None
+        p = int(factor[2] or 1)
+        for b, q in base.powers:
+            # integer arithmetic where it can be: Fractions are slow to make
+            q = int(q) if q.denominator == 1 else q
+            powers[b] = powers.get(b, 0) + q * p
+    return Dimension(powers) if powers else None
+
+
+@lru_cache(maxsize=4096)
+def _parse(text: str, allowed: tuple[str, ...]) -> Dimension:
+    # the same few formulas ("L", "M L^2 T^-2") recur in every model: parse each once
+    return _simple_dimension(text, allowed) or Dimension.parse(text, base_dimensions=allowed)
 
 
 def _pairs(variables) -> list[tuple[str, object]]:
@@ -97,6 +142,7 @@ class System:
         if not pairs:
             raise EmptySystemError()
         names: list[str] = []
+        seen: set[str] = set()
         dims: list[Dimension] = []
         for item in pairs:
             if len(item) != 2:
@@ -106,23 +152,30 @@ class System:
                 raise InvalidRequestError(
                     f"variable name {name!r} is not valid: use a Python identifier such as 'k_theta'"
                 )
-            if name in names:
+            if name in seen:
                 raise DuplicateVariableError(name, "the system")
             names.append(name)
+            seen.add(name)
             dims.append(self._read_dimension(name, spec, allowed))
-        used = {b for d in dims for b in d.bases}
+        powers = [dict(d.powers) for d in dims]
+        used = {b for p in powers for b in p}
         order = [b for b in allowed if b in used]
         self._allowed = allowed
         self._variables = tuple(names)
         self._dimensions = tuple(dims)
         self._base_dimensions = tuple(order)
-        self._columns = tuple(tuple(d.exponent(b) for b in order) for d in dims)
-        rows = [[col[i] for col in self._columns] for i in range(len(order))]
-        # keep r independent rows of D itself (not its RREF): same column
+        self._columns = tuple(tuple(p.get(b, _ZERO) for b in order) for p in powers)
+        self._reduced = None  # independent rows of D, found on first use
+
+    def _independent_rows(self) -> list[list[Fraction]]:
+        # r independent rows of D itself (not its RREF): same column
         # dependencies, but small integer entries, which keeps the Hadamard
         # bound of the fast basis test low
-        keep = rref([list(c) for c in zip(*rows, strict=True)])[1] if rows else ()
-        self._reduced = [rows[i] for i in keep]
+        if self._reduced is None:
+            rows = [[col[i] for col in self._columns] for i in range(len(self._base_dimensions))]
+            keep = integer_rref(self._columns)[1] if rows else ()
+            self._reduced = [rows[i] for i in keep]
+        return self._reduced
 
     @staticmethod
     def _read_dimension(name: str, spec, allowed) -> Dimension:
@@ -130,7 +183,7 @@ class System:
             dim = spec
         elif isinstance(spec, str):
             try:
-                dim = Dimension.parse(spec, base_dimensions=allowed)
+                dim = _parse(spec, allowed)
             except DimensionSyntaxError as err:
                 raise DimensionSyntaxError(err.text, err.position, f"{err.reason} (dimension of {name!r})") from None
         elif isinstance(spec, Mapping):
@@ -287,7 +340,7 @@ class System:
     @property
     def rank(self) -> int:
         """Rank of the dimension matrix: the number of repeating variables."""
-        return len(self._reduced)
+        return len(self._independent_rows())
 
     @property
     def n_groups(self) -> int:
@@ -337,27 +390,76 @@ class System:
         Pi_F = F/(d**2*rho*v**2)
         """
         if repeating is None:
-            repeating = self.default_repeating()
-        rep = self.check_names(repeating, "repeating")
-        if len(rep) != self.rank:
-            raise RepeatingCountError(rep, self.rank)
-        cols = [self.index(n) for n in rep]
-        sub = self._submatrix(cols)
-        if rep and rank(sub) < len(rep):
-            dependency = nullspace(sub, len(rep))[0]
-            product = PiGroup.from_exponents(dict(zip(rep, dependency, strict=True)))
-            raise DependentRepeatingSetError(rep, str(sympy.sstr(product.expr)))
+            rep_cols, (reduced, order) = self._default_basis()
+            rep = tuple(self._variables[j] for j in rep_cols)
+        else:
+            rep = self.check_names(repeating, "repeating")
+            if len(rep) != self.rank:
+                raise RepeatingCountError(rep, self.rank)
+            rep_cols = [self.index(n) for n in rep]
+            reduced, order = self._eliminate(rep_cols)
+            if reduced[1][: len(rep)] != tuple(range(len(rep))):
+                sub = self._submatrix(rep_cols)
+                dependency = nullspace(sub, len(rep))[0]
+                product = PiGroup.from_exponents(dict(zip(rep, dependency, strict=True)))
+                raise DependentRepeatingSetError(rep, str(sympy.sstr(product.expr)))
+        return PiSet(self._groups_from(reduced, order, rep_cols), self._variables, rep)
+
+    def _eliminate(self, first: Iterable[int]):
+        """One fraction-free elimination of D with the columns `first` moved to the front.
+
+        Returns ``((rows, pivots), order)``: the reduced rows and pivot
+        positions of :func:`~pitheorem.linalg.integer_rref`, and the column
+        order used (positions of variables).
+        """
+        first = list(first)
+        chosen = set(first)
+        order = first + [j for j in range(len(self._variables)) if j not in chosen]
+        return integer_rref([[self._columns[j][i] for j in order] for i in range(len(self._base_dimensions))]), order
+
+    def _groups_from(self, reduced, order, rep_cols) -> list[PiGroup]:
+        """One group per non-repeating variable, read off a reduced matrix whose pivots are `rep_cols`.
+
+        Reduced row ``i`` says ``pivot_i * D[rep_i] + sum_j a_ij D[j] = 0``
+        over the non-pivot columns ``j``, so each column's group has the
+        exponent ``a_ij / pivot_i`` on repeater ``i`` and -1 on itself
+        (signs flipped below to make the variable's own exponent positive).
+        """
+        rows, pivots = reduced
+        position = {col: k for k, col in enumerate(order)}
+        rep_at = [(self._variables[rep_cols[i]], rows[i], rows[i][p]) for i, p in enumerate(pivots)]
+        rep_set = set(rep_cols)
         groups = []
         for j, name in enumerate(self._variables):
-            if name in rep:
+            if j in rep_set:
                 continue
-            a = solve(sub, self._columns[j]) if rep else []
-            exps = dict.fromkeys(self._variables, Fraction(0))
-            exps[name] = Fraction(1)
-            for n, x in zip(rep, a, strict=True):
-                exps[n] -= x
-            groups.append(PiGroup.from_exponents(exps, variable=name, order=self._variables))
-        return PiSet(groups, self._variables, rep)
+            k = position[j]
+            terms = [(n, row[k], piv) for n, row, piv in rep_at if row[k]]
+            den = lcm(*(piv for _, _, piv in terms)) if terms else 1
+            exps = {n: -a * (den // piv) for n, a, piv in terms}
+            exps[name] = den
+            g = gcd(*exps.values())
+            powers = tuple((v, exps[v] // g) for v in self._variables if v in exps)
+            groups.append(PiGroup(powers, name))
+        return groups
+
+    def _default_basis(self):
+        """The default repeaters' columns and the elimination they come from.
+
+        Bases are in lexicographic order of positions, so the first one is
+        the greedy choice: the pivot columns of one elimination with the
+        non-time variables first.  If they do not span, every basis needs
+        time, and the first basis is the pivots in the plain order.
+        """
+        avoid = [j for j, d in enumerate(self._dimensions) if d != _TIME]
+        reduced, order = self._eliminate(avoid)
+        pivots = reduced[1]
+        if pivots and pivots[-1] >= len(avoid):
+            reduced, order = self._eliminate(())
+            pivots = reduced[1]
+        cols = [order[p] for p in pivots]
+        # _groups_from needs pivots in the same order as the repeaters they stand for
+        return cols, (reduced, order)
 
     def default_repeating(self) -> tuple[str, ...]:
         """The repeaters :meth:`pi_groups` uses when none are given.
@@ -372,10 +474,7 @@ class System:
         >>> pt.System({"t": "T", "l": "L", "g": "L/T^2"}).default_repeating()
         ('l', 'g')
         """
-        timelike = tuple(n for n in self._variables if self.dimension(n) == Dimension({"T": 1}))
-        for basis in self.iter_bases(exclude=timelike):
-            return basis
-        return next(self.iter_bases())
+        return tuple(self._variables[j] for j in self._default_basis()[0])
 
     # -- bases ------------------------------------------------------------
     def _basis_arguments(self, exclude, require):
@@ -392,7 +491,7 @@ class System:
             product = PiGroup.from_exponents(dict(zip(require, dependency, strict=True)))
             raise DependentRepeatingSetError(require, str(sympy.sstr(product.expr)))
         cand = [j for j, n in enumerate(self._variables) if n not in exclude and n not in require]
-        return self._reduced, cand, req, self.rank
+        return self._independent_rows(), cand, req, self.rank
 
     def iter_bases(self, *, exclude: Iterable[str] = (), require: Iterable[str] = ()) -> Iterator[tuple[str, ...]]:
         """Lazily yield every valid repeating set (see :meth:`bases`).
@@ -403,11 +502,14 @@ class System:
         >>> next(pt.System({"l": "L", "t": "T", "v": "L/T"}).iter_bases())
         ('l', 't')
         """
-        names = self._variables
-        for subset in independent_subsets(*self._basis_arguments(exclude, require)):
-            yield tuple(names[j] for j in subset)
+        from .bases import independent_chunks  # numpy loads only when bases are listed
 
-    def bases(self, *, exclude: Iterable[str] = (), require: Iterable[str] = ()) -> list[tuple[str, ...]]:
+        names = self._variables
+        for chunk in independent_chunks(*self._basis_arguments(exclude, require)):
+            for subset in chunk.tolist():
+                yield tuple(names[j] for j in subset)
+
+    def bases(self, *, exclude: Iterable[str] = (), require: Iterable[str] = ()) -> BasisSequence:
         """Every valid repeating-variable set, in deterministic order.
 
         A valid set has ``rank`` variables with independent dimensions.
@@ -423,7 +525,10 @@ class System:
 
         Returns
         -------
-        list of tuple of str
+        BasisSequence
+            An immutable sequence of tuples of names that compares equal to
+            the list of them, held as a compact array of variable positions
+            (its ``indices``; the class is ``pitheorem.basis_sequence.BasisSequence``).
 
         Examples
         --------
@@ -434,7 +539,10 @@ class System:
         >>> s.bases(exclude=("t",))
         [('l', 'v'), ('v', 'x')]
         """
-        return list(self.iter_bases(exclude=exclude, require=require))
+        from .bases import independent_chunks
+        from .basis_sequence import BasisSequence
+
+        return BasisSequence(self._variables, independent_chunks(*self._basis_arguments(exclude, require)), self.rank)
 
     def count_bases(self, *, exclude: Iterable[str] = (), require: Iterable[str] = ()) -> int:
         """Number of valid repeating sets, without building them.
@@ -445,6 +553,8 @@ class System:
         >>> pt.System({"l": "L", "t": "T", "v": "L/T", "x": "L"}).count_bases()
         5
         """
+        from .bases import count_independent_subsets
+
         return count_independent_subsets(*self._basis_arguments(exclude, require))
 
     # -- display ----------------------------------------------------------
