@@ -10,6 +10,7 @@ stored as an exponent per variable together with one such unit change.
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -286,7 +287,8 @@ class Scaling:
         out = {}
         for name, value in values.items():
             p = self.powers[self.system.index(name, "values")]
-            if not isinstance(value, np.ndarray):  # arrays (of samples) pass as they are
+            np = sys.modules.get("numpy")  # a value cannot be an array unless numpy is loaded
+            if np is None or not isinstance(value, np.ndarray):  # arrays (of samples) pass as they are
                 read_number(value, f"the value of {name!r}", irrational_ok=True)
             if p == 0:
                 out[name] = value
