@@ -130,8 +130,11 @@ PARAMETERS: tuple[SuperballParameter, ...] = (
 #: The exponents of the white paper's Section 4 answer, x_r included: g and
 #: lengths times s, F and v times s, rho times s^-3, time, k and c unchanged.
 PAPER_SCALING: dict[str, Fraction] = {
-    p.name: Fraction(e) for p, e in zip(PARAMETERS, (1, -3, 1, 1, 1, 0, 0, 1, 1, 1, 1, 1, 0, 0, 0, 0, 1, 0, 1, 1, 0, 0),
-                                        strict=True)
+    name: Fraction(power) for name, power in {
+        "g": 1, "rho": -3, "l": 1, "r": 1, "a": 1, "k": 0, "c": 0, "F": 1, "x_r": 1, "F_max": 1, "v": 1,
+        "K_eps": 1, "A": 0, "t_on": 0, "t_ramp": 0, "mu": 0, "mu_roll": 1, "t_c": 0, "w": 1, "h0": 1,
+        "dt": 0, "t": 0,
+    }.items()
 }
 
 # The controller's parameters, stored as MJCF custom numerics.
