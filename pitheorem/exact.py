@@ -96,7 +96,7 @@ def read_number(value, what: str = "the number", *, irrational_ok: bool = False)
     >>> read_number(0.1), read_number(np.float64(0.5)), read_number("1/3"), read_number("2.5e-3")
     (Fraction(1, 10), Fraction(1, 2), Fraction(1, 3), Fraction(1, 400))
     """
-    np = _numpy()
+    np = numpy_if_loaded()
     if isinstance(value, bool) or (np is not None and isinstance(value, np.bool_)):
         raise NumberError(value, what, _EXPECTED + ", not a bool")
     if np is not None and isinstance(value, np.ndarray) and value.shape == ():
@@ -133,7 +133,7 @@ def read_number(value, what: str = "the number", *, irrational_ok: bool = False)
     raise NumberError(value, what, _EXPECTED)
 
 
-def _numpy():
+def numpy_if_loaded():
     """numpy, if some code has imported it; a value cannot be a numpy scalar otherwise.
 
     Looking it up instead of importing it keeps ``import pitheorem`` free of numpy.
@@ -169,7 +169,7 @@ def check_exponent(exponent: Fraction, what: str, *, shown: object = None) -> Fr
     >>> check_exponent(Fraction(1, 3), "exponent of 'g'")
     Fraction(1, 3)
     """
-    np = _numpy()
+    np = numpy_if_loaded()
     from_decimal = isinstance(shown, float | Decimal | sympy.Float) or (np is not None and isinstance(shown, np.floating))
     if shown is None or isinstance(shown, int | Fraction):
         shown = short_text(Fraction(exponent))

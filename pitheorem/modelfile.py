@@ -57,12 +57,11 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
 
-import numpy as np
 import sympy
 
 from .dimensions import DEFAULT_BASE_DIMENSIONS, OPT_IN_BASE_DIMENSIONS, Dimension
 from .errors import DimensionSyntaxError, LimitError, ModelFileError, PiTheoremError
-from .exact import read_number
+from .exact import numpy_if_loaded, read_number
 from .system import System
 
 __all__ = [
@@ -418,7 +417,8 @@ def _plain_number(value, path: str, var: str):
     except PiTheoremError as err:
         raise ModelFileError(path, f"{str(err).splitlines()[0]} (numbers may also be exact strings such as \"1/3\")",
                              variable=var) from None
-    if isinstance(value, float | np.floating) or (isinstance(value, sympy.Basic) and not value.is_Rational):
+    np = numpy_if_loaded()  # numpy scalars can only come from a caller that already imported numpy
+    if isinstance(value, float) or (np is not None and isinstance(value, np.floating)) or (isinstance(value, sympy.Basic) and not value.is_Rational):
         return float(value)
     return int(exact) if exact.denominator == 1 else exact
 
