@@ -14,7 +14,11 @@ file's variable order), Pi-group exponents are integers, and every exact
 rational (scaling exponents, unit changes, rational values) is a string
 such as ``"1/2"`` or ``"-2"``.
 
-Exponents on the command line are exact: ``g=1``, ``l=-1``, ``m=1/2``.
+``--scale`` takes exponents of the scale factor ``s``, never factors:
+``g=1`` means g -> s g, ``l=-1`` means l -> l / s, and ``g=1/6`` means
+g -> s^(1/6) g (not "multiply g by 1/6"); ``apply`` picks ``s`` itself with
+``--s``.  Exponents and ``--s`` are read exactly (``0.1`` is 1/10), under the
+rule of :mod:`pitheorem.exact`.
 Without ``--fixed``, a search holds every variable of dimension T fixed (so
 the scaled model runs in the same time); ``--fixed`` with no names, or
 ``--no-default-fixed``, lets time change too.
@@ -38,6 +42,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import sys
 from collections.abc import Sequence
@@ -48,9 +53,9 @@ import sympy
 
 from . import __version__
 from .display import power_latex, power_text
-from .errors import PiTheoremError
+from .errors import CommandLineError, PiTheoremError
+from .exact import read_exponent, read_number, short_text
 from .modelfile import ModelFile, load_model_file, write_model_file
-from .scaling import as_exponent
 from .search import SearchResult, search
 
 __all__ = ["EXIT_ERROR", "EXIT_INFEASIBLE", "EXIT_OK", "build_parser", "main"]
@@ -66,8 +71,10 @@ _TIME_NOTE = "pass fixed=() to let time change"
 _TIME_NOTE_CLI = "give --fixed with no names to let time change"
 
 
-class _CommandError(PiTheoremError, ValueError):
-    """A bad command-line request that no library call caught."""
+_CommandError = CommandLineError  # the short name used throughout this module
+
+_SCALE_HELP = ("NAME=EXP: EXP is the exponent of the scale factor s, not a factor: NAME -> s^EXP NAME "
+               "(g=1: g -> s g; l=-1/2: l -> s^(-1/2) l; g=1/6: g -> s^(1/6) g)")
 
 
 # -- helpers ---------------------------------------------------------------------------------
@@ -137,21 +144,68 @@ def _parse_scale(entries: Sequence[str]) -> dict[str, Fraction]:
         name, sep, text = entry.partition("=")
         name, text = name.strip(), text.strip()
         if not sep or not name or not text:
-            raise _CommandError(f"--scale entry {entry!r} must look like NAME=EXPONENT, e.g. g=1 or l=-1/2")
+            raise _CommandError(f"--scale entry {entry!r} must look like NAME=EXP, where EXP is the exponent "
+                                "of the scale factor s (g=1 means g -> s g), e.g. g=1 or l=-1/2", culprit=entry)
         if name in scale:
-            raise _CommandError(f"--scale names {name!r} twice; give each variable one exponent")
-        scale[name] = as_exponent(text, f"{name!r} in --scale")
+            raise _CommandError(f"--scale names {name!r} twice; give each variable one exponent", culprit=name)
+        try:
+            scale[name] = read_exponent(text, f"the exponent of s for {name!r} in --scale")
+        except PiTheoremError as err:
+            if "s" in text.lower() or "*" in text or "x" in text.lower():
+                # g=s^2, g=2s, g=*6, g=x6: a factor or formula where a plain exponent belongs
+                raise _CommandError(
+                    f"--scale {entry!r}: EXP must be a plain number, the exponent of the scale factor s "
+                    f"({name}={text} is not one); {name}=2 means {name} -> s^2 {name}, and {name}=1/6 means "
+                    f"{name} -> s^(1/6) {name}, not a factor 1/6; apply takes s itself with --s", culprit=entry
+                ) from None
+            raise _CommandError(f"--scale {entry!r}: {err}; EXP is the exponent of the scale factor s "
+                                f"({name}=1 means {name} -> s {name})", culprit=entry) from None
     return scale
 
 
 def _parse_s(text: str) -> Fraction:
     try:
-        s = Fraction(text.strip())
-    except (ValueError, ZeroDivisionError):
-        raise _CommandError(f"--s must be a positive number such as 2, 0.5 or 1/3, got {text!r}") from None
+        s = read_number(text, "--s")
+    except PiTheoremError:
+        raise _CommandError(f"--s must be a positive number such as 2, 0.5 or 1/3, got {text!r}",
+                            culprit=text) from None
     if s <= 0:
-        raise _CommandError(f"--s must be a positive number such as 2, 0.5 or 1/3, got {text!r}")
+        raise _CommandError(f"--s must be a positive number such as 2, 0.5 or 1/3, got {text!r}", culprit=text)
     return int(s) if s.denominator == 1 else s
+
+
+#: exact scaled values with more digits than this are refused (Python prints at most 4300)
+_MAX_DIGITS = 4000
+
+
+def _scaled_values(sc, values: dict, s) -> dict:
+    """Apply the scaling exactly, then round once: no float noise (98.1, not 98.10000000000001).
+
+    A float value is read as the decimal it prints as, scaled exactly, and
+    rounded back to the nearest float; an exact value stays exact when its
+    scaled value is rational, and becomes the nearest float when not.
+    """
+    exact = {n: read_number(v, f"the value of {n!r}", irrational_ok=True) for n, v in values.items()}
+    scaled = sc.apply({n: sympy.Rational(x.numerator, x.denominator) for n, x in exact.items()}, s)
+    out = {}
+    for n, v in values.items():
+        new = sympy.sympify(scaled[n])
+        if new.is_Rational and not isinstance(v, float):
+            q = Fraction(int(new.p), int(new.q))
+            if max(q.numerator.bit_length(), q.denominator.bit_length()) > _MAX_DIGITS * 3.32:
+                raise _CommandError(f"the scaled value of {n!r} is {short_text(q)}, with more than {_MAX_DIGITS} "
+                                    "digits; choose a smaller --s", culprit=n)
+            out[n] = int(q) if q.denominator == 1 else q
+            continue
+        try:
+            number = float(new)
+        except (OverflowError, TypeError, ValueError):
+            number = float("inf")
+        if not math.isfinite(number) or (number == 0 and new != 0):
+            raise _CommandError(f"the scaled value of {n!r} is beyond the range of floating point "
+                                f"(about 1e-308 to 1e308); choose an --s nearer to 1", culprit=n)
+        out[n] = number
+    return out
 
 
 def _run_search(model: ModelFile, args) -> SearchResult:
@@ -343,7 +397,7 @@ def _cmd_apply(args) -> int:
             f"--solution {k} is out of range: the request has {count} minimal scaling(s); choose 1 to {count}"
         )
     sc = result.scalings[k - 1]
-    scaled_model = model.with_values(sc.apply(model.values, s), name=f"{model.name}, scaled with s = {s}")
+    scaled_model = model.with_values(_scaled_values(sc, model.values, s), name=f"{model.name}, scaled with s = {s}")
     scaled = scaled_model.values
     output = None
     if args.output:
@@ -429,8 +483,7 @@ def build_parser() -> argparse.ArgumentParser:
                         help="output format (default: text)")
 
     request = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
-    request.add_argument("--scale", nargs="+", required=True, metavar="NAME=EXP",
-                         help="prescribed exponents of s, e.g. g=1 l=-1 m=1/2")
+    request.add_argument("--scale", nargs="+", required=True, metavar="NAME=EXP", help=_SCALE_HELP)
     request.add_argument("--fixed", nargs="*", metavar="NAME",
                          help="variables held unchanged (default: those of dimension T; no names: none)")
     request.add_argument("--allow", nargs="*", metavar="NAME",
@@ -460,7 +513,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("apply", parents=[common, request], allow_abbrev=False,
                        help="write a scaled copy of the model's values",
                        description="Scale the values of the model file by a minimal similarity scaling.")
-    p.add_argument("--s", required=True, metavar="S", help="the scale factor, e.g. 2 or 1/2")
+    p.add_argument("--s", required=True, metavar="S",
+                   help="the scale factor s itself, e.g. 2 or 1/2 (each variable is multiplied by s^EXP)")
     p.add_argument("--solution", type=int, default=1, metavar="K",
                    help="use the K-th minimal scaling (default 1)")
     p.add_argument("--output", metavar="OUT", help="write the scaled model file (.toml or .json)")
@@ -520,4 +574,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_OK
     except OSError as err:
         print(f"pitheorem: error: {err.filename!r}: {err.strerror or err}", file=sys.stderr)
+        return EXIT_ERROR
+    except (ValueError, TypeError, ArithmeticError, RecursionError, MemoryError) as err:
+        # last resort: a bad input that slipped past validation must still give one line and
+        # exit code 2, never a traceback and never 1 (which means "no scaling exists")
+        message = str(err).strip().splitlines()[0] if str(err).strip() else ""
+        print(f"pitheorem: error: {type(err).__name__}: {message} (please report this input)", file=sys.stderr)
         return EXIT_ERROR

@@ -3,6 +3,14 @@
 A dimension is a product of named base dimensions raised to exact rational
 powers, e.g. ``M L^2 T^-2``.  Formulas are tokenized and parsed here, by
 hand: user text is never passed to ``eval`` or ``sympify``.
+
+Base dimensions understood by default are ``M L T Theta I``.  The symbols
+``N`` (amount of substance), ``J`` (luminous intensity) and ``A`` (angle)
+are opt-in: each is also the symbol of an SI unit (newton, joule, ampere),
+so a force written as ``"N"`` must not silently become an amount of
+substance.  Declare them with ``base_dimensions=`` to use them; without
+that, a formula using one is refused with a message that says so and
+suggests the dimension or unit meant.
 """
 
 from __future__ import annotations
@@ -12,14 +20,56 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from fractions import Fraction
 
-from .errors import DimensionSyntaxError
+from .errors import DimensionSyntaxError, InvalidRequestError, LimitError
+from .exact import MAX_FORMULA_LENGTH, MAX_NESTING, check_exponent, read_number
 
-__all__ = ["DEFAULT_BASE_DIMENSIONS", "Dimension"]
+__all__ = ["DEFAULT_BASE_DIMENSIONS", "OPT_IN_BASE_DIMENSIONS", "Dimension", "base_dimension_names"]
 
 #: Base dimensions understood without being declared, in display order:
-#: mass, length, time, temperature, current, amount, luminous intensity,
-#: and ``A`` for angle when a model treats angle as a base dimension.
-DEFAULT_BASE_DIMENSIONS: tuple[str, ...] = ("M", "L", "T", "Theta", "I", "N", "J", "A")
+#: mass, length, time, temperature, current.
+DEFAULT_BASE_DIMENSIONS: tuple[str, ...] = ("M", "L", "T", "Theta", "I")
+
+#: Base dimensions that must be declared (``base_dimensions=``) because
+#: their letters are also SI unit symbols: amount of substance ``N``
+#: (newton), luminous intensity ``J`` (joule), angle ``A`` (ampere).
+OPT_IN_BASE_DIMENSIONS: tuple[str, ...] = ("N", "J", "A")
+
+# display order of every known base dimension; others follow alphabetically
+_DISPLAY_ORDER = DEFAULT_BASE_DIMENSIONS + OPT_IN_BASE_DIMENSIONS
+
+# what a user who writes one of the opt-in letters most likely meant
+_UNIT_LOOKALIKES = {
+    "N": "the newton, a force: write 'M L T^-2' (or give units with System.from_units)",
+    "J": "the joule, an energy: write 'M L^2 T^-2' (or give units with System.from_units)",
+    "A": "the ampere, a current: write 'I' (or give units with System.from_units)",
+}
+
+
+def base_dimension_names(names, what: str = "base_dimensions") -> tuple[str, ...]:
+    """Validate a collection of base-dimension names.
+
+    A plain string is refused rather than read letter by letter
+    (``"LT"`` would otherwise mean ``("L", "T")``).
+
+    Examples
+    --------
+    >>> from pitheorem.dimensions import base_dimension_names
+    >>> base_dimension_names(["M", "L", "T", "N"])
+    ('M', 'L', 'T', 'N')
+    """
+    if isinstance(names, str):
+        raise InvalidRequestError(
+            f"{what} must be a list of names such as ('M', 'L', 'T'), not the string {names!r}", culprit=names
+        )
+    try:
+        names = tuple(names)
+    except TypeError:
+        raise InvalidRequestError(f"{what} must be a list of names such as ('M', 'L', 'T'), got {names!r}",
+                                  culprit=names) from None
+    for b in names:
+        if not isinstance(b, str) or not b.isidentifier():
+            raise InvalidRequestError(f"base dimension names must be identifiers, got {b!r}", culprit=b)
+    return names
 
 _TOKEN = re.compile(
     r"\s*(?:(?P<name>[A-Za-z_][A-Za-z_0-9]*)|(?P<number>\d+(?:\.\d*)?|\.\d+)|(?P<op>\*\*|[\^*/()+-]))"
@@ -28,9 +78,9 @@ _TOKEN = re.compile(
 
 def _order_key(base: str) -> tuple[int, str]:
     try:
-        return (DEFAULT_BASE_DIMENSIONS.index(base), "")
+        return (_DISPLAY_ORDER.index(base), "")
     except ValueError:
-        return (len(DEFAULT_BASE_DIMENSIONS), base)
+        return (len(_DISPLAY_ORDER), base)
 
 
 def _format_power(p: Fraction) -> str:
@@ -69,7 +119,9 @@ class Dimension:
         items = powers.items() if isinstance(powers, Mapping) else powers
         total: dict[str, Fraction] = {}
         for base, p in items:
-            total[base] = total.get(base, Fraction(0)) + Fraction(p)
+            if not isinstance(base, str):
+                raise InvalidRequestError(f"base dimension names must be strings, got {base!r}", culprit=base)
+            total[base] = total.get(base, Fraction(0)) + read_number(p, f"the exponent of {base!r}")
         clean = tuple(sorted(((b, p) for b, p in total.items() if p != 0), key=lambda bp: _order_key(bp[0])))
         object.__setattr__(self, "powers", clean)
 
@@ -87,7 +139,8 @@ class Dimension:
         text : str
             The formula, e.g. ``"M L^2 T^-2"``, ``"M*L**2/T**2"``, ``"L^(1/2)"``.
         base_dimensions : iterable of str
-            Names allowed as base dimensions.
+            Names allowed as base dimensions (default ``M L T Theta I``;
+            ``N``, ``J`` and ``A`` only when listed, see the module notes).
 
         Returns
         -------
@@ -97,6 +150,9 @@ class Dimension:
         ------
         DimensionSyntaxError
             With the position of the offending token.
+        LimitError
+            For an exponent beyond the limits of :mod:`pitheorem.exact`,
+            brackets nested too deep, or a formula too long.
 
         Examples
         --------
@@ -108,7 +164,7 @@ class Dimension:
         """
         if not isinstance(text, str):
             raise DimensionSyntaxError(repr(text), 0, f"expected a string, got {type(text).__name__}")
-        return _Parser(text, tuple(base_dimensions)).parse()
+        return _Parser(text, base_dimension_names(base_dimensions)).parse()
 
     @classmethod
     def dimensionless(cls) -> Dimension:
@@ -170,7 +226,7 @@ class Dimension:
         return Dimension(self.powers + tuple((b, -p) for b, p in other.powers))
 
     def __pow__(self, exponent) -> Dimension:
-        e = Fraction(exponent)
+        e = read_number(exponent, "the power of a dimension")
         return Dimension((b, p * e) for b, p in self.powers)
 
     # -- display ----------------------------------------------------------
@@ -209,6 +265,10 @@ class _Parser:
 
     def __init__(self, text: str, allowed: tuple[str, ...]):
         self.text, self.allowed = text, allowed
+        self.depth = 0
+        if len(text) > MAX_FORMULA_LENGTH:
+            raise LimitError(f"{text[:20]}...", "the dimension formula",
+                             f"its length {len(text)} exceeds the limit of {MAX_FORMULA_LENGTH} characters")
         self.tokens: list[tuple[str, str, int]] = []
         pos = 0
         while pos < len(text):
@@ -273,6 +333,12 @@ class _Parser:
         tok = self.take()
         kind, value, _ = tok
         if kind == "name":
+            if value not in self.allowed and value in _UNIT_LOOKALIKES:
+                self.fail(
+                    tok,
+                    f"{value!r} is not a base dimension by default: it is the SI symbol of {_UNIT_LOOKALIKES[value]}; "
+                    f"to mean the base dimension {value!r}, declare it with base_dimensions=(..., {value!r})",
+                )
             if value not in self.allowed:
                 self.fail(
                     tok,
@@ -285,15 +351,24 @@ class _Parser:
                 self.fail(tok, f"a bare number {value!r} has no dimension; only '1' may stand alone")
             return Dimension.dimensionless()
         if value == "(":
+            self.depth += 1
+            if self.depth > MAX_NESTING:
+                raise LimitError(f"{self.text[:20]}...", "the dimension formula",
+                                 f"its brackets nest deeper than the limit of {MAX_NESTING}")
             dim = self.product()
             if self.peek()[1] != ")":
                 self.fail(self.peek(), "expected ')' to close the bracket")
             self.take()
+            self.depth -= 1
             return dim
         self.fail(tok, "expected a base dimension, '1' or '('" if kind != "end" else "formula ends too early")
         raise AssertionError  # unreachable: fail() raises
 
     def exponent(self) -> Fraction:
+        value = self.exponent_value()
+        return check_exponent(value, f"exponent in {self.text!r}" if len(self.text) <= 40 else "an exponent")
+
+    def exponent_value(self) -> Fraction:
         tok = self.peek()
         if tok[1] == "(":
             self.take()
@@ -313,9 +388,11 @@ class _Parser:
 
     def signed_number(self) -> Fraction:
         sign = 1
-        while self.peek()[1] in ("+", "-"):
-            sign = -sign if self.take()[1] == "-" else sign
+        if self.peek()[1] in ("+", "-"):  # one sign at most: "--2" is a typo, not 2
+            sign = -1 if self.take()[1] == "-" else 1
         tok = self.take()
         if tok[0] != "number":
             self.fail(tok, "expected a number as exponent, e.g. ^2, ^-1 or ^(1/2)")
+        if len(tok[1]) > 40:
+            raise LimitError(f"{tok[1][:20]}...", "an exponent", "it has more than 40 digits")
         return sign * Fraction(tok[1])

@@ -28,13 +28,47 @@ from sympy.core.function import AppliedUndef
 from .bases import independent_subsets
 from .dimensions import Dimension
 from .errors import InvalidRequestError, UnknownVariableError
+from .exact import read_number
 from .linalg import nullspace, primitive_integer_vector, rank, row_space_basis, solve
 from .system import System
 
 __all__ = ["DimensionReport", "SymmetryReport", "check_dimensions", "scaling_symmetries"]
 
-# functions whose value has the dimension of their (single) argument
-_DIMENSION_PRESERVING = (sympy.Abs, sympy.re, sympy.im, sympy.conjugate, sympy.floor, sympy.ceiling)
+# How each function treats dimensions (anything else -- sin, exp, log, ... -- needs
+# dimensionless arguments and gives a dimensionless value):
+# the value has the dimension of the (single) argument, which may be any
+_DIMENSION_PRESERVING = (sympy.Abs, sympy.re, sympy.im, sympy.conjugate)
+# arguments of one common dimension, any; the value has that dimension
+_SAME_DIMENSION = (sympy.Min, sympy.Max, sympy.Mod)
+# arguments of one common dimension, any; the value is dimensionless (an angle)
+_RATIO_OF_ARGUMENTS = (sympy.atan2,)
+# the first argument may have any dimension (only its sign matters, which no change of
+# units alters); further arguments (Heaviside's value at 0) are dimensionless
+_SIGN_OF_ARGUMENT = (sympy.sign, sympy.Heaviside)
+# floor and ceiling are NOT homogeneous (floor(2.5 m) = 2 m but floor(250 cm) = 250 cm),
+# so their argument must be dimensionless, as for sin: write floor(x/dx)*dx
+#: default name of the time variable; unlike another name, it may be absent from the system
+_DEFAULT_TIME = "t"
+
+
+def _exponent(exp) -> Fraction | None:
+    """A numeric exponent as an exact Fraction (a float as the decimal it prints as), else None."""
+    if exp.is_Rational:
+        return Fraction(int(exp.p), int(exp.q))
+    if exp.is_Float:
+        return read_number(exp, "an exponent in the equation")
+    return None
+
+
+def _terms(side) -> list[sympy.Expr]:
+    return list(side.args) if isinstance(side, sympy.Add) else [side]
+
+
+def _time_in(system: System, time: str | None) -> str | None:
+    """The time variable's name, or None when there is none to use."""
+    if time is None or (time == _DEFAULT_TIME and time not in system.variables):
+        return None
+    return system.variables[system.index(time, "time")]
 
 
 def _as_sides(equation) -> list[sympy.Expr]:
@@ -53,12 +87,13 @@ def _name_of(node) -> str:
     return node.func.__name__ if isinstance(node, AppliedUndef) else node.name
 
 
-def _most_common(dims: list[Dimension]) -> Dimension:
+def _vote(dims: list[Dimension]) -> list[Dimension]:
+    """The dimensions shared by the most terms, in order of first appearance (several on a tie)."""
     counts: dict[Dimension, int] = {}
     for d in dims:
         counts[d] = counts.get(d, 0) + 1
     best = max(counts.values())
-    return next(d for d in dims if counts[d] == best)
+    return [d for d in counts if counts[d] == best]
 
 
 @dataclass(frozen=True, slots=True)
@@ -71,7 +106,12 @@ class DimensionReport:
     dimension : Dimension
         Dimension of the expression (of the left side, for an equation).
     offending : tuple of (sympy.Expr, Dimension, Dimension)
-        Each inconsistent term with its dimension and the dimension expected.
+        Each inconsistent term with its dimension and the dimension expected:
+        the dimension most terms of its sum (or equation) share.  On a tie
+        every term of the tied dimensions is listed, each expected to have
+        another tied dimension, and `ties` says so.
+    ties : tuple of str
+        One sentence per sum whose terms tie, naming the tied dimensions.
 
     Examples
     --------
@@ -86,20 +126,22 @@ class DimensionReport:
     consistent: bool
     dimension: Dimension
     offending: tuple[tuple[sympy.Expr, Dimension, Dimension], ...]
+    ties: tuple[str, ...] = ()
 
     def __str__(self) -> str:
         if self.consistent:
             return f"consistent: dimension {self.dimension}"
         lines = [f"inconsistent: {len(self.offending)} offending term(s)"]
         lines += [f"  {sympy.sstr(term)} has dimension {got}, expected {want}" for term, got, want in self.offending]
+        lines += [f"  tie: {tie}" for tie in self.ties]
         return "\n".join(lines)
 
 
 class _DimensionWalker:
-    def __init__(self, system: System, time: str | None):
+    def __init__(self, system: System):
         self.system = system
-        self.time = time
         self.offending: list[tuple[sympy.Expr, Dimension, Dimension]] = []
+        self.ties: list[str] = []
 
     def lookup(self, name: str) -> Dimension:
         try:
@@ -111,15 +153,24 @@ class _DimensionWalker:
         self.offending.append((term, got, want))
 
     def same(self, terms: Sequence[sympy.Expr]) -> Dimension:
-        dims = [self.dim(t) for t in terms]
-        want = _most_common(dims)
-        for term, d in zip(terms, dims, strict=True):
-            if d != want:
-                self.flag(term, d, want)
-        return want
+        """Terms that must share one dimension: blame those outvoted, or every tied one."""
+        return self.agree(terms, [self.dim(t) for t in terms])
 
-    def dimensionless_argument(self, node) -> None:
-        for arg in node.args:
+    def agree(self, terms: Sequence[sympy.Expr], dims: list[Dimension]) -> Dimension:
+        winners = _vote(dims)
+        if len(winners) > 1:
+            each = dims.count(winners[0])
+            self.ties.append(f"in {' + '.join(sympy.sstr(t) for t in terms)}, {' and '.join(map(str, winners))} "
+                             f"have {each} term(s) each: no majority says which is wrong, so all are listed")
+        for term, d in zip(terms, dims, strict=True):
+            if d not in winners:
+                self.flag(term, d, winners[0])
+            elif len(winners) > 1:
+                self.flag(term, d, next(w for w in winners if w != d))
+        return winners[0]
+
+    def dimensionless_argument(self, node, args=None) -> None:
+        for arg in node.args if args is None else args:
             d = self.dim(arg)
             if not d.is_dimensionless:
                 self.flag(arg, d, Dimension.dimensionless())
@@ -130,6 +181,8 @@ class _DimensionWalker:
         if isinstance(node, sympy.Symbol):
             return self.lookup(node.name)
         if isinstance(node, AppliedUndef):
+            for arg in node.args:  # theta(t + l) is as wrong as t + l
+                self.dim(arg)
             return self.lookup(node.func.__name__)
         if isinstance(node, sympy.Derivative):
             d = self.dim(node.expr)
@@ -145,14 +198,25 @@ class _DimensionWalker:
             return d
         if isinstance(node, sympy.Pow):
             base, exp = node.args
-            if exp.is_Rational:
-                return self.dim(base) ** Fraction(int(exp.p), int(exp.q))
+            power = _exponent(exp)
+            if power is not None:
+                return self.dim(base) ** power
             self.dimensionless_argument(node)  # x**y needs both dimensionless
             return Dimension.dimensionless()
         if isinstance(node, _DIMENSION_PRESERVING):
             return self.dim(node.args[0])
-        if isinstance(node, sympy.Min | sympy.Max):
+        if isinstance(node, _SAME_DIMENSION):
             return self.same(node.args)
+        if isinstance(node, _RATIO_OF_ARGUMENTS):
+            self.same(node.args)
+            return Dimension.dimensionless()
+        if isinstance(node, _SIGN_OF_ARGUMENT):
+            self.dim(node.args[0])
+            self.dimensionless_argument(node, node.args[1:])
+            return Dimension.dimensionless()
+        if isinstance(node, sympy.DiracDelta):  # integrates to 1 over its argument
+            self.dimensionless_argument(node, node.args[1:])
+            return Dimension.dimensionless() / self.dim(node.args[0])
         if isinstance(node, sympy.Function):
             self.dimensionless_argument(node)  # sin, cos, exp, log, ...
             return Dimension.dimensionless()
@@ -171,11 +235,29 @@ def check_dimensions(equation, system: System, *, time: str | None = "t") -> Dim
     system : System
         Dimensions of every symbol and function name in the equation.
     time : str or None
-        Name of the time variable (must be in `system` if used).
+        Name of the time variable; it must be in `system`, except the
+        default ``"t"``, which may be absent (then nothing is time).
 
     Returns
     -------
     DimensionReport
+
+    Notes
+    -----
+    Functions: ``Abs`` keeps its argument's dimension; ``Min``, ``Max`` and
+    ``Mod`` need arguments of one dimension and keep it; ``atan2(y, x)``
+    needs ``y`` and ``x`` of one dimension and is dimensionless; ``sign``
+    and ``Heaviside`` take an argument of any dimension and are
+    dimensionless; ``DiracDelta(x)`` has the inverse dimension of ``x``;
+    ``floor``, ``ceiling`` and every other function (``sin``, ``exp``,
+    ``log`` ...) need dimensionless arguments.  Powers may be integers,
+    rationals or floats (``x**0.5``, read as the decimal written); a
+    symbolic exponent needs a dimensionless base and exponent.  Arguments
+    of undefined functions (``theta(t)``) are checked too.
+
+    Blame: the terms of a sum, and of the two sides of an equation taken
+    together, vote; terms whose dimension differs from the majority are
+    offending.  On a tie all tied terms are listed and the report says so.
 
     Examples
     --------
@@ -193,19 +275,15 @@ def check_dimensions(equation, system: System, *, time: str | None = "t") -> Dim
     """
     if not isinstance(system, System):
         raise InvalidRequestError(f"check_dimensions needs a System, got {type(system).__name__}")
-    if time is not None:
-        system.index(time, "time")
-    walker = _DimensionWalker(system, time)
+    _time_in(system, time)  # validates the name
+    walker = _DimensionWalker(system)
     sides = _as_sides(equation)
-    dims = [walker.dim(side) for side in sides]
-    if len(sides) == 2 and sides[0] == 0:
-        sides, dims = sides[::-1], dims[::-1]
-    for side, d in zip(sides[1:], dims[1:], strict=True):
-        if side == 0:  # zero has every dimension: Eq(x'', 0) is consistent
-            continue
-        if d != dims[0]:
-            walker.flag(side, d, dims[0])
-    return DimensionReport(not walker.offending, dims[0], tuple(walker.offending))
+    # both sides' terms vote together; zero has every dimension (Eq(x'', 0) is consistent)
+    terms = [term for side in sides for term in _terms(side) if term != 0]
+    if not terms:
+        return DimensionReport(True, Dimension.dimensionless(), ())
+    dimension = walker.same(terms)
+    return DimensionReport(not walker.offending, dimension, tuple(walker.offending), tuple(walker.ties))
 
 
 # -- symmetries ---------------------------------------------------------------
@@ -247,9 +325,12 @@ class _WeightWalker:
 
     def invariant(self, node) -> None:
         for arg in node.args:
-            form = self.weight(arg)
-            if form:
-                self.conditions.append(form)
+            self.invariant_form(arg)
+
+    def invariant_form(self, arg) -> None:
+        form = self.weight(arg)
+        if form:
+            self.conditions.append(form)
 
     def weight(self, node) -> Form:
         if node.is_Number or node in (sympy.pi, sympy.E, sympy.I):
@@ -257,6 +338,8 @@ class _WeightWalker:
         if isinstance(node, sympy.Symbol):
             return self.leaf(node.name)
         if isinstance(node, AppliedUndef):
+            for arg in node.args:  # sums inside the arguments must be homogeneous too
+                self.weight(arg)
             return self.leaf(node.func.__name__)
         if isinstance(node, sympy.Derivative):
             form = self.weight(node.expr)
@@ -270,14 +353,27 @@ class _WeightWalker:
             return _add_forms(*(self.weight(a) for a in node.args))
         if isinstance(node, sympy.Pow):
             base, exp = node.args
-            if exp.is_Rational:
-                return _add_forms(self.weight(base), scale=Fraction(int(exp.p), int(exp.q)))
+            power = _exponent(exp)
+            if power is not None:
+                return _add_forms(self.weight(base), scale=power)
             self.invariant(node)
             return {}
         if isinstance(node, _DIMENSION_PRESERVING):
             return self.weight(node.args[0])
-        if isinstance(node, sympy.Min | sympy.Max):
+        if isinstance(node, _SAME_DIMENSION):
             return self.equal([self.weight(a) for a in node.args])
+        if isinstance(node, _RATIO_OF_ARGUMENTS):
+            self.equal([self.weight(a) for a in node.args])
+            return {}
+        if isinstance(node, _SIGN_OF_ARGUMENT):
+            self.weight(node.args[0])
+            for arg in node.args[1:]:
+                self.invariant_form(arg)
+            return {}
+        if isinstance(node, sympy.DiracDelta):
+            for arg in node.args[1:]:
+                self.invariant_form(arg)
+            return _negate(self.weight(node.args[0]))
         if isinstance(node, sympy.Function):
             self.invariant(node)
             return {}
@@ -364,7 +460,8 @@ def scaling_symmetries(equations, system: System, *, time: str | None = "t") -> 
     system : System
         Must contain every symbol and function name used.
     time : str or None
-        Name of the time variable, which is always included.
+        Name of the time variable, which is always included; the default
+        ``"t"`` may be absent from `system`.
 
     Returns
     -------
@@ -390,8 +487,9 @@ def scaling_symmetries(equations, system: System, *, time: str | None = "t") -> 
     if not equations:
         raise InvalidRequestError("scaling_symmetries needs at least one equation")
     walker = _WeightWalker(system.variables)
+    time = _time_in(system, time)
     if time is not None:
-        walker.leaf(system.variables[system.index(time, "time")])
+        walker.leaf(time)
     for eq in equations:
         sides = _as_sides(eq)
         expr = sympy.expand(sides[0] - sides[1] if len(sides) == 2 else sides[0])

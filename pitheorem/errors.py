@@ -1,20 +1,27 @@
 """Exceptions raised by pitheorem.
 
-Every error a user can provoke derives from :class:`PiTheoremError` and from
-the matching builtin (``ValueError``, ``KeyError`` ...), so existing
-``except ValueError`` code keeps working.  Each error stores its culprit in
-fields and builds its message in ``__str__``; ``__reduce__`` keeps errors
-picklable (for multiprocessing and pytest-xdist).
+Every error a user can provoke is defined here, derives from
+:class:`PiTheoremError` and from the matching builtin (``ValueError``,
+``KeyError``, ``TypeError``, ``ImportError``), so existing ``except
+ValueError`` code keeps working.  Each error carries its culprit (the
+offending name, token or value) in the ``culprit`` attribute, builds its
+message in ``__str__``, and pickles with everything it carries (for
+multiprocessing and pytest-xdist).
 """
 
 from __future__ import annotations
 
 __all__ = [
+    "CommandLineError",
     "DependentRepeatingSetError",
     "DimensionSyntaxError",
     "DuplicateVariableError",
     "EmptySystemError",
+    "EngineUnavailableError",
     "InvalidRequestError",
+    "LimitError",
+    "ModelFileError",
+    "NumberError",
     "PiTheoremError",
     "RepeatingCountError",
     "SystemMismatchError",
@@ -36,15 +43,20 @@ class PiTheoremError(Exception):
     EmptySystemError
     """
 
-    def __init__(self, message: str = ""):
+    #: the offending name, token or value (None when the message is all there is)
+    culprit: object = None
+
+    def __init__(self, message: str = "", culprit: object = None):
         super().__init__(message)
         self.message = message
+        if culprit is not None:
+            self.culprit = culprit
 
     def __str__(self) -> str:
         return self.message
 
     def __reduce__(self):
-        return (type(self), (self.message,))
+        return (type(self), (self.message, self.culprit))
 
 
 class DimensionSyntaxError(PiTheoremError, ValueError):
@@ -72,6 +84,11 @@ class DimensionSyntaxError(PiTheoremError, ValueError):
     def __init__(self, text: str, position: int, reason: str):
         self.text, self.position, self.reason = text, position, reason
         super().__init__(str(self))
+
+    @property
+    def culprit(self) -> str:
+        """The formula from the offending token on."""
+        return self.text[self.position :]
 
     def __str__(self) -> str:
         pointer = " " * self.position + "^"
@@ -119,6 +136,11 @@ class UnknownVariableError(PiTheoremError, KeyError):
         self.name, self.known, self.context = name, tuple(known), context
         super().__init__(str(self))
 
+    @property
+    def culprit(self) -> str:
+        """The unknown name."""
+        return self.name
+
     def __str__(self) -> str:
         where = f" in {self.context}" if self.context else ""
         return f"unknown variable {self.name!r}{where}; the system has {', '.join(self.known) or 'no variables'}"
@@ -145,6 +167,11 @@ class DuplicateVariableError(PiTheoremError, ValueError):
         self.name, self.context = name, context
         super().__init__(str(self))
 
+    @property
+    def culprit(self) -> str:
+        """The name given twice."""
+        return self.name
+
     def __str__(self) -> str:
         where = f" in {self.context}" if self.context else ""
         return f"variable {self.name!r} is named twice{where}; name each variable once"
@@ -166,8 +193,9 @@ class EmptySystemError(PiTheoremError, ValueError):
     a system needs at least one variable, e.g. System({'l': 'L', 't': 'T'})
     """
 
-    def __init__(self, message: str = "a system needs at least one variable, e.g. System({'l': 'L', 't': 'T'})"):
-        super().__init__(message)
+    def __init__(self, message: str = "a system needs at least one variable, e.g. System({'l': 'L', 't': 'T'})",
+                 culprit: object = None):
+        super().__init__(message, culprit)
 
 
 class RepeatingCountError(PiTheoremError, ValueError):
@@ -187,6 +215,11 @@ class RepeatingCountError(PiTheoremError, ValueError):
     def __init__(self, given: tuple[str, ...], expected: int):
         self.given, self.expected = tuple(given), expected
         super().__init__(str(self))
+
+    @property
+    def culprit(self) -> tuple[str, ...]:
+        """The repeating set given."""
+        return self.given
 
     def __str__(self) -> str:
         return (
@@ -223,6 +256,11 @@ class DependentRepeatingSetError(PiTheoremError, ValueError):
     def __init__(self, repeating: tuple[str, ...], product: str):
         self.repeating, self.product = tuple(repeating), product
         super().__init__(str(self))
+
+    @property
+    def culprit(self) -> tuple[str, ...]:
+        """The dependent repeating set."""
+        return self.repeating
 
     def __str__(self) -> str:
         return (
@@ -274,6 +312,11 @@ class SystemMismatchError(InvalidRequestError):
         self.name, self.reason = name, reason
         PiTheoremError.__init__(self, str(self))
 
+    @property
+    def culprit(self) -> str:
+        """The variable that is missing or differs."""
+        return self.name
+
     def __str__(self) -> str:
         return (
             f"the scaling does not belong to the model's system: {self.reason}; build the scaling "
@@ -282,3 +325,169 @@ class SystemMismatchError(InvalidRequestError):
 
     def __reduce__(self):
         return (type(self), (self.name, self.reason))
+
+
+class NumberError(InvalidRequestError):
+    """A value that cannot be read as an exact number.
+
+    See :func:`pitheorem.exact.read_number` for what is accepted.
+
+    Parameters
+    ----------
+    value : object
+        The value given.
+    what : str
+        What it was meant to be, e.g. ``"exponent of 'g'"``.
+    expected : str
+        What would be valid.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> try:
+    ...     pt.search(pt.System({"l": "L"}), scale={"l": float("nan")})
+    ... except pt.NumberError as err:
+    ...     print(err.culprit)
+    nan
+    """
+
+    def __init__(self, value: object, what: str, expected: str):
+        self.value, self.what, self.expected = value, what, expected
+        PiTheoremError.__init__(self, str(self))
+
+    @property
+    def culprit(self) -> object:
+        """The value given."""
+        return self.value
+
+    def __str__(self) -> str:
+        return f"{self.what} must be {self.expected}, got {self.value!r}"
+
+    def __reduce__(self):
+        return (type(self), (self.value, self.what, self.expected))
+
+
+class LimitError(InvalidRequestError):
+    """A number or formula beyond one of pitheorem's size limits.
+
+    The limits (in :mod:`pitheorem.exact`) keep exact arithmetic fast and
+    the output printable; no physical model comes near them.
+
+    Parameters
+    ----------
+    value : object
+        The offending value (or formula).
+    what : str
+        What it was meant to be.
+    limit : str
+        The limit it breaks, stated with its bound.
+    hint : str, optional
+        What to do instead.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> try:
+    ...     pt.Dimension.parse("L^100000")
+    ... except pt.LimitError as err:
+    ...     print(err)
+    exponent in 'L^100000' is 100000: its magnitude exceeds the limit 1000
+    """
+
+    def __init__(self, value: object, what: str, limit: str, hint: str = ""):
+        self.value, self.what, self.limit, self.hint = value, what, limit, hint
+        PiTheoremError.__init__(self, str(self))
+
+    @property
+    def culprit(self) -> object:
+        """The offending value."""
+        return self.value
+
+    def __str__(self) -> str:
+        return f"{self.what} is {self.value}: {self.limit}" + (f"; {self.hint}" if self.hint else "")
+
+    def __reduce__(self):
+        return (type(self), (self.value, self.what, self.limit, self.hint))
+
+
+class ModelFileError(PiTheoremError, ValueError):
+    """A model file that cannot be read: bad TOML, unknown keys, bad values ...
+
+    Parameters
+    ----------
+    path : str
+        The file, as the user named it.
+    reason : str
+        What is wrong and what would be valid.
+    variable : str, optional
+        The variable at fault, if any.
+    line : int, optional
+        The line at fault, if known.
+
+    Examples
+    --------
+    >>> from pitheorem.modelfile import ModelFileError
+    >>> print(ModelFileError("rod.toml", "unknown role 'input'", variable="m"))
+    rod.toml: variable 'm': unknown role 'input'
+    >>> print(ModelFileError("rod.toml", "invalid TOML: unclosed inline table", line=3))
+    rod.toml, line 3: invalid TOML: unclosed inline table
+    """
+
+    def __init__(self, path, reason: str, variable: str | None = None, line: int | None = None):
+        self.path, self.reason, self.variable, self.line = str(path), reason, variable, line
+        super().__init__(str(self))
+
+    @property
+    def culprit(self) -> str:
+        """The variable at fault, or the file when no variable is."""
+        return self.variable if self.variable is not None else self.path
+
+    def __str__(self) -> str:
+        where = self.path + (f", line {self.line}" if self.line is not None else "")
+        what = f" variable {self.variable!r}:" if self.variable is not None else ""
+        return f"{where}:{what} {self.reason}"
+
+    def __reduce__(self):
+        return (type(self), (self.path, self.reason, self.variable, self.line))
+
+
+class CommandLineError(PiTheoremError, ValueError):
+    """A bad command-line request that no library call caught (exit code 2).
+
+    Examples
+    --------
+    >>> from pitheorem.errors import CommandLineError
+    >>> CommandLineError("--s must be positive, got '-2'", culprit="-2").culprit
+    '-2'
+    """
+
+
+#: the Python package each engine needs
+_ENGINE_PACKAGES = {"bullet": "pybullet", "mujoco": "mujoco"}
+
+
+class EngineUnavailableError(PiTheoremError, ImportError):
+    """An engine's Python package is not installed.
+
+    Examples
+    --------
+    >>> from pitheorem.errors import EngineUnavailableError
+    >>> print(EngineUnavailableError("bullet"))
+    engine 'bullet' needs the Python package 'pybullet': pip install "pitheorem[engines]"
+    """
+
+    def __init__(self, engine: str):
+        self.engine = engine
+        PiTheoremError.__init__(self, str(self))
+
+    @property
+    def culprit(self) -> str:
+        """The engine asked for."""
+        return self.engine
+
+    def __str__(self) -> str:
+        package = _ENGINE_PACKAGES.get(self.engine, self.engine)
+        return f'engine {self.engine!r} needs the Python package {package!r}: pip install "pitheorem[engines]"'
+
+    def __reduce__(self):
+        return (type(self), (self.engine,))

@@ -12,7 +12,7 @@ A model file is a TOML document::
 
     name = "hinged rod"                 # optional; default: the file name
     description = "rod on a hinge"      # optional
-    base_dimensions = ["M", "L", "T"]   # optional; default M L T Theta I N J A
+    base_dimensions = ["M", "L", "T"]   # optional; default M L T Theta I (N, J, A must be listed)
 
     [variables]
     m = { dimension = "M", value = 1.5, role = "parameter" }
@@ -50,7 +50,6 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import json
-import math
 import re
 import tomllib
 from collections.abc import Mapping
@@ -60,8 +59,9 @@ from pathlib import Path
 
 import sympy
 
-from .dimensions import DEFAULT_BASE_DIMENSIONS, Dimension
-from .errors import DimensionSyntaxError, PiTheoremError
+from .dimensions import DEFAULT_BASE_DIMENSIONS, OPT_IN_BASE_DIMENSIONS, Dimension
+from .errors import DimensionSyntaxError, LimitError, ModelFileError, PiTheoremError
+from .exact import numpy_if_loaded, read_number
 from .system import System
 
 __all__ = [
@@ -82,42 +82,6 @@ _TOP_KEYS = ("name", "description", "base_dimensions", "variables")
 _VARIABLE_KEYS = ("dimension", "unit", "value", "role", "description")
 _EXAMPLES = Path(__file__).resolve().parent / "examples"
 _BARE_KEY = re.compile(r"^[A-Za-z0-9_-]+$")
-
-
-class ModelFileError(PiTheoremError, ValueError):
-    """A model file that cannot be read: bad TOML, unknown keys, bad values ...
-
-    Parameters
-    ----------
-    path : str
-        The file, as the user named it.
-    reason : str
-        What is wrong and what would be valid.
-    variable : str, optional
-        The variable at fault, if any.
-    line : int, optional
-        The line at fault, if known.
-
-    Examples
-    --------
-    >>> from pitheorem.modelfile import ModelFileError
-    >>> print(ModelFileError("rod.toml", "unknown role 'input'", variable="m"))
-    rod.toml: variable 'm': unknown role 'input'
-    >>> print(ModelFileError("rod.toml", "invalid TOML: unclosed inline table", line=3))
-    rod.toml, line 3: invalid TOML: unclosed inline table
-    """
-
-    def __init__(self, path, reason: str, variable: str | None = None, line: int | None = None):
-        self.path, self.reason, self.variable, self.line = str(path), reason, variable, line
-        super().__init__(str(self))
-
-    def __str__(self) -> str:
-        where = self.path + (f", line {self.line}" if self.line is not None else "")
-        what = f" variable {self.variable!r}:" if self.variable is not None else ""
-        return f"{where}:{what} {self.reason}"
-
-    def __reduce__(self):
-        return (type(self), (self.path, self.reason, self.variable, self.line))
 
 
 @dataclass(frozen=True)
@@ -402,6 +366,9 @@ def _read(path: str, data: dict, *, default_name: str) -> ModelFile:
     if len(times) > 1:
         raise ModelFileError(path, f"has role 'time' as well as {times[0]!r}; at most one variable is time",
                              variable=times[1])
+    if "base_dimensions" not in data:  # a unit such as "mol" brings its opt-in base (N) with it
+        used = {b for var in units for b in dims[var].bases}
+        allowed += tuple(b for b in OPT_IN_BASE_DIMENSIONS if b in used)
     try:
         system = System(dims, base_dimensions=allowed)
     except PiTheoremError as err:
@@ -418,6 +385,8 @@ def _read_dimension(path: str, var: str, text, allowed) -> Dimension:
         raise ModelFileError(
             path, f"cannot read dimension {text!r} at position {err.position}: {err.reason}", variable=var
         ) from None
+    except LimitError as err:
+        raise ModelFileError(path, f"cannot read dimension: {err}", variable=var) from None
     unknown = [b for b in dim.bases if b not in allowed]
     if unknown:
         raise ModelFileError(
@@ -436,40 +405,22 @@ def _read_unit(path: str, var: str, unit) -> Dimension:
 
 
 def _plain_number(value, path: str, var: str):
-    """A file value as int, float or Fraction; sympy numbers are converted."""
-    if isinstance(value, bool):
+    """A file value as int, float or Fraction, checked by the package's one number reader.
+
+    Floats stay floats (the file's own numbers); everything else becomes
+    an int or an exact Fraction.  Numpy floats become floats.
+    """
+    if isinstance(value, bool):  # spelled as the file spells it
         raise ModelFileError(path, f"value must be a number, got {str(value).lower()}", variable=var)
-    if isinstance(value, sympy.Basic):
-        if value.is_Integer:
-            return int(value)
-        if value.is_Rational:
-            return Fraction(int(value.p), int(value.q))
-        try:
-            value = float(value)
-        except TypeError:
-            raise ModelFileError(path, f"value must be a number, got {value}", variable=var) from None
-    if isinstance(value, Fraction):
-        return int(value) if value.denominator == 1 else value
-    if isinstance(value, int):
-        return value
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            raise ModelFileError(path, f"value must be finite, got {value}", variable=var)
-        return value
-    if isinstance(value, str):
-        try:
-            exact = Fraction(value.strip())
-        except (ValueError, ZeroDivisionError):
-            raise ModelFileError(
-                path, f"value must be a number or an exact rational string such as \"1/3\", got {value!r}",
-                variable=var,
-            ) from None
-        return int(exact) if exact.denominator == 1 else exact
-    try:  # numpy scalars and the like
-        number = float(value)
-    except (TypeError, ValueError):
-        raise ModelFileError(path, f"value must be a number, got {value!r}", variable=var) from None
-    return _plain_number(number, path, var)
+    try:
+        exact = read_number(value, "value", irrational_ok=True)
+    except PiTheoremError as err:
+        raise ModelFileError(path, f"{str(err).splitlines()[0]} (numbers may also be exact strings such as \"1/3\")",
+                             variable=var) from None
+    np = numpy_if_loaded()  # numpy scalars can only come from a caller that already imported numpy
+    if isinstance(value, float) or (np is not None and isinstance(value, np.floating)) or (isinstance(value, sympy.Basic) and not value.is_Rational):
+        return float(value)
+    return int(exact) if exact.denominator == 1 else exact
 
 
 # -- writing ---------------------------------------------------------------------------------
@@ -484,6 +435,8 @@ def _toml_key(name: str) -> str:
 
 
 def _toml_value(value) -> str:
+    if isinstance(value, int) and not -(2**63) <= value < 2**63:
+        value = Fraction(value)  # TOML integers are 64-bit: write bigger ones as exact strings
     if isinstance(value, Fraction):
         return _toml_string(str(value))
     if isinstance(value, float):

@@ -9,7 +9,7 @@ stored as an exponent per variable together with one such unit change.
 
 from __future__ import annotations
 
-import math
+import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -18,7 +18,8 @@ import sympy
 
 from .dimensions import Dimension
 from .display import power_text
-from .errors import InvalidRequestError, PiTheoremError
+from .errors import InvalidRequestError, LimitError, PiTheoremError
+from .exact import read_exponent, read_number, short_text
 from .linalg import solve
 from .system import System
 
@@ -28,11 +29,8 @@ __all__ = ["Scaling", "as_exponent", "exact_fraction"]
 def exact_fraction(value, *, irrational_ok: bool = False) -> Fraction:
     """A real number as an exact Fraction; floats as written (0.1 -> 1/10).
 
-    Accepts int, Fraction, Decimal, numpy numbers, sympy Rationals, strings
-    such as ``"1/3"`` and finite floats; with `irrational_ok`, also other
-    real sympy numbers (``pi``), through their float value.  Raises
-    TypeError, ValueError or ZeroDivisionError otherwise; callers turn that
-    into a message that names their culprit.
+    The one number reader of the package, :func:`pitheorem.exact.read_number`
+    (see there for the rule); raises :class:`~pitheorem.errors.NumberError`.
 
     Examples
     --------
@@ -40,23 +38,11 @@ def exact_fraction(value, *, irrational_ok: bool = False) -> Fraction:
     >>> exact_fraction("1/3"), exact_fraction(0.1)
     (Fraction(1, 3), Fraction(1, 10))
     """
-    if isinstance(value, bool):
-        raise TypeError("a bool is not a number here")
-    if isinstance(value, sympy.Basic):
-        if value.is_Rational:
-            return Fraction(int(value.p), int(value.q))
-        if not irrational_ok:
-            raise TypeError("not a rational number")
-        value = float(value)
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            raise ValueError("not finite")
-        return Fraction(repr(value))
-    return Fraction(value)
+    return read_number(value, irrational_ok=irrational_ok)
 
 
 def as_exponent(value, what: str) -> Fraction:
-    """Read an exact exponent: int, Fraction, sympy Rational, str, or finite float.
+    """Read an exact exponent (:func:`pitheorem.exact.read_exponent`).
 
     Examples
     --------
@@ -64,14 +50,7 @@ def as_exponent(value, what: str) -> Fraction:
     >>> as_exponent("1/2", "g"), as_exponent(0.25, "g")
     (Fraction(1, 2), Fraction(1, 4))
     """
-    if isinstance(value, bool):
-        raise InvalidRequestError(f"exponent of {what} must be a number, got {value!r}")
-    try:
-        return exact_fraction(value)
-    except (TypeError, ValueError, ZeroDivisionError):
-        raise InvalidRequestError(
-            f"exponent of {what} must be a rational number such as 1, -2 or '1/2', got {value!r}"
-        ) from None
+    return read_exponent(value, f"exponent of {what}")
 
 
 def _is_exact(x) -> bool:
@@ -307,12 +286,20 @@ class Scaling:
         out = {}
         for name, value in values.items():
             p = self.powers[self.system.index(name, "values")]
+            np = sys.modules.get("numpy")  # a value cannot be an array unless numpy is loaded
+            if np is None or not isinstance(value, np.ndarray):  # arrays (of samples) pass as they are
+                read_number(value, f"the value of {name!r}", irrational_ok=True)
             if p == 0:
                 out[name] = value
             elif _is_exact(value) and _is_exact(s):
                 out[name] = sympy.Rational(value) * _power(s, p)
             else:
-                out[name] = value * float(_power(s, p))
+                try:
+                    out[name] = value * float(_power(s, p))
+                except OverflowError:  # s^p itself is beyond floating point
+                    raise LimitError(f"s^{p} with s = {short_text(read_number(s, 's', irrational_ok=True))}",
+                                     f"the factor of {name!r}", "it is beyond the range of floating point",
+                                     "use an exact value (int or Fraction), or an s nearer to 1") from None
         return out
 
     def map_back(self, t, y, s, *, time: str, states: Sequence[object]):
@@ -366,11 +353,11 @@ class Scaling:
     @staticmethod
     def _check_s(s):
         try:
-            ok = float(s) > 0 and math.isfinite(float(s))
-        except (TypeError, ValueError):
+            ok = read_number(s, "the scale factor s", irrational_ok=True) > 0
+        except PiTheoremError:
             ok = False
         if not ok:
-            raise InvalidRequestError(f"the scale factor s must be a positive finite number, got {s!r}")
+            raise InvalidRequestError(f"the scale factor s must be a positive finite number, got {s!r}", culprit=s)
 
     # -- algebra ----------------------------------------------------------
     def inverse(self) -> Scaling:

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 
 import sympy
 
-from .dimensions import DEFAULT_BASE_DIMENSIONS, Dimension
+from .dimensions import DEFAULT_BASE_DIMENSIONS, OPT_IN_BASE_DIMENSIONS, Dimension, base_dimension_names
 from .errors import (
     DependentRepeatingSetError,
     DimensionSyntaxError,
@@ -28,6 +28,7 @@ from .errors import (
     UnitError,
     UnknownVariableError,
 )
+from .exact import read_exponent
 from .groups import PiGroup, PiSet
 from .linalg import integer_rref, nullspace, rank
 
@@ -107,7 +108,9 @@ class System:
         :class:`Dimension`, or a mapping of base names to exponents.
     base_dimensions : iterable of str, optional
         Names allowed as base dimensions, in display order.  Default:
-        ``M L T Theta I N J A``.
+        ``M L T Theta I``.  ``N`` (amount of substance), ``J`` (luminous
+        intensity) and ``A`` (angle) must be listed here to be used,
+        because each is also an SI unit symbol (newton, joule, ampere).
 
     Examples
     --------
@@ -131,10 +134,7 @@ class System:
     __slots__ = ("_allowed", "_base_dimensions", "_columns", "_dimensions", "_reduced", "_variables")
 
     def __init__(self, variables, *, base_dimensions: Iterable[str] | None = None):
-        allowed = tuple(DEFAULT_BASE_DIMENSIONS if base_dimensions is None else base_dimensions)
-        for b in allowed:
-            if not isinstance(b, str) or not b.isidentifier():
-                raise InvalidRequestError(f"base dimension names must be identifiers, got {b!r}")
+        allowed = DEFAULT_BASE_DIMENSIONS if base_dimensions is None else base_dimension_names(base_dimensions)
         if len(set(allowed)) != len(allowed):
             dup = next(b for b in allowed if allowed.count(b) > 1)
             raise DuplicateVariableError(dup, "base_dimensions")
@@ -187,20 +187,24 @@ class System:
             except DimensionSyntaxError as err:
                 raise DimensionSyntaxError(err.text, err.position, f"{err.reason} (dimension of {name!r})") from None
         elif isinstance(spec, Mapping):
-            try:
-                dim = Dimension(spec)
-            except (TypeError, ValueError):
-                raise InvalidRequestError(
-                    f"dimension of {name!r} must map base names to numbers, got {spec!r}"
-                ) from None
+            for base, power in spec.items():
+                if not isinstance(base, str):
+                    raise InvalidRequestError(
+                        f"dimension of {name!r} must map base names to numbers, got the key {base!r}", culprit=base
+                    )
+                read_exponent(power, f"the exponent of {base!r} in the dimension of {name!r}")
+            dim = Dimension(spec)
         else:
             raise InvalidRequestError(
                 f"dimension of {name!r} must be a formula string like 'M L^2 T^-2', got {spec!r}"
             )
         unknown = [b for b in dim.bases if b not in allowed]
         if unknown:
+            opt_in = (f"; {unknown[0]!r} is opt-in because it is also an SI unit symbol: declare it with "
+                      f"base_dimensions=(..., {unknown[0]!r})") if unknown[0] in OPT_IN_BASE_DIMENSIONS else ""
             raise InvalidRequestError(
-                f"dimension of {name!r} uses base {unknown[0]!r}; allowed bases are {', '.join(allowed)}"
+                f"dimension of {name!r} uses base {unknown[0]!r}; allowed bases are {', '.join(allowed)}{opt_in}",
+                culprit=unknown[0],
             )
         return dim
 
@@ -254,7 +258,9 @@ class System:
                 # pint treats angles as dimensionless; its root unit still records radians
                 powers["A"] = Fraction(root["radian"]).limit_denominator()
             dims[name] = Dimension(powers)
-        return cls(dims)
+        # pint names the dimension, so an opt-in letter (N for [substance]) is meant here
+        used = {b for d in dims.values() for b in d.bases}
+        return cls(dims, base_dimensions=DEFAULT_BASE_DIMENSIONS + tuple(b for b in OPT_IN_BASE_DIMENSIONS if b in used))
 
     # -- basic properties -------------------------------------------------
     @property

@@ -47,9 +47,10 @@ import sympy
 from scipy.optimize import Bounds, LinearConstraint, linprog, milp
 
 from .dimensions import Dimension
-from .errors import DimensionSyntaxError, DuplicateVariableError, InvalidRequestError
+from .errors import DimensionSyntaxError, DuplicateVariableError, InvalidRequestError, LimitError
+from .exact import read_number, short_text
 from .linalg import nullspace
-from .scaling import Scaling, exact_fraction
+from .scaling import Scaling
 from .system import System
 
 __all__ = ["RangeBound", "UnitFit", "fit_units"]
@@ -92,14 +93,20 @@ class RangeBound:
 # -- reading the request ------------------------------------------------------------------
 
 
+_HUGE = Fraction(10**300)
+
+
 def _exact(x, what: str) -> Fraction:
-    """A finite real number as a Fraction (floats as written: 0.1 -> 1/10)."""
-    if isinstance(x, bool):
-        raise InvalidRequestError(f"{what} must be a number, got {x!r}")
-    try:
-        return exact_fraction(x, irrational_ok=True)
-    except (TypeError, ValueError, ZeroDivisionError):
-        raise InvalidRequestError(f"{what} must be a finite real number, got {x!r}") from None
+    """A finite real number as a Fraction, by the package's one reader (0.1 -> 1/10).
+
+    The fit itself runs in floating point (logarithms, a linear program), so
+    magnitudes must stay well inside the float range.
+    """
+    value = read_number(x, what, irrational_ok=True)
+    if value and not 1 / _HUGE <= abs(value) <= _HUGE:
+        raise LimitError(short_text(value), what,
+                         "fit_units needs magnitudes between 1e-300 and 1e300")
+    return value
 
 
 def _read_range(spec, what: str) -> tuple[Fraction, Fraction]:
@@ -620,7 +627,7 @@ def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[s
     if exact:
         scaled = scaling.apply({n: sympy.Rational(x.numerator, x.denominator) for n, x in exact_values.items()}, s)
     else:
-        scaled = scaling.apply({n: float(values[n]) for n in values}, float(s))
+        scaled = scaling.apply({n: float(x) for n, x in exact_values.items()}, float(s))
 
     satisfied, violated, worst = [], [], 0.0
     for name, lo, hi in rng:

@@ -42,5 +42,6 @@ def test_value_semantics():
 
 def test_display_order_follows_base_list():
     assert pt.Dimension.parse("T L M").bases == ("M", "L", "T")
-    assert pt.Dimension.parse("A Theta M").bases == ("M", "Theta", "A")
+    assert pt.Dimension.parse("A Theta M", base_dimensions=("M", "Theta", "A")).bases == ("M", "Theta", "A")
+    assert pt.Dimension.parse("A Theta M", base_dimensions=("A", "Theta", "M")).bases == ("M", "Theta", "A")
     assert pt.Dimension.parse("Theta").latex == r"\Theta"

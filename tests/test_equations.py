@@ -45,8 +45,12 @@ def test_longitudinal_variant_with_longitudinal_damper_is_flagged():
     assert not report.consistent
     assert [(term, str(got), str(want)) for term, got, want in report.offending] == [
         (-damping, "M L T^-2", "M L^2 T^-2"),  # one length short of a torque
-        (rhs, "L^-1 T^-2", "T^-2"),  # the 3/(m l^3) prefactor
+        # one term on each side: a tie, so both are listed (the 3/(m l^3) prefactor is the mistake)
+        (theta.diff(t, 2), "T^-2", "L^-1 T^-2"),
+        (rhs, "L^-1 T^-2", "T^-2"),
     ]
+    assert len(report.ties) == 1
+    assert "T^-2 and L^-1 T^-2" in report.ties[0]
 
 
 def test_longitudinal_variant_with_rotational_damper_is_flagged_for_its_prefactor():
@@ -54,7 +58,9 @@ def test_longitudinal_variant_with_rotational_damper_is_flagged_for_its_prefacto
                - k * x_r * l * sympy.sin(theta))
     rhs = 3 / (m * l**3) * bracket
     report = pt.check_dimensions(sympy.Eq(theta.diff(t, 2), rhs), longitudinal_system("M L^2 T^-1"))
-    assert [(term, str(got), str(want)) for term, got, want in report.offending] == [(rhs, "L^-1 T^-2", "T^-2")]
+    assert [(term, str(got), str(want)) for term, got, want in report.offending] == [
+        (theta.diff(t, 2), "T^-2", "L^-1 T^-2"), (rhs, "L^-1 T^-2", "T^-2")]
+    assert "tie:" in str(report)
 
 
 def test_transcendental_arguments_must_be_dimensionless():

@@ -37,7 +37,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from ..errors import InvalidRequestError, PiTheoremError
+from ..errors import EngineUnavailableError, InvalidRequestError, PiTheoremError
 from ..models import hinged_rod
 from ..scaling import Scaling
 from ..simulate import (
@@ -60,28 +60,6 @@ DEFAULT_TIME_STEP = MappingProxyType({"bullet": 1 / 240, "mujoco": 0.002})
 
 _PACKAGES = {"bullet": "pybullet", "mujoco": "mujoco"}
 _MUJOCO_INTEGRATORS = ("Euler", "RK4", "implicit", "implicitfast")
-
-
-class EngineUnavailableError(PiTheoremError, ImportError):
-    """An engine's Python package is not installed.
-
-    Examples
-    --------
-    >>> from pitheorem.engines.rod import EngineUnavailableError
-    >>> print(EngineUnavailableError("bullet"))
-    engine 'bullet' needs the Python package 'pybullet': pip install "pitheorem[engines]"
-    """
-
-    def __init__(self, engine: str):
-        self.engine = engine
-        PiTheoremError.__init__(self, str(self))
-
-    def __str__(self) -> str:
-        package = _PACKAGES.get(self.engine, self.engine)
-        return f'engine {self.engine!r} needs the Python package {package!r}: pip install "pitheorem[engines]"'
-
-    def __reduce__(self):
-        return (type(self), (self.engine,))
 
 
 @contextlib.contextmanager

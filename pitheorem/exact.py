@@ -1,0 +1,224 @@
+"""Reading numbers exactly, and the size limits of exact arithmetic.
+
+Every number a user passes (an exponent in a formula or a mapping, a scale
+exponent, a value, a bound, the scale factor on the command line) is read
+here, by :func:`read_number`, under one rule:
+
+* ``int``, :class:`~fractions.Fraction`, ``Decimal``, sympy
+  Rationals and numpy integers are exact already and kept as they are.
+* A float -- Python's or numpy's -- is read as the shortest decimal that
+  prints as it (its ``repr``): the number the user typed.  So ``0.1`` is
+  1/10, ``np.float64(0.5)`` is 1/2, ``2.5e-3`` is 1/400.  A float computed
+  rather than typed, such as ``1/3``, prints as ``0.3333333333333333`` and is
+  read as that decimal; to mean one third, pass ``Fraction(1, 3)`` or
+  ``"1/3"``.
+* A string is an integer, a decimal (``"0.1"``, ``"1e-3"``) or a fraction
+  ``"p/q"``, read exactly.
+* ``True``/``False``, infinities, NaN and anything else are refused with a
+  :class:`~pitheorem.errors.NumberError` that names the value.
+
+Exponents (of base dimensions, and of the scale factor ``s``) must also lie
+within :data:`MAX_EXPONENT` in magnitude with a denominator of at most
+:data:`MAX_DENOMINATOR`; formulas may nest brackets :data:`MAX_NESTING`
+deep and be :data:`MAX_FORMULA_LENGTH` characters long.  Beyond that a
+:class:`~pitheorem.errors.LimitError` states the limit.  No physical model
+comes near these limits; they keep exact arithmetic fast and every result
+printable.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import sys
+from decimal import Decimal
+from fractions import Fraction
+
+import sympy
+
+from .errors import LimitError, NumberError
+
+__all__ = [
+    "MAX_DENOMINATOR",
+    "MAX_EXPONENT",
+    "MAX_FORMULA_LENGTH",
+    "MAX_NESTING",
+    "read_exponent",
+    "read_number",
+    "short_text",
+]
+
+#: largest magnitude of an exponent (of a base dimension or of ``s``)
+MAX_EXPONENT = 1000
+#: largest denominator of an exponent
+MAX_DENOMINATOR = 10**12
+#: deepest bracket nesting in a dimension formula
+MAX_NESTING = 100
+#: longest dimension formula, in characters
+MAX_FORMULA_LENGTH = 10_000
+#: largest power of ten written in a number string (``"1e400"`` is fine, ``"1e99999999"`` is not)
+_MAX_DECIMAL_EXPONENT = 10_000
+_MAX_STRING_LENGTH = 1_000
+
+_NUMBER_TEXT = re.compile(r"[+-]?\d+/\d+|[+-]?(\d+(\.\d*)?|\.\d+)([eE](?P<exp>[+-]?\d+))?")
+
+_EXPECTED = "a finite real number (int, float, Fraction, numpy or sympy number, or a string such as '0.1' or '1/3')"
+
+
+def read_number(value, what: str = "the number", *, irrational_ok: bool = False) -> Fraction:
+    """A finite real number as an exact Fraction, under the module's rule.
+
+    Parameters
+    ----------
+    value : int, float, Fraction, Decimal, str, numpy or sympy number
+        The number.  Floats are read as the decimal they print as.
+    what : str
+        What the number is, for the error message (``"exponent of 'g'"``).
+    irrational_ok : bool
+        Also accept irrational sympy numbers (``pi``, ``sqrt(2)``), through
+        the float nearest to them.
+
+    Returns
+    -------
+    Fraction
+
+    Raises
+    ------
+    NumberError
+        For anything that is not a finite real number.
+    LimitError
+        For a number string with a power of ten beyond 10^10000.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pitheorem.exact import read_number
+    >>> read_number(0.1), read_number(np.float64(0.5)), read_number("1/3"), read_number("2.5e-3")
+    (Fraction(1, 10), Fraction(1, 2), Fraction(1, 3), Fraction(1, 400))
+    """
+    np = numpy_if_loaded()
+    if isinstance(value, bool) or (np is not None and isinstance(value, np.bool_)):
+        raise NumberError(value, what, _EXPECTED + ", not a bool")
+    if np is not None and isinstance(value, np.ndarray) and value.shape == ():
+        value = value[()]
+    if isinstance(value, int) or (np is not None and isinstance(value, np.integer)):
+        return Fraction(int(value))
+    if isinstance(value, Fraction):
+        return value
+    if isinstance(value, float) or (np is not None and isinstance(value, np.floating)):
+        if not math.isfinite(value):
+            raise NumberError(value, what, _EXPECTED)
+        # the shortest decimal that prints as this float; numpy's own str for
+        # float32 and friends, whose shortest decimal differs from float64's
+        text = repr(float(value)) if isinstance(value, float) else str(value)  # np.float64 is a float
+        return _from_text(text, value, what)
+    if isinstance(value, Decimal):
+        if not value.is_finite():
+            raise NumberError(value, what, _EXPECTED)
+        return _from_text(str(value), value, what)
+    if isinstance(value, sympy.Basic):
+        if value.is_Rational:
+            return Fraction(int(value.p), int(value.q))
+        if isinstance(value, sympy.Float) and value.is_finite:
+            # sympy.Float(0.1) carries a double's 53 bits: read it as that double;
+            # a Float made with more digits is read as the decimal it holds
+            if value._prec <= 53:
+                return read_number(float(value), what)
+            return _from_text(str(value), value, what)
+        if irrational_ok and value.is_number and value.is_extended_real and value.is_finite:
+            return read_number(float(value), what)
+        raise NumberError(value, what, _EXPECTED if irrational_ok else "a rational number such as 1, -2 or '1/2'")
+    if isinstance(value, str):
+        return _from_text(value, value, what)
+    raise NumberError(value, what, _EXPECTED)
+
+
+def numpy_if_loaded():
+    """numpy, if some code has imported it; a value cannot be a numpy scalar otherwise.
+
+    Looking it up instead of importing it keeps ``import pitheorem`` free of numpy.
+    """
+    return sys.modules.get("numpy")
+
+
+def _from_text(text: str, value, what: str) -> Fraction:
+    text = text.strip()
+    if len(text) > _MAX_STRING_LENGTH:
+        raise LimitError(f"{text[:20]}...", what, f"a number string may have at most {_MAX_STRING_LENGTH} characters")
+    match = _NUMBER_TEXT.fullmatch(text)
+    if match is None:
+        raise NumberError(value, what, _EXPECTED)
+    # check the power of ten before Fraction builds 10**exp
+    if match.group("exp") is not None and abs(int(match.group("exp"))) > _MAX_DECIMAL_EXPONENT:
+        raise LimitError(text, what, f"its power of ten exceeds the limit 10^{_MAX_DECIMAL_EXPONENT}")
+    try:
+        return Fraction(text)
+    except ZeroDivisionError:
+        raise NumberError(value, what, _EXPECTED + ", with a nonzero denominator") from None
+
+
+def check_exponent(exponent: Fraction, what: str, *, shown: object = None) -> Fraction:
+    """Return `exponent` if it lies within the exponent limits, else raise LimitError.
+
+    `shown` is the value as the user gave it, for the message.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem.exact import check_exponent
+    >>> check_exponent(Fraction(1, 3), "exponent of 'g'")
+    Fraction(1, 3)
+    """
+    np = numpy_if_loaded()
+    from_decimal = isinstance(shown, float | Decimal | sympy.Float) or (np is not None and isinstance(shown, np.floating))
+    if shown is None or isinstance(shown, int | Fraction):
+        shown = short_text(Fraction(exponent))
+    elif isinstance(shown, str) and len(shown) > 40:
+        shown = shown[:40] + "..."
+    if abs(exponent) > MAX_EXPONENT:
+        raise LimitError(shown, what, f"its magnitude exceeds the limit {MAX_EXPONENT}")
+    if exponent.denominator > MAX_DENOMINATOR:
+        hint = ""
+        if from_decimal:
+            hint = "a float is read as the decimal it prints as; pass an exact exponent such as Fraction(1, 3) or '1/3'"
+        raise LimitError(shown, what, f"its denominator {short_text(Fraction(exponent.denominator))} exceeds the limit {MAX_DENOMINATOR}",
+                         hint)
+    return exponent
+
+
+def read_exponent(value, what: str) -> Fraction:
+    """Read an exponent: :func:`read_number`, then the exponent limits.
+
+    Examples
+    --------
+    >>> from pitheorem.exact import read_exponent
+    >>> read_exponent("-1/2", "exponent of 'l'"), read_exponent(0.25, "exponent of 'g'")
+    (Fraction(-1, 2), Fraction(1, 4))
+    >>> from pitheorem import LimitError
+    >>> try:
+    ...     read_exponent(1 / 3, "exponent of 'g'")
+    ... except LimitError as err:
+    ...     print(err.limit)
+    its denominator 10000000000000000 exceeds the limit 1000000000000
+    """
+    return check_exponent(read_number(value, what), what, shown=value)
+
+
+def short_text(value: Fraction) -> str:
+    """The number itself when short, else its order of magnitude.
+
+    Python refuses to print integers of more than 4300 digits, and error
+    messages should stay one line.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem.exact import short_text
+    >>> short_text(Fraction(1, 3)), short_text(Fraction(10**400)), short_text(Fraction(-1, 10**50))
+    ('1/3', 'about 10^400', 'about -10^-50')
+    """
+    value = Fraction(value)
+    if value.numerator.bit_length() + value.denominator.bit_length() < 120:
+        return str(value)
+    decades = round(math.log10(abs(value.numerator)) - math.log10(value.denominator))
+    return f"about {'-' if value < 0 else ''}10^{decades}"

@@ -1,0 +1,283 @@
+"""Issue 12's reproducers: each returns the right answer or a named PiTheoremError.
+
+The oracles here are independent of the code under test: determinants and
+ranks by Python-int arithmetic written out in the test, and answers
+known by hand.
+"""
+
+from __future__ import annotations
+
+import pickle
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+import pitheorem as pt
+from pitheorem.bases import count_independent_subsets, independent_subsets
+from pitheorem.exact import MAX_DENOMINATOR, MAX_EXPONENT, MAX_NESTING, read_exponent, read_number
+
+ROD = {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "theta_r": "1", "t": "T"}
+LT = pt.System({"l": "L", "t": "T"})
+
+
+def det2(a, b, c, d):
+    return a * d - b * c
+
+
+# -- overflow in the fast basis paths --------------------------------------------------------
+
+
+def test_determinant_two_to_the_64_is_not_zero():
+    # was: rank 2 but no basis (float cancellation of 2^118-sized products)
+    a, b, c = (2**27 + 1) * 2**32, (2**27 + 2) * 2**32, 2**59
+    rows = [[a, c], [b, a]]
+    assert det2(a, c, b, a) == 2**64
+    assert count_independent_subsets(rows, [0, 1], [], 2) == 1
+    assert list(independent_subsets(rows, [0, 1], [], 2)) == [(0, 1)]
+
+
+@pytest.mark.parametrize("big", [3_100_000_000, 2**40, 2**62 + 1, 2**70, 10**30])
+def test_entries_beyond_int64_safe_range(big):
+    # was: (columns**2).sum() wrapped (math domain error) or OverflowError building int64 arrays
+    rows = [[big, big + 1, 1], [1, 1, 0]]
+    expected = [(i, j) for i, j in [(0, 1), (0, 2), (1, 2)]
+                if det2(rows[0][i], rows[0][j], rows[1][i], rows[1][j]) != 0]
+    assert list(independent_subsets(rows, [0, 1, 2], [], 2)) == expected
+    assert count_independent_subsets(rows, [0, 1, 2], [], 2) == len(expected)
+
+
+def test_dependent_columns_with_huge_entries_stay_dependent():
+    big = 2**80 + 7
+    rows = [[big, 2 * big, 1], [3, 6, 1]]  # columns 0 and 1 are parallel
+    assert list(independent_subsets(rows, [0, 1, 2], [], 2)) == [(0, 2), (1, 2)]
+
+
+def test_search_with_two_large_coprime_denominators():
+    # was: OverflowError (the lcm of the denominators, ~1e24, entered an int64 array)
+    s = pt.System({"l": "L", "t": "T", "m": "M", "v": "L/T"})
+    q1, q2 = 999_999_999_989, 999_999_999_959
+    res = pt.search(s, scale={"l": Fraction(1, q1), "t": Fraction(1, q2)}, fixed=())
+    assert res.count == 1
+    sc = res.scalings[0]
+    assert sc.exponents["v"] == Fraction(1, q1) - Fraction(1, q2)
+    assert sc.exponents["m"] == 0
+
+
+@pytest.mark.parametrize("p", [2, 3, 5, 7, 11, 13, 17, 19, 23, 29])
+def test_exponent_one_over_prime(p):
+    rod = pt.System(ROD)
+    res = pt.search(rod, scale={"g": Fraction(1, p)})
+    assert res.feasible
+    for sc in res.scalings:
+        assert sc.exponents["g"] == Fraction(1, p)
+        assert sc.exponents["t"] == 0
+
+
+@pytest.mark.parametrize("value", [1 / 3, 0.123456789012345, 1e-13])
+def test_float_exponent_beyond_denominator_limit_is_named(value):
+    with pytest.raises(pt.LimitError) as info:
+        pt.search(LT, scale={"l": value}, fixed=())
+    assert str(MAX_DENOMINATOR) in str(info.value)
+    assert "Fraction(1, 3)" in str(info.value)  # says how to write it exactly
+
+
+@pytest.mark.parametrize(("value", "exponent"), [
+    (Fraction(1, 10**9), Fraction(1, 10**9)),
+    (1e-9, Fraction(1, 10**9)),
+    (0.123456789, Fraction(123456789, 10**9)),
+    (np.float64(0.5), Fraction(1, 2)),
+    (np.float32(0.1), Fraction(1, 10)),
+    (np.int64(2), Fraction(2)),
+    ("1/3", Fraction(1, 3)),
+])
+def test_exponents_read_as_written(value, exponent):
+    res = pt.search(LT, scale={"l": value}, fixed=())
+    assert res.count == 1
+    assert res.scalings[0].exponents["l"] == exponent
+
+
+def test_fraction_one_over_ten_to_twenty_is_named():
+    with pytest.raises(pt.LimitError, match=str(MAX_DENOMINATOR)):
+        pt.search(LT, scale={"l": Fraction(1, 10**20)}, fixed=())
+
+
+# -- sizes of formulas and mappings ------------------------------------------------------------
+
+
+@pytest.mark.parametrize("spec", ["L^99999999999999999999999", {"L": 1e300}, {"L": 10**400}, "L^1001", "L^(1/1000000000001)"])
+def test_exponent_limits(spec):
+    with pytest.raises(pt.LimitError) as info:
+        pt.System({"x": spec})
+    assert str(MAX_EXPONENT) in str(info.value) or str(MAX_DENOMINATOR) in str(info.value)
+
+
+def test_exponents_at_the_limits_are_accepted():
+    s = pt.System({"x": f"L^{MAX_EXPONENT}", "y": f"T^(-1/{MAX_DENOMINATOR})"})
+    assert s.dimension("x").exponent("L") == MAX_EXPONENT
+    assert s.dimension("y").exponent("T") == Fraction(-1, MAX_DENOMINATOR)
+
+
+@pytest.mark.parametrize("bad", [float("inf"), float("-inf"), float("nan"), True, None, "x", np.bool_(True)])
+def test_non_numbers_in_mappings(bad):
+    with pytest.raises(pt.NumberError) as info:
+        pt.System({"x": {"L": bad}})
+    assert info.value.culprit is bad or repr(info.value.culprit) == repr(bad)
+    assert "'x'" in str(info.value)
+
+
+def test_nesting_limit():
+    ok = "(" * MAX_NESTING + "L" + ")" * MAX_NESTING
+    assert pt.Dimension.parse(ok) == pt.Dimension({"L": 1})
+    with pytest.raises(pt.LimitError, match=str(MAX_NESTING)):
+        pt.Dimension.parse("(" * (MAX_NESTING + 1) + "L" + ")" * (MAX_NESTING + 1))
+    with pytest.raises(pt.LimitError):  # was RecursionError
+        pt.Dimension.parse("(" * 5000 + "L" + ")" * 5000)
+
+
+def test_decimal_in_mapping_is_the_decimal_written():
+    assert pt.System({"x": {"L": 0.1}}).dimension("x") == pt.Dimension.parse("L^(1/10)")
+    assert pt.System({"x": {"L": np.float64(0.5)}}).dimension("x") == pt.Dimension.parse("L^(1/2)")
+
+
+def test_base_dimensions_string_is_refused():
+    with pytest.raises(pt.InvalidRequestError, match="'LT'"):
+        pt.System({"x": "L"}, base_dimensions="LT")
+    with pytest.raises(pt.InvalidRequestError, match="'LT'"):
+        pt.Dimension.parse("L", base_dimensions="LT")
+
+
+def test_double_sign_is_a_syntax_error():
+    # was read as L^2 (mutation survivor: the parser reading --2 as -2 went unnoticed)
+    for text in ("L^--2", "L^+-2", "L^(--1/2)"):
+        with pytest.raises(pt.DimensionSyntaxError):
+            pt.Dimension.parse(text)
+    assert pt.Dimension.parse("L^-2").exponent("L") == -2
+    assert pt.Dimension.parse("L^+2").exponent("L") == 2
+    assert pt.Dimension.parse("L^(-1/-2)").exponent("L") == Fraction(1, 2)
+
+
+def test_fit_units_with_huge_value_is_named():
+    s = pt.System({"r": "L", "t": "T"})
+    with pytest.raises(pt.LimitError, match="1e300"):
+        pt.fit_units(s, {"r": 10**400, "t": 1}, ranges={"r": (1, 10)})
+
+
+# -- the number rule ---------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(("value", "expected"), [
+    (0.1, Fraction(1, 10)), (2.5e-3, Fraction(1, 400)), (1e22, Fraction(10**22)), (-0.0, Fraction(0)),
+    (np.float64(0.5), Fraction(1, 2)), (np.float32(0.1), Fraction(1, 10)), (np.float16(0.25), Fraction(1, 4)),
+    (np.int8(-3), Fraction(-3)), (np.array(0.2), Fraction(1, 5)), ("  -7/21 ", Fraction(-1, 3)),
+    ("1e-3", Fraction(1, 1000)), (Fraction(2, 6), Fraction(1, 3)), (10**40, Fraction(10**40)),
+])
+def test_read_number_rule(value, expected):
+    assert read_number(value) == expected
+
+
+@pytest.mark.parametrize("bad", ["1/0", "1e", "0x10", "1.5/2", "", "--1", "nan", "inf", [1], {}, 1j, object()])
+def test_read_number_refuses(bad):
+    with pytest.raises(pt.NumberError):
+        read_number(bad, "the test value")
+
+
+def test_huge_power_of_ten_string_is_refused_before_it_is_built():
+    with pytest.raises(pt.LimitError, match="power of ten"):
+        read_exponent("1e99999999", "x")
+
+
+# -- N, J and A are opt-in -----------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(("letter", "unit"), [("N", "newton"), ("J", "joule"), ("A", "ampere")])
+def test_unit_lookalike_letters_are_not_silent(letter, unit):
+    with pytest.raises(pt.DimensionSyntaxError) as info:
+        pt.System({"F": letter, "x": "L"})
+    assert unit in str(info.value)
+    assert "base_dimensions" in str(info.value)
+
+
+def test_opt_in_letters_work_when_declared():
+    s = pt.System({"n": "N", "a": "A", "x": "L"}, base_dimensions=("M", "L", "T", "N", "A"))
+    assert s.base_dimensions == ("L", "N", "A")
+    assert s.rank == 3
+
+
+def test_from_units_declares_what_pint_names():
+    s = pt.System.from_units({"c": "mol/m^3", "F": "N"})
+    assert str(s.dimension("c")) == "L^-3 N"
+    assert str(s.dimension("F")) == "M L T^-2"
+    a = pt.System.from_units({"k": "N*m/rad"}, angle_as_base=True)
+    assert str(a.dimension("k")) == "M L^2 T^-2 A^-1"
+
+
+# -- errors: builtin bases, culprit, pickling ----------------------------------------------------
+
+
+def provoked_errors():
+    """One real instance of every error class, provoked through the public API where possible."""
+    from pitheorem import errors
+    from pitheorem.cli import _parse_s
+
+    def catch(call):
+        try:
+            call()
+        except pt.PiTheoremError as err:
+            return err
+        raise AssertionError(f"{call} raised nothing")
+
+    rod = pt.System(ROD)
+    return {
+        errors.DimensionSyntaxError: (catch(lambda: pt.Dimension.parse("M L^^2")), "^2"),
+        errors.UnknownVariableError: (catch(lambda: rod.pi_groups(repeating=("mass", "l", "t"))), "mass"),
+        errors.DuplicateVariableError: (catch(lambda: rod.pi_groups(repeating=("m", "m", "t"))), "m"),
+        errors.EmptySystemError: (catch(lambda: pt.System({})), None),
+        errors.RepeatingCountError: (catch(lambda: rod.pi_groups(repeating=("m", "l"))), ("m", "l")),
+        errors.DependentRepeatingSetError: (catch(lambda: rod.pi_groups(repeating=("l", "t", "g"))), ("l", "t", "g")),
+        errors.InvalidRequestError: (catch(lambda: pt.System({"x": "L"}, base_dimensions="LT")), "LT"),
+        errors.UnitError: (catch(lambda: pt.System.from_units({"x": "furlongs per flibber"})), None),
+        errors.SystemMismatchError: (catch(lambda: pt.verify_similarity(
+            pt.models.projectile(), pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1}),
+            s=2, t_final=0.1)), "m"),
+        errors.NumberError: (catch(lambda: pt.search(LT, scale={"l": float("nan")})), "nan"),
+        errors.LimitError: (catch(lambda: pt.Dimension.parse("L^5000")), "5000"),
+        errors.ModelFileError: (catch(lambda: pt.load_model_file("example:nope")), "example:nope"),
+        errors.CommandLineError: (catch(lambda: _parse_s("-2")), "-2"),
+        errors.EngineUnavailableError: (errors.EngineUnavailableError("bullet"), "bullet"),
+    }
+
+
+PROVOKED = provoked_errors()
+
+
+def test_every_error_class_is_provoked_here():
+    from pitheorem import errors
+
+    names = {n for n in errors.__all__ if n != "PiTheoremError"}
+    assert {c.__name__ for c in PROVOKED} == names
+
+
+@pytest.mark.parametrize("cls", sorted(PROVOKED, key=lambda c: c.__name__), ids=lambda c: c.__name__)
+def test_error_contract(cls):
+    from pitheorem import errors
+
+    err, culprit = PROVOKED[cls]
+    assert type(err) is cls
+    assert cls.__module__ == errors.__name__  # every error class lives in errors.py
+    assert isinstance(err, pt.PiTheoremError)
+    assert isinstance(err, ValueError | KeyError | TypeError | ImportError)
+    if culprit is not None:
+        shown = err.culprit if isinstance(err.culprit, str | tuple) else repr(err.culprit)
+        assert shown == culprit or str(culprit) in str(shown)
+    copy = pickle.loads(pickle.dumps(err))
+    assert type(copy) is cls
+    assert str(copy) == str(err)
+    assert copy.culprit == err.culprit or repr(copy.culprit) == repr(err.culprit)
+    assert str(err).strip(), "an error must say what is wrong"
+
+
+def test_message_only_errors_pickle_their_culprit():
+    err = pt.InvalidRequestError("bad thing", culprit="thing")
+    copy = pickle.loads(pickle.dumps(err))
+    assert (copy.culprit, str(copy)) == ("thing", "bad thing")
