@@ -129,7 +129,20 @@ def _dump_json(doc) -> str:
     return json.dumps(doc, indent=2, ensure_ascii=False)
 
 
+def _is_engine_file(path: str) -> bool:
+    """Whether FILE is an MJCF or URDF model; examples and TOML/JSON files never load the engines package."""
+    if path.startswith("example:") or path.lower().endswith((".toml", ".json")):
+        return False
+    from .engines.cli import is_engine_file
+
+    return is_engine_file(path)
+
+
 def _load(path: str) -> ModelFile:
+    if _is_engine_file(path):  # MJCF or URDF: its system and scalar values, through the engine
+        from .engines.cli import engine_model_file
+
+        return engine_model_file(path)[0]
     try:
         return load_model_file(path)
     except IsADirectoryError:
@@ -383,6 +396,17 @@ def _cmd_search(args) -> int:
 def _cmd_apply(args) -> int:
     model = _load(args.file)
     s = _parse_s(args.s)
+    if _is_engine_file(args.file):  # write the scaled file the engine loads
+        from .engines.cli import apply_engine
+
+        result = _run_search(model, args)
+        if not result.feasible:
+            print(f"pitheorem: {result.explanation()} Nothing written.", file=sys.stderr)
+            return EXIT_INFEASIBLE
+        if not 1 <= args.solution <= result.count:
+            raise _CommandError(f"--solution {args.solution} is out of range: choose 1 to {result.count}")
+        print("\n".join(apply_engine(args.file, result.scalings[args.solution - 1], s, args.output)))
+        return EXIT_OK
     if not model.values:
         raise _CommandError(f"{args.file}: no variable has a value, so there is nothing to scale; "
                             "give values in the model file, e.g. m = { dimension = \"M\", value = 1.5 }")
@@ -450,6 +474,14 @@ def _cmd_apply(args) -> int:
     return EXIT_OK
 
 
+def _engine_params(args) -> int:
+    if not _is_engine_file(args.file):
+        raise _CommandError(f"{args.file}: params reads MJCF (.xml) or URDF (.urdf) model files")
+    from .engines.cli import print_params
+
+    return print_params(args.file, args.format)
+
+
 # -- parser and entry point ------------------------------------------------------------------
 
 
@@ -478,7 +510,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     common = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
-    common.add_argument("file", metavar="FILE", help="TOML model file (or example:NAME)")
+    common.add_argument("file", metavar="FILE", help="TOML, MJCF (.xml) or URDF (.urdf) model file (or example:NAME)")
     common.add_argument("--format", choices=("text", "json", "latex"), default="text",
                         help="output format (default: text)")
 
@@ -490,6 +522,11 @@ def build_parser() -> argparse.ArgumentParser:
                          help="only these variables (besides --scale) may change")
     request.add_argument("--no-default-fixed", action="store_true",
                          help="do not hold time fixed by default (same as --fixed with no names)")
+
+    p = sub.add_parser("params", parents=[common], allow_abbrev=False,
+                       help="parameters of an MJCF or URDF model, with dimensions",
+                       description="List every dimensional number of an MJCF (MuJoCo) or URDF (PyBullet) model.")
+    p.set_defaults(run=lambda args: _engine_params(args))
 
     p = sub.add_parser("groups", parents=[common], allow_abbrev=False, help="Pi groups of the model",
                        description="Print the dimensionless (Pi) groups of the model.")
@@ -517,7 +554,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="the scale factor s itself, e.g. 2 or 1/2 (each variable is multiplied by s^EXP)")
     p.add_argument("--solution", type=int, default=1, metavar="K",
                    help="use the K-th minimal scaling (default 1)")
-    p.add_argument("--output", metavar="OUT", help="write the scaled model file (.toml or .json)")
+    p.add_argument("--output", metavar="OUT", help="write the scaled model file (.toml or .json; MJCF/URDF as read)")
     p.set_defaults(run=_cmd_apply)
     return parser
 

@@ -25,7 +25,7 @@ from .models import Model
 from .scaling import Scaling, as_exponent
 from .system import System
 
-__all__ = ["SimilarityReport", "Trajectory", "simulate", "verify_similarity"]
+__all__ = ["SimilarityReport", "Trajectory", "nudged", "similarity_report", "simulate", "verify_similarity"]
 
 _METHODS = ("solve_ivp", "euler")
 
@@ -314,7 +314,7 @@ def _exponents_from_dict(model: Model, exponents: Mapping, check: bool):
                     f"the exponents of the parameters and time do not determine the scaling of state {n!r} "
                     f"(dimension {model.system.dimension(n)}); give its exponent too"
                 )
-        partial = Scaling.from_exponents(sub, {n: given.get(n, 0) for n in core})
+        partial = _similarity_or_raise(sub, {n: given.get(n, 0) for n in core})
         scaling = Scaling.from_unit_change(model.system, dict(zip(sub.base_dimensions, partial.units, strict=True)))
         bad = [n for n in model.states if n in given and given[n] != scaling.powers[model.system.index(n)]]
         if bad:
@@ -329,6 +329,31 @@ def _exponents_from_dict(model: Model, exponents: Mapping, check: bool):
         powers = {n: given.get(n, Fraction(0)) for n in known}
         return None, powers
     return scaling, {n: scaling.powers[model.system.index(n)] for n in known}
+
+
+def _exponent_text(value) -> str:
+    q = Fraction(value)
+    return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
+
+
+def _similarity_or_raise(system: System, exponents: Mapping[str, Fraction]) -> Scaling:
+    """``Scaling.from_exponents``, whose error names a Pi group the exponents change."""
+    try:
+        return Scaling.from_exponents(system, exponents)
+    except InvalidRequestError:
+        pass
+    given = ", ".join(f"{n}: {_exponent_text(v)}" for n, v in exponents.items() if v != 0) or "none"
+    broken = ""
+    for group in system.pi_groups():
+        change = sum((Fraction(e) * Fraction(exponents.get(n, 0)) for n, e in group.exponents.items()),
+                     Fraction(0))
+        if change != 0:
+            broken = f"; they multiply the Pi group {group.expr} by s^{_exponent_text(change)}"
+            break
+    raise InvalidRequestError(
+        f"exponents ({given}) are not a similarity scaling{broken} (only changes of base units keep every "
+        "group invariant)"
+    )
 
 
 def _factor(s: float, power: Fraction) -> float:
@@ -388,6 +413,23 @@ class SimilarityReport:
     is_similarity: bool = True
     method: str = "solve_ivp"
     scaled_dt: bool = True
+    sensitivity: Mapping[str, float] | None = None
+    baseline_factor: float = 10.0
+    nudged: Trajectory | None = field(default=None, repr=False)
+
+    @property
+    def similar(self) -> bool:
+        """The verdict: :attr:`passed` under another name (the engines' word).
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> smd = pt.models.spring_mass_damper()
+        >>> sc = pt.Scaling.from_unit_change(smd.system, {"L": 1})
+        >>> pt.verify_similarity(smd, sc, s=2, t_final=0.2).similar
+        True
+        """
+        return self.passed
 
     @property
     def difference(self) -> np.ndarray:
@@ -407,8 +449,13 @@ class SimilarityReport:
         verdict = "PASSED" if self.passed else "FAILED"
         kind = "similarity scaling" if self.is_similarity else "NOT a similarity scaling"
         per = ", ".join(f"{n}: {d:.3g}" for n, d in self.deviation.items())
+        if self.sensitivity is not None:
+            worst = max(self.sensitivity.values(), default=0.0)
+            judged = f"within {self.baseline_factor:g}x the one-ulp sensitivity (largest {worst:.3g}) per state"
+        else:
+            judged = f"tol {self.tol:g}"
         return (
-            f"{verdict}: max deviation {self.max_deviation:.3g} (tol {self.tol:g}) at s={self.s:g}, "
+            f"{verdict}: max deviation {self.max_deviation:.3g} ({judged}) at s={self.s:g}, "
             f"{kind}, method {self.method}; per state {per}"
         )
 
@@ -462,7 +509,7 @@ class SimilarityReport:
 
 def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, method="solve_ivp", dt=None,
                       scale_dt=True, check=True, rtol=1e-10, atol=1e-12, tol=1e-6,
-                      ivp_method="DOP853") -> SimilarityReport:
+                      ivp_method="DOP853", baseline=False) -> SimilarityReport:
     """Check numerically that a scaled run reproduces the original.
 
     Simulates the model with `params`; then scales the parameters by
@@ -503,6 +550,10 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
         by its listed exponent (default 0) -- to demonstrate wrong scalings.
     tol : float
         Largest deviation (in original units) that passes.
+    baseline : bool
+        Also run the original with every initial state nudged by one ulp
+        (``pitheorem.simulate.nudged``) and judge each state's deviation against that
+        run's, as :func:`pitheorem.engines.verify` does, instead of `tol`.
 
     Returns
     -------
@@ -592,22 +643,118 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
         t_back = original.t
     mapped = Trajectory(t_back, y_back, model.states, model.time)
 
+    reference = None
+    if baseline:  # the same run from a one-ulp nudged start, on the same grid
+        kwargs = {"dt": dt} if method == "euler" else {"t_eval": original.t, "rtol": rtol, "atol": atol}
+        reference = simulate(model, params, nudged(y_init), t_final, method=method, ivp_method=ivp_method, **kwargs)
+    return similarity_report(
+        original, mapped, s=s, scaling=sc if sc is not None else MappingProxyType(dict(powers)),
+        exponents=powers, tol=None if baseline else tol, nudged=reference, is_similarity=sc is not None,
+        method=method, scaled_dt=bool(scale_dt) if method == "euler" else True,
+    )
+
+
+def nudged(values) -> np.ndarray:
+    """Each value moved up by one ulp of itself, or of 1 where it is smaller than 1 in magnitude.
+
+    A coordinate at exactly 0 has a denormal ulp (5e-324) that no
+    computation feels; the ulp of 1 (2.2e-16) is the rounding every step
+    makes on numbers of order one.
+
+    Examples
+    --------
+    >>> from pitheorem.simulate import nudged
+    >>> [float(v) for v in nudged([0.0, 4.0])]
+    [2.220446049250313e-16, 4.000000000000001]
+    """
+    x = np.asarray(values, dtype=float)
+    return x + np.spacing(np.maximum(np.abs(x), 1.0))
+
+
+def _max_abs(diff: np.ndarray) -> float:
+    worst = float(diff.max()) if diff.size else 0.0
+    return worst if math.isfinite(worst) and np.all(np.isfinite(diff)) else math.inf
+
+
+def similarity_report(original: Trajectory, mapped: Trajectory, *, s: float, scaling, exponents,
+                      tol: float | None = None, nudged: Trajectory | None = None, baseline_factor: float = 10.0,
+                      is_similarity: bool = True, method: str = "solve_ivp",
+                      scaled_dt: bool = True) -> SimilarityReport:
+    """Compare an original run with a scaled run mapped back: the one verdict of every simulator.
+
+    :func:`verify_similarity` (scipy or Euler) and
+    :func:`pitheorem.engines.verify` (MuJoCo, PyBullet) both end here.  The
+    verdict is either absolute, ``max_deviation <= tol``, or, given a run
+    `nudged` whose initial state moved by one ulp, relative to the model's
+    own sensitivity: each state's deviation must stay within
+    ``baseline_factor`` times the nudged run's deviation from the original,
+    or below ``1e-9`` of the state's range where the nudge changed nothing.
+
+    Parameters
+    ----------
+    original, mapped : Trajectory
+        On the same time grid and states; `mapped` in original units.
+    s : float
+    scaling : Scaling or mapping
+    exponents : mapping of str to Fraction
+    tol : float, optional
+        Absolute tolerance (used when `nudged` is None).
+    nudged : Trajectory, optional
+        The one-ulp sensitivity baseline.
+    baseline_factor : float
+    is_similarity, method, scaled_dt
+        Recorded in the report.
+
+    Returns
+    -------
+    SimilarityReport
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pitheorem as pt
+    >>> from pitheorem.simulate import similarity_report
+    >>> a = pt.Trajectory([0.0, 1.0], [[1.0], [2.0]], ("x",))
+    >>> b = pt.Trajectory([0.0, 1.0], [[1.0], [2.0 + 1e-15]], ("x",))
+    >>> n = pt.Trajectory([0.0, 1.0], [[1.0], [2.0 + 4e-16]], ("x",))
+    >>> similarity_report(a, b, s=2, scaling={}, exponents={}, nudged=n).similar
+    True
+    """
+    if original.y.shape != mapped.y.shape:
+        raise InvalidRequestError(f"runs of shapes {original.y.shape} and {mapped.y.shape} cannot be compared")
     diff = np.abs(mapped.y - original.y)
-    per_state = {n: float(diff[:, j].max()) for j, n in enumerate(model.states)}
-    worst = float(diff.max())
-    if not math.isfinite(worst):
-        worst = math.inf
+    states = original.states
+    per_state = {n: _max_abs(diff[:, j]) for j, n in enumerate(states)}
+    worst = _max_abs(diff)
+    sensitivity = None
+    if nudged is not None:
+        base = np.abs(nudged.y - original.y)
+        sensitivity = {n: _max_abs(base[:, j]) for j, n in enumerate(states)}
+        span = np.ptp(original.y, axis=0) if len(original) else np.zeros(len(states))
+        passed = True
+        for j, n in enumerate(states):
+            limit = max(baseline_factor * sensitivity[n], 1e-9 * float(span[j]))
+            if not per_state[n] <= limit:
+                passed = False
+        tol = math.nan if tol is None else tol
+    else:
+        if tol is None:
+            raise InvalidRequestError("similarity_report needs tol or a nudged baseline run")
+        passed = worst <= tol
     return SimilarityReport(
         original=original,
         mapped=mapped,
         max_deviation=worst,
         deviation=MappingProxyType(per_state),
-        passed=worst <= tol,
+        passed=passed,
         tol=tol,
         s=s,
-        scaling=sc if sc is not None else MappingProxyType(dict(powers)),
-        exponents=MappingProxyType(dict(powers)),
-        is_similarity=sc is not None,
+        scaling=scaling,
+        exponents=MappingProxyType(dict(exponents)),
+        is_similarity=is_similarity,
         method=method,
-        scaled_dt=bool(scale_dt) if method == "euler" else True,
+        scaled_dt=scaled_dt,
+        sensitivity=None if sensitivity is None else MappingProxyType(sensitivity),
+        baseline_factor=baseline_factor,
+        nudged=nudged,
     )

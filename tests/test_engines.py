@@ -68,8 +68,13 @@ def test_catalogue_entries_are_complete():
     ("name", "dimension", "default"),
     [
         ("bullet_time_step", "T", 1 / 240),
-        ("bullet_collision_margin", "L", 0.04),
-        ("bullet_contact_breaking_threshold", "L", 0.02),
+        ("bullet_collision_margin", "L", 0.001),
+        ("bullet_contact_breaking_threshold", "1", 0.02),
+        ("bullet_contact_slop", "L", 1e-5),
+        ("bullet_solver_residual_threshold", "L^2 T^-2", 1e-7),
+        ("bullet_max_joint_velocity", "T^-1", 100.0),
+        ("bullet_max_prismatic_joint_velocity", "L T^-1", 100.0),
+        ("bullet_contact_erp", "1", 0.08),
         ("bullet_linear_sleep_threshold", "L T^-1", 0.8),
         ("bullet_angular_sleep_threshold", "T^-1", 1.0),
         ("bullet_linear_damping_k1", "T^-1", 0.04),
@@ -77,6 +82,8 @@ def test_catalogue_entries_are_complete():
         ("mujoco_solref_timeconst", "T", 0.02),
         ("mujoco_solimp_width", "L", 0.001),
         ("mujoco_geom_margin", "L", 0.0),
+        ("mujoco_ccd_tolerance", "L", 1e-6),
+        ("mujoco_tolerance", "1", 1e-8),
     ],
 )
 def test_catalogue_values(name, dimension, default):

@@ -32,7 +32,9 @@ def test_mujoco_similar_is_mass_by_volume_and_length():
         rule.system, {"M": 3, "L": 1})
     verdict = check_rule(rule)
     assert verdict.unit_change == {"M": 3, "L": 1, "T": 0}
-    assert verdict.complete  # the catalogue's MuJoCo constants are all named or unmoved
+    # a global option no frame touches: the convex collision tolerance, a length (issue 10)
+    assert [c.name for c in verdict.broken] == ["mujoco_ccd_tolerance"]
+    assert not verdict.complete
 
 
 def test_bullet_rule_incomplete_for_the_rod(rod):
@@ -41,9 +43,11 @@ def test_bullet_rule_incomplete_for_the_rod(rod):
     assert v.unchanged == ("t",)
     assert not v.complete
     names = [c.name for c in v.broken]
-    for hidden in ("bullet_collision_margin", "bullet_contact_breaking_threshold",
+    for hidden in ("bullet_collision_margin", "bullet_contact_slop",
                    "bullet_multibody_sleep_epsilon", "bullet_split_impulse_penetration_threshold"):
         assert hidden in names
+    # a factor of each shape's bounding radius, not a length: leaving it alone is right (issue 10)
+    assert "bullet_contact_breaking_threshold" not in names
     assert "bullet_linear_sleep_threshold" not in names  # the rule names it
     assert "bullet_time_step" not in names  # time is untouched
     assert "angular springs" not in str(v)

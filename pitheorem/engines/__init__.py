@@ -31,6 +31,15 @@ from .constants import (
     hidden_constants,
     with_hidden_constants,
 )
+from .model import (
+    EngineModel,
+    EngineModelError,
+    Parameter,
+    UnscalableModelWarning,
+    UnscalableParameterError,
+    example_path,
+    load,
+)
 from .rod import EngineSimilarityReport, simulate_rod, verify_engine_similarity
 from .rules import (
     BULLET_SCALE_THE_WORLD,
@@ -41,6 +50,7 @@ from .rules import (
     RuleVerdict,
     check_rule,
 )
+from .verify import verify
 
 __all__ = [
     "BULLET_SCALE_THE_WORLD",
@@ -48,16 +58,24 @@ __all__ = [
     "ENGINES",
     "MUJOCO_FRAME_SIMILAR",
     "RULES",
+    "EngineModel",
+    "EngineModelError",
     "EngineSimilarityReport",
     "HiddenConstant",
+    "Parameter",
     "RuleOfThumb",
     "RuleQuantity",
     "RuleVerdict",
+    "UnscalableModelWarning",
+    "UnscalableParameterError",
     "broken_constants",
     "check_rule",
     "engine_search",
+    "example_path",
     "hidden_constants",
+    "load",
     "simulate_rod",
+    "verify",
     "verify_engine_similarity",
     "with_hidden_constants",
 ]

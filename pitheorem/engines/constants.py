@@ -17,6 +17,7 @@ in each entry (and, where stated, measured with pybullet 3.2.7 and mujoco
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from fractions import Fraction
@@ -113,14 +114,33 @@ CATALOGUE: tuple[HiddenConstant, ...] = (
         f"pybullet Quickstart Guide (setTimeStep: default 1/240 s); {_PYBULLET}: fixedTimeStep = 1/240",
         "fixed integration step (semi-implicit Euler); any scaling of time must scale it too"),
     HiddenConstant(
-        "bullet", "bullet_collision_margin", "L", 0.04, "pybullet.changeDynamics(collisionMargin=...)",
-        "bullet3 src/BulletCollision/CollisionShapes/btCollisionMargin.h: CONVEX_DISTANCE_MARGIN = 0.04",
-        "default margin of convex shapes; contacts start this far out, so small objects need a smaller one"),
+        "bullet", "bullet_collision_margin", "L", 0.001, "pybullet.changeDynamics(bodyId, link, collisionMargin=...)",
+        f"{_PYBULLET}: getDynamicsInfo(...)[11] = 0.001 for URDF and box shapes (a sphere's margin is its radius; "
+        "bullet3's CONVEX_DISTANCE_MARGIN 0.04 is not what PyBullet uses)",
+        "contacts start this far out; Bullet also adds it to bounding boxes, and so to the inertia it derives "
+        "from them at load: a scaled copy must set the margin and the inertia"),
     HiddenConstant(
-        "bullet", "bullet_contact_breaking_threshold", "L", 0.02,
-        "pybullet.setPhysicsEngineParameter(contactBreakingThreshold=...)",
-        "bullet3 src/BulletCollision/NarrowPhaseCollision/btPersistentManifold.cpp: gContactBreakingThreshold = 0.02",
-        "distance beyond which cached contact points are dropped"),
+        "bullet", "bullet_contact_breaking_threshold", "1", 0.02,
+        "pybullet.setPhysicsEngineParameter(contactBreakingThreshold=...) (process-wide, every client)",
+        "bullet3 src/BulletCollision/NarrowPhaseCollision/btPersistentManifold.cpp: gContactBreakingThreshold = "
+        f"0.02; {_PYBULLET}",
+        "with Bullet's default dispatcher flag a dimensionless factor times each shape's bounding radius, and a "
+        "global of the process: leave it alone (scaling it as a length moved a dropped ball by 0.44 m)"),
+    HiddenConstant(
+        "bullet", "bullet_contact_slop", "L", 1e-5, "pybullet.setPhysicsEngineParameter(contactSlop=...)",
+        "bullet3 src/BulletDynamics/ConstraintSolver/btContactSolverInfo.h: m_linearSlop; PyBullet default 1e-5",
+        "penetration allowed before contacts push back"),
+    HiddenConstant(
+        "bullet", "bullet_solver_residual_threshold", "L^2 T^-2", 1e-7,
+        "pybullet.setPhysicsEngineParameter(solverResidualThreshold=...)",
+        "bullet3 btContactSolverInfo.h: m_leastSquaresResidualThreshold; PyBullet default 1e-7",
+        "the iterative solver stops when the squared velocity residual falls below this"),
+    HiddenConstant(
+        "bullet", "bullet_default_motor_impulse", "M L^2 T^-1", math.nan,
+        "pybullet.setJointMotorControl2(body, joint, VELOCITY_CONTROL, force=0) switches it off",
+        "PyBullet Quickstart Guide: every revolute and prismatic joint of a URDF gets a velocity motor",
+        "an impulse cap (M L T^-1 on prismatic joints) with no documented value: switch the motors off, as "
+        "pitheorem.engines does in every run"),
     HiddenConstant(
         "bullet", "bullet_linear_sleep_threshold", "L T^-1", 0.8, "btRigidBody::setSleepingThresholds",
         "bullet3 src/BulletDynamics/Dynamics/btRigidBody.h: btRigidBodyConstructionInfo m_linearSleepingThreshold(0.8)",
@@ -158,7 +178,12 @@ CATALOGUE: tuple[HiddenConstant, ...] = (
     HiddenConstant(
         "bullet", "bullet_max_joint_velocity", "T^-1", 100.0, "pybullet.changeDynamics(maxJointVelocity=...)",
         f"{_MULTIBODY}: m_maxCoordinateVelocity(100)",
-        "joint speeds are clipped to this (rad/s for revolute joints; L T^-1 for prismatic ones)"),
+        "revolute joint speeds are clipped to this (rad/s); prismatic ones: bullet_max_prismatic_joint_velocity"),
+    HiddenConstant(
+        "bullet", "bullet_max_prismatic_joint_velocity", "L T^-1", 100.0,
+        "pybullet.changeDynamics(maxJointVelocity=...)",
+        f"{_MULTIBODY}: m_maxCoordinateVelocity(100), the same number for a prismatic joint",
+        "prismatic joint speeds are clipped to this (m/s)"),
     HiddenConstant(
         "bullet", "bullet_max_applied_impulse", "M L T^-1", 1000.0, "btMultiBody::setMaxAppliedImpulse",
         f"{_MULTIBODY}: m_maxAppliedImpulse(1000)",
@@ -168,8 +193,8 @@ CATALOGUE: tuple[HiddenConstant, ...] = (
         "bullet3 src/BulletDynamics/ConstraintSolver/btContactSolverInfo.h (commit 0bdd9ace): m_erp = 0.2",
         "fraction of a joint error corrected per step: a hidden time constant dt/erp, tied to the time step"),
     HiddenConstant(
-        "bullet", "bullet_contact_erp", "1", 0.2, "pybullet.setPhysicsEngineParameter(contactERP=...)",
-        "bullet3 src/BulletDynamics/ConstraintSolver/btContactSolverInfo.h (commit 0bdd9ace): m_erp2 = 0.2",
+        "bullet", "bullet_contact_erp", "1", 0.08, "pybullet.setPhysicsEngineParameter(contactERP=...)",
+        "PyBullet's default (measured with pybullet 3.2.7; bullet3's btContactSolverInfo m_erp2 = 0.2 is overridden)",
         "fraction of penetration corrected per step: hidden time constant dt/erp2"),
     HiddenConstant(
         "bullet", "bullet_global_cfm", "M^-1 T", 0.0, "pybullet.setPhysicsEngineParameter(globalCFM=...)",
@@ -180,11 +205,14 @@ CATALOGUE: tuple[HiddenConstant, ...] = (
         f"{_PYBULLET}: numSolverIterations = 50 (Bullet's own btContactSolverInfo default is 10)",
         "an iteration count: dimensionless, but an unconverged solve differs between scaled runs in rounding"),
     HiddenConstant(
-        "bullet", "bullet_split_impulse_penetration_threshold", "L", -0.04, "btContactSolverInfo",
+        "bullet", "bullet_split_impulse_penetration_threshold", "L", -0.04,
+        "not reachable from Python (a negative value cannot be set); setPhysicsEngineParameter(useSplitImpulse=0) "
+        "removes it",
         "bullet3 src/BulletDynamics/ConstraintSolver/btContactSolverInfo.h: m_splitImpulsePenetrationThreshold = -0.04",
         "penetrations deeper than this are resolved by split impulses"),
     HiddenConstant(
-        "bullet", "bullet_restitution_velocity_threshold", "L T^-1", 0.2, "btContactSolverInfo",
+        "bullet", "bullet_restitution_velocity_threshold", "L T^-1", 0.2,
+        "pybullet.setPhysicsEngineParameter(restitutionVelocityThreshold=...)",
         "bullet3 src/BulletDynamics/ConstraintSolver/btContactSolverInfo.h: m_restitutionVelocityThreshold = 0.2",
         "impacts slower than this do not bounce"),
     # -- MuJoCo ------------------------------------------------------------------------------
@@ -192,10 +220,6 @@ CATALOGUE: tuple[HiddenConstant, ...] = (
         "mujoco", "mujoco_timestep", "T", 0.002, "<option timestep=...>",
         f"{_MUJOCO}, option/timestep",
         "fixed integration step; any scaling of time must scale it too"),
-    HiddenConstant(
-        "mujoco", "mujoco_gravity", "L T^-2", 9.81, "<option gravity=...>",
-        f"{_MUJOCO}, option/gravity (default 0 0 -9.81)",
-        "used whenever a model does not set gravity"),
     HiddenConstant(
         "mujoco", "mujoco_solref_timeconst", "T", 0.02, "solref=... on geoms, joints (solreflimit), <option o_solref>",
         f"{_MUJOCO}, solref default (0.02, 1)",
@@ -233,6 +257,33 @@ CATALOGUE: tuple[HiddenConstant, ...] = (
         "mujoco", "mujoco_geom_density", "M L^-3", 1000.0, "<geom density=...>",
         f"{_MUJOCO}, geom/density",
         "gives geoms their mass when a body has no explicit inertial"),
+    HiddenConstant(
+        "mujoco", "mujoco_ccd_tolerance", "L", 1e-6, "<option ccd_tolerance=...>",
+        f"{_MUJOCO}, option/ccd_tolerance",
+        "distance tolerance of the convex collision search"),
+    HiddenConstant(
+        "mujoco", "mujoco_joint_margin", "L", 0.0, "<joint margin=...>",
+        f"{_MUJOCO}, joint/margin",
+        "limits activate this far from the range (radians on hinges: dimensionless; a length on slides); "
+        "0 breaks no scaling"),
+    HiddenConstant(
+        "mujoco", "mujoco_stiffness_poly", "M L^2 T^-2", 0.0, "<joint stiffness='k0 k1 k2'>",
+        f"{_MUJOCO}, joint/stiffness (a polynomial in |q|: k1 and k2 divide by one and two more powers of q)",
+        "higher polynomial terms of a joint spring; 0 breaks no scaling"),
+    HiddenConstant(
+        "mujoco", "mujoco_damping_poly", "M L^2", 0.0, "<joint damping='d0 d1 d2'>",
+        f"{_MUJOCO}, joint/damping (a polynomial in |qdot|: d1 and d2 divide by one and two more powers of qdot)",
+        "higher polynomial terms of a joint damper (hinge shown); 0 breaks no scaling"),
+    HiddenConstant(
+        "mujoco", "mujoco_tolerance", "1", 1e-8, "<option tolerance=...>",
+        f"{_MUJOCO}, option/tolerance; measured: gymnasium's humanoid, hopper and walker2d scaled with g and "
+        "lengths by 2 or 10 differ unless it is 0",
+        "stops the solver relative to a normalisation that mixes M and M L^2 (no pure dimension): set 0 for "
+        "exact similarity (the solver then runs all its iterations)"),
+    HiddenConstant(
+        "mujoco", "mujoco_sleep_tolerance", "1", 1e-3, "<option sleep_tolerance=...>",
+        f"{_MUJOCO}, option/sleep_tolerance",
+        "compared with velocities of every joint type (mixed dimension); only acts when sleeping is enabled"),
     HiddenConstant(
         "mujoco", "mujoco_iterations", "1", 100.0, "<option iterations=...>",
         f"{_MUJOCO}, option/iterations",
@@ -281,7 +332,7 @@ def hidden_constants(engine: str | None = None, *, names: Iterable[str] | None =
     --------
     >>> from pitheorem.engines import hidden_constants
     >>> [c.name for c in hidden_constants("mujoco", dimensional=True)][:3]
-    ['mujoco_timestep', 'mujoco_gravity', 'mujoco_solref_timeconst']
+    ['mujoco_timestep', 'mujoco_solref_timeconst', 'mujoco_solimp_width']
     """
     engine = _check_engine(engine)
     pool = [c for c in CATALOGUE if engine is None or c.engine == engine]
@@ -419,8 +470,8 @@ def broken_constants(scaling, engine: str, *, names: Iterable[str] | None = None
     >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"})
     >>> lengths_only = pt.Scaling.from_unit_change(rod, {"L": 1})
     >>> [c.name for c in broken_constants(lengths_only, "mujoco")]
-    ['mujoco_gravity', 'mujoco_solimp_width', 'mujoco_torsional_friction', 'mujoco_rolling_friction', \
-'mujoco_geom_density']
+    ['mujoco_solimp_width', 'mujoco_torsional_friction', 'mujoco_rolling_friction', 'mujoco_geom_density', \
+'mujoco_ccd_tolerance']
     """
     if not all(hasattr(scaling, a) for a in ("system", "powers", "exponent_of")):
         raise InvalidRequestError(f"broken_constants needs a Scaling, got {type(scaling).__name__}")

@@ -32,7 +32,7 @@ import math
 import os
 import sys
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from types import MappingProxyType
 
 import numpy as np
@@ -48,6 +48,7 @@ from ..simulate import (
     _exponents_from_dict,
     _factor,
     _positive,
+    similarity_report,
     verify_similarity,
 )
 from ..simulate import simulate as simulate_ode
@@ -287,28 +288,17 @@ def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt:
 
 
 @dataclass(frozen=True, eq=False)
-class EngineSimilarityReport:
-    """Result of :func:`verify_engine_similarity`: an engine's two runs compared.
+class EngineSimilarityReport(SimilarityReport):
+    """Result of :func:`verify_engine_similarity`: a :class:`pitheorem.SimilarityReport` with the engine's details.
+
+    The comparison itself is ``pitheorem.simulate.similarity_report``,
+    shared with :func:`pitheorem.verify_similarity` and
+    :func:`pitheorem.engines.verify`; this subclass only adds what the
+    rod's engine runs know besides.
 
     Attributes
     ----------
     engine : str
-    original : Trajectory
-        The engine's run with the given parameters.
-    mapped : Trajectory
-        The engine's scaled run mapped back to original units, on the
-        original time grid.
-    max_deviation : float
-        Largest absolute difference, over both states and all times.
-    deviation : mapping of str to float
-        Largest difference per state.
-    passed : bool
-        ``max_deviation <= tol``.
-    tol : float
-    s : float
-    scaling : Scaling or mapping of str to Fraction
-    is_similarity : bool
-        Whether the exponents are a change of units.
     dt, dt_scaled : float
         Time step of the original and of the scaled run.
     engine_vs_ode : float or None
@@ -319,37 +309,17 @@ class EngineSimilarityReport:
 
     Examples
     --------
+    >>> import pitheorem as pt
     >>> from pitheorem.engines import EngineSimilarityReport
-    >>> "max_deviation" in EngineSimilarityReport.__dataclass_fields__
+    >>> issubclass(EngineSimilarityReport, pt.SimilarityReport)
     True
     """
 
-    engine: str
-    original: Trajectory
-    mapped: Trajectory
-    max_deviation: float
-    deviation: Mapping[str, float]
-    passed: bool
-    tol: float
-    s: float
-    scaling: object
-    is_similarity: bool
-    dt: float
-    dt_scaled: float
+    engine: str = ""
+    dt: float = math.nan
+    dt_scaled: float = math.nan
     engine_vs_ode: float | None = None
     ode_report: SimilarityReport | None = field(default=None, repr=False)
-
-    @property
-    def scaled_dt(self) -> bool:
-        """Whether the scaled run used a different time step.
-
-        Examples
-        --------
-        >>> from pitheorem.engines import EngineSimilarityReport
-        >>> EngineSimilarityReport.scaled_dt.__doc__.split()[0]
-        'Whether'
-        """
-        return not math.isclose(self.dt, self.dt_scaled, rel_tol=1e-15, abs_tol=0.0)
 
     def __str__(self) -> str:
         verdict = "PASSED" if self.passed else "FAILED"
@@ -449,9 +419,8 @@ def verify_engine_similarity(engine: str, scaling, s, params=None, y0=None, t_fi
         y_back = np.column_stack([np.interp(original.t, t_back, y_back[:, j]) for j in range(y_back.shape[1])])
         t_back = original.t
     mapped = Trajectory(t_back, y_back, model.states, model.time)
-    diff = np.abs(mapped.y - original.y)
-    per_state = {n: float(diff[:, j].max()) for j, n in enumerate(model.states)}
-    worst = float(diff.max()) if np.all(np.isfinite(diff)) else math.inf
+    base = similarity_report(original, mapped, s=s, scaling=sc if sc is not None else MappingProxyType(dict(powers)),
+                             exponents=powers, tol=tol, is_similarity=sc is not None, method=engine)
 
     engine_vs_ode, ode_report = None, None
     if compare_ode:
@@ -459,9 +428,7 @@ def verify_engine_similarity(engine: str, scaling, s, params=None, y0=None, t_fi
         engine_vs_ode = float(np.abs(exact.y - original.y).max())
         ode_report = verify_similarity(model, sc if sc is not None else dict(powers), s, p, y_init, t_final,
                                        check=check and sc is not None, tol=max(tol, 1e-6))
-    return EngineSimilarityReport(
-        engine=engine, original=original, mapped=mapped, max_deviation=worst,
-        deviation=MappingProxyType(per_state), passed=worst <= tol, tol=tol, s=s,
-        scaling=sc if sc is not None else MappingProxyType(dict(powers)), is_similarity=sc is not None,
-        dt=float(dt), dt_scaled=float(dt_scaled), engine_vs_ode=engine_vs_ode, ode_report=ode_report,
-    )
+    shared = {f.name: getattr(base, f.name) for f in fields(SimilarityReport)}
+    shared["scaled_dt"] = not math.isclose(dt, dt_scaled, rel_tol=1e-15, abs_tol=0.0)
+    return EngineSimilarityReport(**shared, engine=engine, dt=float(dt), dt_scaled=float(dt_scaled),
+                                  engine_vs_ode=engine_vs_ode, ode_report=ode_report)

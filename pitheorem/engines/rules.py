@@ -218,8 +218,8 @@ class RuleVerdict:
         Examples
         --------
         >>> from pitheorem.engines.rules import MUJOCO_FRAME_SIMILAR, check_rule
-        >>> check_rule(MUJOCO_FRAME_SIMILAR).complete
-        True
+        >>> check_rule(MUJOCO_FRAME_SIMILAR).complete  # the frame leaves option ccd_tolerance
+        False
         """
         return self.is_unit_change and not self.missing and not self.broken
 
@@ -270,7 +270,7 @@ MUJOCO_FRAME_SIMILAR = RuleOfThumb(
         _q("length", "L", 1, ["mujoco_solimp_width", "mujoco_torsional_friction", "mujoco_rolling_friction",
                               "mujoco_geom_margin"]),
         _q("mass", "M", 3),  # "masses scale with volume"
-        _q("gravity", "L T^-2", 1, ["mujoco_gravity"]),  # the premise: "proportionally scaled gravity"
+        _q("gravity", "L T^-2", 1),  # the premise: "proportionally scaled gravity" (a model parameter)
         _q("inertia", "M L^2", 5),  # measured: body_inertia x 32 at scale 2
         _q("force", "M L T^-2", 4),  # measured: slide frictionloss, motor forcerange x 16
         _q("torque", "M L^2 T^-2", 5),  # measured: hinge stiffness, frictionloss, forcerange x 32
@@ -280,7 +280,9 @@ MUJOCO_FRAME_SIMILAR = RuleOfThumb(
         _q("time", "T", 0, ["mujoco_solref_timeconst", "mujoco_timestep"]),  # measured: solref, timestep x 1
         _q("angle", "1", 0),  # measured: hinge springref x 1
     ),
-    note="the frame does not touch option/gravity (a global setting): multiply it by X yourself",
+    note="the frame does not touch option/gravity (a global setting): multiply it by X yourself; with "
+         "massscale the frame also scales masses independently, which with scale gives any time-free change "
+         "of units (M and L), not only this policy's mass by volume",
 )
 
 #: every rule provided

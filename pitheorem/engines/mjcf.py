@@ -1,0 +1,828 @@
+"""MJCF models through MuJoCo: every attribute with its dimension, scaled copies, runs.
+
+The file is read with MuJoCo's own ``MjSpec`` parser, so default classes,
+includes and units (``compiler angle``) resolve as MuJoCo resolves them,
+and compiled once, so masses and inertias computed from geoms are the
+engine's own.  Each dimensional attribute of each element becomes one
+:class:`~pitheorem.engines.Parameter` (one per component group where the
+components of a vector differ, as for ``friction`` or ``solimp``).
+
+Dimensions that depend on a joint's type use its coordinate ``q`` and its
+generalised force ``Q``: hinge and ball joints have ``q`` = 1 (radians)
+and ``Q`` = M L^2 T^-2; slide joints ``q`` = L and ``Q`` = M L T^-2.  A free
+joint mixes both, so its damping, armature and friction loss are mixed
+numbers.  Actuators follow MuJoCo's transmission: the actuator length is
+``gear * q`` and its force acts as ``gear * force``; ``gear`` is taken as
+dimensionless, so the actuator force has the joint's ``Q`` and the length
+its ``q``.  The control input ``ctrl`` then has: for a motor (fixed gain, no
+bias) the dimension of the force; for a position servo (bias on the length)
+that of the length; for a velocity servo (bias on the velocity) that of
+``q/T``; for a damper (gain on the velocity) none.
+
+``opt.tolerance`` and ``noslip_tolerance`` stop the solver's iterations
+relative to MuJoCo's own normalisation: they are listed as mixed numbers
+and copied unchanged.  Files are written uncompiled (``savecompiled`` and
+``savecanonical`` off), the only way MuJoCo writes every number at full
+precision.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..simulate import nudged
+from .model import EngineModel, EngineModelError, Parameter, dim, power_factor, warn_unscalable
+
+__all__ = ["MjcfBackend", "load_mjcf"]
+
+_ONE = dim("1")
+_L, _M, _T = dim("L"), dim("M"), dim("T")
+_FORCE, _TORQUE = dim("M L T^-2"), dim("M L^2 T^-2")
+
+
+def _mujoco():
+    from .rod import _engine_module
+
+    return _engine_module("mujoco")
+
+
+@dataclass(frozen=True)
+class JointKind:
+    """Coordinate and generalised-force dimensions of one joint type."""
+
+    q: object  # Dimension, or None for the free joint
+    force: object
+
+    def per(self, numerator, power: int, rate: int = 0):
+        """``numerator / (q T^-rate)^power``: the dimension of a polynomial coefficient."""
+        return numerator * (self.q * _T ** (-rate)) ** (-power)
+
+
+_HINGE = JointKind(_ONE, _TORQUE)
+_SLIDE = JointKind(_L, _FORCE)
+
+
+def _joint_kind(mj, jtype) -> JointKind | None:
+    if jtype == mj.mjtJoint.mjJNT_SLIDE:
+        return _SLIDE
+    if jtype in (mj.mjtJoint.mjJNT_HINGE, mj.mjtJoint.mjJNT_BALL):
+        return _HINGE
+    return None  # free
+
+
+@dataclass
+class Slot:
+    """One dimensional attribute of one element: how to read it and scale it."""
+
+    name: str
+    path: str
+    read: Callable[[], tuple]
+    write: Callable[[float], None]
+    dimension: object
+    source: str
+    parts: tuple = ()
+    note: str = ""
+
+
+def _array_slot(name, path, elem, attr, index, dimension, source, parts=(), note=""):
+    def read():
+        value = np.atleast_1d(np.asarray(getattr(elem, attr), dtype=float))
+        return tuple(float(v) for v in value[index])
+
+    def write(factor):
+        value = getattr(elem, attr)
+        if np.ndim(value) == 0:
+            setattr(elem, attr, float(value) * factor)
+            return
+        value = np.array(value, dtype=float)
+        value[index] = value[index] * factor
+        setattr(elem, attr, value)
+
+    return Slot(name, path, read, write, dimension, source, parts, note)
+
+
+def _clean(text: str) -> str:
+    out = "".join(c if c.isalnum() or c == "_" else "_" for c in text)
+    return out if out and not out[0].isdigit() else f"_{out}"
+
+
+class _Walker:
+    """Walk a spec's elements in a fixed order and list their dimensional attributes."""
+
+    def __init__(self, mj, spec, model, path: str, *, warn: bool = False):
+        self.mj, self.spec, self.model, self.path, self.warn = mj, spec, model, path, warn
+        self.slots: list[Slot] = []
+        self.names: set[str] = set()
+        self.defaults = _builtin_defaults(mj)
+
+    # -- helpers ------------------------------------------------------------------------------
+
+    def label(self, kind: str, elem, index: int) -> tuple[str, str]:
+        name = getattr(elem, "name", "") or ""
+        ident = _clean(f"{kind}_{name}" if name else f"{kind}{index}")
+        path = f"{kind} {name!r}" if name else f"{kind} #{index}"
+        return ident, path
+
+    def unique(self, ident: str) -> str:
+        out, k = ident, 2
+        while out in self.names:
+            out, k = f"{ident}_{k}", k + 1
+        self.names.add(out)
+        return out
+
+    def source(self, kind, elem, attr) -> str:
+        default = self.defaults.get(kind)
+        if default is None or not hasattr(default, attr):
+            return "file"
+        a = np.asarray(getattr(elem, attr), dtype=float)
+        b = np.asarray(getattr(default, attr), dtype=float)
+        same = a.shape == b.shape and np.array_equal(a, b, equal_nan=True)
+        return "default" if same else "file"
+
+    def add(self, kind, elem, ident, path, attr, dimension, index=slice(None), suffix="", parts=(), note=""):
+        value = np.atleast_1d(np.asarray(getattr(elem, attr), dtype=float))[index]
+        if value.size == 0 or np.all(np.isnan(value)):
+            return
+        name = self.unique(f"{ident}_{attr}{suffix}" if ident else f"{attr}{suffix}")
+        self.slots.append(_array_slot(name, f"{path} {attr}{suffix.replace('_', ' ')}", elem, attr, index,
+                                      dimension, self.source(kind, elem, attr), parts, note))
+
+    def add_solref(self, kind, elem, ident, path, attr):
+        ref = np.asarray(getattr(elem, attr), dtype=float)
+        if ref[0] >= 0:  # time constant and damping ratio
+            self.add(kind, elem, ident, path, attr, _T, slice(0, 1), "_timeconst")
+        else:  # direct stiffness and damping of the reference acceleration
+            self.add(kind, elem, ident, path, attr, dim("T^-2"), slice(0, 1), "_stiffness")
+            self.add(kind, elem, ident, path, attr, dim("T^-1"), slice(1, 2), "_damping")
+
+    def add_solimp(self, kind, elem, ident, path, attr, violation):
+        self.add(kind, elem, ident, path, attr, violation, slice(2, 3), "_width")
+
+    def warning(self, element: str, reason: str):
+        if self.warn:  # once, when the file is read; not again for each copy
+            warn_unscalable(self.path, element, reason)
+
+    def fail(self, element: str, reason: str):
+        raise EngineModelError(self.path, element, reason)
+
+    # -- elements -----------------------------------------------------------------------------
+
+    def walk(self):
+        spec = self.spec
+        self.option()
+        self.compiler()
+        for i, mesh in enumerate(spec.meshes):
+            ident, path = self.label("mesh", mesh, i)
+            self.add("mesh", mesh, ident, path, "scale", _L,
+                     note="a dimensionless factor times the file's vertex units, a length")
+            self.add("mesh", mesh, ident, path, "refpos", _L)
+            if len(mesh.uservert):
+                self.add("mesh", mesh, ident, path, "uservert", _L)
+        for i, hfield in enumerate(spec.hfields):
+            ident, path = self.label("hfield", hfield, i)
+            self.add("hfield", hfield, ident, path, "size", _L)
+        for i, body in enumerate(spec.bodies):
+            self.body(body, i)
+        for i, geom in enumerate(spec.geoms):
+            self.geom(geom, i)
+        # frames, sites, cameras and lights: positions (and a site's size) are lengths
+        for kind, items, attrs in (("frame", spec.frames, ("pos",)), ("site", spec.sites, ("pos", "size", "fromto")),
+                                   ("camera", spec.cameras, ("pos",)), ("light", spec.lights, ("pos",))):
+            for i, item in enumerate(items):
+                ident, path = self.label(kind, item, i)
+                for attr in attrs:
+                    if hasattr(item, attr):
+                        self.add(kind, item, ident, path, attr, _L)
+        for i, joint in enumerate(spec.joints):
+            self.joint(joint, i)
+        for i, tendon in enumerate(spec.tendons):
+            self.tendon(tendon, i)
+        for i, act in enumerate(spec.actuators):
+            self.actuator(act, i)
+        for i, eq in enumerate(spec.equalities):
+            self.equality(eq, i)
+        for i, pair in enumerate(spec.pairs):
+            ident, path = self.label("pair", pair, i)
+            self.friction("pair", pair, ident, path, 5)
+            for attr in ("margin", "gap"):
+                self.add("pair", pair, ident, path, attr, _L)
+            self.add_solref("pair", pair, ident, path, "solref")
+            self.add_solref("pair", pair, ident, path, "solreffriction")
+            self.add_solimp("pair", pair, ident, path, "solimp", _L)
+        for i, sensor in enumerate(spec.sensors):
+            self.sensor(sensor, i)
+        for kind, items in (("flex", spec.flexes), ("skin", spec.skins), ("plugin", spec.plugins)):
+            for i, item in enumerate(items):
+                _, path = self.label(kind, item, i)
+                self.fail(path, f"{kind} elements cannot be scaled by pitheorem yet; remove it or scale it by hand")
+        for i, numeric in enumerate(spec.numerics):
+            _, path = self.label("numeric", numeric, i)
+            self.warning(path, "custom numeric data has no known dimension; copied unchanged")
+        return self.slots
+
+    def option(self):
+        opt = self.spec.option
+        self.add("option", opt, "", "option", "timestep", _T)
+        gravity = np.asarray(opt.gravity, dtype=float)
+
+        def read_g():
+            return (float(np.linalg.norm(np.asarray(opt.gravity, dtype=float))),)
+
+        def write_g(factor):
+            opt.gravity = np.asarray(opt.gravity, dtype=float) * factor
+
+        self.names.add("g")
+        self.slots.append(Slot("g", "option gravity (magnitude)", read_g, write_g, dim("L T^-2"),
+                               "default" if np.array_equal(gravity, [0, 0, -9.81]) else "file",
+                               note="the direction is dimensionless"))
+        self.add("option", opt, "", "option", "wind", dim("L T^-1"))
+        self.add("option", opt, "", "option", "density", dim("M L^-3"))
+        self.add("option", opt, "", "option", "viscosity", dim("M L^-1 T^-1"))
+        for attr in ("tolerance", "noslip_tolerance"):
+            self.add("option", opt, "", "option", attr, None, note="a solver's stopping rule relative to MuJoCo's own "
+                     "normalisation; no pure dimension, copied unchanged")
+        self.add("option", opt, "", "option", "ccd_tolerance", _L)
+        self.add("option", opt, "", "option", "o_margin", _L)
+        self.add_solref("option", opt, "", "option", "o_solref")
+        self.add_solimp("option", opt, "", "option", "o_solimp", _L)
+        self.add("option", opt, "", "option", "o_friction", _L, slice(2, 5), "_torsional_rolling")
+        if np.any(np.asarray(opt.magnetic) != 0) and any(
+                s.type == self.mj.mjtSensor.mjSENS_MAGNETOMETER for s in self.spec.sensors):
+            self.warning("option magnetic", "the magnetic field has no dimension over M, L, T; "
+                            "magnetometer readings are copied unchanged")
+        self.add("option", opt, "", "option", "sleep_tolerance", None,
+                 note="compared with velocities of every joint type (mixed); sleeping is off unless enabled")
+        stat = self.spec.stat
+        for attr, d in (("meanmass", _M), ("meansize", _L), ("extent", _L)):
+            if not math.isnan(getattr(stat, attr)):
+                self.add("stat", stat, "stat", "statistic", attr, d)
+        if not math.isnan(stat.center[0]):
+            self.add("stat", stat, "stat", "statistic", "center", _L)
+
+    def compiler(self):
+        comp = self.spec.compiler
+        for attr, d in (("boundmass", _M), ("boundinertia", dim("M L^2"))):
+            if getattr(comp, attr) > 0:
+                self.add("compiler", comp, "compiler", "compiler", attr, d)
+        if comp.settotalmass > 0:
+            self.add("compiler", comp, "compiler", "compiler", "settotalmass", _M)
+
+    def body(self, body, index):
+        if index == 0:
+            return  # the world
+        model = self.model
+        ident, path = self.label("body", body, index)
+        self.add("body", body, ident, path, "pos", _L)
+        bid = body.id if body.id >= 0 else index
+        derived = not body.explicitinertial or self.spec.compiler.inertiafromgeom == \
+            self.mj.mjtInertiaFromGeom.mjINERTIAFROMGEOM_TRUE
+        source = "derived" if derived else "file"
+        for attr, compiled, d, spec_attrs in (
+                ("mass", "body_mass", _M, (("mass", slice(None)),)),
+                ("inertia", "body_inertia", dim("M L^2"), (("inertia", slice(None)), ("fullinertia", slice(None)))),
+                ("ipos", "body_ipos", _L, (("ipos", slice(None)),))):
+            values = np.atleast_1d(getattr(model, compiled)[bid])
+
+            def read(values=values):
+                return tuple(float(v) for v in values)
+
+            def write(factor, spec_attrs=spec_attrs):
+                for a, idx in spec_attrs:
+                    arr = getattr(body, a)
+                    if np.ndim(arr) == 0:
+                        setattr(body, a, float(arr) * factor)
+                    else:
+                        arr = np.array(arr, dtype=float)
+                        arr[idx] *= factor
+                        setattr(body, a, arr)
+
+            name = self.unique(f"{ident}_{attr}")
+            self.slots.append(Slot(name, f"{path} {attr}", read, write, d, source,
+                                   note="computed by MuJoCo from the geoms" if derived else ""))
+
+    def friction(self, kind, elem, ident, path, n):
+        # sliding is dimensionless; torsional and rolling are torques per normal force: lengths
+        first = 2 if n == 5 else 1
+        self.add(kind, elem, ident, path, "friction", _L, slice(first, n), "_torsional_rolling")
+
+    def geom(self, geom, index):
+        ident, path = self.label("geom", geom, index)
+        mj = self.mj
+        if geom.type == mj.mjtGeom.mjGEOM_MESH and geom.meshname and geom.meshname not in [m.name for m in
+                                                                                            self.spec.meshes]:
+            self.fail(path, f"mesh {geom.meshname!r} is not defined")
+        self.add("geom", geom, ident, path, "size", _L)
+        self.add("geom", geom, ident, path, "pos", _L)
+        self.add("geom", geom, ident, path, "fromto", _L)
+        self.add("geom", geom, ident, path, "mass", _M)
+        self.add("geom", geom, ident, path, "density", dim("M L^-3"))
+        self.friction("geom", geom, ident, path, 3)
+        self.add("geom", geom, ident, path, "margin", _L)
+        self.add("geom", geom, ident, path, "gap", _L)
+        self.add_solref("geom", geom, ident, path, "solref")
+        self.add_solimp("geom", geom, ident, path, "solimp", _L)
+        if np.any(np.asarray(geom.surfacevel) != 0):
+            self.add("geom", geom, ident, path, "surfacevel", dim("L T^-1"))
+
+    def joint(self, joint, index):
+        mj = self.mj
+        ident, path = self.label("joint", joint, index)
+        kind = _joint_kind(mj, joint.type)
+        self.add("joint", joint, ident, path, "pos", _L)
+        for attr in ("springdamper", "springyield"):
+            if np.any(np.asarray(getattr(joint, attr)) != 0):
+                self.fail(path, f"attribute {attr} is not supported by pitheorem's scaling yet")
+        if kind is None:  # free joint: translation and rotation share each number
+            for attr, lin, rot in (("damping", "M T^-1", "M L^2 T^-1"), ("armature", "M", "M L^2"),
+                                   ("frictionloss", "M L T^-2", "M L^2 T^-2")):
+                parts = (("lin", dim(lin)), ("rot", dim(rot)))
+                index_ = slice(0, 1) if attr == "damping" else slice(None)
+                value = np.atleast_1d(np.asarray(getattr(joint, attr), dtype=float))
+                self.add("joint", joint, ident, path, attr, None, index_, parts=parts,
+                         note="one number for the translational and the rotational coordinates")
+                if attr == "damping" and np.any(value[1:] != 0):
+                    self.fail(path, "damping polynomial terms on a free joint mix dimensions; not supported")
+            return
+        q, force = kind.q, kind.force
+        for attr in ("range", "ref", "springref", "margin"):
+            self.add("joint", joint, ident, path, attr, q)
+        for i in range(3):
+            self.add("joint", joint, ident, path, "stiffness", kind.per(force, i + 1), slice(i, i + 1),
+                     "" if i == 0 else f"_poly{i}")
+            self.add("joint", joint, ident, path, "damping", kind.per(force, i + 1, rate=1), slice(i, i + 1),
+                     "" if i == 0 else f"_poly{i}")
+        self.add("joint", joint, ident, path, "armature", force / (q * _T ** -2))
+        self.add("joint", joint, ident, path, "frictionloss", force)
+        self.add("joint", joint, ident, path, "actfrcrange", force)
+        self.add_solref("joint", joint, ident, path, "solref_limit")
+        self.add_solimp("joint", joint, ident, path, "solimp_limit", q)
+        self.add_solref("joint", joint, ident, path, "solref_friction")
+        self.add_solimp("joint", joint, ident, path, "solimp_friction", q)
+
+    def tendon_kind(self, tendon, path) -> JointKind:
+        """A spatial tendon measures a length; a fixed one the first joint's coordinate."""
+        mj = self.mj
+        wraps = list(tendon.path)
+        joints = [w for w in wraps if w.type == mj.mjtWrap.mjWRAP_JOINT]
+        if not joints:
+            return _SLIDE
+        first = _joint_kind(mj, joints[0].target.type)
+        if first is None:
+            self.fail(path, "a fixed tendon over a free joint mixes dimensions")
+        return first
+
+    def fixed_coefficient(self, wrap, ident, path, k, dimension):
+        """A fixed tendon's coefficient between joints of two types: MjSpec cannot rewrite it."""
+        name = self.unique(f"{ident}_coef{k}")
+
+        def write(factor):
+            if factor != 1.0:
+                from .model import UnscalableParameterError
+
+                raise UnscalableParameterError(name, f"{path} joins a slide and a hinge joint, so its coefficient "
+                                               f"has dimension {dimension}, and MuJoCo's MjSpec cannot rewrite it")
+
+        self.slots.append(Slot(name, f"{path} joint #{k} coef", lambda: (float(wrap.coef),), write, dimension,
+                               "file"))
+
+    def tendon(self, tendon, index):
+        mj = self.mj
+        ident, path = self.label("tendon", tendon, index)
+        kind = self.tendon_kind(tendon, path)
+        q, force = kind.q, kind.force
+        for k, wrap in enumerate(tendon.path):
+            if wrap.type == mj.mjtWrap.mjWRAP_JOINT:
+                jk = _joint_kind(mj, wrap.target.type)
+                if jk is None:
+                    self.fail(path, "a fixed tendon over a free joint mixes dimensions")
+                if jk.q != q:  # coefficient converts this joint's coordinate into the tendon's length
+                    self.fixed_coefficient(wrap, ident, path, k, q / jk.q)
+            elif wrap.type == mj.mjtWrap.mjWRAP_PULLEY and wrap.divisor != 1:
+                pass  # a divisor is a dimensionless ratio
+        self.add("tendon", tendon, ident, path, "range", q)
+        self.add("tendon", tendon, ident, path, "margin", q)
+        self.add("tendon", tendon, ident, path, "springlength", q)
+        for i in range(3):
+            if i < len(np.atleast_1d(tendon.stiffness)):
+                self.add("tendon", tendon, ident, path, "stiffness", kind.per(force, i + 1), slice(i, i + 1),
+                         "" if i == 0 else f"_poly{i}")
+            if i < len(np.atleast_1d(tendon.damping)):
+                self.add("tendon", tendon, ident, path, "damping", kind.per(force, i + 1, rate=1),
+                         slice(i, i + 1), "" if i == 0 else f"_poly{i}")
+        self.add("tendon", tendon, ident, path, "armature", force / (q * _T ** -2))
+        self.add("tendon", tendon, ident, path, "frictionloss", force)
+        self.add("tendon", tendon, ident, path, "actfrcrange", force)
+        self.add("tendon", tendon, ident, path, "width", _L)
+        self.add_solref("tendon", tendon, ident, path, "solref_limit")
+        self.add_solimp("tendon", tendon, ident, path, "solimp_limit", q)
+        self.add_solref("tendon", tendon, ident, path, "solref_friction")
+        self.add_solimp("tendon", tendon, ident, path, "solimp_friction", q)
+        if np.any(np.asarray(tendon.springyield) != 0):
+            self.fail(path, "attribute springyield is not supported by pitheorem's scaling yet")
+
+    def actuator_target(self, act, path) -> tuple[object, object]:
+        """Dimensions of the actuator's length and force (gear taken dimensionless)."""
+        mj, spec = self.mj, self.spec
+        trn = act.trntype
+        if trn in (mj.mjtTrn.mjTRN_JOINT, mj.mjtTrn.mjTRN_JOINTINPARENT):
+            joint = spec.joint(act.target)
+            kind = _joint_kind(mj, joint.type) if joint is not None else None
+            if kind is None:
+                self.fail(path, "an actuator on a free joint mixes forces and torques; not supported")
+            if joint.type == mj.mjtJoint.mjJNT_BALL and np.any(np.asarray(act.gear)[3:] != 0):
+                self.fail(path, "ball-joint gear beyond three components is not supported")
+            return kind.q, kind.force
+        if trn == mj.mjtTrn.mjTRN_TENDON:
+            tendon = spec.tendon(act.target)
+            kind = self.tendon_kind(tendon, path)
+            return kind.q, kind.force
+        if trn == mj.mjtTrn.mjTRN_SLIDERCRANK:
+            return _L, _FORCE
+        if trn == mj.mjtTrn.mjTRN_SITE:
+            return _L, _FORCE
+        if trn == mj.mjtTrn.mjTRN_BODY:
+            return _L, _FORCE
+        self.fail(path, f"transmission type {trn} is not known to pitheorem")
+        raise AssertionError  # pragma: no cover
+
+    def control_dimension(self, act, path):
+        """Dimensions of ctrl, of the activation, and of the gain's unit input."""
+        mj = self.mj
+        length, force = self.actuator_target(act, path)
+        gain, bias = act.gaintype, act.biastype
+        biasprm = np.asarray(act.biasprm, dtype=float)
+        if gain == mj.mjtGain.mjGAIN_FIXED:
+            if bias == mj.mjtBias.mjBIAS_NONE or (biasprm[1] == 0 and biasprm[2] == 0):
+                ctrl = force  # a motor: the input is the force
+            elif biasprm[1] != 0:
+                ctrl = length  # a position servo: the input is a target length
+            else:
+                ctrl = length / _T  # a velocity servo: a target velocity
+        elif gain == mj.mjtGain.mjGAIN_AFFINE:
+            ctrl = _ONE  # a damper-like gain: the input is a dimensionless fraction
+        else:
+            self.fail(path, f"gain type {gain.name} (muscle or user) is not supported by pitheorem's scaling")
+        if bias not in (mj.mjtBias.mjBIAS_NONE, mj.mjtBias.mjBIAS_AFFINE):
+            self.fail(path, f"bias type {bias.name} is not supported by pitheorem's scaling")
+        dyn = act.dyntype
+        if dyn == mj.mjtDyn.mjDYN_INTEGRATOR:
+            act_dim = ctrl * _T
+            if gain == mj.mjtGain.mjGAIN_FIXED and bias == mj.mjtBias.mjBIAS_AFFINE and biasprm[1] != 0:
+                # intvelocity: the activation is the target length, so ctrl is a velocity
+                ctrl, act_dim = length / _T, length
+        elif dyn in (mj.mjtDyn.mjDYN_NONE, mj.mjtDyn.mjDYN_FILTER, mj.mjtDyn.mjDYN_FILTEREXACT):
+            act_dim = ctrl
+        else:
+            self.fail(path, f"dynamics type {dyn.name} is not supported by pitheorem's scaling")
+        return length, force, ctrl, act_dim
+
+    def actuator(self, act, index):
+        mj = self.mj
+        ident, path = self.label("actuator", act, index)
+        length, force, ctrl, act_dim = self.control_dimension(act, path)
+        # the input of the force: the activation when there are dynamics, else ctrl
+        driven = act_dim if act.dyntype != mj.mjtDyn.mjDYN_NONE else ctrl
+        if act.trntype == mj.mjtTrn.mjTRN_SITE:
+            self.add("actuator", act, ident, path, "gear", _L, slice(3, 6), "_torque")
+        if act.trntype == mj.mjtTrn.mjTRN_SLIDERCRANK:
+            self.add("actuator", act, ident, path, "cranklength", _L)
+        self.add("actuator", act, ident, path, "ctrlrange", ctrl)
+        self.add("actuator", act, ident, path, "forcerange", force)
+        self.add("actuator", act, ident, path, "actrange", act_dim)
+        self.add("actuator", act, ident, path, "lengthrange", length)
+        if act.dyntype in (mj.mjtDyn.mjDYN_FILTER, mj.mjtDyn.mjDYN_FILTEREXACT):
+            self.add("actuator", act, ident, path, "dynprm", _T, slice(0, 1), "_timeconst")
+        if act.gaintype == mj.mjtGain.mjGAIN_FIXED:
+            self.add("actuator", act, ident, path, "gainprm", force / driven, slice(0, 1), "_gain")
+        else:
+            self.add("actuator", act, ident, path, "gainprm", force, slice(0, 1), "_gain")
+            self.add("actuator", act, ident, path, "gainprm", force / length, slice(1, 2), "_length")
+            self.add("actuator", act, ident, path, "gainprm", force * _T / length, slice(2, 3), "_velocity")
+        if act.biastype == mj.mjtBias.mjBIAS_AFFINE:
+            self.add("actuator", act, ident, path, "biasprm", force, slice(0, 1), "_offset")
+            self.add("actuator", act, ident, path, "biasprm", force / length, slice(1, 2), "_length")
+            self.add("actuator", act, ident, path, "biasprm", force * _T / length, slice(2, 3), "_velocity")
+        for attr in ("damping", "armature", "delay", "ffrange", "velrange"):
+            if hasattr(act, attr) and np.any(np.asarray(getattr(act, attr)) != 0):
+                self.fail(path, f"attribute {attr} is not supported by pitheorem's scaling yet")
+
+    def equality(self, eq, index):
+        mj = self.mj
+        ident, path = self.label("equality", eq, index)
+        t = eq.type
+        if t == mj.mjtEq.mjEQ_CONNECT:
+            self.add("equality", eq, ident, path, "data", _L, slice(0, 6), "_anchor")
+            width = _L
+        elif t == mj.mjtEq.mjEQ_WELD:
+            self.add("equality", eq, ident, path, "data", _L, slice(0, 6), "_anchor_relpos")
+            self.add("equality", eq, ident, path, "data", _L, slice(10, 11), "_torquescale",
+                     note="converts the angular residual into a length")
+            width = _L
+        elif t in (mj.mjtEq.mjEQ_JOINT, mj.mjtEq.mjEQ_TENDON):
+            if t == mj.mjtEq.mjEQ_JOINT:
+                k1 = _joint_kind(mj, self.spec.joint(eq.name1).type)
+                k2 = _joint_kind(mj, self.spec.joint(eq.name2).type) if eq.name2 else k1
+            else:
+                k1 = self.tendon_kind(self.spec.tendon(eq.name1), path)
+                k2 = self.tendon_kind(self.spec.tendon(eq.name2), path) if eq.name2 else k1
+            if k1 is None or k2 is None:
+                self.fail(path, "an equality on a free joint is not supported")
+            for i in range(5):  # q1 = c0 + c1 q2 + c2 q2^2 + ...
+                self.add("equality", eq, ident, path, "data", k1.q * k2.q ** (-i), slice(i, i + 1),
+                         f"_polycoef{i}")
+            width = k1.q
+        else:
+            self.fail(path, f"equality type {t.name} is not supported by pitheorem's scaling")
+        self.add_solref("equality", eq, ident, path, "solref")
+        self.add_solimp("equality", eq, ident, path, "solimp", width)
+
+    def sensor_dimension(self, sensor, path):
+        mj = self.mj
+        S = mj.mjtSensor
+        table = {
+            S.mjSENS_TOUCH: _FORCE, S.mjSENS_ACCELEROMETER: dim("L T^-2"), S.mjSENS_VELOCIMETER: dim("L T^-1"),
+            S.mjSENS_GYRO: dim("T^-1"), S.mjSENS_FORCE: _FORCE, S.mjSENS_TORQUE: _TORQUE,
+            S.mjSENS_RANGEFINDER: _L, S.mjSENS_FRAMEPOS: _L, S.mjSENS_FRAMEQUAT: _ONE, S.mjSENS_FRAMEXAXIS: _ONE,
+            S.mjSENS_FRAMEYAXIS: _ONE, S.mjSENS_FRAMEZAXIS: _ONE, S.mjSENS_FRAMELINVEL: dim("L T^-1"),
+            S.mjSENS_FRAMEANGVEL: dim("T^-1"), S.mjSENS_FRAMELINACC: dim("L T^-2"),
+            S.mjSENS_FRAMEANGACC: dim("T^-2"), S.mjSENS_SUBTREECOM: _L, S.mjSENS_SUBTREELINVEL: dim("L T^-1"),
+            S.mjSENS_SUBTREEANGMOM: dim("M L^2 T^-1"), S.mjSENS_BALLQUAT: _ONE, S.mjSENS_BALLANGVEL: dim("T^-1"),
+        }
+        if sensor.type in table:
+            return table[sensor.type]
+        if sensor.type in (S.mjSENS_JOINTPOS, S.mjSENS_JOINTVEL, S.mjSENS_JOINTLIMITPOS, S.mjSENS_JOINTLIMITVEL,
+                           S.mjSENS_JOINTLIMITFRC, S.mjSENS_JOINTACTFRC):
+            joint = self.spec.joint(sensor.objname)
+            kind = _joint_kind(mj, joint.type) if joint is not None else None
+            if kind is not None:
+                return {S.mjSENS_JOINTPOS: kind.q, S.mjSENS_JOINTVEL: kind.q / _T,
+                        S.mjSENS_JOINTLIMITPOS: kind.q, S.mjSENS_JOINTLIMITVEL: kind.q / _T,
+                        S.mjSENS_JOINTLIMITFRC: kind.force, S.mjSENS_JOINTACTFRC: kind.force}[sensor.type]
+        return None
+
+    def sensor(self, sensor, index):
+        ident, path = self.label("sensor", sensor, index)
+        d = self.sensor_dimension(sensor, path)
+        busy = sensor.cutoff != 0 or np.any(np.asarray(sensor.noise) != 0)
+        if d is None:
+            if busy:
+                self.warning(path, f"sensor type {sensor.type.name}: its cutoff and noise have no "
+                                "known dimension and are copied unchanged")
+            return
+        self.add("sensor", sensor, ident, path, "cutoff", d)
+        self.add("sensor", sensor, ident, path, "noise", d)
+
+
+_DEFAULTS_CACHE: dict = {}
+
+
+def _builtin_defaults(mj) -> dict:
+    """One fresh element of each kind: MuJoCo's built-in defaults, to tell file values from defaults."""
+    if not _DEFAULTS_CACHE:
+        spec = mj.MjSpec()
+        body = spec.worldbody.add_body()
+        _DEFAULTS_CACHE.update({
+            "option": spec.option, "geom": body.add_geom(), "joint": body.add_joint(), "site": body.add_site(),
+            "actuator": spec.add_actuator(), "tendon": spec.add_tendon(), "equality": spec.add_equality(),
+            "pair": spec.add_pair(), "sensor": spec.add_sensor(), "camera": body.add_camera(),
+            "light": body.add_light(), "body": body, "_spec": spec,
+        })
+    return _DEFAULTS_CACHE
+
+
+# -- the backend ------------------------------------------------------------------------------
+
+
+class MjcfBackend:
+    """An MJCF model held as MuJoCo's ``MjSpec`` with its compiled ``MjModel``.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> model.backend.mjmodel.nq
+    1
+    """
+
+    def __init__(self, spec, path: str, source_dir: Path | None):
+        mj = _mujoco()
+        self.spec = spec
+        self.path = path
+        self.source_dir = source_dir
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                self.mjmodel = spec.compile()
+        except ValueError as err:
+            raise EngineModelError(path, _culprit(str(err), spec), _first_line(str(err))) from None
+        self._slots = _Walker(mj, spec, self.mjmodel, path, warn=True).walk()
+
+    # -- table --------------------------------------------------------------------------------
+
+    def parameters(self):
+        return [Parameter(s.name, s.path, s.read(), s.dimension, s.source, "file", s.parts, s.note)
+                for s in self._slots]
+
+    def settings(self) -> dict:
+        return {}
+
+    # -- scaling ------------------------------------------------------------------------------
+
+    def scaled(self, factors, scaling, s) -> MjcfBackend:
+        mj = _mujoco()
+        spec = self.spec.copy()
+        if self.source_dir is not None:
+            _absolute_asset_dirs(spec, self.source_dir)
+        slots = _Walker(mj, spec, self.mjmodel, self.path).walk()
+        for slot in slots:
+            if factors.get(slot.name, 1.0) != 1.0:
+                slot.write(factors[slot.name])
+        if scaling is not None:
+            _scale_keyframes(mj, spec, self.mjmodel, scaling, s)
+        out = MjcfBackend.__new__(MjcfBackend)
+        out.spec, out.path, out.source_dir = spec, "", self.source_dir
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            out.mjmodel = spec.compile()
+        out._slots = _Walker(mj, spec, out.mjmodel, "").walk()
+        return out
+
+    def save(self, path: Path) -> None:
+        spec = self.spec.copy()
+        if self.source_dir is not None:
+            _absolute_asset_dirs(spec, self.source_dir)
+        # MuJoCo's canonical, compiled output rounds to 6 digits (and turns fromto and degrees into
+        # quaternions and radians); the uncompiled output keeps every value at full precision
+        spec.compiler.savecompiled = False
+        spec.compiler.savecanonical = False
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # MuJoCo's deprecation notes on the user's own attributes
+            spec.compile()
+            text = spec.to_xml()
+        Path(path).write_text(text)
+
+    # -- running ------------------------------------------------------------------------------
+
+    def coordinate_dimensions(self):
+        """Names and dimensions of qpos and qvel entries, and of the activations."""
+        mj, m = _mujoco(), self.mjmodel
+        names, dims = [], []
+        for kind_label, width in (("qpos", {0: 7, 1: 4, 2: 1, 3: 1}), ("qvel", {0: 6, 1: 3, 2: 1, 3: 1})):
+            for j in range(m.njnt):
+                jname = mj.mj_id2name(m, mj.mjtObj.mjOBJ_JOINT, j) or f"joint{j}"
+                jtype = int(m.jnt_type[j])
+                rate = 0 if kind_label == "qpos" else 1
+                if jtype == 0:  # free: position, then quaternion (or angular velocity)
+                    per = [_L] * 3 + ([_ONE] * 4 if rate == 0 else [_ONE] * 3)
+                elif jtype == 1:
+                    per = [_ONE] * width[1]
+                elif jtype == 2:
+                    per = [_L]
+                else:
+                    per = [_ONE]
+                for k, d in enumerate(per):
+                    names.append(f"{kind_label}[{jname}]" + (f"[{k}]" if len(per) > 1 else ""))
+                    dims.append(d * _T ** (-rate))
+        acting = [i for i in range(m.nu) if m.actuator_dyntype[i] != 0]
+        for i, d in zip(acting, self.activation_dimensions(), strict=True):
+            names.append(f"act[{mj.mj_id2name(m, mj.mjtObj.mjOBJ_ACTUATOR, i) or i}]")
+            dims.append(d)
+        return names, dims
+
+    def control_dimensions(self):
+        mj = _mujoco()
+        walker = _Walker(mj, self.spec, self.mjmodel, self.path)
+        return [walker.control_dimension(a, walker.label("actuator", a, i)[1])[2]
+                for i, a in enumerate(self.spec.actuators)]
+
+    def activation_dimensions(self):
+        mj = _mujoco()
+        walker = _Walker(mj, self.spec, self.mjmodel, self.path)
+        out = []
+        for i, a in enumerate(self.spec.actuators):
+            if a.dyntype != mj.mjtDyn.mjDYN_NONE:
+                out.append(walker.control_dimension(a, walker.label("actuator", a, i)[1])[3])
+        return out
+
+    def timestep(self) -> float:
+        return float(self.mjmodel.opt.timestep)
+
+    def run(self, n_steps: int, controls=None, nudge: bool = False, state=None):
+        """Step the model ``n_steps`` times from its initial state; rows of (qpos, qvel, act).
+
+        ``controls`` is None or a callable of time giving ``data.ctrl``;
+        ``nudge`` moves every initial coordinate by one ulp; ``state`` is
+        an initial (qpos, qvel) pair.
+        """
+        mj, m = _mujoco(), self.mjmodel
+        data = mj.MjData(m)
+        if state is not None:
+            data.qpos[:], data.qvel[:] = state
+        if nudge:
+            data.qpos[:] = nudged(data.qpos)
+            data.qvel[:] = nudged(data.qvel)
+        nq, nv = m.nq, m.nv
+        out = np.empty((n_steps + 1, nq + nv + m.na))
+        qpos, qvel, act = out[:, :nq], out[:, nq:nq + nv], out[:, nq + nv:]
+        qpos[0], qvel[0], act[0] = data.qpos, data.qvel, data.act
+        steer = controls is not None and m.nu
+        for i in range(1, n_steps + 1):
+            if steer:
+                data.ctrl[:] = controls(data.time)
+            mj.mj_step(m, data)
+            qpos[i], qvel[i], act[i] = data.qpos, data.qvel, data.act
+        return out
+
+
+def _absolute_asset_dirs(spec, source_dir: Path) -> None:
+    """Point mesh, texture and hfield files at absolute paths, so the copy loads from anywhere."""
+    for attr in ("meshdir", "texturedir"):
+        current = getattr(spec, attr, "") or ""
+        setattr(spec, attr, str((source_dir / current).resolve()))
+
+
+def _scale_keyframes(mj, spec, model, scaling, s) -> None:
+    if not len(spec.keys):
+        return
+    backend = MjcfBackend.__new__(MjcfBackend)
+    backend.mjmodel, backend.spec, backend.path = model, spec, ""
+    _, dims = backend.coordinate_dimensions()
+    fq = np.array([power_factor(s, scaling.exponent_of(d)) for d in dims[: model.nq]])
+    fv = np.array([power_factor(s, scaling.exponent_of(d)) for d in dims[model.nq:]])
+    ft = power_factor(s, scaling.exponent_of(_T))
+    fl = power_factor(s, scaling.exponent_of(_L))
+    fctrl = np.array([power_factor(s, scaling.exponent_of(d)) for d in backend.control_dimensions()])
+    for key in spec.keys:
+        if len(key.qpos) == model.nq:
+            key.qpos = np.asarray(key.qpos) * fq
+        if len(key.qvel) == model.nv:
+            key.qvel = np.asarray(key.qvel) * fv
+        if len(key.ctrl) == model.nu and model.nu:
+            key.ctrl = np.asarray(key.ctrl) * fctrl
+        if len(key.mpos):
+            key.mpos = np.asarray(key.mpos) * fl
+        key.time = key.time * ft
+        if len(key.act) and model.na:
+            fa = np.array([power_factor(s, scaling.exponent_of(d)) for d in backend.activation_dimensions()])
+            if len(fa) == len(key.act):
+                key.act = np.asarray(key.act) * fa
+
+
+def _first_line(text: str) -> str:
+    """MuJoCo's reason, without the element line (named separately)."""
+    lines = [ln.strip() for ln in text.strip().splitlines() if ln.strip() and not ln.strip().startswith("Element")]
+    return lines[0] if lines else "MuJoCo could not load the model"
+
+
+def _culprit(text: str, spec=None) -> str:
+    """The element MuJoCo names in its message (``Element 'geom', line 7``), or the mesh whose file is missing."""
+    for line in text.splitlines():
+        if line.strip().startswith("Element"):
+            return line.strip().rstrip(":")
+    if spec is not None:
+        for kind, items in (("mesh", spec.meshes), ("hfield", spec.hfields), ("texture", spec.textures)):
+            for item in items:
+                f = getattr(item, "file", "")
+                if f and Path(f).name in text:
+                    return f"{kind} {item.name!r}" if item.name else f"{kind} file {f!r}"
+    return ""
+
+
+def load_mjcf(path) -> EngineModel:
+    """Read an MJCF file through MuJoCo's parser and compiler.
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    EngineModel
+
+    Raises
+    ------
+    EngineModelError
+        When MuJoCo rejects the file (the message names its element), or
+        an element cannot be scaled.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.mjcf import load_mjcf
+    >>> load_mjcf(engines.example_path("pendulum.xml")).engine
+    'mujoco'
+    """
+    mj = _mujoco()
+    path = Path(path)
+    try:
+        spec = mj.MjSpec.from_file(str(path))
+    except ValueError as err:
+        raise EngineModelError(str(path), _culprit(str(err)), _first_line(str(err))) from None
+    backend = MjcfBackend(spec, str(path), path.resolve().parent)
+    return EngineModel(backend, "mujoco", str(path))

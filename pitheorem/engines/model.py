@@ -1,0 +1,626 @@
+"""A user's own engine model: its parameters with dimensions, scaled copies, saved files.
+
+:func:`load` reads an MJCF file through MuJoCo or a URDF file through
+PyBullet and returns an :class:`EngineModel`.  Its :attr:`~EngineModel.parameters`
+table lists every number of the model that has a dimension (one
+:class:`Parameter` each), next to the engine's hidden constants;
+:meth:`~EngineModel.system` turns the table into a :class:`pitheorem.System`
+for :func:`pitheorem.search`; :meth:`~EngineModel.scaled` applies a
+similarity scaling to every number at once; :meth:`~EngineModel.save`
+writes a file the engine loads as it is.
+
+The engine-specific work (reading, writing, running) lives in
+``pitheorem.engines.mjcf`` and ``pitheorem.engines.urdf``; this module
+only holds what both share.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+from fractions import Fraction
+from pathlib import Path
+
+from ..dimensions import Dimension
+from ..errors import InvalidRequestError, PiTheoremError
+from ..modelfile import ModelFileError
+from ..system import System
+
+__all__ = [
+    "EngineModel",
+    "EngineModelError",
+    "Parameter",
+    "UnscalableModelWarning",
+    "UnscalableParameterError",
+    "example_path",
+    "load",
+]
+
+#: where a parameter's value comes from
+SOURCES = ("file", "default", "derived", "engine")
+
+
+class EngineModelError(ModelFileError):
+    """A model file the engine cannot load, or an element the package cannot scale.
+
+    Parameters
+    ----------
+    path : str
+        The file.
+    element : str
+        The element at fault, e.g. ``"mesh 'torso'"``.
+    reason : str
+        What is wrong and what would be valid.
+
+    Examples
+    --------
+    >>> from pitheorem.engines import EngineModelError
+    >>> print(EngineModelError("robot.xml", "mesh 'torso'", "file torso.stl not found"))
+    robot.xml: mesh 'torso': file torso.stl not found
+    """
+
+    def __init__(self, path, element: str, reason: str):
+        self.element = element
+        ModelFileError.__init__(self, path, reason)
+
+    def __str__(self) -> str:
+        where = f" {self.element}:" if self.element else ""
+        return f"{self.path}:{where} {self.reason}"
+
+    def __reduce__(self):
+        return (type(self), (self.path, self.element, self.reason))
+
+
+class UnscalableParameterError(PiTheoremError, ValueError):
+    """A scaling that one number of a model cannot follow.
+
+    Raised by :meth:`EngineModel.scaled` for a number that mixes dimensions
+    (a free joint's damping acts on lengths and on angles) when the scaling
+    needs two different factors for it, and for an engine setting that no
+    call can change.
+
+    Examples
+    --------
+    >>> from pitheorem.engines import UnscalableParameterError
+    >>> print(UnscalableParameterError("joint_root_damping", "needs s^1 and s^3"))
+    cannot scale 'joint_root_damping': needs s^1 and s^3
+    """
+
+    def __init__(self, name: str, reason: str):
+        self.name, self.reason = name, reason
+        PiTheoremError.__init__(self, str(self))
+
+    def __str__(self) -> str:
+        return f"cannot scale {self.name!r}: {self.reason}"
+
+    def __reduce__(self):
+        return (type(self), (self.name, self.reason))
+
+
+class UnscalableModelWarning(UserWarning):
+    """An element whose scaling the package cannot check (it is copied unchanged).
+
+    Examples
+    --------
+    >>> from pitheorem.engines import UnscalableModelWarning
+    >>> issubclass(UnscalableModelWarning, UserWarning)
+    True
+    """
+
+
+@dataclass(frozen=True, slots=True)
+class Parameter:
+    """One number (or vector of numbers of one dimension) of an engine model.
+
+    Parameters
+    ----------
+    name : str
+        Identifier, used as the variable name in :meth:`EngineModel.system`.
+    path : str
+        Where it lives: element and attribute in the file, or the engine call.
+    value : tuple of float
+        The value(s), as the engine resolved them.
+    dimension : Dimension or None
+        None for a number that mixes dimensions; see `parts`.
+    source : {"file", "default", "derived", "engine"}
+        The file (or its default classes) set it; the engine's built-in
+        default applies; the engine computed it (e.g. an inertia from geoms);
+        an engine setting outside the file.
+    settable : str
+        How to change it: ``"file"`` or the engine call; ``""`` if it
+        cannot be changed.
+    parts : tuple of (str, Dimension)
+        For a mixed number: the dimension each part of it acts with.
+    note : str
+
+    Examples
+    --------
+    >>> from pitheorem.engines import Parameter
+    >>> from pitheorem import Dimension
+    >>> p = Parameter("body_torso_mass", "body 'torso' mass", (3.5,), Dimension.parse("M"), "derived", "file")
+    >>> p.mixed, str(p.dimension)
+    (False, 'M')
+    """
+
+    name: str
+    path: str
+    value: tuple[float, ...]
+    dimension: Dimension | None
+    source: str
+    settable: str
+    parts: tuple[tuple[str, Dimension], ...] = ()
+    note: str = ""
+
+    @property
+    def mixed(self) -> bool:
+        """Whether the number acts with more than one dimension.
+
+        Examples
+        --------
+        >>> from pitheorem.engines import Parameter
+        >>> from pitheorem import Dimension
+        >>> Parameter("d", "joint 'root' damping", (1.0,), None, "file", "file",
+        ...           parts=(("lin", Dimension.parse("M T^-1")), ("rot", Dimension.parse("M L^2 T^-1")))).mixed
+        True
+        """
+        return self.dimension is None
+
+    def variables(self) -> dict[str, Dimension]:
+        """The system variables this parameter stands for: one, or one per part.
+
+        Examples
+        --------
+        >>> from pitheorem.engines import Parameter
+        >>> from pitheorem import Dimension
+        >>> p = Parameter("d", "", (1.0,), None, "file", "file",
+        ...               parts=(("lin", Dimension.parse("M T^-1")), ("rot", Dimension.parse("M L^2 T^-1"))))
+        >>> sorted(p.variables())
+        ['d_lin', 'd_rot']
+        """
+        if self.dimension is not None:
+            return {self.name: self.dimension}
+        return {f"{self.name}_{part}": dim for part, dim in self.parts}
+
+    def factor(self, scaling, s: float) -> float:
+        """The factor the scaling multiplies this number by.
+
+        Raises
+        ------
+        UnscalableParameterError
+            For a mixed number whose parts need different factors and whose
+            value is not zero.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> from pitheorem.engines import Parameter
+        >>> p = Parameter("l", "", (2.0,), pt.Dimension.parse("L"), "file", "file")
+        >>> sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1})
+        >>> p.factor(sc, 10.0)
+        10.0
+        """
+        if self.dimension is not None:
+            return power_factor(s, scaling.exponent_of(self.dimension))
+        if not self.parts:  # no dimension at all: copied unchanged (see the note)
+            return 1.0
+        exponents = {part: scaling.exponent_of(dim) for part, dim in self.parts}
+        if len(set(exponents.values())) > 1 and any(v != 0 for v in self.value):
+            needs = ", ".join(f"s^{_text(e)} as {part}" for part, e in exponents.items())
+            raise UnscalableParameterError(
+                self.name, f"the one number {self.path} acts with dimensions {self.dimension_text}, so the scaling "
+                f"needs {needs}; set it to 0 or hold the base units it mixes fixed")
+        return power_factor(s, next(iter(exponents.values())))
+
+    @property
+    def dimension_text(self) -> str:
+        """The dimension as text; for a mixed number, its parts.
+
+        Examples
+        --------
+        >>> from pitheorem.engines import Parameter
+        >>> from pitheorem import Dimension
+        >>> Parameter("x", "", (1.0,), Dimension.parse("M L^2"), "file", "file").dimension_text
+        'M L^2'
+        """
+        if self.dimension is not None:
+            return str(self.dimension)
+        if not self.parts:
+            return "mixed"
+        return " | ".join(f"{dim} ({part})" for part, dim in self.parts)
+
+
+def _text(q: Fraction) -> str:
+    q = Fraction(q)
+    return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
+
+
+def power_factor(s: float, exponent) -> float:
+    """``s ** exponent`` as a float, exact for integer exponents of exact powers.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem.engines.model import power_factor
+    >>> power_factor(10.0, Fraction(-2)), power_factor(4.0, Fraction(1, 2))
+    (0.01, 2.0)
+    """
+    e = Fraction(exponent)
+    if e == 0:
+        return 1.0
+    if e.denominator == 1:
+        # an integer power by repeated multiplication of an exact value: 10^-2 is 1/100, not 10.0**-2
+        value = Fraction(s) ** e.numerator if isinstance(s, int | Fraction) or float(s).is_integer() else None
+        if value is not None:
+            return float(value)
+    return float(s) ** float(e)
+
+
+def dim(text: str) -> Dimension:
+    """Shorthand: parse a dimension formula.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.model import dim
+    >>> str(dim("M L^2 T^-1"))
+    'M L^2 T^-1'
+    """
+    return Dimension.parse(text)
+
+
+class EngineModel:
+    """A model of MuJoCo or PyBullet, read from its file, with every dimensional number.
+
+    Build one with :func:`load`; :meth:`scaled` returns another.  The
+    engine-specific part is a backend object (see
+    ``pitheorem.engines.mjcf`` and ``pitheorem.engines.urdf``).
+
+    Attributes
+    ----------
+    engine : {"mujoco", "pybullet"}
+    path : str
+        The file it was read from ("" for a scaled copy not yet saved).
+    parameters : tuple of Parameter
+        Every dimensional number of the file and of the engine settings.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> model.engine, "g" in model.system().variables
+    ('mujoco', True)
+    """
+
+    __slots__ = ("_backend", "engine", "parameters", "path")
+
+    def __init__(self, backend, engine: str, path: str):
+        self._backend = backend
+        self.engine = engine
+        self.path = path
+        self.parameters = tuple(backend.parameters())
+
+    def __repr__(self) -> str:
+        return f"<EngineModel {self.engine} {self.path or '(unsaved)'}: {len(self.parameters)} parameters>"
+
+    def parameter(self, name: str) -> Parameter:
+        """The parameter of a given name.
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> model = engines.load(engines.example_path("pendulum.xml"))
+        >>> model.parameter("g").value
+        (9.81,)
+        """
+        for p in self.parameters:
+            if p.name == name:
+                return p
+        from ..errors import UnknownVariableError
+
+        raise UnknownVariableError(name, tuple(p.name for p in self.parameters), "the model's parameters")
+
+    def system(self) -> System:
+        """The :class:`pitheorem.System` of every parameter and hidden constant.
+
+        ``g`` is the magnitude of gravity and ``t`` is time; a mixed number
+        contributes one variable per part (``name_lin``, ``name_rot``).
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> from pitheorem import engines
+        >>> model = engines.load(engines.example_path("pendulum.xml"))
+        >>> res = pt.search(model.system(), scale={"g": 1})
+        >>> res.feasible
+        True
+        """
+        dims: dict[str, Dimension] = {}
+        for p in self.parameters:
+            dims.update(p.variables())
+        dims["t"] = dim("T")
+        return System(dims)
+
+    def table(self) -> str:
+        """The parameters as aligned plain text: name, dimension, value, source, path.
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> model = engines.load(engines.example_path("pendulum.xml"))
+        >>> model.table().splitlines()[0].split()
+        ['name', 'dimension', 'value', 'source', 'path']
+        """
+        rows = [("name", "dimension", "value", "source", "path")]
+        for p in self.parameters:
+            value = " ".join(f"{v:.6g}" for v in p.value)
+            rows.append((p.name, p.dimension_text, value, p.source, p.path))
+        widths = [max(len(r[k]) for r in rows) + 2 for k in range(4)]
+        return "\n".join("".join(c.ljust(w) for c, w in zip(r[:4], widths, strict=True)) + r[4] for r in rows)
+
+    def scaled(self, scaling, s) -> EngineModel:
+        """A copy with every parameter multiplied by ``s`` to its exponent.
+
+        Parameters
+        ----------
+        scaling : Scaling
+            A change of units of :meth:`system` (e.g. from
+            :func:`pitheorem.search`).
+        s : float
+            The scale factor, positive.
+
+        Returns
+        -------
+        EngineModel
+
+        Raises
+        ------
+        UnscalableParameterError
+            For a mixed number the scaling would split, or an engine
+            constant the scaling must change but no call can.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> from pitheorem import engines
+        >>> model = engines.load(engines.example_path("pendulum.xml"))
+        >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+        >>> round(model.scaled(sc, 10).parameter("g").value[0], 12)
+        98.1
+        """
+        s = _check_s(s)
+        _check_scaling(self, scaling)
+        factors = {p.name: p.factor(scaling, s) for p in self.parameters}
+        return EngineModel(self._backend.scaled(factors, scaling, s), self.engine, "")
+
+    def with_values(self, **values) -> EngineModel:
+        """A copy with some parameters set to new values (each must be one number).
+
+        Parameters
+        ----------
+        **values : float
+            Parameter name to its new value, e.g. ``tolerance=0``.
+
+        Returns
+        -------
+        EngineModel
+
+        Raises
+        ------
+        UnknownVariableError
+            For a name that is no parameter.
+        InvalidRequestError
+            For a vector parameter, or one whose value is 0 now (it cannot
+            be reached by a factor).
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> model = engines.load(engines.example_path("pendulum.xml"))
+        >>> model.with_values(tolerance=0).parameter("tolerance").value
+        (0.0,)
+        """
+        factors = {}
+        for name, value in values.items():
+            p = self.parameter(name)
+            if len(p.value) != 1 or p.value[0] == 0:
+                raise InvalidRequestError(f"with_values sets one nonzero number; {name} is {p.value}")
+            factors[name] = float(value) / p.value[0]
+        return EngineModel(self._backend.scaled(factors, None, None), self.engine, "")
+
+    def save(self, path) -> Path:
+        """Write the model as a file the engine loads as is.
+
+        For PyBullet, the settings a URDF cannot hold (gravity, time step,
+        engine parameters, per-link dynamics) go beside it, as data
+        (``<path>.settings.json``) and as a runnable snippet
+        (``<path>.settings.py``).
+
+        Parameters
+        ----------
+        path : str or Path
+
+        Returns
+        -------
+        Path
+
+        Examples
+        --------
+        >>> import os, tempfile
+        >>> from pitheorem import engines
+        >>> model = engines.load(engines.example_path("pendulum.xml"))
+        >>> with tempfile.TemporaryDirectory() as tmp:
+        ...     out = model.save(os.path.join(tmp, "copy.xml"))
+        ...     engines.load(out).parameter("g").value
+        (9.81,)
+        """
+        path = Path(path)
+        self._backend.save(path)
+        return path
+
+    def with_settings(self, **changes) -> EngineModel:
+        """A copy with other engine settings (PyBullet: ``split_impulse``, ``ground``, ...).
+
+        Raises
+        ------
+        InvalidRequestError
+            For an MJCF model (its settings are parameters: use
+            :meth:`with_values`) or an unknown setting.
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> try:
+        ...     engines.load(engines.example_path("pendulum.xml")).with_settings(ground=True)
+        ... except engines.EngineModelError:
+        ...     pass
+        ... except Exception as err:
+        ...     print(type(err).__name__)
+        InvalidRequestError
+        """
+        if not hasattr(self._backend, "with_settings"):
+            raise InvalidRequestError("an MJCF model keeps its settings in the file; use with_values(...)")
+        return EngineModel(self._backend.with_settings(**changes), self.engine, self.path)
+
+    def settings(self) -> dict:
+        """Engine settings the file cannot hold, as data (empty for MuJoCo).
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> engines.load(engines.example_path("pendulum.xml")).settings()
+        {}
+        """
+        return self._backend.settings()
+
+    @property
+    def backend(self):
+        """The engine-specific object that reads, writes and runs the model.
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> type(engines.load(engines.example_path("pendulum.xml")).backend).__name__
+        'MjcfBackend'
+        """
+        return self._backend
+
+
+def _check_s(s) -> float:
+    from ..simulate import _positive
+
+    if isinstance(s, bool):
+        raise InvalidRequestError(f"the scale factor s must be a positive finite number, got {s!r}")
+    x = _positive(s, "the scale factor s")
+    return s if isinstance(s, int | Fraction) else x
+
+
+def _check_scaling(model: EngineModel, scaling) -> None:
+    if not all(hasattr(scaling, a) for a in ("system", "powers", "exponent_of")):
+        raise InvalidRequestError(f"scaling must be a pitheorem Scaling, got {type(scaling).__name__}")
+    if scaling.units is None:
+        raise InvalidRequestError("the scaling is no change of units; an engine model needs one "
+                                  "(use a scaling from pt.search(model.system(), ...))")
+    missing = [b for b in ("M", "L", "T") if b not in scaling.system.base_dimensions]
+    if missing:
+        raise InvalidRequestError(f"the scaling's system has no base dimension {missing[0]!r}; "
+                                  "search on model.system()")
+
+
+def warn_unscalable(path: str, element: str, reason: str) -> None:
+    """Warn that an element is copied unchanged because its scaling is unknown.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from pitheorem.engines.model import warn_unscalable
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn_unscalable("a.xml", "sensor 'x'", "unknown type")
+    >>> str(caught[0].message)
+    "a.xml: sensor 'x': unknown type"
+    """
+    warnings.warn(f"{path}: {element}: {reason}", UnscalableModelWarning, stacklevel=3)
+
+
+def example_path(name: str) -> Path:
+    """The path of a model file shipped in ``pitheorem/examples``.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> engines.example_path("pendulum.xml").name
+    'pendulum.xml'
+    """
+    path = Path(__file__).resolve().parent.parent / "examples" / name
+    if not path.is_file():
+        raise InvalidRequestError(f"no example model {name!r} in {path.parent}")
+    return path
+
+
+def load(path, **options) -> EngineModel:
+    """Read an MJCF file (through MuJoCo) or a URDF file (through PyBullet).
+
+    Parameters
+    ----------
+    path : str or Path
+        ``.xml``/``.mjcf`` for MuJoCo, ``.urdf`` for PyBullet.  An ``.xml``
+        file whose root is ``<robot>`` is read as URDF.
+    **options
+        URDF only: the scene and settings of
+        ``pitheorem.engines.urdf.load_urdf`` (``base_position``,
+        ``fixed_base``, ``ground``, ``split_impulse``, ``g``, ``damping``).
+
+    Returns
+    -------
+    EngineModel
+
+    Raises
+    ------
+    EngineModelError
+        For a missing or unreadable file, an element the engine rejects, or
+        one the package cannot scale faithfully (named in the message).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> [p.name for p in model.parameters][:2]
+    ['timestep', 'g']
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise EngineModelError(str(path), "", "no such file; give an MJCF (.xml) or URDF (.urdf) model file")
+    kind = model_kind(path)
+    if kind == "urdf":
+        from .urdf import load_urdf
+
+        return load_urdf(path, **options)
+    if options:
+        raise InvalidRequestError(f"options {sorted(options)} are for URDF files; an MJCF file holds its settings")
+    from .mjcf import load_mjcf
+
+    return load_mjcf(path)
+
+
+def model_kind(path) -> str:
+    """``"mjcf"``, ``"urdf"`` or ``"toml"``: the kind of a model file, by suffix and root element.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.model import model_kind
+    >>> model_kind("robot.urdf"), model_kind("model.toml")
+    ('urdf', 'toml')
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix == ".urdf":
+        return "urdf"
+    if suffix == ".toml" or str(path).startswith("example:"):
+        return "toml"
+    if suffix in (".xml", ".mjcf") and path.is_file():
+        head = path.read_bytes()[:4096].decode("utf-8", "replace")
+        if "<robot" in head and "<mujoco" not in head:
+            return "urdf"
+        return "mjcf"
+    if suffix in (".xml", ".mjcf"):
+        return "mjcf"
+    return "toml"

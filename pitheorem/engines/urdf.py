@@ -1,0 +1,589 @@
+"""URDF models through PyBullet: the file's numbers, PyBullet's settings, scaled copies, runs.
+
+The file is loaded by PyBullet itself (so its defaults apply: inertia
+computed from the collision shapes, default collision margins) and read
+with :mod:`xml.etree.ElementTree` for the numbers it states.  Dimensions
+follow the joint type: a revolute or continuous joint has coordinate ``q``
+= 1 and generalised force ``Q`` = M L^2 T^-2, a prismatic one ``q`` = L and
+``Q`` = M L T^-2.
+
+What a URDF cannot hold goes into :meth:`~pitheorem.engines.EngineModel.settings`:
+gravity (PyBullet's own default is 0; the model runs with 9.81 m s^-2
+unless told otherwise), the time step, ``setPhysicsEngineParameter``
+values of dimension (``contactSlop``, ``restitutionVelocityThreshold``,
+``solverResidualThreshold``) and per-link ``changeDynamics`` values
+(collision margin, rolling and spinning friction, joint speed cap, the
+multibody damping).  PyBullet's default velocity motors on every joint
+are switched off (``VELOCITY_CONTROL`` with ``force=0``) in every run, as
+the PyBullet guide advises for torque control: their impulse cap has no
+documented value to scale.
+
+The multibody damping ``linearDamping`` (default 0.04) enters as ``m v (d +
+d |v|)``: one number that is a rate (T^-1) and an inverse length (L^-1)
+at once, a mixed number; likewise ``angularDamping`` (T^-1 and 1).  The
+split-impulse threshold (-0.04, a length) cannot be set from Python;
+``useSplitImpulse=0`` removes it.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+
+from ..simulate import nudged
+from .model import EngineModel, EngineModelError, Parameter, dim
+
+__all__ = ["UrdfBackend", "load_urdf"]
+
+_ONE, _L, _T, _M = dim("1"), dim("L"), dim("T"), dim("M")
+_FORCE, _TORQUE = dim("M L T^-2"), dim("M L^2 T^-2")
+
+#: PyBullet's engine parameters with a dimension, their defaults (measured with pybullet 3.2.7, or
+#: bullet3's btContactSolverInfo where PyBullet cannot report them) and dimensions
+ENGINE_PARAMETERS = (
+    ("contactSlop", 1e-5, "L", "allowed penetration before contacts push back"),
+    ("restitutionVelocityThreshold", 0.2, "L T^-1", "impacts slower than this do not bounce"),
+    ("solverResidualThreshold", 1e-7, "L^2 T^-2", "the solver stops below this squared velocity residual"),
+)
+#: the multibody damping of every link: one number acting with two dimensions
+MIXED_DAMPING = (
+    ("linearDamping", 0.04, (("rate", "T^-1"), ("per_length", "L^-1"))),
+    ("angularDamping", 0.04, (("rate", "T^-1"), ("per_radian", "1"))),
+)
+_SPLIT_IMPULSE_THRESHOLD = -0.04
+
+
+def _pybullet():
+    from .rod import _engine_module
+
+    return _engine_module("bullet")
+
+
+def _floats(text: str | None) -> list[float]:
+    return [float(v) for v in (text or "").split()]
+
+
+def _fmt(values) -> str:
+    return " ".join(repr(float(v)) for v in values)
+
+
+def _joint_kind(jtype: str):
+    if jtype == "prismatic":
+        return _L, _FORCE
+    if jtype in ("revolute", "continuous"):
+        return _ONE, _TORQUE
+    return None
+
+
+class _Attr:
+    """One dimensional attribute of one URDF element (its ``value`` attribute or another one)."""
+
+    def __init__(self, name, path, element, attr, dimension, note=""):
+        self.name, self.path, self.element, self.attr, self.dimension, self.note = (
+            name, path, element, attr, dimension, note)
+
+    def read(self):
+        return tuple(_floats(self.element.get(self.attr)))
+
+
+def _clean(text: str) -> str:
+    out = "".join(c if c.isalnum() or c == "_" else "_" for c in text)
+    return out if out and not out[0].isdigit() else f"_{out}"
+
+
+def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr]:
+    """Every dimensional number the URDF states, in document order."""
+    root = tree.getroot()
+    if root.tag != "robot":
+        raise EngineModelError(path, f"<{root.tag}>", "a URDF file's root element must be <robot>")
+    out: list[_Attr] = []
+    names: set[str] = set()
+
+    def add(ident, where, element, attr, dimension, note=""):
+        if element is None or element.get(attr) is None:
+            return
+        name, k = ident, 2
+        while name in names:
+            name, k = f"{ident}_{k}", k + 1
+        names.add(name)
+        out.append(_Attr(name, where, element, attr, dimension, note))
+
+    for link in root.findall("link"):
+        lname = link.get("name", "")
+        ident = _clean(f"link_{lname}")
+        where = f"link {lname!r}"
+        inertial = link.find("inertial")
+        if inertial is not None:
+            add(f"{ident}_com", f"{where} inertial origin xyz", inertial.find("origin"), "xyz", _L)
+            add(f"{ident}_mass", f"{where} inertial mass", inertial.find("mass"), "value", _M)
+            inertia = inertial.find("inertia")
+            for a in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
+                add(f"{ident}_{a}", f"{where} inertia {a}", inertia, a, dim("M L^2"),
+                    note="PyBullet recomputes the inertia from the collision shapes unless "
+                         "URDF_USE_INERTIA_FROM_FILE is given")
+        for kind in ("collision", "visual"):
+            for k, shape in enumerate(link.findall(kind)):
+                sid = f"{ident}_{kind}{k}"
+                swhere = f"{where} {kind} #{k}"
+                add(f"{sid}_xyz", f"{swhere} origin xyz", shape.find("origin"), "xyz", _L)
+                geometry = shape.find("geometry")
+                if geometry is None:
+                    continue
+                for g in geometry:
+                    if g.tag == "box":
+                        add(f"{sid}_size", f"{swhere} box size", g, "size", _L)
+                    elif g.tag in ("cylinder", "capsule", "sphere"):
+                        add(f"{sid}_radius", f"{swhere} {g.tag} radius", g, "radius", _L)
+                        add(f"{sid}_length", f"{swhere} {g.tag} length", g, "length", _L)
+                    elif g.tag == "mesh":
+                        filename = g.get("filename", "")
+                        resolved = _mesh_path(filename, source_dir)
+                        if resolved is None:
+                            raise EngineModelError(path, f"{swhere} mesh {filename!r}",
+                                                   "mesh file not found (relative to the URDF's folder)")
+                        if g.get("scale") is None:
+                            g.set("scale", "1 1 1")
+                        add(f"{sid}_scale", f"{swhere} mesh scale", g, "scale", _L,
+                            note="a factor times the mesh file's units, a length")
+                    elif g.tag == "plane":
+                        pass  # an infinite plane: nothing to scale
+                    else:
+                        raise EngineModelError(path, f"{swhere} <{g.tag}>", "unknown geometry; use box, cylinder, "
+                                               "capsule, sphere, mesh or plane")
+        contact = link.find("contact")
+        if contact is not None:
+            for tag, d in (("rolling_friction", _L), ("spinning_friction", _L), ("stiffness", dim("M T^-2")),
+                           ("damping", dim("M T^-1"))):
+                add(f"{ident}_{tag}", f"{where} contact {tag}", contact.find(tag), "value", d)
+            for tag in contact:
+                if tag.tag not in ("lateral_friction", "rolling_friction", "spinning_friction", "restitution",
+                                   "stiffness", "damping", "contact_cfm", "contact_erp", "inertia_scaling",
+                                   "friction_anchor"):
+                    raise EngineModelError(path, f"{where} contact <{tag.tag}>", "unknown contact parameter")
+    for joint in root.findall("joint"):
+        jname, jtype = joint.get("name", ""), joint.get("type", "")
+        ident = _clean(f"joint_{jname}")
+        where = f"joint {jname!r}"
+        add(f"{ident}_xyz", f"{where} origin xyz", joint.find("origin"), "xyz", _L)
+        if jtype == "fixed":
+            continue
+        kind = _joint_kind(jtype)
+        if kind is None:
+            raise EngineModelError(path, f"{where} (type {jtype!r})", "joint type not supported by pitheorem's "
+                                   "scaling; use revolute, continuous, prismatic or fixed")
+        q, force = kind
+        limit = joint.find("limit")
+        add(f"{ident}_lower", f"{where} limit lower", limit, "lower", q)
+        add(f"{ident}_upper", f"{where} limit upper", limit, "upper", q)
+        add(f"{ident}_effort", f"{where} limit effort", limit, "effort", force)
+        add(f"{ident}_velocity", f"{where} limit velocity", limit, "velocity", q / _T)
+        dynamics = joint.find("dynamics")
+        add(f"{ident}_damping", f"{where} dynamics damping", dynamics, "damping", force * _T / q)
+        add(f"{ident}_friction", f"{where} dynamics friction", dynamics, "friction", force)
+    return out
+
+
+def _mesh_path(filename: str, source_dir: Path) -> Path | None:
+    name = filename
+    if name.startswith("package://"):
+        name = name[len("package://"):]
+    candidates = [source_dir / name, Path(name)]
+    for c in candidates:
+        if c.is_file():
+            return c
+    return None
+
+
+class UrdfBackend:
+    """A URDF file with the PyBullet settings it runs with.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.urdf import UrdfBackend
+    >>> UrdfBackend.__name__
+    'UrdfBackend'
+    """
+
+    def __init__(self, tree: ET.ElementTree, path: str, source_dir: Path, settings: dict, *, scene: dict):
+        self.tree = tree
+        self.path = path
+        self.source_dir = source_dir
+        self.scene = scene  # base position, fixed base, ground plane
+        self._attrs = _attributes(tree, path, source_dir)
+        self._settings = settings
+        self._info = self._probe()
+
+    # -- reading -------------------------------------------------------------------------------
+
+    def _connect(self):
+        pb = _pybullet()
+        from .rod import _quiet_stdout
+
+        with _quiet_stdout():
+            client = pb.connect(pb.DIRECT)
+        return pb, client
+
+    def _text(self) -> str:
+        return ET.tostring(self.tree.getroot(), encoding="unicode")
+
+    def _load(self, pb, client):
+        """Load the URDF (from a temporary copy beside the original, so relative mesh paths resolve)."""
+        import os
+        import tempfile
+
+        from .rod import _quiet_stdout
+
+        fd, tmp = tempfile.mkstemp(suffix=".urdf", dir=self.source_dir)
+        try:
+            with os.fdopen(fd, "w") as fh:
+                fh.write(self._text())
+            with _quiet_stdout():
+                body = pb.loadURDF(tmp, basePosition=list(self.scene["base_position"]),
+                                   useFixedBase=self.scene["fixed_base"], physicsClientId=client)
+        finally:
+            os.unlink(tmp)
+        if body < 0:
+            raise EngineModelError(self.path, "", "PyBullet could not load the file")
+        return body
+
+    def _probe(self) -> dict:
+        pb, client = self._connect()
+        try:
+            try:
+                body = self._load(pb, client)
+            except pb.error as err:
+                raise EngineModelError(self.path, "", f"PyBullet could not load the file: {err}") from None
+            links = [(-1, pb.getBodyInfo(body, physicsClientId=client)[0].decode())]
+            joints = []
+            for j in range(pb.getNumJoints(body, physicsClientId=client)):
+                info = pb.getJointInfo(body, j, physicsClientId=client)
+                links.append((j, info[12].decode()))
+                if info[2] in (pb.JOINT_REVOLUTE, pb.JOINT_PRISMATIC):
+                    joints.append((j, info[1].decode(), "prismatic" if info[2] == pb.JOINT_PRISMATIC else "revolute"))
+            dynamics = {index: pb.getDynamicsInfo(body, index, physicsClientId=client) for index, _ in links}
+            shapes = {index: pb.getCollisionShapeData(body, index, physicsClientId=client) for index, _ in links}
+            return {"links": links, "joints": joints, "dynamics": dynamics, "shapes": shapes}
+        finally:
+            pb.disconnect(physicsClientId=client)
+
+    def parameters(self):
+        out = [Parameter(a.name, a.path, a.read(), a.dimension, "file", "file", note=a.note) for a in self._attrs]
+        st = self._settings
+        out.append(Parameter("g", "setGravity (magnitude)", (st["g"],), dim("L T^-2"), "engine", "setGravity",
+                             note="PyBullet's own default is 0"))
+        out.append(Parameter("timestep", "setTimeStep", (st["timestep"],), _T, "engine", "setTimeStep"))
+        for name, _default, d, note in ENGINE_PARAMETERS:
+            out.append(Parameter(name, f"setPhysicsEngineParameter({name}=...)", (st[name],), dim(d), "engine",
+                                 f"setPhysicsEngineParameter({name}=...)", note=note))
+        for index, lname in self._info["links"]:
+            ident = _clean(f"link_{lname}")
+            dyn = self._info["dynamics"][index]
+            if self._info["shapes"][index]:
+                out.append(Parameter(f"{ident}_collision_margin", f"link {lname!r} collision margin",
+                                     (st["margins"].get(str(index), dyn[11]),), _L, "engine",
+                                     "changeDynamics(collisionMargin=...)",
+                                     note="0.001 for boxes and meshes, the radius for spheres"))
+            for k, (key, d) in enumerate((("rollingFriction", _L), ("spinningFriction", _L))):
+                value = st["friction"].get(str(index), {}).get(key, dyn[6 + k])
+                out.append(Parameter(f"{ident}_{key}", f"link {lname!r} {key}", (value,), d, "engine",
+                                     f"changeDynamics({key}=...)", note="a torque per normal force"))
+            inertia = st["inertia"].get(str(index), dyn[2])
+            if dyn[0] > 0:
+                out.append(Parameter(f"{ident}_inertia", f"link {lname!r} inertia (principal)", tuple(inertia),
+                                     dim("M L^2"), "derived", "changeDynamics(localInertiaDiagonal=...)",
+                                     note="computed by Bullet from the collision shapes' bounding boxes, margins "
+                                          "included; scaled copies set it explicitly"))
+            for key, default, parts in MIXED_DAMPING:
+                value = st["damping"].get(str(index), {}).get(key, default)
+                out.append(Parameter(f"{ident}_{key}", f"link {lname!r} {key}", (value,), None, "engine",
+                                     f"changeDynamics({key}=...)",
+                                     parts=tuple((p, dim(d)) for p, d in parts),
+                                     note="Bullet multiplies m v by (d + d |v|)"))
+        for j, jname, jtype in self._info["joints"]:
+            q = _L if jtype == "prismatic" else _ONE
+            value = st["max_joint_velocity"].get(str(j), 100.0)
+            out.append(Parameter(_clean(f"joint_{jname}_maxJointVelocity"), f"joint {jname!r} maxJointVelocity",
+                                 (value,), q / _T, "engine", "changeDynamics(maxJointVelocity=...)"))
+        if st["useSplitImpulse"]:
+            out.append(Parameter("splitImpulsePenetrationThreshold", "btContactSolverInfo", (_SPLIT_IMPULSE_THRESHOLD,),
+                                 _L, "engine", "", note="negative values cannot be set from Python; "
+                                 "setPhysicsEngineParameter(useSplitImpulse=0) removes it"))
+        if self.scene["ground"]:
+            out.append(Parameter("ground_collision_margin", "ground plane collision margin",
+                                 (st["ground_margin"],), _L, "engine", "changeDynamics(collisionMargin=...)"))
+        if any(self.scene["base_position"]):
+            out.append(Parameter("base_position", "loadURDF(basePosition=...)", tuple(self.scene["base_position"]),
+                                 _L, "engine", "loadURDF(basePosition=...)"))
+        return out
+
+    def settings(self) -> dict:
+        st = self._settings
+        return {
+            "gravity": [0.0, 0.0, -st["g"]],
+            "timeStep": st["timestep"],
+            "setPhysicsEngineParameter": {**{n: st[n] for n, *_ in ENGINE_PARAMETERS},
+                                          "useSplitImpulse": st["useSplitImpulse"]},
+            "changeDynamics": self._dynamics_calls(),
+            "disableDefaultMotors": True,
+            "loadURDF": {"basePosition": list(self.scene["base_position"]), "useFixedBase": self.scene["fixed_base"]},
+            "ground": {"collisionMargin": st["ground_margin"]} if self.scene["ground"] else None,
+        }
+
+    def _dynamics_calls(self) -> list[dict]:
+        st, calls = self._settings, []
+        for index, _lname in self._info["links"]:
+            call = {"linkIndex": index}
+            key = str(index)
+            if self._info["shapes"][index]:
+                call["collisionMargin"] = st["margins"].get(key, self._info["dynamics"][index][11])
+            dyn = self._info["dynamics"][index]
+            for k, name in enumerate(("rollingFriction", "spinningFriction")):
+                call[name] = st["friction"].get(key, {}).get(name, dyn[6 + k])
+            for name, default, _parts in MIXED_DAMPING:
+                call[name] = st["damping"].get(key, {}).get(name, default)
+            if key in st["inertia"]:  # after the margin: Bullet computed the inertia with the margin at load
+                call["localInertiaDiagonal"] = st["inertia"][key]
+            calls.append(call)
+        for j, _jname, _jtype in self._info["joints"]:
+            calls.append({"linkIndex": j, "maxJointVelocity": st["max_joint_velocity"].get(str(j), 100.0)})
+        return calls
+
+    # -- scaling --------------------------------------------------------------------------------
+
+    def scaled(self, factors, scaling, s) -> UrdfBackend:
+        tree = copy.deepcopy(self.tree)
+        attrs = _attributes(tree, self.path, self.source_dir)
+        for a in attrs:
+            f = factors.get(a.name, 1.0)
+            if f != 1.0:
+                a.element.set(a.attr, _fmt(np.asarray(a.read()) * f))
+        st = json.loads(json.dumps(self._settings))
+        st["g"] *= factors.get("g", 1.0)
+        st["timestep"] *= factors.get("timestep", 1.0)
+        for name, *_ in ENGINE_PARAMETERS:
+            st[name] *= factors.get(name, 1.0)
+        params = {p.name: p for p in self.parameters()}
+        for index, lname in self._info["links"]:
+            ident, key = _clean(f"link_{lname}"), str(index)
+            if self._info["shapes"][index]:
+                name = f"{ident}_collision_margin"
+                st["margins"][key] = params[name].value[0] * factors.get(name, 1.0)
+            if f"{ident}_inertia" in params:
+                name = f"{ident}_inertia"
+                st["inertia"][key] = [v * factors.get(name, 1.0) for v in params[name].value]
+            for fname in ("rollingFriction", "spinningFriction", *(n for n, *_ in MIXED_DAMPING)):
+                name = f"{ident}_{fname}"
+                group = "damping" if "Damping" in fname else "friction"
+                st[group].setdefault(key, {})[fname] = params[name].value[0] * factors.get(name, 1.0)
+        for j, jname, _jtype in self._info["joints"]:
+            name = _clean(f"joint_{jname}_maxJointVelocity")
+            st["max_joint_velocity"][str(j)] = params[name].value[0] * factors.get(name, 1.0)
+        if "splitImpulsePenetrationThreshold" in params and factors.get("splitImpulsePenetrationThreshold", 1) != 1:
+            from .model import UnscalableParameterError
+
+            raise UnscalableParameterError(
+                "splitImpulsePenetrationThreshold", "Bullet's split-impulse threshold (-0.04, a length) cannot be "
+                "set from Python; load the model with split_impulse=False (useSplitImpulse=0) in both runs")
+        if self.scene["ground"]:
+            st["ground_margin"] *= factors.get("ground_collision_margin", 1.0)
+        scene = dict(self.scene)
+        if any(scene["base_position"]):
+            scene["base_position"] = tuple(v * factors.get("base_position", 1.0) for v in scene["base_position"])
+        return UrdfBackend(tree, self.path, self.source_dir, st, scene=scene)
+
+    def save(self, path: Path) -> None:
+        path = Path(path)
+        tree = copy.deepcopy(self.tree)
+        for g in tree.getroot().iter("mesh"):  # absolute mesh paths: the copy loads from any folder
+            resolved = _mesh_path(g.get("filename", ""), self.source_dir)
+            if resolved is not None:
+                g.set("filename", str(resolved.resolve()))
+        path.write_text(ET.tostring(tree.getroot(), encoding="unicode"))
+        settings = self.settings()
+        Path(f"{path}.settings.json").write_text(json.dumps(settings, indent=2))
+        Path(f"{path}.settings.py").write_text(_snippet(path.name, settings))
+
+    # -- running ---------------------------------------------------------------------------------
+
+    def timestep(self) -> float:
+        return float(self._settings["timestep"])
+
+    def coordinate_dimensions(self):
+        names, dims = [], []
+        for k, d in enumerate([_L] * 3 + [_ONE] * 4 + [dim("L T^-1")] * 3 + [dim("T^-1")] * 3):
+            names.append(f"base[{k}]")
+            dims.append(d)
+        for _j, jname, jtype in self._info["joints"]:
+            names.append(f"q[{jname}]")
+            dims.append(_L if jtype == "prismatic" else _ONE)
+        for _j, jname, jtype in self._info["joints"]:
+            names.append(f"qdot[{jname}]")
+            dims.append(dim("L T^-1") if jtype == "prismatic" else dim("T^-1"))
+        return names, dims
+
+    def control_dimensions(self):
+        return [_FORCE if jtype == "prismatic" else _TORQUE for _j, _n, jtype in self._info["joints"]]
+
+    def run(self, n_steps: int, controls=None, nudge: bool = False):
+        pb, client = self._connect()
+        try:
+            st = self._settings
+            pb.setGravity(0.0, 0.0, -st["g"], physicsClientId=client)
+            pb.setTimeStep(st["timestep"], physicsClientId=client)
+            pb.setPhysicsEngineParameter(numSubSteps=0, useSplitImpulse=int(st["useSplitImpulse"]),
+                                         **{n: st[n] for n, *_ in ENGINE_PARAMETERS}, physicsClientId=client)
+            if self.scene["ground"]:
+                plane = pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=client)
+                ground = pb.createMultiBody(0, plane, physicsClientId=client)
+                pb.changeDynamics(ground, -1, collisionMargin=st["ground_margin"], physicsClientId=client)
+            body = self._load(pb, client)
+            for call in self._dynamics_calls():
+                call = dict(call)
+                index = call.pop("linkIndex")
+                for key, value in call.items():  # one setting per call (see rod.py on pybullet 3.2.7)
+                    pb.changeDynamics(body, index, **{key: value}, physicsClientId=client)
+            joints = [j for j, _n, _t in self._info["joints"]]
+            for j in joints:
+                pb.setJointMotorControl2(body, j, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=client)
+            if nudge:
+                pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=client)
+                pb.resetBasePositionAndOrientation(body, nudged(pos).tolist(), orn, physicsClientId=client)
+                for j in joints:
+                    q = pb.getJointState(body, j, physicsClientId=client)[0]
+                    pb.resetJointState(body, j, float(nudged([q])[0]), 0.0, physicsClientId=client)
+            out = np.empty((n_steps + 1, 13 + 2 * len(joints)))
+
+            def record(i):
+                pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=client)
+                lin, ang = pb.getBaseVelocity(body, physicsClientId=client)
+                states = pb.getJointStates(body, joints, physicsClientId=client) if joints else []
+                out[i] = [*pos, *orn, *lin, *ang, *(x[0] for x in states), *(x[1] for x in states)]
+
+            record(0)
+            dt = st["timestep"]
+            for i in range(1, n_steps + 1):
+                if controls is not None and joints:
+                    u = controls((i - 1) * dt)
+                    pb.setJointMotorControlArray(body, joints, pb.TORQUE_CONTROL, forces=list(map(float, u)),
+                                                 physicsClientId=client)
+                pb.stepSimulation(physicsClientId=client)
+                record(i)
+            return out
+        finally:
+            pb.disconnect(physicsClientId=client)
+
+    def with_settings(self, **changes) -> UrdfBackend:
+        st = json.loads(json.dumps(self._settings))
+        scene = dict(self.scene)
+        for key, value in changes.items():
+            if key == "split_impulse":
+                st["useSplitImpulse"] = int(bool(value))
+            elif key in ("ground", "fixed_base"):
+                scene[key] = bool(value)
+            elif key == "base_position":
+                scene[key] = tuple(float(v) for v in value)
+            else:
+                from ..errors import InvalidRequestError
+
+                raise InvalidRequestError(f"unknown setting {key!r}; use split_impulse, ground, fixed_base or "
+                                          "base_position")
+        return UrdfBackend(copy.deepcopy(self.tree), self.path, self.source_dir, st, scene=scene)
+
+
+def _snippet(name: str, settings: dict) -> str:
+    """A runnable Python script that loads the saved URDF with its PyBullet settings."""
+    lines = [
+        '"""Load the scaled model in PyBullet with the settings its URDF cannot hold (written by pitheorem)."""',
+        "import os",
+        "",
+        "import pybullet as p",
+        "",
+        "here = os.path.dirname(os.path.abspath(__file__))",
+        "client = p.connect(p.DIRECT)",
+        f"p.setGravity(*{settings['gravity']!r})",
+        f"p.setTimeStep({settings['timeStep']!r})",
+        f"p.setPhysicsEngineParameter(numSubSteps=0, **{settings['setPhysicsEngineParameter']!r})",
+    ]
+    if settings["ground"] is not None:
+        lines += ["ground = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE))",
+                  f"p.changeDynamics(ground, -1, collisionMargin={settings['ground']['collisionMargin']!r})"]
+    load = settings["loadURDF"]
+    lines.append(f"body = p.loadURDF(os.path.join(here, {name!r}), basePosition={load['basePosition']!r}, "
+                 f"useFixedBase={load['useFixedBase']!r})")
+    lines.append(f"for call in {settings['changeDynamics']!r}:")
+    lines.append("    index = call.pop('linkIndex')")
+    lines.append("    for key, value in call.items():")
+    lines.append("        p.changeDynamics(body, index, **{key: value})")
+    lines.append("for j in range(p.getNumJoints(body)):  # PyBullet's default velocity motors off")
+    lines.append("    p.setJointMotorControl2(body, j, p.VELOCITY_CONTROL, force=0)")
+    return "\n".join(lines) + "\n"
+
+
+def load_urdf(path, *, base_position=(0.0, 0.0, 0.0), fixed_base: bool = False, ground: bool = False,
+              split_impulse: bool = True, g: float = 9.81, damping: float | None = None) -> EngineModel:
+    """Read a URDF file through PyBullet.
+
+    Parameters
+    ----------
+    path : str or Path
+    base_position : sequence of 3 float
+        Where ``loadURDF`` puts the base.
+    fixed_base : bool
+        ``loadURDF(useFixedBase=...)``.
+    ground : bool
+        Add a static ground plane at z = 0.
+    split_impulse : bool
+        Bullet's split impulse (PyBullet's default); its threshold is a
+        length that cannot be set from Python, so scalings of length need
+        ``False``.
+    g : float
+        Gravity magnitude (PyBullet's own default is 0).
+    damping : float, optional
+        ``linearDamping`` and ``angularDamping`` of every link (PyBullet's
+        default 0.04 mixes dimensions; 0 makes lengths scalable).
+
+    Returns
+    -------
+    EngineModel
+
+    Raises
+    ------
+    EngineModelError
+        For a file that is not XML, not a URDF, has an absent mesh, an
+        unknown geometry or joint type, or that PyBullet rejects.
+
+    Examples
+    --------
+    >>> import pybullet_data, os
+    >>> from pitheorem.engines.urdf import load_urdf
+    >>> model = load_urdf(os.path.join(pybullet_data.getDataPath(), "cartpole.urdf"))
+    >>> str(model.parameter("joint_slider_to_cart_velocity").dimension)
+    'L T^-1'
+    """
+    path = Path(path)
+    try:
+        tree = ET.parse(path)
+    except ET.ParseError as err:
+        raise EngineModelError(str(path), f"line {err.position[0]}", f"not well-formed XML ({err})") from None
+    settings = {
+        "g": float(g),
+        "timestep": 1.0 / 240.0,
+        **{name: default for name, default, *_ in ENGINE_PARAMETERS},
+        "useSplitImpulse": int(bool(split_impulse)),
+        "margins": {}, "friction": {}, "damping": {}, "max_joint_velocity": {}, "inertia": {},
+        "ground_margin": 0.001,
+    }
+    scene = {"base_position": tuple(float(v) for v in base_position), "fixed_base": bool(fixed_base),
+             "ground": bool(ground)}
+    if not math.isfinite(sum(scene["base_position"])):
+        raise EngineModelError(str(path), "base_position", "must be finite")
+    backend = UrdfBackend(tree, str(path), path.resolve().parent, settings, scene=scene)
+    if damping is not None:
+        backend._settings["damping"] = {str(index): {name: float(damping) for name, *_ in MIXED_DAMPING}
+                                        for index, _ in backend._info["links"]}
+    return EngineModel(backend, "pybullet", str(path))

@@ -1,0 +1,150 @@
+"""Verify a scaled engine model against the original, next to the model's own sensitivity.
+
+:func:`verify` runs the original and the scaled model in their engine step
+for step (the scaled time step is the original's times ``s`` to the power
+of time), feeds both the same controls in original units, maps every
+recorded coordinate of the scaled run back by its own dimension, and
+hands both runs to ``pitheorem.simulate.similarity_report``, the one
+comparison every simulator of pitheorem shares.  Next to them runs the
+original once more with its initial state nudged by one ulp: a chaotic
+model (a bouncing ball, a walker falling over) moves that far on its own,
+so a scaled run is judged against that baseline, not against zero.
+
+A backend (see ``pitheorem.engines.mjcf``, ``pitheorem.engines.urdf``)
+provides ``timestep()``, ``coordinate_dimensions()``,
+``control_dimensions()`` and ``run(n_steps, controls, nudge)``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Protocol, runtime_checkable
+
+import numpy as np
+
+from ..errors import InvalidRequestError
+from ..simulate import SimilarityReport, Trajectory, _positive, similarity_report
+from .model import EngineModel, _check_s, _check_scaling, dim, power_factor
+
+__all__ = ["EngineRunner", "verify"]
+
+
+@runtime_checkable
+class EngineRunner(Protocol):
+    """What :func:`verify` needs of an engine: the simulator protocol of MuJoCo's and PyBullet's backends.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.verify import EngineRunner
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).backend, EngineRunner)
+    True
+    """
+
+    def timestep(self) -> float:
+        """The fixed step of the engine, in the model's units."""
+
+    def coordinate_dimensions(self) -> tuple[list[str], list]:
+        """Names and dimensions of the recorded coordinates, in column order."""
+
+    def control_dimensions(self) -> list:
+        """The dimension of each control input."""
+
+    def run(self, n_steps: int, controls: Callable | None = None, nudge: bool = False) -> np.ndarray:
+        """Rows of coordinates after 0..n_steps steps; ``nudge`` moves the start by one ulp."""
+
+
+def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None, *, scaled: EngineModel | None = None,
+           baseline_factor: float = 10.0) -> SimilarityReport:
+    """Run a model and its scaled copy in the engine and compare them in original units.
+
+    Parameters
+    ----------
+    model : EngineModel
+    scaling : Scaling
+        A scaling of ``model.system()``.
+    s : float
+        The scale factor.
+    duration : float
+        Simulated time of the original run, in its units.
+    controls : callable, optional
+        ``t -> array`` of actuator inputs in original units (MuJoCo:
+        ``data.ctrl``; PyBullet: one torque or force per movable joint).
+        Default: zero input.  The scaled run gets ``controls(t / s^a_T)``
+        times each input's own factor.
+    scaled : EngineModel, optional
+        The scaled model (e.g. a saved and reloaded file); default
+        ``model.scaled(scaling, s)``.
+    baseline_factor : float
+        How many times the one-ulp sensitivity a deviation may reach.
+
+    Returns
+    -------
+    SimilarityReport
+        ``.similar``, ``.max_deviation``, ``.deviation`` and
+        ``.sensitivity`` per coordinate, the runs as trajectories.
+
+    Raises
+    ------
+    InvalidRequestError
+        For a bad duration, a scaled model of another engine or size, or
+        controls of the wrong length.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    >>> rep = engines.verify(model, sc, s=10, duration=0.5, controls=lambda t: [0.1])
+    >>> rep.similar
+    True
+    """
+    if not isinstance(model, EngineModel):
+        raise InvalidRequestError(f"verify needs an EngineModel (engines.load(...)), got {type(model).__name__}")
+    s = _check_s(s)
+    _check_scaling(model, scaling)
+    duration = _positive(duration, "duration")
+    if scaled is None:
+        scaled = model.scaled(scaling, s)
+    elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:
+        raise InvalidRequestError("scaled must be an EngineModel of the same engine as model")
+    original, copy = model.backend, scaled.backend
+
+    f_time = power_factor(s, scaling.exponent_of(dim("T")))
+    dt = original.timestep()
+    if not math.isclose(copy.timestep(), dt * f_time, rel_tol=1e-12):
+        raise InvalidRequestError(
+            f"the scaled model's time step {copy.timestep()!r} is not the original's {dt!r} times {f_time!r}")
+    n_steps = max(1, round(duration / dt))
+    names, dims = original.coordinate_dimensions()
+    if len(copy.coordinate_dimensions()[0]) != len(names):
+        raise InvalidRequestError("the scaled model has other coordinates than the original")
+    factors = np.array([power_factor(s, scaling.exponent_of(d)) for d in dims])
+    control_factors = np.array([power_factor(s, scaling.exponent_of(d)) for d in original.control_dimensions()])
+
+    def check_controls(t):
+        u = np.asarray(controls(t), dtype=float).reshape(-1)
+        if u.shape != control_factors.shape:
+            raise InvalidRequestError(f"controls(t) must give {control_factors.size} inputs, got {u.size}")
+        return u
+
+    if controls is None:
+        u_original = u_scaled = None
+    else:
+        u_original = check_controls
+
+        def u_scaled(t):
+            return check_controls(t / f_time) * control_factors
+
+    t = np.arange(n_steps + 1) * dt
+    run = original.run(n_steps, u_original)
+    nudged = original.run(n_steps, u_original, nudge=True)
+    back = copy.run(n_steps, u_scaled) / factors
+    kind = "mujoco" if model.engine == "mujoco" else "pybullet"
+    return similarity_report(
+        Trajectory(t, run, tuple(names)), Trajectory(t, back, tuple(names)), s=float(s), scaling=scaling,
+        exponents={n: scaling.exponent_of(d) for n, d in zip(names, dims, strict=True)},
+        nudged=Trajectory(t, nudged, tuple(names)), baseline_factor=baseline_factor, method=kind,
+    )

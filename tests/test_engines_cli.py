@@ -1,0 +1,100 @@
+"""The command line on MJCF and URDF files: params, search, apply; bad model files exit 2 naming file and element."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
+
+from pitheorem import engines
+from pitheorem.cli import main
+
+DATA = Path(__file__).resolve().parent / "data" / "engines"
+PENDULUM = str(engines.example_path("pendulum.xml"))
+SCRIPT = Path(sys.executable).with_name("pitheorem")
+
+
+def test_params_lists_dimensions(capsys):
+    assert main(["params", PENDULUM, "--format", "json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    rows = {p["name"]: p for p in doc["parameters"]}
+    assert doc["engine"] == "mujoco"
+    assert rows["joint_hinge_damping"]["dimension"] == "M L^2 T^-1"
+    assert rows["g"]["value"] == [9.81]
+
+
+def test_params_on_a_toml_file_is_refused(capsys):
+    assert main(["params", "example:hinged_rod"]) == 2
+    assert "MJCF" in capsys.readouterr().err
+
+
+def test_search_and_apply_write_a_file_the_engine_loads(tmp_path, capsys):
+    assert main(["search", PENDULUM, "--scale", "g=1", "--format", "json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["feasible"]
+    assert doc["scalings"][0]["unit_change"]["L"] == "1"
+    out = tmp_path / "pendulum_g10.xml"
+    assert main(["apply", PENDULUM, "--scale", "g=1", "--s", "10", "--output", str(out)]) == 0
+    assert f"wrote {out}" in capsys.readouterr().out
+    again = engines.load(out)
+    assert again.parameter("g").value[0] == pytest.approx(98.1, rel=1e-15)
+    assert main(["apply", PENDULUM, "--scale", "g=1", "--s", "10", "--output", PENDULUM]) == 2
+
+
+def test_apply_urdf_writes_settings_or_names_the_mixed_damping(tmp_path, capsys):
+    urdf = str(DATA / "slider_arm.urdf")
+    # PyBullet's multibody damping mixes a rate and an inverse length: scaling lengths cannot keep it
+    assert main(["apply", urdf, "--scale", "g=1", "--s", "2", "--output", str(tmp_path / "a.urdf")]) == 2
+    assert "linearDamping" in capsys.readouterr().err
+    # the search itself is fine: the damping's two parts are two variables of the system
+    assert main(["search", urdf, "--scale", "g=1", "--format", "json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    powers = doc["scalings"][0]["exponents"]
+    assert powers["link_cart_linearDamping_rate"] != powers["link_cart_linearDamping_per_length"]
+
+
+BAD_FILES = [
+    ("absent.xml", None, "no such file"),
+    ("junk.xml", "this is not XML", "junk.xml"),
+    ("unknown_element.xml", (DATA / "unknown_element.xml").read_text(), "gizmo"),
+    ("missing_mesh.xml", (DATA / "missing_mesh.xml").read_text(), "mesh 'hull'"),
+    ("bad.urdf", '<robot name="r"><link name="a"><collision><geometry><mesh filename="gone.stl"/></geometry>'
+     "</collision></link></robot>", "mesh 'gone.stl'"),
+    ("junk.urdf", "<robot", "not well-formed XML"),
+]
+
+
+def write_bad(tmp_path, name, text):
+    path = tmp_path / name
+    if text is not None:
+        path.write_text(text)
+    return path
+
+
+@pytest.mark.parametrize(("name", "text", "element"), BAD_FILES)
+def test_bad_model_files_exit_2_with_one_line(tmp_path, capsys, name, text, element):
+    path = write_bad(tmp_path, name, text)
+    for command in (["params", str(path)], ["search", str(path), "--scale", "g=1"]):
+        assert main(command) == 2
+        lines = capsys.readouterr().err.strip().splitlines()
+        assert len(lines) == 1
+        assert lines[0].startswith("pitheorem: error: ")
+        assert name in lines[0]
+        assert element in lines[0]
+
+
+@pytest.mark.skipif(not SCRIPT.exists(), reason="the console script is not installed beside the interpreter")
+@pytest.mark.parametrize(("name", "text", "element"), [BAD_FILES[3], BAD_FILES[4]])
+def test_console_script_exits_2_on_bad_model_files(tmp_path, name, text, element):
+    path = write_bad(tmp_path, name, text)
+    done = subprocess.run([str(SCRIPT), "params", str(path)], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1, done.stderr
+    assert name in lines[0]
+    assert element in lines[0]

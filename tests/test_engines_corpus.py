@@ -1,0 +1,147 @@
+"""The corpus: every MJCF model among gymnasium's MuJoCo assets, loaded, searched, scaled, saved, reloaded, verified.
+
+For each model: load, system, search with gravity by s and time fixed, ``scaled(...).save(...)``, reload,
+and ``engines.verify`` against the one-ulp sensitivity baseline.  The default run verifies every model at
+s = 10 with a smooth open-loop control; the ``slow`` variant adds s = 2 and zero controls.
+
+Two settings of gymnasium's files are not scale-free, and the tests set them in both runs (the scaled copy
+cannot carry them over faithfully): MuJoCo's solver ``tolerance`` stops the iterations relative to a
+normalisation that mixes M and M L^2 (set to 0: run every iteration), and the PGS solver of the two humanoids,
+which differs in rounding-amplified ways even at s = 2 (the humanoids are also checked with the Newton solver).
+"""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pitheorem as pt
+
+mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
+gymnasium = pytest.importorskip("gymnasium", reason="gymnasium is not installed (its MuJoCo assets are the corpus)")
+
+from pitheorem import engines  # noqa: E402
+
+ASSETS = Path(gymnasium.__file__).resolve().parent / "envs" / "mujoco" / "assets"
+CORPUS = sorted(p.name for p in ASSETS.glob("*.xml"))
+PGS = ("humanoid.xml", "humanoidstandup.xml")
+
+
+def test_the_corpus_is_gymnasiums_fourteen_files():
+    assert len(CORPUS) == 14
+
+
+def load_quiet(path):
+    with warnings.catch_warnings():
+        # gymnasium's files carry <numeric name="frame_skip">, custom data of no known dimension
+        warnings.simplefilter("ignore", engines.UnscalableModelWarning)
+        return engines.load(path)
+
+
+def prepared(name, tmp_path, solver=None):
+    path = ASSETS / name
+    if solver is not None:
+        text = path.read_text().replace('solver="PGS"', f'solver="{solver}"')
+        path = tmp_path / name
+        path.write_text(text)
+    return load_quiet(path).with_values(tolerance=0)
+
+
+def smooth(nu):
+    return lambda t: 0.5 * np.sin(3.0 * t + np.arange(nu))
+
+
+def check(model, tmp_path, s, controls):
+    system = model.system()
+    res = pt.search(system, scale={"g": 1}, fixed=("t",))
+    assert res.feasible
+    sc = res.scalings[0]
+    assert sc.exponent_of("L T^-2") == 1
+    assert sc.exponent_of("T") == 0
+    saved = model.scaled(sc, s).save(tmp_path / f"scaled_{s}.xml")
+    again = load_quiet(saved)
+    assert again.parameter("g").value[0] == pytest.approx(model.parameter("g").value[0] * s, rel=1e-15)
+    nu = model.backend.mjmodel.nu
+    rep = engines.verify(model, sc, s, duration=1.0, controls=smooth(nu) if controls else None, scaled=again)
+    return rep
+
+
+@pytest.mark.parametrize("name", [n for n in CORPUS if n not in PGS])
+def test_corpus_model_is_similar_at_s10_with_controls(name, tmp_path):
+    rep = check(prepared(name, tmp_path), tmp_path, 10, controls=True)
+    assert rep.similar, str(rep)
+
+
+@pytest.mark.parametrize("name", PGS)
+def test_humanoids_are_similar_with_the_newton_solver(name, tmp_path):
+    rep = check(prepared(name, tmp_path, solver="Newton"), tmp_path, 10, controls=True)
+    assert rep.similar, str(rep)
+
+
+@pytest.mark.parametrize("name", PGS)
+def test_humanoids_pgs_solver_is_not_scale_free(name, tmp_path):
+    # measured: at s = 2 (exact in binary) the PGS runs differ far beyond the one-ulp baseline
+    rep = check(prepared(name, tmp_path), tmp_path, 2, controls=True)
+    assert not rep.similar
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", CORPUS)
+@pytest.mark.parametrize("s", [2, 10])
+@pytest.mark.parametrize("controls", [False, True])
+def test_corpus_exhaustive(name, s, controls, tmp_path):
+    solver = "Newton" if name in PGS else None
+    rep = check(prepared(name, tmp_path, solver=solver), tmp_path, s, controls)
+    assert rep.similar, str(rep)
+
+
+# -- PyBullet: URDFs of pybullet_data, dropped from 1 m onto a ground plane ---------------------
+
+URDFS = ("cartpole.urdf", "pendulum5.urdf", "sphere2.urdf", "sphere_small.urdf", "sphere_with_restitution.urdf",
+         "soccerball.urdf", "cube.urdf", "cube_small.urdf", "lego/lego.urdf", "jenga/jenga.urdf", "table/table.urdf",
+         "kuka_iiwa/model.urdf")
+#: measured: not similar beyond the one-ulp baseline even at s = 2; the cause is not isolated (compound
+#: convex-hull meshes, merged fixed links)
+URDFS_NOT_SIMILAR = ("r2d2.urdf", "duck_vhacd.urdf", "teddy_vhacd.urdf", "TwoJointRobot_w_fixedJoints.urdf")
+
+
+def urdf_check(name, tmp_path, s, controls):
+    pybullet_data = pytest.importorskip("pybullet_data")
+    path = Path(pybullet_data.getDataPath()) / name
+    # PyBullet's multibody damping (0.04) mixes dimensions and its split-impulse threshold (a length) cannot be
+    # set from Python: both are switched off, in the original and in the scaled run alike
+    model = engines.load(path, base_position=(0, 0, 1), ground=True, damping=0.0, split_impulse=False)
+    res = pt.search(model.system(), scale={"g": 1}, fixed=("t",))
+    sc = res.scalings[0]
+    out = model.scaled(sc, s).save(tmp_path / "scaled.urdf")
+    assert Path(f"{out}.settings.json").is_file()
+    again = engines.load(out, base_position=(0, 0, 1), ground=True, damping=0.0, split_impulse=False)
+    masses = [p for p in model.parameters if p.name.endswith("_mass")]
+    for p in masses:  # the saved file holds the scaled masses
+        assert again.parameter(p.name).value[0] == pytest.approx(p.value[0] * float(s) ** sc.exponent_of("M"))
+    nj = len(model.backend.control_dimensions())
+    return engines.verify(model, sc, s, duration=1.0, controls=smooth(nj) if controls and nj else None)
+
+
+@pytest.mark.parametrize("name", URDFS)
+def test_urdf_is_similar_at_s10_with_controls(name, tmp_path):
+    rep = urdf_check(name, tmp_path, 10, controls=True)
+    assert rep.similar, str(rep)
+
+
+@pytest.mark.parametrize("name", URDFS_NOT_SIMILAR)
+def test_urdf_known_not_similar(name, tmp_path):
+    rep = urdf_check(name, tmp_path, 2, controls=False)
+    assert not rep.similar
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", URDFS)
+@pytest.mark.parametrize("s", [2, 10])
+@pytest.mark.parametrize("controls", [False, True])
+def test_urdf_exhaustive(name, s, controls, tmp_path):
+    rep = urdf_check(name, tmp_path, s, controls)
+    assert rep.similar, str(rep)

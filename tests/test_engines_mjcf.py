@@ -1,0 +1,201 @@
+"""MJCF models through MuJoCo: parameters and their dimensions, systems, scaled copies, saved files."""
+
+from __future__ import annotations
+
+import math
+import pickle
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pitheorem as pt
+
+mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
+
+from pitheorem import engines  # noqa: E402
+from pitheorem.engines import EngineModelError, UnscalableParameterError  # noqa: E402
+
+DATA = Path(__file__).resolve().parent / "data" / "engines"
+
+
+def load(name):
+    return engines.load(DATA / name)
+
+
+def dims(model):
+    return {p.name: p.dimension_text for p in model.parameters}
+
+
+def test_dimensions_follow_the_joint_type():
+    d = dims(load("tendon_actuators.xml"))
+    # hinge: torques and angles; slide: forces and lengths
+    assert d["joint_hinge_damping"] == "M L^2 T^-1"
+    assert d["joint_slide_damping"] == "M T^-1"
+    assert d["joint_hinge_stiffness"] == "M L^2 T^-2"
+    assert d["joint_slide_stiffness"] == "M T^-2"
+    assert d["joint_slide_armature"] == "M"
+    assert d["joint_hinge_frictionloss"] == "M L^2 T^-2"
+    assert d["joint_slide_range"] == "L"
+    assert d["joint_hinge_springref"] == "1"
+    # the polynomial terms divide by one more power of the coordinate (rate)
+    assert d["joint_slide_damping_poly1"] == "M L^-1"
+    assert d["joint_slide_stiffness_poly2"] == "M L^-2 T^-2"
+    # tendons: the spatial one measures a length, the fixed one over hinges an angle
+    assert d["tendon_rope_stiffness"] == "M T^-2"
+    assert d["tendon_couple_stiffness"] == "M L^2 T^-2"
+    assert d["tendon_rope_springlength"] == "L"
+
+
+def test_control_dimensions_follow_the_actuator_kind():
+    model = load("tendon_actuators.xml")
+    d = dims(model)
+    assert d["actuator_push_ctrlrange"] == "M L T^-2"  # a motor on a slide: a force
+    assert d["actuator_servo_biasprm_length"] == "M L^2 T^-2"  # kp of a hinge servo: torque per radian
+    assert d["actuator_speed_gainprm_gain"] == "M T^-1"  # kv of a slide velocity servo: force per speed
+    assert d["actuator_filtered_dynprm_timeconst"] == "T"
+    controls = [str(x) for x in model.backend.control_dimensions()]
+    assert controls == ["M L T^-2", "1", "L T^-1", "T^-1", "1", "M L T^-2"]
+
+
+def test_values_are_the_engines_own():
+    model = load("tendon_actuators.xml")
+    compiled = model.backend.mjmodel
+    cart = mujoco.mj_name2id(compiled, mujoco.mjtObj.mjOBJ_BODY, "cart")
+    assert model.parameter("body_cart_mass").value == (1.5,)
+    mujoco.mj_name2id(compiled, mujoco.mjtObj.mjOBJ_BODY, "arm")
+    # density 800 times the capsule's volume (cylinder plus sphere), computed by MuJoCo, read back
+    r, h = 0.02, 0.4
+    volume = math.pi * r * r * h + 4 / 3 * math.pi * r**3
+    assert model.parameter("body_arm_mass").value[0] == pytest.approx(800 * volume, rel=1e-12)
+    assert model.parameter("body_arm_mass").source == "derived"
+    assert compiled.body_mass[cart] == 1.5
+    assert model.parameter("g").value == (9.81,)
+    assert model.parameter("timestep").value == (0.001,)
+    assert model.parameter("joint_slide_damping").source == "file"
+    assert model.parameter("joint_hinge_margin").source == "default"
+
+
+def test_system_has_g_and_t_and_every_parameter():
+    model = load("contact.xml")
+    system = model.system()
+    assert system.dimension("g") == pt.Dimension.parse("L T^-2")
+    assert system.dimension("t") == pt.Dimension.parse("T")
+    assert {p.name for p in model.parameters if not p.mixed} <= set(system.variables)
+    res = pt.search(system, scale={"g": 1})
+    assert res.feasible
+    assert res.scalings[0].unit_change["L"] == 1  # gravity by s with time fixed: lengths by s
+
+
+def test_mixed_free_joint_damping_is_reported_and_refused():
+    model = load("free_damped.xml")
+    damping = model.parameter("joint_root_damping")
+    assert damping.mixed
+    assert set(damping.variables()) == {"joint_root_damping_lin", "joint_root_damping_rot"}
+    system = model.system()
+    assert str(system.dimension("joint_root_damping_lin")) == "M T^-1"
+    assert str(system.dimension("joint_root_damping_rot")) == "M L^2 T^-1"
+    sc = pt.search(system, scale={"g": 1}).scalings[0]
+    with pytest.raises(UnscalableParameterError, match="joint_root_damping"):
+        model.scaled(sc, 2)
+    # a change of units that moves only time keeps both parts equal: allowed
+    time_only = pt.Scaling.from_unit_change(system, {"T": 1})
+    assert model.scaled(time_only, 2).parameter("joint_root_damping").value == (0.05,)
+    err = UnscalableParameterError("x", "y")
+    assert str(pickle.loads(pickle.dumps(err))) == str(err)
+
+
+def test_scaled_model_compiles_to_the_scaled_numbers(tmp_path):
+    model = load("tendon_actuators.xml")
+    sc = pt.Scaling.from_unit_change(model.system(), {"M": 1, "L": 1, "T": 1})
+    s = 2
+    scaled = model.scaled(sc, s)
+    a, b = model.backend.mjmodel, scaled.backend.mjmodel
+    # oracle: MuJoCo's compiled arrays, each times s to the power of its dimension, worked out by hand
+    assert np.array_equal(b.body_mass, a.body_mass * 2)  # M
+    assert np.array_equal(b.body_inertia, a.body_inertia * 2 * 4)  # M L^2
+    assert np.array_equal(b.geom_size, a.geom_size * 2)  # L
+    slide = mujoco.mj_name2id(a, mujoco.mjtObj.mjOBJ_JOINT, "slide")
+    hinge = mujoco.mj_name2id(a, mujoco.mjtObj.mjOBJ_JOINT, "hinge")
+    assert b.dof_damping[a.jnt_dofadr[slide]] == a.dof_damping[a.jnt_dofadr[slide]] * 2 / 2  # M T^-1
+    assert b.dof_damping[a.jnt_dofadr[hinge]] == a.dof_damping[a.jnt_dofadr[hinge]] * 2 * 4 / 2  # M L^2 T^-1
+    assert b.jnt_stiffness[slide] == a.jnt_stiffness[slide] * 2 / 4  # M T^-2
+    assert np.array_equal(b.jnt_range[slide], a.jnt_range[slide] * 2)
+    assert b.opt.timestep == a.opt.timestep * 2
+    assert np.array_equal(b.opt.gravity, a.opt.gravity * 2 / 4)
+    assert np.array_equal(b.tendon_lengthspring, a.tendon_lengthspring * np.array([[1, 1], [2, 2]]))
+    # saved, reloaded: the same numbers (full precision)
+    out = scaled.save(tmp_path / "scaled.xml")
+    again = engines.load(out).backend.mjmodel
+    for field in ("body_mass", "body_inertia", "geom_size", "dof_damping", "jnt_stiffness", "actuator_gainprm",
+                  "actuator_biasprm", "tendon_stiffness", "geom_solref"):
+        assert np.array_equal(getattr(again, field), getattr(b, field)), field
+
+
+def test_keyframes_scale_with_the_coordinates():
+    model = load("contact.xml")
+    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    scaled = model.scaled(sc, 10)
+    a, b = model.backend.mjmodel, scaled.backend.mjmodel
+    # ball: free joint (x y z of length, quaternion), box likewise, then two hinges
+    assert b.key_qpos[0][:3].tolist() == [0, 0, 5.0]
+    assert b.key_qpos[0][3:7].tolist() == a.key_qpos[0][3:7].tolist()
+    assert b.key_qvel[0][:3].tolist() == [5.0, 0, 10.0]
+    assert b.key_qvel[0][6] == 10.0
+
+
+def test_with_values_and_bad_requests():
+    model = load("contact.xml")
+    assert model.with_values(timestep=0.001).parameter("timestep").value == (0.001,)
+    with pytest.raises(pt.UnknownVariableError):
+        model.with_values(no_such=1)
+    with pytest.raises(pt.InvalidRequestError):
+        model.scaled({"g": 1}, 2)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    for bad in (0, -1, math.inf, True, "x"):
+        with pytest.raises(pt.InvalidRequestError):
+            model.scaled(sc, bad)
+
+
+@pytest.mark.parametrize(("name", "element", "reason"), [
+    ("missing_mesh.xml", "mesh 'hull'", "no_such_hull.stl"),
+    ("unknown_element.xml", "gizmo", "unrecognized element"),
+])
+def test_bad_files_name_the_element(name, element, reason):
+    with pytest.raises(EngineModelError) as caught:
+        load(name)
+    text = str(caught.value)
+    assert element in text
+    assert reason in text
+    assert "\n" not in text
+    assert str(pickle.loads(pickle.dumps(caught.value))) == text
+
+
+def test_missing_and_non_xml_files(tmp_path):
+    with pytest.raises(EngineModelError, match="no such file"):
+        engines.load(tmp_path / "absent.xml")
+    junk = tmp_path / "junk.xml"
+    junk.write_text("this is not XML")
+    with pytest.raises(EngineModelError, match=r"junk\.xml"):
+        engines.load(junk)
+
+
+def test_mixed_fixed_tendon_cannot_be_rewritten(tmp_path):
+    text = (DATA / "tendon_actuators.xml").read_text().replace(
+        '<joint joint="wrist" coef="-0.5"/>', '<joint joint="slide" coef="-0.5"/>')
+    path = tmp_path / "mixed.xml"
+    path.write_text(text)
+    model = engines.load(path)
+    assert model.parameter("tendon_couple_coef1").dimension_text == "L^-1"
+    with pytest.raises(UnscalableParameterError, match="tendon 'couple'"):
+        model.scaled(pt.Scaling.from_unit_change(model.system(), {"L": 1}), 2)
+    # lengths unchanged: the coefficient needs no change, so the copy is made
+    assert model.scaled(pt.Scaling.from_unit_change(model.system(), {"M": 1}), 2).engine == "mujoco"
+
+
+def test_unknown_sensor_and_numeric_warn(tmp_path):
+    path = tmp_path / "numeric.xml"
+    path.write_text('<mujoco><custom><numeric name="frame_skip" data="5"/></custom>'
+                    '<worldbody><body><joint/><geom size="0.1"/></body></worldbody></mujoco>')
+    with pytest.warns(engines.UnscalableModelWarning, match="numeric 'frame_skip'"):
+        engines.load(path)

@@ -1,0 +1,126 @@
+"""URDF models through PyBullet: dimensions by joint type, engine settings, scaled files with their settings."""
+
+from __future__ import annotations
+
+import pickle
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pitheorem as pt
+
+pytest.importorskip("pybullet", reason="pybullet is not installed (pip install 'pitheorem[engines]')")
+
+from pitheorem import engines
+from pitheorem.engines import EngineModelError, UnscalableParameterError
+
+ARM = Path(__file__).resolve().parent / "data" / "engines" / "slider_arm.urdf"
+
+
+def test_dimensions_follow_the_joint_type():
+    model = engines.load(ARM)
+    d = {p.name: p.dimension_text for p in model.parameters}
+    assert d["joint_slide_velocity"] == "L T^-1"
+    assert d["joint_swing_velocity"] == "T^-1"
+    assert d["joint_slide_effort"] == "M L T^-2"
+    assert d["joint_swing_effort"] == "M L^2 T^-2"
+    assert d["joint_slide_damping"] == "M T^-1"
+    assert d["joint_swing_damping"] == "M L^2 T^-1"
+    assert d["joint_slide_upper"] == "L"
+    assert d["joint_swing_upper"] == "1"
+    assert d["joint_slide_maxJointVelocity"] == "L T^-1"  # the catalogue's T^-1 holds for revolute joints only
+    assert d["joint_swing_maxJointVelocity"] == "T^-1"
+    assert d["link_cart_rolling_friction"] == "L"
+    assert d["contactSlop"] == "L"
+    assert d["solverResidualThreshold"] == "L^2 T^-2"
+    assert d["link_cart_linearDamping"] == "T^-1 (rate) | L^-1 (per_length)"
+    assert [str(x) for x in model.backend.control_dimensions()] == ["M L T^-2", "M L^2 T^-2"]
+
+
+def test_engine_defaults_are_pybullets_own():
+    import pybullet as pb
+
+    model = engines.load(ARM)
+    client = pb.connect(pb.DIRECT)
+    try:
+        body = pb.loadURDF(str(ARM), physicsClientId=client)
+        # oracle: PyBullet's reports, read here directly; margins 0.001 for box and cylinder, the radius for spheres
+        assert model.parameter("link_base_collision_margin").value == (pb.getDynamicsInfo(body, -1)[11],) == (0.001,)
+        assert model.parameter("link_arm_collision_margin").value == (pb.getDynamicsInfo(body, 1)[11],)
+        import pybullet_data
+
+        sphere = engines.load(Path(pybullet_data.getDataPath()) / "sphere2.urdf")
+        assert sphere.parameter("link_baseLink_collision_margin").value == (0.5,)  # a lone sphere: its radius
+        assert model.parameter("link_cart_rollingFriction").value == (pytest.approx(0.01),)
+        assert pb.getPhysicsEngineParameters(physicsClientId=client)["fixedTimeStep"] == model.parameter(
+            "timestep").value[0]
+    finally:
+        pb.disconnect(client)
+
+
+def test_mixed_damping_is_refused_until_switched_off():
+    model = engines.load(ARM)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    with pytest.raises(UnscalableParameterError, match="linearDamping"):
+        model.scaled(sc, 2)
+    with pytest.raises(UnscalableParameterError, match="split"):
+        engines.load(ARM, damping=0.0).scaled(sc, 2)
+    scaled = engines.load(ARM, damping=0.0, split_impulse=False).scaled(sc, 2)
+    assert scaled.parameter("joint_slide_velocity").value == (4.0,)
+    assert scaled.parameter("joint_swing_velocity").value == (10.0,)
+
+
+def test_scaled_run_is_similar_and_a_broken_setting_is_not(tmp_path):
+    model = engines.load(ARM, fixed_base=True, damping=0.0, split_impulse=False)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    rep = engines.verify(model, sc, 10, duration=1.0, controls=lambda t: [np.sin(t), 0.1 * np.cos(t)])
+    assert rep.similar, str(rep)
+    # the joint damping of the slide left unscaled in the saved file
+    out = model.scaled(sc, 10).save(tmp_path / "scaled.urdf")
+    text = out.read_text()
+    scaled_damping = 0.3 * 10.0 ** float(sc.exponent_of("M T^-1"))
+    assert f'damping="{scaled_damping!r}"' in text
+    out.write_text(text.replace(f'damping="{scaled_damping!r}"', 'damping="0.3"'))
+    broken = engines.load(out, fixed_base=True, damping=0.0, split_impulse=False)
+    rep = engines.verify(model, sc, 10, duration=1.0, controls=lambda t: [np.sin(t), 0.1 * np.cos(t)], scaled=broken)
+    assert not rep.similar
+
+
+def test_saved_settings_snippet_runs(tmp_path):
+    model = engines.load(ARM, ground=True, damping=0.0, split_impulse=False)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    out = model.scaled(sc, 10).save(tmp_path / "arm10.urdf")
+    snippet = Path(f"{out}.settings.py")
+    import json
+
+    settings = json.loads(Path(f"{out}.settings.json").read_text())
+    assert settings["gravity"][2] == pytest.approx(-98.1, rel=1e-15)
+    assert settings == model.scaled(sc, 10).settings()
+    assert "p.setGravity(" in snippet.read_text()
+    done = subprocess.run([sys.executable, str(snippet)], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+
+
+@pytest.mark.parametrize(("text", "culprit"), [
+    ("not xml at all", "not well-formed XML"),
+    ("<mujoco/>", "root element must be <robot>"),
+    ('<robot name="r"><link name="a"><collision><geometry><mesh filename="gone.stl"/></geometry></collision>'
+     "</link></robot>", "link 'a' collision #0 mesh 'gone.stl'"),
+    ('<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="planar"><parent link="a"/>'
+     '<child link="b"/></joint></robot>', "joint 'j' (type 'planar')"),
+    ('<robot name="r"><link name="a"><collision><geometry><torus/></geometry></collision></link></robot>',
+     "<torus>"),
+])
+def test_bad_urdf_files_name_the_element(tmp_path, text, culprit):
+    path = tmp_path / "bad.urdf"
+    path.write_text(text)
+    with pytest.raises(EngineModelError) as caught:
+        engines.load(path)
+    message = str(caught.value)
+    assert culprit in message
+    assert "bad.urdf" in message
+    assert "\n" not in message
+    assert str(pickle.loads(pickle.dumps(caught.value))) == message

@@ -1,0 +1,95 @@
+"""engines.verify: engine runs of a model and its scaled copy, judged against the one-ulp sensitivity."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pitheorem as pt
+
+mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
+
+from pitheorem import engines  # noqa: E402
+
+DATA = Path(__file__).resolve().parent / "data" / "engines"
+
+
+def smooth(n):
+    return lambda t: 0.3 * np.sin(2.0 * t + np.arange(n))
+
+
+@pytest.mark.parametrize("name", ["tendon_actuators.xml", "contact.xml"])
+@pytest.mark.parametrize("s", [2, 10])
+def test_own_models_are_similar_under_gravity_times_s(name, s):
+    model = engines.load(DATA / name)
+    sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
+    nu = model.backend.mjmodel.nu
+    rep = engines.verify(model, sc, s, duration=1.0, controls=smooth(nu) if nu else None)
+    assert rep.similar, str(rep)
+    assert set(rep.sensitivity) == set(rep.deviation)
+    assert rep.original.y.shape == rep.mapped.y.shape == rep.nudged.y.shape
+
+
+def test_a_scaling_that_leaves_a_parameter_behind_is_caught():
+    model = engines.load(DATA / "tendon_actuators.xml")
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    good = model.scaled(sc, 10)
+    # the same copy with the slide joint's stiffness left at its original value
+    stiffness = model.parameter("joint_slide_stiffness").value[0]
+    broken = good.with_values(joint_slide_stiffness=stiffness)
+    rep = engines.verify(model, sc, 10, duration=1.0, scaled=broken)
+    assert not rep.similar
+    assert rep.max_deviation > 1e3 * max(rep.sensitivity.values())
+
+
+def test_controls_are_converted_by_input_dimension():
+    model = engines.load(DATA / "tendon_actuators.xml")
+    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    nu = model.backend.mjmodel.nu
+    rep = engines.verify(model, sc, 10, duration=0.5, controls=lambda t: np.full(nu, 0.2))
+    assert rep.similar
+    # by hand: inputs of dimension M L T^-2, 1, L T^-1, T^-1, 1, M L T^-2 at lengths times 10
+    by_hand = np.array([10, 1, 10, 1, 1, 10.0])
+    _names, dims = model.backend.coordinate_dimensions()
+    back = np.array([10.0 ** sc.exponent_of(d) for d in dims])
+    scaled = model.scaled(sc, 10).backend
+    n = 250
+    original = model.backend.run(n, lambda t: np.full(nu, 0.2))
+    converted = scaled.run(n, lambda t: np.full(nu, 0.2) * by_hand) / back
+    unconverted = scaled.run(n, lambda t: np.full(nu, 0.2)) / back
+    assert np.abs(converted - original).max() < 1e-12
+    assert np.abs(unconverted - original).max() > 1e-3
+    with pytest.raises(pt.InvalidRequestError, match="6 inputs"):
+        engines.verify(model, sc, 10, duration=0.01, controls=lambda t: [0.0])
+
+
+def test_controls_are_called_at_original_times():
+    model = engines.load(DATA / "tendon_actuators.xml")
+    sc = pt.Scaling.from_unit_change(model.system(), {"T": 1})
+    seen = []
+
+    def controls(t):
+        seen.append(t)
+        return np.zeros(6)
+
+    engines.verify(model, sc, 4, duration=0.01, controls=controls)
+    # the original and the nudged run at 0..0.009, the scaled one at 4x those times, mapped back
+    assert max(seen) == pytest.approx(0.009)
+    assert len(seen) == 30
+
+
+def test_scaled_time_step_is_checked_and_duration_validated():
+    model = engines.load(DATA / "contact.xml")
+    sc = pt.Scaling.from_unit_change(model.system(), {"T": 1})
+    other = model.scaled(pt.Scaling.from_unit_change(model.system(), {"L": 1}), 2)
+    with pytest.raises(pt.InvalidRequestError, match="time step"):
+        engines.verify(model, sc, 2, duration=0.1, scaled=other)
+    for bad in (0, -1, math.nan, "x"):
+        with pytest.raises(pt.InvalidRequestError):
+            engines.verify(model, sc, 2, duration=bad)
+    rep = engines.verify(model, sc, 2, duration=0.2)
+    assert rep.similar
+    assert rep.method == "mujoco"
