@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import pickle
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -199,3 +200,40 @@ def test_unknown_sensor_and_numeric_warn(tmp_path):
                     '<worldbody><body><joint/><geom size="0.1"/></body></worldbody></mujoco>')
     with pytest.warns(engines.UnscalableModelWarning, match="numeric 'frame_skip'"):
         engines.load(path)
+
+
+def _custom_model(tmp_path, custom: str):
+    path = tmp_path / "custom.xml"
+    path.write_text(f"<mujoco><custom>{custom}</custom>"
+                    '<worldbody><body><joint type="slide"/><geom size="0.1"/></body></worldbody></mujoco>')
+    return path
+
+
+def test_custom_numerics_with_a_declared_dimension_are_parameters(tmp_path):
+    path = _custom_model(tmp_path, '<numeric name="gain" data="4 0.5"/><text name="dimension:gain" data="L T^-1"/>'
+                                   '<numeric name="ratio" data="2"/><text name="dimension:ratio" data="1"/>')
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # declared numerics warn no more
+        model = engines.load(path)
+    gain = model.parameter("numeric_gain")
+    assert (gain.value, gain.dimension_text, gain.source) == ((4.0, 0.5), "L T^-1", "file")
+    assert model.system().dimension("numeric_gain") == pt.Dimension.parse("L T^-1")
+    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1, "T": -1})
+    scaled = model.scaled(sc, 10)
+    assert scaled.parameter("numeric_gain").value == (400.0, 50.0)  # L T^-1 at s^1 s^1
+    assert scaled.parameter("numeric_ratio").value == (2.0,)
+    saved = engines.load(scaled.save(tmp_path / "scaled.xml"))
+    assert saved.parameter("numeric_gain").value == (400.0, 50.0)
+    assert saved.parameter("numeric_gain").dimension_text == "L T^-1"  # the declaration travels with the file
+
+
+@pytest.mark.parametrize(("custom", "culprit", "hint"), [
+    ('<numeric name="gain" data="4"/><text name="dimension:gain" data="L T^^-1"/>', "dimension:gain",
+     "dimension formula"),
+    ('<numeric name="gain" data="4"/><text name="dimension:gian" data="L"/>', "dimension:gian", "'gain'"),
+])
+def test_bad_dimension_declarations_name_the_text(tmp_path, custom, culprit, hint):
+    with pytest.raises(EngineModelError) as caught:
+        engines.load(_custom_model(tmp_path, custom))
+    assert culprit in str(caught.value)
+    assert hint in str(caught.value)

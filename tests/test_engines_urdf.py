@@ -124,3 +124,37 @@ def test_bad_urdf_files_name_the_element(tmp_path, text, culprit):
     assert "bad.urdf" in message
     assert "\n" not in message
     assert str(pickle.loads(pickle.dumps(caught.value))) == message
+
+
+def _pd_controller(numbers_from):
+    """A PD law on both joints whose gains and set points come from a model's own numbers."""
+
+    def controller(run_model):
+        source = run_model if numbers_from is None else numbers_from
+        p = {n: source.parameter(n).value for n in ("joint_slide_effort", "joint_slide_upper", "link_arm_mass",
+                                                     "link_arm_com", "g")}
+        k_slide = p["joint_slide_effort"][0] / p["joint_slide_upper"][0]  # M T^-2
+        k_swing = 20 * p["link_arm_mass"][0] * p["g"][0] * p["link_arm_com"][2]  # M L^2 T^-2 per radian
+        reach = p["joint_slide_upper"][0]
+
+        def policy(client, body, t):
+            import pybullet as pb
+
+            (q_slide, _), (q_swing, _) = [s[:2] for s in pb.getJointStates(body, [0, 1], physicsClientId=client)]
+            return [k_slide * (0.4 * reach * np.sin(3 * t) - q_slide), k_swing * (0.3 * np.sin(2 * t) - q_swing)]
+
+        return policy
+
+    return controller
+
+
+def test_closed_loop_controller_in_pybullet_is_similar_only_with_its_numbers_scaled():
+    model = engines.load(ARM, fixed_base=True, damping=0.0, split_impulse=False)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    rep = engines.verify(model, sc, 10, duration=1.0, controller=_pd_controller(None))
+    assert rep.similar, str(rep)
+    assert np.ptp(rep.original["q[swing]"]) > 0.3  # it moves the arm through the set point's swing
+    # the same law with its numbers frozen at the original model's: Section 6 of the paper
+    frozen = engines.verify(model, sc, 10, duration=1.0, controller=_pd_controller(model))
+    assert not frozen.similar
+    assert frozen.max_deviation > 1e-3

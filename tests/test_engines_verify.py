@@ -93,3 +93,44 @@ def test_scaled_time_step_is_checked_and_duration_validated():
     rep = engines.verify(model, sc, 2, duration=0.2)
     assert rep.similar
     assert rep.method == "mujoco"
+
+
+# -- closed-loop controllers ----------------------------------------------------------------------
+
+
+def test_a_policy_that_returns_the_controls_runs_exactly_as_the_controls():
+    model = engines.load(DATA / "tendon_actuators.xml")
+    nu = model.backend.mjmodel.nu
+    open_loop = model.backend.run(200, smooth(nu))
+    closed_loop = model.backend.run(200, policy=lambda m, d: smooth(nu)(d.time))
+    assert np.array_equal(open_loop, closed_loop)
+    assert np.abs(open_loop - model.backend.run(200)).max() > 1e-6  # the inputs act
+
+
+def test_controller_is_built_once_per_run_from_that_runs_model():
+    model = engines.load(DATA / "tendon_actuators.xml")
+    sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
+    seen = []
+
+    def controller(run_model):
+        seen.append(run_model.parameter("g").value[0])
+        return lambda m, d: np.zeros(m.nu)
+
+    rep = engines.verify(model, sc, 10, duration=0.05, controller=controller)
+    assert rep.similar
+    g = model.parameter("g").value[0]
+    assert seen == [g, g, pytest.approx(10 * g, rel=1e-15)]  # the original, its nudged twin, the scaled copy
+
+
+def test_controller_misuse_is_named():
+    model = engines.load(DATA / "tendon_actuators.xml")
+    sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
+    nu = model.backend.mjmodel.nu
+    with pytest.raises(pt.InvalidRequestError, match="not both"):
+        engines.verify(model, sc, 2, duration=0.01, controls=smooth(nu), controller=lambda m: None)
+    with pytest.raises(pt.InvalidRequestError, match="must be callable"):
+        engines.verify(model, sc, 2, duration=0.01, controller=3.0)
+    with pytest.raises(pt.InvalidRequestError, match="callable policy"):
+        engines.verify(model, sc, 2, duration=0.01, controller=lambda run_model: "no policy")
+    with pytest.raises(pt.InvalidRequestError, match=f"{nu} inputs, got 1"):
+        engines.verify(model, sc, 2, duration=0.01, controller=lambda run_model: lambda m, d: [0.0])

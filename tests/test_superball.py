@@ -146,3 +146,96 @@ def test_paper_scaling_is_similar_in_mujoco(original, sensitivity, s):
 )
 def test_contrasts_fail_by_a_visible_margin(original, leave, why):
     assert deviation(original, scaled_values(10, leave=leave), 10) > 1e-2, why
+
+
+# -- the shipped file through engines.load / engines.verify ---------------------------------------
+
+from pitheorem import engines  # noqa: E402
+
+ENGINE_DURATION = 2.0
+
+
+@pytest.fixture(scope="module")
+def engine_model():
+    return engines.load(SHIPPED)
+
+
+@pytest.fixture(scope="module")
+def engine_scaling(engine_model):
+    res = pt.search(engine_model.system(), scale={"g": 1}, fixed=("t", "body_bar0_mass"))
+    assert res.count == 1
+    return res.scalings[0]
+
+
+def test_engines_load_reads_six_bars_twenty_four_cables_and_the_controller(engine_model):
+    m = engine_model.backend.mjmodel
+    assert (m.nbody - 1, m.ntendon, m.nu) == (6, 24, 24)
+    names = {p.name for p in engine_model.parameters}
+    assert {f"tendon_cable{i}_springlength" for i in range(24)} <= names
+    controller = {n: engine_model.parameter(f"numeric_{n}").dimension_text for n in ("v", "K_eps", "A", "t_on")}
+    assert controller == {"v": "L T^-1", "K_eps": "L T^-1", "A": "1", "t_on": "T"}
+    assert engine_model.parameter("numeric_K_eps").value == (sb.superball_parameters()["K_eps"],)
+
+
+def test_the_files_own_search_gives_section_4(engine_model, engine_scaling):
+    assert engine_scaling.unit_change == {"M": 0, "L": 1, "T": 0}
+    # the factors the file's numbers get, against the paper's list in PAPER_SCALING, by hand
+    paper = {"geom_bar0_density": "rho", "tendon_cable0_springlength": "x_r", "tendon_cable0_stiffness": "k",
+             "tendon_cable0_damping": "c", "numeric_v": "v", "numeric_K_eps": "K_eps", "g": "g"}
+    for name, symbol in paper.items():
+        assert engine_scaling.exponent_of(engine_model.parameter(name).dimension) == sb.PAPER_SCALING[symbol], name
+
+
+@pytest.mark.parametrize("s", [10, 100])
+def test_engines_verify_says_similar(engine_model, engine_scaling, s):
+    rep = engines.verify(engine_model, engine_scaling, s, duration=ENGINE_DURATION, controller=sb.CableController)
+    assert rep.similar, str(rep)
+    assert rep.max_deviation < 1e-10
+
+
+@pytest.fixture(scope="module")
+def contrasts(engine_model, engine_scaling):
+    s = 10
+    right = engine_model.scaled(engine_scaling, s)
+    L, G = pt.Dimension.parse("L"), pt.Dimension.parse("L T^-2")
+    folk = {p.name: s for p in engine_model.parameters if p.dimension in (L, G) and any(p.value)}
+    rest = {p.name: 1 / s for p in engine_model.parameters if p.name.endswith("_springlength")}
+    return {
+        "the folk rule: g and every length only": engine_model.multiplied(**folk),
+        "Section 4 without the rest length": right.multiplied(**rest),
+        "the controller's gain left unscaled (Section 6)": right.multiplied(numeric_K_eps=1 / s),
+    }
+
+
+@pytest.mark.parametrize("which", [0, 1, 2])
+def test_engines_verify_says_not_similar_for_each_contrast(engine_model, engine_scaling, contrasts, which):
+    why, contrast = list(contrasts.items())[which]
+    rep = engines.verify(engine_model, engine_scaling, 10, duration=ENGINE_DURATION, scaled=contrast,
+                         controller=sb.CableController)
+    assert not rep.similar, why
+    assert rep.max_deviation > 1e-2, why
+
+
+def test_controller_reels_in_cables_longer_than_their_target_and_never_pays_out():
+    model = mujoco.MjModel.from_xml_string(sb.superball_mjcf())
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    values = sb.superball_parameters()
+    control = sb.CableController(model)
+    data.time = values["t_on"] + values["t_ramp"]  # targets at full strength, the robot still at its start
+    mujoco.mj_forward(model, data)
+    target = control.targets(data)
+    control._last_time = data.time - 0.01  # one step of 10 ms since the controller last ran
+    ctrl = control(model, data)
+    # by hand: strain at the start is 0 (every cable at its span), so a targeted cable reels in at
+    # min(v, K_eps * (0 - target)) for 10 ms and the motor adds k times that
+    speed = np.minimum(values["v"], values["K_eps"] * (0.0 - target))
+    assert ctrl == pytest.approx(-values["k"] * speed * 0.01, rel=1e-9, abs=1e-12)
+    assert ctrl.min() < -1.0  # the targeted cables pull
+    # a cable slacker than its target lets cable back out, down to its rest length and no further
+    data.ten_length[:] = 0.5 * control.span
+    for _ in range(3):
+        data.time += 0.01
+        ctrl = control(model, data)
+    assert np.all(control.reeled >= 0)
+    assert np.all(ctrl <= 0)

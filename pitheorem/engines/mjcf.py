@@ -36,10 +36,15 @@ from pathlib import Path
 
 import numpy as np
 
+from ..dimensions import Dimension
+from ..errors import PiTheoremError
 from ..simulate import nudged
 from .model import EngineModel, EngineModelError, Parameter, dim, power_factor, warn_unscalable
 
 __all__ = ["MjcfBackend", "load_mjcf"]
+
+#: a custom ``<text>`` element named this prefix plus a numeric's name declares that numeric's dimension
+DIMENSION_TEXT = "dimension:"
 
 _ONE = dim("1")
 _L, _M, _T = dim("L"), dim("M"), dim("T")
@@ -221,10 +226,33 @@ class _Walker:
             for i, item in enumerate(items):
                 _, path = self.label(kind, item, i)
                 self.fail(path, f"{kind} elements cannot be scaled by pitheorem yet; remove it or scale it by hand")
-        for i, numeric in enumerate(spec.numerics):
-            _, path = self.label("numeric", numeric, i)
-            self.warning(path, "custom numeric data has no known dimension; copied unchanged")
+        self.numerics()
         return self.slots
+
+    def numerics(self):
+        """Custom numerics: scaled by the dimension a ``<text name="dimension:NAME">`` declares, else copied."""
+        declared = {}
+        for text in self.spec.texts:
+            if text.name.startswith(DIMENSION_TEXT):
+                where = f"text {text.name!r}"
+                try:
+                    declared[text.name[len(DIMENSION_TEXT):]] = Dimension.parse(text.data)
+                except PiTheoremError as err:
+                    self.fail(where, f"{_first_line(str(err))} (data must be a dimension formula such as 'L T^-1')")
+        names = {numeric.name for numeric in self.spec.numerics}
+        for name in declared:
+            if name not in names:
+                self.fail(f"text '{DIMENSION_TEXT}{name}'", f"declares the dimension of a custom numeric {name!r} "
+                          f"that the file does not have (its numerics: {', '.join(map(repr, sorted(names))) or 'none'})")
+        for i, numeric in enumerate(self.spec.numerics):
+            ident, path = self.label("numeric", numeric, i)
+            dimension = declared.get(numeric.name)
+            if dimension is None:
+                self.warning(path, "custom numeric data has no known dimension; copied unchanged (declare it "
+                             f'with <text name="{DIMENSION_TEXT}{numeric.name}" data="L T^-1"/>, say)')
+                continue
+            self.slots.append(_array_slot(self.unique(ident), f"{path} data", numeric, "data", slice(None),
+                                          dimension, "file", note="dimension declared in the file"))
 
     def option(self):
         opt = self.spec.option
@@ -713,12 +741,13 @@ class MjcfBackend:
     def timestep(self) -> float:
         return float(self.mjmodel.opt.timestep)
 
-    def run(self, n_steps: int, controls=None, nudge: bool = False, state=None):
+    def run(self, n_steps: int, controls=None, nudge: bool = False, state=None, policy=None):
         """Step the model ``n_steps`` times from its initial state; rows of (qpos, qvel, act).
 
         ``controls`` is None or a callable of time giving ``data.ctrl``;
-        ``nudge`` moves every initial coordinate by one ulp; ``state`` is
-        an initial (qpos, qvel) pair.
+        ``policy`` is None or a closed-loop ``policy(mjmodel, mjdata)``
+        giving ``data.ctrl``; ``nudge`` moves every initial coordinate by
+        one ulp; ``state`` is an initial (qpos, qvel) pair.
         """
         mj, m = _mujoco(), self.mjmodel
         data = mj.MjData(m)
@@ -732,9 +761,12 @@ class MjcfBackend:
         qpos, qvel, act = out[:, :nq], out[:, nq:nq + nv], out[:, nq + nv:]
         qpos[0], qvel[0], act[0] = data.qpos, data.qvel, data.act
         steer = controls is not None and m.nu
+        closed = policy is not None and m.nu
         for i in range(1, n_steps + 1):
             if steer:
                 data.ctrl[:] = controls(data.time)
+            elif closed:
+                data.ctrl[:] = policy(m, data)
             mj.mj_step(m, data)
             qpos[i], qvel[i], act[i] = data.qpos, data.qvel, data.act
         return out

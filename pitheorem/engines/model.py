@@ -426,6 +426,41 @@ class EngineModel:
             factors[name] = float(value) / p.value[0]
         return EngineModel(self._backend.scaled(factors, None, None), self.engine, "")
 
+    def multiplied(self, **factors) -> EngineModel:
+        """A copy with some parameters multiplied by factors (a vector entry by entry).
+
+        For the runs a similarity scaling is *not*: scale some numbers and
+        leave others alone, then compare with :func:`~pitheorem.engines.verify`
+        (``scaled=``) to see what breaks.
+
+        Parameters
+        ----------
+        **factors : float
+            Parameter name to a positive, finite factor.
+
+        Returns
+        -------
+        EngineModel
+
+        Raises
+        ------
+        UnknownVariableError
+            For a name that is no parameter.
+        InvalidRequestError
+            For a factor that is not a positive, finite number.
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> model = engines.load(engines.example_path("pendulum.xml"))
+        >>> model.multiplied(g=10).parameter("g").value
+        (98.1,)
+        """
+        for name, factor in factors.items():
+            self.parameter(name)
+            factors[name] = _check_factor(factor, name)
+        return EngineModel(self._backend.scaled(factors, None, None), self.engine, "")
+
     def save(self, path) -> Path:
         """Write the model as a file the engine loads as is.
 
@@ -511,6 +546,14 @@ def _check_s(s) -> float:
         raise InvalidRequestError(f"the scale factor s must be a positive finite number, got {s!r}")
     x = _positive(s, "the scale factor s")
     return s if isinstance(s, int | Fraction) else x
+
+
+def _check_factor(value, name: str) -> float:
+    from ..simulate import _positive
+
+    if isinstance(value, bool):
+        raise InvalidRequestError(f"the factor for {name!r} must be a positive finite number, got {value!r}")
+    return _positive(value, f"the factor for {name!r}")
 
 
 def _check_scaling(model: EngineModel, scaling) -> None:

@@ -21,6 +21,13 @@ engine, together with the closed-loop controller that Section 6 warns about.
   :func:`write_superball` regenerates ``pitheorem/examples/superball.xml``
   (``python -m pitheorem.engines.superball``).
 
+The file is an ordinary MJCF model: :func:`pitheorem.engines.load` reads it
+(the controller's numbers with their declared dimensions among its
+parameters), ``model.scaled(...)`` scales it, and
+``engines.verify(model, scaling, s, controller=CableController)`` runs the
+original, its one-ulp twin and the scaled copy, each with a controller built
+from its own file.
+
 Examples
 --------
 >>> from fractions import Fraction
@@ -344,9 +351,9 @@ def _dimension(name: str) -> str:
 class CableController:
     """Closed-loop reel control: a proportional law on cable strain.
 
-    Each cable ``i`` has a reeled-in length ``d_i`` (the controller's state,
-    starting at 0), so its rest length is ``x_r - d_i``; its motor adds the
-    tension ``k d_i``.  From ``t_on`` on, the controller asks the cables that
+    Each cable ``i`` has a reeled-in length ``d_i >= 0`` (the controller's
+    state, starting at 0), so its rest length is ``x_r - d_i``; its motor
+    adds the tension ``k d_i``.  From ``t_on`` on, the controller asks the cables that
     lie ahead (+x) of and below the robot's centre to shorten by up to ``A``
     of their span, and reels at the speed ``K_eps (eps_i - eps_target_i)``,
     limited to ``v``, where ``eps_i`` is the cable's measured strain.  The
@@ -358,8 +365,11 @@ class CableController:
 
     Parameters
     ----------
-    model : mujoco.MjModel
-        A model written by :func:`superball_mjcf`, or a scaled copy of it.
+    model : mujoco.MjModel or EngineModel
+        A model written by :func:`superball_mjcf`, or a scaled copy of it;
+        an :class:`~pitheorem.engines.EngineModel` of one works too, so
+        ``engines.verify(model, scaling, s, controller=CableController)``
+        builds one controller per run from that run's own (scaled) model.
 
     Examples
     --------
@@ -375,6 +385,9 @@ class CableController:
 
     def __init__(self, model):
         import mujoco
+
+        if hasattr(model, "backend"):  # an EngineModel: its compiled MuJoCo model
+            model = model.backend.mjmodel
 
         def numeric(name: str) -> float:
             index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_NUMERIC, name)
@@ -445,7 +458,9 @@ class CableController:
         self._last_time = data.time
         strain = data.ten_length / self.span - 1
         speed = np.clip(self.gain * (strain - self.targets(data)), -self.v, self.v)
-        self.reeled = self.reeled + speed * step
+        # a reel shortens its cable and lets it back out to the rest length x_r, never further: the motor
+        # only adds tension (ctrlrange [-F_max, 0]), so a negative reeled length would only wind up unseen
+        self.reeled = np.maximum(self.reeled + speed * step, 0.0)
         return -self.stiffness * self.reeled
 
 
@@ -454,8 +469,9 @@ def simulate_superball(model, duration: float, *, controlled: bool = True, every
 
     Parameters
     ----------
-    model : str, Path or mujoco.MjModel
-        MJCF text, a path to an MJCF file, or a compiled model.
+    model : str, Path, mujoco.MjModel or EngineModel
+        MJCF text, a path to an MJCF file, a compiled model, or a model of
+        :func:`pitheorem.engines.load` (or a scaled copy of one).
     duration : float
         Simulated time, in the model's own time unit.
     controlled : bool
@@ -481,7 +497,9 @@ def simulate_superball(model, duration: float, *, controlled: bool = True, every
     """
     import mujoco
 
-    if isinstance(model, Path) or (isinstance(model, str) and not model.lstrip().startswith("<")):
+    if hasattr(model, "backend"):  # an EngineModel
+        model = model.backend.mjmodel
+    elif isinstance(model, Path) or (isinstance(model, str) and not model.lstrip().startswith("<")):
         model = mujoco.MjModel.from_xml_path(str(model))
     elif isinstance(model, str):
         model = mujoco.MjModel.from_xml_string(model)

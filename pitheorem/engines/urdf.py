@@ -429,7 +429,7 @@ class UrdfBackend:
     def control_dimensions(self):
         return [_FORCE if jtype == "prismatic" else _TORQUE for _j, _n, jtype in self._info["joints"]]
 
-    def run(self, n_steps: int, controls=None, nudge: bool = False):
+    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None):
         pb, client = self._connect()
         try:
             st = self._settings
@@ -467,8 +467,9 @@ class UrdfBackend:
             record(0)
             dt = st["timestep"]
             for i in range(1, n_steps + 1):
-                if controls is not None and joints:
-                    u = controls((i - 1) * dt)
+                if (controls is not None or policy is not None) and joints:
+                    t = (i - 1) * dt
+                    u = controls(t) if controls is not None else policy(client, body, t)
                     pb.setJointMotorControlArray(body, joints, pb.TORQUE_CONTROL, forces=list(map(float, u)),
                                                  physicsClientId=client)
                 pb.stepSimulation(physicsClientId=client)

@@ -10,9 +10,17 @@ original once more with its initial state nudged by one ulp: a chaotic
 model (a bouncing ball, a walker falling over) moves that far on its own,
 so a scaled run is judged against that baseline, not against zero.
 
+Controls come in two kinds.  Open-loop ``controls`` are a function of time
+in original units, converted for the scaled run by each input's dimension.
+A closed-loop ``controller`` is built afresh for each run from that run's
+own model and works in that model's units: it reads its gains from the
+model (an MJCF custom numeric with a declared dimension, say), so a scaled
+file carries a scaled controller, and a gain the scaling leaves alone
+shows up as a broken similarity (Section 6 of the white paper).
+
 A backend (see ``pitheorem.engines.mjcf``, ``pitheorem.engines.urdf``)
 provides ``timestep()``, ``coordinate_dimensions()``,
-``control_dimensions()`` and ``run(n_steps, controls, nudge)``.
+``control_dimensions()`` and ``run(n_steps, controls, nudge, policy)``.
 """
 
 from __future__ import annotations
@@ -51,12 +59,18 @@ class EngineRunner(Protocol):
     def control_dimensions(self) -> list:
         """The dimension of each control input."""
 
-    def run(self, n_steps: int, controls: Callable | None = None, nudge: bool = False) -> np.ndarray:
-        """Rows of coordinates after 0..n_steps steps; ``nudge`` moves the start by one ulp."""
+    def run(self, n_steps: int, controls: Callable | None = None, nudge: bool = False,
+            policy: Callable | None = None) -> np.ndarray:
+        """Rows of coordinates after 0..n_steps steps; ``nudge`` moves the start by one ulp.
+
+        ``controls(t)`` gives the inputs at time ``t``; ``policy`` is a
+        closed-loop law called with the engine's live state (see
+        :func:`verify`).
+        """
 
 
-def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None, *, scaled: EngineModel | None = None,
-           baseline_factor: float = 10.0) -> SimilarityReport:
+def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None, *, controller=None,
+           scaled: EngineModel | None = None, baseline_factor: float = 10.0) -> SimilarityReport:
     """Run a model and its scaled copy in the engine and compare them in original units.
 
     Parameters
@@ -73,6 +87,17 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         ``data.ctrl``; PyBullet: one torque or force per movable joint).
         Default: zero input.  The scaled run gets ``controls(t / s^a_T)``
         times each input's own factor.
+    controller : callable, optional
+        A closed-loop controller instead of `controls`:
+        ``controller(run_model)`` is called once per run (the original, its
+        one-ulp nudged twin and the scaled copy) with that run's
+        EngineModel and returns a policy giving the inputs at each step in
+        that model's own units.  MuJoCo calls ``policy(mjmodel, mjdata)``
+        (the arguments of MuJoCo's control callback; return ``data.ctrl``);
+        PyBullet calls ``policy(client, body, t)`` (return one torque or
+        force per movable joint).  A controller whose numbers live in the
+        model file is scaled with it; one whose numbers live in Python is
+        not, and the report shows it.
     scaled : EngineModel, optional
         The scaled model (e.g. a saved and reloaded file); default
         ``model.scaled(scaling, s)``.
@@ -88,8 +113,8 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     Raises
     ------
     InvalidRequestError
-        For a bad duration, a scaled model of another engine or size, or
-        controls of the wrong length.
+        For a bad duration, a scaled model of another engine or size,
+        controls of the wrong length, or both `controls` and `controller`.
 
     Examples
     --------
@@ -110,6 +135,10 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         scaled = model.scaled(scaling, s)
     elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:
         raise InvalidRequestError("scaled must be an EngineModel of the same engine as model")
+    if controls is not None and controller is not None:
+        raise InvalidRequestError("give controls (open loop, a function of time) or controller (closed loop), not both")
+    if controller is not None and not callable(controller):
+        raise InvalidRequestError(f"controller must be callable (run_model -> policy), got {type(controller).__name__}")
     original, copy = model.backend, scaled.backend
 
     f_time = power_factor(s, scaling.exponent_of(dim("T")))
@@ -138,10 +167,26 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         def u_scaled(t):
             return check_controls(t / f_time) * control_factors
 
+    def policy(run_model):  # a fresh controller per run: controllers keep state (a reel, an integral)
+        if controller is None:
+            return None
+        law = controller(run_model)
+        if not callable(law):
+            raise InvalidRequestError(f"controller(model) must return a callable policy, got {type(law).__name__}")
+
+        def checked(*state):
+            u = np.asarray(law(*state), dtype=float).reshape(-1)
+            if u.shape != control_factors.shape:
+                raise InvalidRequestError(f"the controller's policy must give {control_factors.size} inputs, "
+                                          f"got {u.size}")
+            return u
+
+        return checked
+
     t = np.arange(n_steps + 1) * dt
-    run = original.run(n_steps, u_original)
-    nudged = original.run(n_steps, u_original, nudge=True)
-    back = copy.run(n_steps, u_scaled) / factors
+    run = original.run(n_steps, u_original, policy=policy(model))
+    nudged = original.run(n_steps, u_original, nudge=True, policy=policy(model))
+    back = copy.run(n_steps, u_scaled, policy=policy(scaled)) / factors
     kind = "mujoco" if model.engine == "mujoco" else "pybullet"
     return similarity_report(
         Trajectory(t, run, tuple(names)), Trajectory(t, back, tuple(names)), s=float(s), scaling=scaling,
