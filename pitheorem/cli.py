@@ -138,11 +138,13 @@ def _is_engine_file(path: str) -> bool:
     return is_engine_file(path)
 
 
-def _load(path: str) -> ModelFile:
+def _load(path: str, scene: list[str] | None = None) -> ModelFile:
     if _is_engine_file(path):  # MJCF or URDF: its system and scalar values, through the engine
-        from .engines.cli import engine_model_file
+        from .engines.cli import engine_model_file, parse_scene
 
-        return engine_model_file(path)[0]
+        return engine_model_file(path, **parse_scene(scene))[0]
+    if scene:
+        raise _CommandError(f"--scene sets up URDF models; {path} is no URDF file")
     try:
         return load_model_file(path)
     except IsADirectoryError:
@@ -240,7 +242,7 @@ def _notes(result: SearchResult) -> list[str]:
 
 
 def _cmd_groups(args) -> int:
-    model = _load(args.file)
+    model = _load(args.file, args.scene)
     system = model.system
     groups = system.pi_groups(repeating=args.repeating)
     values = []
@@ -285,7 +287,7 @@ def _cmd_groups(args) -> int:
 
 
 def _cmd_bases(args) -> int:
-    model = _load(args.file)
+    model = _load(args.file, args.scene)
     system = model.system
     if args.count:
         count = system.count_bases(exclude=args.exclude, require=args.require)
@@ -345,7 +347,7 @@ def _scaling_json(sc) -> dict:
 
 
 def _cmd_search(args) -> int:
-    model = _load(args.file)
+    model = _load(args.file, args.scene)
     result = _run_search(model, args)
     code = EXIT_OK if result.feasible else EXIT_INFEASIBLE
     if args.format == "json":
@@ -394,10 +396,10 @@ def _cmd_search(args) -> int:
 
 
 def _cmd_apply(args) -> int:
-    model = _load(args.file)
+    model = _load(args.file, args.scene)
     s = _parse_s(args.s)
     if _is_engine_file(args.file):  # write the scaled file the engine loads
-        from .engines.cli import apply_engine
+        from .engines.cli import apply_engine, parse_scene
 
         result = _run_search(model, args)
         if not result.feasible:
@@ -405,7 +407,8 @@ def _cmd_apply(args) -> int:
             return EXIT_INFEASIBLE
         if not 1 <= args.solution <= result.count:
             raise _CommandError(f"--solution {args.solution} is out of range: choose 1 to {result.count}")
-        print("\n".join(apply_engine(args.file, result.scalings[args.solution - 1], s, args.output)))
+        print("\n".join(apply_engine(args.file, result.scalings[args.solution - 1], s, args.output,
+                                      **parse_scene(args.scene))))
         return EXIT_OK
     if not model.values:
         raise _CommandError(f"{args.file}: no variable has a value, so there is nothing to scale; "
@@ -477,9 +480,9 @@ def _cmd_apply(args) -> int:
 def _engine_params(args) -> int:
     if not _is_engine_file(args.file):
         raise _CommandError(f"{args.file}: params reads MJCF (.xml) or URDF (.urdf) model files")
-    from .engines.cli import print_params
+    from .engines.cli import parse_scene, print_params
 
-    return print_params(args.file, args.format)
+    return print_params(args.file, args.format, **parse_scene(args.scene))
 
 
 # -- parser and entry point ------------------------------------------------------------------
@@ -513,6 +516,9 @@ def build_parser() -> argparse.ArgumentParser:
     common.add_argument("file", metavar="FILE", help="TOML, MJCF (.xml) or URDF (.urdf) model file (or example:NAME)")
     common.add_argument("--format", choices=("text", "json", "latex"), default="text",
                         help="output format (default: text)")
+    common.add_argument("--scene", nargs="+", metavar="NAME=VALUE",
+                        help="URDF files: PyBullet's scene and settings, e.g. ground=true damping=0 "
+                        "split_impulse=false fixed_base=true base_position=0,0,1 g=9.81")
 
     request = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
     request.add_argument("--scale", nargs="+", required=True, metavar="NAME=EXP", help=_SCALE_HELP)

@@ -50,12 +50,55 @@ def test_apply_urdf_writes_settings_or_names_the_mixed_damping(tmp_path, capsys)
     urdf = str(DATA / "slider_arm.urdf")
     # PyBullet's multibody damping mixes a rate and an inverse length: scaling lengths cannot keep it
     assert main(["apply", urdf, "--scale", "g=1", "--s", "2", "--output", str(tmp_path / "a.urdf")]) == 2
-    assert "linearDamping" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "linearDamping" in err
+    assert "--scene damping=0" in err
     # the search itself is fine: the damping's two parts are two variables of the system
     assert main(["search", urdf, "--scale", "g=1", "--format", "json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     powers = doc["scalings"][0]["exponents"]
     assert powers["link_cart_linearDamping_rate"] != powers["link_cart_linearDamping_per_length"]
+
+
+def test_scene_options_make_a_urdf_scalable_and_reach_its_settings(tmp_path, capsys):
+    urdf = str(DATA / "slider_arm.urdf")
+    out = tmp_path / "a.urdf"
+    scene = ["--scene", "damping=0", "split_impulse=false", "fixed_base=true", "base_position=0,0,0.5", "g=9.8"]
+    assert main(["apply", urdf, "--scale", "g=1", "--s", "2", "--output", str(out), *scene]) == 0
+    settings = json.loads(Path(f"{out}.settings.json").read_text())
+    assert settings["gravity"][2] == pytest.approx(-2 * 9.8, rel=1e-15)
+    assert settings["setPhysicsEngineParameter"]["useSplitImpulse"] == 0
+    # the saved file, set up in the scaled scene (gravity and base position times 2), runs like the original
+    import pitheorem as pt
+
+    options = {"damping": 0.0, "split_impulse": False, "fixed_base": True}
+    model = engines.load(urdf, **options, base_position=(0, 0, 0.5), g=9.8)
+    again = engines.load(out, **options, base_position=(0, 0, 1.0), g=19.6)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    assert engines.verify(model, sc, 2, duration=0.3, scaled=again).similar
+    capsys.readouterr()
+
+
+@pytest.mark.parametrize(("scene", "says"), [
+    (["dampin=0"], "NAME one of"),
+    (["ground=maybe"], "true or false"),
+    (["base_position=0,1"], "three numbers"),
+    (["damping=-1"], "cannot be negative"),
+    (["g=1", "g=2"], "twice"),
+    (["damping=x"], "damping"),
+])
+def test_bad_scene_options_exit_2_naming_them(capsys, scene, says):
+    assert main(["params", str(DATA / "slider_arm.urdf"), "--scene", *scene]) == 2
+    err = capsys.readouterr().err
+    assert says in err
+    assert "Traceback" not in err
+
+
+def test_scene_options_are_refused_for_other_files(capsys):
+    assert main(["groups", "example:hinged_rod", "--scene", "ground=true"]) == 2
+    assert "URDF" in capsys.readouterr().err
+    assert main(["params", PENDULUM, "--scene", "ground=true"]) == 2
+    assert "URDF" in capsys.readouterr().err
 
 
 BAD_FILES = [

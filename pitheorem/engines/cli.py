@@ -14,10 +14,11 @@ from pathlib import Path
 
 from ..display import power_text
 from ..errors import InvalidRequestError
+from ..exact import read_number
 from ..modelfile import ModelFile
-from .model import EngineModel, load, model_kind
+from .model import EngineModel, UnscalableParameterError, load, model_kind
 
-__all__ = ["apply_engine", "engine_model_file", "is_engine_file", "print_params"]
+__all__ = ["apply_engine", "engine_model_file", "is_engine_file", "parse_scene", "print_params"]
 
 
 def is_engine_file(path: str) -> bool:
@@ -32,7 +33,62 @@ def is_engine_file(path: str) -> bool:
     return not str(path).startswith("example:") and model_kind(path) in ("mjcf", "urdf")
 
 
-def engine_model_file(path: str) -> tuple[ModelFile, EngineModel]:
+_SCENE_FLAGS = ("fixed_base", "ground", "split_impulse")
+_SCENE_NUMBERS = ("g", "damping")
+_TRUTH = {"true": True, "yes": True, "1": True, "false": False, "no": False, "0": False}
+
+
+def parse_scene(items: list[str] | None) -> dict:
+    """The ``--scene NAME=VALUE`` items of the command line as options of :func:`pitheorem.engines.load`.
+
+    Parameters
+    ----------
+    items : list of str or None
+        ``fixed_base``, ``ground`` and ``split_impulse`` take true/false;
+        ``g`` and ``damping`` a number; ``base_position`` three numbers
+        separated by commas.
+
+    Returns
+    -------
+    dict
+
+    Raises
+    ------
+    InvalidRequestError
+        For an unknown name, a repeated name or a value of the wrong kind.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.cli import parse_scene
+    >>> parse_scene(["ground=true", "damping=0", "base_position=0,0,1"])
+    {'ground': True, 'damping': 0.0, 'base_position': (0.0, 0.0, 1.0)}
+    """
+    options = {}
+    known = (*_SCENE_FLAGS, *_SCENE_NUMBERS, "base_position")
+    for item in items or ():
+        name, sep, text = item.partition("=")
+        name, text = name.strip(), text.strip()
+        if not sep or name not in known:
+            raise InvalidRequestError(f"--scene {item!r}: write NAME=VALUE with NAME one of {', '.join(known)}")
+        if name in options:
+            raise InvalidRequestError(f"--scene sets {name!r} twice")
+        if name in _SCENE_FLAGS:
+            if text.lower() not in _TRUTH:
+                raise InvalidRequestError(f"--scene {item!r}: {name} is true or false")
+            options[name] = _TRUTH[text.lower()]
+            continue
+        parts = text.split(",")
+        if len(parts) != (3 if name == "base_position" else 1):
+            raise InvalidRequestError(f"--scene {item!r}: {name} takes "
+                                      + ("three numbers such as 0,0,1" if name == "base_position" else "one number"))
+        numbers = tuple(float(read_number(part.strip(), f"--scene {name}")) for part in parts)
+        if name != "base_position" and not (numbers[0] >= 0):
+            raise InvalidRequestError(f"--scene {item!r}: {name} cannot be negative")
+        options[name] = numbers if name == "base_position" else numbers[0]
+    return options
+
+
+def engine_model_file(path: str, **options) -> tuple[ModelFile, EngineModel]:
     """The engine model and a :class:`~pitheorem.modelfile.ModelFile` of its system and scalar values.
 
     Examples
@@ -43,7 +99,7 @@ def engine_model_file(path: str) -> tuple[ModelFile, EngineModel]:
     >>> mf.roles["t"], mf.values["g"]
     ('time', 9.81)
     """
-    model = load(path)
+    model = load(path, **options)
     system = model.system()
     values = {p.name: p.value[0] for p in model.parameters if not p.mixed and len(p.value) == 1}
     roles = {n: "time" if n == "t" else "parameter" for n in system.variables}
@@ -52,7 +108,7 @@ def engine_model_file(path: str) -> tuple[ModelFile, EngineModel]:
                      roles=roles, path=str(path)), model
 
 
-def print_params(path: str, fmt: str) -> int:
+def print_params(path: str, fmt: str, **options) -> int:
     """Print the parameter table of an engine model file (``pitheorem params FILE``).
 
     Examples
@@ -62,7 +118,7 @@ def print_params(path: str, fmt: str) -> int:
     >>> code = print_params(str(engines.example_path("pendulum.xml")), "json")  # doctest: +ELLIPSIS
     {...
     """
-    model = load(path)
+    model = load(path, **options)
     if fmt == "json":
         doc = {"model": str(path), "engine": model.engine, "parameters": [
             {"name": p.name, "path": p.path, "value": list(p.value), "dimension": p.dimension_text,
@@ -76,7 +132,7 @@ def print_params(path: str, fmt: str) -> int:
     return 0
 
 
-def apply_engine(path: str, scaling, s, output: str | None) -> list[str]:
+def apply_engine(path: str, scaling, s, output: str | None, **options) -> list[str]:
     """Scale an engine model file and write it (``pitheorem apply FILE ... --output OUT``); lines to print.
 
     Examples
@@ -93,8 +149,13 @@ def apply_engine(path: str, scaling, s, output: str | None) -> list[str]:
     >>> lines[-1].startswith("wrote")
     True
     """
-    model = load(path)
-    scaled = model.scaled(scaling, s)
+    model = load(path, **options)
+    try:
+        scaled = model.scaled(scaling, s)
+    except UnscalableParameterError as err:
+        if model.engine == "pybullet" and err.name.endswith("Damping") and "damping" not in options:
+            raise InvalidRequestError(f"{err}; on the command line: --scene damping=0") from None
+        raise
     lines = [f"{Path(path).name}, s = {s}: {scaling}"]
     changed = [p for p in model.parameters if not p.mixed and scaling.exponent_of(p.dimension) != 0
                and any(v != 0 for v in p.value)]
