@@ -3,7 +3,7 @@ PYTHON ?= python3
 VENV   ?= .venv
 PY      = $(VENV)/bin/python
 
-.PHONY: test docs bench lint clean
+.PHONY: test docs notebooks bench lint clean
 
 $(VENV)/.test-stamp: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -22,6 +22,20 @@ test: $(VENV)/.test-stamp
 
 docs: $(VENV)/.docs-stamp
 	$(PY) -m sphinx -n -W --keep-going -b html docs docs/_build/html
+
+# Executed Jupyter notebooks (.ipynb) of every tutorial, for readers who want to run them in
+# Jupyter: jupytext turns each MyST file into a notebook and executes it with tutorials/ as the
+# working folder (as the docs build does) and the checkout on the path (for matlab_ports/).
+# They go to a build folder, never beside the sources: docs/conf.py excludes stray notebooks
+# from the docs anyway, and none is committed.
+NOTEBOOKS ?= docs/_build/notebooks
+notebooks: $(VENV)/.docs-stamp
+	mkdir -p $(NOTEBOOKS)
+	for f in tutorials/[0-9]*.md; do \
+	  PYTHONPATH="$(CURDIR)" $(VENV)/bin/jupytext --to ipynb --execute --run-path tutorials \
+	    --output "$(NOTEBOOKS)/$$(basename $$f .md).ipynb" "$$f" || exit 1; \
+	done
+	@echo "Executed notebooks are in $(NOTEBOOKS)/ (open them with: jupyter lab $(NOTEBOOKS))"
 
 $(VENV)/.bench-stamp: pyproject.toml $(VENV)/.test-stamp
 	$(PY) -m pip install --quiet -e ".[test,engines,bench]"

@@ -84,10 +84,15 @@ if not (DOCS / "tutorials" / "index.md").is_file():
         "(re-create it with: ln -s ../tutorials docs/tutorials)"
     )
 
+# Notebooks are never sources here: the tutorials are MyST markdown. A stray ``.ipynb`` beside
+# one (``jupytext --to ipynb tutorials/*.md`` writes them there) would otherwise make Sphinx
+# fail with "multiple files found for the document"; ``make notebooks`` writes its executed
+# notebooks to _build/notebooks instead.
 exclude_patterns = [
     "_build",
     "jupyter_execute",
     "**.ipynb_checkpoints",
+    "**.ipynb",
     "Thumbs.db",
     ".DS_Store",
     "README.md",
@@ -120,10 +125,6 @@ nitpick_ignore_regex = [
     # resolve is such a parameter name; qualified or capitalised names (`System.rank`,
     # `PiGroup`) and explicit roles (:func:`...`) are still checked.
     (r"py:obj", r"[a-z_][a-z0-9_]*"),
-    # Temporary: a docstring in matlab_ports/scaling_counterexample_nonlinear.py writes
-    # :mod:`rod_hinge_dynamics` without its package; remove once it reads
-    # :mod:`matlab_ports.rod_hinge_dynamics`.
-    (r"py:mod", r"rod_hinge_dynamics"),
 ]
 
 # Numbered figures, tables and equations; `{eq}` references show "(1)".
@@ -247,3 +248,62 @@ html_theme_options = {
     "show_navbar_depth": 1,
     "navigation_with_keys": False,
 }
+
+# -- Numbers per page, and a proof index by title ---------------------------------------
+# Sphinx numbers equations and captioned figures with one counter for the whole site
+# unless the toctree is numbered, so a page's first equation could be "(14)". These pages
+# are read one at a time (a tutorial, a proof), so each page numbers its own from 1:
+# after Sphinx has assigned the numbers, renumber them within every page, in page order.
+
+
+def _number_per_page(app, env):
+    for numbers in env.toc_fignumbers.values():
+        for by_id in numbers.values():
+            for i, key in enumerate(sorted(by_id, key=by_id.get), start=1):
+                by_id[key] = (i,)
+    return []
+
+
+# sphinx-proof's index (prf-prf.html) lists each statement by its label ("thm-row-space").
+# Keep each statement's title beside its label when a page is read, and list the index by
+# title, grouped by kind, with the page it is on.
+
+
+def _keep_proof_titles(app, doctree):
+    before, _, after = app.config.proof_title_format.partition("%t")
+    proofs = getattr(app.env, "proof_list", {})
+    for node in doctree.findall(lambda n: hasattr(n, "get") and n.get("realtype") and n.get("label")):
+        title = node.get("title", "")
+        if before and title.startswith(before):
+            title = title[len(before):]
+        if after and title.endswith(after):
+            title = title[: -len(after)]
+        if node["label"] in proofs:
+            proofs[node["label"]]["title"] = title.strip()
+
+
+def _titled_proof_index():
+    from collections import defaultdict
+
+    from sphinx_proof.domain import ProofIndex
+
+    class TitledProofIndex(ProofIndex):
+        def generate(self, docnames=None):
+            env = self.domain.env
+            groups = defaultdict(list)
+            for label, entry in getattr(env, "proof_list", {}).items():
+                kind = entry["realtype"].capitalize()
+                title = entry.get("title") or label
+                page = env.titles[entry["docname"]].astext() if entry["docname"] in env.titles else ""
+                groups[kind].append((title.replace("$", ""), 0, entry["docname"], label, page, "", ""))
+            return sorted((kind, sorted(items)) for kind, items in groups.items()), True
+
+    return TitledProofIndex
+
+
+def setup(app):
+    app.connect("env-get-updated", _number_per_page, priority=900)  # after Sphinx's numbering (500)
+    app.connect("doctree-read", _keep_proof_titles)
+    from sphinx_proof.domain import ProofDomain
+
+    ProofDomain.indices = [_titled_proof_index()]

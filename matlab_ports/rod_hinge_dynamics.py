@@ -8,10 +8,14 @@ hinge; it is Eq. (1) of the white paper with the spring sign corrected (see
 longitudinal spring and damper; they are ported as separate functions, exactly as written,
 dimensional errors included.
 
-All three functions share the MATLAB signature ``f(y, m, x_r, l, g, k, c, theta_r)`` and return
-``[theta_dot, theta_ddot]`` for the state ``y = [theta, theta_dot]``.  ``x_r`` (rest length of a
-longitudinal spring) is unused by the active variant and ``theta_r`` by the longitudinal ones, as
-in the original.
+The MATLAB function is ``theta_result = rod_hinge_dynamics(theta_t, theta_dot_t, p)``: the
+angle, the angular rate and a struct ``p`` with the fields ``m, x_r, l, g, k, c, theta_r``; it
+returns the column ``[theta_dot; theta_ddot]``.  The three Python functions take the state as
+one vector and the fields of ``p`` as arguments of the same names,
+``f(y, m, x_r, l, g, k, c, theta_r)`` with ``y = [theta, theta_dot]``, and return
+``[theta_dot, theta_ddot]``; the arithmetic is the MATLAB expression's, in its order.  ``x_r``
+(rest length of a longitudinal spring) is unused by the active variant and ``theta_r`` by the
+longitudinal ones, as in the original.
 """
 
 # ruff: noqa: E741  -- `l` (rod length) is the MATLAB name, kept in the ported signatures
@@ -86,7 +90,8 @@ def rod_hinge_dynamics(y, m, x_r, l, g, k, c, theta_r):
 
     Examples
     --------
-    >>> rod_hinge_dynamics([0.5, 2.0], m=1.0, x_r=1.0, l=1.0, g=0.0, k=3.0, c=1.0, theta_r=0.5)
+    >>> p = dict(m=1.0, x_r=1.0, l=1.0, g=0.0, k=3.0, c=1.0, theta_r=0.5)
+    >>> rod_hinge_dynamics([0.5, 2.0], **p)
     array([ 2., -6.])
     """
     theta, theta_dot = y
@@ -160,7 +165,8 @@ def rod_hinge_dynamics_longitudinal_rotational_damper(y, m, x_r, l, g, k, c, the
 
     Examples
     --------
-    >>> rod_hinge_dynamics_longitudinal_rotational_damper([0.0, 1.0], 1.0, 1.0, 1.0, 0.0, 2.0, 3.0, 0.0)
+    >>> f = rod_hinge_dynamics_longitudinal_rotational_damper
+    >>> f([0.0, 1.0], 1.0, 1.0, 1.0, 0.0, 2.0, 3.0, 0.0)
     array([ 1., -9.])
     """
     theta, theta_dot = y

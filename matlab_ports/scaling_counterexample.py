@@ -1,4 +1,4 @@
-"""Vertical spring-mass-damper under scaling: port of ``scaling_counterexample.m``.
+"""Vertical spring-mass-damper under scaling: port of ``example_code/scaling_counterexample.m``.
 
 The linear example of the white paper's Section 5.  A mass ``m`` hangs on a spring (constant
 ``k``, rest length ``y_rest``) and damper (``c``) under gravity ``g``; with the state
@@ -6,19 +6,26 @@ The linear example of the white paper's Section 5.  A mass ``m`` hangs on a spri
 
     x_dot = A x + C,   A = [[0, 1], [-k/m, -c/m]],   C = [0, -g + k y_rest / m]
 
-integrated with forward Euler, ``x_i = x_{i-1} + (A x_{i-1} + C) dt``, ``dt = 0.01`` on
+integrated with forward Euler, ``x_i = (A x_{i-1} + C) dt + x_{i-1}``, ``dt = 0.01`` on
 ``t = 0:dt:4``, from ``y(0) = y0``, ``y_dot(0) = 0``.  Three runs:
 
 1. "Original, unscaled simulation": ``m=2, y0=1, y_rest=1, g=9.81, k=150, c=10``.
 2. "With only gravity scaled": ``g`` times 10 -- a different response.
 3. "With both gravity and initial length constants scaled": ``y0`` and ``y_rest`` also times
-   10, and the result divided by 10.  By superposition (the system is linear and ``g``, ``y0``,
-   ``y_rest`` enter only as inputs) this equals run 1: here the naive "scale gravity with
-   length" rule works, for a reason that has nothing to do with similitude.
+   ``g_scaled / g`` (10), and the result divided by that factor.  By superposition (the
+   system is linear and ``g``, ``y0``, ``y_rest`` enter only as inputs) this equals run 1 up
+   to rounding: here the naive "scale gravity with length" rule works, for a reason that has
+   nothing to do with similitude.
 
-Each plot shows ``y`` (default colour) and ``y_dot`` (red) against time.  The axis labels and
-legend are additions of this port (the MATLAB script's plots are only specified by their titles
-and the red ``y_dot``).
+The update is transcribed element by element from MATLAB's ``(A * y(:, i-1) + C) * dt +
+y(:, i-1)``: row ``j`` is ``(A(j,1) y + A(j,2) y_dot + C(j)) dt + x_j``, in that order.  (A
+matrix product, ``A @ x``, may sum in another order and differs in the last bits, by up to
+1.8e-15 here.)
+
+Each plot shows ``y`` (default colour) and ``y_dot`` (red) against time, with the MATLAB
+program's title and axis labels ("time, sec", "Vertical height of particle, meters"; the
+label names only ``y``).  The legend is the port's one addition.  The MATLAB file also keeps a
+commented-out rest length, ``%y_rest = 0.50;``, which the port leaves out as the program does.
 """
 
 from __future__ import annotations
@@ -32,7 +39,7 @@ try:
 except ImportError:  # run as a script: python matlab_ports/scaling_counterexample.py
     from _matlab import colon, write_figures_main
 
-__all__ = ["PARAMS", "TITLES", "euler", "main", "plot_runs", "simulate"]
+__all__ = ["PARAMS", "TITLES", "XLABEL", "YLABEL", "euler", "main", "plot_runs", "simulate"]
 
 #: parameters of the original, unscaled run
 PARAMS = {"m": 2.0, "y0": 1.0, "y_rest": 1.0, "g": 9.81, "k": 150.0, "c": 10.0}
@@ -40,6 +47,8 @@ DT = 0.01
 T_END = 4.0
 SCALE = 10.0
 
+XLABEL = "time, sec"
+YLABEL = "Vertical height of particle, meters"  # as in the MATLAB program, for all three plots
 TITLES = {
     "original": "Original, unscaled simulation",
     "gravity": "With only gravity scaled",
@@ -48,7 +57,7 @@ TITLES = {
 
 
 def euler(params, t, dt=DT):
-    """Forward Euler on ``x_dot = A x + C`` from ``x = [y0, 0]``.
+    """Forward Euler on ``x_dot = A x + C`` from ``x = [y0, 0]``, as the MATLAB loop.
 
     Parameters
     ----------
@@ -70,16 +79,22 @@ def euler(params, t, dt=DT):
 
     >>> p = dict(PARAMS, y0=1.0 - 2.0 * 9.81 / 150.0)
     >>> x = euler(p, np.zeros(4))
-    >>> bool(np.allclose(x[0], p["y0"], rtol=0, atol=1e-15)), bool(np.allclose(x[1], 0, atol=1e-13))
-    (True, True)
+    >>> bool(np.allclose(x[0], p["y0"], rtol=0, atol=1e-15))
+    True
+    >>> bool(np.allclose(x[1], 0, atol=1e-13))
+    True
     """
     m, k, c, g = params["m"], params["k"], params["c"], params["g"]
-    A = np.array([[0.0, 1.0], [-k / m, -c / m]])
-    C = np.array([0.0, -g + k * params["y_rest"] / m])
+    # A = [0, 1; -k/m, -c/m] and C = [0; -g + k*y_rest/m], entry by entry as MATLAB forms them
+    a11, a12, a21, a22 = 0.0, 1.0, -k / m, -c / m
+    c1, c2 = 0.0, -g + k * params["y_rest"] / m
+    y, y_dot = float(params["y0"]), 0.0
     x = np.empty((2, len(t)))
-    x[:, 0] = (params["y0"], 0.0)
+    x[:, 0] = (y, y_dot)
     for i in range(1, len(t)):
-        x[:, i] = x[:, i - 1] + (A @ x[:, i - 1] + C) * dt
+        # y(:, i) = (A * y(:, i-1) + C) * dt + y(:, i-1), one row at a time
+        y, y_dot = (a11 * y + a12 * y_dot + c1) * dt + y, (a21 * y + a22 * y_dot + c2) * dt + y_dot
+        x[:, i] = (y, y_dot)
     return x
 
 
@@ -98,7 +113,8 @@ def simulate():
     >>> t, x = runs["original"]
     >>> len(t), float(t[-1])
     (401, 4.0)
-    >>> bool(np.allclose(runs["gravity_length"][1], x, rtol=1e-12, atol=1e-12))  # superposition
+    >>> # superposition: equal up to rounding
+    >>> bool(np.allclose(runs["gravity_length"][1], x, rtol=1e-12, atol=1e-12))
     True
     >>> bool(np.allclose(runs["gravity"][1], x))
     False
@@ -106,11 +122,13 @@ def simulate():
     t = colon(0.0, DT, T_END)
     p = dict(PARAMS)
     runs = {"original": (t, euler(p, t))}
-    p["g"] = SCALE * p["g"]
+    g_scaled = SCALE * p["g"]
+    length_scaling_factor = g_scaled / p["g"]  # as the MATLAB program computes it (10.0)
+    p["g"] = g_scaled
     runs["gravity"] = (t, euler(p, t))
-    p["y0"] = SCALE * p["y0"]
-    p["y_rest"] = SCALE * p["y_rest"]
-    runs["gravity_length"] = (t, euler(p, t) / SCALE)
+    p["y0"] = length_scaling_factor * p["y0"]
+    p["y_rest"] = length_scaling_factor * p["y_rest"]
+    runs["gravity_length"] = (t, euler(p, t) / length_scaling_factor)
     return runs
 
 
@@ -141,8 +159,9 @@ def plot_runs(runs):
         ax.plot(t, x[0], label="y")
         ax.plot(t, x[1], "r", label="y dot")
         ax.set_title(TITLES[name])
-        ax.set_xlabel("time, sec")  # labels and legend: additions of the port
-        ax.legend()
+        ax.set_xlabel(XLABEL)
+        ax.set_ylabel(YLABEL)
+        ax.legend()  # the port's addition: the MATLAB plots have no legend
         figs[name] = fig
     return figs
 

@@ -1,6 +1,6 @@
-"""Hinged rod under successive scalings: port of ``scaling_counterexample_nonlinear.m``.
+"""Hinged rod under successive scalings: port of ``example_code/scaling_counterexample_nonlinear.m``.
 
-Reproduces the white paper's Figures 1-5.  The rod of :mod:`rod_hinge_dynamics` (rotational
+Reproduces the white paper's Figures 1-5.  The rod of :mod:`matlab_ports.rod_hinge_dynamics` (rotational
 spring and damper) is simulated with forward Euler, ``y_i = y_{i-1} + f(y_{i-1}) dt``,
 ``dt = 1e-4`` on ``t = 0:dt:10`` (100001 samples), and the angle ``theta`` is plotted.  Parameter
 changes accumulate on one parameter set, with scale factor ``s = 2``:
@@ -33,6 +33,16 @@ QUIRKS of the original, kept:
 * Figure 1's y label says "Radial position of rod", the others "Angular position of rod".
 * Figure 3 scales length by ``1/s`` (keeping ``g m l/k`` invariant), while the paper's text says
   "gravity multiplied by s, length multiplied by s"; the reference data confirm ``l/s``.
+
+The MATLAB program keeps alternatives commented out, which the port (like the program) does
+not run: the rate ``theta_dot`` plotted in red (``%plot(t, y(2,:), 'r')``, in every figure);
+for Figure 3 a length ``s l`` or ``sqrt(s) l`` instead of ``l/s``, a spring rest length
+``s x_r``, a damping ``sqrt(s) c`` or ``c/s``, a spring ``s k`` and a mass ``m/sqrt(s)`` or
+``m/s`` (the same ``k`` and ``m`` lines again before Figure 4, whose active line is
+``c/s``, with ``sqrt(s) c`` commented out); and for Figure 5 a time axis ``t/s`` instead of
+``t s``, a rescaling ``t = t * s`` and a shortened axis ``floor(t_final / sqrt(s))``.  They
+record scalings the author tried on the way to the paper's; only the active lines made the
+figures.
 """
 
 from __future__ import annotations

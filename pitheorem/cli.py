@@ -378,6 +378,10 @@ def _cmd_search(args) -> int:
             role = "scale" if name in result.scale else "fixed" if name in result.fixed else "free"
             cells = " & ".join(f"${power_latex(p[i])}$" for p in points)
             print(f"${_latex_name(name)}$ & {role} & {cells} \\\\")
+        print(r"\hline")  # the change of base units behind each scaling
+        for b in model.system.base_dimensions:
+            cells = " & ".join(f"${power_latex(sc.unit_change[b])}$" for sc in result.scalings)
+            print(f"$[\\mathrm{{{b}}}]$ & base unit & {cells} \\\\")
         print(r"\end{tabular}")
         return code
     print(result.explanation())

@@ -6,7 +6,7 @@ from fractions import Fraction
 
 from .display import power_text
 
-__all__ = ["plot_search"]
+__all__ = ["plot_search", "plot_similarity"]
 
 
 def plot_search(result, ax=None):
@@ -59,4 +59,75 @@ def plot_search(result, ax=None):
     else:
         title = f"{request}: impossible, {result.certificate.expr} would change"
     ax.set_title(title, fontsize=10)
+    return fig
+
+
+def _unit_label(name, report, units) -> str:
+    """``name [unit]``: the unit given, else the dimension from the scaling's system."""
+    if units and name in units:
+        return f"{name} [{units[name]}]"
+    system = getattr(report.scaling, "system", None)
+    if system is not None and name in system.variables:
+        return f"{name} [{system.dimension(name)}]"
+    return f"{name}, original units"
+
+
+def plot_similarity(report, states=None, units=None):
+    """Figure comparing the original run with the scaled run mapped back.
+
+    Top axes: each state of the original run (solid) and of the scaled run
+    mapped back to original units (dashed), against original time. Bottom
+    axes: the absolute difference of each state. Every axis names its unit:
+    the one given in `units`, else the dimension of the variable (``[1]``
+    for a dimensionless one, such as an angle in radians).
+
+    Parameters
+    ----------
+    report : SimilarityReport
+    states : sequence of str, optional
+        States to show (default all).
+    units : mapping of str to str, optional
+        Unit to print for a state or the time, e.g. ``{"theta": "rad",
+        "omega": "rad/s", "t": "s"}``.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A pyplot figure, which Jupyter's inline backend shows once.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> rod = pt.models.hinged_rod()
+    >>> sc = pt.search(rod.system, scale={"g": 1}).scalings[0]
+    >>> rep = pt.verify_similarity(rod, sc, s=2, t_final=0.2)
+    >>> fig = pt.plotting.plot_similarity(rep, units={"theta": "rad", "t": "s"})
+    >>> fig.axes[0].get_ylabel(), fig.axes[1].get_xlabel()
+    ('theta [rad], omega [T^-1]', 't [s]')
+    """
+    import matplotlib.pyplot as plt  # a pyplot figure, so Jupyter's inline backend shows it
+    import numpy as np
+
+    from .errors import UnknownVariableError
+
+    names = report.original.states if states is None else tuple(states)
+    for n in names:
+        if n not in report.original.states:
+            raise UnknownVariableError(str(n), report.original.states, "plot states")
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(8, 6), layout="constrained")
+    t = report.original.t
+    for n in names:
+        line = top.plot(t, report.original[n], label=f"{n} (original)")[0]
+        top.plot(t, report.mapped[n], "--", color=line.get_color(), label=f"{n} (scaled, mapped back)")
+        bottom.plot(t, np.abs(report.mapped[n] - report.original[n]), color=line.get_color(),
+                    label=f"|{n} difference|")
+    quantities = ", ".join(_unit_label(n, report, units) for n in names)
+    top.set_ylabel(quantities)
+    top.legend(loc="best", fontsize="small")
+    verdict = "similar" if report.passed else "NOT similar"
+    top.set_title(f"s = {report.s:g}: {verdict} (max deviation {report.max_deviation:.2g})")
+    bottom.axhline(report.tol, color="0.5", linestyle=":", label=f"tol = {report.tol:g}")
+    bottom.set_xlabel(_unit_label(report.original.time, report, units))
+    bottom.set_ylabel(f"|difference|: {quantities}")
+    bottom.legend(loc="best", fontsize="small")
     return fig

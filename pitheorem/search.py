@@ -273,8 +273,22 @@ class SearchResult:
             "of units (and hence no similarity scaling) can do it."
         )
 
+    def _base_unit_rows(self) -> list[tuple[str, list[str]]]:
+        """``("[M]", powers...)`` for each base dimension: the change of units behind each scaling.
+
+        A symmetry of particular equations (``within=``) that is no change of units has none:
+        its cells read "none".
+        """
+        changes = [sc.unit_change if sc.units is not None else None for sc in self.iter_scalings()]
+        return [(f"[{b}]", [power_text(u[b]) if u is not None else "none" for u in changes])
+                for b in self.system.base_dimensions]
+
     def table(self) -> str:
         """Plain-text table: variables down, minimal solutions across.
+
+        The last rows, ``[M]``, ``[L]``, ... with the role ``base``, give the
+        change of base units behind each scaling (`Scaling.unit_change`):
+        the power of ``s`` by which every reading in that unit is multiplied.
 
         Examples
         --------
@@ -286,11 +300,15 @@ class SearchResult:
         l         free   s
         g         scale  s
         t         fixed  -
+        [M]       base   -
+        [L]       base   s
+        [T]       base   -
         """
         rows = [["variable", "role", *(f"#{k + 1}" for k in range(self.count))]]
         for i, n in enumerate(self.system.variables):
             role = "scale" if n in self.scale else "fixed" if n in self.fixed else "free"
             rows.append([n, role, *(power_text(p[i]) for p in self._vectors())])
+        rows += [[label, "base", *cells] for label, cells in self._base_unit_rows()]
         widths = [max(len(r[c]) for r in rows) for c in range(len(rows[0]))]
         return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in rows)
 
@@ -311,6 +329,12 @@ class SearchResult:
             role = "scale" if n in self.scale else "fixed" if n in self.fixed else "free"
             cells = "".join(f"<td {cell}>{power_text(p[i])}</td>" for p in self._vectors())
             body.append(f'<tr><th {cell}>{n}</th><td {cell}><em>{role}</em></td>{cells}</tr>')
+        # the change of base units behind each column, under a rule
+        for k, (label, powers) in enumerate(self._base_unit_rows()):
+            rule = ' style="border-top: 1px solid #999"' if k == 0 else ""
+            cells = "".join(f"<td {cell}>{p}</td>" for p in powers)
+            body.append(f'<tr class="base-unit"{rule}><th {cell}>{label}</th><td {cell}><em>base unit</em></td>'
+                        f"{cells}</tr>")
         notes = "".join(f"<p>{note}</p>" for note in self.notes)
         table = (
             f'<table style="border-collapse: collapse"><tr><th {cell}>variable</th><th {cell}>role</th>{head}</tr>'
@@ -397,6 +421,9 @@ def search(
     t         fixed  -      -    -
     F         free   1/s    -    s
     tau       free   -      s    s^2
+    [M]       base   1/s^2  1/s  -
+    [L]       base   s      s    s
+    [T]       base   -      -    -
 
     Holding the paper's repeaters m and k_theta as well makes it impossible,
     and the certificate says why:

@@ -459,52 +459,39 @@ class SimilarityReport:
             f"{kind}, method {self.method}; per state {per}"
         )
 
-    def plot(self, states=None):
+    def plot(self, states=None, units=None):
         """Figure comparing the original and the mapped-back scaled run.
 
         Top axes: each state of the original run (solid) and of the scaled
         run mapped back to original units (dashed), against original time.
-        Bottom axes: the absolute difference of each state.
+        Bottom axes: the absolute difference of each state. See
+        :func:`pitheorem.plotting.plot_similarity`.
 
         Parameters
         ----------
         states : sequence of str, optional
-            States to show (default all).
+            The states drawn; all of them by default.
+        units : mapping of str to str, optional
+            Axis units by name, such as ``{"theta": "rad", "t": "s"}``; a
+            name without one shows its dimension.
 
         Returns
         -------
         matplotlib.figure.Figure
-            Not registered with pyplot.
+            Made with pyplot: Jupyter shows it once, at the end of the cell.
 
         Examples
         --------
         >>> import pitheorem as pt
-        >>> rep = pt.verify_similarity(pt.models.hinged_rod(), {"g": 1}, s=2, t_final=0.2, check=False)
-        >>> fig = rep.plot(states=["theta"])
+        >>> rep = pt.verify_similarity(pt.models.hinged_rod(), {"g": 1}, s=2, t_final=0.2,
+        ...                            check=False)
+        >>> fig = rep.plot(states=["theta"], units={"theta": "rad", "t": "s"})
         >>> len(fig.axes), fig.axes[1].get_ylabel()
-        (2, '|difference|')
+        (2, '|difference|: theta [rad]')
         """
-        import matplotlib.pyplot as plt  # a pyplot figure, so Jupyter's inline backend shows it
+        from .plotting import plot_similarity
 
-        names = self.original.states if states is None else tuple(states)
-        for n in names:
-            if n not in self.original.states:
-                raise UnknownVariableError(str(n), self.original.states, "plot states")
-        fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(8, 6), layout="constrained")
-        t = self.original.t
-        for n in names:
-            line = top.plot(t, self.original[n], label=f"{n} (original)")[0]
-            top.plot(t, self.mapped[n], "--", color=line.get_color(), label=f"{n} (scaled, mapped back)")
-            bottom.plot(t, np.abs(self.mapped[n] - self.original[n]), color=line.get_color(), label=f"|{n} difference|")
-        top.set_ylabel("state, original units")
-        top.legend(loc="best", fontsize="small")
-        verdict = "similar" if self.passed else "NOT similar"
-        top.set_title(f"s = {self.s:g}: {verdict} (max deviation {self.max_deviation:.2g})")
-        bottom.axhline(self.tol, color="0.5", linestyle=":", label=f"tol = {self.tol:g}")
-        bottom.set_xlabel(f"{self.original.time}, original units")
-        bottom.set_ylabel("|difference|")
-        bottom.legend(loc="best", fontsize="small")
-        return fig
+        return plot_similarity(self, states=states, units=units)
 
 
 def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, method="solve_ivp", dt=None,

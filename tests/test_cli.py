@@ -165,6 +165,18 @@ def test_search_latex_table(capsys):
     code, out, _ = run(capsys, "search", ROD, "--scale", "g=1", "--format", "latex")
     assert code == EXIT_OK
     assert r"$m$ & free & $s^{-2}$ & $s^{-1}$ & $1$ \\" in out
+    # the change of base units behind each scaling, as in the text table
+    assert r"$[\mathrm{M}]$ & base unit & $s^{-2}$ & $s^{-1}$ & $1$ \\" in out
+    assert r"$[\mathrm{L}]$ & base unit & $s$ & $s$ & $s$ \\" in out
+    assert r"$[\mathrm{T}]$ & base unit & $1$ & $1$ & $1$ \\" in out
+
+
+def test_search_text_table_shows_the_base_unit_change(capsys):
+    code, out, _ = run(capsys, "search", ROD, "--scale", "g=1")
+    assert code == EXIT_OK
+    rows = {line.split()[0]: line.split()[1:] for line in out.splitlines() if line.startswith("[")}
+    assert rows == {"[M]": ["base", "1/s^2", "1/s", "-"], "[L]": ["base", "s", "s", "s"],
+                    "[T]": ["base", "-", "-", "-"]}
 
 
 def test_json_is_deterministic(capsys):

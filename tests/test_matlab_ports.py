@@ -38,7 +38,6 @@ FIG_FILES = {
     "figure4": "l_g_c_angular.fig",
     "figure5": "l_g_c_t_angular.fig",
 }
-TOL = 1e-12
 NONLINEAR = scaling_counterexample_nonlinear
 have_figs = all((FIG_DIR / name).is_file() for name in FIG_FILES.values())
 
@@ -62,8 +61,9 @@ def test_curves_match_sampled_reference(figure_data, samples, name):
     idx = np.array(ref["indices"])
     t, theta = figure_data[name]
     assert len(t) == len(theta) == ref["n_points"] == 100001
-    np.testing.assert_allclose(t[idx], [float(v) for v in ref["x"]], rtol=0, atol=TOL)
-    np.testing.assert_allclose(theta[idx], [float(v) for v in ref["y"]], rtol=0, atol=TOL)
+    # bit for bit: the samples are repr() strings of the MATLAB doubles, so float() restores them
+    np.testing.assert_array_equal(t[idx], [float(v) for v in ref["x"]])
+    np.testing.assert_array_equal(theta[idx], [float(v) for v in ref["y"]])
 
 
 def test_sampled_reference_has_provenance(samples):
@@ -81,8 +81,8 @@ def test_curves_match_full_fig_data(figure_data, name):
     x_ref, y_ref = contents.lines[0]
     t, theta = figure_data[name]
     assert t.shape == theta.shape == x_ref.shape == y_ref.shape == (100001,)
-    np.testing.assert_allclose(t, x_ref, rtol=0, atol=TOL)
-    np.testing.assert_allclose(theta, y_ref, rtol=0, atol=TOL)
+    np.testing.assert_array_equal(t, x_ref)  # bit for bit, all 100001 points
+    np.testing.assert_array_equal(theta, y_ref)
     # generated figure reproduces the .fig's title, labels and axis limits
     ax = NONLINEAR.plot_figures({name: figure_data[name]})[name].axes[0]
     assert (ax.get_title(), ax.get_xlabel(), ax.get_ylabel()) == (
@@ -151,6 +151,29 @@ def test_sampled_reference_labels_match_spec(samples, name):
     assert ref["ylim"] == [0.5, 1.5]
 
 
+def test_linear_and_projectile_axis_labels_are_matlabs():
+    """The labels that the MATLAB programs set (example_code/scaling_counterexample.m and
+    backup/scaling_counterexample_backup.m), written out here from those files."""
+    lin = scaling_counterexample.plot_runs(scaling_counterexample.simulate())
+    for fig in lin.values():
+        ax = fig.axes[0]
+        assert (ax.get_xlabel(), ax.get_ylabel()) == ("time, sec", "Vertical height of particle, meters")
+    proj = scaling_counterexample_projectile.plot_runs(scaling_counterexample_projectile.simulate())
+    plain = ("Horizontal length, meters", "Vertical length, meters")
+    scaled = (
+        "Horizontal length, units of meters * scaling const",
+        "Vertical length, units of meters * scaling const",
+    )
+    got = {name: (f.axes[0].get_xlabel(), f.axes[0].get_ylabel()) for name, f in proj.items()}
+    assert got == {"original": plain, "gravity": plain, "gravity_length": scaled}
+
+
+def test_projectile_port_names_its_matlab_file():
+    doc = scaling_counterexample_projectile.__doc__
+    assert "backup/scaling_counterexample_backup.m" in doc
+    assert "scaling_counterexample_projectile.m" not in doc  # no such MATLAB file exists
+
+
 def test_linear_and_projectile_titles():
     lin = scaling_counterexample.plot_runs(scaling_counterexample.simulate())
     assert [f.axes[0].get_title() for f in lin.values()] == [
@@ -207,6 +230,33 @@ def test_linear_superposition():
     np.testing.assert_allclose(x3, x1, rtol=0, atol=1e-12)  # scaled and divided back: the same
     assert np.max(np.abs(x2 - x1)) > 0.5  # gravity alone: different
     assert (x1[0, 0], x1[1, 0]) == (1.0, 0.0)
+
+
+def _matlab_linear_loop(m, y0, y_rest, g, k, c, n=401, dt=0.01):
+    """The MATLAB loop y(:, i) = (A * y(:, i-1) + C) * dt + y(:, i-1), written out row by row
+    with plain floats, independently of the port."""
+    A = [[0.0, 1.0], [-k / m, -c / m]]
+    C = [0.0, -g + k * y_rest / m]
+    rows = [(float(y0), 0.0)]
+    for _ in range(1, n):
+        y = rows[-1]
+        rows.append(tuple((A[j][0] * y[0] + A[j][1] * y[1] + C[j]) * dt + y[j] for j in range(2)))
+    return np.array(rows).T
+
+
+@pytest.mark.parametrize("g_factor", [1.0, 10.0])
+def test_linear_port_is_the_matlab_update_bit_for_bit(g_factor):
+    p = dict(scaling_counterexample.PARAMS, g=g_factor * scaling_counterexample.PARAMS["g"])
+    t = np.zeros(401)
+    np.testing.assert_array_equal(scaling_counterexample.euler(p, t), _matlab_linear_loop(**p))
+
+
+def test_linear_third_run_is_scaled_by_the_matlab_factor():
+    runs = scaling_counterexample.simulate()
+    p = dict(scaling_counterexample.PARAMS)
+    factor = (10 * p["g"]) / p["g"]  # length_scaling_factor = g_scaled/g
+    want = _matlab_linear_loop(**dict(p, g=10 * p["g"], y0=factor * p["y0"], y_rest=factor * p["y_rest"]))
+    np.testing.assert_array_equal(runs["gravity_length"][1], want / factor)
 
 
 def test_linear_settles_at_static_equilibrium():

@@ -220,3 +220,44 @@ def test_bad_scaling_use(rod):
         sc.map_back([0, 1], [[1, 2, 3]], 2, time="t", states=["1"])
     with pytest.raises(pt.InvalidRequestError, match="System"):
         pt.search({"g": "L"}, scale={"g": 1})
+
+
+def _power(cell: str) -> Fraction:
+    """Read a table cell ('-', 's', '1/s^2', 's^(1/2)', ...) back as an exponent of s."""
+    if cell == "-":
+        return Fraction(0)
+    sign, body = (-1, cell[2:]) if cell.startswith("1/") else (1, cell)
+    exp = body.partition("^")[2].strip("()") or "1"
+    return sign * Fraction(exp)
+
+
+@pytest.mark.parametrize(
+    ("model", "request_"),
+    [("rod", {"scale": {"g": 1}}), ("superball", {"scale": {"l": 1}, "fixed": ("t", "m")})],
+)
+def test_table_base_unit_rows_explain_every_column(rod, model, request_):
+    system = rod if model == "rod" else pt.models.superball_parameters()
+    res = pt.search(system, **request_)
+    rows = [line.split() for line in res.table().splitlines()[1:]]
+    base = {r[0][1:-1]: [_power(c) for c in r[2:]] for r in rows if r[1] == "base"}
+    variables = {r[0]: [_power(c) for c in r[2:]] for r in rows if r[1] != "base"}
+    assert sorted(base) == sorted(system.base_dimensions)
+    assert list(variables) == list(system.variables)
+    # each variable's power is its dimension applied to the column's change of base units
+    for name, powers in variables.items():
+        dim = system.dimension(name)
+        for k, power in enumerate(powers):
+            assert power == sum(dim.exponent(b) * base[b][k] for b in base)
+    html = res._repr_html_()
+    assert html.count('<tr class="base-unit"') == len(system.base_dimensions)
+
+
+def test_table_of_symmetries_beyond_units_says_they_have_no_unit_change():
+    proj = pt.models.projectile()
+    sym = pt.scaling_symmetries(pt.models.model_equations(proj), proj.system)
+    res = pt.search(proj.system, scale={"x": 1}, fixed=("t", "g"), within=sym)
+    rows = [line.split() for line in res.table().splitlines()]
+    base = [r for r in rows if r[1] == "base"]
+    assert [r[0] for r in base] == [f"[{b}]" for b in proj.system.base_dimensions]
+    assert all(r[2:] == ["none"] for r in base)
+    assert res._repr_html_().count(">none</td>") == len(proj.system.base_dimensions)

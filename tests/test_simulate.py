@@ -417,3 +417,16 @@ def test_state_exponent_must_be_determined():
     unchecked = pt.verify_similarity(model, {"t": 1, "r": -1}, s=2, t_final=1.0, check=False)
     assert unchecked.exponents["x"] == 0  # applied as given
     assert not unchecked.is_similarity
+
+
+def test_report_plot_names_a_unit_on_every_axis(hinged):
+    sc = pt.search(hinged.system, scale={"g": 1}).scalings[0]
+    rep = pt.verify_similarity(hinged, sc, s=2, t_final=0.5)
+    top, bottom = rep.plot().axes
+    # without units given, each axis shows the dimension of what it plots
+    assert top.get_ylabel() == "theta [1], omega [T^-1]"
+    assert bottom.get_xlabel() == "t [T]"
+    assert bottom.get_ylabel() == "|difference|: theta [1], omega [T^-1]"
+    top, bottom = rep.plot(units={"theta": "rad", "omega": "rad/s", "t": "s"}).axes
+    assert top.get_ylabel() == "theta [rad], omega [rad/s]"
+    assert bottom.get_xlabel() == "t [s]"

@@ -1,0 +1,106 @@
+"""Tests of docs/check_pages.py, the CI check of what readers see, on small hand-written pages."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import pytest
+
+_spec = importlib.util.spec_from_file_location(
+    "check_pages", Path(__file__).resolve().parent.parent / "docs" / "check_pages.py"
+)
+check_pages = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(check_pages)
+
+PNG_A = b"\x89PNG first figure"
+PNG_B = b"\x89PNG second figure"
+
+
+def _cell(*images: str, text: str = "") -> str:
+    imgs = "".join(f'<img alt="" src="_images/{name}" />' for name in images)
+    pre = f'<div class="output"><pre>{text}</pre></div>' if text else ""
+    return (
+        '<div class="cell docutils container"><div class="cell_input"><pre>x</pre></div>'
+        f'<div class="cell_output docutils container">{imgs}{pre}</div></div>'
+    )
+
+
+@pytest.fixture
+def site(tmp_path):
+    (tmp_path / "_images").mkdir()
+    (tmp_path / "_images" / "a.png").write_bytes(PNG_A)
+    (tmp_path / "_images" / "b.png").write_bytes(PNG_B)
+    (tmp_path / "_images" / "a_copy.png").write_bytes(PNG_A)
+    return tmp_path
+
+
+def _problems(site, body: str) -> list[str]:
+    page = site / "page.html"
+    page.write_text(f"<html><body>{body}</body></html>", encoding="utf-8")
+    return check_pages.check_page(page, site)
+
+
+def test_two_figures_in_one_cell_pass(site):
+    assert _problems(site, _cell("a.png", "b.png")) == []
+
+
+def test_same_figure_twice_in_one_cell_fails(site):
+    found = _problems(site, _cell("a.png", "a.png"))
+    assert len(found) == 1
+    assert "same figure twice" in found[0]
+
+
+def test_same_figure_under_two_names_in_one_cell_fails(site):
+    # identical bytes are the same figure, whatever the file is called
+    assert any("same figure twice" in p for p in _problems(site, _cell("a.png", "a_copy.png")))
+
+
+def test_same_figure_in_two_cells_passes(site):
+    # two cells may show the same picture on purpose; only a repeat within one cell is an accident
+    assert _problems(site, _cell("a.png") + _cell("a.png")) == []
+
+
+def test_line_at_the_limit_passes_and_one_longer_fails(site):
+    limit = check_pages.MAX_LINE
+    assert _problems(site, _cell(text="x" * limit + "\nshort")) == []
+    found = _problems(site, _cell(text="short\n" + "y" * (limit + 1)))
+    assert len(found) == 1
+    assert f"{limit + 1} characters" in found[0]
+
+
+def test_long_line_in_a_code_block_outside_cells_fails(site):
+    body = f'<div class="highlight"><pre>{"z" * (check_pages.MAX_LINE + 5)}</pre></div>'
+    assert len(_problems(site, body)) == 1
+
+
+def test_entities_count_as_one_character(site):
+    # a line of MAX_LINE characters written with HTML entities is still MAX_LINE characters
+    assert _problems(site, _cell(text="&lt;" * check_pages.MAX_LINE)) == []
+
+
+def test_main_reports_and_fails(site, capsys):
+    (site / "page.html").write_text(_cell("b.png", "b.png"), encoding="utf-8")
+    assert check_pages.main([str(site)]) == 1
+    assert "same figure twice" in capsys.readouterr().out
+
+
+def test_docstring_examples_are_exempt_from_the_line_limit(site):
+    # docstring examples wrap in the page (custom.css), so a long line there is no problem
+    long = "w" * (check_pages.MAX_LINE + 10)
+    body = f'<div class="doctest highlight-default"><div class="highlight"><pre>{long}</pre></div></div>'
+    assert _problems(site, body) == []
+    # but a code block after it is checked again
+    assert len(_problems(site, body + f'<div class="highlight"><pre>{long}</pre></div>')) == 1
+
+
+def _equation(number: int) -> str:
+    return f'<div class="eq"><span class="eqno">({number})<a class="headerlink" href="#e">#</a></span>x</div>'
+
+
+def test_equation_numbers_must_start_at_one_on_each_page(site):
+    assert _problems(site, _equation(1) + _equation(2)) == []
+    found = _problems(site, _equation(14) + _equation(15))  # numbered across the site
+    assert len(found) == 1
+    assert "(14), (15)" in found[0]
+    assert len(_problems(site, _equation(1) + _equation(3))) == 1
