@@ -63,17 +63,19 @@ def test_apply_urdf_writes_settings_or_names_the_mixed_damping(tmp_path, capsys)
 def test_scene_options_make_a_urdf_scalable_and_reach_its_settings(tmp_path, capsys):
     urdf = str(DATA / "slider_arm.urdf")
     out = tmp_path / "a.urdf"
-    scene = ["--scene", "damping=0", "split_impulse=false", "fixed_base=true", "base_position=0,0,0.5", "g=9.8"]
+    scene = ["--scene", "damping=0", "split_impulse=false", "ground=true", "base_position=0,0,0.5", "g=9.8"]
     assert main(["apply", urdf, "--scale", "g=1", "--s", "2", "--output", str(out), *scene]) == 0
     settings = json.loads(Path(f"{out}.settings.json").read_text())
     assert settings["gravity"][2] == pytest.approx(-2 * 9.8, rel=1e-15)
     assert settings["setPhysicsEngineParameter"]["useSplitImpulse"] == 0
-    # the saved file, set up in the scaled scene (gravity and base position times 2), runs like the original
+    assert settings["loadURDF"]["basePosition"] == [0, 0, 1.0]
+    # the saved file reloads with its settings (gravity, base position, contact constants times 2) and runs
+    # like the original, landing on the ground included
     import pitheorem as pt
 
-    options = {"damping": 0.0, "split_impulse": False, "fixed_base": True}
-    model = engines.load(urdf, **options, base_position=(0, 0, 0.5), g=9.8)
-    again = engines.load(out, **options, base_position=(0, 0, 1.0), g=19.6)
+    model = engines.load(urdf, damping=0.0, split_impulse=False, ground=True, base_position=(0, 0, 0.5), g=9.8)
+    again = engines.load(out)
+    assert again.parameter("g").value[0] == pytest.approx(19.6, rel=1e-15)
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     assert engines.verify(model, sc, 2, duration=0.3, scaled=again).similar
     capsys.readouterr()

@@ -118,12 +118,13 @@ def urdf_check(name, tmp_path, s, controls):
     sc = res.scalings[0]
     out = model.scaled(sc, s).save(tmp_path / "scaled.urdf")
     assert Path(f"{out}.settings.json").is_file()
-    again = engines.load(out, base_position=(0, 0, 1), ground=True, damping=0.0, split_impulse=False)
+    again = engines.load(out)  # the saved settings beside the file set up the scaled scene
     masses = [p for p in model.parameters if p.name.endswith("_mass")]
     for p in masses:  # the saved file holds the scaled masses
         assert again.parameter(p.name).value[0] == pytest.approx(p.value[0] * float(s) ** sc.exponent_of("M"))
     nj = len(model.backend.control_dimensions())
-    return engines.verify(model, sc, s, duration=1.0, controls=smooth(nj) if controls and nj else None)
+    return engines.verify(model, sc, s, duration=1.0, controls=smooth(nj) if controls and nj else None,
+                          scaled=again)
 
 
 @pytest.mark.parametrize("name", URDFS)

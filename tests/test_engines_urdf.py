@@ -84,7 +84,7 @@ def test_scaled_run_is_similar_and_a_broken_setting_is_not(tmp_path):
     scaled_damping = 0.3 * 10.0 ** float(sc.exponent_of("M T^-1"))
     assert f'damping="{scaled_damping!r}"' in text
     out.write_text(text.replace(f'damping="{scaled_damping!r}"', 'damping="0.3"'))
-    broken = engines.load(out, fixed_base=True, damping=0.0, split_impulse=False)
+    broken = engines.load(out)  # with the scaled settings saved beside it
     rep = engines.verify(model, sc, 10, duration=1.0, controls=lambda t: [np.sin(t), 0.1 * np.cos(t)], scaled=broken)
     assert not rep.similar
 
@@ -158,3 +158,27 @@ def test_closed_loop_controller_in_pybullet_is_similar_only_with_its_numbers_sca
     frozen = engines.verify(model, sc, 10, duration=1.0, controller=_pd_controller(model))
     assert not frozen.similar
     assert frozen.max_deviation > 1e-3
+
+
+def test_saved_model_reloads_with_its_settings_and_only_so(tmp_path):
+    model = engines.load(ARM, ground=True, damping=0.0, split_impulse=False, base_position=(0, 0, 0.3))
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    scaled = model.scaled(sc, 10)
+    out = scaled.save(tmp_path / "arm10.urdf")
+    again = engines.load(out)
+    assert again.settings() == scaled.settings()
+    expected = {p.name: p.value for p in scaled.parameters}
+    assert [p.name for p in again.parameters] == list(expected)
+    for p in again.parameters:  # the file's numbers are written as repr, so they read back as they were
+        assert p.value == pytest.approx(expected[p.name], rel=1e-15), p.name
+    assert engines.verify(model, sc, 10, duration=0.5, scaled=again).similar
+    # the settings fix the scene: options beside them are refused, settings=False reads the bare file
+    with pytest.raises(pt.InvalidRequestError, match="fixes the scene"):
+        engines.load(out, ground=True)
+    bare = engines.load(out, settings=False)
+    assert bare.parameter("g").value == (9.81,)
+    Path(f"{out}.settings.json").write_text('{"gravity": [0, 0, -9.81]}')
+    with pytest.raises(engines.EngineModelError, match=r"arm10\.urdf\.settings\.json.*'loadURDF'"):
+        engines.load(out)
+    with pytest.raises(engines.EngineModelError, match="no such settings file"):
+        engines.load(out, settings=tmp_path / "absent.json")

@@ -525,28 +525,40 @@ def _snippet(name: str, settings: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def load_urdf(path, *, base_position=(0.0, 0.0, 0.0), fixed_base: bool = False, ground: bool = False,
-              split_impulse: bool = True, g: float = 9.81, damping: float | None = None) -> EngineModel:
+_SCENE_DEFAULTS = {"base_position": (0.0, 0.0, 0.0), "fixed_base": False, "ground": False, "split_impulse": True,
+                   "g": 9.81, "damping": None}
+
+
+def load_urdf(path, *, settings=None, base_position=None, fixed_base=None, ground=None, split_impulse=None,
+              g=None, damping=None) -> EngineModel:
     """Read a URDF file through PyBullet.
+
+    A file written by :meth:`~pitheorem.engines.EngineModel.save` has its
+    engine settings beside it (``NAME.urdf.settings.json``); they are read
+    with it, so a saved scaled model reloads as it was saved.
 
     Parameters
     ----------
     path : str or Path
-    base_position : sequence of 3 float
-        Where ``loadURDF`` puts the base.
-    fixed_base : bool
-        ``loadURDF(useFixedBase=...)``.
-    ground : bool
-        Add a static ground plane at z = 0.
-    split_impulse : bool
-        Bullet's split impulse (PyBullet's default); its threshold is a
-        length that cannot be set from Python, so scalings of length need
-        ``False``.
-    g : float
-        Gravity magnitude (PyBullet's own default is 0).
+    settings : str, Path or bool, optional
+        The settings file to read: by default ``<path>.settings.json`` if
+        it exists; ``False`` ignores it.  When settings are read they fix
+        the scene, and the scene options below may not be given.
+    base_position : sequence of 3 float, optional
+        Where ``loadURDF`` puts the base (default: the origin).
+    fixed_base : bool, optional
+        ``loadURDF(useFixedBase=...)`` (default False).
+    ground : bool, optional
+        Add a static ground plane at z = 0 (default False).
+    split_impulse : bool, optional
+        Bullet's split impulse (default True, PyBullet's own); its
+        threshold is a length that cannot be set from Python, so scalings
+        of length need ``False``.
+    g : float, optional
+        Gravity magnitude (default 9.81; PyBullet's own default is 0).
     damping : float, optional
-        ``linearDamping`` and ``angularDamping`` of every link (PyBullet's
-        default 0.04 mixes dimensions; 0 makes lengths scalable).
+        ``linearDamping`` and ``angularDamping`` of every link (default:
+        PyBullet's 0.04, which mixes dimensions; 0 makes lengths scalable).
 
     Returns
     -------
@@ -565,8 +577,37 @@ def load_urdf(path, *, base_position=(0.0, 0.0, 0.0), fixed_base: bool = False, 
     >>> model = load_urdf(os.path.join(pybullet_data.getDataPath(), "cartpole.urdf"))
     >>> str(model.parameter("joint_slider_to_cart_velocity").dimension)
     'L T^-1'
+
+    A saved model reloads with its settings:
+
+    >>> import tempfile, pitheorem as pt
+    >>> model = load_urdf(os.path.join(pybullet_data.getDataPath(), "cartpole.urdf"), damping=0.0,
+    ...                   split_impulse=False)
+    >>> sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     again = load_urdf(model.scaled(sc, 10).save(os.path.join(tmp, "cartpole10.urdf")))
+    >>> round(again.parameter("joint_slider_to_cart_velocity").value[0] / model.parameter(
+    ...     "joint_slider_to_cart_velocity").value[0], 12)
+    10.0
     """
     path = Path(path)
+    given = {"base_position": base_position, "fixed_base": fixed_base, "ground": ground,
+             "split_impulse": split_impulse, "g": g, "damping": damping}
+    scene = {name: value for name, value in given.items() if value is not None}  # None: not given
+    saved = Path(f"{path}.settings.json") if settings is None or settings is True else settings
+    if saved is not False and Path(saved).is_file():
+        if scene:
+            from ..errors import InvalidRequestError
+
+            raise InvalidRequestError(f"{saved} fixes the scene of {path.name}; drop the options {sorted(scene)} "
+                                      "or pass settings=False")
+        return _load_saved(path, Path(saved))
+    if saved is not False and settings not in (None, True):
+        raise EngineModelError(str(saved), "", "no such settings file")
+    return _load_scene(path, **{**_SCENE_DEFAULTS, **scene})
+
+
+def _load_scene(path: Path, *, base_position, fixed_base, ground, split_impulse, g, damping) -> EngineModel:
     try:
         tree = ET.parse(path)
     except ET.ParseError as err:
@@ -588,3 +629,41 @@ def load_urdf(path, *, base_position=(0.0, 0.0, 0.0), fixed_base: bool = False, 
         backend._settings["damping"] = {str(index): {name: float(damping) for name, *_ in MIXED_DAMPING}
                                         for index, _ in backend._info["links"]}
     return EngineModel(backend, "pybullet", str(path))
+
+
+def _load_saved(path: Path, saved: Path) -> EngineModel:
+    """The model of a saved URDF with the settings :meth:`UrdfBackend.save` wrote beside it."""
+    try:
+        doc = json.loads(saved.read_text())
+        gravity, load = doc["gravity"], doc["loadURDF"]
+        engine = doc["setPhysicsEngineParameter"]
+        if gravity[0] or gravity[1]:
+            raise EngineModelError(str(saved), "gravity", "pitheorem's URDF models have gravity along -z only")
+        model = _load_scene(path, base_position=tuple(load["basePosition"]), fixed_base=bool(load["useFixedBase"]),
+                            ground=doc["ground"] is not None, split_impulse=bool(engine["useSplitImpulse"]),
+                            g=-float(gravity[2]), damping=None)
+        st = model.backend._settings
+        st["timestep"] = float(doc["timeStep"])
+        for name, *_ in ENGINE_PARAMETERS:
+            st[name] = float(engine[name])
+        if doc["ground"] is not None:
+            st["ground_margin"] = float(doc["ground"]["collisionMargin"])
+        joints = {str(j) for j, _n, _t in model.backend._info["joints"]}
+        for call in doc["changeDynamics"]:
+            key = str(call["linkIndex"])
+            if "maxJointVelocity" in call and key in joints:
+                st["max_joint_velocity"][key] = float(call["maxJointVelocity"])
+            if "collisionMargin" in call:
+                st["margins"][key] = float(call["collisionMargin"])
+            if "localInertiaDiagonal" in call:
+                st["inertia"][key] = [float(v) for v in call["localInertiaDiagonal"]]
+            for name in ("rollingFriction", "spinningFriction"):
+                if name in call:
+                    st["friction"].setdefault(key, {})[name] = float(call[name])
+            for name, *_ in MIXED_DAMPING:
+                if name in call:
+                    st["damping"].setdefault(key, {})[name] = float(call[name])
+    except (OSError, ValueError, KeyError, TypeError, IndexError) as err:
+        what = f"key {err}" if isinstance(err, KeyError) else str(err).splitlines()[0]
+        raise EngineModelError(str(saved), "settings", f"not a settings file written by pitheorem ({what})") from None
+    return EngineModel(model.backend, "pybullet", str(path))  # a fresh table of the parameters, settings read
