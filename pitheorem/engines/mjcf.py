@@ -744,10 +744,15 @@ class MjcfBackend:
     def run(self, n_steps: int, controls=None, nudge: bool = False, state=None, policy=None):
         """Step the model ``n_steps`` times from its initial state; rows of (qpos, qvel, act).
 
-        ``controls`` is None or a callable of time giving ``data.ctrl``;
+        ``controls`` is None, an array of ``data.ctrl`` rows (one per step)
+        or a callable of the step's start time ``i * dt`` giving one row;
         ``policy`` is None or a closed-loop ``policy(mjmodel, mjdata)``
         giving ``data.ctrl``; ``nudge`` moves every initial coordinate by
         one ulp; ``state`` is an initial (qpos, qvel) pair.
+
+        Open-loop runs step in MuJoCo's own ``rollout`` (the loop in C,
+        bit for bit the same steps as ``mj_step`` in Python); a policy
+        needs Python between the steps.
         """
         mj, m = _mujoco(), self.mjmodel
         data = mj.MjData(m)
@@ -757,16 +762,39 @@ class MjcfBackend:
             data.qpos[:] = nudged(data.qpos)
             data.qvel[:] = nudged(data.qvel)
         nq, nv = m.nq, m.nv
+        first = np.concatenate([data.qpos, data.qvel, data.act])
+        if policy is not None and m.nu:
+            return self._run_closed_loop(n_steps, data, policy, first)
+        if n_steps == 0:
+            return first[None, :]
+        control = None
+        if controls is not None and m.nu:
+            if callable(controls):
+                dt = float(m.opt.timestep)
+                control = np.array([controls(i * dt) for i in range(n_steps)], dtype=float)
+            else:
+                control = np.asarray(controls, dtype=float)
+            control = control.reshape(n_steps, m.nu)
+        from mujoco import rollout
+
+        spec = mj.mjtState.mjSTATE_FULLPHYSICS
+        initial = np.empty(mj.mj_stateSize(m, spec))
+        mj.mj_getState(m, data, initial, spec)
+        states, _ = rollout.rollout(m, data, initial[None, :], None if control is None else control[None],
+                                    nstep=n_steps)
+        # the full-physics state is laid out by component: time, then qpos, qvel, act
+        start = mj.mj_stateSize(m, mj.mjtState.mjSTATE_TIME)
+        rows = states[0][:, start:start + nq + nv + m.na]
+        return np.concatenate([first[None, :], rows])
+
+    def _run_closed_loop(self, n_steps, data, policy, first):
+        mj, m = _mujoco(), self.mjmodel
+        nq, nv = m.nq, m.nv
         out = np.empty((n_steps + 1, nq + nv + m.na))
+        out[0] = first
         qpos, qvel, act = out[:, :nq], out[:, nq:nq + nv], out[:, nq + nv:]
-        qpos[0], qvel[0], act[0] = data.qpos, data.qvel, data.act
-        steer = controls is not None and m.nu
-        closed = policy is not None and m.nu
         for i in range(1, n_steps + 1):
-            if steer:
-                data.ctrl[:] = controls(data.time)
-            elif closed:
-                data.ctrl[:] = policy(m, data)
+            data.ctrl[:] = policy(m, data)
             mj.mj_step(m, data)
             qpos[i], qvel[i], act[i] = data.qpos, data.qvel, data.act
         return out

@@ -469,7 +469,10 @@ class UrdfBackend:
             for i in range(1, n_steps + 1):
                 if (controls is not None or policy is not None) and joints:
                     t = (i - 1) * dt
-                    u = controls(t) if controls is not None else policy(client, body, t)
+                    if controls is None:
+                        u = policy(client, body, t)
+                    else:  # an array of rows, one per step, or a function of time
+                        u = controls(t) if callable(controls) else controls[i - 1]
                     pb.setJointMotorControlArray(body, joints, pb.TORQUE_CONTROL, forces=list(map(float, u)),
                                                  physicsClientId=client)
                 pb.stepSimulation(physicsClientId=client)

@@ -85,8 +85,10 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     controls : callable, optional
         ``t -> array`` of actuator inputs in original units (MuJoCo:
         ``data.ctrl``; PyBullet: one torque or force per movable joint).
-        Default: zero input.  The scaled run gets ``controls(t / s^a_T)``
-        times each input's own factor.
+        Default: zero input.  It is called once per step, at the start
+        ``t = i dt`` of step ``i`` of the original run; the scaled run gets
+        the same inputs, each times its own factor (its step ``i`` starts at
+        the same original time).
     controller : callable, optional
         A closed-loop controller instead of `controls`:
         ``controller(run_model)`` is called once per run (the original, its
@@ -150,22 +152,29 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     names, dims = original.coordinate_dimensions()
     if len(copy.coordinate_dimensions()[0]) != len(names):
         raise InvalidRequestError("the scaled model has other coordinates than the original")
-    factors = np.array([power_factor(s, scaling.exponent_of(d)) for d in dims])
-    control_factors = np.array([power_factor(s, scaling.exponent_of(d)) for d in original.control_dimensions()])
+    factor_of, exponent_of = {}, {}  # a model has hundreds of coordinates but a handful of dimensions
 
-    def check_controls(t):
-        u = np.asarray(controls(t), dtype=float).reshape(-1)
-        if u.shape != control_factors.shape:
-            raise InvalidRequestError(f"controls(t) must give {control_factors.size} inputs, got {u.size}")
-        return u
+    def factor(d):
+        if d not in factor_of:
+            exponent_of[d] = scaling.exponent_of(d)
+            factor_of[d] = power_factor(s, exponent_of[d])
+        return factor_of[d]
 
+    factors = np.array([factor(d) for d in dims])
+    control_factors = np.array([factor(d) for d in original.control_dimensions()])
+
+    # open-loop inputs once, at the start of each step in original time; the scaled run gets the same
+    # rows times each input's factor (its step i starts at i dt s^a_T, which is original time i dt)
     if controls is None:
         u_original = u_scaled = None
     else:
-        u_original = check_controls
-
-        def u_scaled(t):
-            return check_controls(t / f_time) * control_factors
+        u_original = np.empty((n_steps, control_factors.size))
+        for i in range(n_steps):
+            u = np.asarray(controls(i * dt), dtype=float).reshape(-1)
+            if u.shape != control_factors.shape:
+                raise InvalidRequestError(f"controls(t) must give {control_factors.size} inputs, got {u.size}")
+            u_original[i] = u
+        u_scaled = u_original * control_factors
 
     def policy(run_model):  # a fresh controller per run: controllers keep state (a reel, an integral)
         if controller is None:
@@ -190,6 +199,6 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     kind = "mujoco" if model.engine == "mujoco" else "pybullet"
     return similarity_report(
         Trajectory(t, run, tuple(names)), Trajectory(t, back, tuple(names)), s=float(s), scaling=scaling,
-        exponents={n: scaling.exponent_of(d) for n, d in zip(names, dims, strict=True)},
+        exponents={n: exponent_of[d] for n, d in zip(names, dims, strict=True)},
         nudged=Trajectory(t, nudged, tuple(names)), baseline_factor=baseline_factor, method=kind,
     )
