@@ -104,3 +104,7 @@ class BasisSequence(Sequence):
 
     def __repr__(self) -> str:
         return repr(list(self))
+
+    def _repr_pretty_(self, printer, cycle) -> None:
+        """Jupyter and IPython show the sets as a list, wrapped one set per line when long."""
+        printer.pretty(list(self))

@@ -369,3 +369,16 @@ def test_int_and_fraction_columns_share_integer_rows():
     from pitheorem.linalg import integer_rows
 
     assert integer_rows([[Fraction(1, 2), 3, True], [np.int64(2), Fraction(4), 0]]) == [[1, 6, 2], [2, 4, 0]]
+
+
+def test_basis_sequence_pretty_prints_as_its_list():
+    seen = []
+
+    class Printer:  # the one method of IPython's pretty printer that _repr_pretty_ calls
+        def pretty(self, obj):
+            seen.append(obj)
+
+    sets = pt.models.rod_system().bases(exclude=("t",))
+    sets[:3]._repr_pretty_(Printer(), cycle=False)
+    assert seen == [[("m", "l", "g"), ("m", "l", "k_theta"), ("m", "l", "c_theta")]]
+    assert isinstance(seen[0], list)
