@@ -140,3 +140,18 @@ def test_controller_misuse_is_named():
         engines.verify(model, sc, 2, duration=0.01, controller=lambda run_model: "no policy")
     with pytest.raises(pt.InvalidRequestError, match=f"{nu} inputs, got 1"):
         engines.verify(model, sc, 2, duration=0.01, controller=lambda run_model: lambda m, d: [0.0])
+
+
+def test_runs_in_one_batch_equal_the_runs_one_by_one():
+    model = engines.load(DATA / "contact.xml")  # contacts, the solver's default tolerance: warm starts matter
+    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    scaled = model.scaled(sc, 10).backend
+    b = model.backend
+    n, nu = 300, b.mjmodel.nu
+    rows = np.array([smooth(nu)(0.01 * i) for i in range(n)]) if nu else None
+    jobs = [(b, rows, False, None), (b, rows, True, None), (scaled, rows, False, None), (b, rows, False, None)]
+    one_by_one = [backend.run(n, controls, nudge) for backend, controls, nudge, _ in jobs]
+    for _ in range(2):  # more runs than threads: a thread's second run must not inherit the first's state
+        batch = b.run_many(n, jobs)
+        assert all(np.array_equal(a, c) for a, c in zip(one_by_one, batch, strict=True))
+    assert np.abs(one_by_one[0] - one_by_one[2] / 10).max() > 0  # different models: not a vacuous equality

@@ -754,6 +754,50 @@ class MjcfBackend:
         bit for bit the same steps as ``mj_step`` in Python); a policy
         needs Python between the steps.
         """
+        if policy is not None and self.mjmodel.nu:
+            data, first = self._start(nudge, state)
+            return self._run_closed_loop(n_steps, data, policy, first)
+        return self.run_many(n_steps, [(self, controls, nudge, state)])[0]
+
+    def run_many(self, n_steps: int, jobs) -> list[np.ndarray]:
+        """Several open-loop runs in one call of MuJoCo's rollout, spread over the processor's cores.
+
+        ``jobs`` holds ``(backend, controls, nudge, state)`` tuples, as the
+        arguments of :meth:`run`; the backends' models must have the same
+        sizes (a model and its scaled copies do).  Returns the runs' rows.
+        """
+        import os
+
+        from mujoco import rollout
+
+        mj = _mujoco()
+        spec = mj.mjtState.mjSTATE_FULLPHYSICS
+        models, initial, control, firsts = [], [], [], []
+        for backend, controls, nudge, state in jobs:
+            m = backend.mjmodel
+            data, first = backend._start(nudge, state)
+            x0 = np.empty(mj.mj_stateSize(m, spec))
+            mj.mj_getState(m, data, x0, spec)
+            models.append(m)
+            initial.append(x0)
+            firsts.append(first)
+            control.append(backend._control_rows(controls, n_steps))
+        if n_steps == 0:
+            return [first[None, :] for first in firsts]
+        steer = any(c is not None for c in control)
+        if steer:
+            control = [np.zeros((n_steps, m.nu)) if c is None else c for c, m in zip(control, models, strict=True)]
+        threads = max(1, min(len(jobs), os.cpu_count() or 1))
+        states, _ = rollout.rollout(models, [mj.MjData(models[0]) for _ in range(threads)], np.array(initial),
+                                    np.array(control) if steer else None, nstep=n_steps)
+        # the full-physics state is laid out by component: time, then qpos, qvel, act
+        out = []
+        for m, first, rows in zip(models, firsts, states, strict=True):
+            start = mj.mj_stateSize(m, mj.mjtState.mjSTATE_TIME)
+            out.append(np.concatenate([first[None, :], rows[:, start:start + m.nq + m.nv + m.na]]))
+        return out
+
+    def _start(self, nudge: bool, state):
         mj, m = _mujoco(), self.mjmodel
         data = mj.MjData(m)
         if state is not None:
@@ -761,31 +805,18 @@ class MjcfBackend:
         if nudge:
             data.qpos[:] = nudged(data.qpos)
             data.qvel[:] = nudged(data.qvel)
-        nq, nv = m.nq, m.nv
-        first = np.concatenate([data.qpos, data.qvel, data.act])
-        if policy is not None and m.nu:
-            return self._run_closed_loop(n_steps, data, policy, first)
-        if n_steps == 0:
-            return first[None, :]
-        control = None
-        if controls is not None and m.nu:
-            if callable(controls):
-                dt = float(m.opt.timestep)
-                control = np.array([controls(i * dt) for i in range(n_steps)], dtype=float)
-            else:
-                control = np.asarray(controls, dtype=float)
-            control = control.reshape(n_steps, m.nu)
-        from mujoco import rollout
+        return data, np.concatenate([data.qpos, data.qvel, data.act])
 
-        spec = mj.mjtState.mjSTATE_FULLPHYSICS
-        initial = np.empty(mj.mj_stateSize(m, spec))
-        mj.mj_getState(m, data, initial, spec)
-        states, _ = rollout.rollout(m, data, initial[None, :], None if control is None else control[None],
-                                    nstep=n_steps)
-        # the full-physics state is laid out by component: time, then qpos, qvel, act
-        start = mj.mj_stateSize(m, mj.mjtState.mjSTATE_TIME)
-        rows = states[0][:, start:start + nq + nv + m.na]
-        return np.concatenate([first[None, :], rows])
+    def _control_rows(self, controls, n_steps: int):
+        m = self.mjmodel
+        if controls is None or not m.nu or n_steps == 0:
+            return None
+        if callable(controls):
+            dt = float(m.opt.timestep)
+            rows = np.array([controls(i * dt) for i in range(n_steps)], dtype=float)
+        else:
+            rows = np.asarray(controls, dtype=float)
+        return rows.reshape(n_steps, m.nu)
 
     def _run_closed_loop(self, n_steps, data, policy, first):
         mj, m = _mujoco(), self.mjmodel

@@ -20,7 +20,9 @@ shows up as a broken similarity (Section 6 of the white paper).
 
 A backend (see ``pitheorem.engines.mjcf``, ``pitheorem.engines.urdf``)
 provides ``timestep()``, ``coordinate_dimensions()``,
-``control_dimensions()`` and ``run(n_steps, controls, nudge, policy)``.
+``control_dimensions()`` and ``run(n_steps, controls, nudge, policy)``; one
+that also has ``run_many(n_steps, jobs)`` (MuJoCo's) gets the three
+open-loop runs in one batch, which its engine may spread over the cores.
 """
 
 from __future__ import annotations
@@ -193,9 +195,15 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         return checked
 
     t = np.arange(n_steps + 1) * dt
-    run = original.run(n_steps, u_original, policy=policy(model))
-    nudged = original.run(n_steps, u_original, nudge=True, policy=policy(model))
-    back = copy.run(n_steps, u_scaled, policy=policy(scaled)) / factors
+    if controller is None and hasattr(original, "run_many") and type(copy) is type(original):
+        # one batch: the engine may run the three at once (MuJoCo's rollout spreads them over the cores)
+        jobs = [(original, u_original, False, None), (original, u_original, True, None), (copy, u_scaled, False, None)]
+        run, nudged, scaled_run = original.run_many(n_steps, jobs)
+    else:
+        run = original.run(n_steps, u_original, policy=policy(model))
+        nudged = original.run(n_steps, u_original, nudge=True, policy=policy(model))
+        scaled_run = copy.run(n_steps, u_scaled, policy=policy(scaled))
+    back = scaled_run / factors
     kind = "mujoco" if model.engine == "mujoco" else "pybullet"
     return similarity_report(
         Trajectory(t, run, tuple(names)), Trajectory(t, back, tuple(names)), s=float(s), scaling=scaling,
