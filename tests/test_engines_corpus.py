@@ -103,9 +103,12 @@ def test_corpus_exhaustive(name, s, controls, tmp_path):
 URDFS = ("cartpole.urdf", "pendulum5.urdf", "sphere2.urdf", "sphere_small.urdf", "sphere_with_restitution.urdf",
          "soccerball.urdf", "cube.urdf", "cube_small.urdf", "lego/lego.urdf", "jenga/jenga.urdf", "table/table.urdf",
          "kuka_iiwa/model.urdf")
-#: measured: not similar beyond the one-ulp baseline even at s = 2; the cause is not isolated (compound
-#: convex-hull meshes, merged fixed links)
+#: measured: not similar beyond the one-ulp baseline even at s = 2, and similar in the air (no contact): the
+#: duck and the teddy are convex decompositions whose parts' collision margins changeDynamics cannot reach
+#: (load warns); for r2d2 and TwoJointRobot, whose cylinders PyBullet turns into convex hulls, the cause is
+#: not isolated
 URDFS_NOT_SIMILAR = ("r2d2.urdf", "duck_vhacd.urdf", "teddy_vhacd.urdf", "TwoJointRobot_w_fixedJoints.urdf")
+COMPOUND_MESHES = ("duck_vhacd.urdf", "teddy_vhacd.urdf")
 
 
 def urdf_check(name, tmp_path, s, controls):
@@ -113,12 +116,16 @@ def urdf_check(name, tmp_path, s, controls):
     path = Path(pybullet_data.getDataPath()) / name
     # PyBullet's multibody damping (0.04) mixes dimensions and its split-impulse threshold (a length) cannot be
     # set from Python: both are switched off, in the original and in the scaled run alike
-    model = engines.load(path, base_position=(0, 0, 1), ground=True, damping=0.0, split_impulse=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", engines.UnscalableModelWarning)  # the compound meshes: tested below
+        model = engines.load(path, base_position=(0, 0, 1), ground=True, damping=0.0, split_impulse=False)
     res = pt.search(model.system(), scale={"g": 1}, fixed=("t",))
     sc = res.scalings[0]
     out = model.scaled(sc, s).save(tmp_path / "scaled.urdf")
     assert Path(f"{out}.settings.json").is_file()
-    again = engines.load(out)  # the saved settings beside the file set up the scaled scene
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", engines.UnscalableModelWarning)
+        again = engines.load(out)  # the saved settings beside the file set up the scaled scene
     masses = [p for p in model.parameters if p.name.endswith("_mass")]
     for p in masses:  # the saved file holds the scaled masses
         assert again.parameter(p.name).value[0] == pytest.approx(p.value[0] * float(s) ** sc.exponent_of("M"))
@@ -146,3 +153,16 @@ def test_urdf_known_not_similar(name, tmp_path):
 def test_urdf_exhaustive(name, s, controls, tmp_path):
     rep = urdf_check(name, tmp_path, s, controls)
     assert rep.similar, str(rep)
+
+
+@pytest.mark.parametrize("name", URDFS_NOT_SIMILAR)
+def test_urdf_known_not_similar_is_similar_without_contact(name):
+    pybullet_data = pytest.importorskip("pybullet_data")
+    path = Path(pybullet_data.getDataPath()) / name
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", engines.UnscalableModelWarning)
+        model = engines.load(path, base_position=(0, 0, 1), damping=0.0, split_impulse=False)
+    compound = [w for w in caught if "convex parts" in str(w.message)]
+    assert bool(compound) == (name in COMPOUND_MESHES)
+    sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
+    assert engines.verify(model, sc, 2, duration=1.0).similar  # in the air: the difference is in the contacts

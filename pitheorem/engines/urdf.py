@@ -36,7 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from ..simulate import nudged
-from .model import EngineModel, EngineModelError, Parameter, dim
+from .model import EngineModel, EngineModelError, Parameter, dim, warn_unscalable
 
 __all__ = ["UrdfBackend", "load_urdf"]
 
@@ -186,6 +186,30 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
         add(f"{ident}_damping", f"{where} dynamics damping", dynamics, "damping", force * _T / q)
         add(f"{ident}_friction", f"{where} dynamics friction", dynamics, "friction", force)
     return out
+
+
+def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> None:
+    """Warn about OBJ collision meshes of several objects (convex decompositions such as V-HACD's).
+
+    PyBullet loads such a mesh as a compound of convex hulls, and
+    ``changeDynamics(collisionMargin=...)`` does not reach the parts: a margin
+    of 0.05 moves pybullet_data's duck at rest by 8e-5 m, not 0.05 m.  The
+    parts keep their default margin, a length no scaling can change, so the
+    contacts of a scaled copy are off by it.
+    """
+    for link in tree.getroot().iter("link"):
+        for collision in link.findall("collision"):
+            for mesh in collision.iter("mesh"):
+                filename = mesh.get("filename", "")
+                resolved = _mesh_path(filename, source_dir)
+                if resolved is None or resolved.suffix.lower() != ".obj":
+                    continue
+                with open(resolved, encoding="utf-8", errors="replace") as lines:
+                    parts = sum(1 for line in lines if line.startswith("o "))
+                if parts > 1:
+                    warn_unscalable(path, f"link {link.get('name')!r} collision mesh {filename!r}",
+                                    f"its {parts} convex parts load as a compound whose collision margins "
+                                    "changeDynamics cannot reach; contacts of a scaled copy are off by that margin")
 
 
 def _mesh_path(filename: str, source_dir: Path) -> Path | None:
@@ -628,6 +652,7 @@ def _load_scene(path: Path, *, base_position, fixed_base, ground, split_impulse,
     if not math.isfinite(sum(scene["base_position"])):
         raise EngineModelError(str(path), "base_position", "must be finite")
     backend = UrdfBackend(tree, str(path), path.resolve().parent, settings, scene=scene)
+    _warn_compound_meshes(tree, str(path), path.resolve().parent)
     if damping is not None:
         backend._settings["damping"] = {str(index): {name: float(damping) for name, *_ in MIXED_DAMPING}
                                         for index, _ in backend._info["links"]}
