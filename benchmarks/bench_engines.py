@@ -5,7 +5,9 @@ Two ratios, each against a baseline timed in the same run:
 * ``load + system + search`` of every corpus model against MuJoCo's (or PyBullet's) own load of
   the file, with the absolute time of the largest model (the issue's goal: under 1 s);
 * ``engines.verify`` of 1 s of simulated time (original run, scaled run, one-ulp baseline run,
-  scaling and mapping back) against the original run alone (goal: within 4x).
+  scaling and mapping back) against the original run alone (goal: within 4x).  The original run
+  is the fastest way the package knows to run a model once: for MuJoCo its own ``rollout`` (the
+  stepping loop in C), for PyBullet one client stepping in a Python loop.
 
 Run: python benchmarks/bench_engines.py [--quick]
 """
