@@ -149,6 +149,17 @@ def test_decimal_in_mapping_is_the_decimal_written():
     assert pt.System({"x": {"L": np.float64(0.5)}}).dimension("x") == pt.Dimension.parse("L^(1/2)")
 
 
+def test_base_names_must_be_strings():
+    with pytest.raises(pt.InvalidRequestError, match="must be strings") as info:
+        pt.Dimension({1: 2})
+    assert info.value.culprit == 1
+
+
+def test_text_after_a_complete_formula_is_named():
+    with pytest.raises(pt.DimensionSyntaxError, match="unexpected '\\)' after a complete formula"):
+        pt.Dimension.parse("L T)")
+
+
 def test_base_dimensions_string_is_refused():
     with pytest.raises(pt.InvalidRequestError, match="'LT'"):
         pt.System({"x": "L"}, base_dimensions="LT")
@@ -216,8 +227,31 @@ def test_long_exponent_strings_are_shortened_to_forty_characters_in_the_error():
         read_exponent("9" * 45, "the exponent of 'x'")
     assert info.value.value == "9" * 40 + "..."
     with pytest.raises(pt.LimitError) as info:
+        read_exponent("9" * 41, "the exponent of 'x'")
+    assert info.value.value == "9" * 40 + "..."
+    with pytest.raises(pt.LimitError) as info:
         read_exponent("9" * 40, "the exponent of 'x'")
     assert info.value.value == "9" * 40
+
+
+def test_powers_of_ten_up_to_10000_are_read():
+    assert read_number("1e10000") == Fraction(10**10000)
+    assert read_number("1e-10000") == Fraction(1, 10**10000)
+    for text in ("1e10001", "1e-10001"):
+        with pytest.raises(pt.LimitError, match="10\\^10000"):
+            read_number(text)
+
+
+def test_the_float_hint_is_given_only_for_floats():
+    # numpy is loaded here; the hint about floats must still follow the value's type
+    too_fine = Fraction(1, MAX_DENOMINATOR + 1)
+    for exact in (too_fine, f"1/{MAX_DENOMINATOR + 1}"):
+        with pytest.raises(pt.LimitError) as info:
+            read_exponent(exact, "x")
+        assert "float" not in str(info.value)
+    for inexact in (1 / 3, np.float64(1 / 3)):
+        with pytest.raises(pt.LimitError, match="a float is read as the decimal"):
+            read_exponent(inexact, "x")
 
 
 def test_short_text_is_exact_below_120_bits_and_a_magnitude_above():

@@ -17,6 +17,9 @@ SYSTEM = pt.System({"t": "T", "X": "L", "Y": "L", "l": "L", "v": "L T^-1", "a": 
 F = sympy.Symbol("F")
 
 
+X_, Y_, L_ = sympy.symbols("x y l")
+
+
 def offending(expr, system=SYSTEM):
     return [(term, str(got), str(want)) for term, got, want in pt.check_dimensions(expr, system).offending]
 
@@ -165,3 +168,17 @@ def test_reports_are_frozen():
     report = pt.check_dimensions(sympy.Symbol("x") + sympy.Symbol("y"), pt.System({"x": "L", "y": "L"}))
     with pytest.raises(dataclasses.FrozenInstanceError):
         report.consistent = False
+
+
+def test_symmetries_through_abs():
+    # y = |x - l|: x and l scale with y (by hand); Abs keeps its argument's weight
+    s = pt.System({"x": "L", "l": "L", "y": "L"})
+    sym = pt.scaling_symmetries(sympy.Eq(Y_, sympy.Abs(X_ - L_)), s, time=None)
+    assert sym.contains({"x": 1, "l": 1, "y": 1})
+    assert not sym.contains({"x": 1, "l": 1})
+    assert not sym.contains({"y": 1})
+
+
+def test_symmetries_need_a_system():
+    with pytest.raises(pt.InvalidRequestError, match="needs a System"):
+        pt.scaling_symmetries(sympy.Eq(Y_, X_), {"x": "L", "y": "L"})

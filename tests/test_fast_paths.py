@@ -437,3 +437,14 @@ def test_minimal_points_of_directions_dependent_on_the_free_variables():
     keys, weights = family_module.minimal_points([1, 1, 0, 0], [[0, 1, 0, 0], [0, 2, 0, 0]], [1, 2, 3], [0])
     assert keys.shape == (0, 5)
     assert weights.shape == (0, 3)
+
+
+def test_joined_and_empty_index_arrays_are_read_only():
+    names = ["a", "b", "c"]
+    joined = BasisSequence(names, [np.array([[0, 1]]), np.array([[0, 2], [1, 2]])])
+    empty = BasisSequence(names, [], width=2)
+    for sequence in (joined, empty):
+        with pytest.raises(ValueError, match="read-only"):
+            sequence.indices[:] = 0
+    assert joined.indices.tolist() == [[0, 1], [0, 2], [1, 2]]
+    assert list(joined) == [("a", "b"), ("a", "c"), ("b", "c")]

@@ -148,3 +148,16 @@ def test_empty_sets_are_equivalent():
     assert len(empty) == 0
     assert empty.equivalent(pt.System({"l": "L", "t": "T"}).pi_groups(repeating=("l", "t")))
     assert not empty.equivalent(pt.PiSet([pt.PiGroup((("l", 1),))], ("l", "t")))
+
+
+def test_is_power_of_needs_the_same_variables():
+    x, xy = pt.PiGroup((("x", 1),)), pt.PiGroup((("x", 1), ("y", 1)))
+    assert not x.is_power_of(xy)
+    assert not xy.is_power_of(x)
+    assert xy.is_power_of(pt.PiGroup((("x", -2), ("y", -2))))
+
+
+def test_group_symbols_are_positive(rod):
+    group = rod.pi_groups()[0]
+    assert all(symbol.is_positive for symbol in group.expr.free_symbols)
+    assert sympy.sqrt(group.expr**2) == group.expr  # true only for positive symbols

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 from fractions import Fraction
 from itertools import combinations
+from math import gcd
 
 import sympy
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import pitheorem as pt
-from pitheorem.linalg import integer_rref, rank, solve
+from pitheorem.linalg import integer_rref, primitive_integer_vector, rank, solve
 
 BASES = ("M", "L", "T", "Theta")
 
@@ -139,7 +140,7 @@ def test_integer_rref_is_sympys_rref_with_positive_coprime_pivots(rows):
     assert pivots == want_pivots
     for i, p in enumerate(pivots):
         assert a[i][p] > 0
-        assert sympy.gcd_list(a[i]) == 1
+        assert gcd(*a[i]) == 1
         assert [sympy.Rational(x, a[i][p]) for x in a[i]] == list(want.row(i))
     assert all(not any(row) for row in a[len(pivots):])
 
@@ -152,3 +153,18 @@ def test_integer_rref_of_unit_and_negative_pivots():
 
 def test_solve_with_no_equations_has_no_unknowns():
     assert solve([], []) == []
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(rational_exponent, min_size=1, max_size=5))
+def test_primitive_integer_vector_is_coprime_and_proportional(v):
+    got = primitive_integer_vector(v)
+    assert all(isinstance(x, int) for x in got)
+    if not any(v):
+        assert got == [0] * len(v)
+        return
+    assert gcd(*got) == 1
+    # got = c v for one c > 0
+    c = next(Fraction(g) / x for g, x in zip(got, v, strict=True) if x)
+    assert c > 0
+    assert all(Fraction(g) == c * x for g, x in zip(got, v, strict=True))

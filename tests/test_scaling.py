@@ -50,3 +50,27 @@ def test_apply_scales_arrays_and_checks_numbers():
     for bad in ("four", float("nan"), None):
         with pytest.raises(pt.NumberError):
             sc.apply({"v": bad}, s=2)
+
+
+def test_without_units_there_is_no_unit_change():
+    bare = pt.Scaling(LT, (Fraction(0), Fraction(0), Fraction(1)), None)
+    with pytest.raises(pt.InvalidRequestError, match="not a change of units"):
+        bare.unit_change  # noqa: B018
+    with pytest.raises(pt.InvalidRequestError, match="not a change of units"):
+        bare.exponent_of("L")
+
+
+def test_scalings_are_equal_only_with_the_same_system_and_exponents():
+    length = pt.Scaling.from_unit_change(LT, {"L": 1})
+    assert length == pt.Scaling.from_exponents(LT, {"l": 1, "v": 1})
+    assert length != pt.Scaling.from_unit_change(LT, {"T": 1})
+    assert length != pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T", "w": "L/T"}), {"L": 1})
+    assert length != 5
+
+
+def test_dimensionless_systems_allow_only_the_identity():
+    # no base dimension: every variable is its own Pi group, so none may change
+    plain = pt.System({"x": "1", "y": "1"})
+    assert pt.Scaling.from_exponents(plain, {"x": 0}).exponents == {"x": 0, "y": 0}
+    with pytest.raises(pt.InvalidRequestError, match="not a similarity scaling"):
+        pt.Scaling.from_exponents(plain, {"x": 1})
