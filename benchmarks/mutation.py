@@ -3,7 +3,9 @@
 Run from the repository root (NOT part of ``make test``; it rewrites source files
 one at a time and restores them)::
 
-    nice .venv/bin/python benchmarks/mutation.py [--per-module 20] [--seed 12] [--module dimensions ...]
+    nice .venv/bin/python benchmarks/mutation.py [--per-module 20] [--seed 12] [--module dimensions ...] \
+        [--equivalent benchmarks/mutation_equivalent.txt]
+    nice .venv/bin/python benchmarks/mutation.py --site groups:34 --tests tests/test_groups.py::test_x
 
 Each mutant changes one place in one module, the way a slip of the keyboard
 would:
@@ -27,6 +29,15 @@ failure; a run that exceeds ``--timeout`` seconds counts as killed (the
 mutant made the code hang).  The report lists killed and surviving mutants;
 a survivor is either a missing test or an equivalent mutant (one that
 cannot change behaviour), which only a reader can tell apart.
+
+Each mutant is named by its module, line and site number (its position
+among the module's sites).  ``--site MODULE:INDEX`` runs just those
+mutants, and ``--tests`` runs given tests instead of ``TARGETS``: together
+they check that a new test kills a survivor.  ``--equivalent FILE`` reads
+the survivors a reader has judged equivalent (``LABEL -- reason`` a line,
+``benchmarks/mutation_equivalent.txt``) and also prints the score over the
+non-equivalent mutants.  Site numbers hold only while the module's source
+is unchanged.
 """
 
 from __future__ import annotations
@@ -43,16 +54,21 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = ROOT / "pitheorem"
 
-#: the tests that exercise each core module (fast: no simulations, no docs)
+#: the tests that exercise each core module (fast: no simulations, no docs; ``-m "not slow"``)
 TARGETS = {
-    "exact": ["tests/test_edges.py", "tests/test_cli_edges.py"],
+    "exact": ["tests/test_edges.py", "tests/test_cli_edges.py", "tests/test_errors.py"],
     "dimensions": ["tests/test_dimensions.py", "tests/test_errors.py", "tests/test_edges.py"],
-    "system": ["tests/test_errors.py", "tests/test_edges.py", "tests/test_groups.py", "tests/test_dimensions.py"],
+    "system": ["tests/test_errors.py", "tests/test_edges.py", "tests/test_groups.py", "tests/test_dimensions.py",
+               "tests/test_fast_paths.py"],
     "groups": ["tests/test_groups.py", "tests/test_mutation_survivors.py", "tests/test_errors.py"],
-    "linalg": ["tests/test_groups.py", "tests/test_search.py", "tests/test_edges.py"],
-    "bases": ["tests/test_edges.py", "tests/test_groups.py", "tests/test_properties.py"],
-    "search": ["tests/test_search.py", "tests/test_mutation_survivors.py"],
-    "scaling": ["tests/test_search.py", "tests/test_edges.py", "tests/test_errors.py"],
+    "linalg": ["tests/test_groups.py", "tests/test_search.py", "tests/test_edges.py", "tests/test_properties.py",
+               "tests/test_equation_functions.py"],
+    "bases": ["tests/test_edges.py", "tests/test_groups.py", "tests/test_properties.py", "tests/test_fast_paths.py"],
+    "family": ["tests/test_fast_paths.py", "tests/test_search.py", "tests/test_edges.py"],
+    "basis_sequence": ["tests/test_fast_paths.py", "tests/test_groups.py"],
+    "search": ["tests/test_search.py", "tests/test_mutation_survivors.py", "tests/test_equations.py",
+               "tests/test_fast_paths.py", "tests/test_edges.py"],
+    "scaling": ["tests/test_scaling.py", "tests/test_search.py", "tests/test_edges.py", "tests/test_errors.py"],
     "equations": ["tests/test_equations.py", "tests/test_equation_functions.py"],
 }
 
@@ -169,10 +185,28 @@ def mutated_source(mutant: Mutant) -> str:
     return ast.unparse(ast.fix_missing_locations(tree))
 
 
-def run_tests(module: str, timeout: float) -> str:
+def label(mutant: Mutant) -> str:
+    """How a mutant is named in the report and in an ``--equivalent`` file."""
+    return f"{mutant.module}.py:{mutant.line} site {mutant.index} [{mutant.kind}] {mutant.description}"
+
+
+def read_equivalent(path: Path | None) -> dict[str, str]:
+    """Known-equivalent mutants: one ``label -- reason`` a line; ``#`` starts a comment line."""
+    if path is None:
+        return {}
+    known = {}
+    for line in path.read_text().splitlines():
+        if line.strip() and not line.lstrip().startswith("#"):
+            key, _, reason = line.partition(" -- ")
+            known[key.strip()] = reason.strip()
+    return known
+
+
+def run_tests(module: str, timeout: float, tests: list[str] | None = None) -> str:
     """'killed', 'survived' or 'timeout' for the module's current source."""
     cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", "-p", "no:randomly",
-           "--hypothesis-seed=0", str(PACKAGE / f"{module}.py"), *TARGETS[module]]
+           "--hypothesis-seed=0", "-m", "not slow",
+           *(tests or [str(PACKAGE / f"{module}.py"), *TARGETS[module]])]
     try:
         proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=timeout, check=False)
     except subprocess.TimeoutExpired:
@@ -180,43 +214,69 @@ def run_tests(module: str, timeout: float) -> str:
     return "survived" if proc.returncode == 0 else "killed"
 
 
+def chosen_mutants(args) -> list[Mutant]:
+    """The ``--site`` mutants, or ``--per-module`` drawn from each module with the seed."""
+    if args.site:
+        picked = []
+        for spec in args.site:
+            module, _, index = spec.partition(":")
+            picked.append(list_mutants(module)[int(index)])
+        return picked
+    picked = []
+    for module in args.module:
+        every = list_mutants(module)
+        picked += sorted(random.Random(f"{args.seed}:{module}").sample(every, min(args.per_module, len(every))),
+                         key=lambda m: m.index)
+        print(f"-- {module}: {min(args.per_module, len(every))} of {len(every)} sites", flush=True)
+    return picked
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--per-module", type=int, default=20, help="mutants drawn per module (default 20)")
     parser.add_argument("--seed", type=int, default=12, help="seed of the draw (default 12)")
     parser.add_argument("--module", nargs="*", default=sorted(TARGETS), choices=sorted(TARGETS))
+    parser.add_argument("--site", nargs="*", default=(), metavar="MODULE:INDEX",
+                        help="run only these mutants (the site numbers the report prints)")
+    parser.add_argument("--tests", nargs="*", default=None,
+                        help="run these tests instead of the module's TARGETS (to check that a new test kills)")
+    parser.add_argument("--equivalent", type=Path, default=None,
+                        help="file of known-equivalent mutants ('LABEL -- reason' a line); the score leaves them out")
     parser.add_argument("--timeout", type=float, default=120.0, help="seconds per mutant run (default 120)")
     args = parser.parse_args(argv)
+    known = read_equivalent(args.equivalent)
 
-    for module in args.module:  # the unmutated code must pass its own selection
-        if run_tests(module, args.timeout) != "survived":
+    chosen = chosen_mutants(args)
+    for module in dict.fromkeys(m.module for m in chosen):  # the unmutated code must pass its own selection
+        if run_tests(module, args.timeout, args.tests) != "survived":
             print(f"the tests of {module} fail before any mutation; fix them first", file=sys.stderr)
             return 2
     results: list[tuple[Mutant, str]] = []
     start = time.perf_counter()
-    for module in args.module:
-        path = PACKAGE / f"{module}.py"
+    for mutant in chosen:
+        path = PACKAGE / f"{mutant.module}.py"
         original = path.read_text()
-        every = list_mutants(module)
-        chosen = sorted(random.Random(f"{args.seed}:{module}").sample(every, min(args.per_module, len(every))),
-                        key=lambda m: m.index)
         try:
-            for mutant in chosen:
-                path.write_text(mutated_source(mutant))
-                outcome = run_tests(module, args.timeout)
-                results.append((mutant, outcome))
-                print(f"{outcome:8s} {module}.py:{mutant.line} [{mutant.kind}] {mutant.description}", flush=True)
+            path.write_text(mutated_source(mutant))
+            outcome = run_tests(mutant.module, args.timeout, args.tests)
         finally:
             path.write_text(original)
-        print(f"-- {module}: {len(chosen)} of {len(every)} sites", flush=True)
+        results.append((mutant, outcome))
+        print(f"{outcome:8s} {label(mutant)}", flush=True)
     killed = sum(1 for _, o in results if o != "survived")
+    survivors = [m for m, o in results if o == "survived"]
+    equivalent = [m for m in survivors if label(m) in known]
+    scored = len(results) - len(equivalent)
     print(f"\n{killed} of {len(results)} mutants killed ({100 * killed / max(len(results), 1):.1f}%) "
           f"in {time.perf_counter() - start:.0f} s")
-    survivors = [m for m, o in results if o == "survived"]
+    if known:
+        print(f"{len(equivalent)} survivors are known equivalent; {killed} of {scored} non-equivalent mutants "
+              f"killed ({100 * killed / max(scored, 1):.1f}%)")
     if survivors:
         print("survivors (missing tests, or equivalent mutants):")
         for m in survivors:
-            print(f"  {m.module}.py:{m.line} [{m.kind}] {m.description}")
+            reason = known.get(label(m))
+            print(f"  {label(m)}" + (f"  [equivalent: {reason}]" if reason else ""))
     return 0
 
 

@@ -87,7 +87,10 @@ def integer_rref(rows: Sequence[Sequence]) -> tuple[list[list[int]], tuple[int, 
         if p is None:
             continue
         a[r], a[p] = a[p], a[r]
-        top = a[r]
+        # make the pivot positive first: eliminating with t > 0 keeps the
+        # earlier pivots positive too (a negative t would flip their rows)
+        g = gcd(*a[r])
+        top = a[r] = [x // g for x in a[r]] if a[r][c] > 0 else [-x // g for x in a[r]]
         t = top[c]
         for i in range(n_rows):
             f = a[i][c]
@@ -95,8 +98,6 @@ def integer_rref(rows: Sequence[Sequence]) -> tuple[list[list[int]], tuple[int, 
                 row = [t * x - f * y for x, y in zip(a[i], top, strict=True)]
                 g = gcd(*row)
                 a[i] = [x // g for x in row] if g > 1 else row
-        g = gcd(*top)
-        a[r] = [x // g for x in top] if t > 0 else [-x // g for x in top]
         pivots.append(c)
         r += 1
         if r == n_rows:

@@ -12,10 +12,19 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+import sympy
 
 import pitheorem as pt
 from pitheorem.bases import count_independent_subsets, independent_subsets
-from pitheorem.exact import MAX_DENOMINATOR, MAX_EXPONENT, MAX_NESTING, read_exponent, read_number
+from pitheorem.exact import (
+    MAX_DENOMINATOR,
+    MAX_EXPONENT,
+    MAX_FORMULA_LENGTH,
+    MAX_NESTING,
+    read_exponent,
+    read_number,
+    short_text,
+)
 
 ROD = {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "theta_r": "1", "t": "T"}
 LT = pt.System({"l": "L", "t": "T"})
@@ -140,6 +149,17 @@ def test_decimal_in_mapping_is_the_decimal_written():
     assert pt.System({"x": {"L": np.float64(0.5)}}).dimension("x") == pt.Dimension.parse("L^(1/2)")
 
 
+def test_base_names_must_be_strings():
+    with pytest.raises(pt.InvalidRequestError, match="must be strings") as info:
+        pt.Dimension({1: 2})
+    assert info.value.culprit == 1
+
+
+def test_text_after_a_complete_formula_is_named():
+    with pytest.raises(pt.DimensionSyntaxError, match="unexpected '\\)' after a complete formula"):
+        pt.Dimension.parse("L T)")
+
+
 def test_base_dimensions_string_is_refused():
     with pytest.raises(pt.InvalidRequestError, match="'LT'"):
         pt.System({"x": "L"}, base_dimensions="LT")
@@ -182,6 +202,80 @@ def test_read_number_refuses(bad):
         read_number(bad, "the test value")
 
 
+def test_number_strings_up_to_a_thousand_characters_are_read():
+    # mutation run: the limit 1000 -> 1001 went unnoticed
+    assert read_number("1" * 1000) == Fraction(int("1" * 1000))
+    with pytest.raises(pt.LimitError, match="at most 1000 characters") as info:
+        read_number("1" * 1001)
+    assert info.value.value == "1" * 20 + "..."
+
+
+@pytest.mark.parametrize(("irrational", "printed"), [
+    (sympy.pi, "3.141592653589793"), (sympy.sqrt(2), "1.4142135623730951"), (sympy.E, "2.718281828459045"),
+])
+def test_irrational_numbers_need_the_opt_in(irrational, printed):
+    # an exponent must be rational: pi is refused unless the caller accepts irrationals (values, not exponents)
+    with pytest.raises(pt.NumberError, match="rational number"):
+        read_number(irrational)
+    with pytest.raises(pt.NumberError):
+        pt.System({"x": {"L": irrational}})
+    assert read_number(irrational, irrational_ok=True) == Fraction(printed)
+
+
+def test_long_exponent_strings_are_shortened_to_forty_characters_in_the_error():
+    with pytest.raises(pt.LimitError) as info:
+        read_exponent("9" * 45, "the exponent of 'x'")
+    assert info.value.value == "9" * 40 + "..."
+    with pytest.raises(pt.LimitError) as info:
+        read_exponent("9" * 41, "the exponent of 'x'")
+    assert info.value.value == "9" * 40 + "..."
+    with pytest.raises(pt.LimitError) as info:
+        read_exponent("9" * 40, "the exponent of 'x'")
+    assert info.value.value == "9" * 40
+
+
+def test_powers_of_ten_up_to_10000_are_read():
+    assert read_number("1e10000") == Fraction(10**10000)
+    assert read_number("1e-10000") == Fraction(1, 10**10000)
+    for text in ("1e10001", "1e-10001"):
+        with pytest.raises(pt.LimitError, match="10\\^10000"):
+            read_number(text)
+
+
+def test_the_float_hint_is_given_only_for_floats():
+    # numpy is loaded here; the hint about floats must still follow the value's type
+    too_fine = Fraction(1, MAX_DENOMINATOR + 1)
+    for exact in (too_fine, f"1/{MAX_DENOMINATOR + 1}"):
+        with pytest.raises(pt.LimitError) as info:
+            read_exponent(exact, "x")
+        assert "float" not in str(info.value)
+    for inexact in (1 / 3, np.float64(1 / 3)):
+        with pytest.raises(pt.LimitError, match="a float is read as the decimal"):
+            read_exponent(inexact, "x")
+
+
+def test_short_text_is_exact_below_120_bits_and_a_magnitude_above():
+    # numerator and denominator together: 2**117 has 118 bits (+1 for the denominator 1)
+    assert short_text(Fraction(2**117)) == str(2**117)
+    assert short_text(Fraction(2**118)) == "about 10^36"  # 2**118 = 3.3e35
+    assert short_text(Fraction(1, 2**118)) == "about 10^-36"
+
+
+def test_formula_over_the_length_limit_shows_its_first_twenty_characters():
+    text = "L*" * (MAX_FORMULA_LENGTH // 2 + 1)
+    with pytest.raises(pt.LimitError) as info:
+        pt.Dimension.parse(text)
+    assert info.value.value == "L*L*L*L*L*L*L*L*L*L*..."
+    assert str(len(text)) in info.value.limit
+
+
+def test_exponents_have_at_most_forty_digits():
+    assert pt.Dimension.parse("L^" + "0" * 39 + "1") == pt.Dimension({"L": 1})  # 40 digits, value 1
+    with pytest.raises(pt.LimitError, match="more than 40 digits") as info:
+        pt.Dimension.parse("L^" + "0" * 40 + "1")
+    assert info.value.value == "0" * 20 + "..."
+
+
 def test_huge_power_of_ten_string_is_refused_before_it_is_built():
     with pytest.raises(pt.LimitError, match="power of ten"):
         read_exponent("1e99999999", "x")
@@ -196,6 +290,17 @@ def test_unit_lookalike_letters_are_not_silent(letter, unit):
         pt.System({"F": letter, "x": "L"})
     assert unit in str(info.value)
     assert "base_dimensions" in str(info.value)
+
+
+def test_opt_in_letters_in_a_mapping_are_not_silent():
+    # the mapping path (not the parser) names the letter and how to declare it
+    with pytest.raises(pt.InvalidRequestError) as info:
+        pt.System({"F": {"N": 1}})
+    assert "base_dimensions=(..., 'N')" in str(info.value)
+    with pytest.raises(pt.InvalidRequestError) as info:
+        pt.System({"F": {"J": 1, "A": 2}})
+    assert "base_dimensions=(..., 'J')" in str(info.value)
+    assert info.value.culprit == "J"
 
 
 def test_opt_in_letters_work_when_declared():

@@ -17,6 +17,9 @@ SYSTEM = pt.System({"t": "T", "X": "L", "Y": "L", "l": "L", "v": "L T^-1", "a": 
 F = sympy.Symbol("F")
 
 
+X_, Y_, L_ = sympy.symbols("x y l")
+
+
 def offending(expr, system=SYSTEM):
     return [(term, str(got), str(want)) for term, got, want in pt.check_dimensions(expr, system).offending]
 
@@ -148,3 +151,34 @@ def test_contains_units_is_false_for_inconsistent_equations():
 def test_float_exponent_uses_the_number_rule():
     report = pt.check_dimensions(X**(1 / 3), SYSTEM)
     assert report.dimension == pt.Dimension({"L": Fraction(3333333333333333, 10**16)})
+
+
+def test_symmetries_when_every_variable_is_dimensionless():
+    # no base dimension at all: no unit changes, and y = x^2 keeps x -> s x, y -> s^2 y (by hand)
+    x, y = sympy.symbols("x y")
+    report = pt.scaling_symmetries(sympy.Eq(y, x**2), pt.System({"x": "1", "y": "1"}), time=None)
+    assert report.unit_changes == ()
+    assert report.beyond_units == ({"x": 1, "y": 2},)
+    assert report.contains_units
+
+
+def test_reports_are_frozen():
+    import dataclasses
+
+    report = pt.check_dimensions(sympy.Symbol("x") + sympy.Symbol("y"), pt.System({"x": "L", "y": "L"}))
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        report.consistent = False
+
+
+def test_symmetries_through_abs():
+    # y = |x - l|: x and l scale with y (by hand); Abs keeps its argument's weight
+    s = pt.System({"x": "L", "l": "L", "y": "L"})
+    sym = pt.scaling_symmetries(sympy.Eq(Y_, sympy.Abs(X_ - L_)), s, time=None)
+    assert sym.contains({"x": 1, "l": 1, "y": 1})
+    assert not sym.contains({"x": 1, "l": 1})
+    assert not sym.contains({"y": 1})
+
+
+def test_symmetries_need_a_system():
+    with pytest.raises(pt.InvalidRequestError, match="needs a System"):
+        pt.scaling_symmetries(sympy.Eq(Y_, X_), {"x": "L", "y": "L"})

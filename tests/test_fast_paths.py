@@ -382,3 +382,81 @@ def test_basis_sequence_pretty_prints_as_its_list():
     sets[:3]._repr_pretty_(Printer(), cycle=False)
     assert seen == [[("m", "l", "g"), ("m", "l", "k_theta"), ("m", "l", "c_theta")]]
     assert isinstance(seen[0], list)
+
+@pytest.mark.parametrize("m", range(7))
+@pytest.mark.parametrize("k", range(8))
+def test_lex_combinations_are_itertools_combinations(m, k):
+    got = bases_module.lex_combinations(m, k)
+    expected = [list(c) for c in combinations(range(m), k)]
+    assert got.shape == (len(expected), k)
+    assert got.tolist() == expected
+
+
+def test_basis_sequences_compare_by_content():
+    one = pt.System({"l": "L", "t": "T", "x": "L"}).bases()  # (l, t), (t, x)
+    same = pt.System({"l": "L", "t": "T", "x": "L"}).bases()
+    other = pt.System({"l": "L", "t": "T", "v": "L/T"}).bases()  # (l, t), (l, v), (t, v)
+    shifted = pt.System({"a": "L", "b": "T", "c": "T"}).bases()  # (a, b), (a, c): same length as one
+    assert len(one) == len(shifted) == 2
+    assert one == same
+    assert not (one != same)
+    assert one != other
+    assert one != shifted
+    assert one != one[:1]
+    assert (one == 5) is False  # not a sequence: no comparison, no error
+    assert one != None  # noqa: E711 (the comparison itself is under test)
+
+
+def test_basis_sequence_iterates_past_its_batch_of_4096():
+    names = [f"x{j}" for j in range(32)]
+    combos = list(combinations(range(32), 3))  # 4960 rows, one block
+    sequence = BasisSequence(names, [np.array(combos)])
+    assert list(sequence) == [tuple(names[i] for i in c) for c in combos]
+    # a system whose every 3 columns are independent (Vandermonde): the bases are all 3-subsets
+    system = pt.System({n: {"M": 1, "L": j, "T": j * j} for j, n in enumerate(names)})
+    bases = system.bases()
+    bases.indices  # noqa: B018 (joins the chunks into one block)
+    assert list(bases) == [tuple(names[i] for i in c) for c in combos]
+
+
+def test_empty_basis_sequence_keeps_the_index_type():
+    # 300 variables: positions up to 299 need 16 bits, even when no basis is left
+    system = pt.System({f"x{j}": "L" for j in range(300)})
+    assert system.bases().indices.dtype == np.uint16
+    none_left = system.bases(exclude=system.variables)
+    assert len(none_left) == 0
+    assert none_left.indices.dtype == np.uint16
+    assert none_left.indices.shape == (0, 1)
+    assert system.bases()[5:2].indices.dtype == np.uint16
+
+
+def test_minimal_points_can_be_indexed_before_they_are_iterated():
+    # a0 = (1, 1, 0), one direction (0, 1, -1), free positions 1 and 2: the minimal points are
+    # a0 (zero at 2, coordinate 0) and a0 - direction (zero at 1, coordinate -1), by hand
+    keys, weights = family_module.minimal_points([1, 1, 0], [[0, 1, -1]], [1, 2], [0])
+    expected = [((1, 1, 0), (0,)), ((1, 0, 1), (-1,))]
+    assert family_module.MinimalPoints(keys, weights, 1, (0,), [[1]])[1] == expected[1]
+    assert family_module.MinimalPoints(keys, weights, 1, (0,), [[1]])[-2] == expected[0]
+    assert family_module.MinimalPoints(keys, weights, 1, (0,), [[1]])[0:2] == expected
+    points = family_module.MinimalPoints(keys, weights, 1, (0,), [[1]])
+    assert list(points) == expected
+    assert points[1] == expected[1]
+
+
+def test_minimal_points_of_directions_dependent_on_the_free_variables():
+    # both directions vanish off position 1: no two free positions carry an independent minor,
+    # so there is no minimal point; the arrays keep their documented widths (n + 1 and d + 1)
+    keys, weights = family_module.minimal_points([1, 1, 0, 0], [[0, 1, 0, 0], [0, 2, 0, 0]], [1, 2, 3], [0])
+    assert keys.shape == (0, 5)
+    assert weights.shape == (0, 3)
+
+
+def test_joined_and_empty_index_arrays_are_read_only():
+    names = ["a", "b", "c"]
+    joined = BasisSequence(names, [np.array([[0, 1]]), np.array([[0, 2], [1, 2]])])
+    empty = BasisSequence(names, [], width=2)
+    for sequence in (joined, empty):
+        with pytest.raises(ValueError, match="read-only"):
+            sequence.indices[:] = 0
+    assert joined.indices.tolist() == [[0, 1], [0, 2], [1, 2]]
+    assert list(joined) == [("a", "b"), ("a", "c"), ("b", "c")]

@@ -115,3 +115,49 @@ def test_from_units_angle_as_base():
     s = pt.System.from_units({"k_theta": "N*m/rad", "theta": "rad"}, angle_as_base=True)
     assert str(s.dimension("k_theta")) == "M L^2 T^-2 A^-1"
     assert str(s.dimension("theta")) == "A"
+
+
+def test_from_exponents_puts_zero_for_variables_only_in_the_order():
+    group = pt.PiGroup.from_exponents({"a": 1, "b": -1}, order=("b", "c", "a"))
+    # order b, c, a: the first nonzero (b) is made positive; c is absent, not an exponent
+    assert group.powers == (("b", 1), ("a", -1))
+
+
+def test_groups_are_immutable_and_hashable(rod):
+    import dataclasses
+
+    groups = rod.pi_groups()
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        groups[0].variable = "x"
+    assert len({groups, rod.pi_groups()}) == 1
+    assert len({*groups}) == len(groups)
+
+
+def test_sets_with_different_groups_are_not_equal():
+    s = pt.System({"a": "L", "b": "L", "c": "L"})
+    one, other = s.pi_groups(repeating=("a",)), s.pi_groups(repeating=("c",))
+    assert one.equivalent(other)
+    assert one != other  # equivalent, but not the same groups
+    assert one == s.pi_groups(repeating=("a",))
+    assert one != list(one)
+
+
+def test_empty_sets_are_equivalent():
+    # a system of independent variables has no groups; the empty set spans the zero space
+    empty = pt.System({"l": "L", "t": "T"}).pi_groups()
+    assert len(empty) == 0
+    assert empty.equivalent(pt.System({"l": "L", "t": "T"}).pi_groups(repeating=("l", "t")))
+    assert not empty.equivalent(pt.PiSet([pt.PiGroup((("l", 1),))], ("l", "t")))
+
+
+def test_is_power_of_needs_the_same_variables():
+    x, xy = pt.PiGroup((("x", 1),)), pt.PiGroup((("x", 1), ("y", 1)))
+    assert not x.is_power_of(xy)
+    assert not xy.is_power_of(x)
+    assert xy.is_power_of(pt.PiGroup((("x", -2), ("y", -2))))
+
+
+def test_group_symbols_are_positive(rod):
+    group = rod.pi_groups()[0]
+    assert all(symbol.is_positive for symbol in group.expr.free_symbols)
+    assert sympy.sqrt(group.expr**2) == group.expr  # true only for positive symbols

@@ -1,0 +1,76 @@
+"""Scaling algebra and apply: composing, powers, and what apply accepts.
+
+Oracles are worked by hand: a change of units L -> s^a L, T -> s^b T moves
+a variable of dimension L^p T^q by s^(a p + b q).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+import pitheorem as pt
+
+LT = pt.System({"l": "L", "t": "T", "v": "L/T"})
+
+
+def test_composition_adds_exponents_and_unit_changes():
+    length = pt.Scaling.from_unit_change(LT, {"L": 1})
+    time = pt.Scaling.from_unit_change(LT, {"T": 2})
+    both = length * time
+    assert both.exponents == {"l": 1, "t": 2, "v": -1}
+    assert both.unit_change == {"L": 1, "T": 2}
+
+
+def test_composition_with_a_scaling_without_units_has_none():
+    units = pt.Scaling.from_unit_change(LT, {"L": 1})
+    bare = pt.Scaling(LT, (Fraction(0), Fraction(0), Fraction(1)), None)  # v alone: not a change of units
+    assert (units * bare).units is None
+    assert (bare * units).units is None
+    assert (units * bare).exponents == {"l": 1, "t": 0, "v": 2}
+
+
+@pytest.mark.parametrize(("k", "units"), [(2, {"L": 2, "T": -2}), (Fraction(1, 2), {"L": Fraction(1, 2), "T": Fraction(-1, 2)}),
+                                          (-3, {"L": -3, "T": 3})])
+def test_power_multiplies_exponents_and_unit_changes(k, units):
+    base = pt.Scaling.from_unit_change(LT, {"L": 1, "T": -1})  # l -> s l, t -> t/s, v -> s^2 v
+    powered = base**k
+    assert powered.exponents == {"l": k, "t": -k, "v": 2 * k}
+    assert powered.unit_change == units
+
+
+def test_apply_scales_arrays_and_checks_numbers():
+    sc = pt.Scaling.from_unit_change(LT, {"L": 1})  # l -> s l, v -> s v
+    out = sc.apply({"l": np.array([1.0, 2.0]), "t": np.array([3.0]), "v": 4}, s=2)
+    assert out["l"].tolist() == [2.0, 4.0]
+    assert out["t"].tolist() == [3.0]
+    assert out["v"] == 8
+    for bad in ("four", float("nan"), None):
+        with pytest.raises(pt.NumberError):
+            sc.apply({"v": bad}, s=2)
+
+
+def test_without_units_there_is_no_unit_change():
+    bare = pt.Scaling(LT, (Fraction(0), Fraction(0), Fraction(1)), None)
+    with pytest.raises(pt.InvalidRequestError, match="not a change of units"):
+        bare.unit_change  # noqa: B018
+    with pytest.raises(pt.InvalidRequestError, match="not a change of units"):
+        bare.exponent_of("L")
+
+
+def test_scalings_are_equal_only_with_the_same_system_and_exponents():
+    length = pt.Scaling.from_unit_change(LT, {"L": 1})
+    assert length == pt.Scaling.from_exponents(LT, {"l": 1, "v": 1})
+    assert length != pt.Scaling.from_unit_change(LT, {"T": 1})
+    assert length != pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T", "w": "L/T"}), {"L": 1})
+    assert length != 5
+
+
+def test_dimensionless_systems_allow_only_the_identity():
+    # no base dimension: every variable is its own Pi group, so none may change
+    plain = pt.System({"x": "1", "y": "1"})
+    assert pt.Scaling.from_exponents(plain, {"x": 0}).exponents == {"x": 0, "y": 0}
+    with pytest.raises(pt.InvalidRequestError, match="not a similarity scaling"):
+        pt.Scaling.from_exponents(plain, {"x": 1})
