@@ -383,6 +383,7 @@ def test_basis_sequence_pretty_prints_as_its_list():
     assert seen == [[("m", "l", "g"), ("m", "l", "k_theta"), ("m", "l", "c_theta")]]
     assert isinstance(seen[0], list)
 
+
 @pytest.mark.parametrize("m", range(7))
 @pytest.mark.parametrize("k", range(8))
 def test_lex_combinations_are_itertools_combinations(m, k):
