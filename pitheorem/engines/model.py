@@ -453,8 +453,8 @@ class EngineModel:
         --------
         >>> from pitheorem import engines
         >>> model = engines.load(engines.example_path("pendulum.xml"))
-        >>> model.multiplied(g=10).parameter("g").value
-        (98.1,)
+        >>> model.multiplied(g=2).parameter("g").value
+        (19.62,)
         """
         for name, factor in factors.items():
             self.parameter(name)
