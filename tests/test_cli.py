@@ -148,6 +148,26 @@ def test_search_fixed_without_names_lets_time_change(capsys):
         assert any(sc["exponents"]["t"] != "0" for sc in doc["scalings"])
 
 
+def test_search_notes_round_trip_through_text_and_json(capsys):
+    result = pt.search(load_model_file(ROD).system, scale={"g": 1})
+    assert [n.kind for n in result.notes] == ["time_fixed"]
+    code, doc = run_json(capsys, "search", ROD, "--scale", "g=1")
+    assert code == EXIT_OK
+    # JSON: the data of each note rebuilds it, and its text is the command line's phrasing
+    assert tuple(pt.SearchNote(n["kind"], n["variables"]) for n in doc["notes"]) == result.notes
+    texts = [n["text"] for n in doc["notes"]]
+    assert texts == ["time variable t is held fixed by default; give --fixed with no names to let time change"]
+    # text: the same sentences, in the note's place under the explanation
+    for argv in (["search", ROD, "--scale", "g=1"], ["apply", ROD, "--scale", "g=1", "--s", "2"]):
+        code, out, _ = run(capsys, *argv)
+        assert code == EXIT_OK
+        lines = out.splitlines()
+        assert texts[0] in lines
+        assert "fixed=()" not in out  # the Python phrasing never reaches the command line
+    code, doc = run_json(capsys, "apply", ROD, "--scale", "g=1", "--s", "2")
+    assert [n["text"] for n in doc["notes"]] == texts
+
+
 def test_search_exact_exponents_and_allow(capsys):
     code, doc = run_json(capsys, "search", ROD, "--scale", "g=1/2", "l=-1", "--fixed")
     assert code == EXIT_OK
