@@ -356,7 +356,9 @@ class SearchResult:
         return f"<p>{html.escape(self.explanation())}</p>{notes}{table}"
 
     def plot(self, ax=None):
-        """Chart of the table, one colour per exponent (see :func:`pitheorem.plotting.plot_search`).
+        """Chart of the table, one colour per exponent.
+
+        See :func:`pitheorem.plotting.plot_search`.
 
         Parameters
         ----------
