@@ -71,7 +71,7 @@ class SearchNote:
 
     ``str(note)`` is the phrasing of the Python front end (the result's
     text and HTML); the command line phrases the same note with its own
-    options (:func:`pitheorem.display.note_text`).
+    options (both through ``pitheorem.display.note_text``).
 
     Attributes
     ----------

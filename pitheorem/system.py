@@ -343,10 +343,11 @@ class System:
         >>> import pitheorem as pt
         >>> pt.System({"a": "L", "b": "T"}).index("b")
         1
-        >>> pt.System({"a": "L", "b": "T"}).index("c", "fixed")
-        Traceback (most recent call last):
-        ...
-        pitheorem.errors.UnknownVariableError: unknown variable 'c' in fixed; the system has a, b
+        >>> try:
+        ...     pt.System({"a": "L", "b": "T"}).index("c", "fixed")
+        ... except pt.UnknownVariableError as err:
+        ...     print(err)
+        unknown variable 'c' in fixed; the system has a, b
         """
         try:
             return self._variables.index(name)

@@ -547,10 +547,12 @@ class EngineModel:
         ...                     '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>')
         >>> engines.load(urdf).with_settings(fixed_base=True).settings()["loadURDF"]["useFixedBase"]
         True
-        >>> engines.load(engines.example_path("pendulum.xml")).with_settings(ground=True)
-        Traceback (most recent call last):
-        ...
-        pitheorem.errors.InvalidRequestError: an MJCF model keeps its settings in the file; use with_values(...)
+        >>> import pitheorem as pt
+        >>> try:
+        ...     engines.load(engines.example_path("pendulum.xml")).with_settings(ground=True)
+        ... except pt.InvalidRequestError as err:
+        ...     print(err)
+        an MJCF model keeps its settings in the file; use with_values(...)
         """
         if not hasattr(self._backend, "with_settings"):
             raise InvalidRequestError("an MJCF model keeps its settings in the file; use with_values(...)")
