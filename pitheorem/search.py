@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import html
 from collections.abc import Iterable, Iterator, Mapping
-from dataclasses import FrozenInstanceError, dataclass, field
+from dataclasses import FrozenInstanceError, dataclass, field, fields
 from fractions import Fraction
 from math import comb, gcd, lcm
 from types import MappingProxyType
@@ -185,6 +185,12 @@ class SearchResult:
     # the scalings are changes of units (else symmetries of equations: Scaling.units is None)
     _is_units: bool = field(default=True, repr=False, compare=False)
     _minimal: _Once = field(default=None, repr=False, compare=False)
+
+    def __reduce__(self):
+        # a read-only mapping does not pickle: send the prescribed exponents as a plain dict
+        state = {f.name: getattr(self, f.name) for f in fields(self)}
+        state["scale"] = dict(self.scale)
+        return (_unpickle_result, (state,))
 
     # -- minimal solutions ------------------------------------------------
     def _enumerate(self):
@@ -380,6 +386,10 @@ class SearchResult:
         from .plotting import plot_search
 
         return plot_search(self, ax=ax)
+
+
+def _unpickle_result(state: dict) -> SearchResult:
+    return SearchResult(**{**state, "scale": MappingProxyType(state["scale"])})
 
 
 def _html_code(text: str) -> str:

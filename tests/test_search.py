@@ -315,6 +315,18 @@ def test_equal_requests_give_equal_hashable_results(rod):
     assert a != pt.search(rod, scale={"g": 1}, fixed=())
 
 
+def test_results_pickle_before_and_after_enumerating(rod):
+    import pickle
+
+    for res in (pt.search(rod, scale={"g": 1}), pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta"))):
+        again = pickle.loads(pickle.dumps(res))
+        assert again == res
+        assert again.scalings == res.scalings  # enumerates both
+        assert pickle.loads(pickle.dumps(res)).count == res.count
+        with pytest.raises(TypeError):
+            again.scale["g"] = 2
+
+
 def test_notes_are_data_phrased_by_each_front_end(rod):
     res = pt.search(rod, scale={"g": 1})
     (note,) = res.notes
