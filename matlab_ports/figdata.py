@@ -32,7 +32,17 @@ LINE_TYPES = ("graph2d.lineseries", "line")
 
 
 class FigContents(NamedTuple):
-    """What :func:`read_fig_lines` returns (the labels of the first axes with a title/labels)."""
+    """What :func:`read_fig_lines` returns: the lines, labels and limits of a figure.
+
+    The labels and limits are those of the first axes that has a title or labels.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> c = FigContents([(np.array([0.0, 1.0]), np.array([2.0, 3.0]))], "T", "x", "y", (0.0, 1.0), (2.0, 3.0))
+    >>> c.title, len(c.lines)
+    ('T', 1)
+    """
 
     lines: list  # [(xdata, ydata), ...] as float64 arrays, in tree order
     title: str | None
@@ -145,6 +155,27 @@ def sample_reference(paths, step=1000):
     dict
         ``{file name: {"indices", "x", "y", "n_points", "title", "xlabel", "ylabel", "xlim",
         "ylim"}}``.
+
+    Examples
+    --------
+    A ``.fig``-like file of one line of five points, written with scipy (see
+    :func:`read_fig_lines`), sampled every second point:
+
+    >>> import tempfile, os, scipy.io
+    >>> none = np.zeros((0, 1))
+    >>> line = {"type": "line", "handle": 2.0, "children": none, "special": none,
+    ...         "properties": {"XData": [0.0, 0.1, 0.2, 0.3, 0.4], "YData": [1.0, 0.5, 0.25, 0.125, 0.0625]}}
+    >>> title = {"type": "text", "handle": 3.0, "properties": {"String": "decay"}, "children": none,
+    ...          "special": none}
+    >>> axes = {"type": "axes", "handle": 1.0, "special": [2.0, 0.0, 0.0, 0.0],
+    ...         "properties": {"XLim": [0.0, 0.4], "YLim": [0.0, 1.0]},
+    ...         "children": np.array([line, title], dtype=object)}
+    >>> path = os.path.join(tempfile.mkdtemp(), "decay.fig")
+    >>> scipy.io.savemat(path, {"hgS_070000": {"type": "figure", "handle": 0.0, "properties": {},
+    ...                                        "children": axes, "special": none}})
+    >>> sample = sample_reference([path], step=2)["decay.fig"]
+    >>> sample["n_points"], sample["indices"], sample["x"], sample["y"], sample["title"]
+    (5, [0, 2, 4], ['0.0', '0.2', '0.4'], ['1.0', '0.25', '0.0625'], 'decay')
     """
     result = {}
     for path in paths:
@@ -166,7 +197,25 @@ def sample_reference(paths, step=1000):
 
 
 def provenance(paths, step):
-    """Where a sampled reference comes from, for the ``"provenance"`` entry of the JSON."""
+    """Where a sampled reference comes from: the JSON's ``"provenance"`` entry.
+
+    Parameters
+    ----------
+    paths : iterable of path-like
+        The ``.fig`` files sampled.
+    step : int
+        The sampling stride given to :func:`sample_reference`.
+
+    Returns
+    -------
+    dict
+        ``{"source", "extraction", "indices", "format", "command"}``, each a sentence.
+
+    Examples
+    --------
+    >>> provenance(["figure1.fig", "figure2.fig"], 1000)["command"]
+    'python matlab_ports/figdata.py --sample 1000 OUT.json figure1.fig figure2.fig'
+    """
     names = " ".join(Path(p).name for p in paths)
     return {
         "source": (

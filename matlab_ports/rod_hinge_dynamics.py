@@ -141,7 +141,7 @@ def rod_hinge_dynamics_longitudinal(y, m, x_r, l, g, k, c, theta_r):
 
 
 def rod_hinge_dynamics_longitudinal_rotational_damper(y, m, x_r, l, g, k, c, theta_r):
-    """Commented-out variant 2 of the original: longitudinal spring, rotational damper.
+    """Commented-out variant 2: longitudinal spring, rotational damper.
 
     ``theta_ddot = 3/(m l^3) * ((m g l/2) cos(theta) - c theta_dot
     + k l^2 sin(theta) cos(theta) - k x_r l sin(theta))``

@@ -167,7 +167,9 @@ def plot_runs(runs):
 
 
 def main(argv=None):
-    """Command line: simulate the three runs and write ``linear_<run>.png`` to ``--outdir``.
+    """Command line: simulate the three runs, write ``linear_<run>.png``.
+
+    The files go to ``--outdir`` (default: the current folder).
 
     Parameters
     ----------
@@ -178,6 +180,13 @@ def main(argv=None):
     -------
     list of pathlib.Path
         The files written.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     [p.name for p in main(["--outdir", folder])]
+    ['linear_original.png', 'linear_gravity.png', 'linear_gravity_length.png']
     """
     return write_figures_main(__doc__.splitlines()[0], lambda: plot_runs(simulate()), "linear_", argv)
 

@@ -217,6 +217,15 @@ def main(argv=None):
     -------
     list of pathlib.Path
         The files written.
+
+    Examples
+    --------
+    Fast mode: the first 200 samples of each run.
+
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     [p.name for p in main(["--outdir", folder, "--n-points", "200"])]
+    ['figure1.png', 'figure2.png', 'figure3.png', 'figure4.png', 'figure5.png']
     """
     return write_figures_main(__doc__.splitlines()[0], lambda n: plot_figures(simulate_figures(n)), "", argv,
                               fast_mode=True)

@@ -67,6 +67,15 @@ YLABELS = {
 def flight_time(v0, g, angle):
     """Time of flight back to launch height, ``2 v0 sin(angle) / g``.
 
+    Parameters
+    ----------
+    v0, g, angle : float
+        Launch speed, gravitational acceleration and launch angle from the horizontal.
+
+    Returns
+    -------
+    float
+
     Examples
     --------
     >>> flight_time(10.0, 10.0, math.pi / 2)
@@ -165,7 +174,9 @@ def plot_runs(runs):
 
 
 def main(argv=None):
-    """Command line: write ``projectile_<run>.png`` for the three runs to ``--outdir``.
+    """Command line: write ``projectile_<run>.png`` for the three runs.
+
+    The files go to ``--outdir`` (default: the current folder).
 
     Parameters
     ----------
@@ -176,6 +187,13 @@ def main(argv=None):
     -------
     list of pathlib.Path
         The files written.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     [p.name for p in main(["--outdir", folder])]
+    ['projectile_original.png', 'projectile_gravity.png', 'projectile_gravity_length.png']
     """
     return write_figures_main(__doc__.splitlines()[0], lambda: plot_runs(simulate()), "projectile_", argv)
 

@@ -13,6 +13,8 @@ plain text).  JSON is meant for programs: keys come in a fixed order (the
 file's variable order), Pi-group exponents are integers, and every exact
 rational (scaling exponents, unit changes, rational values) is a string
 such as ``"1/2"`` or ``"-2"``.
+Each of a search's notes is an object ``{"kind", "variables", "text"}``:
+the data of a :class:`pitheorem.search.SearchNote` and its sentence.
 
 ``--scale`` takes exponents of the scale factor ``s``, never factors:
 ``g=1`` means g -> s g, ``l=-1`` means l -> l / s, and ``g=1/6`` means
@@ -52,11 +54,11 @@ from pathlib import Path
 import sympy
 
 from . import __version__
-from .display import power_latex, power_text
+from .display import note_text, power_latex, power_text
 from .errors import CommandLineError, PiTheoremError
 from .exact import read_exponent, read_number, short_text
 from .modelfile import ModelFile, load_model_file, write_model_file
-from .search import SearchResult, search
+from .search import SearchNote, SearchResult, search
 
 __all__ = ["EXIT_ERROR", "EXIT_INFEASIBLE", "EXIT_OK", "build_parser", "main"]
 
@@ -67,8 +69,8 @@ EXIT_INFEASIBLE = 1
 #: exit code of bad input (and of argparse's usage errors)
 EXIT_ERROR = 2
 
-_TIME_NOTE = "pass fixed=() to let time change"
-_TIME_NOTE_CLI = "give --fixed with no names to let time change"
+#: how the command line lets time change, closing the note that time was held fixed by default
+_TIME_REMEDY = "give --fixed with no names to let time change"
 
 
 _CommandError = CommandLineError  # the short name used throughout this module
@@ -234,8 +236,15 @@ def _run_search(model: ModelFile, args) -> SearchResult:
     return search(model.system, scale, fixed, allow=args.allow)
 
 
-def _notes(result: SearchResult) -> list[str]:
-    return [note.replace(_TIME_NOTE, _TIME_NOTE_CLI) for note in result.notes]
+def _note_text(note: SearchNote) -> str:
+    """A search note in the command line's terms."""
+    return note_text(note, time_remedy=_TIME_REMEDY)
+
+
+def _notes_json(result: SearchResult) -> list[dict]:
+    """Each note as data (kind, variables) with its text: ``SearchNote(kind, variables)`` rebuilds it."""
+    return [{"kind": note.kind, "variables": list(note.variables), "text": _note_text(note)}
+            for note in result.notes]
 
 
 # -- groups ----------------------------------------------------------------------------------
@@ -360,7 +369,7 @@ def _cmd_search(args) -> int:
             "scalings": [_scaling_json(sc) for sc in result.scalings],
             "certificate": _certificate_json(result),
             "explanation": result.explanation(),
-            "notes": _notes(result),
+            "notes": _notes_json(result),
         }
         print(_dump_json(doc))
         return code
@@ -385,8 +394,8 @@ def _cmd_search(args) -> int:
         print(r"\end{tabular}")
         return code
     print(result.explanation())
-    for note in _notes(result):
-        print(note)
+    for note in result.notes:
+        print(_note_text(note))
     if result.feasible:
         print()
         print(result.table())
@@ -455,7 +464,7 @@ def _cmd_apply(args) -> int:
             "values": {n: _json_number(v) for n, v in model.values.items()},
             "scaled": {n: _json_number(v) for n, v in scaled.items()},
             "output": output,
-            "notes": _notes(result),
+            "notes": _notes_json(result),
         }
         print(_dump_json(doc))
         return EXIT_OK
@@ -469,8 +478,8 @@ def _cmd_apply(args) -> int:
         return EXIT_OK
     print(f"{model.name}, s = {s}: {which}")
     print(f"  {sc}")
-    for note in _notes(result):
-        print(note)
+    for note in result.notes:
+        print(_note_text(note))
     rows = [["variable", "factor", "value", "scaled value"]]
     rows += [[n, power_text(exps[n]), _value_text(v), _value_text(scaled[n])] for n, v in model.values.items()]
     print()

@@ -194,6 +194,15 @@ class Dimension:
     def exponent(self, base: str) -> Fraction:
         """The exponent of one base dimension (zero when absent).
 
+        Parameters
+        ----------
+        base : str
+            A base dimension, e.g. ``"T"``.
+
+        Returns
+        -------
+        Fraction
+
         Examples
         --------
         >>> from pitheorem import Dimension

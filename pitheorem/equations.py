@@ -417,11 +417,29 @@ class SymmetryReport:
 
     @property
     def dimension(self) -> int:
-        """Dimension of the symmetry subspace."""
+        """Dimension of the symmetry subspace.
+
+        Examples
+        --------
+        >>> import sympy, pitheorem as pt
+        >>> s = pt.System({"x": "L", "t": "T"})
+        >>> t = sympy.Symbol("t"); x = sympy.Function("x")(t)
+        >>> pt.scaling_symmetries([sympy.Eq(x.diff(t, 2), 0)], s).dimension
+        2
+        """
         return len(self.basis)
 
     def contains(self, exponents: dict[str, object]) -> bool:
         """True when the exponent vector is a symmetry of the equations.
+
+        Parameters
+        ----------
+        exponents : mapping of str to number
+            Exponent of ``s`` per variable; variables left out have 0.
+
+        Returns
+        -------
+        bool
 
         Examples
         --------

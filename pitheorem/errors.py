@@ -87,7 +87,14 @@ class DimensionSyntaxError(PiTheoremError, ValueError):
 
     @property
     def culprit(self) -> str:
-        """The formula from the offending token on."""
+        """The formula from the offending token on.
+
+        Examples
+        --------
+        >>> from pitheorem.errors import DimensionSyntaxError
+        >>> DimensionSyntaxError("M L^^2", 4, "expected a number after '^'").culprit
+        '^2'
+        """
         return self.text[self.position :]
 
     def __str__(self) -> str:
@@ -138,7 +145,14 @@ class UnknownVariableError(PiTheoremError, KeyError):
 
     @property
     def culprit(self) -> str:
-        """The unknown name."""
+        """The unknown name.
+
+        Examples
+        --------
+        >>> from pitheorem.errors import UnknownVariableError
+        >>> UnknownVariableError("mass", ("m", "l"), "repeating").culprit
+        'mass'
+        """
         return self.name
 
     def __str__(self) -> str:
@@ -169,7 +183,14 @@ class DuplicateVariableError(PiTheoremError, ValueError):
 
     @property
     def culprit(self) -> str:
-        """The name given twice."""
+        """The name given twice.
+
+        Examples
+        --------
+        >>> from pitheorem.errors import DuplicateVariableError
+        >>> DuplicateVariableError("m", "repeating").culprit
+        'm'
+        """
         return self.name
 
     def __str__(self) -> str:
@@ -218,7 +239,14 @@ class RepeatingCountError(PiTheoremError, ValueError):
 
     @property
     def culprit(self) -> tuple[str, ...]:
-        """The repeating set given."""
+        """The repeating set given.
+
+        Examples
+        --------
+        >>> from pitheorem.errors import RepeatingCountError
+        >>> RepeatingCountError(("m", "l"), 3).culprit
+        ('m', 'l')
+        """
         return self.given
 
     def __str__(self) -> str:
@@ -259,7 +287,14 @@ class DependentRepeatingSetError(PiTheoremError, ValueError):
 
     @property
     def culprit(self) -> tuple[str, ...]:
-        """The dependent repeating set."""
+        """The dependent repeating set.
+
+        Examples
+        --------
+        >>> from pitheorem.errors import DependentRepeatingSetError
+        >>> DependentRepeatingSetError(("l", "t", "g"), "l/(g*t**2)").culprit
+        ('l', 't', 'g')
+        """
         return self.repeating
 
     def __str__(self) -> str:
@@ -314,7 +349,14 @@ class SystemMismatchError(InvalidRequestError):
 
     @property
     def culprit(self) -> str:
-        """The variable that is missing or differs."""
+        """The variable that is missing or differs.
+
+        Examples
+        --------
+        >>> from pitheorem.errors import SystemMismatchError
+        >>> SystemMismatchError("m", "the scaling's system has no variable 'm'").culprit
+        'm'
+        """
         return self.name
 
     def __str__(self) -> str:
@@ -357,7 +399,14 @@ class NumberError(InvalidRequestError):
 
     @property
     def culprit(self) -> object:
-        """The value given."""
+        """The value given.
+
+        Examples
+        --------
+        >>> from pitheorem.errors import NumberError
+        >>> NumberError("1/0", "exponent of 'g'", "a finite number").culprit
+        '1/0'
+        """
         return self.value
 
     def __str__(self) -> str:
@@ -400,7 +449,14 @@ class LimitError(InvalidRequestError):
 
     @property
     def culprit(self) -> object:
-        """The offending value."""
+        """The offending value.
+
+        Examples
+        --------
+        >>> from pitheorem.errors import LimitError
+        >>> LimitError("L^100000", "exponent in 'L^100000'", "its magnitude exceeds the limit 1000").culprit
+        'L^100000'
+        """
         return self.value
 
     def __str__(self) -> str:
@@ -439,7 +495,16 @@ class ModelFileError(PiTheoremError, ValueError):
 
     @property
     def culprit(self) -> str:
-        """The variable at fault, or the file when no variable is."""
+        """The variable at fault, or the file when no variable is.
+
+        Examples
+        --------
+        >>> from pitheorem.modelfile import ModelFileError
+        >>> ModelFileError("rod.toml", "unknown role 'input'", variable="m").culprit
+        'm'
+        >>> ModelFileError("rod.toml", "invalid TOML", line=3).culprit
+        'rod.toml'
+        """
         return self.variable if self.variable is not None else self.path
 
     def __str__(self) -> str:
@@ -482,7 +547,14 @@ class EngineUnavailableError(PiTheoremError, ImportError):
 
     @property
     def culprit(self) -> str:
-        """The engine asked for."""
+        """The engine asked for.
+
+        Examples
+        --------
+        >>> from pitheorem.errors import EngineUnavailableError
+        >>> EngineUnavailableError("mujoco").culprit
+        'mujoco'
+        """
         return self.engine
 
     def __str__(self) -> str:

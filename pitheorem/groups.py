@@ -139,7 +139,14 @@ class PiGroup:
 
     @property
     def is_trivial(self) -> bool:
-        """True for the empty product (the number 1)."""
+        """True for the empty product (the number 1).
+
+        Examples
+        --------
+        >>> from pitheorem import PiGroup
+        >>> PiGroup(()).is_trivial, PiGroup((("g", 1), ("l", -1))).is_trivial
+        (True, False)
+        """
         return not self.powers
 
     def reciprocal(self) -> PiGroup:
@@ -155,6 +162,14 @@ class PiGroup:
 
     def is_power_of(self, other: PiGroup) -> bool:
         """True when one group is a rational power of the other (e.g. its reciprocal).
+
+        Parameters
+        ----------
+        other : PiGroup
+
+        Returns
+        -------
+        bool
 
         Examples
         --------
@@ -249,12 +264,28 @@ class PiSet(Sequence):
 
     @property
     def repeating(self) -> tuple[str, ...]:
-        """The repeating variables."""
+        """The repeating variables.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> rod = pt.System({"m": "M", "l": "L", "g": "L/T^2", "t": "T"})
+        >>> rod.pi_groups(repeating=("m", "l", "g")).repeating
+        ('m', 'l', 'g')
+        """
         return self._repeating
 
     @property
     def variables(self) -> tuple[str, ...]:
-        """Every variable of the system, in order."""
+        """Every variable of the system, in order.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> rod = pt.System({"m": "M", "l": "L", "g": "L/T^2", "t": "T"})
+        >>> rod.pi_groups(repeating=("m", "l", "g")).variables
+        ('m', 'l', 'g', 't')
+        """
         return self._variables
 
     def __getitem__(self, index):
@@ -293,6 +324,14 @@ class PiSet(Sequence):
         Two sets are equivalent when each group of one is a product of
         rational powers of the groups of the other: they describe the same
         physics, whatever repeaters produced them.
+
+        Parameters
+        ----------
+        other : PiSet
+
+        Returns
+        -------
+        bool
 
         Examples
         --------

@@ -250,6 +250,15 @@ class Scaling:
 
         Exact (sympy) for an exact ``s``; floats for a float ``s``.
 
+        Parameters
+        ----------
+        s : number
+            The scale factor.
+
+        Returns
+        -------
+        dict of str to number
+
         Examples
         --------
         >>> import pitheorem as pt

@@ -20,19 +20,23 @@ zero, which is a linear system ``C u = b``:
 
 from __future__ import annotations
 
+import html
 from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import FrozenInstanceError, dataclass, field, fields
 from fractions import Fraction
 from math import comb, gcd, lcm
+from types import MappingProxyType
+from typing import ClassVar
 
 from .dimensions import Dimension
-from .display import power_text
+from .display import note_text, power_text
 from .errors import InvalidRequestError
 from .groups import PiGroup
 from .linalg import nullspace, rank, solve
 from .scaling import Scaling, as_exponent
 from .system import System
 
-__all__ = ["SearchResult", "search"]
+__all__ = ["SearchNote", "SearchResult", "search"]
 
 
 def _time_variables(system: System) -> tuple[str, ...]:
@@ -44,22 +48,119 @@ def _dot(x, y) -> Fraction:
     return sum((a * b for a, b in zip(x, y, strict=True)), Fraction(0))
 
 
+def _refuse_assignment(cls):
+    """Make every assignment to an instance of a frozen, slotted dataclass raise FrozenInstanceError.
+
+    Python 3.11's generated ``__setattr__`` answers a name that is no field
+    (``res.count = 1``) with an unrelated ``TypeError`` about ``super()``,
+    because ``slots=True`` builds a new class; this says what happened.
+    """
+
+    def refuse(self, name, *value):
+        raise FrozenInstanceError(f"cannot assign or delete {name!r}: a {cls.__name__} is immutable")
+
+    cls.__setattr__ = refuse
+    cls.__delattr__ = refuse
+    return cls
+
+
+@_refuse_assignment
+@dataclass(frozen=True, slots=True)
+class SearchNote:
+    """An assumption a search made, as data that each front end phrases.
+
+    ``str(note)`` is the phrasing of the Python front end (the result's
+    text and HTML); the command line phrases the same note with its own
+    options (both through ``pitheorem.display.note_text``).
+
+    Attributes
+    ----------
+    kind : {"time_fixed", "outside_equations"}
+        ``"time_fixed"``: no `fixed` was given, so the variables of
+        dimension T were held fixed.  ``"outside_equations"``: a search
+        ``within=`` equations held the variables that do not appear in them.
+    variables : tuple of str
+        The variables the note is about, in system order.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> res = pt.search(pt.System({"l": "L", "g": "L T^-2", "t": "T"}), scale={"g": 1})
+    >>> res.notes
+    (SearchNote(kind='time_fixed', variables=('t',)),)
+    >>> print(res.notes[0])
+    time variable t is held fixed by default; pass fixed=() to let time change
+    """
+
+    #: every kind of note a search makes
+    KINDS: ClassVar[tuple[str, ...]] = ("time_fixed", "outside_equations")
+
+    kind: str
+    variables: tuple[str, ...]
+
+    def __post_init__(self):
+        if self.kind not in self.KINDS:
+            raise InvalidRequestError(f"unknown note kind {self.kind!r}; the kinds are {', '.join(self.KINDS)}")
+        if isinstance(self.variables, str) or not all(isinstance(n, str) for n in self.variables):
+            raise InvalidRequestError(f"a note's variables are a sequence of names, got {self.variables!r}")
+        object.__setattr__(self, "variables", tuple(self.variables))  # a list read from JSON becomes a tuple
+
+    def __str__(self) -> str:
+        return note_text(self)
+
+
+class _Once:
+    """The minimal solutions of one request: enumerated on first use, then kept.
+
+    The only state a :class:`SearchResult` changes after it is made, and
+    none of it is visible except as speed.
+    """
+
+    __slots__ = ("_args", "_value")
+
+    def __init__(self, *args):
+        self._args = args
+        self._value = None
+
+    def __call__(self):
+        if self._args is not None:
+            self._value = _minimal_points(*self._args)
+            self._args = None
+        return self._value
+
+
+@_refuse_assignment
+@dataclass(frozen=True, slots=True)
 class SearchResult:
     """The answer of :func:`search`: every minimal scaling, or a proof of none.
+
+    A frozen value, made whole by :func:`search`: its attributes cannot be
+    assigned.  The minimal scalings are enumerated once, on first use of
+    :attr:`scalings`, :attr:`count`, :meth:`table` or the text display;
+    ``repr`` and the attributes below never enumerate.
 
     Attributes
     ----------
     system : System
-    scale : dict of str to Fraction
-        The prescribed exponents.
+    scale : mapping of str to Fraction
+        The prescribed exponents (read-only).
     fixed : tuple of str
         Variables held unchanged (including those outside `allow`).
+    notes : tuple of SearchNote
+        Assumptions made, e.g. that time was held fixed by default.
     feasible : bool
     certificate : PiGroup or None
         When infeasible: a dimensionless product of prescribed and fixed
         variables that the request would change.
-    notes : tuple of str
-        Assumptions made, e.g. that time was held fixed by default.
+    certificate_power : Fraction
+        When infeasible: the power of ``s`` by which the request would
+        multiply the certificate (0 when feasible).
+    particular : Scaling or None
+        When feasible: one solution, not necessarily minimal.
+    directions : tuple of Scaling
+        When feasible: independent scalings that keep every prescribed and
+        fixed exponent; every solution is ``particular`` plus a
+        combination of them.
 
     Examples
     --------
@@ -68,134 +169,33 @@ class SearchResult:
     >>> res = pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta"))
     >>> res.feasible, str(res.certificate)
     (False, 'Pi = g**2*m*t**2/k_theta')
+    >>> res
+    <SearchResult g by s with t, m, k_theta fixed: infeasible, certificate g**2*m*t**2/k_theta>
     """
 
-    __slots__ = ("_coords", "_generators", "_is_units", "_points", "certificate", "certificate_power",
-                 "directions", "feasible", "fixed", "notes", "particular", "scale", "system")
+    system: System
+    scale: Mapping[str, Fraction] = field(hash=False)
+    fixed: tuple[str, ...]
+    notes: tuple[SearchNote, ...]
+    feasible: bool
+    certificate: PiGroup | None = None
+    certificate_power: Fraction = Fraction(0)
+    particular: Scaling | None = None
+    directions: tuple[Scaling, ...] = ()
+    # the scalings are changes of units (else symmetries of equations: Scaling.units is None)
+    _is_units: bool = field(default=True, repr=False, compare=False)
+    _minimal: _Once = field(default=None, repr=False, compare=False)
 
-    def __init__(self, system, scale, fixed, notes, generators=None):
-        self.system = system
-        # allowed exponent vectors are combinations of these rows: the rows of
-        # the dimension matrix (changes of units), or a symmetry basis
-        self._is_units = generators is None
-        self._generators = (
-            [[system.dimension(v).exponent(b) for v in system.variables] for b in system.base_dimensions]
-            if generators is None else [list(g) for g in generators]
-        )
-        self.scale = dict(scale)
-        self.fixed = tuple(fixed)
-        self.notes = tuple(notes)
-        self.certificate = None
-        self.certificate_power = Fraction(0)
-        self.particular = None
-        self.directions: tuple[Scaling, ...] = ()
-        self.feasible = False
-        self._points = None
-        self._coords = None
-
-    # -- the general solution --------------------------------------------
-    def _scaling(self, coords) -> Scaling:
-        gens = self._generators
-        powers = tuple(_dot(coords, [g[i] for g in gens]) for i in range(len(self.system.variables)))
-        return Scaling(self.system, powers, tuple(coords) if self._is_units else None)
-
-    def _solve(self):
-        system = self.system
-        gens = self._generators
-        names = list(self.scale) + list(self.fixed)
-        rhs = [self.scale[n] for n in self.scale] + [Fraction(0)] * len(self.fixed)
-        rows = [[g[system.index(n)] for g in gens] for n in names]
-        w0 = solve(rows, rhs) if gens else ([] if not any(rhs) else None)
-        if w0 is None:
-            self._certify(names, rows, rhs)
-            return
-        self.feasible = True
-        self.particular = self._scaling(w0)
-        # directions that keep every constraint: coordinates in null(C), kept
-        # only while their exponent vectors stay independent
-        null_w = nullspace(rows, len(gens)) if rows else nullspace([], len(gens))
-        kept, images = [], []
-        for w in null_w:
-            image = list(self._scaling(w).powers)
-            if rank([*images, image]) > len(images):
-                kept.append(w)
-                images.append(image)
-        self._coords = (w0, kept)
-        self.directions = tuple(self._scaling(w) for w in kept)
-
-    def _certify(self, names, rows, rhs):
-        # y with y^T C = 0 and y.b != 0: a dimensionless product the request changes
-        transposed = [list(col) for col in zip(*rows, strict=True)] if rows and rows[0] else []
-        candidates = nullspace(transposed, len(names)) if transposed else nullspace([], len(names))
-        changing = [y for y in candidates if _dot(y, rhs) != 0]
-        best = min(changing, key=lambda y: (sum(1 for x in y if x), [i for i, x in enumerate(y) if x]))
-        scaled = [n for n, y in zip(names, best, strict=True) if y and n in self.scale]
-        group = PiGroup.from_exponents(dict(zip(names, best, strict=True)), variable=scaled[0] if scaled else None,
-                                       order=[n for n in self.system.variables if n in names])
-        group = PiGroup(group.powers, None)
-        self.certificate = group
-        self.certificate_power = _dot([group.exponents.get(n, 0) for n in names], rhs)
+    def __reduce__(self):
+        # a read-only mapping does not pickle: send the prescribed exponents as a plain dict
+        state = {f.name: getattr(self, f.name) for f in fields(self)}
+        state["scale"] = dict(self.scale)
+        return (_unpickle_result, (state,))
 
     # -- minimal solutions ------------------------------------------------
-    def _enumerate(self) -> list[tuple[tuple[Fraction, ...], tuple[Fraction, ...]]]:
-        if self._points is not None:
-            return self._points
-        if not self.feasible:
-            self._points = []
-            return self._points
-        system = self.system
-        a0 = list(self.particular.powers)
-        u0, kept = self._coords
-        dirs = [list(d.powers) for d in self.directions]
-        d = len(dirs)
-        constrained = set(self.scale) | set(self.fixed)
-        free = [i for i, n in enumerate(system.variables) if n not in constrained]
-        found: dict[tuple[Fraction, ...], tuple[Fraction, ...]] = {}
-        if d == 0:
-            found[tuple(a0)] = tuple(u0)
-        else:
-            # one common denominator makes the particular point and the directions integers
-            den = lcm(*(x.denominator for x in a0), *(x.denominator for v in dirs for x in v))
-            a0_int = [int(x * den) for x in a0]
-            dirs_int = [[int(x * den) for x in v] for v in dirs]
-            from .family import MinimalPoints, minimal_points  # numpy loads only when a family is enumerated
-
-            batched = minimal_points(a0_int, dirs_int, free, [i for i in range(len(a0)) if i not in set(free)])
-            if batched is not None:
-                self._points = MinimalPoints(*batched, den, u0, kept)
-                return self._points
-            found = self._exact_points(a0_int, dirs_int, den, free, u0, kept)
-
-        def order(point):
-            support = [i for i, p in enumerate(point) if p]
-            return (len(support), support, [abs(p) for p in point], point)
-
-        self._points = [(p, found[p]) for p in sorted(found, key=order)]
-        return self._points
-
-    @staticmethod
-    def _exact_points(a0_int, dirs_int, den, free, u0, kept) -> dict[tuple[Fraction, ...], tuple[Fraction, ...]]:
-        """Minimal points by one exact solve per subset: for families too large for exact floats."""
-        from .bases import independent_subsets
-
-        rows = [[v[i] for i in free] for v in dirs_int]
-        seen: dict[tuple[int, ...], tuple[int, ...]] = {}
-        for subset in independent_subsets(rows, range(len(free)), [], len(dirs_int)):
-            zero = [free[k] for k in subset]
-            z = solve([[v[i] for v in dirs_int] for i in zero], [-a0_int[i] for i in zero])
-            z_den = lcm(*(x.denominator for x in z))
-            z_num = [int(x * z_den) for x in z]
-            point = [a * z_den + sum(c * v[i] for c, v in zip(z_num, dirs_int, strict=True))
-                     for i, a in enumerate(a0_int)]
-            g = gcd(den * z_den, *point)
-            key = (den * z_den // g, *(p // g for p in point))
-            if key not in seen:
-                seen[key] = tuple(z)
-        found = {}
-        for (scale_den, *point), z in seen.items():
-            exact = tuple(Fraction(p, scale_den) for p in point)
-            found[exact] = tuple(u + _dot(z, [w[j] for w in kept]) for j, u in enumerate(u0))
-        return found
+    def _enumerate(self):
+        """``(point, coords)`` of each minimal solution, enumerated on first call."""
+        return self._minimal() if self._minimal is not None else []
 
     def _vectors(self) -> list[tuple[Fraction, ...]]:
         return [point for point, _ in self._enumerate()]
@@ -247,11 +247,22 @@ class SearchResult:
         """Every support-minimal scaling, fewest changed variables first.
 
         Ties are broken by the positions of the changed variables, then by
-        the size of the exponents.
+        the size of the exponents.  A new list on each call.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "t": "T"})
+        >>> [str(sc) for sc in pt.search(rod, scale={"g": 1}).scalings]
+        ['m -> m/s^2, l -> s l, g -> s g', 'l -> s l, g -> s g, k_theta -> s^2 k_theta']
         """
         return list(self.iter_scalings())
 
     # -- display ----------------------------------------------------------
+    def _request(self) -> str:
+        request = ", ".join(f"{n} by {power_text(p)}" for n, p in self.scale.items())
+        return request + (f" with {', '.join(self.fixed)} fixed" if self.fixed else "")
+
     def explanation(self) -> str:
         """One sentence saying what was found, or why nothing can be.
 
@@ -262,11 +273,9 @@ class SearchResult:
         >>> print(pt.search(s, scale={"theta_r": 1}).explanation())
         Impossible: theta_r is dimensionless and built only from prescribed and fixed variables, but the request would multiply it by s, so no change of units (and hence no similarity scaling) can do it.
         """
-        request = ", ".join(f"{n} by {power_text(p)}" for n, p in self.scale.items())
-        held = f" with {', '.join(self.fixed)} fixed" if self.fixed else ""
         if self.feasible:
             extra = f" (a family of dimension {len(self.directions)})" if self.directions else " (unique)"
-            return f"Scaling {request}{held}: {self.count} minimal solution(s){extra}."
+            return f"Scaling {self._request()}: {self.count} minimal solution(s){extra}."
         return (
             f"Impossible: {self.certificate.expr} is dimensionless and built only from prescribed and fixed "
             f"variables, but the request would multiply it by {power_text(self.certificate_power)}, so no change "
@@ -313,13 +322,21 @@ class SearchResult:
         return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in rows)
 
     def __str__(self) -> str:
-        lines = [self.explanation(), *self.notes]
+        lines = [self.explanation(), *(note_text(note) for note in self.notes)]
         if self.feasible:
             lines += ["", self.table()]
         return "\n".join(lines)
 
     def __repr__(self) -> str:
-        return f"<SearchResult feasible={self.feasible} count={self.count if self.feasible else 0}>"
+        # cheap: the request and the size of the answer, never the enumeration
+        if not self.feasible:
+            answer = f"infeasible, certificate {self.certificate.expr}"
+        elif self.directions:
+            answer = (f"feasible, a family of dimension {len(self.directions)}, "
+                      f"at most {self.max_count} minimal solution(s)")
+        else:
+            answer = "feasible, unique"
+        return f"<SearchResult {self._request()}: {answer}>"
 
     def _repr_html_(self) -> str:
         cell = 'style="padding: 0.15em 0.9em; text-align: center"'
@@ -335,16 +352,28 @@ class SearchResult:
             cells = "".join(f"<td {cell}>{p}</td>" for p in powers)
             body.append(f'<tr class="base-unit"{rule}><th {cell}>{label}</th><td {cell}><em>base unit</em></td>'
                         f"{cells}</tr>")
-        notes = "".join(f"<p>{note}</p>" for note in self.notes)
+        notes = "".join(f"<p>{note_text(note, time_remedy=_HTML_TIME_REMEDY, code=_html_code)}</p>"
+                        for note in self.notes)
         table = (
             f'<table style="border-collapse: collapse"><tr><th {cell}>variable</th><th {cell}>role</th>{head}</tr>'
             f"{''.join(body)}</table>"
             if self.feasible else ""
         )
-        return f"<p>{self.explanation()}</p>{notes}{table}"
+        return f"<p>{html.escape(self.explanation())}</p>{notes}{table}"
 
     def plot(self, ax=None):
-        """Chart of the table, one colour per exponent (see :func:`pitheorem.plotting.plot_search`).
+        """Chart of the table, one colour per exponent.
+
+        See :func:`pitheorem.plotting.plot_search`.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Draw into these axes (default: a new figure).
+
+        Returns
+        -------
+        matplotlib.figure.Figure
 
         Examples
         --------
@@ -357,6 +386,123 @@ class SearchResult:
         from .plotting import plot_search
 
         return plot_search(self, ax=ax)
+
+
+def _unpickle_result(state: dict) -> SearchResult:
+    return SearchResult(**{**state, "scale": MappingProxyType(state["scale"])})
+
+
+def _html_code(text: str) -> str:
+    return f"<code>{html.escape(text)}</code>"
+
+
+_HTML_TIME_REMEDY = f"pass {_html_code('fixed=()')} to let time change"
+
+
+# -- solving a request ---------------------------------------------------------------------
+
+
+def _scaling(system: System, generators, is_units: bool, coords) -> Scaling:
+    powers = tuple(_dot(coords, [g[i] for g in generators]) for i in range(len(system.variables)))
+    return Scaling(system, powers, tuple(coords) if is_units else None)
+
+
+def _solve(system: System, scale: dict[str, Fraction], fixed: tuple[str, ...], notes: tuple[SearchNote, ...],
+           generators=None) -> SearchResult:
+    """The whole answer of a request, as one frozen :class:`SearchResult`."""
+    # allowed exponent vectors are combinations of these rows: the rows of
+    # the dimension matrix (changes of units), or a symmetry basis
+    is_units = generators is None
+    gens = ([[system.dimension(v).exponent(b) for v in system.variables] for b in system.base_dimensions]
+            if generators is None else [list(g) for g in generators])
+    names = list(scale) + list(fixed)
+    rhs = [scale[n] for n in scale] + [Fraction(0)] * len(fixed)
+    rows = [[g[system.index(n)] for g in gens] for n in names]
+    request = {"system": system, "scale": MappingProxyType(dict(scale)), "fixed": tuple(fixed),
+               "notes": tuple(notes), "_is_units": is_units}
+    w0 = solve(rows, rhs) if gens else ([] if not any(rhs) else None)
+    if w0 is None:
+        certificate, power = _certificate(system, scale, names, rows, rhs)
+        return SearchResult(**request, feasible=False, certificate=certificate, certificate_power=power)
+    # directions that keep every constraint: coordinates in null(C), kept
+    # only while their exponent vectors stay independent
+    null_w = nullspace(rows, len(gens)) if rows else nullspace([], len(gens))
+    kept, images = [], []
+    for w in null_w:
+        image = list(_scaling(system, gens, is_units, w).powers)
+        if rank([*images, image]) > len(images):
+            kept.append(w)
+            images.append(image)
+    particular = _scaling(system, gens, is_units, w0)
+    directions = tuple(_scaling(system, gens, is_units, w) for w in kept)
+    constrained = set(scale) | set(fixed)
+    free = [i for i, n in enumerate(system.variables) if n not in constrained]
+    minimal = _Once(particular.powers, [d.powers for d in directions], free, w0, kept)
+    return SearchResult(**request, feasible=True, particular=particular, directions=directions, _minimal=minimal)
+
+
+def _certificate(system: System, scale, names, rows, rhs) -> tuple[PiGroup, Fraction]:
+    """y with y^T C = 0 and y.b != 0: a dimensionless product the request changes, and its power of s."""
+    transposed = [list(col) for col in zip(*rows, strict=True)] if rows and rows[0] else []
+    candidates = nullspace(transposed, len(names)) if transposed else nullspace([], len(names))
+    changing = [y for y in candidates if _dot(y, rhs) != 0]
+    best = min(changing, key=lambda y: (sum(1 for x in y if x), [i for i, x in enumerate(y) if x]))
+    scaled = [n for n, y in zip(names, best, strict=True) if y and n in scale]
+    group = PiGroup.from_exponents(dict(zip(names, best, strict=True)), variable=scaled[0] if scaled else None,
+                                   order=[n for n in system.variables if n in names])
+    group = PiGroup(group.powers, None)
+    return group, _dot([group.exponents.get(n, 0) for n in names], rhs)
+
+
+def _minimal_points(a0, dirs, free, u0, kept):
+    """``(point, coords)`` of every minimal solution of ``a0 + span(dirs)``, in the order of `scalings`.
+
+    `free` are the positions that may be held at zero; `u0` and `kept` are
+    the coordinates of `a0` and of the directions over the generators.
+    """
+    a0, dirs = list(a0), [list(v) for v in dirs]
+    if not dirs:
+        return [(tuple(a0), tuple(u0))]
+    # one common denominator makes the particular point and the directions integers
+    den = lcm(*(x.denominator for x in a0), *(x.denominator for v in dirs for x in v))
+    a0_int = [int(x * den) for x in a0]
+    dirs_int = [[int(x * den) for x in v] for v in dirs]
+    from .family import MinimalPoints, minimal_points  # numpy loads only when a family is enumerated
+
+    batched = minimal_points(a0_int, dirs_int, free, [i for i in range(len(a0)) if i not in set(free)])
+    if batched is not None:
+        return MinimalPoints(*batched, den, u0, kept)
+    found = _exact_points(a0_int, dirs_int, den, free, u0, kept)
+
+    def order(point):
+        support = [i for i, p in enumerate(point) if p]
+        return (len(support), support, [abs(p) for p in point], point)
+
+    return [(p, found[p]) for p in sorted(found, key=order)]
+
+
+def _exact_points(a0_int, dirs_int, den, free, u0, kept) -> dict[tuple[Fraction, ...], tuple[Fraction, ...]]:
+    """Minimal points by one exact solve per subset: for families too large for exact floats."""
+    from .bases import independent_subsets
+
+    rows = [[v[i] for i in free] for v in dirs_int]
+    seen: dict[tuple[int, ...], tuple[int, ...]] = {}
+    for subset in independent_subsets(rows, range(len(free)), [], len(dirs_int)):
+        zero = [free[k] for k in subset]
+        z = solve([[v[i] for v in dirs_int] for i in zero], [-a0_int[i] for i in zero])
+        z_den = lcm(*(x.denominator for x in z))
+        z_num = [int(x * z_den) for x in z]
+        point = [a * z_den + sum(c * v[i] for c, v in zip(z_num, dirs_int, strict=True))
+                 for i, a in enumerate(a0_int)]
+        g = gcd(den * z_den, *point)
+        key = (den * z_den // g, *(p // g for p in point))
+        if key not in seen:
+            seen[key] = tuple(z)
+    found = {}
+    for (scale_den, *point), z in seen.items():
+        exact = tuple(Fraction(p, scale_den) for p in point)
+        found[exact] = tuple(u + _dot(z, [w[j] for w in kept]) for j, u in enumerate(u0))
+    return found
 
 
 def search(
@@ -410,7 +556,7 @@ def search(
     >>> res = pt.search(rod, scale={"g": 1})
     >>> print(res)
     Scaling g by s with t fixed: 3 minimal solution(s) (a family of dimension 1).
-    time variables ('t',) are held fixed by default; pass fixed=() to let time change
+    time variable t is held fixed by default; pass fixed=() to let time change
     <BLANKLINE>
     variable  role   #1     #2   #3
     m         free   1/s^2  1/s  -
@@ -446,7 +592,7 @@ def search(
     if fixed is None:
         held = tuple(n for n in _time_variables(system) if n not in exponents)
         if held:
-            notes.append(f"time variables {held} are held fixed by default; pass fixed=() to let time change")
+            notes.append(SearchNote("time_fixed", held))
     else:
         held = system.check_names(fixed, "fixed")
     both = [n for n in held if n in exponents]
@@ -464,11 +610,9 @@ def search(
         generators, outside = _symmetry_generators(system, within, exponents)
         extra = tuple(n for n in outside if n not in held)
         if extra:
-            notes.append(f"variables {extra} do not appear in the equations and are held fixed")
+            notes.append(SearchNote("outside_equations", extra))
             held = held + extra
-    result = SearchResult(system, exponents, held, notes, generators)
-    result._solve()
-    return result
+    return _solve(system, exponents, held, tuple(notes), generators)
 
 
 def _symmetry_generators(system: System, within, exponents):

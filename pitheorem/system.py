@@ -265,21 +265,56 @@ class System:
     # -- basic properties -------------------------------------------------
     @property
     def variables(self) -> tuple[str, ...]:
-        """Variable names, in the order given."""
+        """Variable names, in the order given.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"m": "M", "l": "L", "g": "L/T^2", "t": "T"}).variables
+        ('m', 'l', 'g', 't')
+        """
         return self._variables
 
     @property
     def base_dimensions(self) -> tuple[str, ...]:
-        """Base dimensions that occur in some variable, in display order."""
+        """Base dimensions that occur in some variable, in display order.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"g": "L/T^2", "m": "M"}).base_dimensions
+        ('M', 'L', 'T')
+        """
         return self._base_dimensions
 
     @property
     def dimensions(self) -> dict[str, Dimension]:
-        """Each variable's :class:`Dimension`."""
+        """Each variable's :class:`Dimension` (a new dict on each call).
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> {n: str(d) for n, d in pt.System({"l": "L", "g": "L/T^2"}).dimensions.items()}
+        {'l': 'L', 'g': 'L T^-2'}
+        """
         return dict(zip(self._variables, self._dimensions, strict=True))
 
     def dimension(self, name: str) -> Dimension:
         """The dimension of one variable.
+
+        Parameters
+        ----------
+        name : str
+            A variable of the system.
+
+        Returns
+        -------
+        Dimension
+
+        Raises
+        ------
+        UnknownVariableError
+            For a name the system does not contain.
 
         Examples
         --------
@@ -292,11 +327,27 @@ class System:
     def index(self, name: str, context: str = "") -> int:
         """Position of a variable; raises UnknownVariableError for other names.
 
+        Parameters
+        ----------
+        name : str
+            A variable of the system.
+        context : str, optional
+            Where the name was used, for the error message (e.g. ``"fixed"``).
+
+        Returns
+        -------
+        int
+
         Examples
         --------
         >>> import pitheorem as pt
         >>> pt.System({"a": "L", "b": "T"}).index("b")
         1
+        >>> try:
+        ...     pt.System({"a": "L", "b": "T"}).index("c", "fixed")
+        ... except pt.UnknownVariableError as err:
+        ...     print(err)
+        unknown variable 'c' in fixed; the system has a, b
         """
         try:
             return self._variables.index(name)
@@ -305,6 +356,22 @@ class System:
 
     def check_names(self, names, context: str) -> tuple[str, ...]:
         """Validate a collection of variable names: known, distinct, strings.
+
+        Parameters
+        ----------
+        names : str or iterable of str
+            The names; a single string is one name.
+        context : str
+            Where the names were used, for error messages (e.g. ``"exclude"``).
+
+        Returns
+        -------
+        tuple of str
+
+        Raises
+        ------
+        UnknownVariableError, DuplicateVariableError, InvalidRequestError
+            For an unknown name, a name given twice, or something that is no name.
 
         Examples
         --------
@@ -330,7 +397,17 @@ class System:
 
     @property
     def matrix(self) -> sympy.Matrix:
-        """Dimension matrix: rows are base dimensions, columns variables."""
+        """Dimension matrix: rows are base dimensions, columns variables.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"m": "M", "l": "L", "g": "L/T^2", "t": "T"}).matrix
+        Matrix([
+        [1, 0,  0, 0],
+        [0, 1,  1, 0],
+        [0, 0, -2, 1]])
+        """
         return sympy.Matrix(
             len(self._base_dimensions),
             len(self._variables),
@@ -339,12 +416,26 @@ class System:
 
     @property
     def rank(self) -> int:
-        """Rank of the dimension matrix: the number of repeating variables."""
+        """Rank of the dimension matrix: the number of repeating variables.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"m": "M", "l": "L", "g": "L/T^2", "t": "T"}).rank
+        3
+        """
         return len(self._independent_rows())
 
     @property
     def n_groups(self) -> int:
-        """Number of independent dimensionless groups, ``n - rank``."""
+        """Number of independent dimensionless groups, ``n - rank``.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"m": "M", "l": "L", "g": "L/T^2", "t": "T"}).n_groups
+        1
+        """
         return len(self._variables) - self.rank
 
     def _submatrix(self, cols) -> list[list[Fraction]]:
@@ -496,6 +587,17 @@ class System:
     def iter_bases(self, *, exclude: Iterable[str] = (), require: Iterable[str] = ()) -> Iterator[tuple[str, ...]]:
         """Lazily yield every valid repeating set (see :meth:`bases`).
 
+        Parameters
+        ----------
+        exclude : iterable of str
+            Variables never to use as repeaters (e.g. time).
+        require : iterable of str
+            Variables every set must contain.
+
+        Yields
+        ------
+        tuple of str
+
         Examples
         --------
         >>> import pitheorem as pt
@@ -547,11 +649,24 @@ class System:
     def count_bases(self, *, exclude: Iterable[str] = (), require: Iterable[str] = ()) -> int:
         """Number of valid repeating sets, without building them.
 
+        Parameters
+        ----------
+        exclude : iterable of str
+            Variables never to use as repeaters (e.g. time).
+        require : iterable of str
+            Variables every set must contain.
+
+        Returns
+        -------
+        int
+
         Examples
         --------
         >>> import pitheorem as pt
         >>> pt.System({"l": "L", "t": "T", "v": "L/T", "x": "L"}).count_bases()
         5
+        >>> pt.System({"l": "L", "t": "T", "v": "L/T", "x": "L"}).count_bases(exclude=("t",), require=("v",))
+        2
         """
         from .bases import count_independent_subsets
 

@@ -1,7 +1,8 @@
 """Tests for the pitheorem command line (pitheorem.cli, python -m pitheorem, the console script).
 
-Most cases call :func:`pitheorem.cli.main` in-process (fast); a few run the real
-program in a subprocess, to check the entry points, exit codes and stderr.
+Every case calls :func:`pitheorem.cli.main` in-process (fast) and reads what it
+printed with ``capsys``, except two that run the real programs in a subprocess:
+``python -m pitheorem`` and the installed ``pitheorem`` console script.
 """
 
 from __future__ import annotations
@@ -146,6 +147,26 @@ def test_search_fixed_without_names_lets_time_change(capsys):
         assert doc["notes"] == []
         assert doc["count"] > held["count"]
         assert any(sc["exponents"]["t"] != "0" for sc in doc["scalings"])
+
+
+def test_search_notes_round_trip_through_text_and_json(capsys):
+    result = pt.search(load_model_file(ROD).system, scale={"g": 1})
+    assert [n.kind for n in result.notes] == ["time_fixed"]
+    code, doc = run_json(capsys, "search", ROD, "--scale", "g=1")
+    assert code == EXIT_OK
+    # JSON: the data of each note rebuilds it, and its text is the command line's phrasing
+    assert tuple(pt.SearchNote(n["kind"], n["variables"]) for n in doc["notes"]) == result.notes
+    texts = [n["text"] for n in doc["notes"]]
+    assert texts == ["time variable t is held fixed by default; give --fixed with no names to let time change"]
+    # text: the same sentences, in the note's place under the explanation
+    for argv in (["search", ROD, "--scale", "g=1"], ["apply", ROD, "--scale", "g=1", "--s", "2"]):
+        code, out, _ = run(capsys, *argv)
+        assert code == EXIT_OK
+        lines = out.splitlines()
+        assert texts[0] in lines
+        assert "fixed=()" not in out  # the Python phrasing never reaches the command line
+    code, doc = run_json(capsys, "apply", ROD, "--scale", "g=1", "--s", "2")
+    assert [n["text"] for n in doc["notes"]] == texts
 
 
 def test_search_exact_exponents_and_allow(capsys):
@@ -334,32 +355,30 @@ BROKEN_FILES = {
 
 
 @pytest.mark.parametrize("name", sorted(BROKEN_FILES))
-def test_broken_model_file(tmp_path, name):
-    # the installed program, in its own process, as a user runs it
+def test_broken_model_file(capsys, tmp_path, name):
     text, fragments = BROKEN_FILES[name]
     path = tmp_path / name
     path.write_bytes(text.encode("utf-8", errors="surrogateescape"))
-    proc = subprocess_run("groups", path, program=[_console_script()] if _console_script() else None)
-    assert proc.returncode == EXIT_ERROR
-    assert proc.stdout == ""
-    assert proc.stderr.startswith(f"pitheorem: error: {path}"), proc.stderr
-    assert proc.stderr.count("\n") == 1, proc.stderr
-    assert "Traceback" not in proc.stderr
+    code, out, err = run(capsys, "groups", path)
+    assert code == EXIT_ERROR
+    assert out == ""
+    assert err.startswith(f"pitheorem: error: {path}"), err
+    assert err.count("\n") == 1, err
+    assert "Traceback" not in err
     for fragment in fragments:
-        assert fragment in proc.stderr, proc.stderr
+        assert fragment in err, err
 
 
-def test_contradictory_search_exits_infeasible_with_the_proof(tmp_path):
+def test_contradictory_search_exits_infeasible_with_the_proof(capsys, tmp_path):
     # a well-formed file and request whose constraints contradict each other: exit 1, not 2
     path = tmp_path / "superball.toml"
     path.write_text('[variables]\nm = { dimension = "M" }\nl = { dimension = "L" }\nk = { dimension = "M T^-2" }\n'
                     't = { dimension = "T", role = "time" }\n')
-    proc = subprocess_run("search", path, "--scale", "k=1", "--fixed", "m", "t",
-                          program=[_console_script()] if _console_script() else None)
-    assert proc.returncode == EXIT_INFEASIBLE, proc.stderr
-    assert "Impossible" in proc.stdout
-    assert "k*t**2/m" in proc.stdout
-    assert proc.stderr == ""
+    code, out, err = run(capsys, "search", path, "--scale", "k=1", "--fixed", "m", "t")
+    assert code == EXIT_INFEASIBLE, err
+    assert "Impossible" in out
+    assert "k*t**2/m" in out
+    assert err == ""
 
 
 def test_usage_errors_and_help(capsys):
@@ -374,20 +393,13 @@ def test_usage_errors_and_help(capsys):
     assert pt.__version__ in out
 
 
-# -- the real programs, in subprocesses ------------------------------------------------------
+# -- what the programs print, in-process; the real programs, in subprocesses -------------------
 
 
-def test_python_dash_m_search():
-    proc = subprocess_run("search", "example:hinged_rod", "--scale", "g=1", "--format", "json")
-    assert proc.returncode == EXIT_OK, proc.stderr
-    assert json.loads(proc.stdout)["count"] == 3
-
-
-def test_python_dash_m_infeasible_exit_code():
-    proc = subprocess_run("search", ROD, "--scale", "g=1", "--fixed", "t", "m", "k_theta")
-    assert proc.returncode == EXIT_INFEASIBLE
-    assert "g**2*m*t**2/k_theta" in proc.stdout
-    assert proc.stderr == ""
+def test_search_json_count(capsys):
+    code, doc = run_json(capsys, "search", "example:hinged_rod", "--scale", "g=1")
+    assert code == EXIT_OK
+    assert doc["count"] == 3
 
 
 @pytest.mark.parametrize(
@@ -398,30 +410,39 @@ def test_python_dash_m_infeasible_exit_code():
         (["search", ROD, "--scale", "g=1", "--fixed", "g"], "'g'"),
     ],
 )
-def test_python_dash_m_errors_are_one_line(argv, culprit, tmp_path):
-    proc = subprocess_run(*argv)
-    assert proc.returncode == EXIT_ERROR
-    assert proc.stdout == ""
-    assert proc.stderr.startswith("pitheorem: error: ")
-    assert proc.stderr.count("\n") == 1
-    assert culprit in proc.stderr
-    assert "Traceback" not in proc.stderr
+def test_errors_are_one_line(capsys, argv, culprit, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # missing.toml is missing here
+    code, out, err = run(capsys, *argv)
+    assert code == EXIT_ERROR
+    assert out == ""
+    assert err.startswith("pitheorem: error: ")
+    assert err.count("\n") == 1
+    assert culprit in err
+    assert "Traceback" not in err
 
 
-def test_python_dash_m_broken_file(tmp_path):
+def test_broken_file_message(capsys, tmp_path):
     path = tmp_path / "broken.toml"
     path.write_text('[variables]\nm = { dimension = "M" }\nm = { dimension = "L" }\n')
-    proc = subprocess_run("groups", path)
-    assert proc.returncode == EXIT_ERROR
-    assert proc.stderr == f"pitheorem: error: {path}, line 3: variable 'm': is defined twice in [variables]; " \
+    code, _, err = run(capsys, "groups", path)
+    assert code == EXIT_ERROR
+    assert err == f"pitheorem: error: {path}, line 3: variable 'm': is defined twice in [variables]; " \
         "each variable may appear once\n"
 
 
-def test_python_dash_m_usage_error():
-    proc = subprocess_run("search", ROD)
-    assert proc.returncode == EXIT_ERROR
-    assert "--scale" in proc.stderr
-    assert "Traceback" not in proc.stderr
+def test_usage_error_names_the_missing_option(capsys):
+    code, _, err = run(capsys, "search", ROD)
+    assert code == EXIT_ERROR
+    assert "--scale" in err
+    assert "Traceback" not in err
+
+
+def test_python_dash_m_infeasible_exit_code():
+    # python -m pitheorem (pitheorem/__main__.py) in its own process: exit code, stdout, stderr
+    proc = subprocess_run("search", ROD, "--scale", "g=1", "--fixed", "t", "m", "k_theta")
+    assert proc.returncode == EXIT_INFEASIBLE
+    assert "g**2*m*t**2/k_theta" in proc.stdout
+    assert proc.stderr == ""
 
 
 @pytest.mark.skipif(_console_script() is None, reason="pitheorem is not installed (pip install -e .), so no console script")

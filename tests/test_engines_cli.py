@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -16,7 +14,6 @@ from pitheorem.cli import main
 
 DATA = Path(__file__).resolve().parent / "data" / "engines"
 PENDULUM = str(engines.example_path("pendulum.xml"))
-SCRIPT = Path(sys.executable).with_name("pitheorem")
 
 
 def test_params_lists_dimensions(capsys):
@@ -133,13 +130,13 @@ def test_bad_model_files_exit_2_with_one_line(tmp_path, capsys, name, text, elem
         assert element in lines[0]
 
 
-@pytest.mark.skipif(not SCRIPT.exists(), reason="the console script is not installed beside the interpreter")
 @pytest.mark.parametrize(("name", "text", "element"), [BAD_FILES[3], BAD_FILES[4]])
-def test_console_script_exits_2_on_bad_model_files(tmp_path, name, text, element):
+@pytest.mark.parametrize("fmt", ["json", "latex"])
+def test_bad_model_files_exit_2_in_every_format(tmp_path, capsys, name, text, element, fmt):
+    # once a subprocess of the console script, which tests/test_cli.py::test_console_script proves
     path = write_bad(tmp_path, name, text)
-    done = subprocess.run([str(SCRIPT), "params", str(path)], capture_output=True, text=True, timeout=120)
-    assert done.returncode == 2
-    lines = done.stderr.strip().splitlines()
-    assert len(lines) == 1, done.stderr
+    assert main(["params", str(path), "--format", fmt]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert len(lines) == 1, lines
     assert name in lines[0]
     assert element in lines[0]

@@ -168,7 +168,9 @@ def test_projectile_lengths_scale_independently():
         {"x": 1, "vx": 1}
     ]
     assert res.scalings[0].units is None
-    assert any("do not appear" in note for note in res.notes)  # m is not in the equations
+    # m is not in the equations
+    assert pt.SearchNote("outside_equations", ("m",)) in res.notes
+    assert "m does not appear in the equations" in str(res)
     with pytest.raises(pt.InvalidRequestError, match="not a change of units"):
         _ = res.scalings[0].unit_change
     # with changes of units only, the same request is impossible

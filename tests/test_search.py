@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 from itertools import combinations
+from unittest import mock
 
 import pytest
 from hypothesis import assume, given, settings
@@ -23,7 +24,8 @@ def test_rod_gravity_time_free_has_exactly_three_minimal_solutions(rod):
     res = pt.search(rod, scale={"g": 1})
     assert res.feasible
     assert res.fixed == ("t",)
-    assert "fixed by default" in res.notes[0]
+    assert res.notes == (pt.SearchNote("time_fixed", ("t",)),)
+    assert "fixed by default" in str(res.notes[0])
     assert [exps(s) for s in res.scalings] == [
         {"m": -2, "l": 1, "g": 1, "F": -1},
         {"m": -1, "l": 1, "g": 1, "k_theta": 1, "c_theta": 1, "tau": 1},
@@ -261,3 +263,80 @@ def test_table_of_symmetries_beyond_units_says_they_have_no_unit_change():
     assert [r[0] for r in base] == [f"[{b}]" for b in proj.system.base_dimensions]
     assert all(r[2:] == ["none"] for r in base)
     assert res._repr_html_().count(">none</td>") == len(proj.system.base_dimensions)
+
+
+# -- the result is a frozen value, enumerated once and lazily ------------------------------
+def _search_module():
+    import importlib
+
+    return importlib.import_module("pitheorem.search")  # `pitheorem.search` is the function
+
+
+@pytest.mark.parametrize("attr", ["feasible", "scale", "fixed", "notes", "certificate", "certificate_power",
+                                  "particular", "directions", "system", "count"])
+def test_result_attributes_cannot_be_assigned(rod, attr):
+    res = pt.search(rod, scale={"g": 1})
+    with pytest.raises(AttributeError):
+        setattr(res, attr, None)
+    with pytest.raises(AttributeError):
+        res.new_attribute = 1  # slots: no attribute outside the fields either
+    with pytest.raises(TypeError):
+        res.scale["g"] = 2  # the prescribed exponents are a read-only mapping
+    assert res.feasible
+    assert res.scale == {"g": 1}
+
+
+def test_repr_does_not_enumerate_and_the_enumeration_runs_once(rod):
+    module = _search_module()
+    with mock.patch.object(module, "_minimal_points", wraps=module._minimal_points) as spy:
+        res = pt.search(rod, scale={"g": 1})
+        text = repr(res)
+        assert spy.call_count == 0
+        assert text == ("<SearchResult g by s with t fixed: feasible, a family of dimension 1, "
+                        "at most 7 minimal solution(s)>")
+        assert res.max_count == 7  # known without enumerating
+        assert spy.call_count == 0
+        assert res.count == 3
+        assert len(res.scalings) == 3
+        str(res), res.table(), res._repr_html_(), list(res.iter_scalings())
+        assert spy.call_count == 1
+    infeasible = pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta"))
+    assert repr(infeasible) == ("<SearchResult g by s with t, m, k_theta fixed: infeasible, "
+                                "certificate g**2*m*t**2/k_theta>")
+    assert repr(pt.search(rod, scale={"g": 1, "l": -1}, fixed=("m", "k_theta"))) == (
+        "<SearchResult g by s, l by 1/s with m, k_theta fixed: feasible, unique>")
+
+
+def test_equal_requests_give_equal_hashable_results(rod):
+    a, b = pt.search(rod, scale={"g": 1}), pt.search(rod, scale={"g": 1})
+    assert a.count == 3  # one enumerated, one not: still equal
+    assert a == b
+    assert hash(a) == hash(b)
+    assert a != pt.search(rod, scale={"g": 1}, fixed=())
+
+
+def test_results_pickle_before_and_after_enumerating(rod):
+    import pickle
+
+    for res in (pt.search(rod, scale={"g": 1}), pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta"))):
+        again = pickle.loads(pickle.dumps(res))
+        assert again == res
+        assert again.scalings == res.scalings  # enumerates both
+        assert pickle.loads(pickle.dumps(res)).count == res.count
+        with pytest.raises(TypeError):
+            again.scale["g"] = 2
+
+
+def test_notes_are_data_phrased_by_each_front_end(rod):
+    res = pt.search(rod, scale={"g": 1})
+    (note,) = res.notes
+    assert (note.kind, note.variables) == ("time_fixed", ("t",))
+    assert str(note) == "time variable t is held fixed by default; pass fixed=() to let time change"
+    assert str(note) in str(res).splitlines()
+    assert "pass <code>fixed=()</code> to let time change" in res._repr_html_()
+    with pytest.raises(AttributeError):
+        note.kind = "outside_equations"
+    with pytest.raises(pt.InvalidRequestError, match="unknown note kind"):
+        pt.SearchNote("a sentence", ("t",))
+    two = pt.System({"l": "L", "g": "L T^-2", "t": "T", "dt": "T"})
+    assert str(pt.search(two, scale={"g": 1}).notes[0]).startswith("time variables t, dt are held fixed")

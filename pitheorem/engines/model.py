@@ -184,6 +184,17 @@ class Parameter:
     def factor(self, scaling, s: float) -> float:
         """The factor the scaling multiplies this number by.
 
+        Parameters
+        ----------
+        scaling : Scaling
+            A scaling of a system that holds this number's dimension.
+        s : float
+            The scale factor.
+
+        Returns
+        -------
+        float
+
         Raises
         ------
         UnscalableParameterError
@@ -268,7 +279,10 @@ def dim(text: str) -> Dimension:
 
 
 class EngineModel:
-    """A model of MuJoCo or PyBullet, read from its file, with every dimensional number.
+    """A MuJoCo or PyBullet model read from its file, with its numbers.
+
+    Every dimensional number of the file and of the engine's settings is a
+    :class:`Parameter`.
 
     Build one with :func:`load`; :meth:`scaled` returns another.  The
     engine-specific part is a backend object (see
@@ -303,6 +317,20 @@ class EngineModel:
 
     def parameter(self, name: str) -> Parameter:
         """The parameter of a given name.
+
+        Parameters
+        ----------
+        name : str
+            A name of :attr:`parameters` (e.g. ``"g"``).
+
+        Returns
+        -------
+        Parameter
+
+        Raises
+        ------
+        UnknownVariableError
+            For a name that is no parameter.
 
         Examples
         --------
@@ -492,7 +520,17 @@ class EngineModel:
         return path
 
     def with_settings(self, **changes) -> EngineModel:
-        """A copy with other engine settings (PyBullet: ``split_impulse``, ``ground``, ...).
+        """A copy with other engine settings (PyBullet only).
+
+        Parameters
+        ----------
+        **changes
+            ``split_impulse`` (bool), ``ground`` (bool: add a ground plane),
+            ``fixed_base`` (bool) and ``base_position`` (three floats).
+
+        Returns
+        -------
+        EngineModel
 
         Raises
         ------
@@ -502,14 +540,19 @@ class EngineModel:
 
         Examples
         --------
+        >>> import tempfile, pathlib
         >>> from pitheorem import engines
+        >>> urdf = pathlib.Path(tempfile.mkdtemp()) / "box.urdf"
+        >>> _ = urdf.write_text('<robot name="box"><link name="base"><inertial><mass value="1"/>'
+        ...                     '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>')
+        >>> engines.load(urdf).with_settings(fixed_base=True).settings()["loadURDF"]["useFixedBase"]
+        True
+        >>> import pitheorem as pt
         >>> try:
         ...     engines.load(engines.example_path("pendulum.xml")).with_settings(ground=True)
-        ... except engines.EngineModelError:
-        ...     pass
-        ... except Exception as err:
-        ...     print(type(err).__name__)
-        InvalidRequestError
+        ... except pt.InvalidRequestError as err:
+        ...     print(err)
+        an MJCF model keeps its settings in the file; use with_values(...)
         """
         if not hasattr(self._backend, "with_settings"):
             raise InvalidRequestError("an MJCF model keeps its settings in the file; use with_values(...)")
@@ -586,6 +629,20 @@ def warn_unscalable(path: str, element: str, reason: str) -> None:
 
 def example_path(name: str) -> Path:
     """The path of a model file shipped in ``pitheorem/examples``.
+
+    Parameters
+    ----------
+    name : str
+        The file's name: ``"pendulum.xml"`` or ``"superball.xml"``.
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    InvalidRequestError
+        For a name that is no shipped file.
 
     Examples
     --------

@@ -73,7 +73,7 @@ class EngineRunner(Protocol):
 
 def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None, *, controller=None,
            scaled: EngineModel | None = None, baseline_factor: float = 10.0) -> SimilarityReport:
-    """Run a model and its scaled copy in the engine and compare them in original units.
+    """Run a model and its scaled copy and compare them in original units.
 
     Parameters
     ----------
