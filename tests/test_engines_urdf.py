@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import pickle
 import subprocess
 import sys
@@ -182,3 +183,9 @@ def test_saved_model_reloads_with_its_settings_and_only_so(tmp_path):
         engines.load(out)
     with pytest.raises(engines.EngineModelError, match="no such settings file"):
         engines.load(out, settings=tmp_path / "absent.json")
+    # with good settings, a broken URDF is blamed on the URDF, not on its settings file
+    Path(f"{out}.settings.json").write_text(json.dumps(scaled.settings()))
+    out.write_text("<robot")
+    with pytest.raises(engines.EngineModelError, match="not well-formed XML") as caught:
+        engines.load(out)
+    assert "settings" not in str(caught.value)

@@ -665,9 +665,10 @@ def load(path, **options) -> EngineModel:
         ``.xml``/``.mjcf`` for MuJoCo, ``.urdf`` for PyBullet.  An ``.xml``
         file whose root is ``<robot>`` is read as URDF.
     **options
-        URDF only: the scene and settings of
-        ``pitheorem.engines.urdf.load_urdf`` (``base_position``,
-        ``fixed_base``, ``ground``, ``split_impulse``, ``g``, ``damping``).
+        URDF only: the options of ``pitheorem.engines.urdf.load_urdf``
+        (``settings``, and the scene: ``base_position``, ``fixed_base``,
+        ``ground``, ``split_impulse``, ``g``, ``damping``).  A URDF saved by
+        :meth:`EngineModel.save` is read with the settings saved beside it.
 
     Returns
     -------

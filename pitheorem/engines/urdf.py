@@ -631,10 +631,10 @@ def load_urdf(path, *, settings=None, base_position=None, fixed_base=None, groun
         return _load_saved(path, Path(saved))
     if saved is not False and settings not in (None, True):
         raise EngineModelError(str(saved), "", "no such settings file")
-    return _load_scene(path, **{**_SCENE_DEFAULTS, **scene})
+    return EngineModel(_scene_backend(path, **{**_SCENE_DEFAULTS, **scene}), "pybullet", str(path))
 
 
-def _load_scene(path: Path, *, base_position, fixed_base, ground, split_impulse, g, damping) -> EngineModel:
+def _scene_backend(path: Path, *, base_position, fixed_base, ground, split_impulse, g, damping) -> UrdfBackend:
     try:
         tree = ET.parse(path)
     except ET.ParseError as err:
@@ -656,27 +656,38 @@ def _load_scene(path: Path, *, base_position, fixed_base, ground, split_impulse,
     if damping is not None:
         backend._settings["damping"] = {str(index): {name: float(damping) for name, *_ in MIXED_DAMPING}
                                         for index, _ in backend._info["links"]}
-    return EngineModel(backend, "pybullet", str(path))
+    return backend
 
 
 def _load_saved(path: Path, saved: Path) -> EngineModel:
     """The model of a saved URDF with the settings :meth:`UrdfBackend.save` wrote beside it."""
+
+    def malformed(err) -> EngineModelError:
+        what = f"key {err}" if isinstance(err, KeyError) else str(err).splitlines()[0]
+        return EngineModelError(str(saved), "settings", f"not a settings file written by pitheorem ({what})")
+
     try:
         doc = json.loads(saved.read_text())
         gravity, load = doc["gravity"], doc["loadURDF"]
         engine = doc["setPhysicsEngineParameter"]
-        if gravity[0] or gravity[1]:
-            raise EngineModelError(str(saved), "gravity", "pitheorem's URDF models have gravity along -z only")
-        model = _load_scene(path, base_position=tuple(load["basePosition"]), fixed_base=bool(load["useFixedBase"]),
-                            ground=doc["ground"] is not None, split_impulse=bool(engine["useSplitImpulse"]),
-                            g=-float(gravity[2]), damping=None)
-        st = model.backend._settings
+        scene = {"base_position": tuple(load["basePosition"]), "fixed_base": bool(load["useFixedBase"]),
+                 "ground": doc["ground"] is not None, "split_impulse": bool(engine["useSplitImpulse"]),
+                 "g": -float(gravity[2]), "damping": None}
+        sideways = gravity[0] or gravity[1]
+    except (OSError, ValueError, KeyError, TypeError, IndexError) as err:
+        raise malformed(err) from None
+    if sideways:
+        raise EngineModelError(str(saved), "gravity", "pitheorem's URDF models have gravity along -z only")
+    # the URDF's own errors (bad XML, a missing mesh) are raised here as they are, not as the settings file's
+    backend = _scene_backend(path, **scene)
+    st = backend._settings
+    try:
         st["timestep"] = float(doc["timeStep"])
         for name, *_ in ENGINE_PARAMETERS:
             st[name] = float(engine[name])
         if doc["ground"] is not None:
             st["ground_margin"] = float(doc["ground"]["collisionMargin"])
-        joints = {str(j) for j, _n, _t in model.backend._info["joints"]}
+        joints = {str(j) for j, _n, _t in backend._info["joints"]}
         for call in doc["changeDynamics"]:
             key = str(call["linkIndex"])
             if "maxJointVelocity" in call and key in joints:
@@ -691,7 +702,6 @@ def _load_saved(path: Path, saved: Path) -> EngineModel:
             for name, *_ in MIXED_DAMPING:
                 if name in call:
                     st["damping"].setdefault(key, {})[name] = float(call[name])
-    except (OSError, ValueError, KeyError, TypeError, IndexError) as err:
-        what = f"key {err}" if isinstance(err, KeyError) else str(err).splitlines()[0]
-        raise EngineModelError(str(saved), "settings", f"not a settings file written by pitheorem ({what})") from None
-    return EngineModel(model.backend, "pybullet", str(path))  # a fresh table of the parameters, settings read
+    except (ValueError, KeyError, TypeError, IndexError) as err:
+        raise malformed(err) from None
+    return EngineModel(backend, "pybullet", str(path))
