@@ -1,4 +1,4 @@
-"""The one comparison of every simulator (simulate.similarity_report), its one-ulp baseline, and the message
+"""The one comparison of every simulator (simulation.similarity_report), its one-ulp baseline, and the message
 naming the Pi group a non-similarity changes."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import pitheorem as pt
-from pitheorem.simulate import nudged, similarity_report
+from pitheorem.simulation import nudged, similarity_report
 
 
 def runs(dev, base, values=(1.0, 2.0)):

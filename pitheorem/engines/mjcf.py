@@ -38,7 +38,7 @@ import numpy as np
 
 from ..dimensions import Dimension
 from ..errors import PiTheoremError
-from ..simulate import nudged
+from ..simulation import nudged
 from .model import EngineModel, EngineModelError, Parameter, dim, power_factor, warn_unscalable
 
 __all__ = ["MjcfBackend", "load_mjcf"]

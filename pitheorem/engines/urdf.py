@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..simulate import nudged
+from ..simulation import nudged
 from .model import EngineModel, EngineModelError, Parameter, dim, warn_unscalable
 
 __all__ = ["UrdfBackend", "load_urdf"]

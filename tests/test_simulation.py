@@ -1,4 +1,4 @@
-"""Tests for pitheorem.simulate: integrators and numerical similarity checks."""
+"""Tests for pitheorem.simulation: integrators and numerical similarity checks."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ import pickle
 
 import numpy as np
 import pytest
+import sympy
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -213,18 +214,21 @@ def test_euler_grid_and_step_count(hinged):
     np.testing.assert_array_equal(tr.y[1], y0 + hinged.rhs(0.0, y0, p) * 0.1)
 
 
+def _drift(dims: str, rate, **options) -> pt.Model:
+    """A one-state model x' = rate(a, x, t), the parameter a of dimension `dims`."""
+    t = sympy.Symbol("t")
+    x = sympy.Function("x")(t)
+    system = pt.System({"a": dims, "t": "T", "x": "L"})
+    return pt.Model(system, [sympy.Eq(x.diff(t), rate(sympy.Symbol("a"), x, t))], **options)
+
+
 def test_euler_passes_time_to_the_rhs():
-    seen = []
-
-    def rhs(t, y, p):
-        seen.append(t)
-        return np.array([p["a"]])
-
-    model = pt.Model(pt.System({"a": "L/T", "t": "T", "x": "L"}), ("a",), ("x",), rhs,
-                     defaults={"a": 2.0}, initial={"x": 0.0})
+    # x' = a t: Euler's step i adds a t_(i-1) dt, so the samples show which times the rhs saw
+    model = _drift("L/T^2", lambda a, x, t: a * t, defaults={"a": 2.0}, initial={"x": 0.0})
     tr = pt.simulate(model, t_final=0.3, method="euler", dt=0.1)
-    np.testing.assert_allclose(seen, [0.0, 0.1, 0.2])
-    np.testing.assert_allclose(tr["x"], [0.0, 0.2, 0.4, 0.6])
+    np.testing.assert_allclose(tr.t, [0.0, 0.1, 0.2, 0.3])
+    np.testing.assert_allclose(tr["x"], [0.0, 0.0, 0.02, 0.06], rtol=1e-12)
+    np.testing.assert_allclose(np.diff(tr["x"]), 2.0 * tr.t[:-1] * 0.1, rtol=1e-12)
 
 
 def test_trajectory_is_read_only(hinged):
@@ -295,8 +299,7 @@ def test_bad_simulate_inputs(hinged):
 
 
 def test_missing_parameter_is_named():
-    model = pt.Model(pt.System({"a": "L/T", "t": "T", "x": "L"}), ("a",), ("x",), lambda t, y, p: [p["a"]],
-                     initial={"x": 0.0}, name="drift")
+    model = _drift("L/T", lambda a, x, t: a, initial={"x": 0.0}, name="drift")
     with pytest.raises(pt.InvalidRequestError, match=r"'a'.*no default"):
         pt.simulate(model, t_final=1.0)
     with pytest.raises(pt.InvalidRequestError, match=r"'a'.*no default"):
@@ -407,14 +410,13 @@ def test_any_change_of_units_is_similar(s, u_m, u_l, u_t):
 
 def test_state_exponent_must_be_determined():
     # the parameters and time carry no length: the exponent of x is not fixed by them
-    model = pt.Model(pt.System({"r": "T^-1", "t": "T", "x": "L"}), ("r",), ("x",), lambda t, y, p: -p["r"] * y,
-                     defaults={"r": 1.0}, initial={"x": 1.0})
+    model = _drift("T^-1", lambda a, x, t: -a * x, defaults={"a": 1.0}, initial={"x": 1.0})
     with pytest.raises(pt.InvalidRequestError, match=r"state 'x'"):
-        pt.verify_similarity(model, {"t": 1, "r": -1}, s=2, t_final=1.0)
-    rep = pt.verify_similarity(model, {"t": 1, "r": -1, "x": 3}, s=2, t_final=1.0)
+        pt.verify_similarity(model, {"t": 1, "a": -1}, s=2, t_final=1.0)
+    rep = pt.verify_similarity(model, {"t": 1, "a": -1, "x": 3}, s=2, t_final=1.0)
     assert rep.passed
     assert rep.exponents["x"] == 3
-    unchecked = pt.verify_similarity(model, {"t": 1, "r": -1}, s=2, t_final=1.0, check=False)
+    unchecked = pt.verify_similarity(model, {"t": 1, "a": -1}, s=2, t_final=1.0, check=False)
     assert unchecked.exponents["x"] == 0  # applied as given
     assert not unchecked.is_similarity
 
