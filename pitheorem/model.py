@@ -19,6 +19,7 @@ similarity checks in :mod:`pitheorem.simulation`.
 from __future__ import annotations
 
 import math
+import operator
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import KW_ONLY, dataclass, field
 from functools import partial
@@ -448,10 +449,13 @@ class _Equations:
         fresh = {node: named[name] for node, name in self.leaves.items()}
         rates = [rate.xreplace(fresh) for rate in self.rates]
         f = sympy.lambdify([t, y, p], rates, modules="math", cse=True)
+        # itemgetter is the fastest way to read the values, but gives a bare value for one name
+        values = operator.itemgetter(*parameters) if len(parameters) > 1 else lambda d: [d[n] for n in parameters]
 
         def rhs(t, y, params):
             # Python floats: the generated arithmetic is faster on them than on numpy scalars
-            return np.array(f(t, np.asarray(y, dtype=float).tolist(), [params[n] for n in parameters]), dtype=float)
+            ys = y.tolist() if isinstance(y, np.ndarray) else [float(v) for v in y]
+            return np.array(f(t, ys, values(params)), dtype=float)
 
         return rhs
 
