@@ -15,8 +15,8 @@ gives them to :func:`pitheorem.check_dimensions` and
 
 It also holds the paper's parameter lists as systems: :func:`rod_system`
 (Section 2.1) and :func:`superball_parameters` (Section 4, NTRT SUPERball).
-The :class:`~pitheorem.Model` type itself is in :mod:`pitheorem.model`;
-simulation and similarity checks are in :mod:`pitheorem.simulation`.
+The :class:`~pitheorem.Model` type itself is in ``pitheorem.model``;
+simulation and similarity checks are in ``pitheorem.simulation``.
 """
 
 from __future__ import annotations

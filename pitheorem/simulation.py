@@ -764,7 +764,7 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
     each initial state by ``s`` to its exponent, the end time by
     ``s^(a_t)`` and (with `scale_dt`) the Euler step likewise, simulates
     again, maps the scaled trajectory back to original units and compares
-    (:class:`ModelScaling` does the scaling and the mapping back).  For
+    (``pitheorem.simulation.ModelScaling`` scales and maps back).  For
     ``solve_ivp`` the scaled run is sampled at the original times times
     ``s^(a_t)`` and its `atol` is scaled per state, so the adaptive step
     control sees the same problem; for Euler with scaled ``dt`` the two

@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import pickle
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -15,6 +16,7 @@ from hypothesis import strategies as st
 import pitheorem as pt
 from matlab_ports import scaling_counterexample_nonlinear as nonlinear
 from pitheorem import models
+from pitheorem.simulation import ModelScaling, fixed_steps, positive_float
 
 #: the paper's wrong scalings of the hinged rod (Figures 2-4), time unchanged
 WRONG = {
@@ -432,3 +434,68 @@ def test_report_plot_names_a_unit_on_every_axis(hinged):
     top, bottom = rep.plot(units={"theta": "rad", "omega": "rad/s", "t": "s"}).axes
     assert top.get_ylabel() == "theta [rad], omega [rad/s]"
     assert bottom.get_xlabel() == "t [s]"
+
+
+# -- what the engines share: ModelScaling, fixed_steps, positive_float --------------------------
+
+
+def test_model_scaling_of_a_scaling_and_of_exponents(hinged, figure5):
+    by_scaling = ModelScaling.of(hinged, figure5, s=2)
+    by_dict = ModelScaling.of(hinged, {"g": 1, "l": -1, "c_theta": -1, "t": -1}, s=2)
+    assert dict(by_scaling.exponents) == dict(by_dict.exponents)
+    assert all(type(v) is Fraction for v in by_dict.exponents.values())
+    assert set(by_dict.exponents) == {*hinged.parameters, "t", *hinged.states}
+    assert by_dict.is_similarity
+    assert by_dict.scaling == figure5
+    assert by_scaling.scaling is figure5
+    assert (by_scaling.factor("omega"), by_scaling.factor("t"), by_scaling.factor("m")) == (2.0, 0.5, 1.0)
+    assert by_scaling.scale_params({"l": 2.0, "g": 9.81}) == {"l": 1.0, "g": 19.62}
+    np.testing.assert_array_equal(by_scaling.scale_state([0.1, 3.0]), [0.1, 6.0])
+    run = pt.Trajectory([0.0, 0.5], [[0.1, 2.0], [0.2, 4.0]], hinged.states)
+    back = by_scaling.map_back(run)
+    assert back.t.tolist() == [0.0, 1.0]
+    assert back["omega"].tolist() == [1.0, 2.0]
+    assert back["theta"].tolist() == [0.1, 0.2]
+    onto = by_scaling.map_back(run, [0.0, 0.5, 1.0])  # another grid: interpolated onto it
+    assert onto.t.tolist() == [0.0, 0.5, 1.0]
+    assert onto["omega"].tolist() == [1.0, 1.5, 2.0]
+    near = by_scaling.map_back(run, [0.0, 1.0 + 1e-15])  # the same grid up to rounding: not interpolated
+    assert near.t.tolist() == [0.0, 1.0]
+
+
+def test_model_scaling_that_is_no_similarity(hinged, figure5):
+    raw = ModelScaling.of(hinged, {"g": 1}, s=2, check=False)
+    assert not raw.is_similarity
+    assert raw.scaling == {**dict.fromkeys(raw.exponents, 0), "g": 1}
+    assert raw.exponents["omega"] == 0
+    with pytest.raises(TypeError):
+        raw.scaling["g"] = 2  # read-only
+    assert raw.scale_params({"g": 9.81, "l": 2.0}) == {"g": 19.62, "l": 2.0}
+    with pytest.raises(pt.InvalidRequestError, match="not a similarity scaling"):
+        ModelScaling.of(hinged, {"g": 1}, s=2)
+    with pytest.raises(pt.UnknownVariableError, match="'phi'"):
+        raw.factor("phi")
+    with pytest.raises(pt.UnknownVariableError, match="'phi'"):
+        ModelScaling.of(hinged, {"phi": 1}, s=2, check=False)
+    with pytest.raises(pt.InvalidRequestError, match="scale factor s"):
+        ModelScaling.of(hinged, figure5, s=True)
+    with pytest.raises(pt.InvalidRequestError, match="Model"):
+        ModelScaling.of("hinged_rod", figure5, s=2)
+    with pytest.raises(pt.InvalidRequestError, match="Scaling or a dict"):
+        ModelScaling.of(hinged, (1, 2), s=2)
+
+
+def test_fixed_steps_cover_the_span():
+    assert fixed_steps(1.0, 0.1) == 10
+    assert fixed_steps(0.3, 0.1) == 3  # 0.3 / 0.1 is 2.9999999999999996
+    assert fixed_steps(1.05, 0.1) == 11  # not a multiple: one more step, past t_final
+    assert fixed_steps(1.0 + 1e-6, 1.0) == 2
+    assert fixed_steps(1e-3, 1.0) == 1
+
+
+@pytest.mark.parametrize("bad", [0, -1.0, float("inf"), float("nan"), "soon", None, True, False])
+def test_positive_float_refuses_and_names(bad):
+    with pytest.raises(pt.InvalidRequestError, match=r"^dt must be a positive finite number, got "):
+        positive_float(bad, "dt")
+    assert positive_float("2.5", "dt") == 2.5
+    assert positive_float(np.float32(0.5), "dt") == 0.5
