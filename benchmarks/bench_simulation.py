@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import argparse
 import math
-import time
+import timeit
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -43,12 +43,7 @@ def spring_by_hand(t, y, p):
 
 
 def best_of(fn, repeat):
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
+    return min(timeit.repeat(fn, number=1, repeat=repeat))
 
 
 def adaptive(rhs, p, y0, t_final):

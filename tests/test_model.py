@@ -82,6 +82,13 @@ def test_a_mass_times_acceleration_left_side_is_solved():
         assert got[1] == pytest.approx(want, rel=1e-14, abs=1e-13)
 
 
+def test_derivatives_and_other_terms_on_either_side():
+    # v = x' has the derivative on the right; v' + x/tau^2 = 2 v/tau has x/tau^2 on the left
+    model = pt.Model(pt.System(DIMS), [sympy.Eq(V, X.diff(T)), sympy.Eq(V.diff(T) + X / TAU**2, 2 * V / TAU)])
+    assert model.parameters == ("tau",)
+    assert model.rhs(0.0, [3.0, 5.0], {"tau": 2.0}).tolist() == [5.0, 5.0 - 0.75]
+
+
 def test_explicit_time_dependence_and_any_time_name():
     time = sympy.Symbol("time")
     x = sympy.Function("x")(time)
@@ -143,7 +150,8 @@ def test_coupled_equations_solve_as_numpy_does(a, b, x, v, t, tau, ell):
     # both sides of each equation are L T^-1 (first) and L T^-2 (second)
     eqs = [
         sympy.Eq(a11 * X.diff(T) + a12 * TAU * V.diff(T), b1 * V + b2 * L / TAU * sympy.sin(X / L)),
-        sympy.Eq(a21 * X.diff(T) / TAU + a22 * V.diff(T), b3 * X / TAU**2 + b4 * V * sympy.cos(T / TAU) / TAU),
+        # the same equation as a21 x'/tau + a22 v' = b3 x/tau^2 + ..., with terms on the other sides
+        sympy.Eq(a22 * V.diff(T) - b3 * X / TAU**2, -a21 * X.diff(T) / TAU + b4 * V * sympy.cos(T / TAU) / TAU),
     ]
     model = pt.Model(pt.System(DIMS), eqs, parameters=("tau", "l"))  # some b may drop l from the equations
     assert model.states == ("x", "v")

@@ -90,6 +90,8 @@ def test_longitudinal_rod_conserves_energy_without_damper():
 def test_longitudinal_damper_dissipates():
     model = models.hinged_rod_longitudinal()
     assert model.parameters == ("m", "l", "g", "k", "x_r", "c")
+    assert dict(model.defaults) == {"m": 1.5, "l": 2.0, "g": 9.81, "k": 20.0, "x_r": 4.0, "c": 2.0}
+    assert dict(model.initial) == {"theta": math.pi / 4, "omega": 0.0}
     assert str(model.system.dimension("c")) == "M T^-1"
     tr = pt.simulate(model, t_final=3.0)
     energy = _longitudinal_energy(model, model.defaults, tr.y)
