@@ -872,20 +872,22 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
 
 
 def nudged(values) -> np.ndarray:
-    """Each value moved up by one ulp of itself, or of 1 where it is smaller than 1 in magnitude.
+    """Each value moved up by one ulp: to the next double, by the ulp of 1 near 0.
 
-    A coordinate at exactly 0 has a denormal ulp (5e-324) that no
-    computation feels; the ulp of 1 (2.2e-16) is the rounding every step
-    makes on numbers of order one.
+    A value of magnitude 1 or more moves to the next double up (from
+    ``-1.0`` that is ``1.1e-16`` away, half the ulp of ``1.0``); a smaller
+    one by the ulp of 1.  A coordinate at exactly 0 has a denormal ulp
+    (5e-324) that no computation feels; the ulp of 1 (2.2e-16) is the
+    rounding every step makes on numbers of order one.
 
     Examples
     --------
     >>> from pitheorem.simulation import nudged
-    >>> [float(v) for v in nudged([0.0, 4.0])]
-    [2.220446049250313e-16, 4.000000000000001]
+    >>> [float(v) for v in nudged([0.0, 4.0, -1.0])]
+    [2.220446049250313e-16, 4.000000000000001, -0.9999999999999999]
     """
     x = np.asarray(values, dtype=float)
-    return x + np.spacing(np.maximum(np.abs(x), 1.0))
+    return np.where(np.abs(x) >= 1.0, np.nextafter(x, np.inf), x + np.spacing(1.0))
 
 
 def _max_abs(diff: np.ndarray) -> float:
