@@ -232,7 +232,7 @@ def hinged_rod_longitudinal(damper: bool = True) -> Model:
         initial={"theta": math.pi / 4, "omega": 0.0},
         name="hinged_rod_longitudinal",
         description=f"hinged rod held by a longitudinal spring{' and damper' if damper else ''} from its tip "
-        "to an anchor a distance l above the hinge",
+        "to an anchor a distance 2 l above the hinge",
     )
 
 

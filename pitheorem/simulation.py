@@ -334,8 +334,8 @@ def simulate(model, params=None, y0=None, t_final=10.0, *, method="solve_ivp", d
             raise InvalidRequestError(f"t_eval must be a non-empty 1-d array of times, got {t_eval!r}")
         if grid.min() < 0 or grid.max() > t_final:
             raise InvalidRequestError(f"t_eval must lie within [0, t_final] = [0, {t_final}]")
-        if np.any(np.diff(grid) < 0):
-            raise InvalidRequestError("t_eval must be sorted in increasing order")
+        if np.any(np.diff(grid) <= 0):  # solve_ivp refuses a time given twice as well
+            raise InvalidRequestError("t_eval must be strictly increasing: sorted, no time twice")
     return _run(model, p, y_init, t_final, method, None, None, grid, rtol, atol, ivp_method)
 
 

@@ -243,13 +243,17 @@ def test_trajectory_is_read_only(hinged):
         tr.t = np.zeros(3)
     with pytest.raises(pt.UnknownVariableError, match="'phi'"):
         tr["phi"]
-    assert "Trajectory" in repr(tr)
+    assert repr(tr) == "<Trajectory t=0..0.1, 1001 samples, states ('theta', 'omega')>"
+    assert repr(pt.Trajectory([], np.zeros((0, 1)), ("x",))) == "<Trajectory t=empty, 0 samples, states ('x',)>"
     with pytest.raises(pt.InvalidRequestError, match="shape"):
         pt.Trajectory([0.0, 1.0], [[1.0, 2.0]], ("a", "b"))
 
 
 def test_report_is_frozen(hinged, figure5):
     rep = pt.verify_similarity(hinged, figure5, s=2, t_final=0.5)
+    # by default the verdict is absolute, without a one-ulp baseline run
+    assert (rep.tol, rep.sensitivity, rep.nudged) == (1e-6, None, None)
+    assert "tol 1e-06" in str(rep)
     with pytest.raises(dataclasses.FrozenInstanceError):
         rep.passed = False
     with pytest.raises(TypeError):
@@ -294,6 +298,12 @@ def test_bad_simulate_inputs(hinged):
         pt.simulate(hinged, t_final=1.0, t_eval=[0.0, 2.0])
     with pytest.raises(pt.InvalidRequestError, match="t_eval"):
         pt.simulate(hinged, t_final=1.0, t_eval=[0.5, 0.1])
+    with pytest.raises(pt.InvalidRequestError, match="t_eval must be strictly increasing"):
+        pt.simulate(hinged, t_final=1.0, t_eval=[0.0, 0.5, 0.5, 1.0])  # scipy refuses a time twice
+    with pytest.raises(pt.InvalidRequestError, match="non-empty"):
+        pt.simulate(hinged, t_final=1.0, t_eval=[])
+    one = pt.simulate(hinged, t_final=1.0, t_eval=[0.5])  # a single sample is a grid too
+    assert one.t.tolist() == [0.5]
     with pytest.raises(pt.InvalidRequestError, match="Model"):
         pt.simulate("hinged_rod")
     with pytest.raises(TypeError):
@@ -463,6 +473,24 @@ def test_model_scaling_of_a_scaling_and_of_exponents(hinged, figure5):
     assert near.t.tolist() == [0.0, 1.0]
 
 
+def test_baseline_report_names_the_largest_sensitivity(hinged, figure5):
+    rep = pt.verify_similarity(hinged, figure5, s=2, t_final=0.5, baseline=True)
+    largest = max(rep.sensitivity.values())
+    assert largest > min(rep.sensitivity.values()) > 0
+    assert f"(largest {largest:.3g})" in str(rep)
+
+
+def test_non_similarity_names_a_group_it_changes(hinged):
+    with pytest.raises(pt.InvalidRequestError) as info:
+        pt.verify_similarity(hinged, {"g": 1}, s=2)
+    assert str(info.value) == (
+        "exponents (g: 1) are not a similarity scaling; they multiply the Pi group k_theta/(g*l*m) by s^-1 "
+        "(only changes of base units keep every group invariant)")
+    # the first group, k_theta/(g*l*m), keeps its value here: the message skips it
+    with pytest.raises(pt.InvalidRequestError, match=r"the Pi group c_theta\*\*2/\(g\*l\*\*3\*m\*\*2\) by s\^2 "):
+        pt.verify_similarity(hinged, {"c_theta": 1}, s=2)
+
+
 def test_model_scaling_that_is_no_similarity(hinged, figure5):
     raw = ModelScaling.of(hinged, {"g": 1}, s=2, check=False)
     assert not raw.is_similarity
@@ -487,6 +515,7 @@ def test_model_scaling_that_is_no_similarity(hinged, figure5):
 
 def test_fixed_steps_cover_the_span():
     assert fixed_steps(1.0, 0.1) == 10
+    assert fixed_steps(0.07, 0.01) == 7  # 0.07 / 0.01 is 7.000000000000001: rounding, not one more step
     assert fixed_steps(0.3, 0.1) == 3  # 0.3 / 0.1 is 2.9999999999999996
     assert fixed_steps(1.05, 0.1) == 11  # not a multiple: one more step, past t_final
     assert fixed_steps(1.0 + 1e-6, 1.0) == 2
