@@ -99,6 +99,7 @@ def test_dict_of_exponents_is_completed_from_the_units(hinged):
 def test_papers_wrong_scalings_fail(hinged, figure):
     rep = pt.verify_similarity(hinged, WRONG[figure], s=2, t_final=10.0, check=False)
     assert not rep.passed
+    assert np.abs(rep.difference).max() == rep.max_deviation  # mapped minus original
     assert not rep.is_similarity
     assert rep.deviation["theta"] > 0.05
     assert rep.max_deviation >= rep.deviation["theta"]
@@ -244,6 +245,7 @@ def test_trajectory_is_read_only(hinged):
     with pytest.raises(pt.UnknownVariableError, match="'phi'"):
         tr["phi"]
     assert repr(tr) == "<Trajectory t=0..0.1, 1001 samples, states ('theta', 'omega')>"
+    assert len({tr, tr}) == 1  # compared and hashed by identity: its arrays have no single truth value
     assert repr(pt.Trajectory([], np.zeros((0, 1)), ("x",))) == "<Trajectory t=empty, 0 samples, states ('x',)>"
     with pytest.raises(pt.InvalidRequestError, match="shape"):
         pt.Trajectory([0.0, 1.0], [[1.0, 2.0]], ("a", "b"))
@@ -259,6 +261,7 @@ def test_report_is_frozen(hinged, figure5):
     with pytest.raises(TypeError):
         rep.deviation["theta"] = 1.0
     assert rep.difference.shape == rep.original.y.shape
+    assert rep.scaled_dt is True  # solve_ivp: nothing unscaled
     assert "PASSED" in str(rep)
 
 
@@ -473,8 +476,19 @@ def test_model_scaling_of_a_scaling_and_of_exponents(hinged, figure5):
     assert near.t.tolist() == [0.0, 1.0]
 
 
+def test_a_failing_solver_is_reported():
+    # x' = x^2 / (l tau) from x = l blows up at t = tau: solve_ivp cannot pass it
+    t, ell, tau = sympy.Symbol("t"), sympy.Symbol("l"), sympy.Symbol("tau")
+    x = sympy.Function("x")(t)
+    blow_up = pt.Model(pt.System({"l": "L", "tau": "T", "t": "T", "x": "L"}), [sympy.Eq(x.diff(t), x**2 / (ell * tau))],
+                       defaults={"l": 1.0, "tau": 1.0}, initial={"x": 1.0})
+    with pytest.raises(pt.PiTheoremError, match="solve_ivp failed"):
+        pt.simulate(blow_up, t_final=2.0)
+
+
 def test_baseline_report_names_the_largest_sensitivity(hinged, figure5):
     rep = pt.verify_similarity(hinged, figure5, s=2, t_final=0.5, baseline=True)
+    assert math.isnan(rep.tol)
     largest = max(rep.sensitivity.values())
     assert largest > min(rep.sensitivity.values()) > 0
     assert f"(largest {largest:.3g})" in str(rep)
@@ -494,6 +508,7 @@ def test_non_similarity_names_a_group_it_changes(hinged):
 def test_model_scaling_that_is_no_similarity(hinged, figure5):
     raw = ModelScaling.of(hinged, {"g": 1}, s=2, check=False)
     assert not raw.is_similarity
+    assert len({raw, raw}) == 1  # identity: it holds a model and read-only mappings
     assert raw.scaling == {**dict.fromkeys(raw.exponents, 0), "g": 1}
     assert raw.exponents["omega"] == 0
     with pytest.raises(TypeError):
@@ -516,6 +531,8 @@ def test_model_scaling_that_is_no_similarity(hinged, figure5):
 def test_fixed_steps_cover_the_span():
     assert fixed_steps(1.0, 0.1) == 10
     assert fixed_steps(0.07, 0.01) == 7  # 0.07 / 0.01 is 7.000000000000001: rounding, not one more step
+    # the tolerance is relative: 149.38268 / 1e-5 is 14938268.000000002, 2e-9 above an integer
+    assert fixed_steps(149.38268000000002, 1e-05) == 14938268
     assert fixed_steps(0.3, 0.1) == 3  # 0.3 / 0.1 is 2.9999999999999996
     assert fixed_steps(1.05, 0.1) == 11  # not a multiple: one more step, past t_final
     assert fixed_steps(1.0 + 1e-6, 1.0) == 2
