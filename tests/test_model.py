@@ -163,25 +163,25 @@ def test_coupled_equations_solve_as_numpy_does(a, b, x, v, t, tau, ell):
     np.testing.assert_allclose(got, want, rtol=1e-9, atol=1e-9 * (1 + np.abs(want).max()))
 
 
+ROD, SPRING, PROJECTILE = models.hinged_rod(), models.hinged_rod_longitudinal(), models.projectile()
+
+
 @settings(max_examples=40, deadline=None)
 @given(theta=st.floats(-3.0, 3.0), omega=st.floats(-5.0, 5.0), m=positive, ell=positive, g=positive,
        k=positive, c=positive, x_r=positive)
 def test_catalogue_rates_equal_hand_written_physics(theta, omega, m, ell, g, k, c, x_r):
     """The generated rhs of each paper model against its physics written out by hand."""
-    rod = models.hinged_rod()
     p = {"m": m, "l": ell, "g": g, "k_theta": k, "c_theta": c, "theta_r": x_r}
     torque = m * g * ell / 2 * math.cos(theta) - c * omega - k * (theta - x_r)
-    np.testing.assert_allclose(rod.rhs(0.0, [theta, omega], p), [omega, 3 * torque / (m * ell**2)],
+    np.testing.assert_allclose(ROD.rhs(0.0, [theta, omega], p), [omega, 3 * torque / (m * ell**2)],
                                rtol=1e-12, atol=1e-12)
-    spring = models.hinged_rod_longitudinal()
     p = {"m": m, "l": ell, "g": g, "k": k, "x_r": x_r, "c": c}
     x = ell * math.sqrt(5 + 4 * math.sin(theta))
     arm = 2 * ell**2 * math.cos(theta) / x
     tension = k * (x - x_r) + c * arm * omega
     acc = 3 / (m * ell**2) * (m * g * ell / 2 * math.cos(theta) - tension * arm)
-    np.testing.assert_allclose(spring.rhs(0.0, [theta, omega], p), [omega, acc], rtol=1e-10, atol=1e-10)
-    proj = models.projectile()
-    np.testing.assert_array_equal(proj.rhs(0.0, [theta, omega, c, k], {"m": m, "g": g}), [c, k, 0.0, -g])
+    np.testing.assert_allclose(SPRING.rhs(0.0, [theta, omega], p), [omega, acc], rtol=1e-10, atol=1e-10)
+    np.testing.assert_array_equal(PROJECTILE.rhs(0.0, [theta, omega, c, k], {"m": m, "g": g}), [c, k, 0.0, -g])
 
 
 # -- the issue's bug: a model's name means nothing -------------------------------------------------
