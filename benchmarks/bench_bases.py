@@ -66,7 +66,7 @@ def numpy_det_count(system: pt.System, chunk: int = 1 << 17) -> int:
 
 
 def plain_seconds(system: pt.System, sample: int | None) -> tuple[float, bool]:
-    columns = [[system.dimension(v).exponent(b) for b in system.base_dimensions] for v in system.variables]
+    columns = [[system.dimension(v).exponent_of(b) for b in system.base_dimensions] for v in system.variables]
     subsets = combinations(range(len(columns)), system.rank)
     total = comb(len(columns), system.rank)
     if sample is not None and total > sample:

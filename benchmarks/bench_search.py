@@ -42,7 +42,7 @@ def request(system: pt.System, seed: int = 1):
 
 def brute_force_seconds(system, scale, fixed, sample: int | None):
     bases = system.base_dimensions
-    col = {n: [system.dimension(n).exponent(b) for b in bases] for n in system.variables}
+    col = {n: [system.dimension(n).exponent_of(b) for b in bases] for n in system.variables}
     free = [n for n in system.variables if n not in scale and n not in fixed]
     total = 2 ** len(free)
     subsets = (z for k in range(len(free) + 1) for z in combinations(free, k))
@@ -70,7 +70,7 @@ def main(argv=None) -> None:
         scale, fixed = request(system)
         start = time.perf_counter()
         result = pt.search(system, scale=scale, fixed=fixed)
-        count = result.count
+        count = result.n_scalings
         ours = time.perf_counter() - start
         brute, estimated = brute_force_seconds(system, scale, fixed, sample=2_000)
         mark = "~" if estimated else " "
@@ -85,12 +85,12 @@ def worst_case(n: int) -> None:
     scale = {system.variables[0]: 1}
     start = time.perf_counter()
     result = pt.search(system, scale=scale, fixed=())
-    count = result.count
+    count = result.n_scalings
     ours = time.perf_counter() - start
     start = time.perf_counter()
     with mock.patch("pitheorem.family.minimal_points", return_value=None):  # the exact per-subset path
         exact = pt.search(system, scale=scale, fixed=())
-        exact_count = exact.count
+        exact_count = exact.n_scalings
     baseline = time.perf_counter() - start
     same = count == exact_count and list(result._enumerate()) == list(exact._enumerate())
     assert same, "batched and exact minimal scalings differ"

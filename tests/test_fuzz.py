@@ -77,7 +77,7 @@ def name_lists(draw, system):
 
 
 def column(system, name):
-    return [system.dimension(name).exponent(b) for b in system.base_dimensions]
+    return [system.dimension(name).exponent_of(b) for b in system.base_dimensions]
 
 
 def sympy_rank(system, subset) -> int:
@@ -85,7 +85,7 @@ def sympy_rank(system, subset) -> int:
 
 
 def is_dimensionless(system, exponents) -> bool:
-    return all(sum(Fraction(p) * system.dimension(n).exponent(b) for n, p in exponents.items()) == 0
+    return all(sum(Fraction(p) * system.dimension(n).exponent_of(b) for n, p in exponents.items()) == 0
                for b in system.base_dimensions)
 
 

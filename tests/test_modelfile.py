@@ -80,8 +80,9 @@ d = { dimension = "L", value = " -4/2 " }
 e = { dimension = "L", value = 1e-3 }
 """))
     assert model.values == {"a": Fraction(1, 3), "b": 2, "c": 2.5, "d": -2, "e": 0.001}
-    assert type(model.values["b"]) is int
-    assert type(model.values["d"]) is int
+    assert type(model.values["b"]) is Fraction  # every exact value is a Fraction
+    assert type(model.values["d"]) is Fraction
+    assert type(model.values["c"]) is float  # floats stay floats
 
 
 def test_units_read_by_pint(tmp_path):

@@ -27,8 +27,8 @@ def test_composition_adds_exponents_and_unit_changes():
 def test_composition_with_a_scaling_without_units_has_none():
     units = pt.Scaling.from_unit_change(LT, {"L": 1})
     bare = pt.Scaling(LT, (Fraction(0), Fraction(0), Fraction(1)), None)  # v alone: not a change of units
-    assert (units * bare).units is None
-    assert (bare * units).units is None
+    assert not (units * bare).is_unit_change
+    assert (bare * units).unit_change_vector is None
     assert (units * bare).exponents == {"l": 1, "t": 0, "v": 2}
 
 

@@ -163,7 +163,7 @@ def engine_model():
 @pytest.fixture(scope="module")
 def engine_scaling(engine_model):
     res = pt.search(engine_model.system(), scale={"g": 1}, fixed=("t", "body_bar0_mass"))
-    assert res.count == 1
+    assert res.n_scalings == 1
     return res.scalings[0]
 
 

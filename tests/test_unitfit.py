@@ -28,7 +28,7 @@ def rows_of(system, values, bounds, *, frozen=()):
     free = [b for b in system.base_dimensions if b not in frozen]
     rows = []
     for bnd in bounds:
-        d = [float(system.dimension(bnd.name).exponent(b)) for b in free]
+        d = [float(system.dimension(bnd.name).exponent_of(b)) for b in free]
         z0 = math.log10(float(values[bnd.name]))
         if bnd.side == "low":  # z0 + d.y >= log lo
             rows.append(([-x for x in d], z0 - math.log10(bnd.bound)))
@@ -65,7 +65,7 @@ def fixed_rows(system, fixed, *, frozen=()):
     free = [b for b in system.base_dimensions if b not in frozen]
     rows = []
     for name in fixed:
-        d = [float(system.dimension(name).exponent(b)) for b in free]
+        d = [float(system.dimension(name).exponent_of(b)) for b in free]
         rows += [(d, 0.0), ([-x for x in d], 0.0)]
     return rows
 
@@ -78,7 +78,7 @@ def float_rows(system, values, *, frozen=(), limit=300.0):
         e = [float(i == j) for j in range(len(free))]
         rows += [(e, limit), ([-x for x in e], limit)]
     for name in system.variables:
-        d = [float(system.dimension(name).exponent(b)) for b in free]
+        d = [float(system.dimension(name).exponent_of(b)) for b in free]
         rows += [(d, limit), ([-x for x in d], limit)]
         if values.get(name):
             z0 = math.log10(abs(float(values[name])))
@@ -169,7 +169,10 @@ def test_convention_matches_scaling_from_unit_change():
     fit = pt.fit_units(sys_, {"l": 0.004, "v": 1, "t": 1}, ranges={"l": (0.05, 10)}, fixed_units=("T",), nice=10)
     assert fit.factors == {"L": 100, "T": 1}  # readings of length times 100: centimetres
     assert fit.new_units == {"L": Fraction(1, 100), "T": Fraction(1)}
-    assert fit.scaled == {"l": sympy.Rational(2, 5), "v": 100, "t": 1}
+    # float in, float out (rounded once from the exact product); exact values stay exact Fractions
+    assert fit.scaled == {"l": 0.4, "v": 100, "t": 1}
+    assert type(fit.scaled["l"]) is float
+    assert type(fit.scaled["v"]) is Fraction and type(fit.factors["L"]) is Fraction
     assert fit.scaling.exponents == {"l": 2, "v": 2, "t": 0}  # powers of s = 10
 
 
@@ -315,7 +318,7 @@ def test_property_fit(req):
     applied = fit.scaling.apply(values, float(fit.s))
     for nm in values:
         assert math.isclose(float(fit.scaled[nm]), float(applied[nm]), rel_tol=1e-9)
-        decades = sum(math.log10(float(f)) * float(system.dimension(nm).exponent(b)) for b, f in fit.factors.items())
+        decades = sum(math.log10(float(f)) * float(system.dimension(nm).exponent_of(b)) for b, f in fit.factors.items())
         assert math.log10(float(fit.scaled[nm])) == pytest.approx(math.log10(values[nm]) + decades, abs=1e-9)
     if fit.feasible:
         in_range(fit)

@@ -23,7 +23,9 @@ from pathlib import Path
 
 from ..dimensions import Dimension
 from ..errors import InvalidRequestError, PiTheoremError
+from ..immutable import immutable
 from ..modelfile import ModelFileError
+from ..scaling import Scaling
 from ..system import System
 
 __all__ = [
@@ -108,6 +110,7 @@ class UnscalableModelWarning(UserWarning):
     """
 
 
+@immutable
 @dataclass(frozen=True, slots=True)
 class Parameter:
     """One number (or vector of numbers of one dimension) of an engine model.
@@ -278,6 +281,7 @@ def dim(text: str) -> Dimension:
     return Dimension.parse(text)
 
 
+@immutable
 class EngineModel:
     """A MuJoCo or PyBullet model read from its file, with its numbers.
 
@@ -307,10 +311,10 @@ class EngineModel:
     __slots__ = ("_backend", "engine", "parameters", "path")
 
     def __init__(self, backend, engine: str, path: str):
-        self._backend = backend
-        self.engine = engine
-        self.path = path
-        self.parameters = tuple(backend.parameters())
+        object.__setattr__(self, "_backend", backend)  # written once: an EngineModel is immutable
+        object.__setattr__(self, "engine", engine)
+        object.__setattr__(self, "path", path)
+        object.__setattr__(self, "parameters", tuple(backend.parameters()))
 
     def __repr__(self) -> str:
         return f"<EngineModel {self.engine} {self.path or '(unsaved)'}: {len(self.parameters)} parameters>"
@@ -600,9 +604,9 @@ def _check_factor(value, name: str) -> float:
 
 
 def _check_scaling(model: EngineModel, scaling) -> None:
-    if not all(hasattr(scaling, a) for a in ("system", "powers", "exponent_of")):
+    if not isinstance(scaling, Scaling):
         raise InvalidRequestError(f"scaling must be a pitheorem Scaling, got {type(scaling).__name__}")
-    if scaling.units is None:
+    if not scaling.is_unit_change:
         raise InvalidRequestError("the scaling is no change of units; an engine model needs one "
                                   "(use a scaling from pt.search(model.system(), ...))")
     missing = [b for b in ("M", "L", "T") if b not in scaling.system.base_dimensions]
