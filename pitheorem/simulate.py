@@ -21,8 +21,8 @@ from types import MappingProxyType
 import numpy as np
 
 from .errors import InvalidRequestError, PiTheoremError, SystemMismatchError, UnknownVariableError
-from .models import Model
 from .exact import read_exponent
+from .models import Model
 from .scaling import Scaling
 from .system import System
 

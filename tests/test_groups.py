@@ -63,8 +63,12 @@ def test_group_display_and_evaluate(rod):
     assert pi_g.latex == r"\frac{g l m}{k_{\theta}}"
     assert pi_g._repr_latex_().startswith("$\\displaystyle \\Pi_{g} =")
     values = {"m": Fraction(3, 2), "l": 2, "g": Fraction(981, 100), "k_theta": 100}
-    assert pi_g.evaluate(values) == sympy.Rational(2943, 10000)
-    assert pi_g.evaluate({k: float(v) for k, v in values.items()}) == pytest.approx(0.2943)
+    exact = pi_g.evaluate(values)
+    assert exact == Fraction(2943, 10000)
+    assert type(exact) is Fraction
+    inexact = pi_g.evaluate({k: float(v) for k, v in values.items()})
+    assert inexact == pytest.approx(0.2943)
+    assert type(inexact) is float
     assert eval(repr(pi_g), {"PiGroup": pt.PiGroup}) == pi_g
 
 
