@@ -14,7 +14,7 @@ file's variable order), Pi-group exponents are integers, and every exact
 rational (scaling exponents, unit changes, rational values) is a string
 such as ``"1/2"`` or ``"-2"``.
 Each of a search's notes is an object ``{"kind", "variables", "text"}``:
-the data of a :class:`pitheorem.search.SearchNote` and its sentence.
+the data of a :class:`pitheorem.scalesearch.SearchNote` and its sentence.
 
 ``--scale`` takes exponents of the scale factor ``s``, never factors:
 ``g=1`` means g -> s g, ``l=-1`` means l -> l / s, and ``g=1/6`` means
@@ -58,7 +58,7 @@ from .display import note_text, power_latex, power_text
 from .errors import CommandLineError, PiTheoremError
 from .exact import read_exponent, read_positive, short_text
 from .modelfile import ModelFile, load_model_file, write_model_file
-from .search import SearchNote, SearchResult, search
+from .scalesearch import SearchNote, SearchResult, search
 
 __all__ = ["EXIT_ERROR", "EXIT_INFEASIBLE", "EXIT_OK", "build_parser", "main"]
 

@@ -166,6 +166,7 @@ class _Problem:
 
     def __init__(self, system, values, ranges, fixed, fixed_units, nice):
         self.system = system
+        self.values = values
         bases = system.base_dimensions
         self.bases = bases
         eq_rows = [[system.dimension(n).exponent_of(b) for b in bases] for n in fixed]
@@ -243,8 +244,12 @@ class _Problem:
                    options={"presolve": True, "mip_rel_gap": 0.0})
         return res.x if res.status == 0 else None
 
-    def worst(self, keep=None) -> tuple[float, np.ndarray | None]:
-        """Stage 1 over a subset of the bounds: (minimal worst violation, v)."""
+    def worst(self, keep=None, *, slack: bool = False) -> tuple[float, np.ndarray | None]:
+        """Stage 1 over a subset of the bounds: (minimal worst violation, v).
+
+        With `slack`, a negative violation is allowed: the largest margin by
+        which every bound is met.
+        """
         idx = range(len(self.bounds)) if keep is None else keep
         idx = list(idx)
         n = self.n_v + 1
@@ -252,7 +257,7 @@ class _Problem:
         c[-1] = 1.0
         A = np.hstack([self.W[idx], -np.ones((len(idx), 1))]) if idx else np.zeros((0, n))
         A = np.vstack([A, np.hstack([self.H, np.zeros((len(self.h), 1))])])
-        lb = [-self.vmax] * self.n_v + [0.0]
+        lb = [-self.vmax] * self.n_v + [-2 * LIMIT if slack else 0.0]
         ub = [self.vmax] * self.n_v + [np.inf]
         x = self._solve(c, A, np.concatenate([self.r[idx], self.h]), lb, ub, self.n_v)
         if x is None:  # only when the integer equalities leave nothing (cannot happen: v = 0 works)
@@ -316,13 +321,39 @@ class _Problem:
     def conflict(self) -> tuple[RangeBound, ...]:
         """A minimal infeasible set of bounds, by a deletion filter (in bound order)."""
         keep = list(range(len(self.bounds)))
-        if self.worst(keep)[0] <= TOL:
+        if self._feasible(keep):
             return ()
         for i in list(keep):
             trial = [j for j in keep if j != i]
-            if self.worst(trial)[0] > TOL:
+            if not self._feasible(trial):
                 keep = trial
         return tuple(self.bounds[j] for j in keep)
+
+    def _feasible(self, keep) -> bool:
+        """Whether some unit change meets the bounds `keep`.
+
+        Factors rounded to powers of `nice` are judged in exact arithmetic,
+        as :func:`fit_units` judges them: when the best integer choice meets
+        the bounds only to within the floats' tolerance, its exact values
+        decide (1e-6 times 10^7 read from a float may be 10.000000000000002,
+        above a bound of 10).
+        """
+        t, v = self.worst(keep, slack=self.nice is not None)
+        if t > TOL:
+            return False
+        if self.nice is None or t < -TOL or v is None:
+            return True
+        powers = [round(float(x)) for x in v]
+        for j in keep:
+            bound = self.bounds[j]
+            dim = self.system.dimension(bound.name)
+            power = sum((dim.exponent_of(b) * p for b, p in zip(self.bases, powers, strict=True)), Fraction(0))
+            if power.denominator != 1:
+                continue  # an irrational factor: the floats' judgement stands
+            new = self.values[bound.name] * Fraction(self.nice) ** int(power)
+            if new < bound.bound if bound.side == "low" else new > bound.bound:
+                return False
+        return True
 
 
 def _log10(x) -> float:

@@ -339,9 +339,11 @@ def test_cli_groups_and_search_load_neither_scipy_nor_matplotlib(tmp_path):
 
 
 def test_lazy_names_resolve_to_the_functions_not_the_modules():
-    import pitheorem.search
+    import pitheorem.scalesearch as scalesearch
     import pitheorem.simulate  # noqa: F401  binding the submodules must not hide the functions
 
+    assert scalesearch.__name__ == "pitheorem.scalesearch"  # the module is the module
+    assert pt.search is scalesearch.search
     assert pt.search.__name__ == "search"
     assert pt.simulate.__name__ == "simulate"
     assert callable(pt.simulate)

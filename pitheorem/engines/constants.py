@@ -25,8 +25,8 @@ from fractions import Fraction
 from ..dimensions import Dimension
 from ..errors import DuplicateVariableError, InvalidRequestError, UnknownVariableError
 from ..immutable import immutable
+from ..scalesearch import SearchResult, search
 from ..scaling import Scaling
-from ..search import SearchResult, search
 from ..system import System
 
 __all__ = [

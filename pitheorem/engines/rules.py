@@ -35,8 +35,8 @@ from ..errors import InvalidRequestError
 from ..exact import read_exponent
 from ..groups import PiGroup
 from ..immutable import immutable
+from ..scalesearch import search
 from ..scaling import Scaling
-from ..search import search
 from ..system import System
 from .constants import HiddenConstant, broken_constants, hidden_constants
 

@@ -1,4 +1,4 @@
-"""pitheorem.search: the white paper's cases, properties against brute force, bad requests."""
+"""pitheorem.scalesearch (pt.search): the white paper's cases, properties against brute force, bad requests."""
 
 from __future__ import annotations
 
@@ -267,13 +267,13 @@ def test_table_of_symmetries_beyond_units_says_they_have_no_unit_change():
 
 # -- the result is a frozen value, enumerated once and lazily ------------------------------
 def _search_module():
-    import importlib
+    import pitheorem.scalesearch as module  # the module; pt.search is its function
 
-    return importlib.import_module("pitheorem.search")  # `pitheorem.search` is the function
+    return module
 
 
 @pytest.mark.parametrize("attr", ["feasible", "scale", "fixed", "notes", "certificate", "certificate_power",
-                                  "particular", "directions", "system", "count"])
+                                  "particular", "directions", "system", "n_scalings"])
 def test_result_attributes_cannot_be_assigned(rod, attr):
     res = pt.search(rod, scale={"g": 1})
     with pytest.raises(AttributeError):
