@@ -96,8 +96,8 @@ def test_catalogue_values(name, dimension, default):
 
 def test_hidden_constants_filters():
     assert all(c.engine == "mujoco" for c in hidden_constants("mujoco"))
-    assert all(not c.dimensionless for c in hidden_constants("bullet", dimensional=True))
-    assert all(c.dimensionless for c in hidden_constants("bullet", dimensional=False))
+    assert all(not c.dimension.is_dimensionless for c in hidden_constants("bullet", dimensional=True))
+    assert all(c.dimension.is_dimensionless for c in hidden_constants("bullet", dimensional=False))
 
 
 def test_hidden_constants_bad_inputs():

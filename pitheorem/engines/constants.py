@@ -86,18 +86,6 @@ class HiddenConstant:
         if not isinstance(self.dimension, Dimension):
             object.__setattr__(self, "dimension", Dimension.parse(self.dimension))
 
-    @property
-    def dimensionless(self) -> bool:
-        """Whether the constant has no dimension (no change of units moves it).
-
-        Examples
-        --------
-        >>> from pitheorem.engines import hidden_constants
-        >>> [c.dimensionless for c in hidden_constants("bullet", names=["bullet_erp", "bullet_time_step"])]
-        [True, False]
-        """
-        return self.dimension.is_dimensionless
-
 
 _PYBULLET = "measured with pybullet 3.2.7 (getPhysicsEngineParameters / getDynamicsInfo)"
 _MUJOCO = "mujoco 4.0.0 model defaults (MjModel.opt, MjSpec.default); MuJoCo XML Reference (mujoco.readthedocs.io)"
@@ -341,7 +329,7 @@ def hidden_constants(engine: str | None = None, *, names: Iterable[str] | None =
             picked.append(by_name[n])
         pool = picked
     if dimensional is not None:
-        pool = [c for c in pool if c.dimensionless != bool(dimensional)]
+        pool = [c for c in pool if c.dimension.is_dimensionless != bool(dimensional)]
     return tuple(pool)
 
 
@@ -381,7 +369,7 @@ def with_hidden_constants(system: System, engine: str, *, names: Iterable[str] |
         raise InvalidRequestError(f"with_hidden_constants needs a System, got {type(system).__name__}")
     consts = hidden_constants(engine, names=names)
     if not include_dimensionless and names is None:
-        consts = tuple(c for c in consts if not c.dimensionless)
+        consts = tuple(c for c in consts if not c.dimension.is_dimensionless)
     dims = dict(system.dimensions)
     for c in consts:
         if c.name in dims:
@@ -474,7 +462,7 @@ def broken_constants(scaling, engine: str, *, names: Iterable[str] | None = None
     units = scaling.unit_change  # raises for a symmetry that is no change of units
     out = []
     for c in hidden_constants(engine, names=names):
-        if c.default == 0 or c.dimensionless:
+        if c.default == 0 or c.dimension.is_dimensionless:
             continue
         # a base the system lacks keeps its unit: it contributes nothing
         exponent = sum((p * units[b] for b, p in c.dimension.exponents.items() if b in units), Fraction(0))
