@@ -45,8 +45,6 @@ def power_latex(exponent) -> str:
     --------
     >>> from pitheorem.display import power_latex
     >>> from fractions import Fraction
-
-from .errors import InvalidRequestError
     >>> [power_latex(p) for p in (0, 1, -1, Fraction(1, 2))]
     ['1', 's', 's^{-1}', 's^{1/2}']
     """

@@ -7,6 +7,7 @@ import subprocess
 import sys
 from fractions import Fraction
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 
@@ -151,6 +152,11 @@ def test_broken_constants_of_a_time_free_scaling():
 def test_broken_constants_needs_a_scaling():
     with pytest.raises(pt.InvalidRequestError, match="Scaling"):
         broken_constants({"g": 1}, "bullet")
+    sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1})
+    look_alike = SimpleNamespace(system=sc.system, powers=sc.vector, exponent_of=sc.exponent_of,
+                                 unit_change=sc.unit_change)  # what the old attribute check accepted
+    with pytest.raises(pt.InvalidRequestError, match="needs a Scaling, got SimpleNamespace"):
+        broken_constants(look_alike, "bullet")
 
 
 def test_engine_unavailable_error_message_and_pickle():

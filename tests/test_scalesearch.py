@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 from itertools import combinations
+from types import SimpleNamespace
 from unittest import mock
 
 import pytest
@@ -263,6 +264,15 @@ def test_table_of_symmetries_beyond_units_says_they_have_no_unit_change():
     assert [r[0] for r in base] == [f"[{b}]" for b in proj.system.base_dimensions]
     assert all(r[2:] == ["none"] for r in base)
     assert res._repr_html_().count(">none</td>") == len(proj.system.base_dimensions)
+
+
+def test_within_takes_a_symmetry_report_not_a_look_alike():
+    proj = pt.models.projectile()
+    sym = pt.scaling_symmetries(pt.models.model_equations(proj), proj.system)
+    look_alike = SimpleNamespace(variables=sym.variables, basis=sym.basis)  # what the old attribute check accepted
+    for bad in (look_alike, {"variables": sym.variables}, None.__class__):
+        with pytest.raises(pt.InvalidRequestError, match="within must be a SymmetryReport"):
+            pt.search(proj.system, scale={"x": 1}, fixed=("t", "g"), within=bad)
 
 
 # -- the result is a frozen value, enumerated once and lazily ------------------------------

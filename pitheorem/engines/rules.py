@@ -249,7 +249,7 @@ class RuleVerdict:
 
 
 def _q(name, dimension, exponent, covers=()):
-    return RuleQuantity(name, dimension, Fraction(exponent), tuple(covers))
+    return RuleQuantity(name, dimension, exponent, tuple(covers))
 
 
 BULLET_SCALE_THE_WORLD = RuleOfThumb(
