@@ -21,8 +21,11 @@ from pitheorem.exact import (
     MAX_EXPONENT,
     MAX_FORMULA_LENGTH,
     MAX_NESTING,
+    is_float,
     read_exponent,
     read_number,
+    read_positive,
+    read_value,
     short_text,
 )
 
@@ -200,6 +203,35 @@ def test_read_number_rule(value, expected):
 def test_read_number_refuses(bad):
     with pytest.raises(pt.NumberError):
         read_number(bad, "the test value")
+
+
+@pytest.mark.parametrize(("value", "expected"), [(2, Fraction(2)), ("1/3", Fraction(1, 3)), (0.5, Fraction(1, 2)),
+                                               (sympy.Rational(3, 4), Fraction(3, 4))])
+def test_read_positive_reads_like_read_number(value, expected):
+    assert read_positive(value, "the scale factor s") == expected
+
+
+@pytest.mark.parametrize("bad", [0, -2, "-1/3", 0.0, "big", True, float("inf"), -sympy.sqrt(2)])
+def test_read_positive_refuses_everything_but_positive_numbers(bad):
+    with pytest.raises(pt.NumberError, match="the scale factor s must be a positive finite number") as info:
+        read_positive(bad, "the scale factor s", irrational_ok=True)
+    assert info.value.culprit is bad
+
+
+def test_read_value_keeps_floats_and_makes_the_rest_fractions():
+    # float in, float out: the one rule for parameter values
+    for value in (9.81, np.float32(0.5), sympy.Float(0.25), sympy.pi):
+        assert type(read_value(value, "v")) is float
+    assert read_value(sympy.pi, "v") == pytest.approx(3.141592653589793)
+    for value, exact in ((3, Fraction(3)), ("1/3", Fraction(1, 3)), (sympy.Rational(1, 7), Fraction(1, 7)),
+                         (np.int64(-4), Fraction(-4))):
+        got = read_value(value, "v")
+        assert got == exact
+        assert type(got) is Fraction
+    with pytest.raises(pt.NumberError, match="'v'"):
+        read_value(True, "'v'")
+    assert is_float(np.array([1, 2]))
+    assert not is_float("0.5")
 
 
 def test_number_strings_up_to_a_thousand_characters_are_read():

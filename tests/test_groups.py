@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
+import numpy as np
 import pytest
 import sympy
 
@@ -119,6 +120,18 @@ def test_from_units_angle_as_base():
     s = pt.System.from_units({"k_theta": "N*m/rad", "theta": "rad"}, angle_as_base=True)
     assert str(s.dimension("k_theta")) == "M L^2 T^-2 A^-1"
     assert str(s.dimension("theta")) == "A"
+
+
+def test_constructor_takes_integer_exponents_as_given():
+    group = pt.PiGroup({"t": 2, "l": Fraction(-4, 2), "g": 0, "m": np.int64(1)}, "t")
+    assert list(group.exponents.items()) == [("t", 2), ("l", -2), ("m", 1)]  # zeros dropped, order kept
+    assert all(type(p) is int for p in group.exponents.values())
+    assert pt.PiGroup((("t", 2), ("l", -1))) == pt.PiGroup({"t": 2, "l": -1})  # pairs or a mapping
+    with pytest.raises(pt.InvalidRequestError, match="from_exponents") as info:
+        pt.PiGroup({"t": Fraction(1, 2)})
+    assert info.value.culprit == Fraction(1, 2)
+    with pytest.raises(pt.NumberError):
+        pt.PiGroup({"t": "two"})
 
 
 def test_from_exponents_puts_zero_for_variables_only_in_the_order():

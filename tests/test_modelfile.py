@@ -125,6 +125,9 @@ def test_round_trip_toml(tmp_path):
     rod = load_model_file("example:hinged_rod")
     new = {**rod.values, "m": Fraction(3, 7), "l": 5}
     out = write_model_file(rod, tmp_path / "copy.toml", new)
+    text = out.read_text()
+    assert 'value = "3/7"' in text
+    assert "value = 5, " in text  # an integral Fraction is written as a TOML integer
     again = load_model_file(out)
     assert again.values == new
     assert again.system == rod.system
