@@ -43,9 +43,9 @@ def synthetic_system(n: int, k: int = 7, seed: int = 0) -> pt.System:
     rng = random.Random(seed)
     variables = {}
     for j in range(n):
-        powers = {b: rng.choice((-2, -1, 0, 0, 0, 1, 1, 2)) for b in BASES[:k]}
-        variables[f"x{j}"] = pt.Dimension(powers)
-    return pt.System(variables)
+        exponents = {b: rng.choice((-2, -1, 0, 0, 0, 1, 1, 2)) for b in BASES[:k]}
+        variables[f"x{j}"] = pt.Dimension(exponents)
+    return pt.System(variables, base_dimensions=BASES)  # N and J are opt-in base dimensions
 
 
 def matrix_of(system: pt.System) -> np.ndarray:
