@@ -211,7 +211,7 @@ class Parameter:
         10.0
         """
         if self.dimension is not None:
-            return power_factor(s, scaling.exponent_of(self.dimension))
+            return dimension_factor(scaling, s, self.dimension)
         if not self.parts:  # no dimension at all: copied unchanged (see the note)
             return 1.0
         exponents = {part: scaling.exponent_of(dim) for part, dim in self.parts}
@@ -266,6 +266,20 @@ def power_factor(s: float, exponent) -> float:
     return float(s) ** float(e)
 
 
+def dimension_factor(scaling, s: float, dimension) -> float:
+    """The factor a scaling multiplies every number of one dimension by.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.engines.model import dim, dimension_factor
+    >>> sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1, "T": 1})
+    >>> dimension_factor(sc, 10, dim("L T^-2"))
+    0.1
+    """
+    return power_factor(s, scaling.exponent_of(dimension))
+
+
 def dim(text: str) -> Dimension:
     """Shorthand: parse a dimension formula.
 
@@ -276,6 +290,70 @@ def dim(text: str) -> Dimension:
     'M L^2 T^-1'
     """
     return Dimension.parse(text)
+
+
+@dataclass(frozen=True, slots=True)
+class JointKind:
+    """Coordinate and generalised-force dimensions of one joint type, in either engine.
+
+    A hinge (MuJoCo's hinge and ball, URDF's revolute and continuous) turns
+    by a dimensionless angle under a torque; a slide (MuJoCo's slide, URDF's
+    prismatic) moves by a length under a force.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.model import HINGE, SLIDE
+    >>> str(SLIDE.q), str(HINGE.force), str(SLIDE.per(SLIDE.force, 1, rate=1))
+    ('L', 'M L^2 T^-2', 'M T^-1')
+    """
+
+    q: Dimension
+    force: Dimension
+
+    def per(self, numerator: Dimension, power: int, rate: int = 0) -> Dimension:
+        """``numerator / (q T^-rate)^power``: the dimension of a polynomial coefficient.
+
+        Examples
+        --------
+        >>> from pitheorem.engines.model import SLIDE
+        >>> str(SLIDE.per(SLIDE.force, 2))
+        'M L^-1 T^-2'
+        """
+        return numerator * (self.q * dim("T") ** (-rate)) ** (-power)
+
+
+HINGE = JointKind(dim("1"), dim("M L^2 T^-2"))
+SLIDE = JointKind(dim("L"), dim("M L T^-2"))
+
+
+def identifier(text: str) -> str:
+    """A parameter name made of `text`: other characters become ``_``, a leading digit gets one.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.model import identifier
+    >>> identifier("joint 'left hip'"), identifier("3d")
+    ('joint__left_hip_', '_3d')
+    """
+    out = "".join(c if c.isalnum() or c == "_" else "_" for c in text)
+    return out if out and not out[0].isdigit() else f"_{out}"
+
+
+def unique_name(ident: str, taken: set[str]) -> str:
+    """`ident`, or ``ident_2``, ``ident_3``, ...: the first name not in `taken`, which it joins.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.model import unique_name
+    >>> taken = {"geom_size"}
+    >>> unique_name("geom_size", taken), unique_name("geom_size", taken), sorted(taken)
+    ('geom_size_2', 'geom_size_3', ['geom_size', 'geom_size_2', 'geom_size_3'])
+    """
+    out, k = ident, 2
+    while out in taken:
+        out, k = f"{ident}_{k}", k + 1
+    taken.add(out)
+    return out
 
 
 class EngineModel:
@@ -416,8 +494,7 @@ class EngineModel:
         """
         s = _check_s(s)
         _check_scaling(self, scaling)
-        factors = {p.name: p.factor(scaling, s) for p in self.parameters}
-        return EngineModel(self._backend.scaled(factors, scaling, s), self.engine, "")
+        return self._times({p.name: p.factor(scaling, s) for p in self.parameters}, scaling, s)
 
     def with_values(self, **values) -> EngineModel:
         """A copy with some parameters set to new values (each must be one number).
@@ -452,7 +529,8 @@ class EngineModel:
             if len(p.value) != 1 or p.value[0] == 0:
                 raise InvalidRequestError(f"with_values sets one nonzero number; {name} is {p.value}")
             factors[name] = float(value) / p.value[0]
-        return EngineModel(self._backend.scaled(factors, None, None), self.engine, "")
+        # multiplied(...) by value / current value, except that the factor may be 0 or negative
+        return self._times(factors)
 
     def multiplied(self, **factors) -> EngineModel:
         """A copy with some parameters multiplied by factors (a vector entry by entry).
@@ -487,7 +565,11 @@ class EngineModel:
         for name, factor in factors.items():
             self.parameter(name)
             factors[name] = _check_factor(factor, name)
-        return EngineModel(self._backend.scaled(factors, None, None), self.engine, "")
+        return self._times(factors)
+
+    def _times(self, factors: dict[str, float], scaling=None, s=None) -> EngineModel:
+        """The copy of :meth:`scaled`, :meth:`with_values` and :meth:`multiplied`: checked factors applied."""
+        return EngineModel(self._backend.scaled(factors, scaling, s), self.engine, "")
 
     def save(self, path) -> Path:
         """Write the model as a file the engine loads as is.
