@@ -158,6 +158,33 @@ def test_with_values_and_bad_requests():
             model.scaled(sc, bad)
 
 
+def test_with_values_is_multiplied_by_the_ratio_and_may_reach_zero_or_change_sign():
+    model = engines.load(engines.example_path("pendulum.xml"))
+    # one copy by either route (19.62 / 9.81 is 2 exactly in floats)
+    doubled = model.with_values(g=19.62)
+    assert doubled.parameters == model.multiplied(g=2).parameters
+    assert doubled.parameter("g").value == (19.62,)
+    assert doubled.parameter("timestep").value == model.parameter("timestep").value
+    # a value of 0, or of the other sign: with_values reaches it, multiplied refuses the factor
+    assert model.with_values(tolerance=0).parameter("tolerance").value == (0.0,)
+    assert model.with_values(actuator_torque_gainprm_gain=-2).parameter("actuator_torque_gainprm_gain").value == (
+        -2.0,)
+    for bad in (0, -2, math.inf, math.nan, True):
+        with pytest.raises(pt.InvalidRequestError, match="positive finite"):
+            model.multiplied(actuator_torque_gainprm_gain=bad)
+    # a vector entry by entry with multiplied; with_values sets one nonzero number only
+    assert model.multiplied(body_arm_pos=3).parameter("body_arm_pos").value == (0.0, 0.0, 3.0)
+    with pytest.raises(pt.InvalidRequestError, match="one nonzero number"):
+        model.with_values(body_arm_pos=1)
+    with pytest.raises(pt.InvalidRequestError, match="one nonzero number"):
+        model.with_values(tolerance=0).with_values(tolerance=1e-8)
+    for route in (model.with_values, model.multiplied):
+        with pytest.raises(pt.UnknownVariableError):
+            route(no_such=2)
+    assert model.parameter("g").value == (9.81,)  # the original is untouched
+    assert model.with_values(g=19.62).path == model.multiplied(g=2).path == ""
+
+
 @pytest.mark.parametrize(("name", "element", "reason"), [
     ("missing_mesh.xml", "mesh 'hull'", "no_such_hull.stl"),
     ("unknown_element.xml", "gizmo", "unrecognized element"),
