@@ -145,6 +145,26 @@ def test_keyframes_scale_with_the_coordinates():
     assert b.key_qvel[0][6] == 10.0
 
 
+def test_keyframes_of_a_model_with_activations_scale_velocity_and_activation_apart(tmp_path):
+    # a filtered motor has an activation: the coordinates are qpos, qvel, then act; a keyframe's qvel is
+    # the velocities alone (this raised a numpy broadcast error before)
+    path = tmp_path / "filtered.xml"
+    path.write_text("""<mujoco><worldbody><body><joint name="slide" type="slide" axis="1 0 0"/>
+      <geom type="box" size="0.1 0.1 0.1" mass="1"/></body></worldbody>
+      <actuator><general name="f" joint="slide" dyntype="filter" dynprm="0.1" gainprm="5"/></actuator>
+      <keyframe><key time="0.5" qpos="0.25" qvel="0.5" ctrl="0.75" act="1"/></keyframe></mujoco>""")
+    model = engines.load(path)
+    sc = pt.Scaling.from_unit_change(model.system(), {"M": 1, "L": 1})
+    b = model.scaled(sc, 2).backend.mjmodel
+    # oracle by hand, mass and length units times 2: qpos a length (s), qvel L T^-1 (s), time T (1); ctrl
+    # and act are the filtered force's input, a force M L T^-2 (s^2)
+    assert b.key_qpos[0].tolist() == [0.5]
+    assert b.key_qvel[0].tolist() == [1.0]
+    assert b.key_time[0] == 0.5
+    assert b.key_ctrl[0].tolist() == [3.0]
+    assert b.key_act[0].tolist() == [4.0]
+
+
 def test_with_values_and_bad_requests():
     model = load("contact.xml")
     assert model.with_values(timestep=0.001).parameter("timestep").value == (0.001,)

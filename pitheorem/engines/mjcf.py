@@ -688,8 +688,9 @@ class MjcfBackend:
         def factors(dims):
             return np.array([dimension_factor(scaling, s, d) for d in dims])
 
-        _, dims = self.coordinate_dimensions()
-        fq, fv = factors(dims[: model.nq]), factors(dims[model.nq:])
+        _, dims = self.coordinate_dimensions()  # qpos, qvel, then the activations
+        nq, nv = model.nq, model.nv
+        fq, fv, fa = factors(dims[:nq]), factors(dims[nq:nq + nv]), factors(dims[nq + nv:])
         ft, fl = dimension_factor(scaling, s, _T), dimension_factor(scaling, s, _L)
         fctrl = factors(self.control_dimensions())
         for key in spec.keys:
@@ -702,10 +703,8 @@ class MjcfBackend:
             if len(key.mpos):
                 key.mpos = np.asarray(key.mpos) * fl
             key.time = key.time * ft
-            if len(key.act) and model.na:
-                fa = factors(self.activation_dimensions())
-                if len(fa) == len(key.act):
-                    key.act = np.asarray(key.act) * fa
+            if len(key.act) and model.na and len(fa) == len(key.act):
+                key.act = np.asarray(key.act) * fa
 
     # -- running ------------------------------------------------------------------------------
 
