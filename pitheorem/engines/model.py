@@ -39,6 +39,9 @@ __all__ = [
 #: where a parameter's value comes from
 SOURCES = ("file", "default", "derived", "engine")
 
+#: the folder of the model files shipped with pitheorem (see :func:`example_path`)
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
 
 class EngineModelError(ModelFileError):
     """A model file the engine cannot load, or an element the package cannot scale.
@@ -732,7 +735,7 @@ def example_path(name: str) -> Path:
     >>> engines.example_path("pendulum.xml").name
     'pendulum.xml'
     """
-    path = Path(__file__).resolve().parent.parent / "examples" / name
+    path = EXAMPLES / name
     if not path.is_file():
         raise InvalidRequestError(f"no example model {name!r} in {path.parent}")
     return path

@@ -50,6 +50,7 @@ import numpy as np
 
 from ..errors import InvalidRequestError
 from ..system import System
+from .model import EXAMPLES, EngineModel
 
 __all__ = [
     "PAPER_SCALING",
@@ -348,6 +349,11 @@ def _dimension(name: str) -> str:
     return next(p.dimension for p in PARAMETERS if p.name == name)
 
 
+def _compiled(model):
+    """The compiled MuJoCo model: an EngineModel's, or `model` itself (a ``mujoco.MjModel``)."""
+    return model.backend.mjmodel if isinstance(model, EngineModel) else model
+
+
 class CableController:
     """Closed-loop reel control: a proportional law on cable strain.
 
@@ -386,8 +392,7 @@ class CableController:
     def __init__(self, model):
         import mujoco
 
-        if hasattr(model, "backend"):  # an EngineModel: its compiled MuJoCo model
-            model = model.backend.mjmodel
+        model = _compiled(model)
 
         def numeric(name: str) -> float:
             index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_NUMERIC, name)
@@ -497,12 +502,11 @@ def simulate_superball(model, duration: float, *, controlled: bool = True, every
     """
     import mujoco
 
-    if hasattr(model, "backend"):  # an EngineModel
-        model = model.backend.mjmodel
-    elif isinstance(model, Path) or (isinstance(model, str) and not model.lstrip().startswith("<")):
+    if isinstance(model, Path) or (isinstance(model, str) and not model.lstrip().startswith("<")):
         model = mujoco.MjModel.from_xml_path(str(model))
     elif isinstance(model, str):
         model = mujoco.MjModel.from_xml_string(model)
+    model = _compiled(model)
     data = mujoco.MjData(model)
     if nudge:
         data.qpos[:] = np.nextafter(data.qpos, np.inf)
@@ -590,7 +594,7 @@ def write_superball(path=None) -> Path:
     ...     written.read_text() == superball_mjcf()
     True
     """
-    target = Path(path) if path is not None else Path(__file__).resolve().parent.parent / "examples" / "superball.xml"
+    target = Path(path) if path is not None else EXAMPLES / "superball.xml"
     target.write_text(superball_mjcf(), encoding="utf-8")
     return target
 
