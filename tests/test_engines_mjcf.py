@@ -228,6 +228,14 @@ def test_missing_and_non_xml_files(tmp_path):
         engines.load(junk)
 
 
+def test_an_unknown_example_names_the_shipped_ones():
+    assert engines.example_path("superball.xml").name == "superball.xml"
+    with pytest.raises(pt.InvalidRequestError) as caught:
+        engines.example_path("hopper.xml")
+    assert "'hopper.xml'" in str(caught.value)
+    assert str(caught.value).endswith("the shipped models are pendulum.xml, superball.xml")
+
+
 def test_mixed_fixed_tendon_cannot_be_rewritten(tmp_path):
     text = (DATA / "tendon_actuators.xml").read_text().replace(
         '<joint joint="wrist" coef="-0.5"/>', '<joint joint="slide" coef="-0.5"/>')

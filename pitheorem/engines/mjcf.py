@@ -41,8 +41,6 @@ from ..dimensions import Dimension
 from ..errors import PiTheoremError
 from ..simulate import nudged
 from .model import (
-    HINGE,
-    SLIDE,
     EngineModel,
     EngineModelError,
     JointKind,
@@ -72,9 +70,9 @@ def _mujoco():
 
 def _joint_kind(mj, jtype) -> JointKind | None:
     if jtype == mj.mjtJoint.mjJNT_SLIDE:
-        return SLIDE
+        return JointKind.SLIDE
     if jtype in (mj.mjtJoint.mjJNT_HINGE, mj.mjtJoint.mjJNT_BALL):
-        return HINGE
+        return JointKind.HINGE
     return None  # free
 
 
@@ -402,7 +400,7 @@ class _Walker:
         mj = self.mj
         wraps = list(tendon.path)
         joints = [w for w in wraps if w.type == mj.mjtWrap.mjWRAP_JOINT]
-        return self.wrapped_joint_kind(joints[0], path) if joints else SLIDE
+        return self.wrapped_joint_kind(joints[0], path) if joints else JointKind.SLIDE
 
     def wrapped_joint_kind(self, wrap, path) -> JointKind:
         """The kind of a joint a fixed tendon runs over; a free joint would mix dimensions."""
@@ -884,6 +882,7 @@ def load_mjcf(path) -> EngineModel:
     Returns
     -------
     EngineModel
+        Of engine ``"mujoco"``.
 
     Raises
     ------

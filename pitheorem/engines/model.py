@@ -20,6 +20,7 @@ import warnings
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
+from typing import ClassVar
 
 from ..dimensions import Dimension
 from ..errors import InvalidRequestError, PiTheoremError
@@ -305,28 +306,31 @@ class JointKind:
 
     Examples
     --------
-    >>> from pitheorem.engines.model import HINGE, SLIDE
-    >>> str(SLIDE.q), str(HINGE.force), str(SLIDE.per(SLIDE.force, 1, rate=1))
+    >>> from pitheorem.engines.model import JointKind
+    >>> slide, hinge = JointKind.SLIDE, JointKind.HINGE
+    >>> str(slide.q), str(hinge.force), str(slide.per(slide.force, 1, rate=1))
     ('L', 'M L^2 T^-2', 'M T^-1')
     """
 
     q: Dimension
     force: Dimension
+    HINGE: ClassVar[JointKind]
+    SLIDE: ClassVar[JointKind]
 
     def per(self, numerator: Dimension, power: int, rate: int = 0) -> Dimension:
         """``numerator / (q T^-rate)^power``: the dimension of a polynomial coefficient.
 
         Examples
         --------
-        >>> from pitheorem.engines.model import SLIDE
-        >>> str(SLIDE.per(SLIDE.force, 2))
+        >>> from pitheorem.engines.model import JointKind
+        >>> str(JointKind.SLIDE.per(JointKind.SLIDE.force, 2))
         'M L^-1 T^-2'
         """
         return numerator * (self.q * dim("T") ** (-rate)) ** (-power)
 
 
-HINGE = JointKind(dim("1"), dim("M L^2 T^-2"))
-SLIDE = JointKind(dim("L"), dim("M L T^-2"))
+JointKind.HINGE = JointKind(dim("1"), dim("M L^2 T^-2"))
+JointKind.SLIDE = JointKind(dim("L"), dim("M L T^-2"))
 
 
 def identifier(text: str) -> str:
@@ -510,6 +514,8 @@ class EngineModel:
         Returns
         -------
         EngineModel
+            An unsaved copy with those values (``path`` is ``""``); this
+            model keeps its own.
 
         Raises
         ------
@@ -550,6 +556,7 @@ class EngineModel:
         Returns
         -------
         EngineModel
+            An unsaved copy (``path`` is ``""``).
 
         Raises
         ------
@@ -727,7 +734,8 @@ def example_path(name: str) -> Path:
     Raises
     ------
     InvalidRequestError
-        For a name that is no shipped file.
+        For a name that is no shipped file; the message lists the model
+        files that are.
 
     Examples
     --------
@@ -737,7 +745,8 @@ def example_path(name: str) -> Path:
     """
     path = EXAMPLES / name
     if not path.is_file():
-        raise InvalidRequestError(f"no example model {name!r} in {path.parent}")
+        shipped = ", ".join(sorted(p.name for p in EXAMPLES.glob("*.xml")))
+        raise InvalidRequestError(f"no example model {name!r} in {EXAMPLES}; the shipped models are {shipped}")
     return path
 
 
@@ -758,12 +767,15 @@ def load(path, **options) -> EngineModel:
     Returns
     -------
     EngineModel
+        Of engine ``"mujoco"`` for MJCF, ``"pybullet"`` for URDF.
 
     Raises
     ------
     EngineModelError
         For a missing or unreadable file, an element the engine rejects, or
         one the package cannot scale faithfully (named in the message).
+    InvalidRequestError
+        For URDF options given with an MJCF file.
 
     Examples
     --------

@@ -37,18 +37,7 @@ import numpy as np
 
 from ..simulate import nudged
 from .constants import hidden_constants
-from .model import (
-    HINGE,
-    SLIDE,
-    EngineModel,
-    EngineModelError,
-    JointKind,
-    Parameter,
-    dim,
-    identifier,
-    unique_name,
-    warn_unscalable,
-)
+from .model import EngineModel, EngineModelError, JointKind, Parameter, dim, identifier, unique_name, warn_unscalable
 
 __all__ = ["SCENE_OPTIONS", "UrdfBackend", "load_urdf"]
 
@@ -102,9 +91,9 @@ def _fmt(values) -> str:
 
 def _joint_kind(jtype: str) -> JointKind | None:
     if jtype == "prismatic":
-        return SLIDE
+        return JointKind.SLIDE
     if jtype in ("revolute", "continuous"):
-        return HINGE
+        return JointKind.HINGE
     return None
 
 
@@ -614,6 +603,8 @@ def load_urdf(path, *, settings=None, base_position=None, fixed_base=None, groun
     Returns
     -------
     EngineModel
+        Of engine ``"pybullet"``, with the scene and settings it runs in
+        (:meth:`~pitheorem.engines.EngineModel.settings`).
 
     Raises
     ------
