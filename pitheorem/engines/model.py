@@ -220,7 +220,7 @@ class Parameter:
             return 1.0
         exponents = {part: scaling.exponent_of(dim) for part, dim in self.parts}
         if len(set(exponents.values())) > 1 and any(v != 0 for v in self.value):
-            needs = ", ".join(f"s^{_text(e)} as {part}" for part, e in exponents.items())
+            needs = ", ".join(f"s^{Fraction(e)} as {part}" for part, e in exponents.items())
             raise UnscalableParameterError(
                 self.name, f"the one number {self.path} acts with dimensions {self.dimension_text}, so the scaling "
                 f"needs {needs}; set it to 0 or hold the base units it mixes fixed")
@@ -242,11 +242,6 @@ class Parameter:
         if not self.parts:
             return "mixed"
         return " | ".join(f"{dim} ({part})" for part, dim in self.parts)
-
-
-def _text(q: Fraction) -> str:
-    q = Fraction(q)
-    return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
 
 
 def power_factor(s: float, exponent) -> float:
@@ -282,6 +277,18 @@ def dimension_factor(scaling, s: float, dimension) -> float:
     0.1
     """
     return power_factor(s, scaling.exponent_of(dimension))
+
+
+def attribute_text(values) -> str:
+    """Numbers as the text of an XML attribute, each at full precision (its shortest exact repr).
+
+    Examples
+    --------
+    >>> from pitheorem.engines.model import attribute_text
+    >>> attribute_text([0.1, 2, -1 / 3])
+    '0.1 2.0 -0.3333333333333333'
+    """
+    return " ".join(repr(float(v)) for v in values)
 
 
 def dim(text: str) -> Dimension:

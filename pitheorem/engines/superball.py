@@ -50,7 +50,7 @@ import numpy as np
 
 from ..errors import InvalidRequestError
 from ..system import System
-from .model import EXAMPLES, EngineModel
+from .model import EXAMPLES, EngineModel, attribute_text
 
 __all__ = [
     "PAPER_SCALING",
@@ -266,10 +266,6 @@ def _rotation(ax: float, ay: float) -> np.ndarray:
     return ry @ rx
 
 
-def _xyz(v) -> str:
-    return " ".join(repr(float(x)) for x in v)
-
-
 def superball_mjcf(params=None) -> str:
     """The MJCF text of SUPERball with the given parameter values.
 
@@ -323,13 +319,14 @@ def superball_mjcf(params=None) -> str:
     lines += ["  </custom>", "  <worldbody>", f'    <geom name="ground" type="plane" size="0 0 1" {contact}/>']
     for i, (e0, e1) in enumerate(bars):
         centre = (e0 + e1) / 2
+        end0, end1 = attribute_text(e0 - centre), attribute_text(e1 - centre)
         lines += [
-            f'    <body name="bar{i}" pos="{_xyz(centre + np.array([0.0, 0.0, lift]))}">',
+            f'    <body name="bar{i}" pos="{attribute_text(centre + np.array([0.0, 0.0, lift]))}">',
             f'      <freejoint name="bar{i}"/>',
-            f'      <geom name="bar{i}" type="capsule" fromto="{_xyz(e0 - centre)} {_xyz(e1 - centre)}" '
+            f'      <geom name="bar{i}" type="capsule" fromto="{end0} {end1}" '
             f'size="{p["r"]!r}" density="{p["rho"]!r}" {contact}/>',
-            f'      <site name="bar{i}_end0" pos="{_xyz(e0 - centre)}"/>',
-            f'      <site name="bar{i}_end1" pos="{_xyz(e1 - centre)}"/>',
+            f'      <site name="bar{i}_end0" pos="{end0}"/>',
+            f'      <site name="bar{i}_end1" pos="{end1}"/>',
             "    </body>",
         ]
     lines += ["  </worldbody>", "  <tendon>"]

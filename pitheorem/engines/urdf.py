@@ -37,7 +37,17 @@ import numpy as np
 
 from ..simulate import nudged
 from .constants import hidden_constants
-from .model import EngineModel, EngineModelError, JointKind, Parameter, dim, identifier, unique_name, warn_unscalable
+from .model import (
+    EngineModel,
+    EngineModelError,
+    JointKind,
+    Parameter,
+    attribute_text,
+    dim,
+    identifier,
+    unique_name,
+    warn_unscalable,
+)
 
 __all__ = ["SCENE_OPTIONS", "UrdfBackend", "load_urdf"]
 
@@ -83,10 +93,6 @@ def _pybullet():
 
 def _floats(text: str | None) -> list[float]:
     return [float(v) for v in (text or "").split()]
-
-
-def _fmt(values) -> str:
-    return " ".join(repr(float(v)) for v in values)
 
 
 def _joint_kind(jtype: str) -> JointKind | None:
@@ -220,6 +226,10 @@ def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> 
                                     "changeDynamics cannot reach; contacts of a scaled copy are off by that margin")
 
 
+def _xml_text(tree: ET.ElementTree) -> str:
+    return ET.tostring(tree.getroot(), encoding="unicode")
+
+
 def _mesh_path(filename: str, source_dir: Path) -> Path | None:
     name = filename
     if name.startswith("package://"):
@@ -260,9 +270,6 @@ class UrdfBackend:
             client = pb.connect(pb.DIRECT)
         return pb, client
 
-    def _text(self) -> str:
-        return ET.tostring(self.tree.getroot(), encoding="unicode")
-
     def _load(self, pb, client):
         """Load the URDF (from a temporary copy beside the original, so relative mesh paths resolve)."""
         import os
@@ -273,7 +280,7 @@ class UrdfBackend:
         fd, tmp = tempfile.mkstemp(suffix=".urdf", dir=self.source_dir)
         try:
             with os.fdopen(fd, "w") as fh:
-                fh.write(self._text())
+                fh.write(_xml_text(self.tree))
             with _quiet_stdout():
                 body = pb.loadURDF(tmp, basePosition=list(self.scene["base_position"]),
                                    useFixedBase=self.scene["fixed_base"], physicsClientId=client)
@@ -402,7 +409,7 @@ class UrdfBackend:
         for a in attrs:
             f = factors.get(a.name, 1.0)
             if f != 1.0:
-                a.element.set(a.attr, _fmt(np.asarray(a.read()) * f))
+                a.element.set(a.attr, attribute_text(np.asarray(a.read()) * f))
         st = json.loads(json.dumps(self._settings))
         st["g"] *= factors.get("g", 1.0)
         st["timestep"] *= factors.get("timestep", 1.0)
@@ -444,7 +451,7 @@ class UrdfBackend:
             resolved = _mesh_path(g.get("filename", ""), self.source_dir)
             if resolved is not None:
                 g.set("filename", str(resolved.resolve()))
-        path.write_text(ET.tostring(tree.getroot(), encoding="unicode"))
+        path.write_text(_xml_text(tree))
         settings = self.settings()
         Path(f"{path}.settings.json").write_text(json.dumps(settings, indent=2))
         Path(f"{path}.settings.py").write_text(_snippet(path.name, settings))
