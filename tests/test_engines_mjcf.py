@@ -228,6 +228,21 @@ def test_missing_and_non_xml_files(tmp_path):
         engines.load(junk)
 
 
+def test_an_engine_model_cannot_be_changed_by_assignment():
+    import copy
+    from dataclasses import FrozenInstanceError
+
+    model = engines.load(engines.example_path("pendulum.xml"))
+    for name in ("engine", "path", "parameters", "_backend", "anything"):
+        with pytest.raises(FrozenInstanceError, match=repr(name)):
+            setattr(model, name, None)
+        with pytest.raises(FrozenInstanceError):
+            delattr(model, name)
+    assert (model.engine, model.path.endswith("pendulum.xml"), len(model.parameters)) == ("mujoco", True, 49)
+    assert copy.copy(model) is model
+    assert copy.deepcopy(model) is model
+
+
 def test_an_unknown_example_names_the_shipped_ones():
     assert engines.example_path("superball.xml").name == "superball.xml"
     with pytest.raises(pt.InvalidRequestError) as caught:

@@ -17,7 +17,7 @@ only holds what both share.
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
+from dataclasses import FrozenInstanceError, dataclass
 from fractions import Fraction
 from pathlib import Path
 from typing import ClassVar
@@ -378,7 +378,9 @@ class EngineModel:
 
     Build one with :func:`load`; :meth:`scaled` returns another.  The
     engine-specific part is a backend object (see
-    ``pitheorem.engines.mjcf`` and ``pitheorem.engines.urdf``).
+    ``pitheorem.engines.mjcf`` and ``pitheorem.engines.urdf``).  A model
+    is not changed after it is made: :meth:`scaled`, :meth:`with_values`,
+    :meth:`multiplied` and :meth:`with_settings` return new models.
 
     Attributes
     ----------
@@ -399,10 +401,22 @@ class EngineModel:
     __slots__ = ("_backend", "engine", "parameters", "path")
 
     def __init__(self, backend, engine: str, path: str):
-        self._backend = backend
-        self.engine = engine
-        self.path = path
-        self.parameters = tuple(backend.parameters())
+        for name, value in (("_backend", backend), ("engine", engine), ("path", path),
+                            ("parameters", tuple(backend.parameters()))):
+            object.__setattr__(self, name, value)
+
+    def __setattr__(self, name, value):
+        raise FrozenInstanceError(f"cannot assign to field {name!r}: an EngineModel is not changed after it is "
+                                  "made; scaled, with_values and multiplied return new models")
+
+    def __delattr__(self, name):
+        raise FrozenInstanceError(f"cannot delete field {name!r}: an EngineModel is not changed after it is made")
+
+    def __copy__(self) -> EngineModel:
+        return self  # nothing of it changes, so a copy is the model itself
+
+    def __deepcopy__(self, memo) -> EngineModel:
+        return self
 
     def __repr__(self) -> str:
         return f"<EngineModel {self.engine} {self.path or '(unsaved)'}: {len(self.parameters)} parameters>"
