@@ -272,7 +272,6 @@ class _Walker:
     def option(self):
         opt = self.spec.option
         self.add("option", opt, "", "option", "timestep", _T)
-        gravity = np.asarray(opt.gravity, dtype=float)
 
         def read_g():
             return (float(np.linalg.norm(np.asarray(opt.gravity, dtype=float))),)
@@ -282,8 +281,7 @@ class _Walker:
 
         self.names.add("g")
         self.slots.append(Slot("g", "option gravity (magnitude)", read_g, write_g, dim("L T^-2"),
-                               "default" if np.array_equal(gravity, [0, 0, -9.81]) else "file",
-                               note="the direction is dimensionless"))
+                               self.source("option", opt, "gravity"), note="the direction is dimensionless"))
         self.add("option", opt, "", "option", "wind", dim("L T^-1"))
         self.add("option", opt, "", "option", "density", dim("M L^-3"))
         self.add("option", opt, "", "option", "viscosity", dim("M L^-1 T^-1"))

@@ -226,6 +226,16 @@ def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> 
                                     "changeDynamics cannot reach; contacts of a scaled copy are off by that margin")
 
 
+def _link_parameter(link: str, setting: str) -> str:
+    """The parameter name of a link's ``changeDynamics`` setting, as the table and a scaled copy know it."""
+    return f"{identifier(f'link_{link}')}_{setting}"
+
+
+def _joint_speed_parameter(joint: str) -> str:
+    """The parameter name of a joint's ``maxJointVelocity``."""
+    return identifier(f"joint_{joint}_maxJointVelocity")
+
+
 def _xml_text(tree: ET.ElementTree) -> str:
     return ET.tostring(tree.getroot(), encoding="unicode")
 
@@ -320,28 +330,28 @@ class UrdfBackend:
             out.append(Parameter(name, f"setPhysicsEngineParameter({name}=...)", (st[name],), _BULLET[constant].dim,
                                  "engine", f"setPhysicsEngineParameter({name}=...)", note=note))
         for index, lname in self._info["links"]:
-            ident = identifier(f"link_{lname}")
             link = self._link_dynamics(index)
             if "collisionMargin" in link:
-                out.append(Parameter(f"{ident}_collision_margin", f"link {lname!r} collision margin",
+                out.append(Parameter(_link_parameter(lname, "collision_margin"), f"link {lname!r} collision margin",
                                      (link["collisionMargin"],), _L, "engine", "changeDynamics(collisionMargin=...)",
                                      note="0.001 for boxes and meshes, the radius for spheres"))
             for key in ("rollingFriction", "spinningFriction"):
-                out.append(Parameter(f"{ident}_{key}", f"link {lname!r} {key}", (link[key],), _L, "engine",
+                out.append(Parameter(_link_parameter(lname, key), f"link {lname!r} {key}", (link[key],), _L, "engine",
                                      f"changeDynamics({key}=...)", note="a torque per normal force"))
             if self._info["dynamics"][index][0] > 0:
-                out.append(Parameter(f"{ident}_inertia", f"link {lname!r} inertia (principal)",
+                out.append(Parameter(_link_parameter(lname, "inertia"), f"link {lname!r} inertia (principal)",
                                      tuple(link["localInertiaDiagonal"]), dim("M L^2"), "derived",
                                      "changeDynamics(localInertiaDiagonal=...)",
                                      note="computed by Bullet from the collision shapes' bounding boxes, margins "
                                           "included; scaled copies set it explicitly"))
             for key, parts in MIXED_DAMPING:
-                out.append(Parameter(f"{ident}_{key}", f"link {lname!r} {key}", (link[key],), None, "engine",
+                out.append(Parameter(_link_parameter(lname, key), f"link {lname!r} {key}", (link[key],), None,
+                                     "engine",
                                      f"changeDynamics({key}=...)",
                                      parts=tuple((part, _BULLET[constant].dim) for part, constant in parts),
                                      note="Bullet multiplies m v by (d + d |v|)"))
         for j, jname, jtype in self._info["joints"]:
-            out.append(Parameter(identifier(f"joint_{jname}_maxJointVelocity"), f"joint {jname!r} maxJointVelocity",
+            out.append(Parameter(_joint_speed_parameter(jname), f"joint {jname!r} maxJointVelocity",
                                  (self._max_joint_velocity(j),), _joint_kind(jtype).q / _T, "engine",
                                  "changeDynamics(maxJointVelocity=...)"))
         if st["useSplitImpulse"]:
@@ -417,19 +427,19 @@ class UrdfBackend:
             st[name] *= factors.get(name, 1.0)
         params = {p.name: p for p in self.parameters()}
         for index, lname in self._info["links"]:
-            ident, key = identifier(f"link_{lname}"), str(index)
+            key = str(index)
             if self._info["shapes"][index]:
-                name = f"{ident}_collision_margin"
+                name = _link_parameter(lname, "collision_margin")
                 st["margins"][key] = params[name].value[0] * factors.get(name, 1.0)
-            if f"{ident}_inertia" in params:
-                name = f"{ident}_inertia"
+            name = _link_parameter(lname, "inertia")
+            if name in params:
                 st["inertia"][key] = [v * factors.get(name, 1.0) for v in params[name].value]
             for fname in ("rollingFriction", "spinningFriction", *(n for n, *_ in MIXED_DAMPING)):
-                name = f"{ident}_{fname}"
+                name = _link_parameter(lname, fname)
                 group = "damping" if "Damping" in fname else "friction"
                 st[group].setdefault(key, {})[fname] = params[name].value[0] * factors.get(name, 1.0)
         for j, jname, _jtype in self._info["joints"]:
-            name = identifier(f"joint_{jname}_maxJointVelocity")
+            name = _joint_speed_parameter(jname)
             st["max_joint_velocity"][str(j)] = params[name].value[0] * factors.get(name, 1.0)
         if "splitImpulsePenetrationThreshold" in params and factors.get("splitImpulsePenetrationThreshold", 1) != 1:
             from .model import UnscalableParameterError
