@@ -626,6 +626,7 @@ class MjcfBackend:
         self.spec = spec
         self.path = path
         self.source_dir = source_dir
+        self._inputs = None  # the actuators' input dimensions, when first asked for
         try:
             with _muted():
                 self.mjmodel = spec.compile()
@@ -736,13 +737,14 @@ class MjcfBackend:
 
     def _actuator_inputs(self):
         """Per actuator: the dimension of its control input and of its activation (None: no dynamics)."""
-        mj = _mujoco()
-        walker = _Walker(mj, self.spec, self.mjmodel, self.path)
-        out = []
-        for i, a in enumerate(self.spec.actuators):
-            _length, _force, ctrl, act = walker.control_dimension(a, walker.label("actuator", a, i)[1])
-            out.append((ctrl, act if a.dyntype != mj.mjtDyn.mjDYN_NONE else None))
-        return out
+        if self._inputs is None:  # once: the spec of a backend is not changed after it is made
+            mj = _mujoco()
+            walker = _Walker(mj, self.spec, self.mjmodel, self.path)
+            self._inputs = []
+            for i, a in enumerate(self.spec.actuators):
+                _length, _force, ctrl, act = walker.control_dimension(a, walker.label("actuator", a, i)[1])
+                self._inputs.append((ctrl, act if a.dyntype != mj.mjtDyn.mjDYN_NONE else None))
+        return self._inputs
 
     def timestep(self) -> float:
         return float(self.mjmodel.opt.timestep)

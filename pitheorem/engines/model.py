@@ -333,9 +333,10 @@ class JointKind:
         >>> str(JointKind.SLIDE.per(JointKind.SLIDE.force, 2))
         'M L^-1 T^-2'
         """
-        return numerator * (self.q * dim("T") ** (-rate)) ** (-power)
+        return numerator * (self.q * _TIME ** (-rate)) ** (-power)
 
 
+_TIME = dim("T")
 JointKind.HINGE = JointKind(dim("1"), dim("M L^2 T^-2"))
 JointKind.SLIDE = JointKind(dim("L"), dim("M L T^-2"))
 
@@ -470,7 +471,7 @@ class EngineModel:
         dims: dict[str, Dimension] = {}
         for p in self.parameters:
             dims.update(p.variables())
-        dims["t"] = dim("T")
+        dims["t"] = _TIME
         return System(dims)
 
     def table(self) -> str:
