@@ -11,7 +11,11 @@ writes a file the engine loads as it is.
 
 The engine-specific work (reading, writing, running) lives in
 ``pitheorem.engines.mjcf`` and ``pitheorem.engines.urdf``; this module
-only holds what both share.
+only holds what both share: besides the model and its parameters, the
+dimensions of a joint's coordinate and force (``JointKind``), how a
+parameter is named (``identifier``, ``unique_name``), the factor of a
+dimension under a scaling (``dimension_factor``) and how a number is
+written back (``attribute_text``).
 """
 
 from __future__ import annotations
