@@ -346,8 +346,7 @@ class UrdfBackend:
                                           "included; scaled copies set it explicitly"))
             for key, parts in MIXED_DAMPING:
                 out.append(Parameter(_link_parameter(lname, key), f"link {lname!r} {key}", (link[key],), None,
-                                     "engine",
-                                     f"changeDynamics({key}=...)",
+                                     "engine", f"changeDynamics({key}=...)",
                                      parts=tuple((part, _BULLET[constant].dim) for part, constant in parts),
                                      note="Bullet multiplies m v by (d + d |v|)"))
         for j, jname, jtype in self._info["joints"]:
