@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import pickle
 import subprocess
 import sys
@@ -93,6 +94,27 @@ def test_catalogue_values(name, dimension, default):
     (c,) = hidden_constants(names=[name])
     assert c.dimension == pt.Dimension.parse(dimension)
     assert c.default == pytest.approx(default)
+
+
+def test_catalogue_is_read_whole_and_exactly_from_its_data_file():
+    # the values a float literal cannot show at a glance, compared exactly (not approx)
+    assert ENGINES == ("bullet", "mujoco")
+    assert [c.engine for c in CATALOGUE] == sorted(c.engine for c in CATALOGUE)  # the file's order, by engine
+    assert len(hidden_constants("bullet")) == 23
+    assert len(hidden_constants("mujoco")) == 18
+    assert hidden_constants(names=["bullet_time_step"])[0].default == 1 / 240
+    assert hidden_constants(names=["mujoco_angle_unit"])[0].default == math.pi / 180
+    assert math.isnan(hidden_constants(names=["bullet_default_motor_impulse"])[0].default)
+    assert hidden_constants(names=["bullet_split_impulse_penetration_threshold"])[0].default == -0.04
+    # the shared source texts are filled in: no placeholder is left, and each reaches the entries naming it
+    assert not any("{" in c.source or "}" in c.source for c in CATALOGUE)
+    multibody = [c.name for c in CATALOGUE if c.source.startswith("bullet3 src/BulletDynamics/Featherstone/btMultiBody")]
+    assert len(multibody) == 9
+    assert hidden_constants(names=["mujoco_timestep"])[0].source == (
+        "mujoco 4.0.0 model defaults (MjModel.opt, MjSpec.default); MuJoCo XML Reference (mujoco.readthedocs.io), "
+        "option/timestep")
+    assert hidden_constants(names=["bullet_collision_margin"])[0].source.startswith(
+        "measured with pybullet 3.2.7 (getPhysicsEngineParameters / getDynamicsInfo): getDynamicsInfo(...)[11]")
 
 
 def test_hidden_constants_filters():

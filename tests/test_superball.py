@@ -36,6 +36,23 @@ def test_shipped_file_is_what_the_generator_writes():
     assert SHIPPED.read_text(encoding="utf-8") == sb.superball_mjcf()
 
 
+def test_every_kind_of_model_runs_alike():
+    # MJCF text, a path (str or Path), a compiled MjModel and an EngineModel are one model to the runner
+    from pitheorem import engines
+
+    runs = [sb.simulate_superball(model, 0.05, every=5)[1] for model in (
+        sb.superball_mjcf(), SHIPPED, str(SHIPPED), mujoco.MjModel.from_xml_path(str(SHIPPED)),
+        engines.load(SHIPPED))]
+    assert runs[0].shape == (11, 6, 2, 3)
+    for run in runs[1:]:
+        assert np.array_equal(run, runs[0])
+    # and to the controller, which reads its numbers from the compiled model
+    from_engine = sb.CableController(engines.load(SHIPPED))
+    from_mujoco = sb.CableController(mujoco.MjModel.from_xml_path(str(SHIPPED)))
+    assert (from_engine.gain, from_engine.v, from_engine.t_on) == (from_mujoco.gain, from_mujoco.v, from_mujoco.t_on)
+    assert np.array_equal(from_engine.span, from_mujoco.span)
+
+
 def test_shipped_file_has_six_bars_and_twenty_four_cables():
     model = mujoco.MjModel.from_xml_path(str(SHIPPED))
     assert model.nbody - 1 == 6
