@@ -43,8 +43,8 @@ def synthetic_system(n: int, k: int = 7, seed: int = 0) -> pt.System:
     rng = random.Random(seed)
     variables = {}
     for j in range(n):
-        powers = {b: rng.choice((-2, -1, 0, 0, 0, 1, 1, 2)) for b in BASES[:k]}
-        variables[f"x{j}"] = pt.Dimension(powers)
+        exponents = {b: rng.choice((-2, -1, 0, 0, 0, 1, 1, 2)) for b in BASES[:k]}
+        variables[f"x{j}"] = pt.Dimension(exponents)
     return pt.System(variables, base_dimensions=BASES[:k])  # N is an opt-in base
 
 
@@ -66,7 +66,7 @@ def numpy_det_count(system: pt.System, chunk: int = 1 << 17) -> int:
 
 
 def plain_seconds(system: pt.System, sample: int | None) -> tuple[float, bool]:
-    columns = [[system.dimension(v).exponent(b) for b in system.base_dimensions] for v in system.variables]
+    columns = [[system.dimension(v).exponent_of(b) for b in system.base_dimensions] for v in system.variables]
     subsets = combinations(range(len(columns)), system.rank)
     return sampled_seconds(lambda subset: rank([columns[j] for j in subset]), subsets,
                            comb(len(columns), system.rank), sample)

@@ -49,7 +49,7 @@ def main(argv=None) -> None:
           f"{'vs fastest':>10}  (target <= 1.0)")
     for label, system in cases():
         strings = {n: str(d) for n, d in system.dimensions.items()}
-        ints = {n: {b: int(p) for b, p in d.powers} for n, d in system.dimensions.items()}
+        ints = {n: {b: int(p) for b, p in d.exponents.items()} for n, d in system.dimensions.items()}
         matrix = [[ints[n].get(b, 0) for n in system.variables] for b in system.base_dimensions]
 
         def ours(strings=strings, bases=system.base_dimensions):

@@ -42,7 +42,7 @@ def request(system: pt.System, seed: int = 1):
 
 def brute_force_seconds(system, scale, fixed, sample: int | None):
     bases = system.base_dimensions
-    col = {n: [system.dimension(n).exponent(b) for b in bases] for n in system.variables}
+    col = {n: [system.dimension(n).exponent_of(b) for b in bases] for n in system.variables}
     free = [n for n in system.variables if n not in scale and n not in fixed]
     subsets = (z for k in range(len(free) + 1) for z in combinations(free, k))
 
@@ -58,7 +58,7 @@ def brute_force_seconds(system, scale, fixed, sample: int | None):
 def search_and_count(system, scale, fixed):
     """The search and its count of minimal scalings (the count runs the enumeration: it is timed too)."""
     result = pt.search(system, scale=scale, fixed=fixed)
-    return result, result.count
+    return result, result.n_scalings
 
 
 def main(argv=None) -> None:

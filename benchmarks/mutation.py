@@ -61,14 +61,14 @@ TARGETS = {
     "system": ["tests/test_errors.py", "tests/test_edges.py", "tests/test_groups.py", "tests/test_dimensions.py",
                "tests/test_fast_paths.py"],
     "groups": ["tests/test_groups.py", "tests/test_mutation_survivors.py", "tests/test_errors.py"],
-    "linalg": ["tests/test_groups.py", "tests/test_search.py", "tests/test_edges.py", "tests/test_properties.py",
+    "linalg": ["tests/test_groups.py", "tests/test_scalesearch.py", "tests/test_edges.py", "tests/test_properties.py",
                "tests/test_equation_functions.py"],
     "bases": ["tests/test_edges.py", "tests/test_groups.py", "tests/test_properties.py", "tests/test_fast_paths.py"],
-    "family": ["tests/test_fast_paths.py", "tests/test_search.py", "tests/test_edges.py"],
+    "family": ["tests/test_fast_paths.py", "tests/test_scalesearch.py", "tests/test_edges.py"],
     "basis_sequence": ["tests/test_fast_paths.py", "tests/test_groups.py"],
-    "search": ["tests/test_search.py", "tests/test_mutation_survivors.py", "tests/test_equations.py",
+    "scalesearch": ["tests/test_scalesearch.py", "tests/test_mutation_survivors.py", "tests/test_equations.py",
                "tests/test_fast_paths.py", "tests/test_edges.py"],
-    "scaling": ["tests/test_scaling.py", "tests/test_search.py", "tests/test_edges.py", "tests/test_errors.py"],
+    "scaling": ["tests/test_scaling.py", "tests/test_scalesearch.py", "tests/test_edges.py", "tests/test_errors.py"],
     "equations": ["tests/test_equations.py", "tests/test_equation_functions.py"],
 }
 

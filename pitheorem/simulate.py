@@ -21,8 +21,9 @@ from types import MappingProxyType
 import numpy as np
 
 from .errors import InvalidRequestError, PiTheoremError, SystemMismatchError, UnknownVariableError
+from .exact import read_exponent
 from .models import Model
-from .scaling import Scaling, as_exponent
+from .scaling import Scaling
 from .system import System
 
 __all__ = ["SimilarityReport", "Trajectory", "nudged", "similarity_report", "simulate", "verify_similarity"]
@@ -299,7 +300,7 @@ def _exponents_from_dict(model: Model, exponents: Mapping, check: bool):
     for n in exponents:
         if n not in known:
             raise UnknownVariableError(str(n), known, "scaling exponents")
-    given = {n: as_exponent(v, repr(n)) for n, v in exponents.items()}
+    given = {n: read_exponent(v, f"exponent of {n!r}") for n, v in exponents.items()}
     # the parameters and time determine the change of units; states follow from it
     core = (*model.parameters, model.time)
     sub = System({n: model.system.dimension(n) for n in core})
@@ -315,20 +316,20 @@ def _exponents_from_dict(model: Model, exponents: Mapping, check: bool):
                     f"(dimension {model.system.dimension(n)}); give its exponent too"
                 )
         partial = _similarity_or_raise(sub, {n: given.get(n, 0) for n in core})
-        scaling = Scaling.from_unit_change(model.system, dict(zip(sub.base_dimensions, partial.units, strict=True)))
-        bad = [n for n in model.states if n in given and given[n] != scaling.powers[model.system.index(n)]]
+        scaling = Scaling.from_unit_change(model.system, dict(zip(sub.base_dimensions, partial.unit_change_vector, strict=True)))
+        bad = [n for n in model.states if n in given and given[n] != scaling.vector[model.system.index(n)]]
         if bad:
             n = bad[0]
             raise InvalidRequestError(
                 f"exponent {given[n]} of state {n!r} contradicts the scaling of the parameters and time, "
-                f"which gives it {scaling.powers[model.system.index(n)]}"
+                f"which gives it {scaling.vector[model.system.index(n)]}"
             )
     except InvalidRequestError:
         if check:
             raise
         powers = {n: given.get(n, Fraction(0)) for n in known}
         return None, powers
-    return scaling, {n: scaling.powers[model.system.index(n)] for n in known}
+    return scaling, {n: scaling.vector[model.system.index(n)] for n in known}
 
 
 def _exponent_text(value) -> str:
@@ -579,10 +580,10 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
         raise InvalidRequestError(f"the scale factor s must be a positive finite number, got {s!r}")
     s = _positive(s, "the scale factor s")
     tol = _positive(tol, "tol")
-    if all(hasattr(scaling, a) for a in ("system", "powers", "units", "apply", "map_back")):  # a Scaling
+    if isinstance(scaling, Scaling):
         _check_scaling_system(model, scaling)
         sc = scaling
-        powers = {n: sc.powers[sc.system.index(n)] for n in _model_variables(model)}
+        powers = {n: sc.vector[sc.system.index(n)] for n in _model_variables(model)}
     elif isinstance(scaling, Mapping):
         sc, powers = _exponents_from_dict(model, scaling, check)
     else:

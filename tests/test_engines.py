@@ -8,6 +8,7 @@ import subprocess
 import sys
 from fractions import Fraction
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 
@@ -61,7 +62,7 @@ def test_catalogue_entries_are_complete():
         assert c.engine in ENGINES
         assert c.name.isidentifier()
         assert c.name.startswith(c.engine + "_")
-        pt.Dimension.parse(c.dimension)
+        assert isinstance(c.dimension, pt.Dimension)
         assert c.source
         assert c.where
         assert c.note
@@ -91,7 +92,7 @@ def test_catalogue_entries_are_complete():
 )
 def test_catalogue_values(name, dimension, default):
     (c,) = hidden_constants(names=[name])
-    assert c.dim == pt.Dimension.parse(dimension)
+    assert c.dimension == pt.Dimension.parse(dimension)
     assert c.default == pytest.approx(default)
 
 
@@ -118,8 +119,8 @@ def test_catalogue_is_read_whole_and_exactly_from_its_data_file():
 
 def test_hidden_constants_filters():
     assert all(c.engine == "mujoco" for c in hidden_constants("mujoco"))
-    assert all(not c.dimensionless for c in hidden_constants("bullet", dimensional=True))
-    assert all(c.dimensionless for c in hidden_constants("bullet", dimensional=False))
+    assert all(not c.dimension.is_dimensionless for c in hidden_constants("bullet", dimensional=True))
+    assert all(c.dimension.is_dimensionless for c in hidden_constants("bullet", dimensional=False))
 
 
 def test_hidden_constants_bad_inputs():
@@ -150,7 +151,7 @@ def test_engine_search_shows_the_engine_breaks_every_gravity_scaling():
 def test_engine_search_with_only_the_time_step_keeps_the_time_free_answers():
     res = engine_search(ROD.system, "mujoco", {"g": 1}, names=["mujoco_timestep"])
     assert res.feasible
-    assert res.count == len(TIME_FREE)
+    assert res.n_scalings == len(TIME_FREE)
 
 
 def test_broken_constants_of_the_papers_scaling():
@@ -173,6 +174,11 @@ def test_broken_constants_of_a_time_free_scaling():
 def test_broken_constants_needs_a_scaling():
     with pytest.raises(pt.InvalidRequestError, match="Scaling"):
         broken_constants({"g": 1}, "bullet")
+    sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1})
+    look_alike = SimpleNamespace(system=sc.system, powers=sc.vector, exponent_of=sc.exponent_of,
+                                 unit_change=sc.unit_change)  # what the old attribute check accepted
+    with pytest.raises(pt.InvalidRequestError, match="needs a Scaling, got SimpleNamespace"):
+        broken_constants(look_alike, "bullet")
 
 
 def test_engine_unavailable_error_message_and_pickle():

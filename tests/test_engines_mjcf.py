@@ -6,6 +6,7 @@ import math
 import pickle
 import warnings
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -176,6 +177,11 @@ def test_with_values_and_bad_requests():
     for bad in (0, -1, math.inf, True, "x"):
         with pytest.raises(pt.InvalidRequestError):
             model.scaled(sc, bad)
+    # the check is isinstance, not a list of attributes: a look-alike is refused
+    look_alike = SimpleNamespace(system=sc.system, powers=sc.vector, vector=sc.vector, exponent_of=sc.exponent_of,
+                                 units=sc.unit_change_vector, unit_change_vector=sc.unit_change_vector)
+    with pytest.raises(pt.InvalidRequestError, match="Scaling, got SimpleNamespace"):
+        model.scaled(look_alike, 2)
 
 
 def test_with_values_is_multiplied_by_the_ratio_and_may_reach_zero_or_change_sign():

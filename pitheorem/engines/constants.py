@@ -27,7 +27,9 @@ from pathlib import Path
 
 from ..dimensions import Dimension
 from ..errors import DuplicateVariableError, InvalidRequestError, UnknownVariableError
-from ..search import SearchResult, search
+from ..immutable import immutable
+from ..scalesearch import SearchResult, search
+from ..scaling import Scaling
 from ..system import System
 
 __all__ = [
@@ -41,6 +43,7 @@ __all__ = [
 ]
 
 
+@immutable
 @dataclass(frozen=True, slots=True)
 class HiddenConstant:
     """One built-in constant of an engine, with its dimension and default.
@@ -51,8 +54,9 @@ class HiddenConstant:
         ``"bullet"`` or ``"mujoco"``.
     name : str
         Identifier used as a variable name, e.g. ``"bullet_time_step"``.
-    dimension : str
-        Dimension formula over M, L, T (``"1"`` for dimensionless).
+    dimension : Dimension
+        Its dimension over M, L, T (a formula string is parsed; ``"1"`` for
+        dimensionless).
     default : float
         The value the engine uses unless told otherwise.
     where : str
@@ -67,40 +71,20 @@ class HiddenConstant:
     >>> from pitheorem.engines import hidden_constants
     >>> dt = hidden_constants("bullet", names=["bullet_time_step"])[0]
     >>> dt.dimension, round(1 / dt.default)
-    ('T', 240)
+    (Dimension.parse('T'), 240)
     """
 
     engine: str
     name: str
-    dimension: str
+    dimension: Dimension
     default: float
     where: str
     source: str
     note: str
 
-    @property
-    def dim(self) -> Dimension:
-        """The dimension as a :class:`~pitheorem.Dimension`.
-
-        Examples
-        --------
-        >>> from pitheorem.engines import hidden_constants
-        >>> str(hidden_constants("mujoco", names=["mujoco_solimp_width"])[0].dim)
-        'L'
-        """
-        return Dimension.parse(self.dimension)
-
-    @property
-    def dimensionless(self) -> bool:
-        """Whether the constant has no dimension (no change of units moves it).
-
-        Examples
-        --------
-        >>> from pitheorem.engines import hidden_constants
-        >>> [c.dimensionless for c in hidden_constants("bullet", names=["bullet_erp", "bullet_time_step"])]
-        [True, False]
-        """
-        return not self.dim.bases
+    def __post_init__(self):
+        if not isinstance(self.dimension, Dimension):
+            object.__setattr__(self, "dimension", Dimension.parse(self.dimension))
 
 
 def _catalogue(path: Path) -> tuple[HiddenConstant, ...]:
@@ -169,7 +153,7 @@ def hidden_constants(engine: str | None = None, *, names: Iterable[str] | None =
             picked.append(by_name[n])
         pool = picked
     if dimensional is not None:
-        pool = [c for c in pool if c.dimensionless != bool(dimensional)]
+        pool = [c for c in pool if c.dimension.is_dimensionless != bool(dimensional)]
     return tuple(pool)
 
 
@@ -209,12 +193,12 @@ def with_hidden_constants(system: System, engine: str, *, names: Iterable[str] |
         raise InvalidRequestError(f"with_hidden_constants needs a System, got {type(system).__name__}")
     consts = hidden_constants(engine, names=names)
     if not include_dimensionless and names is None:
-        consts = tuple(c for c in consts if not c.dimensionless)
+        consts = tuple(c for c in consts if not c.dimension.is_dimensionless)
     dims = dict(system.dimensions)
     for c in consts:
         if c.name in dims:
             raise DuplicateVariableError(c.name, "the system and the hidden constants")
-        dims[c.name] = c.dim
+        dims[c.name] = c.dimension
     return System(dims)
 
 
@@ -297,16 +281,15 @@ def broken_constants(scaling, engine: str, *, names: Iterable[str] | None = None
     ['mujoco_solimp_width', 'mujoco_torsional_friction', 'mujoco_rolling_friction', 'mujoco_geom_density', \
 'mujoco_ccd_tolerance']
     """
-    if not all(hasattr(scaling, a) for a in ("system", "powers", "exponent_of")):
+    if not isinstance(scaling, Scaling):
         raise InvalidRequestError(f"broken_constants needs a Scaling, got {type(scaling).__name__}")
     units = scaling.unit_change  # raises for a symmetry that is no change of units
     out = []
     for c in hidden_constants(engine, names=names):
-        if c.default == 0 or c.dimensionless:
+        if c.default == 0 or c.dimension.is_dimensionless:
             continue
         # a base the system lacks keeps its unit: it contributes nothing
-        exponent = sum((Fraction(p) * Fraction(int(units[b].p), int(units[b].q)) for b, p in c.dim.powers if b in units),
-                       Fraction(0))
+        exponent = sum((p * units[b] for b, p in c.dimension.exponents.items() if b in units), Fraction(0))
         if exponent != 0:
             out.append(c)
     return tuple(out)

@@ -21,14 +21,16 @@ written back (``attribute_text``).
 from __future__ import annotations
 
 import warnings
-from dataclasses import FrozenInstanceError, dataclass
+from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
 from typing import ClassVar
 
 from ..dimensions import Dimension
 from ..errors import InvalidRequestError, PiTheoremError
+from ..immutable import immutable
 from ..modelfile import ModelFileError
+from ..scaling import Scaling
 from ..system import System
 
 __all__ = [
@@ -116,6 +118,7 @@ class UnscalableModelWarning(UserWarning):
     """
 
 
+@immutable
 @dataclass(frozen=True, slots=True)
 class Parameter:
     """One number (or vector of numbers of one dimension) of an engine model.
@@ -307,6 +310,7 @@ def dim(text: str) -> Dimension:
     return Dimension.parse(text)
 
 
+@immutable
 @dataclass(frozen=True, slots=True)
 class JointKind:
     """Coordinate and generalised-force dimensions of one joint type, in either engine.
@@ -375,6 +379,7 @@ def unique_name(ident: str, taken: set[str]) -> str:
     return out
 
 
+@immutable
 class EngineModel:
     """A MuJoCo or PyBullet model read from its file, with its numbers.
 
@@ -409,13 +414,6 @@ class EngineModel:
         for name, value in (("_backend", backend), ("engine", engine), ("path", path),
                             ("parameters", tuple(backend.parameters()))):
             object.__setattr__(self, name, value)
-
-    def __setattr__(self, name, value):
-        raise FrozenInstanceError(f"cannot assign to field {name!r}: an EngineModel is not changed after it is "
-                                  "made; scaled, with_values and multiplied return new models")
-
-    def __delattr__(self, name):
-        raise FrozenInstanceError(f"cannot delete field {name!r}: an EngineModel is not changed after it is made")
 
     def __copy__(self) -> EngineModel:
         return self  # nothing of it changes, so a copy is the model itself
@@ -718,9 +716,9 @@ def _check_factor(value, name: str) -> float:
 
 
 def _check_scaling(model: EngineModel, scaling) -> None:
-    if not all(hasattr(scaling, a) for a in ("system", "powers", "exponent_of")):
+    if not isinstance(scaling, Scaling):
         raise InvalidRequestError(f"scaling must be a pitheorem Scaling, got {type(scaling).__name__}")
-    if scaling.units is None:
+    if not scaling.is_unit_change:
         raise InvalidRequestError("the scaling is no change of units; an engine model needs one "
                                   "(use a scaling from pt.search(model.system(), ...))")
     missing = [b for b in ("M", "L", "T") if b not in scaling.system.base_dimensions]

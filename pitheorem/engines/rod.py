@@ -389,7 +389,7 @@ def verify_engine_similarity(engine: str, scaling, s, params=None, y0=None, t_fi
     if isinstance(scaling, Scaling) or all(hasattr(scaling, a) for a in ("system", "powers", "apply", "map_back")):
         _check_scaling_system(model, scaling)
         sc = scaling
-        powers = {n: sc.powers[sc.system.index(n)] for n in (*model.parameters, model.time, *model.states)}
+        powers = {n: sc.vector[sc.system.index(n)] for n in (*model.parameters, model.time, *model.states)}
     elif isinstance(scaling, Mapping):
         sc, powers = _exponents_from_dict(model, scaling, check)
     else:

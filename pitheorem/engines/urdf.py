@@ -327,7 +327,7 @@ class UrdfBackend:
                              note="PyBullet's own default is 0"))
         out.append(Parameter("timestep", "setTimeStep", (st["timestep"],), _T, "engine", "setTimeStep"))
         for name, constant, note in ENGINE_PARAMETERS:
-            out.append(Parameter(name, f"setPhysicsEngineParameter({name}=...)", (st[name],), _BULLET[constant].dim,
+            out.append(Parameter(name, f"setPhysicsEngineParameter({name}=...)", (st[name],), _BULLET[constant].dimension,
                                  "engine", f"setPhysicsEngineParameter({name}=...)", note=note))
         for index, lname in self._info["links"]:
             link = self._link_dynamics(index)
@@ -347,7 +347,7 @@ class UrdfBackend:
             for key, parts in MIXED_DAMPING:
                 out.append(Parameter(_link_parameter(lname, key), f"link {lname!r} {key}", (link[key],), None,
                                      "engine", f"changeDynamics({key}=...)",
-                                     parts=tuple((part, _BULLET[constant].dim) for part, constant in parts),
+                                     parts=tuple((part, _BULLET[constant].dimension) for part, constant in parts),
                                      note="Bullet multiplies m v by (d + d |v|)"))
         for j, jname, jtype in self._info["joints"]:
             out.append(Parameter(_joint_speed_parameter(jname), f"joint {jname!r} maxJointVelocity",
