@@ -25,12 +25,12 @@ from __future__ import annotations
 import argparse
 import gc
 import random
-import time
 import tracemalloc
-from itertools import combinations, islice
+from itertools import combinations
 from math import comb
 
 import numpy as np
+from _timing import sampled_seconds, timed
 
 import pitheorem as pt
 from pitheorem.bases import lex_combinations
@@ -43,9 +43,9 @@ def synthetic_system(n: int, k: int = 7, seed: int = 0) -> pt.System:
     rng = random.Random(seed)
     variables = {}
     for j in range(n):
-        powers = {b: rng.choice((-2, -1, 0, 0, 0, 1, 1, 2)) for b in BASES[:k]}
-        variables[f"x{j}"] = pt.Dimension(powers)
-    return pt.System(variables)
+        exponents = {b: rng.choice((-2, -1, 0, 0, 0, 1, 1, 2)) for b in BASES[:k]}
+        variables[f"x{j}"] = pt.Dimension(exponents)
+    return pt.System(variables, base_dimensions=BASES[:k])  # N is an opt-in base
 
 
 def matrix_of(system: pt.System) -> np.ndarray:
@@ -66,24 +66,10 @@ def numpy_det_count(system: pt.System, chunk: int = 1 << 17) -> int:
 
 
 def plain_seconds(system: pt.System, sample: int | None) -> tuple[float, bool]:
-    columns = [[system.dimension(v).exponent(b) for b in system.base_dimensions] for v in system.variables]
+    columns = [[system.dimension(v).exponent_of(b) for b in system.base_dimensions] for v in system.variables]
     subsets = combinations(range(len(columns)), system.rank)
-    total = comb(len(columns), system.rank)
-    if sample is not None and total > sample:
-        subsets = islice(subsets, sample)
-    else:
-        sample = total
-    start = time.perf_counter()
-    for subset in subsets:
-        rank([columns[j] for j in subset])
-    seconds = time.perf_counter() - start
-    return seconds * total / sample, sample < total
-
-
-def timed(fn):
-    start = time.perf_counter()
-    value = fn()
-    return value, time.perf_counter() - start
+    return sampled_seconds(lambda subset: rank([columns[j] for j in subset]), subsets,
+                           comb(len(columns), system.rank), sample)
 
 
 def main(argv=None) -> None:

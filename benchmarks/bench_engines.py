@@ -15,23 +15,14 @@ Run: python benchmarks/bench_engines.py [--quick]
 from __future__ import annotations
 
 import argparse
-import time
 import warnings
 from pathlib import Path
 
 import numpy as np
+from _timing import best_of
 
 import pitheorem as pt
 from pitheorem import engines
-
-
-def best_of(fn, repeat):
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def corpus():

@@ -22,11 +22,11 @@ from __future__ import annotations
 
 import argparse
 import random
-import time
 from fractions import Fraction
-from itertools import combinations, islice
+from itertools import combinations
 from unittest import mock
 
+from _timing import sampled_seconds, timed
 from bench_bases import synthetic_system
 
 import pitheorem as pt
@@ -42,21 +42,23 @@ def request(system: pt.System, seed: int = 1):
 
 def brute_force_seconds(system, scale, fixed, sample: int | None):
     bases = system.base_dimensions
-    col = {n: [system.dimension(n).exponent(b) for b in bases] for n in system.variables}
+    col = {n: [system.dimension(n).exponent_of(b) for b in bases] for n in system.variables}
     free = [n for n in system.variables if n not in scale and n not in fixed]
-    total = 2 ** len(free)
     subsets = (z for k in range(len(free) + 1) for z in combinations(free, k))
-    if sample is not None and total > sample:
-        subsets = islice(subsets, sample)
-    else:
-        sample = total
-    start = time.perf_counter()
-    for zero in subsets:
+
+    def solve_holding(zero):
         held = [*scale, *fixed, *zero]
         rows = [col[n] for n in held]
         if solve(rows, [scale.get(n, Fraction(0)) for n in held]) is not None:
             nullspace(rows, len(bases))
-    return (time.perf_counter() - start) * total / sample, sample < total
+
+    return sampled_seconds(solve_holding, subsets, 2 ** len(free), sample)
+
+
+def search_and_count(system, scale, fixed):
+    """The search and its count of minimal scalings (the count runs the enumeration: it is timed too)."""
+    result = pt.search(system, scale=scale, fixed=fixed)
+    return result, result.n_scalings
 
 
 def main(argv=None) -> None:
@@ -68,10 +70,8 @@ def main(argv=None) -> None:
     for n in sizes:
         system = synthetic_system(n, seed=n)
         scale, fixed = request(system)
-        start = time.perf_counter()
-        result = pt.search(system, scale=scale, fixed=fixed)
-        count = result.count
-        ours = time.perf_counter() - start
+        (_result, count), ours = timed(lambda system=system, scale=scale, fixed=fixed: search_and_count(
+            system, scale, fixed))
         brute, estimated = brute_force_seconds(system, scale, fixed, sample=2_000)
         mark = "~" if estimated else " "
         print(f"{n:>3} {count:>8} {ours:>12.4f} {mark}{brute:>13.3g} {brute / ours:>11.3g}x")
@@ -83,15 +83,9 @@ def main(argv=None) -> None:
 def worst_case(n: int) -> None:
     system = synthetic_system(n, seed=n)
     scale = {system.variables[0]: 1}
-    start = time.perf_counter()
-    result = pt.search(system, scale=scale, fixed=())
-    count = result.count
-    ours = time.perf_counter() - start
-    start = time.perf_counter()
+    (result, count), ours = timed(lambda: search_and_count(system, scale, ()))
     with mock.patch("pitheorem.family.minimal_points", return_value=None):  # the exact per-subset path
-        exact = pt.search(system, scale=scale, fixed=())
-        exact_count = exact.count
-    baseline = time.perf_counter() - start
+        (exact, exact_count), baseline = timed(lambda: search_and_count(system, scale, ()))
     same = count == exact_count and list(result._enumerate()) == list(exact._enumerate())
     assert same, "batched and exact minimal scalings differ"
     print(f"\nWorst case, n = {n}, k = 7, one variable scaled, fixed=(), family dimension {len(result.directions)}:")

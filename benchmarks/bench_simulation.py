@@ -14,9 +14,9 @@ from __future__ import annotations
 
 import argparse
 import math
-import timeit
 
 import numpy as np
+from _timing import best_of
 from scipy.integrate import solve_ivp
 
 import pitheorem as pt
@@ -40,10 +40,6 @@ def spring_by_hand(t, y, p):
     pull = p["k"] * (length - p["x_r"]) + p["c"] * lever * rate
     inertia = p["m"] * p["l"] * p["l"] / 3.0
     return np.array([rate, (0.5 * p["m"] * p["g"] * p["l"] * math.cos(angle) - pull * lever) / inertia])
-
-
-def best_of(fn, repeat):
-    return min(timeit.repeat(fn, number=1, repeat=repeat))
 
 
 def adaptive(rhs, p, y0, t_final):

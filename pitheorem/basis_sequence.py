@@ -7,9 +7,12 @@ from collections.abc import Iterable, Iterator, Sequence
 
 import numpy as np
 
+from .immutable import immutable
+
 __all__ = ["BasisSequence"]
 
 
+@immutable
 class BasisSequence(Sequence):
     """Repeating-variable sets held as a compact index array, named on demand.
 
@@ -41,19 +44,28 @@ class BasisSequence(Sequence):
     __slots__ = ("_blocks", "_names", "_offsets", "_width")
 
     def __init__(self, names: Sequence[str], chunks: Iterable[np.ndarray], width: int | None = None):
-        self._names = np.array(list(names), dtype=object)
-        dtype = np.min_scalar_type(max(len(self._names) - 1, 0))
+        names = np.array(list(names), dtype=object)
+        dtype = np.min_scalar_type(max(len(names) - 1, 0))
         blocks = []
         for chunk in chunks:
             if len(chunk):
                 block = np.asarray(chunk).astype(dtype, copy=False)
                 block.flags.writeable = False
                 blocks.append(block)
-        self._blocks = blocks
-        self._width = blocks[0].shape[1] if blocks else (width or 0)
-        self._offsets = [0]
+        offsets = [0]
         for block in blocks:
-            self._offsets.append(self._offsets[-1] + len(block))
+            offsets.append(offsets[-1] + len(block))
+        object.__setattr__(self, "_names", names)
+        object.__setattr__(self, "_width", blocks[0].shape[1] if blocks else (width or 0))
+        self._hold(blocks, offsets)
+
+    def _hold(self, blocks: list[np.ndarray], offsets: list[int]) -> None:
+        # the only writes after construction: the same bases, held as one block (see indices)
+        object.__setattr__(self, "_blocks", blocks)
+        object.__setattr__(self, "_offsets", offsets)
+
+    def __reduce__(self):
+        return (BasisSequence, (self._names.tolist(), [self.indices], self._width))
 
     @property
     def indices(self) -> np.ndarray:
@@ -65,8 +77,7 @@ class BasisSequence(Sequence):
             whole = (np.concatenate(self._blocks) if self._blocks
                      else np.zeros((0, self._width), dtype=np.min_scalar_type(max(len(self._names) - 1, 0))))
             whole.flags.writeable = False
-            self._blocks = [whole]  # hold one copy, not the blocks and their concatenation
-            self._offsets = [0, len(whole)]
+            self._hold([whole], [0, len(whole)])  # one copy, not the blocks and their concatenation
         return self._blocks[0]
 
     def __len__(self) -> int:

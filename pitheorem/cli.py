@@ -14,7 +14,7 @@ file's variable order), Pi-group exponents are integers, and every exact
 rational (scaling exponents, unit changes, rational values) is a string
 such as ``"1/2"`` or ``"-2"``.
 Each of a search's notes is an object ``{"kind", "variables", "text"}``:
-the data of a :class:`pitheorem.search.SearchNote` and its sentence.
+the data of a :class:`pitheorem.scalesearch.SearchNote` and its sentence.
 
 ``--scale`` takes exponents of the scale factor ``s``, never factors:
 ``g=1`` means g -> s g, ``l=-1`` means l -> l / s, and ``g=1/6`` means
@@ -56,9 +56,9 @@ import sympy
 from . import __version__
 from .display import note_text, power_latex, power_text
 from .errors import CommandLineError, PiTheoremError
-from .exact import read_exponent, read_number, short_text
+from .exact import read_exponent, read_positive, short_text
 from .modelfile import ModelFile, load_model_file, write_model_file
-from .search import SearchNote, SearchResult, search
+from .scalesearch import SearchNote, SearchResult, search
 
 __all__ = ["EXIT_ERROR", "EXIT_INFEASIBLE", "EXIT_OK", "build_parser", "main"]
 
@@ -82,20 +82,8 @@ _SCALE_HELP = ("NAME=EXP: EXP is the exponent of the scale factor s, not a facto
 # -- helpers ---------------------------------------------------------------------------------
 
 
-def _frac_text(x) -> str:
-    return str(Fraction(x))
-
-
-def _exponent_text(p) -> str:
-    return str(Fraction(int(p.p), int(p.q))) if isinstance(p, sympy.Rational) else str(Fraction(p))
-
-
 def _json_number(value):
-    """int and float as they are; exact rationals as strings."""
-    if isinstance(value, bool):
-        return value
-    if isinstance(value, sympy.Basic):
-        value = Fraction(int(value.p), int(value.q)) if value.is_Rational else float(value)
+    """Floats as they are; exact Fractions as integers, or strings such as "1/3"."""
     if isinstance(value, Fraction):
         return int(value) if value.denominator == 1 else str(value)
     return value
@@ -104,15 +92,12 @@ def _json_number(value):
 def _value_text(value) -> str:
     if value is None:
         return ""
-    if isinstance(value, sympy.Basic):
-        value = _json_number(value)
     if isinstance(value, float):
         return f"{value:.6g}"
     return str(value)
 
 
 def _value_latex(value) -> str:
-    value = _json_number(value) if isinstance(value, sympy.Basic) else value
     if isinstance(value, Fraction) and value.denominator != 1:
         return f"${sympy.latex(sympy.Rational(value.numerator, value.denominator))}$"
     return _value_text(value)
@@ -180,48 +165,29 @@ def _parse_scale(entries: Sequence[str]) -> dict[str, Fraction]:
     return scale
 
 
-def _parse_s(text: str) -> Fraction:
-    try:
-        s = read_number(text, "--s")
-    except PiTheoremError:
-        raise _CommandError(f"--s must be a positive number such as 2, 0.5 or 1/3, got {text!r}",
-                            culprit=text) from None
-    if s <= 0:
-        raise _CommandError(f"--s must be a positive number such as 2, 0.5 or 1/3, got {text!r}", culprit=text)
-    return int(s) if s.denominator == 1 else s
-
-
 #: exact scaled values with more digits than this are refused (Python prints at most 4300)
 _MAX_DIGITS = 4000
 
 
-def _scaled_values(sc, values: dict, s) -> dict:
-    """Apply the scaling exactly, then round once: no float noise (98.1, not 98.10000000000001).
+def _scaled_values(sc, values: dict, s: Fraction) -> dict:
+    """The values scaled by :meth:`Scaling.apply` with an exact `s`, fit to be written.
 
-    A float value is read as the decimal it prints as, scaled exactly, and
-    rounded back to the nearest float; an exact value stays exact when its
-    scaled value is rational, and becomes the nearest float when not.
+    Float values are scaled exactly and rounded once (98.1, not
+    98.10000000000001); an exact value stays exact when its scaled value is
+    rational, and becomes the nearest float when not.
     """
-    exact = {n: read_number(v, f"the value of {n!r}", irrational_ok=True) for n, v in values.items()}
-    scaled = sc.apply({n: sympy.Rational(x.numerator, x.denominator) for n, x in exact.items()}, s)
     out = {}
-    for n, v in values.items():
-        new = sympy.sympify(scaled[n])
-        if new.is_Rational and not isinstance(v, float):
-            q = Fraction(int(new.p), int(new.q))
-            if max(q.numerator.bit_length(), q.denominator.bit_length()) > _MAX_DIGITS * 3.32:
-                raise _CommandError(f"the scaled value of {n!r} is {short_text(q)}, with more than {_MAX_DIGITS} "
+    for n, new in sc.apply(values, s).items():
+        if isinstance(new, Fraction):
+            if max(new.numerator.bit_length(), new.denominator.bit_length()) > _MAX_DIGITS * 3.32:
+                raise _CommandError(f"the scaled value of {n!r} is {short_text(new)}, with more than {_MAX_DIGITS} "
                                     "digits; choose a smaller --s", culprit=n)
-            out[n] = int(q) if q.denominator == 1 else q
-            continue
-        try:
-            number = float(new)
-        except (OverflowError, TypeError, ValueError):
-            number = float("inf")
-        if not math.isfinite(number) or (number == 0 and new != 0):
+        elif not isinstance(new, float):  # an irrational exact number
+            new = float(new) if abs(new) < 1e308 else math.inf
+        if isinstance(new, float) and (not math.isfinite(new) or (new == 0 and values[n] != 0)):
             raise _CommandError(f"the scaled value of {n!r} is beyond the range of floating point "
                                 f"(about 1e-308 to 1e308); choose an --s nearer to 1", culprit=n)
-        out[n] = number
+        out[n] = new
     return out
 
 
@@ -344,14 +310,14 @@ def _certificate_json(result: SearchResult):
     if cert is None:
         return None
     return {"expression": sympy.sstr(cert.expr), "latex": cert.latex, "exponents": cert.exponents,
-            "power": _frac_text(result.certificate_power)}
+            "power": str(result.certificate_power)}
 
 
 def _scaling_json(sc) -> dict:
     return {
         "changed": list(sc.changed),
-        "exponents": {n: _exponent_text(p) for n, p in sc.exponents.items()},
-        "unit_change": {b: _exponent_text(u) for b, u in sc.unit_change.items()},
+        "exponents": {n: str(p) for n, p in sc.exponents.items()},
+        "unit_change": {b: str(u) for b, u in sc.unit_change.items()},
     }
 
 
@@ -362,10 +328,10 @@ def _cmd_search(args) -> int:
     if args.format == "json":
         doc = {
             "model": model.name,
-            "scale": {n: _frac_text(p) for n, p in result.scale.items()},
+            "scale": {n: str(p) for n, p in result.scale.items()},
             "fixed": list(result.fixed),
             "feasible": result.feasible,
-            "count": result.count if result.feasible else 0,
+            "count": result.n_scalings if result.feasible else 0,
             "scalings": [_scaling_json(sc) for sc in result.scalings],
             "certificate": _certificate_json(result),
             "explanation": result.explanation(),
@@ -379,10 +345,10 @@ def _cmd_search(args) -> int:
             print(f"% {result.explanation()}")
             print(rf"\[ {cert.latex} \;\to\; {power_latex(result.certificate_power)}\,{cert.latex} \]")
             return code
-        n = result.count
+        n = result.n_scalings
         print(rf"\begin{{tabular}}{{ll{'c' * n}}}")
         print("variable & role & " + " & ".join(rf"\#{k}" for k in range(1, n + 1)) + r" \\ \hline")
-        points = [sc.powers for sc in result.scalings]
+        points = [sc.vector for sc in result.scalings]
         for i, name in enumerate(model.system.variables):
             role = "scale" if name in result.scale else "fixed" if name in result.fixed else "free"
             cells = " & ".join(f"${power_latex(p[i])}$" for p in points)
@@ -410,7 +376,7 @@ def _cmd_search(args) -> int:
 
 def _cmd_apply(args) -> int:
     model = _load(args.file, args.scene)
-    s = _parse_s(args.s)
+    s = read_positive(args.s, "--s")
     if _is_engine_file(args.file):  # write the scaled file the engine loads
         from .engines.cli import apply_engine, parse_scene
 
@@ -418,8 +384,8 @@ def _cmd_apply(args) -> int:
         if not result.feasible:
             print(f"pitheorem: {result.explanation()} Nothing written.", file=sys.stderr)
             return EXIT_INFEASIBLE
-        if not 1 <= args.solution <= result.count:
-            raise _CommandError(f"--solution {args.solution} is out of range: choose 1 to {result.count}")
+        if not 1 <= args.solution <= result.n_scalings:
+            raise _CommandError(f"--solution {args.solution} is out of range: choose 1 to {result.n_scalings}")
         print("\n".join(apply_engine(args.file, result.scalings[args.solution - 1], s, args.output,
                                       **parse_scene(args.scene))))
         return EXIT_OK
@@ -430,7 +396,7 @@ def _cmd_apply(args) -> int:
     if not result.feasible:
         print(f"pitheorem: {result.explanation()} Nothing written.", file=sys.stderr)
         return EXIT_INFEASIBLE
-    count = result.count
+    count = result.n_scalings
     k = args.solution
     if not 1 <= k <= count:
         raise _CommandError(
@@ -457,7 +423,7 @@ def _cmd_apply(args) -> int:
     if args.format == "json":
         doc = {
             "model": model.name,
-            "s": _frac_text(s),
+            "s": str(s),
             "solution": k,
             "count": count,
             "scaling": _scaling_json(sc),

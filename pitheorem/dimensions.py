@@ -22,6 +22,7 @@ from fractions import Fraction
 
 from .errors import DimensionSyntaxError, InvalidRequestError, LimitError
 from .exact import MAX_FORMULA_LENGTH, MAX_NESTING, check_exponent, read_number
+from .immutable import immutable
 
 __all__ = ["DEFAULT_BASE_DIMENSIONS", "OPT_IN_BASE_DIMENSIONS", "Dimension", "base_dimension_names"]
 
@@ -87,16 +88,17 @@ def _format_power(p: Fraction) -> str:
     return str(p.numerator) if p.denominator == 1 else f"({p})"
 
 
+@immutable
 @dataclass(frozen=True, slots=True)
 class Dimension:
     """An exact product of base dimensions, such as ``M L^2 T^-2``.
 
-    Immutable and hashable.  Zero powers are dropped, so two dimensions are
-    equal exactly when they are the same physical dimension.
+    Immutable and hashable.  Zero exponents are dropped, so two dimensions
+    are equal exactly when they are the same physical dimension.
 
     Parameters
     ----------
-    powers : mapping or iterable of (str, number) pairs
+    exponents : mapping or iterable of (str, number) pairs
         Base dimension names and their (rational) exponents.
 
     Examples
@@ -107,23 +109,26 @@ class Dimension:
     Dimension.parse('M L^2 T^-2')
     >>> torque / Dimension.parse("L")
     Dimension.parse('M L T^-2')
-    >>> (Dimension.parse("L") ** Fraction(1, 2)).powers
-    (('L', Fraction(1, 2)),)
+    >>> (Dimension.parse("L") ** Fraction(1, 2)).exponents
+    {'L': Fraction(1, 2)}
+    >>> Dimension({"L": 1, "T": -2}) == Dimension.parse("L/T^2")
+    True
     >>> Dimension.parse("1").is_dimensionless
     True
     """
 
-    powers: tuple[tuple[str, Fraction], ...]
+    # (base, exponent) pairs with nonzero exponents, in display order
+    _exponents: tuple[tuple[str, Fraction], ...]
 
-    def __init__(self, powers: Mapping[str, object] | Iterable[tuple[str, object]] = ()):
-        items = powers.items() if isinstance(powers, Mapping) else powers
+    def __init__(self, exponents: Mapping[str, object] | Iterable[tuple[str, object]] = ()):
+        items = exponents.items() if isinstance(exponents, Mapping) else exponents
         total: dict[str, Fraction] = {}
         for base, p in items:
             if not isinstance(base, str):
                 raise InvalidRequestError(f"base dimension names must be strings, got {base!r}", culprit=base)
             total[base] = total.get(base, Fraction(0)) + read_number(p, f"the exponent of {base!r}")
         clean = tuple(sorted(((b, p) for b, p in total.items() if p != 0), key=lambda bp: _order_key(bp[0])))
-        object.__setattr__(self, "powers", clean)
+        object.__setattr__(self, "_exponents", clean)
 
     # -- construction -----------------------------------------------------
     @classmethod
@@ -189,9 +194,21 @@ class Dimension:
         >>> Dimension.parse("L/L").is_dimensionless
         True
         """
-        return not self.powers
+        return not self._exponents
 
-    def exponent(self, base: str) -> Fraction:
+    @property
+    def exponents(self) -> dict[str, Fraction]:
+        """Exponent of each base dimension (nonzero ones only, in display order).
+
+        Examples
+        --------
+        >>> from pitheorem import Dimension
+        >>> Dimension.parse("T^-2 L").exponents
+        {'L': Fraction(1, 1), 'T': Fraction(-2, 1)}
+        """
+        return dict(self._exponents)
+
+    def exponent_of(self, base: str) -> Fraction:
         """The exponent of one base dimension (zero when absent).
 
         Parameters
@@ -206,43 +223,46 @@ class Dimension:
         Examples
         --------
         >>> from pitheorem import Dimension
-        >>> Dimension.parse("L T^-2").exponent("T")
+        >>> Dimension.parse("L T^-2").exponent_of("T")
         Fraction(-2, 1)
         """
-        return dict(self.powers).get(base, Fraction(0))
+        for b, p in self._exponents:
+            if b == base:
+                return p
+        return Fraction(0)
 
     @property
-    def bases(self) -> tuple[str, ...]:
+    def base_dimensions(self) -> tuple[str, ...]:
         """The base dimensions with nonzero exponent, in display order.
 
         Examples
         --------
         >>> from pitheorem import Dimension
-        >>> Dimension.parse("T^-2 L").bases
+        >>> Dimension.parse("T^-2 L").base_dimensions
         ('L', 'T')
         """
-        return tuple(b for b, _ in self.powers)
+        return tuple(b for b, _ in self._exponents)
 
     # -- algebra ----------------------------------------------------------
     def __mul__(self, other: Dimension) -> Dimension:
         if not isinstance(other, Dimension):
             return NotImplemented
-        return Dimension(self.powers + other.powers)
+        return Dimension(self._exponents + other._exponents)
 
     def __truediv__(self, other: Dimension) -> Dimension:
         if not isinstance(other, Dimension):
             return NotImplemented
-        return Dimension(self.powers + tuple((b, -p) for b, p in other.powers))
+        return Dimension(self._exponents + tuple((b, -p) for b, p in other._exponents))
 
     def __pow__(self, exponent) -> Dimension:
         e = read_number(exponent, "the power of a dimension")
-        return Dimension((b, p * e) for b, p in self.powers)
+        return Dimension((b, p * e) for b, p in self._exponents)
 
     # -- display ----------------------------------------------------------
     def __str__(self) -> str:
-        if not self.powers:
+        if not self._exponents:
             return "1"
-        return " ".join(b if p == 1 else f"{b}^{_format_power(p)}" for b, p in self.powers)
+        return " ".join(b if p == 1 else f"{b}^{_format_power(p)}" for b, p in self._exponents)
 
     def __repr__(self) -> str:
         return f"Dimension.parse({str(self)!r})"
@@ -257,10 +277,10 @@ class Dimension:
         >>> Dimension.parse("L T^-2").latex
         '\\mathsf{L}\\,\\mathsf{T}^{-2}'
         """
-        if not self.powers:
+        if not self._exponents:
             return "1"
         parts = []
-        for b, p in self.powers:
+        for b, p in self._exponents:
             name = r"\Theta" if b == "Theta" else rf"\mathsf{{{b}}}"
             parts.append(name if p == 1 else f"{name}^{{{p}}}")
         return r"\,".join(parts)

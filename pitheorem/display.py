@@ -1,6 +1,6 @@
 """Shared text and LaTeX rendering: powers of the scale factor ``s``, and search notes.
 
-A search's notes (:class:`pitheorem.search.SearchNote`) are data; this
+A search's notes (:class:`pitheorem.scalesearch.SearchNote`) are data; this
 module phrases them, and each front end says in its own terms how to lift
 an assumption (Python: ``fixed=()``; the command line: ``--fixed``).
 """
@@ -45,8 +45,6 @@ def power_latex(exponent) -> str:
     --------
     >>> from pitheorem.display import power_latex
     >>> from fractions import Fraction
-
-from .errors import InvalidRequestError
     >>> [power_latex(p) for p in (0, 1, -1, Fraction(1, 2))]
     ['1', 's', 's^{-1}', 's^{1/2}']
     """
@@ -79,7 +77,7 @@ def note_text(note, *, time_remedy: str = PYTHON_TIME_REMEDY, code=str) -> str:
     Examples
     --------
     >>> from pitheorem.display import note_text
-    >>> from pitheorem.search import SearchNote
+    >>> from pitheorem.scalesearch import SearchNote
     >>> note = SearchNote("time_fixed", ("t", "dt"))
     >>> note_text(note)
     'time variables t, dt are held fixed by default; pass fixed=() to let time change'

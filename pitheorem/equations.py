@@ -28,7 +28,8 @@ from sympy.core.function import AppliedUndef
 from .bases import independent_subsets
 from .dimensions import Dimension
 from .errors import InvalidRequestError, UnknownVariableError
-from .exact import read_number
+from .exact import read_exponent, read_number
+from .immutable import immutable
 from .linalg import nullspace, primitive_integer_vector, rank, row_space_basis, solve
 from .system import System
 
@@ -53,9 +54,7 @@ _DEFAULT_TIME = "t"
 
 def _exponent(exp) -> Fraction | None:
     """A numeric exponent as an exact Fraction (a float as the decimal it prints as), else None."""
-    if exp.is_Rational:
-        return Fraction(int(exp.p), int(exp.q))
-    if exp.is_Float:
+    if exp.is_Rational or exp.is_Float:
         return read_number(exp, "an exponent in the equation")
     return None
 
@@ -96,6 +95,7 @@ def _vote(dims: list[Dimension]) -> list[Dimension]:
     return [d for d in counts if counts[d] == best]
 
 
+@immutable
 @dataclass(frozen=True, slots=True)
 class DimensionReport:
     """Result of :func:`check_dimensions`.
@@ -380,6 +380,7 @@ class _WeightWalker:
         raise InvalidRequestError(f"cannot analyse {sympy.sstr(node)!r} ({type(node).__name__}) for symmetries")
 
 
+@immutable
 @dataclass(frozen=True, slots=True)
 class SymmetryReport:
     """Result of :func:`scaling_symmetries`: an exact subspace of exponent vectors.
@@ -390,11 +391,12 @@ class SymmetryReport:
         The symbols of the equations, in system order.
     basis : tuple of dict
         A basis of the symmetry subspace (exponent of ``s`` per variable).
-    unit_changes : tuple of dict
-        A basis of the changes of units, restricted to `variables`.
+    within_units : tuple of dict
+        A basis of the symmetries that changes of units give: the exponent
+        of ``s`` per variable of each, restricted to `variables`.
     beyond_units : tuple of dict
         Basis vectors of the symmetry subspace that no change of units gives
-        (a complement of `unit_changes` in it).
+        (a complement of `within_units` in it).
     contains_units : bool
         True when every change of units is a symmetry (always, for
         dimensionally consistent equations).
@@ -405,26 +407,26 @@ class SymmetryReport:
     >>> s = pt.System({"m": "M", "k": "M T^-2", "x": "L", "t": "T"})
     >>> t, m, k = sympy.symbols("t m k"); x = sympy.Function("x")(t)
     >>> sym = pt.scaling_symmetries([sympy.Eq(m * x.diff(t, 2), -k * x)], s)
-    >>> sym.dimension, len(sym.unit_changes), sym.beyond_units
+    >>> sym.n_symmetries, len(sym.within_units), sym.beyond_units
     (3, 3, ())
     """
 
     variables: tuple[str, ...]
     basis: tuple[dict[str, Fraction], ...]
-    unit_changes: tuple[dict[str, Fraction], ...]
+    within_units: tuple[dict[str, Fraction], ...]
     beyond_units: tuple[dict[str, Fraction], ...]
     contains_units: bool
 
     @property
-    def dimension(self) -> int:
-        """Dimension of the symmetry subspace.
+    def n_symmetries(self) -> int:
+        """Number of independent symmetries: the dimension of the subspace.
 
         Examples
         --------
         >>> import sympy, pitheorem as pt
         >>> s = pt.System({"x": "L", "t": "T"})
         >>> t = sympy.Symbol("t"); x = sympy.Function("x")(t)
-        >>> pt.scaling_symmetries([sympy.Eq(x.diff(t, 2), 0)], s).dimension
+        >>> pt.scaling_symmetries([sympy.Eq(x.diff(t, 2), 0)], s).n_symmetries
         2
         """
         return len(self.basis)
@@ -449,7 +451,10 @@ class SymmetryReport:
         >>> pt.scaling_symmetries([sympy.Eq(x.diff(t, 2), 0)], s).contains({"x": 1})
         True
         """
-        vec = [Fraction(exponents.get(v, 0)) for v in self.variables]
+        for n in exponents:
+            if n not in self.variables:
+                raise UnknownVariableError(n, self.variables, "the exponents (the equations' symbols)")
+        vec = [read_exponent(exponents.get(v, 0), f"exponent of {v!r}") for v in self.variables]
         rows = [[b[v] for v in self.variables] for b in self.basis]
         return rank([*rows, vec]) == rank(rows) if rows else not any(vec)
 
@@ -457,8 +462,8 @@ class SymmetryReport:
         def fmt(vec):
             return ", ".join(f"{n}: {p}" for n, p in vec.items() if p) or "0"
 
-        lines = [f"symmetry subspace of dimension {self.dimension} over {', '.join(self.variables)}",
-                 f"changes of units: dimension {len(self.unit_changes)}"
+        lines = [f"symmetry subspace of dimension {self.n_symmetries} over {', '.join(self.variables)}",
+                 f"changes of units: dimension {len(self.within_units)}"
                  + ("" if self.contains_units else " (NOT all symmetries: the equations are inconsistent)")]
         if self.beyond_units:
             lines.append("symmetries beyond changes of units:")
@@ -517,7 +522,7 @@ def scaling_symmetries(equations, system: System, *, time: str | None = "t") -> 
     rows = [[c.get(n, Fraction(0)) for n in names] for c in walker.conditions]
     basis = nullspace(rows, len(names)) if rows else nullspace([], len(names))
     bases = system.base_dimensions
-    units = [[system.dimension(n).exponent(b) for n in names] for b in bases]
+    units = [[system.dimension(n).exponent_of(b) for n in names] for b in bases]
     unit_rows = [u for u in units if any(u)]
     unit_basis = [row for row in _independent(unit_rows)]
     contains = all(all(sum(c.get(n, 0) * u[i] for i, n in enumerate(names)) == 0 for c in walker.conditions)

@@ -17,6 +17,11 @@ here, by :func:`read_number`, under one rule:
 * ``True``/``False``, infinities, NaN and anything else are refused with a
   :class:`~pitheorem.errors.NumberError` that names the value.
 
+Every exact number pitheorem gives back is a :class:`~fractions.Fraction`.
+Two further rules build on :func:`read_number`: :func:`read_positive` for a
+scale factor, and :func:`read_value` for a parameter value, which keeps a
+float a float (float in, float out) and makes any other number a Fraction.
+
 Exponents (of base dimensions, and of the scale factor ``s``) must also lie
 within :data:`MAX_EXPONENT` in magnitude with a denominator of at most
 :data:`MAX_DENOMINATOR`; formulas may nest brackets :data:`MAX_NESTING`
@@ -43,8 +48,11 @@ __all__ = [
     "MAX_EXPONENT",
     "MAX_FORMULA_LENGTH",
     "MAX_NESTING",
+    "is_float",
     "read_exponent",
     "read_number",
+    "read_positive",
+    "read_value",
     "short_text",
 ]
 
@@ -131,6 +139,102 @@ def read_number(value, what: str = "the number", *, irrational_ok: bool = False)
     if isinstance(value, str):
         return _from_text(value, value, what)
     raise NumberError(value, what, _EXPECTED)
+
+
+def read_positive(value, what: str, *, irrational_ok: bool = False) -> Fraction:
+    """Read a positive finite number, such as the scale factor ``s``.
+
+    Parameters
+    ----------
+    value : number or str
+        As for :func:`read_number`.
+    what : str
+        What the number is, for the error message (``"the scale factor s"``).
+    irrational_ok : bool
+        Also accept positive irrational sympy numbers (``sqrt(2)``), read
+        as the float nearest to them.
+
+    Returns
+    -------
+    Fraction
+
+    Raises
+    ------
+    NumberError
+        For anything that is not a positive finite number.
+
+    Examples
+    --------
+    >>> from pitheorem.exact import read_positive
+    >>> read_positive("1/3", "the scale factor s"), read_positive(0.5, "the scale factor s")
+    (Fraction(1, 3), Fraction(1, 2))
+    >>> from pitheorem import NumberError
+    >>> try:
+    ...     read_positive(-2, "the scale factor s")
+    ... except NumberError as err:
+    ...     print(err)
+    the scale factor s must be a positive finite number such as 2, 0.5 or '1/3', got -2
+    """
+    expected = "a positive finite number such as 2, 0.5 or '1/3'"
+    try:
+        number = read_number(value, what, irrational_ok=irrational_ok)
+    except NumberError:
+        raise NumberError(value, what, expected) from None
+    if number <= 0:
+        raise NumberError(value, what, expected)
+    return number
+
+
+def is_float(value) -> bool:
+    """Whether a number is floating point: arithmetic on it stays in floats.
+
+    Python and numpy floats, sympy Floats and numpy arrays are; ints,
+    Fractions, sympy Rationals and strings are not.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem.exact import is_float
+    >>> is_float(0.5), is_float(Fraction(1, 2)), is_float(2)
+    (True, False, False)
+    """
+    np = numpy_if_loaded()
+    return isinstance(value, float | sympy.Float) or (np is not None and isinstance(value, np.floating | np.ndarray))
+
+
+def read_value(value, what: str) -> float | Fraction:
+    """Read a parameter value the way pitheorem keeps it: float in, float out.
+
+    A float (Python's, numpy's or sympy's) stays a float, and so does an
+    irrational sympy number (its nearest float); any other number is read
+    exactly by :func:`read_number` and becomes a Fraction.
+
+    Parameters
+    ----------
+    value : number or str
+        The value.
+    what : str
+        What it is, for the error message (``"the value of 'm'"``).
+
+    Returns
+    -------
+    float or Fraction
+
+    Raises
+    ------
+    NumberError
+        For anything that is not a finite real number.
+
+    Examples
+    --------
+    >>> from pitheorem.exact import read_value
+    >>> read_value(9.81, "g"), read_value(3, "m"), read_value("1/3", "l")
+    (9.81, Fraction(3, 1), Fraction(1, 3))
+    """
+    exact = read_number(value, what, irrational_ok=True)
+    if is_float(value) or (isinstance(value, sympy.Basic) and not value.is_Rational):
+        return float(value)
+    return exact
 
 
 def numpy_if_loaded():

@@ -37,7 +37,7 @@ class MinimalPoints(Sequence):
     """Minimal points with their coordinates, as exact fractions made on demand.
 
     Item ``i`` is ``(point, coords)``: tuples of Fraction, as
-    :class:`pitheorem.search.SearchResult` keeps them.  Counting them
+    :class:`pitheorem.scalesearch.SearchResult` keeps them.  Counting them
     makes none; the first iteration makes them all and keeps them, since
     tables read them once per variable.
     """

@@ -14,6 +14,8 @@ from fractions import Fraction
 import sympy
 
 from .errors import InvalidRequestError
+from .exact import read_number, read_value
+from .immutable import immutable
 from .linalg import primitive_integer_vector, rank
 
 __all__ = ["PiGroup", "PiSet"]
@@ -23,14 +25,17 @@ def _symbol(name: str) -> sympy.Symbol:
     return sympy.Symbol(name, positive=True)
 
 
+@immutable
 @dataclass(frozen=True, slots=True)
 class PiGroup:
     """A dimensionless product of powers of variables.
 
     Parameters
     ----------
-    powers : tuple of (str, int)
-        Variables and their integer exponents (zeros omitted), in system order.
+    exponents : mapping or iterable of (str, int) pairs
+        Variables and their integer exponents, in system order (zeros are
+        dropped).  Taken as given; :meth:`from_exponents` normalises
+        rational exponents to the smallest integers instead.
     variable : str or None
         The non-repeating variable this group was built for, if any.
 
@@ -44,11 +49,32 @@ class PiGroup:
     >>> print(pi_g)
     Pi_g = g*l*m/k_theta
     >>> pi_g.evaluate({"m": 1, "l": 2, "g": 10, "k_theta": 4})
-    5
+    Fraction(5, 1)
+    >>> PiGroup({"t": 2, "l": -1}).exponents
+    {'t': 2, 'l': -1}
     """
 
-    powers: tuple[tuple[str, int], ...]
-    variable: str | None = None
+    # (variable, exponent) pairs with nonzero integer exponents, in order
+    _exponents: tuple[tuple[str, int], ...]
+    variable: str | None
+
+    def __init__(self, exponents: Mapping[str, int] | Iterable[tuple[str, int]] = (), variable: str | None = None):
+        items = exponents.items() if isinstance(exponents, Mapping) else exponents
+        pairs = []
+        for name, p in items:
+            if not isinstance(name, str):
+                raise InvalidRequestError(f"a Pi group's variables are names, got {name!r}", culprit=name)
+            if type(p) is not int:  # the common case costs nothing more
+                exact = read_number(p, f"the exponent of {name!r} in a Pi group")
+                if exact.denominator != 1:
+                    raise InvalidRequestError(
+                        f"the exponent of {name!r} in a Pi group is {exact}: PiGroup takes integer exponents; "
+                        "PiGroup.from_exponents normalises rational ones", culprit=p)
+                p = int(exact)
+            if p:
+                pairs.append((name, p))
+        object.__setattr__(self, "_exponents", tuple(pairs))
+        object.__setattr__(self, "variable", variable)
 
     @classmethod
     def from_exponents(
@@ -73,8 +99,8 @@ class PiGroup:
         --------
         >>> from fractions import Fraction
         >>> from pitheorem import PiGroup
-        >>> PiGroup.from_exponents({"a": Fraction(-1, 2), "b": 1}).powers
-        (('a', 1), ('b', -2))
+        >>> PiGroup.from_exponents({"a": Fraction(-1, 2), "b": 1}).exponents
+        {'a': 1, 'b': -2}
         """
         names = list(order) if order is not None else list(exponents)
         vec = primitive_integer_vector([exponents.get(n, 0) for n in names])
@@ -83,7 +109,7 @@ class PiGroup:
             pivot = next((i for i, v in enumerate(vec) if v), None)
         if pivot is not None and vec[pivot] < 0:
             vec = [-v for v in vec]
-        return cls(tuple((n, v) for n, v in zip(names, vec, strict=True) if v), variable)
+        return cls(tuple(zip(names, vec, strict=True)), variable)
 
     @property
     def exponents(self) -> dict[str, int]:
@@ -92,10 +118,10 @@ class PiGroup:
         Examples
         --------
         >>> from pitheorem import PiGroup
-        >>> PiGroup((("t", 2), ("l", -1))).exponents
+        >>> PiGroup({"t": 2, "l": -1}).exponents
         {'t': 2, 'l': -1}
         """
-        return dict(self.powers)
+        return dict(self._exponents)
 
     @property
     def name(self) -> str:
@@ -104,7 +130,7 @@ class PiGroup:
         Examples
         --------
         >>> from pitheorem import PiGroup
-        >>> PiGroup((("g", 1),), "g").name
+        >>> PiGroup({"g": 1}, "g").name
         'Pi_g'
         """
         return f"Pi_{self.variable}" if self.variable else "Pi"
@@ -120,10 +146,10 @@ class PiGroup:
         Examples
         --------
         >>> from pitheorem import PiGroup
-        >>> PiGroup((("t", 2), ("l", -1))).expr
+        >>> PiGroup({"t": 2, "l": -1}).expr
         t**2/l
         """
-        return sympy.Mul(*(_symbol(n) ** p for n, p in self.powers))
+        return sympy.Mul(*(_symbol(n) ** p for n, p in self._exponents))
 
     @property
     def latex(self) -> str:
@@ -132,7 +158,7 @@ class PiGroup:
         Examples
         --------
         >>> from pitheorem import PiGroup
-        >>> PiGroup((("c_theta", 2), ("m", -1))).latex
+        >>> PiGroup({"c_theta": 2, "m": -1}).latex
         '\\frac{c_{\\theta}^{2}}{m}'
         """
         return sympy.latex(self.expr)
@@ -144,10 +170,10 @@ class PiGroup:
         Examples
         --------
         >>> from pitheorem import PiGroup
-        >>> PiGroup(()).is_trivial, PiGroup((("g", 1), ("l", -1))).is_trivial
+        >>> PiGroup({}).is_trivial, PiGroup({"g": 1, "l": -1}).is_trivial
         (True, False)
         """
-        return not self.powers
+        return not self._exponents
 
     def reciprocal(self) -> PiGroup:
         """The group with every exponent negated.
@@ -155,10 +181,10 @@ class PiGroup:
         Examples
         --------
         >>> from pitheorem import PiGroup
-        >>> PiGroup((("a", 1), ("b", -2))).reciprocal().powers
-        (('a', -1), ('b', 2))
+        >>> PiGroup({"a": 1, "b": -2}).reciprocal().exponents
+        {'a': -1, 'b': 2}
         """
-        return PiGroup(tuple((n, -p) for n, p in self.powers), self.variable)
+        return PiGroup(tuple((n, -p) for n, p in self._exponents), self.variable)
 
     def is_power_of(self, other: PiGroup) -> bool:
         """True when one group is a rational power of the other (e.g. its reciprocal).
@@ -174,19 +200,20 @@ class PiGroup:
         Examples
         --------
         >>> from pitheorem import PiGroup
-        >>> a = PiGroup((("g", 1), ("l", -1)))
-        >>> a.is_power_of(PiGroup((("l", 2), ("g", -2))))
+        >>> a = PiGroup({"g": 1, "l": -1})
+        >>> a.is_power_of(PiGroup({"l": 2, "g": -2}))
         True
         """
-        names = sorted({n for n, _ in self.powers} | {n for n, _ in other.powers})
+        names = sorted({n for n, _ in self._exponents} | {n for n, _ in other._exponents})
         a, b = self.exponents, other.exponents
         return rank([[a.get(n, 0) for n in names], [b.get(n, 0) for n in names]]) <= 1
 
     def evaluate(self, values: Mapping[str, object]):
         """Value of the group for given variable values.
 
-        Exact (a sympy Rational) when every value is an int, Fraction or
-        sympy Rational; a float otherwise.
+        Float in, float out: a float when some value is a float (or an
+        irrational sympy number), else an exact Fraction (values are read by
+        :func:`pitheorem.exact.read_value`).
 
         Parameters
         ----------
@@ -195,24 +222,25 @@ class PiGroup:
 
         Returns
         -------
-        sympy.Rational or float
+        Fraction or float
 
         Examples
         --------
         >>> from fractions import Fraction
         >>> from pitheorem import PiGroup
-        >>> PiGroup((("t", 2), ("l", -1))).evaluate({"t": Fraction(1, 2), "l": 3})
-        1/12
-        >>> PiGroup((("t", 2), ("l", -1))).evaluate({"t": 0.5, "l": 3.0})
+        >>> PiGroup({"t": 2, "l": -1}).evaluate({"t": Fraction(1, 2), "l": 3})
+        Fraction(1, 12)
+        >>> PiGroup({"t": 2, "l": -1}).evaluate({"t": 0.5, "l": 3.0})
         0.08333333333333333
         """
-        missing = [n for n, _ in self.powers if n not in values]
+        missing = [n for n, _ in self._exponents if n not in values]
         if missing:
             raise InvalidRequestError(f"evaluate needs a value for {', '.join(map(repr, missing))} of {self}")
-        exact = all(isinstance(values[n], int | Fraction | sympy.Rational) for n, _ in self.powers)
-        result = sympy.Integer(1) if exact else 1.0
-        for n, p in self.powers:
-            v = sympy.Rational(values[n]) if exact else float(values[n])
+        read = [read_value(values[n], f"the value of {n!r}") for n, _ in self._exponents]
+        exact = all(isinstance(v, Fraction) for v in read)
+        result = Fraction(1) if exact else 1.0
+        for (n, p), v in zip(self._exponents, read, strict=True):
+            v = v if exact else float(v)
             if v == 0 and p < 0:
                 raise InvalidRequestError(f"{n!r} = 0 appears with exponent {p} in {self}: the group is undefined")
             result = result * v**p
@@ -223,7 +251,7 @@ class PiGroup:
 
     def __repr__(self) -> str:
         var = f", variable={self.variable!r}" if self.variable else ""
-        return f"PiGroup.from_exponents({dict(self.powers)!r}{var})"
+        return f"PiGroup.from_exponents({dict(self._exponents)!r}{var})"
 
     def _latex_equation(self) -> str:
         name = rf"\Pi_{{{sympy.latex(_symbol(self.variable))}}}" if self.variable else r"\Pi"
@@ -233,6 +261,7 @@ class PiGroup:
         return f"$\\displaystyle {self._latex_equation()}$"
 
 
+@immutable
 class PiSet(Sequence):
     """An immutable sequence of independent Pi groups.
 
@@ -258,9 +287,12 @@ class PiSet(Sequence):
     __slots__ = ("_groups", "_repeating", "_variables")
 
     def __init__(self, groups: Iterable[PiGroup], variables: Sequence[str], repeating: Sequence[str] = ()):
-        self._groups = tuple(groups)
-        self._variables = tuple(variables)
-        self._repeating = tuple(repeating)
+        object.__setattr__(self, "_groups", tuple(groups))
+        object.__setattr__(self, "_variables", tuple(variables))
+        object.__setattr__(self, "_repeating", tuple(repeating))
+
+    def __reduce__(self):
+        return (PiSet, (self._groups, self._variables, self._repeating))
 
     @property
     def repeating(self) -> tuple[str, ...]:

@@ -33,8 +33,11 @@ these keys:
     Give exactly one of ``dimension`` and ``unit``.
 ``value``
     Optional.  An integer, a float, or a string holding an exact rational
-    such as ``"1/3"``.  A value is in whatever unit the file uses: scaling
-    multiplies it by a power of ``s``, which no choice of unit changes.
+    such as ``"1/3"``.  In Python a float stays a float and every other
+    value is an exact :class:`~fractions.Fraction`
+    (:func:`pitheorem.exact.read_value`).  A value is in whatever unit the
+    file uses: scaling multiplies it by a power of ``s``, which no choice of
+    unit changes.
 ``role``
     Optional: ``"parameter"`` (the default), ``"time"`` (at most one
     variable, of dimension ``T``) or ``"state"``.
@@ -57,11 +60,10 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
 
-import sympy
-
 from .dimensions import DEFAULT_BASE_DIMENSIONS, OPT_IN_BASE_DIMENSIONS, Dimension
 from .errors import DimensionSyntaxError, LimitError, ModelFileError, PiTheoremError
-from .exact import numpy_if_loaded, read_number
+from .exact import read_value
+from .immutable import immutable
 from .system import System
 
 __all__ = [
@@ -84,6 +86,7 @@ _EXAMPLES = Path(__file__).resolve().parent / "examples"
 _BARE_KEY = re.compile(r"^[A-Za-z0-9_-]+$")
 
 
+@immutable
 @dataclass(frozen=True)
 class ModelFile:
     """The contents of a model file: a system, roles and values.
@@ -94,9 +97,9 @@ class ModelFile:
     description : str
     system : System
         Variables and dimensions, in the order of the file.
-    values : dict of str to number
-        Values given in the file (int, float or Fraction); variables
-        without a value are absent.
+    values : dict of str to Fraction or float
+        Values given in the file: floats as floats, every other number as
+        an exact Fraction; variables without a value are absent.
     roles : dict of str to str
         ``"parameter"``, ``"time"`` or ``"state"`` for every variable.
     units : dict of str to str
@@ -143,8 +146,8 @@ class ModelFile:
         Parameters
         ----------
         values : mapping of str to number
-            New values; numbers that are sympy Rationals become Fractions,
-            other sympy numbers floats.
+            New values, read like a file's: floats (and irrational sympy
+            numbers) become floats, every other number a Fraction.
         name : str, optional
             New name (default: unchanged).
 
@@ -156,14 +159,14 @@ class ModelFile:
         --------
         >>> from pitheorem.modelfile import example_path, load_model_file
         >>> rod = load_model_file(example_path("hinged_rod"))
-        >>> rod.with_values({"m": 3}).values
-        {'m': 3}
+        >>> rod.with_values({"m": 3, "l": 2.5}).values
+        {'m': Fraction(3, 1), 'l': 2.5}
         """
         clean = {}
         for n, v in values.items():
             if n not in self.system.variables:
                 raise ModelFileError(self.path or "<model>", "no such variable in the model", variable=n)
-            clean[n] = _plain_number(v, self.path or "<model>", n)
+            clean[n] = _value(v, self.path or "<model>", n)
         ordered = {n: clean[n] for n in self.system.variables if n in clean}
         return dataclasses.replace(self, values=ordered, name=self.name if name is None else name)
 
@@ -357,7 +360,7 @@ def _read(path: str, data: dict, *, default_name: str) -> ModelFile:
                                  variable=var)
         roles[var] = role
         if "value" in entry:
-            values[var] = _plain_number(entry["value"], path, var)
+            values[var] = _value(entry["value"], path, var)
         if "description" in entry:
             if not isinstance(entry["description"], str):
                 raise ModelFileError(path, f"description must be a string, got {entry['description']!r}", variable=var)
@@ -367,7 +370,7 @@ def _read(path: str, data: dict, *, default_name: str) -> ModelFile:
         raise ModelFileError(path, f"has role 'time' as well as {times[0]!r}; at most one variable is time",
                              variable=times[1])
     if "base_dimensions" not in data:  # a unit such as "mol" brings its opt-in base (N) with it
-        used = {b for var in units for b in dims[var].bases}
+        used = {b for var in units for b in dims[var].base_dimensions}
         allowed += tuple(b for b in OPT_IN_BASE_DIMENSIONS if b in used)
     try:
         system = System(dims, base_dimensions=allowed)
@@ -387,7 +390,7 @@ def _read_dimension(path: str, var: str, text, allowed) -> Dimension:
         ) from None
     except LimitError as err:
         raise ModelFileError(path, f"cannot read dimension: {err}", variable=var) from None
-    unknown = [b for b in dim.bases if b not in allowed]
+    unknown = [b for b in dim.base_dimensions if b not in allowed]
     if unknown:
         raise ModelFileError(
             path, f"unknown base dimension {unknown[0]!r} in {text!r}; allowed: {', '.join(allowed)}", variable=var
@@ -404,23 +407,15 @@ def _read_unit(path: str, var: str, unit) -> Dimension:
         raise ModelFileError(path, str(err).splitlines()[0], variable=var) from None
 
 
-def _plain_number(value, path: str, var: str):
-    """A file value as int, float or Fraction, checked by the package's one number reader.
-
-    Floats stay floats (the file's own numbers); everything else becomes
-    an int or an exact Fraction.  Numpy floats become floats.
-    """
+def _value(value, path: str, var: str) -> float | Fraction:
+    """:func:`pitheorem.exact.read_value`, its errors told as the file's."""
     if isinstance(value, bool):  # spelled as the file spells it
         raise ModelFileError(path, f"value must be a number, got {str(value).lower()}", variable=var)
     try:
-        exact = read_number(value, "value", irrational_ok=True)
+        return read_value(value, "value")
     except PiTheoremError as err:
         raise ModelFileError(path, f"{str(err).splitlines()[0]} (numbers may also be exact strings such as \"1/3\")",
                              variable=var) from None
-    np = numpy_if_loaded()  # numpy scalars can only come from a caller that already imported numpy
-    if isinstance(value, float) or (np is not None and isinstance(value, np.floating)) or (isinstance(value, sympy.Basic) and not value.is_Rational):
-        return float(value)
-    return int(exact) if exact.denominator == 1 else exact
 
 
 # -- writing ---------------------------------------------------------------------------------
@@ -435,8 +430,10 @@ def _toml_key(name: str) -> str:
 
 
 def _toml_value(value) -> str:
-    if isinstance(value, int) and not -(2**63) <= value < 2**63:
-        value = Fraction(value)  # TOML integers are 64-bit: write bigger ones as exact strings
+    if isinstance(value, int) and not isinstance(value, bool):
+        value = Fraction(value)
+    if isinstance(value, Fraction) and value.denominator == 1 and -(2**63) <= value < 2**63:
+        return str(value.numerator)  # TOML integers are 64-bit: bigger ones are written as exact strings
     if isinstance(value, Fraction):
         return _toml_string(str(value))
     if isinstance(value, float):
@@ -445,7 +442,9 @@ def _toml_value(value) -> str:
 
 
 def _json_value(value):
-    return str(value) if isinstance(value, Fraction) else value
+    if isinstance(value, Fraction):
+        return value.numerator if value.denominator == 1 else str(value)
+    return value
 
 
 def dump_values(model: ModelFile, values: Mapping[str, object] | None = None, *, format: str = "toml") -> str:
@@ -537,7 +536,7 @@ def write_model_file(model: ModelFile, path, values: Mapping[str, object] | None
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     out = write_model_file(rod, pathlib.Path(folder) / "heavy.toml", {**rod.values, "m": 3})
     ...     load_model_file(out).values["m"]
-    3
+    Fraction(3, 1)
     """
     out = Path(path)
     suffix = out.suffix.lower()

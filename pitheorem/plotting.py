@@ -36,7 +36,7 @@ def plot_search(result, ax=None):
     import numpy as np
 
     names = result.system.variables
-    points = [s.powers for s in result.iter_scalings()]
+    points = [s.vector for s in result.iter_scalings()]
     data = np.array([[float(p[i]) for p in points] for i in range(len(names))]).reshape(len(names), len(points))
     if ax is None:
         fig, ax = plt.subplots(figsize=(1.2 + 0.9 * max(len(points), 1), 0.9 + 0.42 * len(names)), layout="constrained")

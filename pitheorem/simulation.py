@@ -28,7 +28,7 @@ from types import MappingProxyType
 import numpy as np
 
 from .errors import InvalidRequestError, PiTheoremError, SystemMismatchError, UnknownVariableError
-from .exact import read_exponent, short_text
+from .exact import read_exponent, read_positive, short_text
 from .model import Model
 from .scaling import Scaling
 from .system import System
@@ -133,8 +133,8 @@ def positive_float(value, what: str) -> float:
     Returns
     -------
     float
-        The value; anything but a positive finite number raises an
-        :class:`~pitheorem.InvalidRequestError` that names `what`.
+        The value, read by :func:`pitheorem.exact.read_positive` (whose
+        :class:`~pitheorem.NumberError` names `what`) and rounded once.
 
     Examples
     --------
@@ -145,17 +145,9 @@ def positive_float(value, what: str) -> float:
     ...     positive_float(0, "dt")
     ... except ValueError as err:
     ...     print(err)
-    dt must be a positive finite number, got 0
+    dt must be a positive finite number such as 2, 0.5 or '1/3', got 0
     """
-    try:
-        if isinstance(value, bool):
-            raise TypeError
-        x = float(value)
-    except (TypeError, ValueError):
-        raise InvalidRequestError(f"{what} must be a positive finite number, got {value!r}") from None
-    if not (x > 0 and math.isfinite(x)):
-        raise InvalidRequestError(f"{what} must be a positive finite number, got {value!r}")
-    return x
+    return float(read_positive(value, what, irrational_ok=True))
 
 
 _METHODS = ("solve_ivp", "euler")

@@ -30,6 +30,7 @@ from .errors import (
 )
 from .exact import read_exponent
 from .groups import PiGroup, PiSet
+from .immutable import immutable
 from .linalg import integer_rref, nullspace, rank
 
 if TYPE_CHECKING:
@@ -74,7 +75,7 @@ def _simple_dimension(text: str, allowed: tuple[str, ...]) -> Dimension | None:
         if base is None:
             return None
         p = int(factor[2] or 1)
-        for b, q in base.powers:
+        for b, q in base.exponents.items():
             # integer arithmetic where it can be: Fractions are slow to make
             q = int(q) if q.denominator == 1 else q
             powers[b] = powers.get(b, 0) + q * p
@@ -98,6 +99,7 @@ def _pairs(variables) -> list[tuple[str, object]]:
         ) from None
 
 
+@immutable
 class System:
     """Variables with dimensions: the input of every dimensional analysis.
 
@@ -157,15 +159,20 @@ class System:
             names.append(name)
             seen.add(name)
             dims.append(self._read_dimension(name, spec, allowed))
-        powers = [dict(d.powers) for d in dims]
-        used = {b for p in powers for b in p}
+        exponents = [d.exponents for d in dims]
+        used = {b for e in exponents for b in e}
         order = [b for b in allowed if b in used]
-        self._allowed = allowed
-        self._variables = tuple(names)
-        self._dimensions = tuple(dims)
-        self._base_dimensions = tuple(order)
-        self._columns = tuple(tuple(p.get(b, _ZERO) for b in order) for p in powers)
-        self._reduced = None  # independent rows of D, found on first use
+        # attributes are written once, here (and the cache below): a System is immutable
+        set_attribute = object.__setattr__
+        set_attribute(self, "_allowed", allowed)
+        set_attribute(self, "_variables", tuple(names))
+        set_attribute(self, "_dimensions", tuple(dims))
+        set_attribute(self, "_base_dimensions", tuple(order))
+        set_attribute(self, "_columns", tuple(tuple(e.get(b, _ZERO) for b in order) for e in exponents))
+        set_attribute(self, "_reduced", None)  # independent rows of D, found on first use
+
+    def __reduce__(self):
+        return (_rebuild_system, (tuple(zip(self._variables, self._dimensions, strict=True)), self._allowed))
 
     def _independent_rows(self) -> list[list[Fraction]]:
         # r independent rows of D itself (not its RREF): same column
@@ -174,7 +181,7 @@ class System:
         if self._reduced is None:
             rows = [[col[i] for col in self._columns] for i in range(len(self._base_dimensions))]
             keep = integer_rref(self._columns)[1] if rows else ()
-            self._reduced = [rows[i] for i in keep]
+            object.__setattr__(self, "_reduced", [rows[i] for i in keep])  # a cache, invisible but for speed
         return self._reduced
 
     @staticmethod
@@ -198,7 +205,7 @@ class System:
             raise InvalidRequestError(
                 f"dimension of {name!r} must be a formula string like 'M L^2 T^-2', got {spec!r}"
             )
-        unknown = [b for b in dim.bases if b not in allowed]
+        unknown = [b for b in dim.base_dimensions if b not in allowed]
         if unknown:
             opt_in = (f"; {unknown[0]!r} is opt-in because it is also an SI unit symbol: declare it with "
                       f"base_dimensions=(..., {unknown[0]!r})") if unknown[0] in OPT_IN_BASE_DIMENSIONS else ""
@@ -243,23 +250,25 @@ class System:
                 raise UnitError(f"unit of {name!r} must be a string such as 'kg*m/s^2', got {text!r}")
             try:
                 quantity = registry.parse_expression(text) if text.strip() else registry.Quantity(1)
+                if not isinstance(quantity, pint.Quantity):  # a bare number
+                    quantity = registry.Quantity(quantity)
                 dimensionality = dict(quantity.dimensionality)
-                root = dict(registry.get_root_units(quantity.units)[1]._units) if hasattr(quantity, "units") else {}
+                root = dict(quantity.to_root_units().unit_items())
             except Exception as err:  # pint's parser can fail with almost anything, even AssertionError
                 if isinstance(err, pint.errors.DefinitionSyntaxError | AssertionError | SyntaxError):
                     err = "malformed unit expression"  # its own message is empty or cryptic
                 raise UnitError(f"cannot read the unit {text!r} of {name!r}: {err}") from None
-            powers = {}
+            exponents = {}
             for key, p in dimensionality.items():
                 if key not in _PINT_BASES:
                     raise UnitError(f"unit {text!r} of {name!r} has dimension {key}, which pitheorem does not know")
-                powers[_PINT_BASES[key]] = Fraction(p).limit_denominator()
+                exponents[_PINT_BASES[key]] = Fraction(p).limit_denominator()
             if angle_as_base and root.get("radian"):
                 # pint treats angles as dimensionless; its root unit still records radians
-                powers["A"] = Fraction(root["radian"]).limit_denominator()
-            dims[name] = Dimension(powers)
+                exponents["A"] = Fraction(root["radian"]).limit_denominator()
+            dims[name] = Dimension(exponents)
         # pint names the dimension, so an opt-in letter (N for [substance]) is meant here
-        used = {b for d in dims.values() for b in d.bases}
+        used = {b for d in dims.values() for b in d.base_dimensions}
         return cls(dims, base_dimensions=DEFAULT_BASE_DIMENSIONS + tuple(b for b in OPT_IN_BASE_DIMENSIONS if b in used))
 
     # -- basic properties -------------------------------------------------
@@ -530,8 +539,7 @@ class System:
             exps = {n: -a * (den // piv) for n, a, piv in terms}
             exps[name] = den
             g = gcd(*exps.values())
-            powers = tuple((v, exps[v] // g) for v in self._variables if v in exps)
-            groups.append(PiGroup(powers, name))
+            groups.append(PiGroup(tuple((v, exps[v] // g) for v in self._variables if v in exps), name))
         return groups
 
     def _default_basis(self):
@@ -685,6 +693,11 @@ class System:
 
     def __len__(self) -> int:
         return len(self._variables)
+
+
+def _rebuild_system(pairs, allowed) -> System:
+    """Unpickle a System: build it again from its variables and dimensions."""
+    return System(pairs, base_dimensions=allowed)
 
 
 def _unit_registry():

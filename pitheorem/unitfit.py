@@ -43,12 +43,12 @@ from fractions import Fraction
 from types import MappingProxyType
 
 import numpy as np
-import sympy
 from scipy.optimize import Bounds, LinearConstraint, linprog, milp
 
 from .dimensions import Dimension
 from .errors import DimensionSyntaxError, DuplicateVariableError, InvalidRequestError, LimitError
-from .exact import read_number, short_text
+from .exact import read_number, read_value, short_text
+from .immutable import immutable
 from .linalg import nullspace
 from .scaling import Scaling
 from .system import System
@@ -62,6 +62,7 @@ LIMIT = 300.0
 _HIGHS = {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10}
 
 
+@immutable
 @dataclass(frozen=True, slots=True)
 class RangeBound:
     """One side of a variable's range: ``low <= x`` or ``x <= high``.
@@ -96,13 +97,8 @@ class RangeBound:
 _HUGE = Fraction(10**300)
 
 
-def _exact(x, what: str) -> Fraction:
-    """A finite real number as a Fraction, by the package's one reader (0.1 -> 1/10).
-
-    The fit itself runs in floating point (logarithms, a linear program), so
-    magnitudes must stay well inside the float range.
-    """
-    value = read_number(x, what, irrational_ok=True)
+def _in_float_range(value: Fraction, what: str) -> Fraction:
+    """`value` itself; the fit runs in floating point (logarithms, a linear program), so it must stay well inside."""
     if value and not 1 / _HUGE <= abs(value) <= _HUGE:
         raise LimitError(short_text(value), what,
                          "fit_units needs magnitudes between 1e-300 and 1e300")
@@ -114,7 +110,8 @@ def _read_range(spec, what: str) -> tuple[Fraction, Fraction]:
         lo, hi = spec
     except (TypeError, ValueError):
         raise InvalidRequestError(f"{what} must be a pair (low, high), got {spec!r}") from None
-    lo, hi = _exact(lo, f"the low bound of {what}"), _exact(hi, f"the high bound of {what}")
+    lo, hi = (_in_float_range(read_number(x, f"the {side} bound of {what}", irrational_ok=True),
+                              f"the {side} bound of {what}") for x, side in ((lo, "low"), (hi, "high")))
     if lo <= 0 or hi <= 0:
         raise InvalidRequestError(f"{what} is ({lo}, {hi}): both bounds must be positive (a range of magnitudes)")
     if lo >= hi:
@@ -169,9 +166,10 @@ class _Problem:
 
     def __init__(self, system, values, ranges, fixed, fixed_units, nice):
         self.system = system
+        self.values = values
         bases = system.base_dimensions
         self.bases = bases
-        eq_rows = [[system.dimension(n).exponent(b) for b in bases] for n in fixed]
+        eq_rows = [[system.dimension(n).exponent_of(b) for b in bases] for n in fixed]
         eq_rows += [[Fraction(int(b == c)) for b in bases] for c in fixed_units]
         self.nice = nice
         if nice is None:
@@ -194,7 +192,7 @@ class _Problem:
         self.bounds: list[RangeBound] = []
         w_rows, rhs, centre, half = [], [], [], []
         for name, lo, hi in ranges:
-            d = np.array([float(system.dimension(name).exponent(b)) for b in bases])
+            d = np.array([float(system.dimension(name).exponent_of(b)) for b in bases])
             w = d @ self.P if len(bases) else np.zeros(self.n_v)
             z0 = _log10(values[name])
             a, b = _log10(lo), _log10(hi)
@@ -215,7 +213,7 @@ class _Problem:
             h_rows += [self.P[i], -self.P[i]]
             h_rhs += [LIMIT, LIMIT]
         for name in system.variables:
-            d = np.array([float(system.dimension(name).exponent(b)) for b in bases])
+            d = np.array([float(system.dimension(name).exponent_of(b)) for b in bases])
             w = d @ self.P if len(bases) else np.zeros(self.n_v)
             h_rows += [w, -w]
             h_rhs += [LIMIT, LIMIT]
@@ -246,8 +244,12 @@ class _Problem:
                    options={"presolve": True, "mip_rel_gap": 0.0})
         return res.x if res.status == 0 else None
 
-    def worst(self, keep=None) -> tuple[float, np.ndarray | None]:
-        """Stage 1 over a subset of the bounds: (minimal worst violation, v)."""
+    def worst(self, keep=None, *, slack: bool = False) -> tuple[float, np.ndarray | None]:
+        """Stage 1 over a subset of the bounds: (minimal worst violation, v).
+
+        With `slack`, a negative violation is allowed: the largest margin by
+        which every bound is met.
+        """
         idx = range(len(self.bounds)) if keep is None else keep
         idx = list(idx)
         n = self.n_v + 1
@@ -255,7 +257,7 @@ class _Problem:
         c[-1] = 1.0
         A = np.hstack([self.W[idx], -np.ones((len(idx), 1))]) if idx else np.zeros((0, n))
         A = np.vstack([A, np.hstack([self.H, np.zeros((len(self.h), 1))])])
-        lb = [-self.vmax] * self.n_v + [0.0]
+        lb = [-self.vmax] * self.n_v + [-2 * LIMIT if slack else 0.0]
         ub = [self.vmax] * self.n_v + [np.inf]
         x = self._solve(c, A, np.concatenate([self.r[idx], self.h]), lb, ub, self.n_v)
         if x is None:  # only when the integer equalities leave nothing (cannot happen: v = 0 works)
@@ -319,13 +321,39 @@ class _Problem:
     def conflict(self) -> tuple[RangeBound, ...]:
         """A minimal infeasible set of bounds, by a deletion filter (in bound order)."""
         keep = list(range(len(self.bounds)))
-        if self.worst(keep)[0] <= TOL:
+        if self._feasible(keep):
             return ()
         for i in list(keep):
             trial = [j for j in keep if j != i]
-            if self.worst(trial)[0] > TOL:
+            if not self._feasible(trial):
                 keep = trial
         return tuple(self.bounds[j] for j in keep)
+
+    def _feasible(self, keep) -> bool:
+        """Whether some unit change meets the bounds `keep`.
+
+        Factors rounded to powers of `nice` are judged in exact arithmetic,
+        as :func:`fit_units` judges them: when the best integer choice meets
+        the bounds only to within the floats' tolerance, its exact values
+        decide (1e-6 times 10^7 read from a float may be 10.000000000000002,
+        above a bound of 10).
+        """
+        t, v = self.worst(keep, slack=self.nice is not None)
+        if t > TOL:
+            return False
+        if self.nice is None or t < -TOL or v is None:
+            return True
+        powers = [round(float(x)) for x in v]
+        for j in keep:
+            bound = self.bounds[j]
+            dim = self.system.dimension(bound.name)
+            power = sum((dim.exponent_of(b) * p for b, p in zip(self.bases, powers, strict=True)), Fraction(0))
+            if power.denominator != 1:
+                continue  # an irrational factor: the floats' judgement stands
+            new = self.values[bound.name] * Fraction(self.nice) ** int(power)
+            if new < bound.bound if bound.side == "low" else new > bound.bound:
+                return False
+        return True
 
 
 def _log10(x) -> float:
@@ -337,6 +365,7 @@ def _log10(x) -> float:
 # -- the result ---------------------------------------------------------------------------
 
 
+@immutable
 @dataclass(frozen=True, eq=False)
 class UnitFit:
     """The change of base units chosen by :func:`fit_units`.
@@ -353,8 +382,10 @@ class UnitFit:
     scaling : Scaling
         The similarity scaling this unit change is, for `s`:
         ``scaling.apply(values, s)`` gives `scaled`.
-    values, scaled : mapping of str to number
-        The values given and the same values in the new units.
+    values, scaled : mapping of str to Fraction or float
+        The values given and the same values in the new units: float in,
+        float out (see :meth:`pitheorem.Scaling.apply`); exact values are
+        Fractions.
     ranges : tuple of (str, Fraction, Fraction)
         The range of each constrained variable, in system order.
     satisfied, violated : tuple of str
@@ -380,8 +411,8 @@ class UnitFit:
     >>> ball = pt.System({"r": "L", "m": "M", "t": "T"})
     >>> fit = pt.fit_units(ball, {"r": 0.02, "m": 0.17, "t": 1},
     ...                    dimension_ranges={"L": (0.05, 10)}, nice=10)
-    >>> fit.feasible, fit.factors, fit.scaled["r"]
-    (True, {'M': 1, 'L': 100, 'T': 1}, 2)
+    >>> fit.feasible, fit.factors["L"], fit.scaled["r"]
+    (True, Fraction(100, 1), 2.0)
     """
 
     system: System
@@ -416,7 +447,7 @@ class UnitFit:
     def factors(self) -> dict[str, object]:
         """Factor by which readings of each base dimension are multiplied.
 
-        Exact (int or Fraction) for a rounded fit, floats otherwise.
+        Exact (Fraction) for a rounded fit, floats otherwise.
 
         Examples
         --------
@@ -428,8 +459,7 @@ class UnitFit:
         out = {}
         for b, u in self.unit_change.items():
             if self.nice is not None and u.denominator == 1:
-                f = Fraction(self.nice) ** int(u)
-                out[b] = int(f) if f.denominator == 1 else f
+                out[b] = Fraction(self.nice) ** int(u)
             else:
                 out[b] = float(self.s) ** float(u)
         return out
@@ -445,7 +475,7 @@ class UnitFit:
         >>> fit.new_units
         {'L': Fraction(1, 100)}
         """
-        return {b: (Fraction(1) / f if isinstance(f, int | Fraction) else 1.0 / f) for b, f in self.factors.items()}
+        return {b: 1 / f for b, f in self.factors.items()}
 
     def rounded(self, nice: int = 10) -> UnitFit:
         """The same request with factors restricted to powers of `nice`.
@@ -464,7 +494,7 @@ class UnitFit:
         >>> import pitheorem as pt
         >>> fit = pt.fit_units(pt.System({"l": "L"}), {"l": 0.004}, ranges={"l": (0.05, 10)})
         >>> fit.rounded(10).factors
-        {'L': 100}
+        {'L': Fraction(100, 1)}
         """
         return fit_units(self.system, dict(self.values), ranges={n: (lo, hi) for n, lo, hi in self.ranges},
                          fixed=self.fixed, fixed_units=self.fixed_units, nice=nice)
@@ -575,7 +605,7 @@ def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[s
     >>> fit = pt.fit_units(ball, {"r": 0.028, "m": 0.17, "g": 9.81, "dt": 1 / 240},
     ...                    ranges={"r": (0.05, 10)}, fixed=("dt",), nice=10)
     >>> fit.factors, fit.scaled["g"]
-    ({'M': 1, 'L': 10, 'T': 1}, 981/10)
+    ({'M': Fraction(1, 1), 'L': Fraction(10, 1), 'T': Fraction(1, 1)}, 98.1)
 
     When nothing fits, the conflict names the bounds that fight:
 
@@ -588,10 +618,12 @@ def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[s
         raise InvalidRequestError(f"fit_units needs a System, got {type(system).__name__}")
     if not isinstance(values, Mapping):
         raise InvalidRequestError(f"values must be a mapping of variable names to numbers, got {type(values).__name__}")
-    exact_values = {}
+    exact_values, given = {}, {}
     for name, x in values.items():
         system.index(name, "values")
-        exact_values[name] = _exact(x, f"the value of {name!r}")
+        given[name] = read_value(x, f"the value of {name!r}")
+        exact_values[name] = _in_float_range(read_number(x, f"the value of {name!r}", irrational_ok=True),
+                                             f"the value of {name!r}")
     if nice is not None and (isinstance(nice, bool) or not isinstance(nice, int | np.integer) or nice < 2):
         raise InvalidRequestError(f"nice must be an integer base of at least 2 (10, 2, ...), got {nice!r}")
     fixed = system.check_names(fixed, "fixed")
@@ -623,17 +655,16 @@ def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[s
         s = int(nice)
         units = [Fraction(round(float(x))) for x in v]
     scaling = Scaling.from_unit_change(system, dict(zip(system.base_dimensions, units, strict=True)))
-    exact = nice is not None and all(p.denominator == 1 for p in scaling.powers)
-    if exact:
-        scaled = scaling.apply({n: sympy.Rational(x.numerator, x.denominator) for n, x in exact_values.items()}, s)
-    else:
-        scaled = scaling.apply({n: float(x) for n, x in exact_values.items()}, float(s))
+    exact = nice is not None and all(p.denominator == 1 for p in scaling.vector)
+    # the ranges are decided exactly when the factors are exact; the scaled values keep float in, float out
+    exact_scaled = scaling.apply(exact_values, s) if exact else {}
+    scaled = scaling.apply(given, s if exact else float(s))  # float in, float out; rounded once when exact
 
     satisfied, violated, worst = [], [], 0.0
     for name, lo, hi in rng:
-        p = scaling.powers[system.index(name)]
+        p = scaling.vector[system.index(name)]
         if exact:
-            new = Fraction(int(scaled[name].p), int(scaled[name].q))
+            new = exact_scaled[name]
             ok = lo <= new <= hi
             z = _log10(new)
         else:
@@ -645,7 +676,7 @@ def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[s
     return UnitFit(
         system=system, s=s,
         unit_change=MappingProxyType(dict(zip(system.base_dimensions, units, strict=True))),
-        scaling=scaling, values=MappingProxyType(dict(values)), scaled=MappingProxyType(dict(scaled)),
+        scaling=scaling, values=MappingProxyType(given), scaled=MappingProxyType(scaled),
         ranges=rng, satisfied=tuple(satisfied), violated=tuple(violated),
         worst_violation=max(worst, 0.0) if violated else 0.0, conflict=conflict,
         fixed=fixed, fixed_units=fixed_units, nice=None if nice is None else int(nice), exact=exact,

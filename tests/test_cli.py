@@ -214,7 +214,7 @@ def _groups_with_values(model):
     for basis in model.system.bases():
         for g in model.system.pi_groups(repeating=basis):
             if all(n in model.values for n in g.exponents):
-                seen[g.powers] = g
+                seen[tuple(g.exponents.items())] = g
     return list(seen.values())
 
 

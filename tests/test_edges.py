@@ -21,8 +21,11 @@ from pitheorem.exact import (
     MAX_EXPONENT,
     MAX_FORMULA_LENGTH,
     MAX_NESTING,
+    is_float,
     read_exponent,
     read_number,
+    read_positive,
+    read_value,
     short_text,
 )
 
@@ -67,7 +70,7 @@ def test_search_with_two_large_coprime_denominators():
     s = pt.System({"l": "L", "t": "T", "m": "M", "v": "L/T"})
     q1, q2 = 999_999_999_989, 999_999_999_959
     res = pt.search(s, scale={"l": Fraction(1, q1), "t": Fraction(1, q2)}, fixed=())
-    assert res.count == 1
+    assert res.n_scalings == 1
     sc = res.scalings[0]
     assert sc.exponents["v"] == Fraction(1, q1) - Fraction(1, q2)
     assert sc.exponents["m"] == 0
@@ -102,7 +105,7 @@ def test_float_exponent_beyond_denominator_limit_is_named(value):
 ])
 def test_exponents_read_as_written(value, exponent):
     res = pt.search(LT, scale={"l": value}, fixed=())
-    assert res.count == 1
+    assert res.n_scalings == 1
     assert res.scalings[0].exponents["l"] == exponent
 
 
@@ -123,8 +126,8 @@ def test_exponent_limits(spec):
 
 def test_exponents_at_the_limits_are_accepted():
     s = pt.System({"x": f"L^{MAX_EXPONENT}", "y": f"T^(-1/{MAX_DENOMINATOR})"})
-    assert s.dimension("x").exponent("L") == MAX_EXPONENT
-    assert s.dimension("y").exponent("T") == Fraction(-1, MAX_DENOMINATOR)
+    assert s.dimension("x").exponent_of("L") == MAX_EXPONENT
+    assert s.dimension("y").exponent_of("T") == Fraction(-1, MAX_DENOMINATOR)
 
 
 @pytest.mark.parametrize("bad", [float("inf"), float("-inf"), float("nan"), True, None, "x", np.bool_(True)])
@@ -172,9 +175,9 @@ def test_double_sign_is_a_syntax_error():
     for text in ("L^--2", "L^+-2", "L^(--1/2)"):
         with pytest.raises(pt.DimensionSyntaxError):
             pt.Dimension.parse(text)
-    assert pt.Dimension.parse("L^-2").exponent("L") == -2
-    assert pt.Dimension.parse("L^+2").exponent("L") == 2
-    assert pt.Dimension.parse("L^(-1/-2)").exponent("L") == Fraction(1, 2)
+    assert pt.Dimension.parse("L^-2").exponent_of("L") == -2
+    assert pt.Dimension.parse("L^+2").exponent_of("L") == 2
+    assert pt.Dimension.parse("L^(-1/-2)").exponent_of("L") == Fraction(1, 2)
 
 
 def test_fit_units_with_huge_value_is_named():
@@ -200,6 +203,35 @@ def test_read_number_rule(value, expected):
 def test_read_number_refuses(bad):
     with pytest.raises(pt.NumberError):
         read_number(bad, "the test value")
+
+
+@pytest.mark.parametrize(("value", "expected"), [(2, Fraction(2)), ("1/3", Fraction(1, 3)), (0.5, Fraction(1, 2)),
+                                               (sympy.Rational(3, 4), Fraction(3, 4))])
+def test_read_positive_reads_like_read_number(value, expected):
+    assert read_positive(value, "the scale factor s") == expected
+
+
+@pytest.mark.parametrize("bad", [0, -2, "-1/3", 0.0, "big", True, float("inf"), -sympy.sqrt(2)])
+def test_read_positive_refuses_everything_but_positive_numbers(bad):
+    with pytest.raises(pt.NumberError, match="the scale factor s must be a positive finite number") as info:
+        read_positive(bad, "the scale factor s", irrational_ok=True)
+    assert info.value.culprit is bad
+
+
+def test_read_value_keeps_floats_and_makes_the_rest_fractions():
+    # float in, float out: the one rule for parameter values
+    for value in (9.81, np.float32(0.5), sympy.Float(0.25), sympy.pi):
+        assert type(read_value(value, "v")) is float
+    assert read_value(sympy.pi, "v") == pytest.approx(3.141592653589793)
+    for value, exact in ((3, Fraction(3)), ("1/3", Fraction(1, 3)), (sympy.Rational(1, 7), Fraction(1, 7)),
+                         (np.int64(-4), Fraction(-4))):
+        got = read_value(value, "v")
+        assert got == exact
+        assert type(got) is Fraction
+    with pytest.raises(pt.NumberError, match="'v'"):
+        read_value(True, "'v'")
+    assert is_float(np.array([1, 2]))
+    assert not is_float("0.5")
 
 
 def test_number_strings_up_to_a_thousand_characters_are_read():
@@ -323,7 +355,7 @@ def test_from_units_declares_what_pint_names():
 def provoked_errors():
     """One real instance of every error class, provoked through the public API where possible."""
     from pitheorem import errors
-    from pitheorem.cli import _parse_s
+    from pitheorem.cli import _parse_scale
 
     def catch(call):
         try:
@@ -350,7 +382,7 @@ def provoked_errors():
         errors.NumberError: (catch(lambda: pt.search(LT, scale={"l": float("nan")})), "nan"),
         errors.LimitError: (catch(lambda: pt.Dimension.parse("L^5000")), "5000"),
         errors.ModelFileError: (catch(lambda: pt.load_model_file("example:nope")), "example:nope"),
-        errors.CommandLineError: (catch(lambda: _parse_s("-2")), "-2"),
+        errors.CommandLineError: (catch(lambda: _parse_scale(["g=1", "g=2"])), "g"),
         errors.EngineUnavailableError: (errors.EngineUnavailableError("bullet"), "bullet"),
     }
 

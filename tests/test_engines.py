@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import math
 import pickle
 import subprocess
 import sys
 from fractions import Fraction
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 
@@ -60,7 +62,7 @@ def test_catalogue_entries_are_complete():
         assert c.engine in ENGINES
         assert c.name.isidentifier()
         assert c.name.startswith(c.engine + "_")
-        pt.Dimension.parse(c.dimension)
+        assert isinstance(c.dimension, pt.Dimension)
         assert c.source
         assert c.where
         assert c.note
@@ -90,14 +92,35 @@ def test_catalogue_entries_are_complete():
 )
 def test_catalogue_values(name, dimension, default):
     (c,) = hidden_constants(names=[name])
-    assert c.dim == pt.Dimension.parse(dimension)
+    assert c.dimension == pt.Dimension.parse(dimension)
     assert c.default == pytest.approx(default)
+
+
+def test_catalogue_is_read_whole_and_exactly_from_its_data_file():
+    # the values a float literal cannot show at a glance, compared exactly (not approx)
+    assert ENGINES == ("bullet", "mujoco")
+    assert [c.engine for c in CATALOGUE] == sorted(c.engine for c in CATALOGUE)  # the file's order, by engine
+    assert len(hidden_constants("bullet")) == 23
+    assert len(hidden_constants("mujoco")) == 18
+    assert hidden_constants(names=["bullet_time_step"])[0].default == 1 / 240
+    assert hidden_constants(names=["mujoco_angle_unit"])[0].default == math.pi / 180
+    assert math.isnan(hidden_constants(names=["bullet_default_motor_impulse"])[0].default)
+    assert hidden_constants(names=["bullet_split_impulse_penetration_threshold"])[0].default == -0.04
+    # the shared source texts are filled in: no placeholder is left, and each reaches the entries naming it
+    assert not any("{" in c.source or "}" in c.source for c in CATALOGUE)
+    multibody = [c.name for c in CATALOGUE if c.source.startswith("bullet3 src/BulletDynamics/Featherstone/btMultiBody")]
+    assert len(multibody) == 9
+    assert hidden_constants(names=["mujoco_timestep"])[0].source == (
+        "mujoco 4.0.0 model defaults (MjModel.opt, MjSpec.default); MuJoCo XML Reference (mujoco.readthedocs.io), "
+        "option/timestep")
+    assert hidden_constants(names=["bullet_collision_margin"])[0].source.startswith(
+        "measured with pybullet 3.2.7 (getPhysicsEngineParameters / getDynamicsInfo): getDynamicsInfo(...)[11]")
 
 
 def test_hidden_constants_filters():
     assert all(c.engine == "mujoco" for c in hidden_constants("mujoco"))
-    assert all(not c.dimensionless for c in hidden_constants("bullet", dimensional=True))
-    assert all(c.dimensionless for c in hidden_constants("bullet", dimensional=False))
+    assert all(not c.dimension.is_dimensionless for c in hidden_constants("bullet", dimensional=True))
+    assert all(c.dimension.is_dimensionless for c in hidden_constants("bullet", dimensional=False))
 
 
 def test_hidden_constants_bad_inputs():
@@ -128,7 +151,7 @@ def test_engine_search_shows_the_engine_breaks_every_gravity_scaling():
 def test_engine_search_with_only_the_time_step_keeps_the_time_free_answers():
     res = engine_search(ROD.system, "mujoco", {"g": 1}, names=["mujoco_timestep"])
     assert res.feasible
-    assert res.count == len(TIME_FREE)
+    assert res.n_scalings == len(TIME_FREE)
 
 
 def test_broken_constants_of_the_papers_scaling():
@@ -151,6 +174,11 @@ def test_broken_constants_of_a_time_free_scaling():
 def test_broken_constants_needs_a_scaling():
     with pytest.raises(pt.InvalidRequestError, match="Scaling"):
         broken_constants({"g": 1}, "bullet")
+    sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1})
+    look_alike = SimpleNamespace(system=sc.system, powers=sc.vector, exponent_of=sc.exponent_of,
+                                 unit_change=sc.unit_change)  # what the old attribute check accepted
+    with pytest.raises(pt.InvalidRequestError, match="needs a Scaling, got SimpleNamespace"):
+        broken_constants(look_alike, "bullet")
 
 
 def test_engine_unavailable_error_message_and_pickle():

@@ -93,6 +93,44 @@ def test_bad_scene_options_exit_2_naming_them(capsys, scene, says):
     assert "Traceback" not in err
 
 
+def test_scene_options_have_one_list_that_the_loader_parser_and_help_use(capsys):
+    import inspect
+
+    import pitheorem as pt
+    from pitheorem.engines.cli import parse_scene
+    from pitheorem.engines.urdf import SCENE_OPTIONS, load_urdf
+
+    names = tuple(SCENE_OPTIONS)
+    assert names == ("fixed_base", "ground", "split_impulse", "g", "damping", "base_position")
+    # the defaults load_urdf documents
+    assert {name: default for name, (_kind, default) in SCENE_OPTIONS.items()} == {
+        "fixed_base": False, "ground": False, "split_impulse": True, "g": 9.81, "damping": None,
+        "base_position": (0.0, 0.0, 0.0)}
+    # load_urdf's keyword options are exactly the scene (and the settings file)
+    keywords = [p.name for p in inspect.signature(load_urdf).parameters.values() if p.kind is p.KEYWORD_ONLY]
+    assert sorted(keywords) == sorted(("settings", *names))
+    # the parser takes every name of the list, each by its kind, and lists them in its message
+    typed = {"flag": "true", "number": "2", "point": "1,2,3"}
+    parsed = parse_scene([f"{name}={typed[kind]}" for name, (kind, _default) in SCENE_OPTIONS.items()])
+    assert parsed == {"fixed_base": True, "ground": True, "split_impulse": True, "g": 2.0, "damping": 2.0,
+                      "base_position": (1.0, 2.0, 3.0)}
+    with pytest.raises(pt.InvalidRequestError) as caught:
+        parse_scene(["gravity=1"])
+    assert str(caught.value).endswith("NAME one of " + ", ".join(names))
+    # a URDF loaded with no scene option runs with every default of the list
+    settings = engines.load(DATA / "slider_arm.urdf").settings()
+    assert settings["loadURDF"] == {"basePosition": list(SCENE_OPTIONS["base_position"][1]),
+                                    "useFixedBase": SCENE_OPTIONS["fixed_base"][1]}
+    assert settings["ground"] is None
+    assert settings["setPhysicsEngineParameter"]["useSplitImpulse"] == int(SCENE_OPTIONS["split_impulse"][1])
+    assert settings["gravity"] == [0.0, 0.0, -SCENE_OPTIONS["g"][1]]
+    # the command line's help for --scene names every option
+    assert main(["params", "--help"]) == 0
+    help_text = " ".join(capsys.readouterr().out.split())
+    scene_help = help_text[help_text.index("--scene"):]
+    assert all(f"{name}=" in scene_help for name in names)
+
+
 def test_scene_options_are_refused_for_other_files(capsys):
     assert main(["groups", "example:hinged_rod", "--scene", "ground=true"]) == 2
     assert "URDF" in capsys.readouterr().err

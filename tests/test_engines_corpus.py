@@ -34,11 +34,23 @@ def test_the_corpus_is_gymnasiums_fourteen_files():
     assert len(CORPUS) == 14
 
 
-def load_quiet(path):
+def load_quiet(path, **options):
+    """engines.load without its warnings about elements it copies unchanged.
+
+    gymnasium's files carry <numeric name="frame_skip">, custom data of no known dimension; two of
+    pybullet_data's URDFs have compound meshes (tested on their own below).
+    """
     with warnings.catch_warnings():
-        # gymnasium's files carry <numeric name="frame_skip">, custom data of no known dimension
         warnings.simplefilter("ignore", engines.UnscalableModelWarning)
-        return engines.load(path)
+        return engines.load(path, **options)
+
+
+def exhaustive(test):
+    """The slow sweep of a test over models: s = 2 and 10, each with and without controls."""
+    for mark in (pytest.mark.parametrize("controls", [False, True]), pytest.mark.parametrize("s", [2, 10]),
+                 pytest.mark.slow):
+        test = mark(test)
+    return test
 
 
 def prepared(name, tmp_path, solver=None):
@@ -88,10 +100,8 @@ def test_humanoids_pgs_solver_is_not_scale_free(name, tmp_path):
     assert not rep.similar
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("name", CORPUS)
-@pytest.mark.parametrize("s", [2, 10])
-@pytest.mark.parametrize("controls", [False, True])
+@exhaustive
 def test_corpus_exhaustive(name, s, controls, tmp_path):
     solver = "Newton" if name in PGS else None
     rep = check(prepared(name, tmp_path, solver=solver), tmp_path, s, controls)
@@ -116,16 +126,12 @@ def urdf_check(name, tmp_path, s, controls):
     path = Path(pybullet_data.getDataPath()) / name
     # PyBullet's multibody damping (0.04) mixes dimensions and its split-impulse threshold (a length) cannot be
     # set from Python: both are switched off, in the original and in the scaled run alike
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", engines.UnscalableModelWarning)  # the compound meshes: tested below
-        model = engines.load(path, base_position=(0, 0, 1), ground=True, damping=0.0, split_impulse=False)
+    model = load_quiet(path, base_position=(0, 0, 1), ground=True, damping=0.0, split_impulse=False)
     res = pt.search(model.system(), scale={"g": 1}, fixed=("t",))
     sc = res.scalings[0]
     out = model.scaled(sc, s).save(tmp_path / "scaled.urdf")
     assert Path(f"{out}.settings.json").is_file()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", engines.UnscalableModelWarning)
-        again = engines.load(out)  # the saved settings beside the file set up the scaled scene
+    again = load_quiet(out)  # the saved settings beside the file set up the scaled scene
     masses = [p for p in model.parameters if p.name.endswith("_mass")]
     for p in masses:  # the saved file holds the scaled masses
         assert again.parameter(p.name).value[0] == pytest.approx(p.value[0] * float(s) ** sc.exponent_of("M"))
@@ -146,10 +152,8 @@ def test_urdf_known_not_similar(name, tmp_path):
     assert not rep.similar
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("name", URDFS)
-@pytest.mark.parametrize("s", [2, 10])
-@pytest.mark.parametrize("controls", [False, True])
+@exhaustive
 def test_urdf_exhaustive(name, s, controls, tmp_path):
     rep = urdf_check(name, tmp_path, s, controls)
     assert rep.similar, str(rep)

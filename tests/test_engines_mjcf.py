@@ -6,6 +6,7 @@ import math
 import pickle
 import warnings
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -145,6 +146,26 @@ def test_keyframes_scale_with_the_coordinates():
     assert b.key_qvel[0][6] == 10.0
 
 
+def test_keyframes_of_a_model_with_activations_scale_velocity_and_activation_apart(tmp_path):
+    # a filtered motor has an activation: the coordinates are qpos, qvel, then act; a keyframe's qvel is
+    # the velocities alone (this raised a numpy broadcast error before)
+    path = tmp_path / "filtered.xml"
+    path.write_text("""<mujoco><worldbody><body><joint name="slide" type="slide" axis="1 0 0"/>
+      <geom type="box" size="0.1 0.1 0.1" mass="1"/></body></worldbody>
+      <actuator><general name="f" joint="slide" dyntype="filter" dynprm="0.1" gainprm="5"/></actuator>
+      <keyframe><key time="0.5" qpos="0.25" qvel="0.5" ctrl="0.75" act="1"/></keyframe></mujoco>""")
+    model = engines.load(path)
+    sc = pt.Scaling.from_unit_change(model.system(), {"M": 1, "L": 1})
+    b = model.scaled(sc, 2).backend.mjmodel
+    # oracle by hand, mass and length units times 2: qpos a length (s), qvel L T^-1 (s), time T (1); ctrl
+    # and act are the filtered force's input, a force M L T^-2 (s^2)
+    assert b.key_qpos[0].tolist() == [0.5]
+    assert b.key_qvel[0].tolist() == [1.0]
+    assert b.key_time[0] == 0.5
+    assert b.key_ctrl[0].tolist() == [3.0]
+    assert b.key_act[0].tolist() == [4.0]
+
+
 def test_with_values_and_bad_requests():
     model = load("contact.xml")
     assert model.with_values(timestep=0.001).parameter("timestep").value == (0.001,)
@@ -156,6 +177,38 @@ def test_with_values_and_bad_requests():
     for bad in (0, -1, math.inf, True, "x"):
         with pytest.raises(pt.InvalidRequestError):
             model.scaled(sc, bad)
+    # the check is isinstance, not a list of attributes: a look-alike is refused
+    look_alike = SimpleNamespace(system=sc.system, powers=sc.vector, vector=sc.vector, exponent_of=sc.exponent_of,
+                                 units=sc.unit_change_vector, unit_change_vector=sc.unit_change_vector)
+    with pytest.raises(pt.InvalidRequestError, match="Scaling, got SimpleNamespace"):
+        model.scaled(look_alike, 2)
+
+
+def test_with_values_is_multiplied_by_the_ratio_and_may_reach_zero_or_change_sign():
+    model = engines.load(engines.example_path("pendulum.xml"))
+    # one copy by either route (19.62 / 9.81 is 2 exactly in floats)
+    doubled = model.with_values(g=19.62)
+    assert doubled.parameters == model.multiplied(g=2).parameters
+    assert doubled.parameter("g").value == (19.62,)
+    assert doubled.parameter("timestep").value == model.parameter("timestep").value
+    # a value of 0, or of the other sign: with_values reaches it, multiplied refuses the factor
+    assert model.with_values(tolerance=0).parameter("tolerance").value == (0.0,)
+    assert model.with_values(actuator_torque_gainprm_gain=-2).parameter("actuator_torque_gainprm_gain").value == (
+        -2.0,)
+    for bad in (0, -2, math.inf, math.nan, True):
+        with pytest.raises(pt.InvalidRequestError, match="positive finite"):
+            model.multiplied(actuator_torque_gainprm_gain=bad)
+    # a vector entry by entry with multiplied; with_values sets one nonzero number only
+    assert model.multiplied(body_arm_pos=3).parameter("body_arm_pos").value == (0.0, 0.0, 3.0)
+    with pytest.raises(pt.InvalidRequestError, match="one nonzero number"):
+        model.with_values(body_arm_pos=1)
+    with pytest.raises(pt.InvalidRequestError, match="one nonzero number"):
+        model.with_values(tolerance=0).with_values(tolerance=1e-8)
+    for route in (model.with_values, model.multiplied):
+        with pytest.raises(pt.UnknownVariableError):
+            route(no_such=2)
+    assert model.parameter("g").value == (9.81,)  # the original is untouched
+    assert model.with_values(g=19.62).path == model.multiplied(g=2).path == ""
 
 
 @pytest.mark.parametrize(("name", "element", "reason"), [
@@ -179,6 +232,29 @@ def test_missing_and_non_xml_files(tmp_path):
     junk.write_text("this is not XML")
     with pytest.raises(EngineModelError, match=r"junk\.xml"):
         engines.load(junk)
+
+
+def test_an_engine_model_cannot_be_changed_by_assignment():
+    import copy
+    from dataclasses import FrozenInstanceError
+
+    model = engines.load(engines.example_path("pendulum.xml"))
+    for name in ("engine", "path", "parameters", "_backend", "anything"):
+        with pytest.raises(FrozenInstanceError, match=repr(name)):
+            setattr(model, name, None)
+        with pytest.raises(FrozenInstanceError):
+            delattr(model, name)
+    assert (model.engine, model.path.endswith("pendulum.xml"), len(model.parameters)) == ("mujoco", True, 49)
+    assert copy.copy(model) is model
+    assert copy.deepcopy(model) is model
+
+
+def test_an_unknown_example_names_the_shipped_ones():
+    assert engines.example_path("superball.xml").name == "superball.xml"
+    with pytest.raises(pt.InvalidRequestError) as caught:
+        engines.example_path("hopper.xml")
+    assert "'hopper.xml'" in str(caught.value)
+    assert str(caught.value).endswith("the shipped models are pendulum.xml, superball.xml")
 
 
 def test_mixed_fixed_tendon_cannot_be_rewritten(tmp_path):

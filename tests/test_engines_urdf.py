@@ -62,6 +62,31 @@ def test_engine_defaults_are_pybullets_own():
         pb.disconnect(client)
 
 
+def test_engine_settings_default_to_the_hidden_constant_catalogue():
+    model = engines.load(ARM)  # PyBullet's own settings: split impulse on, multibody damping 0.04
+    catalogue = {c.name: c for c in engines.hidden_constants("bullet")}
+    pairs = {"timestep": "bullet_time_step", "contactSlop": "bullet_contact_slop",
+             "restitutionVelocityThreshold": "bullet_restitution_velocity_threshold",
+             "solverResidualThreshold": "bullet_solver_residual_threshold",
+             "splitImpulsePenetrationThreshold": "bullet_split_impulse_penetration_threshold",
+             "joint_slide_maxJointVelocity": "bullet_max_joint_velocity",
+             "joint_swing_maxJointVelocity": "bullet_max_joint_velocity"}
+    for name, constant in pairs.items():
+        assert model.parameter(name).value == (catalogue[constant].default,)
+    for name in ("timestep", "contactSlop", "restitutionVelocityThreshold", "solverResidualThreshold"):
+        assert model.parameter(name).dimension == catalogue[pairs[name]].dimension
+    # the values bullet3 and the PyBullet guide state, written out (an oracle apart from the catalogue)
+    assert [model.parameter(name).value[0] for name in pairs] == [1 / 240, 1e-5, 0.2, 1e-7, -0.04, 100.0, 100.0]
+    damping = model.parameter("link_cart_angularDamping")
+    assert damping.value == (0.04,)
+    assert damping.parts == (("rate", pt.Dimension.parse("T^-1")), ("per_radian", pt.Dimension.parse("1")))
+    assert dict(damping.parts) == {"rate": catalogue["bullet_angular_damping_k1"].dimension,
+                                   "per_radian": catalogue["bullet_angular_damping_k2"].dimension}
+    calls = engines.load(ARM, ground=True).settings()
+    assert calls["ground"] == {"collisionMargin": 0.001}
+    assert [call["maxJointVelocity"] for call in calls["changeDynamics"] if "maxJointVelocity" in call] == [100.0] * 2
+
+
 def test_mixed_damping_is_refused_until_switched_off():
     model = engines.load(ARM)
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
+import numpy as np
 import pytest
 import sympy
 
@@ -63,8 +64,12 @@ def test_group_display_and_evaluate(rod):
     assert pi_g.latex == r"\frac{g l m}{k_{\theta}}"
     assert pi_g._repr_latex_().startswith("$\\displaystyle \\Pi_{g} =")
     values = {"m": Fraction(3, 2), "l": 2, "g": Fraction(981, 100), "k_theta": 100}
-    assert pi_g.evaluate(values) == sympy.Rational(2943, 10000)
-    assert pi_g.evaluate({k: float(v) for k, v in values.items()}) == pytest.approx(0.2943)
+    exact = pi_g.evaluate(values)
+    assert exact == Fraction(2943, 10000)
+    assert type(exact) is Fraction
+    inexact = pi_g.evaluate({k: float(v) for k, v in values.items()})
+    assert inexact == pytest.approx(0.2943)
+    assert type(inexact) is float
     assert eval(repr(pi_g), {"PiGroup": pt.PiGroup}) == pi_g
 
 
@@ -117,10 +122,22 @@ def test_from_units_angle_as_base():
     assert str(s.dimension("theta")) == "A"
 
 
+def test_constructor_takes_integer_exponents_as_given():
+    group = pt.PiGroup({"t": 2, "l": Fraction(-4, 2), "g": 0, "m": np.int64(1)}, "t")
+    assert list(group.exponents.items()) == [("t", 2), ("l", -2), ("m", 1)]  # zeros dropped, order kept
+    assert all(type(p) is int for p in group.exponents.values())
+    assert pt.PiGroup((("t", 2), ("l", -1))) == pt.PiGroup({"t": 2, "l": -1})  # pairs or a mapping
+    with pytest.raises(pt.InvalidRequestError, match="from_exponents") as info:
+        pt.PiGroup({"t": Fraction(1, 2)})
+    assert info.value.culprit == Fraction(1, 2)
+    with pytest.raises(pt.NumberError):
+        pt.PiGroup({"t": "two"})
+
+
 def test_from_exponents_puts_zero_for_variables_only_in_the_order():
     group = pt.PiGroup.from_exponents({"a": 1, "b": -1}, order=("b", "c", "a"))
     # order b, c, a: the first nonzero (b) is made positive; c is absent, not an exponent
-    assert group.powers == (("b", 1), ("a", -1))
+    assert list(group.exponents.items()) == [("b", 1), ("a", -1)]
 
 
 def test_groups_are_immutable_and_hashable(rod):

@@ -80,8 +80,9 @@ d = { dimension = "L", value = " -4/2 " }
 e = { dimension = "L", value = 1e-3 }
 """))
     assert model.values == {"a": Fraction(1, 3), "b": 2, "c": 2.5, "d": -2, "e": 0.001}
-    assert type(model.values["b"]) is int
-    assert type(model.values["d"]) is int
+    assert type(model.values["b"]) is Fraction  # every exact value is a Fraction
+    assert type(model.values["d"]) is Fraction
+    assert type(model.values["c"]) is float  # floats stay floats
 
 
 def test_units_read_by_pint(tmp_path):
@@ -124,6 +125,9 @@ def test_round_trip_toml(tmp_path):
     rod = load_model_file("example:hinged_rod")
     new = {**rod.values, "m": Fraction(3, 7), "l": 5}
     out = write_model_file(rod, tmp_path / "copy.toml", new)
+    text = out.read_text()
+    assert 'value = "3/7"' in text
+    assert "value = 5, " in text  # an integral Fraction is written as a TOML integer
     again = load_model_file(out)
     assert again.values == new
     assert again.system == rod.system

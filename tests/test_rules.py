@@ -68,7 +68,7 @@ def test_each_rule_agrees_with_search(rod):
         assert res.feasible
         sc = res.scalings[0]
         for name in rod.variables:
-            p = rule.exponent_for(rod.dimension(name))
+            p = rule.exponent_of(rod.dimension(name))
             if p is not None:
                 assert sc.exponents[name] == p, (rule.name, name)
         for name, _, p in v.missing:

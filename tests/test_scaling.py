@@ -27,8 +27,8 @@ def test_composition_adds_exponents_and_unit_changes():
 def test_composition_with_a_scaling_without_units_has_none():
     units = pt.Scaling.from_unit_change(LT, {"L": 1})
     bare = pt.Scaling(LT, (Fraction(0), Fraction(0), Fraction(1)), None)  # v alone: not a change of units
-    assert (units * bare).units is None
-    assert (bare * units).units is None
+    assert not (units * bare).is_unit_change
+    assert (bare * units).unit_change_vector is None
     assert (units * bare).exponents == {"l": 1, "t": 0, "v": 2}
 
 
@@ -74,3 +74,37 @@ def test_dimensionless_systems_allow_only_the_identity():
     assert pt.Scaling.from_exponents(plain, {"x": 0}).exponents == {"x": 0, "y": 0}
     with pytest.raises(pt.InvalidRequestError, match="not a similarity scaling"):
         pt.Scaling.from_exponents(plain, {"x": 1})
+
+
+def test_apply_float_in_float_out_exact_in_exact_out():
+    sc = pt.Scaling.from_unit_change(LT, {"L": 1})  # l -> s l, v -> s v, t unchanged
+    out = sc.apply({"l": 9.81, "t": 3, "v": Fraction(1, 3)}, s=10)
+    # a float with an exact s: 981/100 times 10, rounded once (not 9.81 * 10.0 = 98.10000000000001)
+    assert out["l"] == 98.1
+    assert type(out["l"]) is float
+    assert out["t"] == 3
+    assert type(out["t"]) is Fraction
+    assert out["v"] == Fraction(10, 3)
+    assert type(out["v"]) is Fraction
+    floats = sc.apply({"l": 9.81, "t": 3, "v": Fraction(1, 3)}, s=10.0)  # a float s: every result a float
+    assert all(type(x) is float for x in floats.values())
+    assert floats["t"] == 3.0
+    assert floats["v"] == pytest.approx(10 / 3)
+
+
+def test_irrational_results_are_exact_sympy_numbers():
+    import sympy
+
+    half = pt.Scaling.from_exponents(pt.System({"l": "L"}), {"l": Fraction(1, 2)})  # l -> s^(1/2) l
+    assert half.apply({"l": 3}, s=4) == {"l": Fraction(6)}
+    assert type(half.apply({"l": 3}, s=4)["l"]) is Fraction
+    assert half.apply({"l": 8}, s="1/4") == {"l": Fraction(4)}
+    root = half.apply({"l": 3}, s=2)["l"]
+    assert not isinstance(root, Fraction)
+    assert sympy.simplify(root - 3 * sympy.sqrt(2)) == 0
+    assert half.apply({"l": 3.0}, s=2)["l"] == pytest.approx(3 * 2**0.5)
+    assert half.factors(9) == {"l": Fraction(3)}
+    assert type(half.factors(9)["l"]) is Fraction
+    assert half.factors(2)["l"] == sympy.sqrt(2)
+    assert half.factors(2.0) == {"l": pytest.approx(2**0.5)}
+    assert type(half.factors(2.0)["l"]) is float

@@ -541,7 +541,7 @@ def test_fixed_steps_cover_the_span():
 
 @pytest.mark.parametrize("bad", [0, -1.0, float("inf"), float("nan"), "soon", None, True, False])
 def test_positive_float_refuses_and_names(bad):
-    with pytest.raises(pt.InvalidRequestError, match=r"^dt must be a positive finite number, got "):
+    with pytest.raises(pt.InvalidRequestError, match=r"^dt must be a positive finite number such as 2, 0.5 or .1/3., got "):
         positive_float(bad, "dt")
     assert positive_float("2.5", "dt") == 2.5
     assert positive_float(np.float32(0.5), "dt") == 0.5

@@ -8,7 +8,6 @@ import pickle
 from fractions import Fraction
 
 import pytest
-import sympy
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -28,7 +27,7 @@ def rows_of(system, values, bounds, *, frozen=()):
     free = [b for b in system.base_dimensions if b not in frozen]
     rows = []
     for bnd in bounds:
-        d = [float(system.dimension(bnd.name).exponent(b)) for b in free]
+        d = [float(system.dimension(bnd.name).exponent_of(b)) for b in free]
         z0 = math.log10(float(values[bnd.name]))
         if bnd.side == "low":  # z0 + d.y >= log lo
             rows.append(([-x for x in d], z0 - math.log10(bnd.bound)))
@@ -65,7 +64,7 @@ def fixed_rows(system, fixed, *, frozen=()):
     free = [b for b in system.base_dimensions if b not in frozen]
     rows = []
     for name in fixed:
-        d = [float(system.dimension(name).exponent(b)) for b in free]
+        d = [float(system.dimension(name).exponent_of(b)) for b in free]
         rows += [(d, 0.0), ([-x for x in d], 0.0)]
     return rows
 
@@ -78,7 +77,7 @@ def float_rows(system, values, *, frozen=(), limit=300.0):
         e = [float(i == j) for j in range(len(free))]
         rows += [(e, limit), ([-x for x in e], limit)]
     for name in system.variables:
-        d = [float(system.dimension(name).exponent(b)) for b in free]
+        d = [float(system.dimension(name).exponent_of(b)) for b in free]
         rows += [(d, limit), ([-x for x in d], limit)]
         if values.get(name):
             z0 = math.log10(abs(float(values[name])))
@@ -169,7 +168,11 @@ def test_convention_matches_scaling_from_unit_change():
     fit = pt.fit_units(sys_, {"l": 0.004, "v": 1, "t": 1}, ranges={"l": (0.05, 10)}, fixed_units=("T",), nice=10)
     assert fit.factors == {"L": 100, "T": 1}  # readings of length times 100: centimetres
     assert fit.new_units == {"L": Fraction(1, 100), "T": Fraction(1)}
-    assert fit.scaled == {"l": sympy.Rational(2, 5), "v": 100, "t": 1}
+    # float in, float out (rounded once from the exact product); exact values stay exact Fractions
+    assert fit.scaled == {"l": 0.4, "v": 100, "t": 1}
+    assert type(fit.scaled["l"]) is float
+    assert type(fit.scaled["v"]) is Fraction
+    assert type(fit.factors["L"]) is Fraction
     assert fit.scaling.exponents == {"l": 2, "v": 2, "t": 0}  # powers of s = 10
 
 
@@ -179,7 +182,8 @@ def test_nice_powers_of_two_exact():
     assert fit.feasible
     assert fit.exact
     assert fit.factors == {"M": 4, "L": Fraction(1, 2)}
-    assert fit.scaled == {"l": sympy.Rational(3, 2), "m": sympy.Rational(4, 3)}
+    assert fit.scaled == {"l": Fraction(3, 2), "m": Fraction(4, 3)}
+    assert all(type(v) is Fraction for v in (*fit.scaled.values(), *fit.factors.values()))
 
 
 def test_nice_can_fail_where_continuous_fits():
@@ -315,7 +319,7 @@ def test_property_fit(req):
     applied = fit.scaling.apply(values, float(fit.s))
     for nm in values:
         assert math.isclose(float(fit.scaled[nm]), float(applied[nm]), rel_tol=1e-9)
-        decades = sum(math.log10(float(f)) * float(system.dimension(nm).exponent(b)) for b, f in fit.factors.items())
+        decades = sum(math.log10(float(f)) * float(system.dimension(nm).exponent_of(b)) for b, f in fit.factors.items())
         assert math.log10(float(fit.scaled[nm])) == pytest.approx(math.log10(values[nm]) + decades, abs=1e-9)
     if fit.feasible:
         in_range(fit)
@@ -326,3 +330,14 @@ def test_property_fit(req):
         check_conflict(fit)
     else:
         assert fit.conflict
+
+
+def test_rounded_fit_names_a_conflict_that_only_exact_arithmetic_sees():
+    # found by test_property_fit: 1.0000000000000002e-06 (read as that decimal) times 10^7 is
+    # 10.000000000000002, above the bound 10 by far less than the floats' tolerance; 10^6 gives
+    # 1.0000000000000002, below the low bound. The fit says so exactly, and so must the conflict.
+    fit = pt.fit_units(pt.System({"x": "T"}), {"x": 1.0000000000000002e-06}, ranges={"x": (1.2589254117941673, 10.0)},
+                       nice=10)
+    assert fit.violated == ("x",)
+    assert fit.scaled["x"] == 10.000000000000002
+    assert [(b.name, b.side) for b in fit.conflict] == [("x", "low"), ("x", "high")]

@@ -17,6 +17,7 @@ from ..errors import InvalidRequestError
 from ..exact import read_number
 from ..modelfile import ModelFile
 from .model import EngineModel, UnscalableParameterError, load, model_kind
+from .urdf import SCENE_OPTIONS
 
 __all__ = ["apply_engine", "engine_model_file", "is_engine_file", "parse_scene", "print_params"]
 
@@ -33,8 +34,6 @@ def is_engine_file(path: str) -> bool:
     return not str(path).startswith("example:") and model_kind(path) in ("mjcf", "urdf")
 
 
-_SCENE_FLAGS = ("fixed_base", "ground", "split_impulse")
-_SCENE_NUMBERS = ("g", "damping")
 _TRUTH = {"true": True, "yes": True, "1": True, "false": False, "no": False, "0": False}
 
 
@@ -44,9 +43,10 @@ def parse_scene(items: list[str] | None) -> dict:
     Parameters
     ----------
     items : list of str or None
-        ``fixed_base``, ``ground`` and ``split_impulse`` take true/false;
-        ``g`` and ``damping`` a number; ``base_position`` three numbers
-        separated by commas.
+        Names of ``pitheorem.engines.urdf.SCENE_OPTIONS``: ``fixed_base``,
+        ``ground`` and ``split_impulse`` take true/false; ``g`` and
+        ``damping`` a number; ``base_position`` three numbers separated by
+        commas.
 
     Returns
     -------
@@ -64,27 +64,27 @@ def parse_scene(items: list[str] | None) -> dict:
     {'ground': True, 'damping': 0.0, 'base_position': (0.0, 0.0, 1.0)}
     """
     options = {}
-    known = (*_SCENE_FLAGS, *_SCENE_NUMBERS, "base_position")
     for item in items or ():
         name, sep, text = item.partition("=")
         name, text = name.strip(), text.strip()
-        if not sep or name not in known:
-            raise InvalidRequestError(f"--scene {item!r}: write NAME=VALUE with NAME one of {', '.join(known)}")
+        if not sep or name not in SCENE_OPTIONS:
+            raise InvalidRequestError(f"--scene {item!r}: write NAME=VALUE with NAME one of {', '.join(SCENE_OPTIONS)}")
         if name in options:
             raise InvalidRequestError(f"--scene sets {name!r} twice")
-        if name in _SCENE_FLAGS:
+        kind = SCENE_OPTIONS[name][0]
+        if kind == "flag":
             if text.lower() not in _TRUTH:
                 raise InvalidRequestError(f"--scene {item!r}: {name} is true or false")
             options[name] = _TRUTH[text.lower()]
             continue
         parts = text.split(",")
-        if len(parts) != (3 if name == "base_position" else 1):
+        if len(parts) != (3 if kind == "point" else 1):
             raise InvalidRequestError(f"--scene {item!r}: {name} takes "
-                                      + ("three numbers such as 0,0,1" if name == "base_position" else "one number"))
+                                      + ("three numbers such as 0,0,1" if kind == "point" else "one number"))
         numbers = tuple(float(read_number(part.strip(), f"--scene {name}")) for part in parts)
-        if name != "base_position" and not (numbers[0] >= 0):
+        if kind == "number" and not (numbers[0] >= 0):
             raise InvalidRequestError(f"--scene {item!r}: {name} cannot be negative")
-        options[name] = numbers if name == "base_position" else numbers[0]
+        options[name] = numbers if kind == "point" else numbers[0]
     return options
 
 

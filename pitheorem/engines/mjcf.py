@@ -31,6 +31,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Callable
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -39,7 +40,17 @@ import numpy as np
 from ..dimensions import Dimension
 from ..errors import PiTheoremError
 from ..simulation import nudged
-from .model import EngineModel, EngineModelError, Parameter, dim, power_factor, warn_unscalable
+from .model import (
+    EngineModel,
+    EngineModelError,
+    JointKind,
+    Parameter,
+    dim,
+    dimension_factor,
+    identifier,
+    unique_name,
+    warn_unscalable,
+)
 
 __all__ = ["MjcfBackend", "load_mjcf"]
 
@@ -57,27 +68,11 @@ def _mujoco():
     return _engine_module("mujoco")
 
 
-@dataclass(frozen=True)
-class JointKind:
-    """Coordinate and generalised-force dimensions of one joint type."""
-
-    q: object  # Dimension, or None for the free joint
-    force: object
-
-    def per(self, numerator, power: int, rate: int = 0):
-        """``numerator / (q T^-rate)^power``: the dimension of a polynomial coefficient."""
-        return numerator * (self.q * _T ** (-rate)) ** (-power)
-
-
-_HINGE = JointKind(_ONE, _TORQUE)
-_SLIDE = JointKind(_L, _FORCE)
-
-
 def _joint_kind(mj, jtype) -> JointKind | None:
     if jtype == mj.mjtJoint.mjJNT_SLIDE:
-        return _SLIDE
+        return JointKind.SLIDE
     if jtype in (mj.mjtJoint.mjJNT_HINGE, mj.mjtJoint.mjJNT_BALL):
-        return _HINGE
+        return JointKind.HINGE
     return None  # free
 
 
@@ -112,11 +107,6 @@ def _array_slot(name, path, elem, attr, index, dimension, source, parts=(), note
     return Slot(name, path, read, write, dimension, source, parts, note)
 
 
-def _clean(text: str) -> str:
-    out = "".join(c if c.isalnum() or c == "_" else "_" for c in text)
-    return out if out and not out[0].isdigit() else f"_{out}"
-
-
 class _Walker:
     """Walk a spec's elements in a fixed order and list their dimensional attributes."""
 
@@ -130,16 +120,12 @@ class _Walker:
 
     def label(self, kind: str, elem, index: int) -> tuple[str, str]:
         name = getattr(elem, "name", "") or ""
-        ident = _clean(f"{kind}_{name}" if name else f"{kind}{index}")
+        ident = identifier(f"{kind}_{name}" if name else f"{kind}{index}")
         path = f"{kind} {name!r}" if name else f"{kind} #{index}"
         return ident, path
 
     def unique(self, ident: str) -> str:
-        out, k = ident, 2
-        while out in self.names:
-            out, k = f"{ident}_{k}", k + 1
-        self.names.add(out)
-        return out
+        return unique_name(ident, self.names)
 
     def source(self, kind, elem, attr) -> str:
         default = self.defaults.get(kind)
@@ -168,6 +154,35 @@ class _Walker:
 
     def add_solimp(self, kind, elem, ident, path, attr, violation):
         self.add(kind, elem, ident, path, attr, violation, slice(2, 3), "_width")
+
+    def spring_and_drive(self, kind, elem, ident, path, joint_kind: JointKind):
+        """A joint's or a tendon's spring and damper polynomials, armature, friction loss and force range."""
+        q, force = joint_kind.q, joint_kind.force
+        for i in range(3):  # a polynomial shorter than three terms stops early (add skips what is absent)
+            suffix = "" if i == 0 else f"_poly{i}"
+            self.add(kind, elem, ident, path, "stiffness", joint_kind.per(force, i + 1), slice(i, i + 1), suffix)
+            self.add(kind, elem, ident, path, "damping", joint_kind.per(force, i + 1, rate=1), slice(i, i + 1),
+                     suffix)
+        self.add(kind, elem, ident, path, "armature", force / (q * _T ** -2))
+        self.add(kind, elem, ident, path, "frictionloss", force)
+        self.add(kind, elem, ident, path, "actfrcrange", force)
+
+    def limit_and_friction_softness(self, kind, elem, ident, path, q):
+        """The soft-constraint parameters of a joint's or a tendon's limit and of its friction loss."""
+        for constraint in ("limit", "friction"):
+            self.add_solref(kind, elem, ident, path, f"solref_{constraint}")
+            self.add_solimp(kind, elem, ident, path, f"solimp_{constraint}", q)
+
+    def refuse(self, elem, path, attrs):
+        """Fail on any of these attributes when it is set (nonzero): their scaling is not known yet."""
+        for attr in attrs:
+            if hasattr(elem, attr) and np.any(np.asarray(getattr(elem, attr)) != 0):
+                self.fail(path, f"attribute {attr} is not supported by pitheorem's scaling yet")
+
+    def named_joint_kind(self, name) -> JointKind | None:
+        """The kind of the joint of that name; None for a free joint (or no joint of that name)."""
+        joint = self.spec.joint(name)
+        return _joint_kind(self.mj, joint.type) if joint is not None else None
 
     def warning(self, element: str, reason: str):
         if self.warn:  # once, when the file is read; not again for each copy
@@ -257,7 +272,6 @@ class _Walker:
     def option(self):
         opt = self.spec.option
         self.add("option", opt, "", "option", "timestep", _T)
-        gravity = np.asarray(opt.gravity, dtype=float)
 
         def read_g():
             return (float(np.linalg.norm(np.asarray(opt.gravity, dtype=float))),)
@@ -267,8 +281,7 @@ class _Walker:
 
         self.names.add("g")
         self.slots.append(Slot("g", "option gravity (magnitude)", read_g, write_g, dim("L T^-2"),
-                               "default" if np.array_equal(gravity, [0, 0, -9.81]) else "file",
-                               note="the direction is dimensionless"))
+                               self.source("option", opt, "gravity"), note="the direction is dimensionless"))
         self.add("option", opt, "", "option", "wind", dim("L T^-1"))
         self.add("option", opt, "", "option", "density", dim("M L^-3"))
         self.add("option", opt, "", "option", "viscosity", dim("M L^-1 T^-1"))
@@ -363,9 +376,7 @@ class _Walker:
         ident, path = self.label("joint", joint, index)
         kind = _joint_kind(mj, joint.type)
         self.add("joint", joint, ident, path, "pos", _L)
-        for attr in ("springdamper", "springyield"):
-            if np.any(np.asarray(getattr(joint, attr)) != 0):
-                self.fail(path, f"attribute {attr} is not supported by pitheorem's scaling yet")
+        self.refuse(joint, path, ("springdamper", "springyield"))
         if kind is None:  # free joint: translation and rotation share each number
             for attr, lin, rot in (("damping", "M T^-1", "M L^2 T^-1"), ("armature", "M", "M L^2"),
                                    ("frictionloss", "M L T^-2", "M L^2 T^-2")):
@@ -377,33 +388,24 @@ class _Walker:
                 if attr == "damping" and np.any(value[1:] != 0):
                     self.fail(path, "damping polynomial terms on a free joint mix dimensions; not supported")
             return
-        q, force = kind.q, kind.force
         for attr in ("range", "ref", "springref", "margin"):
-            self.add("joint", joint, ident, path, attr, q)
-        for i in range(3):
-            self.add("joint", joint, ident, path, "stiffness", kind.per(force, i + 1), slice(i, i + 1),
-                     "" if i == 0 else f"_poly{i}")
-            self.add("joint", joint, ident, path, "damping", kind.per(force, i + 1, rate=1), slice(i, i + 1),
-                     "" if i == 0 else f"_poly{i}")
-        self.add("joint", joint, ident, path, "armature", force / (q * _T ** -2))
-        self.add("joint", joint, ident, path, "frictionloss", force)
-        self.add("joint", joint, ident, path, "actfrcrange", force)
-        self.add_solref("joint", joint, ident, path, "solref_limit")
-        self.add_solimp("joint", joint, ident, path, "solimp_limit", q)
-        self.add_solref("joint", joint, ident, path, "solref_friction")
-        self.add_solimp("joint", joint, ident, path, "solimp_friction", q)
+            self.add("joint", joint, ident, path, attr, kind.q)
+        self.spring_and_drive("joint", joint, ident, path, kind)
+        self.limit_and_friction_softness("joint", joint, ident, path, kind.q)
 
     def tendon_kind(self, tendon, path) -> JointKind:
         """A spatial tendon measures a length; a fixed one the first joint's coordinate."""
         mj = self.mj
         wraps = list(tendon.path)
         joints = [w for w in wraps if w.type == mj.mjtWrap.mjWRAP_JOINT]
-        if not joints:
-            return _SLIDE
-        first = _joint_kind(mj, joints[0].target.type)
-        if first is None:
+        return self.wrapped_joint_kind(joints[0], path) if joints else JointKind.SLIDE
+
+    def wrapped_joint_kind(self, wrap, path) -> JointKind:
+        """The kind of a joint a fixed tendon runs over; a free joint would mix dimensions."""
+        kind = _joint_kind(self.mj, wrap.target.type)
+        if kind is None:
             self.fail(path, "a fixed tendon over a free joint mixes dimensions")
-        return first
+        return kind
 
     def fixed_coefficient(self, wrap, ident, path, k, dimension):
         """A fixed tendon's coefficient between joints of two types: MjSpec cannot rewrite it."""
@@ -423,12 +425,10 @@ class _Walker:
         mj = self.mj
         ident, path = self.label("tendon", tendon, index)
         kind = self.tendon_kind(tendon, path)
-        q, force = kind.q, kind.force
+        q = kind.q
         for k, wrap in enumerate(tendon.path):
             if wrap.type == mj.mjtWrap.mjWRAP_JOINT:
-                jk = _joint_kind(mj, wrap.target.type)
-                if jk is None:
-                    self.fail(path, "a fixed tendon over a free joint mixes dimensions")
+                jk = self.wrapped_joint_kind(wrap, path)
                 if jk.q != q:  # coefficient converts this joint's coordinate into the tendon's length
                     self.fixed_coefficient(wrap, ident, path, k, q / jk.q)
             elif wrap.type == mj.mjtWrap.mjWRAP_PULLEY and wrap.divisor != 1:
@@ -436,34 +436,20 @@ class _Walker:
         self.add("tendon", tendon, ident, path, "range", q)
         self.add("tendon", tendon, ident, path, "margin", q)
         self.add("tendon", tendon, ident, path, "springlength", q)
-        for i in range(3):
-            if i < len(np.atleast_1d(tendon.stiffness)):
-                self.add("tendon", tendon, ident, path, "stiffness", kind.per(force, i + 1), slice(i, i + 1),
-                         "" if i == 0 else f"_poly{i}")
-            if i < len(np.atleast_1d(tendon.damping)):
-                self.add("tendon", tendon, ident, path, "damping", kind.per(force, i + 1, rate=1),
-                         slice(i, i + 1), "" if i == 0 else f"_poly{i}")
-        self.add("tendon", tendon, ident, path, "armature", force / (q * _T ** -2))
-        self.add("tendon", tendon, ident, path, "frictionloss", force)
-        self.add("tendon", tendon, ident, path, "actfrcrange", force)
+        self.spring_and_drive("tendon", tendon, ident, path, kind)
         self.add("tendon", tendon, ident, path, "width", _L)
-        self.add_solref("tendon", tendon, ident, path, "solref_limit")
-        self.add_solimp("tendon", tendon, ident, path, "solimp_limit", q)
-        self.add_solref("tendon", tendon, ident, path, "solref_friction")
-        self.add_solimp("tendon", tendon, ident, path, "solimp_friction", q)
-        if np.any(np.asarray(tendon.springyield) != 0):
-            self.fail(path, "attribute springyield is not supported by pitheorem's scaling yet")
+        self.limit_and_friction_softness("tendon", tendon, ident, path, q)
+        self.refuse(tendon, path, ("springyield",))
 
     def actuator_target(self, act, path) -> tuple[object, object]:
         """Dimensions of the actuator's length and force (gear taken dimensionless)."""
         mj, spec = self.mj, self.spec
         trn = act.trntype
         if trn in (mj.mjtTrn.mjTRN_JOINT, mj.mjtTrn.mjTRN_JOINTINPARENT):
-            joint = spec.joint(act.target)
-            kind = _joint_kind(mj, joint.type) if joint is not None else None
+            kind = self.named_joint_kind(act.target)
             if kind is None:
                 self.fail(path, "an actuator on a free joint mixes forces and torques; not supported")
-            if joint.type == mj.mjtJoint.mjJNT_BALL and np.any(np.asarray(act.gear)[3:] != 0):
+            if spec.joint(act.target).type == mj.mjtJoint.mjJNT_BALL and np.any(np.asarray(act.gear)[3:] != 0):
                 self.fail(path, "ball-joint gear beyond three components is not supported")
             return kind.q, kind.force
         if trn == mj.mjtTrn.mjTRN_TENDON:
@@ -536,9 +522,7 @@ class _Walker:
             self.add("actuator", act, ident, path, "biasprm", force, slice(0, 1), "_offset")
             self.add("actuator", act, ident, path, "biasprm", force / length, slice(1, 2), "_length")
             self.add("actuator", act, ident, path, "biasprm", force * _T / length, slice(2, 3), "_velocity")
-        for attr in ("damping", "armature", "delay", "ffrange", "velrange"):
-            if hasattr(act, attr) and np.any(np.asarray(getattr(act, attr)) != 0):
-                self.fail(path, f"attribute {attr} is not supported by pitheorem's scaling yet")
+        self.refuse(act, path, ("damping", "armature", "delay", "ffrange", "velrange"))
 
     def equality(self, eq, index):
         mj = self.mj
@@ -554,8 +538,8 @@ class _Walker:
             width = _L
         elif t in (mj.mjtEq.mjEQ_JOINT, mj.mjtEq.mjEQ_TENDON):
             if t == mj.mjtEq.mjEQ_JOINT:
-                k1 = _joint_kind(mj, self.spec.joint(eq.name1).type)
-                k2 = _joint_kind(mj, self.spec.joint(eq.name2).type) if eq.name2 else k1
+                k1 = self.named_joint_kind(eq.name1)
+                k2 = self.named_joint_kind(eq.name2) if eq.name2 else k1
             else:
                 k1 = self.tendon_kind(self.spec.tendon(eq.name1), path)
                 k2 = self.tendon_kind(self.spec.tendon(eq.name2), path) if eq.name2 else k1
@@ -586,8 +570,7 @@ class _Walker:
             return table[sensor.type]
         if sensor.type in (S.mjSENS_JOINTPOS, S.mjSENS_JOINTVEL, S.mjSENS_JOINTLIMITPOS, S.mjSENS_JOINTLIMITVEL,
                            S.mjSENS_JOINTLIMITFRC, S.mjSENS_JOINTACTFRC):
-            joint = self.spec.joint(sensor.objname)
-            kind = _joint_kind(mj, joint.type) if joint is not None else None
+            kind = self.named_joint_kind(sensor.objname)
             if kind is not None:
                 return {S.mjSENS_JOINTPOS: kind.q, S.mjSENS_JOINTVEL: kind.q / _T,
                         S.mjSENS_JOINTLIMITPOS: kind.q, S.mjSENS_JOINTLIMITVEL: kind.q / _T,
@@ -638,18 +621,19 @@ class MjcfBackend:
     1
     """
 
-    def __init__(self, spec, path: str, source_dir: Path | None):
+    def __init__(self, spec, path: str, source_dir: Path | None, *, warn: bool = True):
         mj = _mujoco()
         self.spec = spec
         self.path = path
         self.source_dir = source_dir
+        self._inputs = None  # the actuators' input dimensions, when first asked for
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
+            with _muted():
                 self.mjmodel = spec.compile()
         except ValueError as err:
-            raise EngineModelError(path, _culprit(str(err), spec), _first_line(str(err))) from None
-        self._slots = _Walker(mj, spec, self.mjmodel, path, warn=True).walk()
+            raise _rejected(path, err, spec) from None
+        # warn once, when the file is read; not again for each scaled copy
+        self._slots = _Walker(mj, spec, self.mjmodel, path, warn=warn).walk()
 
     # -- table --------------------------------------------------------------------------------
 
@@ -663,37 +647,61 @@ class MjcfBackend:
     # -- scaling ------------------------------------------------------------------------------
 
     def scaled(self, factors, scaling, s) -> MjcfBackend:
-        mj = _mujoco()
-        spec = self.spec.copy()
-        if self.source_dir is not None:
-            _absolute_asset_dirs(spec, self.source_dir)
-        slots = _Walker(mj, spec, self.mjmodel, self.path).walk()
+        spec = self._portable_spec()
+        slots = _Walker(_mujoco(), spec, self.mjmodel, self.path).walk()
         for slot in slots:
             if factors.get(slot.name, 1.0) != 1.0:
                 slot.write(factors[slot.name])
         if scaling is not None:
-            _scale_keyframes(mj, spec, self.mjmodel, scaling, s)
-        out = MjcfBackend.__new__(MjcfBackend)
-        out.spec, out.path, out.source_dir = spec, "", self.source_dir
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            out.mjmodel = spec.compile()
-        out._slots = _Walker(mj, spec, out.mjmodel, "").walk()
-        return out
+            self._scale_keyframes(spec, scaling, s)
+        return MjcfBackend(spec, "", self.source_dir, warn=False)
 
     def save(self, path: Path) -> None:
-        spec = self.spec.copy()
-        if self.source_dir is not None:
-            _absolute_asset_dirs(spec, self.source_dir)
+        spec = self._portable_spec()
         # MuJoCo's canonical, compiled output rounds to 6 digits (and turns fromto and degrees into
         # quaternions and radians); the uncompiled output keeps every value at full precision
         spec.compiler.savecompiled = False
         spec.compiler.savecanonical = False
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # MuJoCo's deprecation notes on the user's own attributes
+        with _muted():
             spec.compile()
             text = spec.to_xml()
         Path(path).write_text(text)
+
+    def _portable_spec(self):
+        """A copy of the spec whose mesh, texture and hfield files load from any folder (absolute paths)."""
+        spec = self.spec.copy()
+        if self.source_dir is not None:
+            for attr in ("meshdir", "texturedir"):
+                current = getattr(spec, attr, "") or ""
+                setattr(spec, attr, str((self.source_dir / current).resolve()))
+        return spec
+
+    def _scale_keyframes(self, spec, scaling, s) -> None:
+        """Scale the keyframes of `spec`, a copy of this model's, coordinate by coordinate."""
+        if not len(spec.keys):
+            return
+        model = self.mjmodel  # the copy has the same coordinates and actuators as this model
+
+        def factors(dims):
+            return np.array([dimension_factor(scaling, s, d) for d in dims])
+
+        _, dims = self.coordinate_dimensions()  # qpos, qvel, then the activations
+        nq, nv = model.nq, model.nv
+        fq, fv, fa = factors(dims[:nq]), factors(dims[nq:nq + nv]), factors(dims[nq + nv:])
+        ft, fl = dimension_factor(scaling, s, _T), dimension_factor(scaling, s, _L)
+        fctrl = factors(self.control_dimensions())
+        for key in spec.keys:
+            if len(key.qpos) == model.nq:
+                key.qpos = np.asarray(key.qpos) * fq
+            if len(key.qvel) == model.nv:
+                key.qvel = np.asarray(key.qvel) * fv
+            if len(key.ctrl) == model.nu and model.nu:
+                key.ctrl = np.asarray(key.ctrl) * fctrl
+            if len(key.mpos):
+                key.mpos = np.asarray(key.mpos) * fl
+            key.time = key.time * ft
+            if len(key.act) and model.na and len(fa) == len(key.act):
+                key.act = np.asarray(key.act) * fa
 
     # -- running ------------------------------------------------------------------------------
 
@@ -701,19 +709,17 @@ class MjcfBackend:
         """Names and dimensions of qpos and qvel entries, and of the activations."""
         mj, m = _mujoco(), self.mjmodel
         names, dims = [], []
-        for kind_label, width in (("qpos", {0: 7, 1: 4, 2: 1, 3: 1}), ("qvel", {0: 6, 1: 3, 2: 1, 3: 1})):
+        for kind_label, rate in (("qpos", 0), ("qvel", 1)):
+            rotation = [_ONE] * (4 if rate == 0 else 3)  # a quaternion, or an angular velocity
             for j in range(m.njnt):
                 jname = mj.mj_id2name(m, mj.mjtObj.mjOBJ_JOINT, j) or f"joint{j}"
                 jtype = int(m.jnt_type[j])
-                rate = 0 if kind_label == "qpos" else 1
-                if jtype == 0:  # free: position, then quaternion (or angular velocity)
-                    per = [_L] * 3 + ([_ONE] * 4 if rate == 0 else [_ONE] * 3)
-                elif jtype == 1:
-                    per = [_ONE] * width[1]
-                elif jtype == 2:
-                    per = [_L]
+                if jtype == mj.mjtJoint.mjJNT_FREE:  # position, then rotation
+                    per = [_L] * 3 + rotation
+                elif jtype == mj.mjtJoint.mjJNT_BALL:
+                    per = rotation
                 else:
-                    per = [_ONE]
+                    per = [_joint_kind(mj, jtype).q]
                 for k, d in enumerate(per):
                     names.append(f"{kind_label}[{jname}]" + (f"[{k}]" if len(per) > 1 else ""))
                     dims.append(d * _T ** (-rate))
@@ -724,19 +730,21 @@ class MjcfBackend:
         return names, dims
 
     def control_dimensions(self):
-        mj = _mujoco()
-        walker = _Walker(mj, self.spec, self.mjmodel, self.path)
-        return [walker.control_dimension(a, walker.label("actuator", a, i)[1])[2]
-                for i, a in enumerate(self.spec.actuators)]
+        return [ctrl for ctrl, _act in self._actuator_inputs()]
 
     def activation_dimensions(self):
-        mj = _mujoco()
-        walker = _Walker(mj, self.spec, self.mjmodel, self.path)
-        out = []
-        for i, a in enumerate(self.spec.actuators):
-            if a.dyntype != mj.mjtDyn.mjDYN_NONE:
-                out.append(walker.control_dimension(a, walker.label("actuator", a, i)[1])[3])
-        return out
+        return [act for _ctrl, act in self._actuator_inputs() if act is not None]
+
+    def _actuator_inputs(self):
+        """Per actuator: the dimension of its control input and of its activation (None: no dynamics)."""
+        if self._inputs is None:  # once: the spec of a backend is not changed after it is made
+            mj = _mujoco()
+            walker = _Walker(mj, self.spec, self.mjmodel, self.path)
+            self._inputs = []
+            for i, a in enumerate(self.spec.actuators):
+                _length, _force, ctrl, act = walker.control_dimension(a, walker.label("actuator", a, i)[1])
+                self._inputs.append((ctrl, act if a.dyntype != mj.mjtDyn.mjDYN_NONE else None))
+        return self._inputs
 
     def timestep(self) -> float:
         return float(self.mjmodel.opt.timestep)
@@ -831,38 +839,17 @@ class MjcfBackend:
         return out
 
 
-def _absolute_asset_dirs(spec, source_dir: Path) -> None:
-    """Point mesh, texture and hfield files at absolute paths, so the copy loads from anywhere."""
-    for attr in ("meshdir", "texturedir"):
-        current = getattr(spec, attr, "") or ""
-        setattr(spec, attr, str((source_dir / current).resolve()))
+@contextmanager
+def _muted():
+    """MuJoCo's compiler warnings (deprecation notes on the user's own attributes) are not ours to raise."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        yield
 
 
-def _scale_keyframes(mj, spec, model, scaling, s) -> None:
-    if not len(spec.keys):
-        return
-    backend = MjcfBackend.__new__(MjcfBackend)
-    backend.mjmodel, backend.spec, backend.path = model, spec, ""
-    _, dims = backend.coordinate_dimensions()
-    fq = np.array([power_factor(s, scaling.exponent_of(d)) for d in dims[: model.nq]])
-    fv = np.array([power_factor(s, scaling.exponent_of(d)) for d in dims[model.nq:]])
-    ft = power_factor(s, scaling.exponent_of(_T))
-    fl = power_factor(s, scaling.exponent_of(_L))
-    fctrl = np.array([power_factor(s, scaling.exponent_of(d)) for d in backend.control_dimensions()])
-    for key in spec.keys:
-        if len(key.qpos) == model.nq:
-            key.qpos = np.asarray(key.qpos) * fq
-        if len(key.qvel) == model.nv:
-            key.qvel = np.asarray(key.qvel) * fv
-        if len(key.ctrl) == model.nu and model.nu:
-            key.ctrl = np.asarray(key.ctrl) * fctrl
-        if len(key.mpos):
-            key.mpos = np.asarray(key.mpos) * fl
-        key.time = key.time * ft
-        if len(key.act) and model.na:
-            fa = np.array([power_factor(s, scaling.exponent_of(d)) for d in backend.activation_dimensions()])
-            if len(fa) == len(key.act):
-                key.act = np.asarray(key.act) * fa
+def _rejected(path: str, err: ValueError, spec=None) -> EngineModelError:
+    """MuJoCo's refusal of a file or a spec, naming the element at fault."""
+    return EngineModelError(path, _culprit(str(err), spec), _first_line(str(err)))
 
 
 def _first_line(text: str) -> str:
@@ -895,6 +882,7 @@ def load_mjcf(path) -> EngineModel:
     Returns
     -------
     EngineModel
+        Of engine ``"mujoco"``.
 
     Raises
     ------
@@ -914,6 +902,6 @@ def load_mjcf(path) -> EngineModel:
     try:
         spec = mj.MjSpec.from_file(str(path))
     except ValueError as err:
-        raise EngineModelError(str(path), _culprit(str(err)), _first_line(str(err))) from None
+        raise _rejected(str(path), err) from None
     backend = MjcfBackend(spec, str(path), path.resolve().parent)
     return EngineModel(backend, "mujoco", str(path))

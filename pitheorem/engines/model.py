@@ -11,7 +11,11 @@ writes a file the engine loads as it is.
 
 The engine-specific work (reading, writing, running) lives in
 ``pitheorem.engines.mjcf`` and ``pitheorem.engines.urdf``; this module
-only holds what both share.
+only holds what both share: besides the model and its parameters, the
+dimensions of a joint's coordinate and force (``JointKind``), how a
+parameter is named (``identifier``, ``unique_name``), the factor of a
+dimension under a scaling (``dimension_factor``) and how a number is
+written back (``attribute_text``).
 """
 
 from __future__ import annotations
@@ -20,10 +24,13 @@ import warnings
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
+from typing import ClassVar
 
 from ..dimensions import Dimension
 from ..errors import InvalidRequestError, PiTheoremError
+from ..immutable import immutable
 from ..modelfile import ModelFileError
+from ..scaling import Scaling
 from ..system import System
 
 __all__ = [
@@ -38,6 +45,9 @@ __all__ = [
 
 #: where a parameter's value comes from
 SOURCES = ("file", "default", "derived", "engine")
+
+#: the folder of the model files shipped with pitheorem (see :func:`example_path`)
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 
 class EngineModelError(ModelFileError):
@@ -108,6 +118,7 @@ class UnscalableModelWarning(UserWarning):
     """
 
 
+@immutable
 @dataclass(frozen=True, slots=True)
 class Parameter:
     """One number (or vector of numbers of one dimension) of an engine model.
@@ -211,12 +222,12 @@ class Parameter:
         10.0
         """
         if self.dimension is not None:
-            return power_factor(s, scaling.exponent_of(self.dimension))
+            return dimension_factor(scaling, s, self.dimension)
         if not self.parts:  # no dimension at all: copied unchanged (see the note)
             return 1.0
         exponents = {part: scaling.exponent_of(dim) for part, dim in self.parts}
         if len(set(exponents.values())) > 1 and any(v != 0 for v in self.value):
-            needs = ", ".join(f"s^{_text(e)} as {part}" for part, e in exponents.items())
+            needs = ", ".join(f"s^{Fraction(e)} as {part}" for part, e in exponents.items())
             raise UnscalableParameterError(
                 self.name, f"the one number {self.path} acts with dimensions {self.dimension_text}, so the scaling "
                 f"needs {needs}; set it to 0 or hold the base units it mixes fixed")
@@ -240,11 +251,6 @@ class Parameter:
         return " | ".join(f"{dim} ({part})" for part, dim in self.parts)
 
 
-def _text(q: Fraction) -> str:
-    q = Fraction(q)
-    return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
-
-
 def power_factor(s: float, exponent) -> float:
     """``s ** exponent`` as a float, exact for integer exponents of exact powers.
 
@@ -266,6 +272,32 @@ def power_factor(s: float, exponent) -> float:
     return float(s) ** float(e)
 
 
+def dimension_factor(scaling, s: float, dimension) -> float:
+    """The factor a scaling multiplies every number of one dimension by.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.engines.model import dim, dimension_factor
+    >>> sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1, "T": 1})
+    >>> dimension_factor(sc, 10, dim("L T^-2"))
+    0.1
+    """
+    return power_factor(s, scaling.exponent_of(dimension))
+
+
+def attribute_text(values) -> str:
+    """Numbers as the text of an XML attribute, each at full precision (its shortest exact repr).
+
+    Examples
+    --------
+    >>> from pitheorem.engines.model import attribute_text
+    >>> attribute_text([0.1, 2, -1 / 3])
+    '0.1 2.0 -0.3333333333333333'
+    """
+    return " ".join(repr(float(v)) for v in values)
+
+
 def dim(text: str) -> Dimension:
     """Shorthand: parse a dimension formula.
 
@@ -278,6 +310,76 @@ def dim(text: str) -> Dimension:
     return Dimension.parse(text)
 
 
+@immutable
+@dataclass(frozen=True, slots=True)
+class JointKind:
+    """Coordinate and generalised-force dimensions of one joint type, in either engine.
+
+    A hinge (MuJoCo's hinge and ball, URDF's revolute and continuous) turns
+    by a dimensionless angle under a torque; a slide (MuJoCo's slide, URDF's
+    prismatic) moves by a length under a force.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.model import JointKind
+    >>> slide, hinge = JointKind.SLIDE, JointKind.HINGE
+    >>> str(slide.q), str(hinge.force), str(slide.per(slide.force, 1, rate=1))
+    ('L', 'M L^2 T^-2', 'M T^-1')
+    """
+
+    q: Dimension
+    force: Dimension
+    HINGE: ClassVar[JointKind]
+    SLIDE: ClassVar[JointKind]
+
+    def per(self, numerator: Dimension, power: int, rate: int = 0) -> Dimension:
+        """``numerator / (q T^-rate)^power``: the dimension of a polynomial coefficient.
+
+        Examples
+        --------
+        >>> from pitheorem.engines.model import JointKind
+        >>> str(JointKind.SLIDE.per(JointKind.SLIDE.force, 2))
+        'M L^-1 T^-2'
+        """
+        return numerator * (self.q * _TIME ** (-rate)) ** (-power)
+
+
+_TIME = dim("T")
+JointKind.HINGE = JointKind(dim("1"), dim("M L^2 T^-2"))
+JointKind.SLIDE = JointKind(dim("L"), dim("M L T^-2"))
+
+
+def identifier(text: str) -> str:
+    """A parameter name made of `text`: other characters become ``_``, a leading digit gets one.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.model import identifier
+    >>> identifier("joint 'left hip'"), identifier("3d")
+    ('joint__left_hip_', '_3d')
+    """
+    out = "".join(c if c.isalnum() or c == "_" else "_" for c in text)
+    return out if out and not out[0].isdigit() else f"_{out}"
+
+
+def unique_name(ident: str, taken: set[str]) -> str:
+    """`ident`, or ``ident_2``, ``ident_3``, ...: the first name not in `taken`, which it joins.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.model import unique_name
+    >>> taken = {"geom_size"}
+    >>> unique_name("geom_size", taken), unique_name("geom_size", taken), sorted(taken)
+    ('geom_size_2', 'geom_size_3', ['geom_size', 'geom_size_2', 'geom_size_3'])
+    """
+    out, k = ident, 2
+    while out in taken:
+        out, k = f"{ident}_{k}", k + 1
+    taken.add(out)
+    return out
+
+
+@immutable
 class EngineModel:
     """A MuJoCo or PyBullet model read from its file, with its numbers.
 
@@ -286,7 +388,9 @@ class EngineModel:
 
     Build one with :func:`load`; :meth:`scaled` returns another.  The
     engine-specific part is a backend object (see
-    ``pitheorem.engines.mjcf`` and ``pitheorem.engines.urdf``).
+    ``pitheorem.engines.mjcf`` and ``pitheorem.engines.urdf``).  A model
+    is not changed after it is made: :meth:`scaled`, :meth:`with_values`,
+    :meth:`multiplied` and :meth:`with_settings` return new models.
 
     Attributes
     ----------
@@ -307,10 +411,15 @@ class EngineModel:
     __slots__ = ("_backend", "engine", "parameters", "path")
 
     def __init__(self, backend, engine: str, path: str):
-        self._backend = backend
-        self.engine = engine
-        self.path = path
-        self.parameters = tuple(backend.parameters())
+        for name, value in (("_backend", backend), ("engine", engine), ("path", path),
+                            ("parameters", tuple(backend.parameters()))):
+            object.__setattr__(self, name, value)
+
+    def __copy__(self) -> EngineModel:
+        return self  # nothing of it changes, so a copy is the model itself
+
+    def __deepcopy__(self, memo) -> EngineModel:
+        return self
 
     def __repr__(self) -> str:
         return f"<EngineModel {self.engine} {self.path or '(unsaved)'}: {len(self.parameters)} parameters>"
@@ -364,7 +473,7 @@ class EngineModel:
         dims: dict[str, Dimension] = {}
         for p in self.parameters:
             dims.update(p.variables())
-        dims["t"] = dim("T")
+        dims["t"] = _TIME
         return System(dims)
 
     def table(self) -> str:
@@ -416,8 +525,7 @@ class EngineModel:
         """
         s = _check_s(s)
         _check_scaling(self, scaling)
-        factors = {p.name: p.factor(scaling, s) for p in self.parameters}
-        return EngineModel(self._backend.scaled(factors, scaling, s), self.engine, "")
+        return self._times({p.name: p.factor(scaling, s) for p in self.parameters}, scaling, s)
 
     def with_values(self, **values) -> EngineModel:
         """A copy with some parameters set to new values (each must be one number).
@@ -430,6 +538,8 @@ class EngineModel:
         Returns
         -------
         EngineModel
+            An unsaved copy with those values (``path`` is ``""``); this
+            model keeps its own.
 
         Raises
         ------
@@ -452,7 +562,8 @@ class EngineModel:
             if len(p.value) != 1 or p.value[0] == 0:
                 raise InvalidRequestError(f"with_values sets one nonzero number; {name} is {p.value}")
             factors[name] = float(value) / p.value[0]
-        return EngineModel(self._backend.scaled(factors, None, None), self.engine, "")
+        # multiplied(...) by value / current value, except that the factor may be 0 or negative
+        return self._times(factors)
 
     def multiplied(self, **factors) -> EngineModel:
         """A copy with some parameters multiplied by factors (a vector entry by entry).
@@ -469,6 +580,7 @@ class EngineModel:
         Returns
         -------
         EngineModel
+            An unsaved copy (``path`` is ``""``).
 
         Raises
         ------
@@ -487,7 +599,11 @@ class EngineModel:
         for name, factor in factors.items():
             self.parameter(name)
             factors[name] = _check_factor(factor, name)
-        return EngineModel(self._backend.scaled(factors, None, None), self.engine, "")
+        return self._times(factors)
+
+    def _times(self, factors: dict[str, float], scaling=None, s=None) -> EngineModel:
+        """The copy of :meth:`scaled`, :meth:`with_values` and :meth:`multiplied`: checked factors applied."""
+        return EngineModel(self._backend.scaled(factors, scaling, s), self.engine, "")
 
     def save(self, path) -> Path:
         """Write the model as a file the engine loads as is.
@@ -600,9 +716,9 @@ def _check_factor(value, name: str) -> float:
 
 
 def _check_scaling(model: EngineModel, scaling) -> None:
-    if not all(hasattr(scaling, a) for a in ("system", "powers", "exponent_of")):
+    if not isinstance(scaling, Scaling):
         raise InvalidRequestError(f"scaling must be a pitheorem Scaling, got {type(scaling).__name__}")
-    if scaling.units is None:
+    if not scaling.is_unit_change:
         raise InvalidRequestError("the scaling is no change of units; an engine model needs one "
                                   "(use a scaling from pt.search(model.system(), ...))")
     missing = [b for b in ("M", "L", "T") if b not in scaling.system.base_dimensions]
@@ -642,7 +758,8 @@ def example_path(name: str) -> Path:
     Raises
     ------
     InvalidRequestError
-        For a name that is no shipped file.
+        For a name that is no shipped file; the message lists the model
+        files that are.
 
     Examples
     --------
@@ -650,9 +767,10 @@ def example_path(name: str) -> Path:
     >>> engines.example_path("pendulum.xml").name
     'pendulum.xml'
     """
-    path = Path(__file__).resolve().parent.parent / "examples" / name
+    path = EXAMPLES / name
     if not path.is_file():
-        raise InvalidRequestError(f"no example model {name!r} in {path.parent}")
+        shipped = ", ".join(sorted(p.name for p in EXAMPLES.glob("*.xml")))
+        raise InvalidRequestError(f"no example model {name!r} in {EXAMPLES}; the shipped models are {shipped}")
     return path
 
 
@@ -673,12 +791,15 @@ def load(path, **options) -> EngineModel:
     Returns
     -------
     EngineModel
+        Of engine ``"mujoco"`` for MJCF, ``"pybullet"`` for URDF.
 
     Raises
     ------
     EngineModelError
         For a missing or unreadable file, an element the engine rejects, or
         one the package cannot scale faithfully (named in the message).
+    InvalidRequestError
+        For URDF options given with an MJCF file.
 
     Examples
     --------

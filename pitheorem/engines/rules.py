@@ -32,9 +32,11 @@ from fractions import Fraction
 
 from ..dimensions import Dimension
 from ..errors import InvalidRequestError
+from ..exact import read_exponent
 from ..groups import PiGroup
-from ..scaling import Scaling, as_exponent
-from ..search import search
+from ..immutable import immutable
+from ..scalesearch import search
+from ..scaling import Scaling
 from ..system import System
 from .constants import HiddenConstant, broken_constants, hidden_constants
 
@@ -49,6 +51,7 @@ __all__ = [
 ]
 
 
+@immutable
 @dataclass(frozen=True, slots=True)
 class RuleQuantity:
     """One line of a rule: a kind of quantity and its power of ``X``.
@@ -57,8 +60,8 @@ class RuleQuantity:
     ----------
     name : str
         Identifier of the kind of quantity, e.g. ``"torque"``.
-    dimension : str
-        Its dimension formula.
+    dimension : Dimension
+        Its dimension (a formula string is parsed).
     exponent : Fraction
         The rule multiplies it by ``X**exponent``.
     covers : tuple of str
@@ -68,20 +71,24 @@ class RuleQuantity:
     Examples
     --------
     >>> from pitheorem.engines.rules import RuleQuantity
-    >>> RuleQuantity("torque", "M L^2 T^-2", 2).exponent
-    Fraction(2, 1)
+    >>> q = RuleQuantity("torque", "M L^2 T^-2", 2)
+    >>> q.dimension, q.exponent
+    (Dimension.parse('M L^2 T^-2'), Fraction(2, 1))
     """
 
     name: str
-    dimension: str
+    dimension: Dimension
     exponent: Fraction
     covers: tuple[str, ...] = ()
 
     def __post_init__(self):
-        object.__setattr__(self, "exponent", as_exponent(self.exponent, repr(self.name)))
+        if not isinstance(self.dimension, Dimension):
+            object.__setattr__(self, "dimension", Dimension.parse(self.dimension))
+        object.__setattr__(self, "exponent", read_exponent(self.exponent, f"exponent of {self.name!r}"))
         object.__setattr__(self, "covers", tuple(self.covers))
 
 
+@immutable
 @dataclass(frozen=True, slots=True)
 class RuleOfThumb:
     """A published rule for rescaling an engine's world by a factor ``X``.
@@ -135,7 +142,7 @@ class RuleOfThumb:
         """
         return {q.name: q.exponent for q in self.quantities}
 
-    def exponent_for(self, dimension) -> Fraction | None:
+    def exponent_of(self, dimension) -> Fraction | None:
         """The power of ``X`` the rule gives a dimension, or None if unnamed.
 
         Parameters
@@ -149,16 +156,17 @@ class RuleOfThumb:
         Examples
         --------
         >>> from pitheorem.engines.rules import BULLET_SCALE_THE_WORLD as rule
-        >>> rule.exponent_for("M L^2 T^-2"), rule.exponent_for("M L T^-2")
+        >>> rule.exponent_of("M L^2 T^-2"), rule.exponent_of("M L T^-2")
         (Fraction(2, 1), None)
         """
         dim = dimension if isinstance(dimension, Dimension) else Dimension.parse(str(dimension))
         for q in self.quantities:
-            if Dimension.parse(q.dimension) == dim:
+            if q.dimension == dim:
                 return q.exponent
         return None
 
 
+@immutable
 @dataclass(frozen=True, eq=False)
 class RuleVerdict:
     """What :func:`check_rule` found about a rule of thumb.
@@ -175,7 +183,7 @@ class RuleVerdict:
     certificate : PiGroup or None
         When the rule is no change of units: a dimensionless product of its
         quantities that it would change.
-    missing : tuple of (str, str, Fraction)
+    missing : tuple of (str, Dimension, Fraction)
         Variables of the system whose dimension the rule does not name but
         which the unit change moves: name, dimension, required power of X.
     unchanged : tuple of str
@@ -236,12 +244,12 @@ class RuleVerdict:
             lines.append(f"  not named, rightly unchanged: {', '.join(self.unchanged)}")
         for c in self.broken:
             lines.append(f"  hidden constant left out: {c.name} [{c.dimension}] (default {c.default:g})"
-                         f" must scale by X^{self.scaling.exponent_of(c.dim)}")
+                         f" must scale by X^{self.scaling.exponent_of(c.dimension)}")
         return "\n".join(lines)
 
 
 def _q(name, dimension, exponent, covers=()):
-    return RuleQuantity(name, dimension, Fraction(exponent), tuple(covers))
+    return RuleQuantity(name, dimension, exponent, tuple(covers))
 
 
 BULLET_SCALE_THE_WORLD = RuleOfThumb(
@@ -333,20 +341,20 @@ def check_rule(rule: RuleOfThumb, system: System | None = None, *, engine: str |
         res = search(rsys, scale={n: p for n, p in rule.exponents.items() if p}, fixed=tuple(
             n for n, p in rule.exponents.items() if not p))
         return RuleVerdict(rule, None, None, res.certificate, (), (), ())
-    units = dict(zip(rsys.base_dimensions, scaling.units, strict=True))
+    units = scaling.unit_change
     missing, unchanged = [], []
     if system is not None:
         for name in system.variables:
             dim = system.dimension(name)
-            if rule.exponent_for(dim) is not None:
+            if rule.exponent_of(dim) is not None:
                 continue
-            extra = [b for b in dim.bases if b not in units]
+            extra = [b for b in dim.base_dimensions if b not in units]
             if extra:
                 raise InvalidRequestError(
                     f"variable {name!r} has base dimension {extra[0]!r}, which the rule {rule.name!r} does not use")
             p = scaling.exponent_of(dim)
             if p:
-                missing.append((name, str(dim), p))
+                missing.append((name, dim, p))
             else:
                 unchanged.append(name)
     covered = {c for q in rule.quantities for c in q.covers}

@@ -50,6 +50,7 @@ import numpy as np
 
 from ..errors import InvalidRequestError
 from ..system import System
+from .model import EXAMPLES, EngineModel, attribute_text
 
 __all__ = [
     "PAPER_SCALING",
@@ -265,10 +266,6 @@ def _rotation(ax: float, ay: float) -> np.ndarray:
     return ry @ rx
 
 
-def _xyz(v) -> str:
-    return " ".join(repr(float(x)) for x in v)
-
-
 def superball_mjcf(params=None) -> str:
     """The MJCF text of SUPERball with the given parameter values.
 
@@ -322,13 +319,14 @@ def superball_mjcf(params=None) -> str:
     lines += ["  </custom>", "  <worldbody>", f'    <geom name="ground" type="plane" size="0 0 1" {contact}/>']
     for i, (e0, e1) in enumerate(bars):
         centre = (e0 + e1) / 2
+        end0, end1 = attribute_text(e0 - centre), attribute_text(e1 - centre)
         lines += [
-            f'    <body name="bar{i}" pos="{_xyz(centre + np.array([0.0, 0.0, lift]))}">',
+            f'    <body name="bar{i}" pos="{attribute_text(centre + np.array([0.0, 0.0, lift]))}">',
             f'      <freejoint name="bar{i}"/>',
-            f'      <geom name="bar{i}" type="capsule" fromto="{_xyz(e0 - centre)} {_xyz(e1 - centre)}" '
+            f'      <geom name="bar{i}" type="capsule" fromto="{end0} {end1}" '
             f'size="{p["r"]!r}" density="{p["rho"]!r}" {contact}/>',
-            f'      <site name="bar{i}_end0" pos="{_xyz(e0 - centre)}"/>',
-            f'      <site name="bar{i}_end1" pos="{_xyz(e1 - centre)}"/>',
+            f'      <site name="bar{i}_end0" pos="{end0}"/>',
+            f'      <site name="bar{i}_end1" pos="{end1}"/>',
             "    </body>",
         ]
     lines += ["  </worldbody>", "  <tendon>"]
@@ -346,6 +344,11 @@ def superball_mjcf(params=None) -> str:
 
 def _dimension(name: str) -> str:
     return next(p.dimension for p in PARAMETERS if p.name == name)
+
+
+def _compiled(model):
+    """The compiled MuJoCo model: an EngineModel's, or `model` itself (a ``mujoco.MjModel``)."""
+    return model.backend.mjmodel if isinstance(model, EngineModel) else model
 
 
 class CableController:
@@ -386,8 +389,7 @@ class CableController:
     def __init__(self, model):
         import mujoco
 
-        if hasattr(model, "backend"):  # an EngineModel: its compiled MuJoCo model
-            model = model.backend.mjmodel
+        model = _compiled(model)
 
         def numeric(name: str) -> float:
             index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_NUMERIC, name)
@@ -497,12 +499,11 @@ def simulate_superball(model, duration: float, *, controlled: bool = True, every
     """
     import mujoco
 
-    if hasattr(model, "backend"):  # an EngineModel
-        model = model.backend.mjmodel
-    elif isinstance(model, Path) or (isinstance(model, str) and not model.lstrip().startswith("<")):
+    if isinstance(model, Path) or (isinstance(model, str) and not model.lstrip().startswith("<")):
         model = mujoco.MjModel.from_xml_path(str(model))
     elif isinstance(model, str):
         model = mujoco.MjModel.from_xml_string(model)
+    model = _compiled(model)
     data = mujoco.MjData(model)
     if nudge:
         data.qpos[:] = np.nextafter(data.qpos, np.inf)
@@ -590,7 +591,7 @@ def write_superball(path=None) -> Path:
     ...     written.read_text() == superball_mjcf()
     True
     """
-    target = Path(path) if path is not None else Path(__file__).resolve().parent.parent / "examples" / "superball.xml"
+    target = Path(path) if path is not None else EXAMPLES / "superball.xml"
     target.write_text(superball_mjcf(), encoding="utf-8")
     return target
 

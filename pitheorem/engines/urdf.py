@@ -36,26 +36,53 @@ from pathlib import Path
 import numpy as np
 
 from ..simulation import nudged
-from .model import EngineModel, EngineModelError, Parameter, dim, warn_unscalable
+from .constants import hidden_constants
+from .model import (
+    EngineModel,
+    EngineModelError,
+    JointKind,
+    Parameter,
+    attribute_text,
+    dim,
+    identifier,
+    unique_name,
+    warn_unscalable,
+)
 
-__all__ = ["UrdfBackend", "load_urdf"]
+__all__ = ["SCENE_OPTIONS", "UrdfBackend", "load_urdf"]
 
 _ONE, _L, _T, _M = dim("1"), dim("L"), dim("T"), dim("M")
-_FORCE, _TORQUE = dim("M L T^-2"), dim("M L^2 T^-2")
 
-#: PyBullet's engine parameters with a dimension, their defaults (measured with pybullet 3.2.7, or
-#: bullet3's btContactSolverInfo where PyBullet cannot report them) and dimensions
+#: PyBullet's defaults and their dimensions: the hidden-constant catalogue is their one home
+_BULLET = {c.name: c for c in hidden_constants("bullet")}
+
+#: PyBullet's engine parameters with a dimension: the ``setPhysicsEngineParameter`` name, the
+#: catalogue's constant (its default and dimension) and what it does
 ENGINE_PARAMETERS = (
-    ("contactSlop", 1e-5, "L", "allowed penetration before contacts push back"),
-    ("restitutionVelocityThreshold", 0.2, "L T^-1", "impacts slower than this do not bounce"),
-    ("solverResidualThreshold", 1e-7, "L^2 T^-2", "the solver stops below this squared velocity residual"),
+    ("contactSlop", "bullet_contact_slop", "allowed penetration before contacts push back"),
+    ("restitutionVelocityThreshold", "bullet_restitution_velocity_threshold", "impacts slower than this do not bounce"),
+    ("solverResidualThreshold", "bullet_solver_residual_threshold",
+     "the solver stops below this squared velocity residual"),
 )
-#: the multibody damping of every link: one number acting with two dimensions
+#: the multibody damping of every link: one number acting with two dimensions, the catalogue's two
+#: constants (the same default)
 MIXED_DAMPING = (
-    ("linearDamping", 0.04, (("rate", "T^-1"), ("per_length", "L^-1"))),
-    ("angularDamping", 0.04, (("rate", "T^-1"), ("per_radian", "1"))),
+    ("linearDamping", (("rate", "bullet_linear_damping_k1"), ("per_length", "bullet_linear_damping_k2"))),
+    ("angularDamping", (("rate", "bullet_angular_damping_k1"), ("per_radian", "bullet_angular_damping_k2"))),
 )
-_SPLIT_IMPULSE_THRESHOLD = -0.04
+
+#: The scene a URDF model runs in: the keyword options of :func:`load_urdf` and of
+#: :func:`pitheorem.engines.load`, and the command line's ``--scene NAME=VALUE``.  Each name has a
+#: kind ("flag": true or false; "number": one number, not negative; "point": three numbers) and a
+#: default (``damping`` None: PyBullet's own, which mixes dimensions).
+SCENE_OPTIONS = {
+    "fixed_base": ("flag", False),
+    "ground": ("flag", False),
+    "split_impulse": ("flag", True),
+    "g": ("number", 9.81),
+    "damping": ("number", None),
+    "base_position": ("point", (0.0, 0.0, 0.0)),
+}
 
 
 def _pybullet():
@@ -68,15 +95,11 @@ def _floats(text: str | None) -> list[float]:
     return [float(v) for v in (text or "").split()]
 
 
-def _fmt(values) -> str:
-    return " ".join(repr(float(v)) for v in values)
-
-
-def _joint_kind(jtype: str):
+def _joint_kind(jtype: str) -> JointKind | None:
     if jtype == "prismatic":
-        return _L, _FORCE
+        return JointKind.SLIDE
     if jtype in ("revolute", "continuous"):
-        return _ONE, _TORQUE
+        return JointKind.HINGE
     return None
 
 
@@ -91,11 +114,6 @@ class _Attr:
         return tuple(_floats(self.element.get(self.attr)))
 
 
-def _clean(text: str) -> str:
-    out = "".join(c if c.isalnum() or c == "_" else "_" for c in text)
-    return out if out and not out[0].isdigit() else f"_{out}"
-
-
 def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr]:
     """Every dimensional number the URDF states, in document order."""
     root = tree.getroot()
@@ -107,15 +125,11 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
     def add(ident, where, element, attr, dimension, note=""):
         if element is None or element.get(attr) is None:
             return
-        name, k = ident, 2
-        while name in names:
-            name, k = f"{ident}_{k}", k + 1
-        names.add(name)
-        out.append(_Attr(name, where, element, attr, dimension, note))
+        out.append(_Attr(unique_name(ident, names), where, element, attr, dimension, note))
 
     for link in root.findall("link"):
         lname = link.get("name", "")
-        ident = _clean(f"link_{lname}")
+        ident = identifier(f"link_{lname}")
         where = f"link {lname!r}"
         inertial = link.find("inertial")
         if inertial is not None:
@@ -167,7 +181,7 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
                     raise EngineModelError(path, f"{where} contact <{tag.tag}>", "unknown contact parameter")
     for joint in root.findall("joint"):
         jname, jtype = joint.get("name", ""), joint.get("type", "")
-        ident = _clean(f"joint_{jname}")
+        ident = identifier(f"joint_{jname}")
         where = f"joint {jname!r}"
         add(f"{ident}_xyz", f"{where} origin xyz", joint.find("origin"), "xyz", _L)
         if jtype == "fixed":
@@ -176,7 +190,7 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
         if kind is None:
             raise EngineModelError(path, f"{where} (type {jtype!r})", "joint type not supported by pitheorem's "
                                    "scaling; use revolute, continuous, prismatic or fixed")
-        q, force = kind
+        q, force = kind.q, kind.force
         limit = joint.find("limit")
         add(f"{ident}_lower", f"{where} limit lower", limit, "lower", q)
         add(f"{ident}_upper", f"{where} limit upper", limit, "upper", q)
@@ -210,6 +224,20 @@ def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> 
                     warn_unscalable(path, f"link {link.get('name')!r} collision mesh {filename!r}",
                                     f"its {parts} convex parts load as a compound whose collision margins "
                                     "changeDynamics cannot reach; contacts of a scaled copy are off by that margin")
+
+
+def _link_parameter(link: str, setting: str) -> str:
+    """The parameter name of a link's ``changeDynamics`` setting, as the table and a scaled copy know it."""
+    return f"{identifier(f'link_{link}')}_{setting}"
+
+
+def _joint_speed_parameter(joint: str) -> str:
+    """The parameter name of a joint's ``maxJointVelocity``."""
+    return identifier(f"joint_{joint}_maxJointVelocity")
+
+
+def _xml_text(tree: ET.ElementTree) -> str:
+    return ET.tostring(tree.getroot(), encoding="unicode")
 
 
 def _mesh_path(filename: str, source_dir: Path) -> Path | None:
@@ -252,9 +280,6 @@ class UrdfBackend:
             client = pb.connect(pb.DIRECT)
         return pb, client
 
-    def _text(self) -> str:
-        return ET.tostring(self.tree.getroot(), encoding="unicode")
-
     def _load(self, pb, client):
         """Load the URDF (from a temporary copy beside the original, so relative mesh paths resolve)."""
         import os
@@ -265,7 +290,7 @@ class UrdfBackend:
         fd, tmp = tempfile.mkstemp(suffix=".urdf", dir=self.source_dir)
         try:
             with os.fdopen(fd, "w") as fh:
-                fh.write(self._text())
+                fh.write(_xml_text(self.tree))
             with _quiet_stdout():
                 body = pb.loadURDF(tmp, basePosition=list(self.scene["base_position"]),
                                    useFixedBase=self.scene["fixed_base"], physicsClientId=client)
@@ -301,41 +326,37 @@ class UrdfBackend:
         out.append(Parameter("g", "setGravity (magnitude)", (st["g"],), dim("L T^-2"), "engine", "setGravity",
                              note="PyBullet's own default is 0"))
         out.append(Parameter("timestep", "setTimeStep", (st["timestep"],), _T, "engine", "setTimeStep"))
-        for name, _default, d, note in ENGINE_PARAMETERS:
-            out.append(Parameter(name, f"setPhysicsEngineParameter({name}=...)", (st[name],), dim(d), "engine",
-                                 f"setPhysicsEngineParameter({name}=...)", note=note))
+        for name, constant, note in ENGINE_PARAMETERS:
+            out.append(Parameter(name, f"setPhysicsEngineParameter({name}=...)", (st[name],), _BULLET[constant].dimension,
+                                 "engine", f"setPhysicsEngineParameter({name}=...)", note=note))
         for index, lname in self._info["links"]:
-            ident = _clean(f"link_{lname}")
-            dyn = self._info["dynamics"][index]
-            if self._info["shapes"][index]:
-                out.append(Parameter(f"{ident}_collision_margin", f"link {lname!r} collision margin",
-                                     (st["margins"].get(str(index), dyn[11]),), _L, "engine",
-                                     "changeDynamics(collisionMargin=...)",
+            link = self._link_dynamics(index)
+            if "collisionMargin" in link:
+                out.append(Parameter(_link_parameter(lname, "collision_margin"), f"link {lname!r} collision margin",
+                                     (link["collisionMargin"],), _L, "engine", "changeDynamics(collisionMargin=...)",
                                      note="0.001 for boxes and meshes, the radius for spheres"))
-            for k, (key, d) in enumerate((("rollingFriction", _L), ("spinningFriction", _L))):
-                value = st["friction"].get(str(index), {}).get(key, dyn[6 + k])
-                out.append(Parameter(f"{ident}_{key}", f"link {lname!r} {key}", (value,), d, "engine",
+            for key in ("rollingFriction", "spinningFriction"):
+                out.append(Parameter(_link_parameter(lname, key), f"link {lname!r} {key}", (link[key],), _L, "engine",
                                      f"changeDynamics({key}=...)", note="a torque per normal force"))
-            inertia = st["inertia"].get(str(index), dyn[2])
-            if dyn[0] > 0:
-                out.append(Parameter(f"{ident}_inertia", f"link {lname!r} inertia (principal)", tuple(inertia),
-                                     dim("M L^2"), "derived", "changeDynamics(localInertiaDiagonal=...)",
+            if self._info["dynamics"][index][0] > 0:
+                out.append(Parameter(_link_parameter(lname, "inertia"), f"link {lname!r} inertia (principal)",
+                                     tuple(link["localInertiaDiagonal"]), dim("M L^2"), "derived",
+                                     "changeDynamics(localInertiaDiagonal=...)",
                                      note="computed by Bullet from the collision shapes' bounding boxes, margins "
                                           "included; scaled copies set it explicitly"))
-            for key, default, parts in MIXED_DAMPING:
-                value = st["damping"].get(str(index), {}).get(key, default)
-                out.append(Parameter(f"{ident}_{key}", f"link {lname!r} {key}", (value,), None, "engine",
-                                     f"changeDynamics({key}=...)",
-                                     parts=tuple((p, dim(d)) for p, d in parts),
+            for key, parts in MIXED_DAMPING:
+                out.append(Parameter(_link_parameter(lname, key), f"link {lname!r} {key}", (link[key],), None,
+                                     "engine", f"changeDynamics({key}=...)",
+                                     parts=tuple((part, _BULLET[constant].dimension) for part, constant in parts),
                                      note="Bullet multiplies m v by (d + d |v|)"))
         for j, jname, jtype in self._info["joints"]:
-            q = _L if jtype == "prismatic" else _ONE
-            value = st["max_joint_velocity"].get(str(j), 100.0)
-            out.append(Parameter(_clean(f"joint_{jname}_maxJointVelocity"), f"joint {jname!r} maxJointVelocity",
-                                 (value,), q / _T, "engine", "changeDynamics(maxJointVelocity=...)"))
+            out.append(Parameter(_joint_speed_parameter(jname), f"joint {jname!r} maxJointVelocity",
+                                 (self._max_joint_velocity(j),), _joint_kind(jtype).q / _T, "engine",
+                                 "changeDynamics(maxJointVelocity=...)"))
         if st["useSplitImpulse"]:
-            out.append(Parameter("splitImpulsePenetrationThreshold", "btContactSolverInfo", (_SPLIT_IMPULSE_THRESHOLD,),
-                                 _L, "engine", "", note="negative values cannot be set from Python; "
+            out.append(Parameter("splitImpulsePenetrationThreshold", "btContactSolverInfo",
+                                 (_BULLET["bullet_split_impulse_penetration_threshold"].default,), _L, "engine", "",
+                                 note="negative values cannot be set from Python; "
                                  "setPhysicsEngineParameter(useSplitImpulse=0) removes it"))
         if self.scene["ground"]:
             out.append(Parameter("ground_collision_margin", "ground plane collision margin",
@@ -358,23 +379,35 @@ class UrdfBackend:
             "ground": {"collisionMargin": st["ground_margin"]} if self.scene["ground"] else None,
         }
 
+    def _link_dynamics(self, index: int) -> dict:
+        """The ``changeDynamics`` values a link runs with: those set (by a scaling or a saved file), else PyBullet's.
+
+        In the order the calls set them: the inertia last, after the margin, for Bullet computed the
+        inertia with the margin at load.
+        """
+        st, key, dyn = self._settings, str(index), self._info["dynamics"][index]
+        values = {}
+        if self._info["shapes"][index]:
+            values["collisionMargin"] = st["margins"].get(key, dyn[11])
+        for k, name in enumerate(("rollingFriction", "spinningFriction")):
+            values[name] = st["friction"].get(key, {}).get(name, dyn[6 + k])
+        for name, parts in MIXED_DAMPING:
+            values[name] = st["damping"].get(key, {}).get(name, _BULLET[parts[0][1]].default)
+        values["localInertiaDiagonal"] = st["inertia"].get(key, dyn[2])
+        return values
+
+    def _max_joint_velocity(self, j: int) -> float:
+        return self._settings["max_joint_velocity"].get(str(j), _BULLET["bullet_max_joint_velocity"].default)
+
     def _dynamics_calls(self) -> list[dict]:
-        st, calls = self._settings, []
+        calls = []
         for index, _lname in self._info["links"]:
-            call = {"linkIndex": index}
-            key = str(index)
-            if self._info["shapes"][index]:
-                call["collisionMargin"] = st["margins"].get(key, self._info["dynamics"][index][11])
-            dyn = self._info["dynamics"][index]
-            for k, name in enumerate(("rollingFriction", "spinningFriction")):
-                call[name] = st["friction"].get(key, {}).get(name, dyn[6 + k])
-            for name, default, _parts in MIXED_DAMPING:
-                call[name] = st["damping"].get(key, {}).get(name, default)
-            if key in st["inertia"]:  # after the margin: Bullet computed the inertia with the margin at load
-                call["localInertiaDiagonal"] = st["inertia"][key]
+            call = {"linkIndex": index, **self._link_dynamics(index)}
+            if str(index) not in self._settings["inertia"]:  # Bullet's own, computed at load: not set again
+                del call["localInertiaDiagonal"]
             calls.append(call)
         for j, _jname, _jtype in self._info["joints"]:
-            calls.append({"linkIndex": j, "maxJointVelocity": st["max_joint_velocity"].get(str(j), 100.0)})
+            calls.append({"linkIndex": j, "maxJointVelocity": self._max_joint_velocity(j)})
         return calls
 
     # -- scaling --------------------------------------------------------------------------------
@@ -385,7 +418,7 @@ class UrdfBackend:
         for a in attrs:
             f = factors.get(a.name, 1.0)
             if f != 1.0:
-                a.element.set(a.attr, _fmt(np.asarray(a.read()) * f))
+                a.element.set(a.attr, attribute_text(np.asarray(a.read()) * f))
         st = json.loads(json.dumps(self._settings))
         st["g"] *= factors.get("g", 1.0)
         st["timestep"] *= factors.get("timestep", 1.0)
@@ -393,19 +426,19 @@ class UrdfBackend:
             st[name] *= factors.get(name, 1.0)
         params = {p.name: p for p in self.parameters()}
         for index, lname in self._info["links"]:
-            ident, key = _clean(f"link_{lname}"), str(index)
+            key = str(index)
             if self._info["shapes"][index]:
-                name = f"{ident}_collision_margin"
+                name = _link_parameter(lname, "collision_margin")
                 st["margins"][key] = params[name].value[0] * factors.get(name, 1.0)
-            if f"{ident}_inertia" in params:
-                name = f"{ident}_inertia"
+            name = _link_parameter(lname, "inertia")
+            if name in params:
                 st["inertia"][key] = [v * factors.get(name, 1.0) for v in params[name].value]
             for fname in ("rollingFriction", "spinningFriction", *(n for n, *_ in MIXED_DAMPING)):
-                name = f"{ident}_{fname}"
+                name = _link_parameter(lname, fname)
                 group = "damping" if "Damping" in fname else "friction"
                 st[group].setdefault(key, {})[fname] = params[name].value[0] * factors.get(name, 1.0)
         for j, jname, _jtype in self._info["joints"]:
-            name = _clean(f"joint_{jname}_maxJointVelocity")
+            name = _joint_speed_parameter(jname)
             st["max_joint_velocity"][str(j)] = params[name].value[0] * factors.get(name, 1.0)
         if "splitImpulsePenetrationThreshold" in params and factors.get("splitImpulsePenetrationThreshold", 1) != 1:
             from .model import UnscalableParameterError
@@ -427,7 +460,7 @@ class UrdfBackend:
             resolved = _mesh_path(g.get("filename", ""), self.source_dir)
             if resolved is not None:
                 g.set("filename", str(resolved.resolve()))
-        path.write_text(ET.tostring(tree.getroot(), encoding="unicode"))
+        path.write_text(_xml_text(tree))
         settings = self.settings()
         Path(f"{path}.settings.json").write_text(json.dumps(settings, indent=2))
         Path(f"{path}.settings.py").write_text(_snippet(path.name, settings))
@@ -444,14 +477,14 @@ class UrdfBackend:
             dims.append(d)
         for _j, jname, jtype in self._info["joints"]:
             names.append(f"q[{jname}]")
-            dims.append(_L if jtype == "prismatic" else _ONE)
+            dims.append(_joint_kind(jtype).q)
         for _j, jname, jtype in self._info["joints"]:
             names.append(f"qdot[{jname}]")
-            dims.append(dim("L T^-1") if jtype == "prismatic" else dim("T^-1"))
+            dims.append(_joint_kind(jtype).q / _T)
         return names, dims
 
     def control_dimensions(self):
-        return [_FORCE if jtype == "prismatic" else _TORQUE for _j, _n, jtype in self._info["joints"]]
+        return [_joint_kind(jtype).force for _j, _n, jtype in self._info["joints"]]
 
     def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None):
         pb, client = self._connect()
@@ -552,10 +585,6 @@ def _snippet(name: str, settings: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-_SCENE_DEFAULTS = {"base_position": (0.0, 0.0, 0.0), "fixed_base": False, "ground": False, "split_impulse": True,
-                   "g": 9.81, "damping": None}
-
-
 def load_urdf(path, *, settings=None, base_position=None, fixed_base=None, ground=None, split_impulse=None,
               g=None, damping=None) -> EngineModel:
     """Read a URDF file through PyBullet.
@@ -590,6 +619,8 @@ def load_urdf(path, *, settings=None, base_position=None, fixed_base=None, groun
     Returns
     -------
     EngineModel
+        Of engine ``"pybullet"``, with the scene and settings it runs in
+        (:meth:`~pitheorem.engines.EngineModel.settings`).
 
     Raises
     ------
@@ -631,7 +662,8 @@ def load_urdf(path, *, settings=None, base_position=None, fixed_base=None, groun
         return _load_saved(path, Path(saved))
     if saved is not False and settings not in (None, True):
         raise EngineModelError(str(saved), "", "no such settings file")
-    return EngineModel(_scene_backend(path, **{**_SCENE_DEFAULTS, **scene}), "pybullet", str(path))
+    defaults = {name: default for name, (_kind, default) in SCENE_OPTIONS.items()}
+    return EngineModel(_scene_backend(path, **{**defaults, **scene}), "pybullet", str(path))
 
 
 def _scene_backend(path: Path, *, base_position, fixed_base, ground, split_impulse, g, damping) -> UrdfBackend:
@@ -641,11 +673,11 @@ def _scene_backend(path: Path, *, base_position, fixed_base, ground, split_impul
         raise EngineModelError(str(path), f"line {err.position[0]}", f"not well-formed XML ({err})") from None
     settings = {
         "g": float(g),
-        "timestep": 1.0 / 240.0,
-        **{name: default for name, default, *_ in ENGINE_PARAMETERS},
+        "timestep": _BULLET["bullet_time_step"].default,
+        **{name: _BULLET[constant].default for name, constant, _note in ENGINE_PARAMETERS},
         "useSplitImpulse": int(bool(split_impulse)),
         "margins": {}, "friction": {}, "damping": {}, "max_joint_velocity": {}, "inertia": {},
-        "ground_margin": 0.001,
+        "ground_margin": _BULLET["bullet_collision_margin"].default,
     }
     scene = {"base_position": tuple(float(v) for v in base_position), "fixed_base": bool(fixed_base),
              "ground": bool(ground)}

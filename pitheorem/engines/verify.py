@@ -35,7 +35,7 @@ import numpy as np
 
 from ..errors import InvalidRequestError
 from ..simulation import SimilarityReport, Trajectory, positive_float, similarity_report
-from .model import EngineModel, _check_s, _check_scaling, dim, power_factor
+from .model import EngineModel, _check_s, _check_scaling, dim, dimension_factor, power_factor
 
 __all__ = ["EngineRunner", "verify"]
 
@@ -145,7 +145,7 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         raise InvalidRequestError(f"controller must be callable (run_model -> policy), got {type(controller).__name__}")
     original, copy = model.backend, scaled.backend
 
-    f_time = power_factor(s, scaling.exponent_of(dim("T")))
+    f_time = dimension_factor(scaling, s, dim("T"))
     dt = original.timestep()
     if not math.isclose(copy.timestep(), dt * f_time, rel_tol=1e-12):
         raise InvalidRequestError(
@@ -204,9 +204,8 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         nudged = original.run(n_steps, u_original, nudge=True, policy=policy(model))
         scaled_run = copy.run(n_steps, u_scaled, policy=policy(scaled))
     back = scaled_run / factors
-    kind = "mujoco" if model.engine == "mujoco" else "pybullet"
     return similarity_report(
         Trajectory(t, run, tuple(names)), Trajectory(t, back, tuple(names)), s=float(s), scaling=scaling,
         exponents={n: exponent_of[d] for n, d in zip(names, dims, strict=True)},
-        nudged=Trajectory(t, nudged, tuple(names)), baseline_factor=baseline_factor, method=kind,
+        nudged=Trajectory(t, nudged, tuple(names)), baseline_factor=baseline_factor, method=model.engine,
     )

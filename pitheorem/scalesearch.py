@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import html
 from collections.abc import Iterable, Iterator, Mapping
-from dataclasses import FrozenInstanceError, dataclass, field, fields
+from dataclasses import dataclass, field, fields
 from fractions import Fraction
 from math import comb, gcd, lcm
 from types import MappingProxyType
@@ -31,9 +31,11 @@ from typing import ClassVar
 from .dimensions import Dimension
 from .display import note_text, power_text
 from .errors import InvalidRequestError
+from .exact import read_exponent
 from .groups import PiGroup
+from .immutable import immutable
 from .linalg import nullspace, rank, solve
-from .scaling import Scaling, as_exponent
+from .scaling import Scaling
 from .system import System
 
 __all__ = ["SearchNote", "SearchResult", "search"]
@@ -48,23 +50,7 @@ def _dot(x, y) -> Fraction:
     return sum((a * b for a, b in zip(x, y, strict=True)), Fraction(0))
 
 
-def _refuse_assignment(cls):
-    """Make every assignment to an instance of a frozen, slotted dataclass raise FrozenInstanceError.
-
-    Python 3.11's generated ``__setattr__`` answers a name that is no field
-    (``res.count = 1``) with an unrelated ``TypeError`` about ``super()``,
-    because ``slots=True`` builds a new class; this says what happened.
-    """
-
-    def refuse(self, name, *value):
-        raise FrozenInstanceError(f"cannot assign or delete {name!r}: a {cls.__name__} is immutable")
-
-    cls.__setattr__ = refuse
-    cls.__delattr__ = refuse
-    return cls
-
-
-@_refuse_assignment
+@immutable
 @dataclass(frozen=True, slots=True)
 class SearchNote:
     """An assumption a search made, as data that each front end phrases.
@@ -129,14 +115,14 @@ class _Once:
         return self._value
 
 
-@_refuse_assignment
+@immutable
 @dataclass(frozen=True, slots=True)
 class SearchResult:
     """The answer of :func:`search`: every minimal scaling, or a proof of none.
 
     A frozen value, made whole by :func:`search`: its attributes cannot be
     assigned.  The minimal scalings are enumerated once, on first use of
-    :attr:`scalings`, :attr:`count`, :meth:`table` or the text display;
+    :attr:`scalings`, :attr:`n_scalings`, :meth:`table` or the text display;
     ``repr`` and the attributes below never enumerate.
 
     Attributes
@@ -182,7 +168,7 @@ class SearchResult:
     certificate_power: Fraction = Fraction(0)
     particular: Scaling | None = None
     directions: tuple[Scaling, ...] = ()
-    # the scalings are changes of units (else symmetries of equations: Scaling.units is None)
+    # the scalings are changes of units (else symmetries of equations: Scaling.unit_change_vector is None)
     _is_units: bool = field(default=True, repr=False, compare=False)
     _minimal: _Once = field(default=None, repr=False, compare=False)
 
@@ -201,27 +187,27 @@ class SearchResult:
         return [point for point, _ in self._enumerate()]
 
     @property
-    def count(self) -> int:
+    def n_scalings(self) -> int:
         """Number of support-minimal scalings (computed exactly, not built).
 
         Examples
         --------
         >>> import pitheorem as pt
         >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "t": "T"})
-        >>> pt.search(rod, scale={"g": 1}).count
+        >>> pt.search(rod, scale={"g": 1}).n_scalings
         2
         """
         return len(self._enumerate())
 
     @property
-    def max_count(self) -> int:
-        """Upper bound C(#free, dim) on :attr:`count`, known without enumerating.
+    def max_n_scalings(self) -> int:
+        """Upper bound C(#free, dim) on :attr:`n_scalings`, known without enumerating.
 
         Examples
         --------
         >>> import pitheorem as pt
         >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "t": "T"})
-        >>> pt.search(rod, scale={"g": 1}).max_count
+        >>> pt.search(rod, scale={"g": 1}).max_n_scalings
         3
         """
         if not self.feasible:
@@ -275,7 +261,7 @@ class SearchResult:
         """
         if self.feasible:
             extra = f" (a family of dimension {len(self.directions)})" if self.directions else " (unique)"
-            return f"Scaling {self._request()}: {self.count} minimal solution(s){extra}."
+            return f"Scaling {self._request()}: {self.n_scalings} minimal solution(s){extra}."
         return (
             f"Impossible: {self.certificate.expr} is dimensionless and built only from prescribed and fixed "
             f"variables, but the request would multiply it by {power_text(self.certificate_power)}, so no change "
@@ -288,7 +274,7 @@ class SearchResult:
         A symmetry of particular equations (``within=``) that is no change of units has none:
         its cells read "none".
         """
-        changes = [sc.unit_change if sc.units is not None else None for sc in self.iter_scalings()]
+        changes = [sc.unit_change if sc.is_unit_change else None for sc in self.iter_scalings()]
         return [(f"[{b}]", [power_text(u[b]) if u is not None else "none" for u in changes])
                 for b in self.system.base_dimensions]
 
@@ -313,7 +299,7 @@ class SearchResult:
         [L]       base   s
         [T]       base   -
         """
-        rows = [["variable", "role", *(f"#{k + 1}" for k in range(self.count))]]
+        rows = [["variable", "role", *(f"#{k + 1}" for k in range(self.n_scalings))]]
         for i, n in enumerate(self.system.variables):
             role = "scale" if n in self.scale else "fixed" if n in self.fixed else "free"
             rows.append([n, role, *(power_text(p[i]) for p in self._vectors())])
@@ -333,14 +319,14 @@ class SearchResult:
             answer = f"infeasible, certificate {self.certificate.expr}"
         elif self.directions:
             answer = (f"feasible, a family of dimension {len(self.directions)}, "
-                      f"at most {self.max_count} minimal solution(s)")
+                      f"at most {self.max_n_scalings} minimal solution(s)")
         else:
             answer = "feasible, unique"
         return f"<SearchResult {self._request()}: {answer}>"
 
     def _repr_html_(self) -> str:
         cell = 'style="padding: 0.15em 0.9em; text-align: center"'
-        head = "".join(f"<th {cell}>#{k + 1}</th>" for k in range(self.count))
+        head = "".join(f"<th {cell}>#{k + 1}</th>" for k in range(self.n_scalings))
         body = []
         for i, n in enumerate(self.system.variables):
             role = "scale" if n in self.scale else "fixed" if n in self.fixed else "free"
@@ -403,8 +389,8 @@ _HTML_TIME_REMEDY = f"pass {_html_code('fixed=()')} to let time change"
 
 
 def _scaling(system: System, generators, is_units: bool, coords) -> Scaling:
-    powers = tuple(_dot(coords, [g[i] for g in generators]) for i in range(len(system.variables)))
-    return Scaling(system, powers, tuple(coords) if is_units else None)
+    vector = tuple(_dot(coords, [g[i] for g in generators]) for i in range(len(system.variables)))
+    return Scaling(system, vector, tuple(coords) if is_units else None)
 
 
 def _solve(system: System, scale: dict[str, Fraction], fixed: tuple[str, ...], notes: tuple[SearchNote, ...],
@@ -413,7 +399,7 @@ def _solve(system: System, scale: dict[str, Fraction], fixed: tuple[str, ...], n
     # allowed exponent vectors are combinations of these rows: the rows of
     # the dimension matrix (changes of units), or a symmetry basis
     is_units = generators is None
-    gens = ([[system.dimension(v).exponent(b) for v in system.variables] for b in system.base_dimensions]
+    gens = ([[system.dimension(v).exponent_of(b) for v in system.variables] for b in system.base_dimensions]
             if generators is None else [list(g) for g in generators])
     names = list(scale) + list(fixed)
     rhs = [scale[n] for n in scale] + [Fraction(0)] * len(fixed)
@@ -429,7 +415,7 @@ def _solve(system: System, scale: dict[str, Fraction], fixed: tuple[str, ...], n
     null_w = nullspace(rows, len(gens)) if rows else nullspace([], len(gens))
     kept, images = [], []
     for w in null_w:
-        image = list(_scaling(system, gens, is_units, w).powers)
+        image = list(_scaling(system, gens, is_units, w).vector)
         if rank([*images, image]) > len(images):
             kept.append(w)
             images.append(image)
@@ -437,7 +423,7 @@ def _solve(system: System, scale: dict[str, Fraction], fixed: tuple[str, ...], n
     directions = tuple(_scaling(system, gens, is_units, w) for w in kept)
     constrained = set(scale) | set(fixed)
     free = [i for i, n in enumerate(system.variables) if n not in constrained]
-    minimal = _Once(particular.powers, [d.powers for d in directions], free, w0, kept)
+    minimal = _Once(particular.vector, [d.vector for d in directions], free, w0, kept)
     return SearchResult(**request, feasible=True, particular=particular, directions=directions, _minimal=minimal)
 
 
@@ -450,7 +436,7 @@ def _certificate(system: System, scale, names, rows, rhs) -> tuple[PiGroup, Frac
     scaled = [n for n, y in zip(names, best, strict=True) if y and n in scale]
     group = PiGroup.from_exponents(dict(zip(names, best, strict=True)), variable=scaled[0] if scaled else None,
                                    order=[n for n in system.variables if n in names])
-    group = PiGroup(group.powers, None)
+    group = PiGroup(group.exponents, None)
     return group, _dot([group.exponents.get(n, 0) for n in names], rhs)
 
 
@@ -532,7 +518,8 @@ def search(
         Search the scaling symmetries of particular equations (from
         :func:`pitheorem.scaling_symmetries`) instead of the changes of
         units.  Variables that do not appear in the equations are held
-        fixed.  Solutions beyond changes of units have ``units=None``.
+        fixed.  Solutions beyond changes of units have
+        ``is_unit_change`` false (and no ``unit_change``).
 
     Returns
     -------
@@ -584,7 +571,7 @@ def search(
     if not scale:
         raise InvalidRequestError("empty request: scale must prescribe at least one variable, e.g. scale={'g': 1}")
     scaled = system.check_names(tuple(scale), "scale")
-    exponents = {n: as_exponent(scale[n], repr(n)) for n in scaled}
+    exponents = {n: read_exponent(scale[n], f"exponent of {n!r}") for n in scaled}
     for n, p in exponents.items():
         if p == 0:
             raise InvalidRequestError(f"scale gives {n!r} exponent 0: to keep {n!r} unchanged, put it in fixed")
@@ -616,10 +603,11 @@ def search(
 
 
 def _symmetry_generators(system: System, within, exponents):
-    variables = getattr(within, "variables", None)
-    basis = getattr(within, "basis", None)
-    if variables is None or basis is None:
+    from .equations import SymmetryReport  # sympy's equation machinery loads only for within=
+
+    if not isinstance(within, SymmetryReport):
         raise InvalidRequestError(f"within must be a SymmetryReport from scaling_symmetries, got {within!r}")
+    variables, basis = within.variables, within.basis
     for n in variables:
         system.index(n, "within (the equations' symbols)")
     for n in exponents:

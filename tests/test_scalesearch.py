@@ -1,9 +1,10 @@
-"""pitheorem.search: the white paper's cases, properties against brute force, bad requests."""
+"""pitheorem.scalesearch (pt.search): the white paper's cases, properties against brute force, bad requests."""
 
 from __future__ import annotations
 
 from fractions import Fraction
 from itertools import combinations
+from types import SimpleNamespace
 from unittest import mock
 
 import pytest
@@ -16,7 +17,7 @@ from tests.test_properties import dimension_of_group, systems
 
 
 def exps(scaling: pt.Scaling) -> dict[str, Fraction]:
-    return {n: Fraction(p) for n, p in zip(scaling.system.variables, scaling.powers, strict=True) if p}
+    return {n: Fraction(p) for n, p in zip(scaling.system.variables, scaling.vector, strict=True) if p}
 
 
 # -- the paper's questions ------------------------------------------------------------
@@ -31,7 +32,7 @@ def test_rod_gravity_time_free_has_exactly_three_minimal_solutions(rod):
         {"m": -1, "l": 1, "g": 1, "k_theta": 1, "c_theta": 1, "tau": 1},
         {"l": 1, "g": 1, "k_theta": 2, "c_theta": 2, "F": 1, "tau": 2},
     ]
-    assert res.count == 3
+    assert res.n_scalings == 3
     assert len(res.directions) == 1
 
 
@@ -39,7 +40,7 @@ def test_rod_gravity_with_paper_repeaters_fixed_is_impossible(rod):
     res = pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta"))
     assert not res.feasible
     assert res.scalings == []
-    assert res.count == 0
+    assert res.n_scalings == 0
     assert res.certificate.is_power_of(pt.PiGroup((("g", 2), ("t", 2), ("m", 1), ("k_theta", -1))))
     assert res.certificate_power != 0
     assert "g**2*m*t**2/k_theta" in res.explanation()
@@ -108,7 +109,7 @@ def point_set(system, scale, fixed):
     """Brute force: every subset of free variables held at zero; keep unique points; filter minimal."""
     bases = system.base_dimensions
     names = system.variables
-    col = {n: [system.dimension(n).exponent(b) for b in bases] for n in names}
+    col = {n: [system.dimension(n).exponent_of(b) for b in bases] for n in names}
     free = [n for n in names if n not in scale and n not in fixed]
     points = set()
     for k in range(len(free) + 1):
@@ -145,7 +146,7 @@ def requests(draw):
 def test_minimal_scalings_equal_brute_force(request):
     system, scale, fixed = request
     res = pt.search(system, scale=scale, fixed=fixed)
-    got = {s.powers for s in res.scalings}
+    got = {s.vector for s in res.scalings}
     assert len(got) == len(res.scalings)
     assert got == point_set(system, scale, fixed)
     assert res.feasible == bool(got) or not system.base_dimensions
@@ -159,13 +160,13 @@ def test_scalings_keep_groups_and_respect_request(request):
     groups = system.pi_groups()
     for sc in res.scalings:
         for group in groups:
-            assert sum(sc.powers[system.index(n)] * p for n, p in group.powers) == 0
+            assert sum(sc.vector[system.index(n)] * p for n, p in group.exponents.items()) == 0
         for n, p in scale.items():
-            assert sc.powers[system.index(n)] == p
+            assert sc.vector[system.index(n)] == p
         for n in fixed:
-            assert sc.powers[system.index(n)] == 0
+            assert sc.vector[system.index(n)] == 0
         # a = D^T u
-        for n, p in zip(system.variables, sc.powers, strict=True):
+        for n, p in zip(system.variables, sc.vector, strict=True):
             assert sc.exponent_of(system.dimension(n)) == p
 
 
@@ -178,7 +179,7 @@ def test_certificates_prove_impossibility(request):
     cert = res.certificate
     assert dimension_of_group(system, cert).is_dimensionless
     assert set(cert.exponents) <= set(scale) | set(fixed)
-    change = sum(scale.get(n, 0) * p for n, p in cert.powers)
+    change = sum(scale.get(n, 0) * p for n, p in cert.exponents.items())
     assert change != 0
     assert change == res.certificate_power
 
@@ -249,7 +250,7 @@ def test_table_base_unit_rows_explain_every_column(rod, model, request_):
     for name, powers in variables.items():
         dim = system.dimension(name)
         for k, power in enumerate(powers):
-            assert power == sum(dim.exponent(b) * base[b][k] for b in base)
+            assert power == sum(dim.exponent_of(b) * base[b][k] for b in base)
     html = res._repr_html_()
     assert html.count('<tr class="base-unit"') == len(system.base_dimensions)
 
@@ -265,15 +266,24 @@ def test_table_of_symmetries_beyond_units_says_they_have_no_unit_change():
     assert res._repr_html_().count(">none</td>") == len(proj.system.base_dimensions)
 
 
+def test_within_takes_a_symmetry_report_not_a_look_alike():
+    proj = pt.models.projectile()
+    sym = pt.scaling_symmetries(proj.equations, proj.system)
+    look_alike = SimpleNamespace(variables=sym.variables, basis=sym.basis)  # what the old attribute check accepted
+    for bad in (look_alike, {"variables": sym.variables}, None.__class__):
+        with pytest.raises(pt.InvalidRequestError, match="within must be a SymmetryReport"):
+            pt.search(proj.system, scale={"x": 1}, fixed=("t", "g"), within=bad)
+
+
 # -- the result is a frozen value, enumerated once and lazily ------------------------------
 def _search_module():
-    import importlib
+    import pitheorem.scalesearch as module  # the module; pt.search is its function
 
-    return importlib.import_module("pitheorem.search")  # `pitheorem.search` is the function
+    return module
 
 
 @pytest.mark.parametrize("attr", ["feasible", "scale", "fixed", "notes", "certificate", "certificate_power",
-                                  "particular", "directions", "system", "count"])
+                                  "particular", "directions", "system", "n_scalings"])
 def test_result_attributes_cannot_be_assigned(rod, attr):
     res = pt.search(rod, scale={"g": 1})
     with pytest.raises(AttributeError):
@@ -294,9 +304,9 @@ def test_repr_does_not_enumerate_and_the_enumeration_runs_once(rod):
         assert spy.call_count == 0
         assert text == ("<SearchResult g by s with t fixed: feasible, a family of dimension 1, "
                         "at most 7 minimal solution(s)>")
-        assert res.max_count == 7  # known without enumerating
+        assert res.max_n_scalings == 7  # known without enumerating
         assert spy.call_count == 0
-        assert res.count == 3
+        assert res.n_scalings == 3
         assert len(res.scalings) == 3
         str(res), res.table(), res._repr_html_(), list(res.iter_scalings())
         assert spy.call_count == 1
@@ -309,7 +319,7 @@ def test_repr_does_not_enumerate_and_the_enumeration_runs_once(rod):
 
 def test_equal_requests_give_equal_hashable_results(rod):
     a, b = pt.search(rod, scale={"g": 1}), pt.search(rod, scale={"g": 1})
-    assert a.count == 3  # one enumerated, one not: still equal
+    assert a.n_scalings == 3  # one enumerated, one not: still equal
     assert a == b
     assert hash(a) == hash(b)
     assert a != pt.search(rod, scale={"g": 1}, fixed=())
@@ -322,7 +332,7 @@ def test_results_pickle_before_and_after_enumerating(rod):
         again = pickle.loads(pickle.dumps(res))
         assert again == res
         assert again.scalings == res.scalings  # enumerates both
-        assert pickle.loads(pickle.dumps(res)).count == res.count
+        assert pickle.loads(pickle.dumps(res)).n_scalings == res.n_scalings
         with pytest.raises(TypeError):
             again.scale["g"] = 2
 
