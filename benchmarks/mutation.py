@@ -70,6 +70,9 @@ TARGETS = {
                "tests/test_fast_paths.py", "tests/test_edges.py"],
     "scaling": ["tests/test_scaling.py", "tests/test_scalesearch.py", "tests/test_edges.py", "tests/test_errors.py"],
     "equations": ["tests/test_equations.py", "tests/test_equation_functions.py"],
+    "model": ["tests/test_model.py", "tests/test_models.py", "tests/test_edges.py"],
+    "models": ["tests/test_models.py", "tests/test_model.py", "tests/test_equations.py"],
+    "simulation": ["tests/test_simulation.py", "tests/test_similarity_report.py", "tests/test_models.py"],
 }
 
 _COMPARE_SWAP = {ast.Lt: ast.LtE, ast.LtE: ast.Lt, ast.Gt: ast.GtE, ast.GtE: ast.Gt, ast.Eq: ast.NotEq,

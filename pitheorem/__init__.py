@@ -23,6 +23,7 @@ from .errors import (
     EmptySystemError,
     InvalidRequestError,
     LimitError,
+    ModelEquationError,
     NumberError,
     PiTheoremError,
     RepeatingCountError,
@@ -44,15 +45,15 @@ _LAZY = {
     "ModelFile": "modelfile",
     "ModelFileError": "modelfile",
     "load_model_file": "modelfile",
-    "Model": "models",
+    "Model": "model",
     "Scaling": "scaling",
     "SearchNote": "scalesearch",
     "SearchResult": "scalesearch",
     "search": "scalesearch",
-    "SimilarityReport": "simulate",
-    "Trajectory": "simulate",
-    "simulate": "simulate",
-    "verify_similarity": "simulate",
+    "SimilarityReport": "simulation",
+    "Trajectory": "simulation",
+    "simulate": "simulation",
+    "verify_similarity": "simulation",
     "RangeBound": "unitfit",
     "UnitFit": "unitfit",
     "fit_units": "unitfit",
@@ -78,8 +79,8 @@ class _Package(ModuleType):
     """This package, where a function keeps its name over the submodule that defines it.
 
     Importing a submodule binds it as an attribute of its package; for
-    ``search`` and ``simulate`` that would hide the functions of the same
-    names, which eager imports used to re-bind afterwards.
+    ``search`` that would hide the function of the same name, which eager
+    imports used to re-bind afterwards.
     """
 
     def __setattr__(self, name, value):
@@ -101,6 +102,7 @@ __all__ = [
     "InvalidRequestError",
     "LimitError",
     "Model",
+    "ModelEquationError",
     "ModelFile",
     "ModelFileError",
     "NumberError",

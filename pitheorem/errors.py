@@ -20,6 +20,7 @@ __all__ = [
     "EngineUnavailableError",
     "InvalidRequestError",
     "LimitError",
+    "ModelEquationError",
     "ModelFileError",
     "NumberError",
     "PiTheoremError",
@@ -367,6 +368,60 @@ class SystemMismatchError(InvalidRequestError):
 
     def __reduce__(self):
         return (type(self), (self.name, self.reason))
+
+
+class ModelEquationError(InvalidRequestError):
+    """An equation that cannot define a :class:`~pitheorem.Model`.
+
+    A model's equations must be first order in time, linear in the
+    states' derivatives, one per state, and dimensionally consistent.
+
+    Parameters
+    ----------
+    equation : str or None
+        The equation at fault, as text (``None`` when the fault lies in
+        the set of equations rather than in one of them).
+    reason : str
+        What is wrong and what would be valid.
+    index : int or None
+        The equation's position in the model's list, counted from 1.
+
+    Examples
+    --------
+    >>> import sympy, pitheorem as pt
+    >>> t = sympy.Symbol("t")
+    >>> x = sympy.Function("x")(t)
+    >>> try:
+    ...     pt.Model(pt.System({"x": "L", "t": "T"}), [sympy.Eq(x.diff(t, 2), 0)])
+    ... except pt.ModelEquationError as err:
+    ...     print(err.index, err.culprit)
+    1 Eq(Derivative(x(t), (t, 2)), 0)
+    """
+
+    def __init__(self, equation: str | None, reason: str, index: int | None = None):
+        self.equation, self.reason, self.index = equation, reason, index
+        PiTheoremError.__init__(self, str(self))
+
+    @property
+    def culprit(self) -> str | None:
+        """The equation at fault, as text.
+
+        Examples
+        --------
+        >>> from pitheorem.errors import ModelEquationError
+        >>> ModelEquationError("Eq(x, 1)", "it holds no derivative", 2).culprit
+        'Eq(x, 1)'
+        """
+        return self.equation
+
+    def __str__(self) -> str:
+        if self.equation is None:
+            return f"the model's equations: {self.reason}"
+        where = f"equation {self.index}" if self.index is not None else "equation"
+        return f"{where} of the model, {self.equation}: {self.reason}"
+
+    def __reduce__(self):
+        return (type(self), (self.equation, self.reason, self.index))
 
 
 class NumberError(InvalidRequestError):

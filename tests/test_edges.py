@@ -377,6 +377,8 @@ def provoked_errors():
         errors.SystemMismatchError: (catch(lambda: pt.verify_similarity(
             pt.models.projectile(), pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1}),
             s=2, t_final=0.1)), "m"),
+        errors.ModelEquationError: (catch(lambda: pt.Model(pt.System({"x": "L", "t": "T"}), [sympy.Eq(
+            sympy.Function("x")(sympy.Symbol("t")).diff("t", 2), 0)])), "Eq(Derivative(x(t), (t, 2)), 0)"),
         errors.NumberError: (catch(lambda: pt.search(LT, scale={"l": float("nan")})), "nan"),
         errors.LimitError: (catch(lambda: pt.Dimension.parse("L^5000")), "5000"),
         errors.ModelFileError: (catch(lambda: pt.load_model_file("example:nope")), "example:nope"),

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+import types
 from collections.abc import Sequence
 from fractions import Fraction
 from itertools import combinations
@@ -340,13 +341,17 @@ def test_cli_groups_and_search_load_neither_scipy_nor_matplotlib(tmp_path):
 
 def test_lazy_names_resolve_to_the_functions_not_the_modules():
     import pitheorem.scalesearch as scalesearch
-    import pitheorem.simulate  # noqa: F401  binding the submodules must not hide the functions
+    import pitheorem.simulation as simulation
 
     assert scalesearch.__name__ == "pitheorem.scalesearch"  # the module is the module
     assert pt.search is scalesearch.search
     assert pt.search.__name__ == "search"
     assert pt.simulate.__name__ == "simulate"
     assert callable(pt.simulate)
+    # the module's name differs from its functions': importing it gives the module
+    assert isinstance(simulation, types.ModuleType)
+    assert simulation.simulate is pt.simulate
+    assert simulation.verify_similarity is pt.verify_similarity
     for name in pt.__all__:
         assert getattr(pt, name) is not None
         assert name in dir(pt)

@@ -88,6 +88,7 @@ NOT_VALUE_TYPES = {
     "EmptySystemError": _ERROR,
     "InvalidRequestError": _ERROR,
     "LimitError": _ERROR,
+    "ModelEquationError": _ERROR,
     "ModelFileError": _ERROR,
     "NumberError": _ERROR,
     "RepeatingCountError": _ERROR,

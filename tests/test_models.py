@@ -1,10 +1,8 @@
-"""Tests for pitheorem.models: the paper's models, parameter lists and the Model type."""
+"""Tests for pitheorem.models: the paper's models and parameter lists (the Model type: test_model.py)."""
 
 from __future__ import annotations
 
-import dataclasses
 import math
-import pickle
 
 import numpy as np
 import pytest
@@ -92,6 +90,8 @@ def test_longitudinal_rod_conserves_energy_without_damper():
 def test_longitudinal_damper_dissipates():
     model = models.hinged_rod_longitudinal()
     assert model.parameters == ("m", "l", "g", "k", "x_r", "c")
+    assert dict(model.defaults) == {"m": 1.5, "l": 2.0, "g": 9.81, "k": 20.0, "x_r": 4.0, "c": 2.0}
+    assert dict(model.initial) == {"theta": math.pi / 4, "omega": 0.0}
     assert str(model.system.dimension("c")) == "M T^-1"
     tr = pt.simulate(model, t_final=3.0)
     energy = _longitudinal_energy(model, model.defaults, tr.y)
@@ -159,105 +159,3 @@ def test_every_model_declares_every_variable(name):
     assert model.description
     out = model.rhs(0.0, model.resolve_initial(), dict(model.defaults))
     assert np.asarray(out).shape == (len(model.states),)
-
-
-# -- the Model type -------------------------------------------------------------------------------
-
-
-def _decay(**kw):
-    args = {
-        "system": pt.System({"tau": "T", "x": "L", "t": "T"}),
-        "parameters": ("tau",),
-        "states": ("x",),
-        "rhs": models._spring_mass_damper_rhs,  # any module-level callable
-        "defaults": {"tau": 2.0},
-        "initial": {"x": 1.0},
-        "name": "decay",
-    }
-    args.update(kw)
-    return pt.Model(**args)
-
-
-def test_model_is_immutable_and_hashable():
-    rod = models.hinged_rod()
-    with pytest.raises(dataclasses.FrozenInstanceError):
-        rod.name = "other"
-    with pytest.raises(TypeError):
-        rod.defaults["m"] = 3.0
-    with pytest.raises(TypeError):
-        rod.initial["theta"] = 0.0
-    assert hash(rod) == hash(models.hinged_rod())
-    assert rod == models.hinged_rod()
-    assert rod != models.spring_mass_damper()
-    assert isinstance(rod.parameters, tuple)
-
-
-def test_models_pickle():
-    rod = models.hinged_rod()
-    again = pickle.loads(pickle.dumps(rod))
-    assert again.parameters == rod.parameters
-    assert dict(again.defaults) == dict(rod.defaults)
-
-
-def test_model_copies_mutable_inputs():
-    defaults = {"tau": 2.0}
-    model = _decay(defaults=defaults, parameters=["tau"])
-    defaults["tau"] = 5.0
-    assert model.defaults["tau"] == 2.0
-    assert model.parameters == ("tau",)
-
-
-@pytest.mark.parametrize(
-    ("kw", "error", "culprit"),
-    [
-        ({"parameters": ("tau", "nope")}, pt.UnknownVariableError, "nope"),
-        ({"states": ("y",)}, pt.UnknownVariableError, "y"),
-        ({"states": ()}, pt.InvalidRequestError, "state"),
-        ({"time": "time"}, pt.UnknownVariableError, "time"),
-        ({"time": "x"}, pt.DuplicateVariableError, "x"),
-        ({"parameters": ("tau", "tau")}, pt.DuplicateVariableError, "tau"),
-        ({"rhs": 3}, pt.InvalidRequestError, "rhs"),
-        ({"defaults": {"tau": 2.0, "k": 1.0}}, pt.UnknownVariableError, "k"),
-        ({"defaults": {"tau": "fast"}}, pt.InvalidRequestError, "tau"),
-        ({"initial": {"v": 0.0}}, pt.UnknownVariableError, "v"),
-        ({"system": {"tau": "T"}}, pt.InvalidRequestError, "System"),
-    ],
-)
-def test_model_validation(kw, error, culprit):
-    with pytest.raises(error) as info:
-        _decay(**kw)
-    assert culprit in str(info.value)
-
-
-def test_resolve_params_and_initial():
-    rod = models.hinged_rod()
-    p = rod.resolve_params({"g": 1.62})
-    assert p["g"] == 1.62
-    assert p["m"] == 1.5
-    assert list(p) == list(rod.parameters)
-    with pytest.raises(pt.UnknownVariableError, match="'mass'"):
-        rod.resolve_params({"mass": 2.0})
-    with pytest.raises(pt.InvalidRequestError, match="'g'"):
-        rod.resolve_params({"g": "strong"})
-    with pytest.raises(pt.InvalidRequestError, match="'g'"):
-        rod.resolve_params({"g": float("nan")})
-    with pytest.raises(pt.InvalidRequestError, match="mapping"):
-        rod.resolve_params([1.0, 2.0])
-    no_default = _decay(defaults={})
-    with pytest.raises(pt.InvalidRequestError, match=r"'tau'.*no default"):
-        no_default.resolve_params()
-    assert rod.resolve_initial().tolist() == [math.pi / 4, 0.0]
-    assert rod.resolve_initial({"omega": 1.0}).tolist() == [math.pi / 4, 1.0]
-    assert rod.resolve_initial([0.1, 0.2]).tolist() == [0.1, 0.2]
-    with pytest.raises(pt.InvalidRequestError, match=r"3 values.*2 states"):
-        rod.resolve_initial([0.1, 0.2, 0.3])
-    with pytest.raises(pt.UnknownVariableError, match="'phi'"):
-        rod.resolve_initial({"phi": 0.0})
-    with pytest.raises(pt.InvalidRequestError, match=r"'x'.*no initial value"):
-        _decay(initial={}).resolve_initial()
-    with pytest.raises(pt.InvalidRequestError):
-        rod.resolve_initial(["a", "b"])
-    with pytest.raises(pt.InvalidRequestError):
-        rod.resolve_initial(5)
-    with pytest.raises(pt.UnknownVariableError, match="'m'"):
-        rod.state_dimension("m")

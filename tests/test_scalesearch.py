@@ -257,7 +257,7 @@ def test_table_base_unit_rows_explain_every_column(rod, model, request_):
 
 def test_table_of_symmetries_beyond_units_says_they_have_no_unit_change():
     proj = pt.models.projectile()
-    sym = pt.scaling_symmetries(pt.models.model_equations(proj), proj.system)
+    sym = pt.scaling_symmetries(proj.equations, proj.system)
     res = pt.search(proj.system, scale={"x": 1}, fixed=("t", "g"), within=sym)
     rows = [line.split() for line in res.table().splitlines()]
     base = [r for r in rows if r[1] == "base"]
@@ -268,7 +268,7 @@ def test_table_of_symmetries_beyond_units_says_they_have_no_unit_change():
 
 def test_within_takes_a_symmetry_report_not_a_look_alike():
     proj = pt.models.projectile()
-    sym = pt.scaling_symmetries(pt.models.model_equations(proj), proj.system)
+    sym = pt.scaling_symmetries(proj.equations, proj.system)
     look_alike = SimpleNamespace(variables=sym.variables, basis=sym.basis)  # what the old attribute check accepted
     for bad in (look_alike, {"variables": sym.variables}, None.__class__):
         with pytest.raises(pt.InvalidRequestError, match="within must be a SymmetryReport"):

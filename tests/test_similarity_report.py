@@ -1,4 +1,4 @@
-"""The one comparison of every simulator (simulate.similarity_report), its one-ulp baseline, and the message
+"""The one comparison of every simulator (simulation.similarity_report), its one-ulp baseline, and the message
 naming the Pi group a non-similarity changes."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import pitheorem as pt
-from pitheorem.simulate import nudged, similarity_report
+from pitheorem.simulation import nudged, similarity_report
 
 
 def runs(dev, base, values=(1.0, 2.0)):
@@ -27,6 +27,7 @@ def test_verdict_is_ten_times_the_baseline_per_state():
         original, mapped, nudge = runs(dev, base, values=(2.0, 2.0))
         rep = similarity_report(original, mapped, s=2, scaling={}, exponents={}, nudged=nudge)
         assert rep.similar is similar
+        assert math.isnan(rep.tol)  # judged against the baseline, not a tolerance
         assert rep.sensitivity["x"] == pytest.approx(base, rel=1e-3)
 
 
@@ -42,6 +43,9 @@ def test_absolute_tolerance_without_a_baseline():
     original, mapped, _ = runs(1e-7, 0.0)
     assert similarity_report(original, mapped, s=2, scaling={}, exponents={}, tol=1e-6).passed
     assert not similarity_report(original, mapped, s=2, scaling={}, exponents={}, tol=1e-8).passed
+    exact = similarity_report(*runs(0.5, 0.0)[:2], s=2, scaling={}, exponents={}, tol=0.5)
+    assert (exact.max_deviation, exact.passed) == (0.5, True)  # a deviation of exactly tol passes
+    assert exact.scaled_dt is True  # the default: nothing says the step was not scaled
     with pytest.raises(pt.InvalidRequestError, match="tol"):
         similarity_report(original, mapped, s=2, scaling={}, exponents={})
     short = pt.Trajectory([0.0], [[1.0]], ("x",))

@@ -39,7 +39,7 @@ import numpy as np
 
 from ..dimensions import Dimension
 from ..errors import PiTheoremError
-from ..simulate import nudged
+from ..simulation import nudged
 from .model import (
     EngineModel,
     EngineModelError,

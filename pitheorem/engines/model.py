@@ -699,20 +699,20 @@ class EngineModel:
 
 
 def _check_s(s) -> float:
-    from ..simulate import _positive
+    from ..simulation import positive_float
 
     if isinstance(s, bool):
         raise InvalidRequestError(f"the scale factor s must be a positive finite number, got {s!r}")
-    x = _positive(s, "the scale factor s")
+    x = positive_float(s, "the scale factor s")
     return s if isinstance(s, int | Fraction) else x
 
 
 def _check_factor(value, name: str) -> float:
-    from ..simulate import _positive
+    from ..simulation import positive_float
 
     if isinstance(value, bool):
         raise InvalidRequestError(f"the factor for {name!r} must be a positive finite number, got {value!r}")
-    return _positive(value, f"the factor for {name!r}")
+    return positive_float(value, f"the factor for {name!r}")
 
 
 def _check_scaling(model: EngineModel, scaling) -> None:

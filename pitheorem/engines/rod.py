@@ -39,19 +39,16 @@ import numpy as np
 
 from ..errors import EngineUnavailableError, InvalidRequestError, PiTheoremError
 from ..models import hinged_rod
-from ..scaling import Scaling
-from ..simulate import (
+from ..simulation import (
+    ModelScaling,
     SimilarityReport,
     Trajectory,
-    _check_scaling_system,
-    _euler_steps,
-    _exponents_from_dict,
-    _factor,
-    _positive,
+    fixed_steps,
+    positive_float,
     similarity_report,
     verify_similarity,
 )
-from ..simulate import simulate as simulate_ode
+from ..simulation import simulate as simulate_ode
 
 __all__ = ["DEFAULT_TIME_STEP", "EngineSimilarityReport", "EngineUnavailableError", "simulate_rod",
            "verify_engine_similarity"]
@@ -277,9 +274,9 @@ def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt:
     model = hinged_rod()
     p = model.resolve_params(params)
     y = model.resolve_initial(y0)
-    t_final = _positive(t_final, "t_final")
-    dt = DEFAULT_TIME_STEP[engine] if dt is None else _positive(dt, "dt")
-    n_steps = _euler_steps(t_final, dt)
+    t_final = positive_float(t_final, "t_final")
+    dt = DEFAULT_TIME_STEP[engine] if dt is None else positive_float(dt, "dt")
+    n_steps = fixed_steps(t_final, dt)
     if engine == "bullet":
         states = _run_bullet(p, y, dt, n_steps, engine_defaults)
     else:
@@ -291,7 +288,7 @@ def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt:
 class EngineSimilarityReport(SimilarityReport):
     """Result of :func:`verify_engine_similarity`, with the engine's details.
 
-    A :class:`pitheorem.SimilarityReport` and more.  The comparison itself is ``pitheorem.simulate.similarity_report``,
+    A :class:`pitheorem.SimilarityReport` and more.  The comparison itself is ``pitheorem.simulation.similarity_report``,
     shared with :func:`pitheorem.verify_similarity` and
     :func:`pitheorem.engines.verify`; this subclass only adds what the
     rod's engine runs know besides.
@@ -382,52 +379,29 @@ def verify_engine_similarity(engine: str, scaling, s, params=None, y0=None, t_fi
     True
     """
     model = hinged_rod()
-    if isinstance(s, bool):
-        raise InvalidRequestError(f"the scale factor s must be a positive finite number, got {s!r}")
-    s = _positive(s, "the scale factor s")
-    tol = _positive(tol, "tol")
-    if isinstance(scaling, Scaling) or all(hasattr(scaling, a) for a in ("system", "powers", "apply", "map_back")):
-        _check_scaling_system(model, scaling)
-        sc = scaling
-        powers = {n: sc.vector[sc.system.index(n)] for n in (*model.parameters, model.time, *model.states)}
-    elif isinstance(scaling, Mapping):
-        sc, powers = _exponents_from_dict(model, scaling, check)
-    else:
-        raise InvalidRequestError(f"scaling must be a pitheorem Scaling or a dict of exponents, got {type(scaling).__name__}")
-
+    scaled = ModelScaling.of(model, scaling, s, check=check)
+    tol = positive_float(tol, "tol")
     p = model.resolve_params(params)
     y_init = model.resolve_initial(y0)
-    t_final = _positive(t_final, "t_final")
-    dt = DEFAULT_TIME_STEP.get(engine, None) if dt is None else _positive(dt, "dt")
+    t_final = positive_float(t_final, "t_final")
+    dt = DEFAULT_TIME_STEP.get(engine, None) if dt is None else positive_float(dt, "dt")
     opts = {"integrator": integrator, "engine_defaults": engine_defaults}
     original = simulate_rod(engine, p, y_init, t_final, dt=dt, **opts)
 
-    f_t = _factor(s, powers[model.time])
-    f_y = np.array([_factor(s, powers[n]) for n in model.states])
-    if sc is not None:
-        p_scaled = {n: float(v) for n, v in sc.apply(p, s).items()}
-    else:
-        p_scaled = {n: v * _factor(s, powers[n]) for n, v in p.items()}
+    f_t = scaled.factor(model.time)
     dt_scaled = dt * f_t if scale_dt else dt
-    run = simulate_rod(engine, p_scaled, y_init * f_y, t_final * f_t, dt=dt_scaled, **opts)
-
-    if sc is not None:
-        t_back, y_back = sc.map_back(run.t, run.y, s, time=model.time, states=list(model.states))
-    else:
-        t_back, y_back = run.t / f_t, run.y / f_y
-    if len(t_back) != len(original) or not np.allclose(t_back, original.t, rtol=1e-12, atol=1e-15):
-        y_back = np.column_stack([np.interp(original.t, t_back, y_back[:, j]) for j in range(y_back.shape[1])])
-        t_back = original.t
-    mapped = Trajectory(t_back, y_back, model.states, model.time)
-    base = similarity_report(original, mapped, s=s, scaling=sc if sc is not None else MappingProxyType(dict(powers)),
-                             exponents=powers, tol=tol, is_similarity=sc is not None, method=engine)
+    run = simulate_rod(engine, scaled.scale_params(p), scaled.scale_state(y_init), t_final * f_t, dt=dt_scaled,
+                       **opts)
+    mapped = scaled.map_back(run, original.t)
+    base = similarity_report(original, mapped, s=scaled.s, scaling=scaled.scaling, exponents=scaled.exponents,
+                             tol=tol, is_similarity=scaled.is_similarity, method=engine)
 
     engine_vs_ode, ode_report = None, None
     if compare_ode:
         exact = simulate_ode(model, p, y_init, float(original.t[-1]), t_eval=original.t)
         engine_vs_ode = float(np.abs(exact.y - original.y).max())
-        ode_report = verify_similarity(model, sc if sc is not None else dict(powers), s, p, y_init, t_final,
-                                       check=check and sc is not None, tol=max(tol, 1e-6))
+        ode_report = verify_similarity(model, scaled.scaling, scaled.s, p, y_init, t_final,
+                                       check=check and scaled.is_similarity, tol=max(tol, 1e-6))
     shared = {f.name: getattr(base, f.name) for f in fields(SimilarityReport)}
     shared["scaled_dt"] = not math.isclose(dt, dt_scaled, rel_tol=1e-15, abs_tol=0.0)
     return EngineSimilarityReport(**shared, engine=engine, dt=float(dt), dt_scaled=float(dt_scaled),

@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..simulate import nudged
+from ..simulation import nudged
 from .constants import hidden_constants
 from .model import (
     EngineModel,

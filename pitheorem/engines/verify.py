@@ -4,7 +4,7 @@
 for step (the scaled time step is the original's times ``s`` to the power
 of time), feeds both the same controls in original units, maps every
 recorded coordinate of the scaled run back by its own dimension, and
-hands both runs to ``pitheorem.simulate.similarity_report``, the one
+hands both runs to ``pitheorem.simulation.similarity_report``, the one
 comparison every simulator of pitheorem shares.  Next to them runs the
 original once more with its initial state nudged by one ulp: a chaotic
 model (a bouncing ball, a walker falling over) moves that far on its own,
@@ -34,7 +34,7 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 
 from ..errors import InvalidRequestError
-from ..simulate import SimilarityReport, Trajectory, _positive, similarity_report
+from ..simulation import SimilarityReport, Trajectory, positive_float, similarity_report
 from .model import EngineModel, _check_s, _check_scaling, dim, dimension_factor, power_factor
 
 __all__ = ["EngineRunner", "verify"]
@@ -134,7 +134,7 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         raise InvalidRequestError(f"verify needs an EngineModel (engines.load(...)), got {type(model).__name__}")
     s = _check_s(s)
     _check_scaling(model, scaling)
-    duration = _positive(duration, "duration")
+    duration = positive_float(duration, "duration")
     if scaled is None:
         scaled = model.scaled(scaling, s)
     elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:

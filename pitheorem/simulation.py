@@ -8,6 +8,13 @@ the original units and measure the difference, collected in a
 :class:`SimilarityReport`.  A similarity scaling (a change of base units,
 see :mod:`pitheorem.scaling`) must reproduce the original run up to the
 solver's tolerance; any other scaling generally does not.
+
+What every simulator of the package shares lives here too, public, for
+:mod:`pitheorem.engines`: :class:`ModelScaling` (a scaling applied to one
+model's inputs and mapped back from its run), :func:`similarity_report`
+(the one comparison and verdict), :func:`nudged` (the one-ulp baseline),
+:func:`fixed_steps` (the step count of a fixed-step engine) and
+:func:`positive_float` (the check of a time, a step, a tolerance or ``s``).
 """
 
 from __future__ import annotations
@@ -21,15 +28,22 @@ from types import MappingProxyType
 import numpy as np
 
 from .errors import InvalidRequestError, PiTheoremError, SystemMismatchError, UnknownVariableError
-from .exact import read_exponent
-from .models import Model
+from .exact import read_exponent, read_positive, short_text
+from .model import Model
 from .scaling import Scaling
 from .system import System
 
-__all__ = ["SimilarityReport", "Trajectory", "nudged", "similarity_report", "simulate", "verify_similarity"]
-
-_METHODS = ("solve_ivp", "euler")
-
+__all__ = [
+    "ModelScaling",
+    "SimilarityReport",
+    "Trajectory",
+    "fixed_steps",
+    "nudged",
+    "positive_float",
+    "similarity_report",
+    "simulate",
+    "verify_similarity",
+]
 
 @dataclass(frozen=True, eq=False)
 class Trajectory:
@@ -103,14 +117,40 @@ class Trajectory:
 # -- input checks ---------------------------------------------------------------------------
 
 
-def _positive(value, what: str) -> float:
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise InvalidRequestError(f"{what} must be a positive number, got {value!r}") from None
-    if not (x > 0 and math.isfinite(x)):
-        raise InvalidRequestError(f"{what} must be a positive finite number, got {value!r}")
-    return x
+def positive_float(value, what: str) -> float:
+    """A positive finite number as a float, or an error that names it.
+
+    The check of every time span, step size, tolerance and scale factor a
+    simulation takes.
+
+    Parameters
+    ----------
+    value : number or str
+        The value given; ``True`` and ``False`` are refused.
+    what : str
+        What it is, for the message (``"t_final"``, ``"the scale factor s"``).
+
+    Returns
+    -------
+    float
+        The value, read by :func:`pitheorem.exact.read_positive` (whose
+        :class:`~pitheorem.NumberError` names `what`) and rounded once.
+
+    Examples
+    --------
+    >>> from pitheorem.simulation import positive_float
+    >>> positive_float("2.5", "dt")
+    2.5
+    >>> try:
+    ...     positive_float(0, "dt")
+    ... except ValueError as err:
+    ...     print(err)
+    dt must be a positive finite number such as 2, 0.5 or '1/3', got 0
+    """
+    return float(read_positive(value, what, irrational_ok=True))
+
+
+_METHODS = ("solve_ivp", "euler")
 
 
 def _check_method(method) -> str:
@@ -119,20 +159,38 @@ def _check_method(method) -> str:
     return method
 
 
-_MODEL_ATTRIBUTES = ("system", "parameters", "states", "time", "rhs", "resolve_params", "resolve_initial")
-
-
 def _check_model(model) -> Model:
-    # duck-typed: a second copy of pitheorem.models (e.g. pytest's importlib mode) has its own Model class
-    if not all(hasattr(model, a) for a in _MODEL_ATTRIBUTES):
+    if not isinstance(model, Model):
         raise InvalidRequestError(
             f"model must be a pitheorem Model (e.g. pt.models.hinged_rod()), got {type(model).__name__}"
         )
     return model
 
 
-def _euler_steps(t_final: float, dt: float) -> int:
-    """Number of Euler steps covering [0, t_final]: t_final/dt, rounded when within 1e-9."""
+def fixed_steps(t_final: float, dt: float) -> int:
+    """The number of fixed steps ``dt`` that cover ``[0, t_final]``.
+
+    ``t_final / dt``, rounded to the nearest whole number when within
+    ``1e-9`` of it (so ``1.0 / 0.1`` takes 10 steps, not 11), else rounded
+    up; at least one.
+
+    Parameters
+    ----------
+    t_final : float
+        The end time, positive.
+    dt : float
+        The step, positive.
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
+    >>> from pitheorem.simulation import fixed_steps
+    >>> fixed_steps(1.0, 0.1), fixed_steps(1.05, 0.1)
+    (10, 11)
+    """
     ratio = t_final / dt
     n = round(ratio)
     if abs(ratio - n) > 1e-9 * max(1.0, ratio):
@@ -247,19 +305,19 @@ def simulate(model, params=None, y0=None, t_final=10.0, *, method="solve_ivp", d
     """
     model = _check_model(model)
     method = _check_method(method)
-    t_final = _positive(t_final, "t_final")
+    t_final = positive_float(t_final, "t_final")
     p = model.resolve_params(params)
     y_init = model.resolve_initial(y0)
     if method == "euler":
         if dt is None:
             raise InvalidRequestError("method='euler' needs a step size dt (a positive time)")
-        dt = _positive(dt, "dt")
+        dt = positive_float(dt, "dt")
         if t_eval is not None:
             raise InvalidRequestError("t_eval is only for method='solve_ivp'; Euler samples every step i*dt")
-        return _run(model, p, y_init, t_final, method, dt, _euler_steps(t_final, dt), None, rtol, atol, ivp_method)
+        return _run(model, p, y_init, t_final, method, dt, fixed_steps(t_final, dt), None, rtol, atol, ivp_method)
     if dt is not None:
         raise InvalidRequestError("dt is only for method='euler'; solve_ivp chooses its own steps")
-    rtol = _positive(rtol, "rtol")
+    rtol = positive_float(rtol, "rtol")
     if t_eval is None:
         grid = _default_grid(t_final)
     else:
@@ -268,23 +326,238 @@ def simulate(model, params=None, y0=None, t_final=10.0, *, method="solve_ivp", d
             raise InvalidRequestError(f"t_eval must be a non-empty 1-d array of times, got {t_eval!r}")
         if grid.min() < 0 or grid.max() > t_final:
             raise InvalidRequestError(f"t_eval must lie within [0, t_final] = [0, {t_final}]")
-        if np.any(np.diff(grid) < 0):
-            raise InvalidRequestError("t_eval must be sorted in increasing order")
+        if np.any(np.diff(grid) <= 0):  # solve_ivp refuses a time given twice as well
+            raise InvalidRequestError("t_eval must be strictly increasing: sorted, no time twice")
     return _run(model, p, y_init, t_final, method, None, None, grid, rtol, atol, ivp_method)
 
 
 # -- similarity -----------------------------------------------------------------------------
 
 
-def _model_variables(model: Model) -> tuple[str, ...]:
-    return (*model.parameters, model.time, *model.states)
+@dataclass(frozen=True, eq=False)
+class ModelScaling:
+    """A scaling applied to one model: a factor for each parameter, the time and each state.
+
+    What a verification does with a scaling, written once: scale the
+    parameters and the initial state, scale the time span (and a fixed
+    step) by the time's factor, and map the scaled run back to original
+    units.  :func:`verify_similarity` and
+    :func:`pitheorem.engines.verify_engine_similarity` both use it.  Build
+    it with :meth:`of`.
+
+    Parameters
+    ----------
+    model : Model
+    s : float
+        The scale factor.
+    scaling : Scaling or mapping of str to Fraction
+        The similarity scaling applied; the raw exponents, read-only, when
+        they are not one (built with ``check=False``).
+    exponents : mapping of str to Fraction
+        The power of ``s`` of each parameter, the time and each state.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.simulation import ModelScaling
+    >>> smd = pt.models.spring_mass_damper()
+    >>> length = ModelScaling.of(smd, {"g": 1, "y_rest": 1}, s=2)   # the length unit
+    >>> length.is_similarity, length.factor("v"), length.factor("t")
+    (True, 2.0, 1.0)
+    >>> length.scale_params({"g": 9.81, "m": 2.0})
+    {'g': 19.62, 'm': 2.0}
+    """
+
+    model: Model
+    s: float
+    scaling: Scaling | Mapping[str, Fraction]
+    exponents: Mapping[str, Fraction]
+
+    @classmethod
+    def of(cls, model: Model, scaling, s, *, check: bool = True) -> ModelScaling:
+        """The scaling `scaling` applied to `model` with scale factor `s`.
+
+        Parameters
+        ----------
+        model : Model
+        scaling : Scaling or mapping of str to number
+            As in :func:`verify_similarity`, which raises the same errors
+            for it: a scaling of the model's variables, or exponents of
+            ``s`` from which the states' exponents follow.
+        s : float
+            The scale factor, positive.
+        check : bool
+            With ``True`` a mapping of exponents must be a similarity
+            scaling; with ``False`` one that is not is applied as given
+            (unlisted exponents 0).
+
+        Returns
+        -------
+        ModelScaling
+            With every exponent an exact Fraction.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> from pitheorem.simulation import ModelScaling
+        >>> rod = pt.models.hinged_rod()
+        >>> gravity = ModelScaling.of(rod, {"g": 1}, s=2, check=False)   # the paper's Figure 2
+        >>> gravity.is_similarity, dict(gravity.scaling)["g"]
+        (False, Fraction(1, 1))
+        """
+        s = positive_float(s, "the scale factor s")
+        model = _check_model(model)
+        variables = (*model.parameters, model.time, *model.states)
+        if isinstance(scaling, Scaling):
+            _check_scaling_system(model, scaling, variables)
+            exps = scaling.exponents
+            return cls(model, s, scaling, MappingProxyType({n: Fraction(exps[n]) for n in variables}))
+        if not isinstance(scaling, Mapping):
+            raise InvalidRequestError(
+                f"scaling must be a pitheorem Scaling or a dict of exponents, got {type(scaling).__name__}"
+            )
+        for n in scaling:
+            if n not in variables:
+                raise UnknownVariableError(str(n), variables, "scaling exponents")
+        given = {n: read_exponent(v, f"exponent of {n!r}") for n, v in scaling.items()}
+        try:
+            sc = _similarity_of_model(model, given)
+        except InvalidRequestError:
+            if check:
+                raise
+            raw = MappingProxyType({n: given.get(n, Fraction(0)) for n in variables})
+            return cls(model, s, raw, raw)
+        exps = sc.exponents
+        return cls(model, s, sc, MappingProxyType({n: Fraction(exps[n]) for n in variables}))
+
+    @property
+    def is_similarity(self) -> bool:
+        """Whether the exponents are a change of units (a :class:`Scaling`).
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> from pitheorem.simulation import ModelScaling
+        >>> ModelScaling.of(pt.models.projectile(), {"g": 1}, s=2).is_similarity
+        True
+        """
+        return isinstance(self.scaling, Scaling)
+
+    def factor(self, name: str) -> float:
+        """The factor ``s^a`` of one parameter, of the time or of one state.
+
+        Parameters
+        ----------
+        name : str
+
+        Returns
+        -------
+        float
+            ``s`` to the power of the variable's exponent.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> from pitheorem.simulation import ModelScaling
+        >>> ModelScaling.of(pt.models.projectile(), {"g": 1, "t": 1}, s=2).factor("vx")
+        4.0
+        """
+        if name not in self.exponents:
+            raise UnknownVariableError(str(name), tuple(self.exponents), "the model's variables")
+        return float(self.s) ** float(self.exponents[name])
+
+    def scale_params(self, params: Mapping[str, float]) -> dict[str, float]:
+        """Parameter values times their factors.
+
+        Parameters
+        ----------
+        params : mapping of str to float
+            Values of some or all of the parameters.
+
+        Returns
+        -------
+        dict of str to float
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> from pitheorem.simulation import ModelScaling
+        >>> ModelScaling.of(pt.models.projectile(), {"g": 1}, s=4).scale_params({"g": 9.81})
+        {'g': 39.24}
+        """
+        return {n: float(v) * self.factor(n) for n, v in params.items()}
+
+    def scale_state(self, y) -> np.ndarray:
+        """A state vector (or rows of them) times the states' factors.
+
+        Parameters
+        ----------
+        y : array_like, shape (n_states,) or (N, n_states)
+            In the order of the model's states.
+
+        Returns
+        -------
+        numpy.ndarray
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> from pitheorem.simulation import ModelScaling
+        >>> figure5 = {"g": 1, "l": -1, "c_theta": -1, "t": -1}   # the paper's rod, twice as fast
+        >>> ModelScaling.of(pt.models.hinged_rod(), figure5, s=2).scale_state([0.5, 1.0]).tolist()
+        [0.5, 2.0]
+        """
+        return np.asarray(y, dtype=float) * self._state_factors()
+
+    def _state_factors(self) -> np.ndarray:
+        return np.array([self.factor(n) for n in self.model.states])
+
+    def map_back(self, run: Trajectory, grid=None) -> Trajectory:
+        """A run of the scaled model in original units.
+
+        Times are divided by the time's factor and each state by its own.
+        Given a `grid` of original times that the mapped times do not
+        match (another length, or times apart by more than rounding), the
+        mapped states are interpolated linearly onto it.
+
+        Parameters
+        ----------
+        run : Trajectory
+            The scaled model's run.
+        grid : array_like, optional
+            Original times to compare on.
+
+        Returns
+        -------
+        Trajectory
+            On the mapped times, or on `grid`.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> from pitheorem.simulation import ModelScaling
+        >>> smd = pt.models.spring_mass_damper()
+        >>> slow = ModelScaling.of(smd, {"t": 1, "k": -2, "c": -1, "g": -2}, s=2)  # time unit
+        >>> run = pt.Trajectory([0.0, 2.0], [[1.0, 0.0], [1.0, -4.0]], smd.states)
+        >>> back = slow.map_back(run)
+        >>> back.t.tolist(), back["v"].tolist()
+        ([0.0, 1.0], [0.0, -8.0])
+        """
+        t = run.t / self.factor(self.model.time)
+        y = run.y / self._state_factors()
+        if grid is not None:
+            grid = np.asarray(grid, dtype=float)
+            if len(t) != len(grid) or not np.allclose(t, grid, rtol=1e-12, atol=0.0):
+                y = np.column_stack([np.interp(grid, t, y[:, j]) for j in range(y.shape[1])])
+                t = grid
+        return Trajectory(t, y, self.model.states, self.model.time)
 
 
-def _check_scaling_system(model: Model, scaling: Scaling) -> None:
+def _check_scaling_system(model: Model, scaling: Scaling, variables: tuple[str, ...]) -> None:
     other = scaling.system
     if other == model.system:
         return
-    for name in _model_variables(model):
+    for name in variables:
         if name not in other.variables:
             raise SystemMismatchError(name, f"variable {name!r} of the model is missing from the scaling's system")
         mine, theirs = model.system.dimension(name), other.dimension(name)
@@ -294,13 +567,8 @@ def _check_scaling_system(model: Model, scaling: Scaling) -> None:
             )
 
 
-def _exponents_from_dict(model: Model, exponents: Mapping, check: bool):
-    """Resolve a dict of exponents into (Scaling or None, powers of every model variable)."""
-    known = _model_variables(model)
-    for n in exponents:
-        if n not in known:
-            raise UnknownVariableError(str(n), known, "scaling exponents")
-    given = {n: read_exponent(v, f"exponent of {n!r}") for n, v in exponents.items()}
+def _similarity_of_model(model: Model, given: Mapping[str, Fraction]) -> Scaling:
+    """The similarity scaling of the model's system with the given exponents (unlisted parameters and time: 0)."""
     # the parameters and time determine the change of units; states follow from it
     core = (*model.parameters, model.time)
     sub = System({n: model.system.dimension(n) for n in core})
@@ -308,33 +576,22 @@ def _exponents_from_dict(model: Model, exponents: Mapping, check: bool):
     if free:  # states whose dimension the parameters and time cannot build: their exponents must be given
         core = (*core, *free)
         sub = System({n: model.system.dimension(n) for n in core})
-    try:
-        for n in free:
-            if n not in given:
-                raise InvalidRequestError(
-                    f"the exponents of the parameters and time do not determine the scaling of state {n!r} "
-                    f"(dimension {model.system.dimension(n)}); give its exponent too"
-                )
-        partial = _similarity_or_raise(sub, {n: given.get(n, 0) for n in core})
-        scaling = Scaling.from_unit_change(model.system, dict(zip(sub.base_dimensions, partial.unit_change_vector, strict=True)))
-        bad = [n for n in model.states if n in given and given[n] != scaling.vector[model.system.index(n)]]
-        if bad:
-            n = bad[0]
+    for n in free:
+        if n not in given:
             raise InvalidRequestError(
-                f"exponent {given[n]} of state {n!r} contradicts the scaling of the parameters and time, "
-                f"which gives it {scaling.vector[model.system.index(n)]}"
+                f"the exponents of the parameters and time do not determine the scaling of state {n!r} "
+                f"(dimension {model.system.dimension(n)}); give its exponent too"
             )
-    except InvalidRequestError:
-        if check:
-            raise
-        powers = {n: given.get(n, Fraction(0)) for n in known}
-        return None, powers
-    return scaling, {n: scaling.vector[model.system.index(n)] for n in known}
-
-
-def _exponent_text(value) -> str:
-    q = Fraction(value)
-    return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
+    partial = _similarity_or_raise(sub, {n: given.get(n, Fraction(0)) for n in core})
+    scaling = Scaling.from_unit_change(model.system, partial.unit_change)
+    exps = scaling.exponents
+    for n in model.states:
+        if n in given and given[n] != Fraction(exps[n]):
+            raise InvalidRequestError(
+                f"exponent {short_text(given[n])} of state {n!r} contradicts the scaling of the parameters and "
+                f"time, which gives it {short_text(Fraction(exps[n]))}"
+            )
+    return scaling
 
 
 def _similarity_or_raise(system: System, exponents: Mapping[str, Fraction]) -> Scaling:
@@ -343,22 +600,17 @@ def _similarity_or_raise(system: System, exponents: Mapping[str, Fraction]) -> S
         return Scaling.from_exponents(system, exponents)
     except InvalidRequestError:
         pass
-    given = ", ".join(f"{n}: {_exponent_text(v)}" for n, v in exponents.items() if v != 0) or "none"
+    given = ", ".join(f"{n}: {short_text(v)}" for n, v in exponents.items() if v != 0) or "none"
     broken = ""
     for group in system.pi_groups():
-        change = sum((Fraction(e) * Fraction(exponents.get(n, 0)) for n, e in group.exponents.items()),
-                     Fraction(0))
+        change = sum((Fraction(e) * exponents.get(n, 0) for n, e in group.exponents.items()), Fraction(0))
         if change != 0:
-            broken = f"; they multiply the Pi group {group.expr} by s^{_exponent_text(change)}"
+            broken = f"; they multiply the Pi group {group.expr} by s^{short_text(change)}"
             break
     raise InvalidRequestError(
         f"exponents ({given}) are not a similarity scaling{broken} (only changes of base units keep every "
         "group invariant)"
     )
-
-
-def _factor(s: float, power: Fraction) -> float:
-    return float(s) ** float(power)
 
 
 @dataclass(frozen=True, eq=False)
@@ -500,11 +752,11 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
                       ivp_method="DOP853", baseline=False) -> SimilarityReport:
     """Check numerically that a scaled run reproduces the original.
 
-    Simulates the model with `params`; then scales the parameters by
-    ``scaling.apply(params, s)``, each initial state by ``s`` to the
-    exponent of its dimension, the end time by ``s^(a_t)`` and (with
-    `scale_dt`) the Euler step likewise, simulates again, maps the scaled
-    trajectory back with :meth:`Scaling.map_back` and compares.  For
+    Simulates the model with `params`; then scales each parameter and
+    each initial state by ``s`` to its exponent, the end time by
+    ``s^(a_t)`` and (with `scale_dt`) the Euler step likewise, simulates
+    again, maps the scaled trajectory back to original units and compares
+    (``pitheorem.simulation.ModelScaling`` scales and maps back).  For
     ``solve_ivp`` the scaled run is sampled at the original times times
     ``s^(a_t)`` and its `atol` is scaled per state, so the adaptive step
     control sees the same problem; for Euler with scaled ``dt`` the two
@@ -540,7 +792,7 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
         Largest deviation (in original units) that passes.
     baseline : bool
         Also run the original with every initial state nudged by one ulp
-        (``pitheorem.simulate.nudged``) and judge each state's deviation against that
+        (``pitheorem.simulation.nudged``) and judge each state's deviation against that
         run's, as :func:`pitheorem.engines.verify` does, instead of `tol`.
 
     Returns
@@ -576,87 +828,58 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
     """
     model = _check_model(model)
     method = _check_method(method)
-    if isinstance(s, bool):
-        raise InvalidRequestError(f"the scale factor s must be a positive finite number, got {s!r}")
-    s = _positive(s, "the scale factor s")
-    tol = _positive(tol, "tol")
-    if isinstance(scaling, Scaling):
-        _check_scaling_system(model, scaling)
-        sc = scaling
-        powers = {n: sc.vector[sc.system.index(n)] for n in _model_variables(model)}
-    elif isinstance(scaling, Mapping):
-        sc, powers = _exponents_from_dict(model, scaling, check)
-    else:
-        raise InvalidRequestError(
-            f"scaling must be a pitheorem Scaling or a dict of exponents, got {type(scaling).__name__}"
-        )
-
+    scaled = ModelScaling.of(model, scaling, s, check=check)
+    tol = positive_float(tol, "tol")
     original = simulate(model, params, y0, t_final, method=method, dt=dt, rtol=rtol, atol=atol,
                         ivp_method=ivp_method)
     p = model.resolve_params(params)
     y_init = model.resolve_initial(y0)
-    t_final = float(t_final)
-
-    # scaled inputs
-    f_t = _factor(s, powers[model.time])
-    f_y = np.array([_factor(s, powers[n]) for n in model.states])
-    if sc is not None:
-        p_scaled = {n: float(v) for n, v in sc.apply(p, s).items()}
-    else:
-        p_scaled = {n: v * _factor(s, powers[n]) for n, v in p.items()}
-    y_scaled = y_init * f_y
-    t_final_scaled = t_final * f_t
-
+    f_t = scaled.factor(model.time)
+    t_final_scaled = float(t_final) * f_t
+    y_scaled = scaled.scale_state(y_init)
     if method == "euler":
         if scale_dt:
             dt_scaled, n_steps = dt * f_t, len(original) - 1  # same steps, one for one
         else:
             dt_scaled = float(dt)
-            n_steps = _euler_steps(t_final_scaled, dt_scaled)
-        run = _run(model, p_scaled, y_scaled, t_final_scaled, method, dt_scaled, n_steps, None, rtol, atol,
-                   ivp_method)
+            n_steps = fixed_steps(t_final_scaled, dt_scaled)
+        run = _run(model, scaled.scale_params(p), y_scaled, t_final_scaled, method, dt_scaled, n_steps, None,
+                   rtol, atol, ivp_method)
     else:
         grid = np.minimum(original.t * f_t, t_final_scaled)
-        atol_scaled = np.broadcast_to(np.asarray(atol, dtype=float), f_y.shape) * f_y
-        run = _run(model, p_scaled, y_scaled, t_final_scaled, method, None, None, grid, rtol, atol_scaled,
-                   ivp_method)
-
-    # back to original units
-    if sc is not None:
-        t_back, y_back = sc.map_back(run.t, run.y, s, time=model.time, states=list(model.states))
-    else:
-        t_back, y_back = run.t / f_t, run.y / f_y
-    if len(t_back) != len(original) or (method == "euler" and not scale_dt):
-        y_back = np.column_stack([np.interp(original.t, t_back, y_back[:, j]) for j in range(y_back.shape[1])])
-        t_back = original.t
-    mapped = Trajectory(t_back, y_back, model.states, model.time)
+        atol_scaled = scaled.scale_state(np.broadcast_to(np.asarray(atol, dtype=float), y_init.shape))
+        run = _run(model, scaled.scale_params(p), y_scaled, t_final_scaled, method, None, None, grid, rtol,
+                   atol_scaled, ivp_method)
+    mapped = scaled.map_back(run, original.t)
 
     reference = None
     if baseline:  # the same run from a one-ulp nudged start, on the same grid
         kwargs = {"dt": dt} if method == "euler" else {"t_eval": original.t, "rtol": rtol, "atol": atol}
         reference = simulate(model, params, nudged(y_init), t_final, method=method, ivp_method=ivp_method, **kwargs)
     return similarity_report(
-        original, mapped, s=s, scaling=sc if sc is not None else MappingProxyType(dict(powers)),
-        exponents=powers, tol=None if baseline else tol, nudged=reference, is_similarity=sc is not None,
+        original, mapped, s=scaled.s, scaling=scaled.scaling, exponents=scaled.exponents,
+        tol=None if baseline else tol, nudged=reference, is_similarity=scaled.is_similarity,
         method=method, scaled_dt=bool(scale_dt) if method == "euler" else True,
     )
 
 
 def nudged(values) -> np.ndarray:
-    """Each value moved up by one ulp of itself, or of 1 where it is smaller than 1 in magnitude.
+    """Each value moved up by one ulp: to the next double, by the ulp of 1 near 0.
 
-    A coordinate at exactly 0 has a denormal ulp (5e-324) that no
-    computation feels; the ulp of 1 (2.2e-16) is the rounding every step
-    makes on numbers of order one.
+    A value of magnitude 1 or more moves to the next double up (from
+    ``-1.0`` that is ``1.1e-16`` away, half the ulp of ``1.0``); a smaller
+    one by the ulp of 1.  A coordinate at exactly 0 has a denormal ulp
+    (5e-324) that no computation feels; the ulp of 1 (2.2e-16) is the
+    rounding every step makes on numbers of order one.
 
     Examples
     --------
-    >>> from pitheorem.simulate import nudged
-    >>> [float(v) for v in nudged([0.0, 4.0])]
-    [2.220446049250313e-16, 4.000000000000001]
+    >>> from pitheorem.simulation import nudged
+    >>> [float(v) for v in nudged([0.0, 4.0, -1.0])]
+    [2.220446049250313e-16, 4.000000000000001, -0.9999999999999999]
     """
     x = np.asarray(values, dtype=float)
-    return x + np.spacing(np.maximum(np.abs(x), 1.0))
+    return np.where(np.abs(x) >= 1.0, np.nextafter(x, np.inf), x + np.spacing(1.0))
 
 
 def _max_abs(diff: np.ndarray) -> float:
@@ -701,7 +924,7 @@ def similarity_report(original: Trajectory, mapped: Trajectory, *, s: float, sca
     --------
     >>> import numpy as np
     >>> import pitheorem as pt
-    >>> from pitheorem.simulate import similarity_report
+    >>> from pitheorem.simulation import similarity_report
     >>> a = pt.Trajectory([0.0, 1.0], [[1.0], [2.0]], ("x",))
     >>> b = pt.Trajectory([0.0, 1.0], [[1.0], [2.0 + 1e-15]], ("x",))
     >>> n = pt.Trajectory([0.0, 1.0], [[1.0], [2.0 + 4e-16]], ("x",))

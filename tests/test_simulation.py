@@ -1,19 +1,22 @@
-"""Tests for pitheorem.simulate: integrators and numerical similarity checks."""
+"""Tests for pitheorem.simulation: integrators and numerical similarity checks."""
 
 from __future__ import annotations
 
 import dataclasses
 import math
 import pickle
+from fractions import Fraction
 
 import numpy as np
 import pytest
+import sympy
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import pitheorem as pt
 from matlab_ports import scaling_counterexample_nonlinear as nonlinear
 from pitheorem import models
+from pitheorem.simulation import ModelScaling, fixed_steps, positive_float
 
 #: the paper's wrong scalings of the hinged rod (Figures 2-4), time unchanged
 WRONG = {
@@ -96,6 +99,7 @@ def test_dict_of_exponents_is_completed_from_the_units(hinged):
 def test_papers_wrong_scalings_fail(hinged, figure):
     rep = pt.verify_similarity(hinged, WRONG[figure], s=2, t_final=10.0, check=False)
     assert not rep.passed
+    assert np.abs(rep.difference).max() == rep.max_deviation  # mapped minus original
     assert not rep.is_similarity
     assert rep.deviation["theta"] > 0.05
     assert rep.max_deviation >= rep.deviation["theta"]
@@ -213,18 +217,21 @@ def test_euler_grid_and_step_count(hinged):
     np.testing.assert_array_equal(tr.y[1], y0 + hinged.rhs(0.0, y0, p) * 0.1)
 
 
+def _drift(dims: str, rate, **options) -> pt.Model:
+    """A one-state model x' = rate(a, x, t), the parameter a of dimension `dims`."""
+    t = sympy.Symbol("t")
+    x = sympy.Function("x")(t)
+    system = pt.System({"a": dims, "t": "T", "x": "L"})
+    return pt.Model(system, [sympy.Eq(x.diff(t), rate(sympy.Symbol("a"), x, t))], **options)
+
+
 def test_euler_passes_time_to_the_rhs():
-    seen = []
-
-    def rhs(t, y, p):
-        seen.append(t)
-        return np.array([p["a"]])
-
-    model = pt.Model(pt.System({"a": "L/T", "t": "T", "x": "L"}), ("a",), ("x",), rhs,
-                     defaults={"a": 2.0}, initial={"x": 0.0})
+    # x' = a t: Euler's step i adds a t_(i-1) dt, so the samples show which times the rhs saw
+    model = _drift("L/T^2", lambda a, x, t: a * t, defaults={"a": 2.0}, initial={"x": 0.0})
     tr = pt.simulate(model, t_final=0.3, method="euler", dt=0.1)
-    np.testing.assert_allclose(seen, [0.0, 0.1, 0.2])
-    np.testing.assert_allclose(tr["x"], [0.0, 0.2, 0.4, 0.6])
+    np.testing.assert_allclose(tr.t, [0.0, 0.1, 0.2, 0.3])
+    np.testing.assert_allclose(tr["x"], [0.0, 0.0, 0.02, 0.06], rtol=1e-12)
+    np.testing.assert_allclose(np.diff(tr["x"]), 2.0 * tr.t[:-1] * 0.1, rtol=1e-12)
 
 
 def test_trajectory_is_read_only(hinged):
@@ -237,18 +244,24 @@ def test_trajectory_is_read_only(hinged):
         tr.t = np.zeros(3)
     with pytest.raises(pt.UnknownVariableError, match="'phi'"):
         tr["phi"]
-    assert "Trajectory" in repr(tr)
+    assert repr(tr) == "<Trajectory t=0..0.1, 1001 samples, states ('theta', 'omega')>"
+    assert len({tr, tr}) == 1  # compared and hashed by identity: its arrays have no single truth value
+    assert repr(pt.Trajectory([], np.zeros((0, 1)), ("x",))) == "<Trajectory t=empty, 0 samples, states ('x',)>"
     with pytest.raises(pt.InvalidRequestError, match="shape"):
         pt.Trajectory([0.0, 1.0], [[1.0, 2.0]], ("a", "b"))
 
 
 def test_report_is_frozen(hinged, figure5):
     rep = pt.verify_similarity(hinged, figure5, s=2, t_final=0.5)
+    # by default the verdict is absolute, without a one-ulp baseline run
+    assert (rep.tol, rep.sensitivity, rep.nudged) == (1e-6, None, None)
+    assert "tol 1e-06" in str(rep)
     with pytest.raises(dataclasses.FrozenInstanceError):
         rep.passed = False
     with pytest.raises(TypeError):
         rep.deviation["theta"] = 1.0
     assert rep.difference.shape == rep.original.y.shape
+    assert rep.scaled_dt is True  # solve_ivp: nothing unscaled
     assert "PASSED" in str(rep)
 
 
@@ -288,6 +301,12 @@ def test_bad_simulate_inputs(hinged):
         pt.simulate(hinged, t_final=1.0, t_eval=[0.0, 2.0])
     with pytest.raises(pt.InvalidRequestError, match="t_eval"):
         pt.simulate(hinged, t_final=1.0, t_eval=[0.5, 0.1])
+    with pytest.raises(pt.InvalidRequestError, match="t_eval must be strictly increasing"):
+        pt.simulate(hinged, t_final=1.0, t_eval=[0.0, 0.5, 0.5, 1.0])  # scipy refuses a time twice
+    with pytest.raises(pt.InvalidRequestError, match="non-empty"):
+        pt.simulate(hinged, t_final=1.0, t_eval=[])
+    one = pt.simulate(hinged, t_final=1.0, t_eval=[0.5])  # a single sample is a grid too
+    assert one.t.tolist() == [0.5]
     with pytest.raises(pt.InvalidRequestError, match="Model"):
         pt.simulate("hinged_rod")
     with pytest.raises(TypeError):
@@ -295,8 +314,7 @@ def test_bad_simulate_inputs(hinged):
 
 
 def test_missing_parameter_is_named():
-    model = pt.Model(pt.System({"a": "L/T", "t": "T", "x": "L"}), ("a",), ("x",), lambda t, y, p: [p["a"]],
-                     initial={"x": 0.0}, name="drift")
+    model = _drift("L/T", lambda a, x, t: a, initial={"x": 0.0}, name="drift")
     with pytest.raises(pt.InvalidRequestError, match=r"'a'.*no default"):
         pt.simulate(model, t_final=1.0)
     with pytest.raises(pt.InvalidRequestError, match=r"'a'.*no default"):
@@ -407,14 +425,13 @@ def test_any_change_of_units_is_similar(s, u_m, u_l, u_t):
 
 def test_state_exponent_must_be_determined():
     # the parameters and time carry no length: the exponent of x is not fixed by them
-    model = pt.Model(pt.System({"r": "T^-1", "t": "T", "x": "L"}), ("r",), ("x",), lambda t, y, p: -p["r"] * y,
-                     defaults={"r": 1.0}, initial={"x": 1.0})
+    model = _drift("T^-1", lambda a, x, t: -a * x, defaults={"a": 1.0}, initial={"x": 1.0})
     with pytest.raises(pt.InvalidRequestError, match=r"state 'x'"):
-        pt.verify_similarity(model, {"t": 1, "r": -1}, s=2, t_final=1.0)
-    rep = pt.verify_similarity(model, {"t": 1, "r": -1, "x": 3}, s=2, t_final=1.0)
+        pt.verify_similarity(model, {"t": 1, "a": -1}, s=2, t_final=1.0)
+    rep = pt.verify_similarity(model, {"t": 1, "a": -1, "x": 3}, s=2, t_final=1.0)
     assert rep.passed
     assert rep.exponents["x"] == 3
-    unchecked = pt.verify_similarity(model, {"t": 1, "r": -1}, s=2, t_final=1.0, check=False)
+    unchecked = pt.verify_similarity(model, {"t": 1, "a": -1}, s=2, t_final=1.0, check=False)
     assert unchecked.exponents["x"] == 0  # applied as given
     assert not unchecked.is_similarity
 
@@ -430,3 +447,101 @@ def test_report_plot_names_a_unit_on_every_axis(hinged):
     top, bottom = rep.plot(units={"theta": "rad", "omega": "rad/s", "t": "s"}).axes
     assert top.get_ylabel() == "theta [rad], omega [rad/s]"
     assert bottom.get_xlabel() == "t [s]"
+
+
+# -- what the engines share: ModelScaling, fixed_steps, positive_float --------------------------
+
+
+def test_model_scaling_of_a_scaling_and_of_exponents(hinged, figure5):
+    by_scaling = ModelScaling.of(hinged, figure5, s=2)
+    by_dict = ModelScaling.of(hinged, {"g": 1, "l": -1, "c_theta": -1, "t": -1}, s=2)
+    assert dict(by_scaling.exponents) == dict(by_dict.exponents)
+    assert all(type(v) is Fraction for v in by_dict.exponents.values())
+    assert set(by_dict.exponents) == {*hinged.parameters, "t", *hinged.states}
+    assert by_dict.is_similarity
+    assert by_dict.scaling == figure5
+    assert by_scaling.scaling is figure5
+    assert (by_scaling.factor("omega"), by_scaling.factor("t"), by_scaling.factor("m")) == (2.0, 0.5, 1.0)
+    assert by_scaling.scale_params({"l": 2.0, "g": 9.81}) == {"l": 1.0, "g": 19.62}
+    np.testing.assert_array_equal(by_scaling.scale_state([0.1, 3.0]), [0.1, 6.0])
+    run = pt.Trajectory([0.0, 0.5], [[0.1, 2.0], [0.2, 4.0]], hinged.states)
+    back = by_scaling.map_back(run)
+    assert back.t.tolist() == [0.0, 1.0]
+    assert back["omega"].tolist() == [1.0, 2.0]
+    assert back["theta"].tolist() == [0.1, 0.2]
+    onto = by_scaling.map_back(run, [0.0, 0.5, 1.0])  # another grid: interpolated onto it
+    assert onto.t.tolist() == [0.0, 0.5, 1.0]
+    assert onto["omega"].tolist() == [1.0, 1.5, 2.0]
+    near = by_scaling.map_back(run, [0.0, 1.0 + 1e-15])  # the same grid up to rounding: not interpolated
+    assert near.t.tolist() == [0.0, 1.0]
+
+
+def test_a_failing_solver_is_reported():
+    # x' = x^2 / (l tau) from x = l blows up at t = tau: solve_ivp cannot pass it
+    t, ell, tau = sympy.Symbol("t"), sympy.Symbol("l"), sympy.Symbol("tau")
+    x = sympy.Function("x")(t)
+    blow_up = pt.Model(pt.System({"l": "L", "tau": "T", "t": "T", "x": "L"}), [sympy.Eq(x.diff(t), x**2 / (ell * tau))],
+                       defaults={"l": 1.0, "tau": 1.0}, initial={"x": 1.0})
+    with pytest.raises(pt.PiTheoremError, match="solve_ivp failed"):
+        pt.simulate(blow_up, t_final=2.0)
+
+
+def test_baseline_report_names_the_largest_sensitivity(hinged, figure5):
+    rep = pt.verify_similarity(hinged, figure5, s=2, t_final=0.5, baseline=True)
+    assert math.isnan(rep.tol)
+    largest = max(rep.sensitivity.values())
+    assert largest > min(rep.sensitivity.values()) > 0
+    assert f"(largest {largest:.3g})" in str(rep)
+
+
+def test_non_similarity_names_a_group_it_changes(hinged):
+    with pytest.raises(pt.InvalidRequestError) as info:
+        pt.verify_similarity(hinged, {"g": 1}, s=2)
+    assert str(info.value) == (
+        "exponents (g: 1) are not a similarity scaling; they multiply the Pi group k_theta/(g*l*m) by s^-1 "
+        "(only changes of base units keep every group invariant)")
+    # the first group, k_theta/(g*l*m), keeps its value here: the message skips it
+    with pytest.raises(pt.InvalidRequestError, match=r"the Pi group c_theta\*\*2/\(g\*l\*\*3\*m\*\*2\) by s\^2 "):
+        pt.verify_similarity(hinged, {"c_theta": 1}, s=2)
+
+
+def test_model_scaling_that_is_no_similarity(hinged, figure5):
+    raw = ModelScaling.of(hinged, {"g": 1}, s=2, check=False)
+    assert not raw.is_similarity
+    assert len({raw, raw}) == 1  # identity: it holds a model and read-only mappings
+    assert raw.scaling == {**dict.fromkeys(raw.exponents, 0), "g": 1}
+    assert raw.exponents["omega"] == 0
+    with pytest.raises(TypeError):
+        raw.scaling["g"] = 2  # read-only
+    assert raw.scale_params({"g": 9.81, "l": 2.0}) == {"g": 19.62, "l": 2.0}
+    with pytest.raises(pt.InvalidRequestError, match="not a similarity scaling"):
+        ModelScaling.of(hinged, {"g": 1}, s=2)
+    with pytest.raises(pt.UnknownVariableError, match="'phi'"):
+        raw.factor("phi")
+    with pytest.raises(pt.UnknownVariableError, match="'phi'"):
+        ModelScaling.of(hinged, {"phi": 1}, s=2, check=False)
+    with pytest.raises(pt.InvalidRequestError, match="scale factor s"):
+        ModelScaling.of(hinged, figure5, s=True)
+    with pytest.raises(pt.InvalidRequestError, match="Model"):
+        ModelScaling.of("hinged_rod", figure5, s=2)
+    with pytest.raises(pt.InvalidRequestError, match="Scaling or a dict"):
+        ModelScaling.of(hinged, (1, 2), s=2)
+
+
+def test_fixed_steps_cover_the_span():
+    assert fixed_steps(1.0, 0.1) == 10
+    assert fixed_steps(0.07, 0.01) == 7  # 0.07 / 0.01 is 7.000000000000001: rounding, not one more step
+    # the tolerance is relative: 149.38268 / 1e-5 is 14938268.000000002, 2e-9 above an integer
+    assert fixed_steps(149.38268000000002, 1e-05) == 14938268
+    assert fixed_steps(0.3, 0.1) == 3  # 0.3 / 0.1 is 2.9999999999999996
+    assert fixed_steps(1.05, 0.1) == 11  # not a multiple: one more step, past t_final
+    assert fixed_steps(1.0 + 1e-6, 1.0) == 2
+    assert fixed_steps(1e-3, 1.0) == 1
+
+
+@pytest.mark.parametrize("bad", [0, -1.0, float("inf"), float("nan"), "soon", None, True, False])
+def test_positive_float_refuses_and_names(bad):
+    with pytest.raises(pt.InvalidRequestError, match=r"^dt must be a positive finite number such as 2, 0.5 or .1/3., got "):
+        positive_float(bad, "dt")
+    assert positive_float("2.5", "dt") == 2.5
+    assert positive_float(np.float32(0.5), "dt") == 0.5
