@@ -11,9 +11,7 @@ Examples
 # The exact core (System, its groups, dimensions, errors: sympy and no more) loads at once.
 # Everything else loads on first use through __getattr__ below, so that `import pitheorem`
 # and a command-line call of groups, bases or search pay for neither scipy nor matplotlib.
-import sys
 from importlib import import_module
-from types import ModuleType
 
 from .dimensions import DEFAULT_BASE_DIMENSIONS, Dimension
 from .errors import (
@@ -74,22 +72,6 @@ def __getattr__(name: str):
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(_LAZY))
 
-
-class _Package(ModuleType):
-    """This package, where a function keeps its name over the submodule that defines it.
-
-    Importing a submodule binds it as an attribute of its package; for
-    ``search`` that would hide the function of the same name, which eager
-    imports used to re-bind afterwards.
-    """
-
-    def __setattr__(self, name, value):
-        if isinstance(value, ModuleType) and _LAZY.get(name) == name:
-            value = getattr(value, name)
-        super().__setattr__(name, value)
-
-
-sys.modules[__name__].__class__ = _Package
 
 __all__ = [
     "DEFAULT_BASE_DIMENSIONS",

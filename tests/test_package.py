@@ -49,3 +49,17 @@ def test_pytest_imports_every_module_of_the_installed_package_once(request):
     assert all(name.startswith("pitheorem") for names in by_file.values() for name in names)
     # so the classes tests see are the classes the package checks against
     assert importlib.import_module("pitheorem.scaling").Scaling is pt.Scaling
+
+
+def test_submodules_and_the_functions_they_define_keep_apart():
+    # a module named like its function would be rebound over the function on import
+    for module_name, function in (("scalesearch", "search"), ("simulation", "simulate"),
+                                  ("simulation", "verify_similarity")):
+        module = importlib.import_module(f"pitheorem.{module_name}")
+        assert getattr(pt, module_name) is module
+        assert callable(getattr(pt, function))
+        assert not isinstance(getattr(pt, function), type(module))
+        assert getattr(pt, function) is getattr(module, function)
+    # and no public function shares its name with a module of the package
+    modules = {path.stem for path in ROOT.glob("*.py")}
+    assert modules.isdisjoint(name for name in pt.__all__ if callable(getattr(pt, name)))
