@@ -11,18 +11,15 @@ so on.  They hold results and never compute.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 from fractions import Fraction
+from typing import NamedTuple
 
 from .formatting import TextDisplay
-from .immutable import immutable
 
 __all__ = ["ApplyAnswer", "BasesAnswer", "EngineApplyAnswer", "GroupsAnswer", "ParamsAnswer", "SearchAnswer"]
 
 
-@immutable
-@dataclass(frozen=True, slots=True)
-class GroupsAnswer(TextDisplay):
+class GroupsAnswer(NamedTuple):
     """``pitheorem groups``: a model's Pi groups, with their values where the file gives them.
 
     Parameters
@@ -52,10 +49,12 @@ class GroupsAnswer(TextDisplay):
     groups: object
     values: tuple
 
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__
 
-@immutable
-@dataclass(frozen=True, slots=True)
-class BasesAnswer(TextDisplay):
+
+
+class BasesAnswer(NamedTuple):
     """``pitheorem bases``: the valid repeating sets of a model, or only their number.
 
     Parameters
@@ -64,7 +63,7 @@ class BasesAnswer(TextDisplay):
     rank : int
     exclude, require : tuple of str
         The conditions asked for.
-    count : int
+    n_bases : int
     bases : sequence of tuple of str, or None
         The sets; None when only the count was asked for.
 
@@ -81,13 +80,15 @@ class BasesAnswer(TextDisplay):
     rank: int
     exclude: tuple[str, ...]
     require: tuple[str, ...]
-    count: int
+    n_bases: int
     bases: Sequence[tuple[str, ...]] | None
 
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__
 
-@immutable
-@dataclass(frozen=True, slots=True)
-class SearchAnswer(TextDisplay):
+
+
+class SearchAnswer(NamedTuple):
     """``pitheorem search``: a search on a model; its notes in the command line's terms.
 
     Parameters
@@ -107,10 +108,12 @@ class SearchAnswer(TextDisplay):
     model: str
     result: object
 
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__
 
-@immutable
-@dataclass(frozen=True, slots=True)
-class ApplyAnswer(TextDisplay):
+
+
+class ApplyAnswer(NamedTuple):
     """``pitheorem apply``: a model's values scaled by one minimal scaling.
 
     Parameters
@@ -152,10 +155,12 @@ class ApplyAnswer(TextDisplay):
     scaled: Mapping[str, object]
     output: str | None
 
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__
 
-@immutable
-@dataclass(frozen=True, slots=True)
-class ParamsAnswer(TextDisplay):
+
+
+class ParamsAnswer(NamedTuple):
     """``pitheorem params``: an engine model's parameter table, under the file name as given.
 
     Parameters
@@ -176,10 +181,12 @@ class ParamsAnswer(TextDisplay):
     model: str
     engine_model: object
 
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__
 
-@immutable
-@dataclass(frozen=True, slots=True)
-class EngineApplyAnswer(TextDisplay):
+
+
+class EngineApplyAnswer(NamedTuple):
     """``pitheorem apply`` on an MJCF or URDF file: the parameters a scaling changes, and the files written.
 
     Parameters
@@ -216,3 +223,6 @@ class EngineApplyAnswer(TextDisplay):
     n_parameters: int
     output: str | None
     also_written: tuple[str, ...] = ()
+
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__

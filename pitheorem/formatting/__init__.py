@@ -99,7 +99,7 @@ def render(value, spec: str = "text") -> str:
 
 
 class TextDisplay:
-    """Mixin of every displayed value: ``str(x)`` and ``format(x, spec)`` through :func:`render`.
+    """Mixin of a displayed value: ``str(x)`` and ``format(x, spec)`` by :func:`render`.
 
     Examples
     --------
@@ -137,7 +137,7 @@ class MathDisplay(TextDisplay):
 
 
 class TableDisplay(TextDisplay):
-    """Mixin of a value shown as a table: Jupyter shows its HTML, with math between ``$``.
+    """Mixin of a table: Jupyter shows its HTML, with math between ``$``.
 
     Examples
     --------

@@ -87,7 +87,7 @@ def _group_name(group) -> str:
 @_renders("pitheorem.groups.PiSet")
 def _pi_set(groups) -> str:
     if not len(groups):
-        return _p("(no dimensionless groups)")
+        return _span_of_latex(groups)
     return _table(["group", "expression"], [[_group_name(g), _math(g.latex)] for g in groups])
 
 
@@ -220,7 +220,7 @@ def _groups_answer(answer) -> str:
 @_renders("pitheorem.answers.BasesAnswer")
 def _bases_answer(answer) -> str:
     if answer.bases is None:
-        return _p(str(answer.count))
+        return _p(str(answer.n_bases))
     head = _p(escape(render(answer, "text").splitlines()[0]))
     rows = [[str(k), _math(", ".join(map(latex_name, b)))] for k, b in enumerate(answer.bases, 1)]
     return head + _table(["#", "repeating variables"], rows)

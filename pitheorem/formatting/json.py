@@ -242,7 +242,7 @@ def _groups_answer(answer) -> dict:
 @_data("pitheorem.answers.BasesAnswer")
 def _bases_answer(answer) -> dict:
     doc = {"model": answer.model, "rank": answer.rank, "exclude": list(answer.exclude),
-           "require": list(answer.require), "count": answer.count}
+           "require": list(answer.require), "count": answer.n_bases}
     if answer.bases is not None:
         doc["bases"] = [list(b) for b in answer.bases]
     return doc

@@ -224,7 +224,7 @@ def _groups_answer(answer) -> str:
 @_renders("pitheorem.answers.BasesAnswer")
 def _bases_answer(answer) -> str:
     if answer.bases is None:
-        return str(answer.count)
+        return str(answer.n_bases)
     rows = [[str(k), _math(", ".join(map(latex_name, b)))] for k, b in enumerate(answer.bases, 1)]
     return _tabular("rl", rows)
 

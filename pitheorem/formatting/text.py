@@ -49,7 +49,7 @@ def _pi_group(group) -> str:
 
 @_renders("pitheorem.groups.PiSet")
 def _pi_set(groups) -> str:
-    return "\n".join(map(_pi_group, groups))
+    return "\n".join(map(_pi_group, groups)) or "(no dimensionless groups)"
 
 
 @_renders("pitheorem.scaling.Scaling")
@@ -350,15 +350,15 @@ def _groups_answer(answer) -> str:
 @_renders("pitheorem.answers.BasesAnswer")
 def _bases_answer(answer) -> str:
     if answer.bases is None:
-        return str(answer.count)
+        return str(answer.n_bases)
     conditions = []
     if answer.exclude:
         conditions.append(f"without {', '.join(answer.exclude)}")
     if answer.require:
         conditions.append(f"with {', '.join(answer.require)}")
     condition = f" ({'; '.join(conditions)})" if conditions else ""
-    width = len(str(answer.count))
-    lines = [f"{answer.model}: {answer.count} valid repeating sets of {answer.rank} variables{condition}"]
+    width = len(str(answer.n_bases))
+    lines = [f"{answer.model}: {answer.n_bases} valid repeating sets of {answer.rank} variables{condition}"]
     lines += [f"{k:>{width}}  {' '.join(b)}" for k, b in enumerate(answer.bases, 1)]
     return "\n".join(lines)
 
