@@ -99,7 +99,7 @@ def render(value, spec: str = "text") -> str:
 
 
 class TextDisplay:
-    """Mixin of a displayed value: ``str(x)`` and ``format(x, spec)`` by :func:`render`.
+    """Mixin of a displayed value: ``str`` and ``format`` through :func:`render`.
 
     Examples
     --------
