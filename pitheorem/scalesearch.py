@@ -322,11 +322,14 @@ class SearchResult(TableDisplay):
 
         Examples
         --------
+        Draw into axes of your own figure:
+
+        >>> import matplotlib.pyplot as plt
         >>> import pitheorem as pt
-        >>> s = pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"})
-        >>> fig = pt.search(s, scale={"g": 1}).plot()
-        >>> len(fig.axes) >= 1
-        True
+        >>> fig, (left, right) = plt.subplots(1, 2)
+        >>> res = pt.search(pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"}), scale={"g": 1})
+        >>> res.plot(ax=right) is fig, right.get_xlabel()
+        (True, 'minimal scaling')
         """
         from .plotting import plot_search
 

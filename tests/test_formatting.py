@@ -508,3 +508,170 @@ def test_search_notes_are_phrased_by_each_front_end():
     assert json.loads(format(answer, "json"))["notes"][0]["text"].endswith("give --fixed with no names to let "
                                                                              "time change")
     assert "give <code>--fixed</code> with no names" in format(answer, "html")
+
+
+# -- exact outputs of small values (each checked by hand) ----------------------------------------
+
+
+def _plain(html: str) -> str:
+    """HTML without its inline styles, easier to read in a test."""
+    return re.sub(r' style="[^"]*"', "", html)
+
+
+def test_align_a_lone_header():
+    from pitheorem.formatting.pieces import align
+
+    assert align([["name", "value"]]) == "name  value"
+    assert align([["a", "bb"], ["ccc", ""]]) == "a    bb\nccc"
+
+
+def test_dimension_text_writes_every_power():
+    dim = pt.Dimension.parse("M L^2 T^-2 Theta^(1/2) I^(-1/3)")
+    assert str(dim) == "M L^2 T^-2 Theta^(1/2) I^(-1/3)"
+    assert format(dim, "latex") == r"\mathsf{M}\,\mathsf{L}^{2}\,\mathsf{T}^{-2}\,\Theta^{1/2}\,\mathsf{I}^{-1/3}"
+    assert json.loads(format(dim, "json")) == {"dimension": str(dim), "exponents": {
+        "M": "1", "L": "2", "T": "-2", "Theta": "1/2", "I": "-1/3"}}
+
+
+def test_search_of_a_family_in_latex_and_html():
+    res = pt.search(pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"}), scale={"g": 1}, fixed=())
+    assert format(res, "latex") == "\n".join([
+        r"\begin{tabular}{llcc}",
+        r"variable & role & \#1 & \#2 \\ \hline",
+        r"$m$ & free & $1$ & $1$ \\",
+        r"$l$ & free & $s$ & $1$ \\",
+        r"$g$ & scale & $s$ & $s$ \\",
+        r"$t$ & free & $1$ & $s^{-1/2}$ \\",
+        r"\hline",
+        r"$[\mathrm{M}]$ & base unit & $1$ & $1$ \\",
+        r"$[\mathrm{L}]$ & base unit & $s$ & $1$ \\",
+        r"$[\mathrm{T}]$ & base unit & $1$ & $s^{-1/2}$ \\",
+        r"\end{tabular}"])
+    html = _plain(format(res, "html"))
+    assert html.startswith("<p>Scaling g by s: 2 minimal solution(s) (a family of dimension 2).</p><table>"
+                           "<tr><th>variable</th><th>role</th><th>#1</th><th>#2</th></tr>"
+                           "<tr><th>$m$</th><td><em>free</em></td><td>$1$</td><td>$1$</td></tr>")
+    assert html.endswith('<tr class="base-unit"><th>$[\\mathrm{T}]$</th><td><em>base unit</em></td>'
+                         "<td>$1$</td><td>$s^{-1/2}$</td></tr></table>")
+
+
+def test_unit_fit_in_text_latex_and_html():
+    fit = pt.fit_units(pt.System({"l": "L", "m": "M", "t": "T"}), {"l": 500, "t": 2}, ranges={"l": (1, 10)}, nice=10)
+    assert str(fit) == "\n".join([
+        "unit fit (factors rounded to powers of 10): every value in range",
+        "  M: readings x 1 (10^0), new unit = 1 old units",
+        "  L: readings x 0.01 (10^-2), new unit = 100 old units",
+        "  T: readings x 1 (10^0), new unit = 1 old units",
+        "         l          500 ->            5   in [1, 10]  ok",
+        "         t            2 ->            2"])
+    latex = format(fit, "latex")
+    assert r"$\mathsf{L}$ & 0.01 & 100 \\" in latex
+    assert r"$l$ & 500 & 5 & [1, 10] & ok \\" in latex
+    assert r"$t$ & 2 & 2 &  &  \\" in latex
+    html = _plain(format(fit, "html"))
+    assert "<tr><th>$\\mathsf{L}$</th><td>0.01</td><td>100</td></tr>" in html
+    assert "<tr><th>$l$</th><td>500</td><td>5</td><td>[1, 10]</td><td>ok</td></tr>" in html
+    assert "$m$" not in html  # no value given: not listed
+
+
+def test_symmetries_and_a_tie_in_latex_and_html():
+    proj = pt.models.projectile()
+    sym = pt.scaling_symmetries(proj.equations, proj.system)
+    assert format(sym, "latex").endswith("\n".join([
+        "symmetries beyond changes of units:", "", r"\begin{tabular}{cccccc}",
+        r"$g$ & $t$ & $x$ & $y$ & $vx$ & $vy$ \\ \hline", r"$0$ & $0$ & $1$ & $0$ & $1$ & $0$ \\",
+        r"\end{tabular}"]))
+    assert _plain(format(sym, "html")).endswith(
+        "<tr><th>#1</th><td>$0$</td><td>$0$</td><td>$1$</td><td>$0$</td><td>$1$</td><td>$0$</td></tr></table>")
+    x, t = sympy.symbols("x t")
+    tie = pt.check_dimensions(x + t, pt.System({"x": "L", "t": "T"}))
+    assert format(tie, "latex") == "\n".join([
+        "inconsistent: 2 offending term(s)", "", r"\begin{tabular}{lll}", r"term & dimension & expected \\ \hline",
+        r"$t$ & $\mathsf{T}$ & $\mathsf{L}$ \\", r"$x$ & $\mathsf{L}$ & $\mathsf{T}$ \\", r"\end{tabular}", "",
+        "tie: in t + x, T and L have 1 term(s) each: no majority says which is wrong, so all are listed"])
+
+
+def test_rule_verdict_text():
+    verdict = engines.check_rule(engines.BULLET_SCALE_THE_WORLD, pt.System({"m": "M", "c": "M L^2 T^-1", "t": "T"}),
+                                 hidden=["bullet_contact_slop"])
+    assert str(verdict) == "\n".join([
+        "Bullet wiki: Scaling The World:",
+        "  a change of units: readings of L by X^1",
+        "  not named: c [M L^2 T^-1] must scale by X^2",
+        "  not named, rightly unchanged: t",
+        "  hidden constant left out: bullet_contact_slop [L] (default 1e-05) must scale by X^1"])
+    assert format(verdict, "latex").splitlines()[:3] == [
+        r"\textbf{Bullet wiki: Scaling The World:}", r"\begin{itemize}",
+        r"\item a change of units: readings of L by X\^{}1"]
+    nothing = engines.check_rule(engines.RuleOfThumb("still", "bullet", "", (
+        engines.RuleQuantity("length", "L", 0),)))
+    assert str(nothing).splitlines()[1] == "  a change of units: readings of nothing"
+
+
+def test_similarity_reports_add_the_sensitivity_column_when_measured():
+    plain, judged = sample("similarity_report"), sample("similarity_report_baseline")
+    assert r"\begin{tabular}{lr}" in format(plain, "latex")
+    assert r"\begin{tabular}{lrr}" in format(judged, "latex")
+    assert "one-ulp sensitivity" in format(judged, "html")
+    assert "one-ulp sensitivity" not in format(plain, "html")
+    assert json.loads(format(judged, "json"))["sensitivity"] == dict(judged.sensitivity)
+    assert json.loads(format(plain, "json"))["sensitivity"] is None
+
+
+def test_engine_model_names_its_file_or_says_it_is_unsaved():
+    model = _engine_model()
+    head = f"{model.path}: mujoco model, {len(model.parameters)} parameters"
+    assert str(model).splitlines()[0] == head
+    assert format(model, "latex").splitlines()[0] == f"% {head}"
+    copy = model.with_values(tolerance=0)
+    assert str(copy).startswith("(unsaved): mujoco model")
+    assert format(copy, "latex").startswith("% (unsaved): mujoco model")
+
+
+def test_answers_of_the_command_line():
+    bases = sample("bases_answer")
+    assert str(bases) == "hinged rod: 2 valid repeating sets of 3 variables (without t; with m)\n1  m l g\n2  m l k_theta"
+    assert format(bases, "latex") == "\n".join([r"\begin{tabular}{rl}", r"1 & $m, l, g$ \\",
+                                                r"2 & $m, l, k_{\theta}$ \\", r"\end{tabular}"])
+    assert _plain(format(bases, "html")).endswith(
+        "<tr><th>1</th><td>$m, l, g$</td></tr><tr><th>2</th><td>$m, l, k_{\\theta}$</td></tr></table>")
+    assert _plain(format(bases, "html")).startswith(f"<p>{str(bases).splitlines()[0]}</p>")
+    applied = sample("engine_apply_answer")
+    assert len(applied.changed) > 8
+    lines = str(applied).splitlines()
+    assert lines[2:10] == [f"  {name}: x {power_text(p)}" for name, p in applied.changed[:8]]  # the first eight
+    assert lines[10:] == ["wrote p.xml (and p.xml.settings.json)"]
+    assert len(json.loads(format(applied, "json"))["changed"]) == len(applied.changed)  # all of them
+
+
+def test_json_counts_no_scaling_for_an_impossible_request_and_keeps_unicode():
+    assert json.loads(format(sample("search_infeasible"), "json"))["count"] == 0
+    group = pt.System({"θ": "1", "l": "L"}).pi_groups()[0]
+    assert '"name": "Pi_θ"' in format(group, "json")
+
+
+def test_scaling_text_divides_by_negative_powers():
+    assert str(sample("scaling")) == "m -> m/s^2, l -> s l, g -> s g, F -> F/s"
+    assert str(sample("scaling_rational")).startswith("m -> m/s, l -> s^(1/2) l")
+
+
+def test_report_texts_name_what_was_measured():
+    judged = sample("similarity_report_baseline")
+    assert f"(largest {max(judged.sensitivity.values()):.3g})" in str(judged)
+    engine = sample("engine_similarity_report")
+    assert f"; pure ODE: {engine.ode_report.max_deviation:.3g}" in str(engine)
+    assert str(engine).endswith(f"; engine vs exact ODE: {engine.engine_vs_ode:.3g}")
+    assert json.loads(format(engine, "json"))["ode_max_deviation"] == engine.ode_report.max_deviation
+
+
+def test_answers_in_latex_and_html():
+    applied = sample("apply_answer")  # m -> m/s, with s = 3/2: 3/2 becomes 1
+    assert r"$m$ & $s^{-1}$ & $\frac{3}{2}$ & 1 \\" in format(applied, "latex").splitlines()
+    groups = _plain(format(sample("groups_answer"), "html"))
+    assert r"<p>repeating variables: $m$, $l$, $k_{\theta}$</p><table>" in groups
+    assert "<tr><th>$\\Pi_{g}$</th><td>$\\frac{g l m}{k_{\\theta}}$</td><td>1/3</td></tr>" in groups
+    model = _engine_model()
+    assert _plain(format(model, "html")).startswith(f"<p>{model.path}: mujoco model, ")
+    html = format(sample("search"), "html")
+    rows = html.split("<tr")
+    assert [i for i, row in enumerate(rows) if "border-top" in row] == [len(ROD.variables) + 2]  # the first base row

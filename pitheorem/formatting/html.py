@@ -17,6 +17,7 @@ from . import render
 from .pieces import (
     COMMAND_LINE_TIME_REMEDY,
     PYTHON_TIME_REMEDY,
+    base_latex,
     group_name_latex,
     latex_name,
     note_text,
@@ -160,7 +161,7 @@ def _similarity_report(report) -> str:
 
 @_renders("pitheorem.unitfit.UnitFit")
 def _unit_fit(fit) -> str:
-    units = [[_math(rf"\mathsf{{{b}}}"), f"{float(f):.6g}", f"{1 / float(f):.6g}"] for b, f in fit.factors.items()]
+    units = [[_math(base_latex(b)), f"{float(f):.6g}", f"{1 / float(f):.6g}"] for b, f in fit.factors.items()]
     ranged = {n: (lo, hi) for n, lo, hi in fit.ranges}
     rows = []
     for n in fit.system.variables:

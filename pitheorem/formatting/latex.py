@@ -16,6 +16,8 @@ import sympy
 
 from . import render
 from .pieces import (
+    PYTHON_TIME_REMEDY,
+    base_latex,
     group_name_latex,
     latex_escape,
     latex_name,
@@ -68,13 +70,9 @@ def _lines(lines) -> str:
 # -- dimensions, groups, scalings ------------------------------------------------------------
 
 
-def _base(name: str) -> str:
-    return r"\Theta" if name == "Theta" else rf"\mathsf{{{name}}}"
-
-
 @_renders("pitheorem.dimensions.Dimension")
 def _dimension(dim) -> str:
-    return r"\,".join(_base(b) if p == 1 else f"{_base(b)}^{{{p}}}" for b, p in dim.exponents.items()) or "1"
+    return r"\,".join(base_latex(b) if p == 1 else f"{base_latex(b)}^{{{p}}}" for b, p in dim.exponents.items()) or "1"
 
 
 @_renders("pitheorem.groups.PiGroup")
@@ -101,7 +99,7 @@ def _scaling(sc) -> str:
 
 @_renders("pitheorem.scalesearch.SearchNote")
 def _note(note) -> str:
-    return note_text(note, time_remedy=latex_escape("pass fixed=() to let time change"),
+    return note_text(note, time_remedy=latex_escape(PYTHON_TIME_REMEDY),
                      code=lambda name: rf"\texttt{{{latex_escape(name)}}}")
 
 
@@ -167,7 +165,7 @@ def _range_bound(bound) -> str:
 @_renders("pitheorem.unitfit.UnitFit")
 def _unit_fit(fit) -> str:
     head = latex_escape(unit_fit_head(fit))
-    units = [[_math(_base(b)), f"{float(f):.6g}", f"{1 / float(f):.6g}"] for b, f in fit.factors.items()]
+    units = [[_math(base_latex(b)), f"{float(f):.6g}", f"{1 / float(f):.6g}"] for b, f in fit.factors.items()]
     ranged = {n: (lo, hi) for n, lo, hi in fit.ranges}
     rows = []
     for n in fit.system.variables:

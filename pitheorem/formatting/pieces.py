@@ -26,6 +26,7 @@ __all__ = [
     "COMMAND_LINE_TIME_REMEDY",
     "PYTHON_TIME_REMEDY",
     "align",
+    "base_latex",
     "group_name_latex",
     "json_number",
     "latex_escape",
@@ -266,6 +267,26 @@ def latex_name(name: str) -> str:
     ('k_{\\theta}', 'g')
     """
     return sympy.latex(sympy.Symbol(name))
+
+
+def base_latex(name: str) -> str:
+    r"""A base dimension as LaTeX math: ``\mathsf{L}``, and ``\Theta`` for temperature.
+
+    Parameters
+    ----------
+    name : str
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import base_latex
+    >>> base_latex("L"), base_latex("Theta")
+    ('\\mathsf{L}', '\\Theta')
+    """
+    return r"\Theta" if name == "Theta" else rf"\mathsf{{{name}}}"
 
 
 def group_name_latex(group) -> str:
