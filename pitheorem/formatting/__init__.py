@@ -81,10 +81,11 @@ def render(value, spec: str = "text") -> str:
     >>> dim = pt.Dimension.parse("L T^-2")
     >>> render(dim), render(dim, "latex")
     ('L T^-2', '\\\\mathsf{L}\\\\,\\\\mathsf{T}^{-2}')
-    >>> render(dim, "yaml")
-    Traceback (most recent call last):
-    ...
-    pitheorem.errors.InvalidRequestError: unknown format 'yaml'; the formats are text, latex, html, json ('' is text)
+    >>> try:
+    ...     render(dim, "yaml")
+    ... except pt.InvalidRequestError as err:
+    ...     print(err)
+    unknown format 'yaml'; the formats are text, latex, html, json ('' is text)
     """
     name = spec or "text"
     if name not in FORMATS:

@@ -433,7 +433,7 @@ def search_cells(result, power):
     Returns
     -------
     rows : list of (str, str, list of str)
-        Each variable, its role (:attr:`SearchResult.roles`) and its power
+        Each variable, its role (:attr:`pitheorem.SearchResult.roles`) and its power
         in each minimal scaling.
     base_rows : list of (str, list)
         Each base dimension and the power of its unit behind each scaling:
