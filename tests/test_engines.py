@@ -182,7 +182,7 @@ def test_broken_constants_needs_a_scaling():
 
 
 def test_engine_unavailable_error_message_and_pickle():
-    err = EngineUnavailableError("mujoco")
+    err = EngineUnavailableError("mujoco", "mujoco")
     assert isinstance(err, pt.PiTheoremError)
     assert isinstance(err, ImportError)
     assert "pitheorem[engines]" in str(err)

@@ -31,6 +31,7 @@ from ..immutable import immutable
 from ..scalesearch import SearchResult, search
 from ..scaling import Scaling
 from ..system import System
+from .packages import check_engine
 
 __all__ = [
     "CATALOGUE",
@@ -104,11 +105,7 @@ ENGINES = tuple(dict.fromkeys(c.engine for c in CATALOGUE))
 
 
 def _check_engine(engine) -> str | None:
-    if engine is None:
-        return None
-    if engine not in ENGINES:
-        raise InvalidRequestError(f"unknown engine {engine!r}; the catalogue has {', '.join(map(repr, ENGINES))}")
-    return engine
+    return None if engine is None else check_engine(engine)
 
 
 def hidden_constants(engine: str | None = None, *, names: Iterable[str] | None = None,

@@ -48,6 +48,7 @@ from .model import (
     unique_name,
     warn_unscalable,
 )
+from .packages import engine_module, quiet_stdout
 
 __all__ = ["SCENE_OPTIONS", "UrdfBackend", "load_urdf"]
 
@@ -86,9 +87,7 @@ SCENE_OPTIONS = {
 
 
 def _pybullet():
-    from .rod import _engine_module
-
-    return _engine_module("bullet")
+    return engine_module("bullet")
 
 
 def _floats(text: str | None) -> list[float]:
@@ -274,9 +273,7 @@ class UrdfBackend:
 
     def _connect(self):
         pb = _pybullet()
-        from .rod import _quiet_stdout
-
-        with _quiet_stdout():
+        with quiet_stdout():
             client = pb.connect(pb.DIRECT)
         return pb, client
 
@@ -285,13 +282,11 @@ class UrdfBackend:
         import os
         import tempfile
 
-        from .rod import _quiet_stdout
-
         fd, tmp = tempfile.mkstemp(suffix=".urdf", dir=self.source_dir)
         try:
             with os.fdopen(fd, "w") as fh:
                 fh.write(_xml_text(self.tree))
-            with _quiet_stdout():
+            with quiet_stdout():
                 body = pb.loadURDF(tmp, basePosition=list(self.scene["base_position"]),
                                    useFixedBase=self.scene["fixed_base"], physicsClientId=client)
         finally:
