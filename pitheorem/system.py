@@ -308,6 +308,23 @@ class System:
         """
         return dict(zip(self._variables, self._dimensions, strict=True))
 
+    @property
+    def time_variables(self) -> tuple[str, ...]:
+        """The variables whose dimension is time alone (T), in system order.
+
+        Time is hard to rescale in a running simulation (real-time
+        controllers, an engine's fixed step), so these are held fixed by
+        :func:`pitheorem.search` when no ``fixed`` is given, and avoided as
+        repeaters by :meth:`default_repeating`.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"t": "T", "l": "L", "tau": "T", "f": "T^-1"}).time_variables
+        ('t', 'tau')
+        """
+        return tuple(n for n, d in zip(self._variables, self._dimensions, strict=True) if d == _TIME)
+
     def dimension(self, name: str) -> Dimension:
         """The dimension of one variable.
 
@@ -550,7 +567,8 @@ class System:
         non-time variables first.  If they do not span, every basis needs
         time, and the first basis is the pivots in the plain order.
         """
-        avoid = [j for j, d in enumerate(self._dimensions) if d != _TIME]
+        time = self.time_variables
+        avoid = [j for j, n in enumerate(self._variables) if n not in time]
         reduced, order = self._eliminate(avoid)
         pivots = reduced[1]
         if pivots and pivots[-1] >= len(avoid):

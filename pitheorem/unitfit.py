@@ -50,7 +50,7 @@ from .errors import DimensionSyntaxError, DuplicateVariableError, InvalidRequest
 from .exact import read_number, read_value, short_text
 from .immutable import immutable
 from .linalg import nullspace
-from .scaling import Scaling
+from .scaling import Scaling, float_power
 from .system import System
 
 __all__ = ["RangeBound", "UnitFit", "fit_units"]
@@ -461,7 +461,7 @@ class UnitFit:
             if self.nice is not None and u.denominator == 1:
                 out[b] = Fraction(self.nice) ** int(u)
             else:
-                out[b] = float(self.s) ** float(u)
+                out[b] = float_power(float(self.s), u, f"the factor of {b}")
         return out
 
     @property

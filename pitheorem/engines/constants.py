@@ -241,10 +241,7 @@ def engine_search(system: System, engine: str, scale: Mapping[str, object], fixe
     """
     ext = with_hidden_constants(system, engine, names=names)
     added = tuple(n for n in ext.variables if n not in system.variables)
-    if fixed is None:
-        time = Dimension({"T": 1})
-        fixed = tuple(n for n in system.variables if system.dimension(n) == time)
-    fixed = tuple(fixed)
+    fixed = system.time_variables if fixed is None else tuple(fixed)
     return search(ext, scale, fixed=(*fixed, *(n for n in added if n not in fixed)), allow=allow)
 
 
