@@ -17,6 +17,7 @@ mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip inst
 
 from pitheorem import engines  # noqa: E402
 from pitheorem.engines import EngineModelError, UnscalableParameterError  # noqa: E402
+from pitheorem.modelfile import ModelFileError  # noqa: E402
 
 DATA = Path(__file__).resolve().parent / "data" / "engines"
 
@@ -251,10 +252,10 @@ def test_an_engine_model_cannot_be_changed_by_assignment():
 
 def test_an_unknown_example_names_the_shipped_ones():
     assert engines.example_path("superball.xml").name == "superball.xml"
-    with pytest.raises(pt.InvalidRequestError) as caught:
+    with pytest.raises(ModelFileError) as caught:
         engines.example_path("hopper.xml")
-    assert "'hopper.xml'" in str(caught.value)
-    assert str(caught.value).endswith("the shipped models are pendulum.xml, superball.xml")
+    assert "example:hopper.xml" in str(caught.value)
+    assert str(caught.value).endswith("the shipped examples are hinged_rod, pendulum.xml, superball, superball.xml")
 
 
 def test_mixed_fixed_tendon_cannot_be_rewritten(tmp_path):

@@ -9,7 +9,9 @@ from fractions import Fraction
 import pytest
 
 import pitheorem as pt
+from pitheorem import engines
 from pitheorem.modelfile import (
+    EXAMPLES,
     ModelFile,
     ModelFileError,
     dump_values,
@@ -30,8 +32,14 @@ def write(tmp_path, text: str, name: str = "model.toml"):
 
 
 def test_examples_are_listed():
-    assert examples() == ("hinged_rod", "superball")
+    assert examples() == ("hinged_rod", "pendulum.xml", "superball", "superball.xml")
     assert example_path("hinged_rod.toml") == example_path("hinged_rod")
+    assert example_path("hinged_rod").name == "hinged_rod.toml"
+    assert example_path("pendulum.xml") == EXAMPLES / "pendulum.xml"
+    # the engines' call is the same function: one home for the shipped files
+    assert engines.example_path is example_path
+    assert sorted(p.name for p in EXAMPLES.iterdir() if p.suffix in (".toml", ".xml")) == [
+        "hinged_rod.toml", "pendulum.xml", "superball.toml", "superball.xml"]
 
 
 def test_hinged_rod_example_is_the_papers_rod():
@@ -53,9 +61,21 @@ def test_superball_example_has_the_section_4_list():
     assert sb.system.rank == 3
 
 
-def test_unknown_example():
-    with pytest.raises(ModelFileError, match="superball"):
-        example_path("superbal")
+@pytest.mark.parametrize("name", ["superbal", "pendulum", "hopper.xml", "../modelfile.py", "examples/pendulum.xml",
+                                  "pendulum.xml.toml", ""])
+def test_unknown_example(name):
+    with pytest.raises(ModelFileError) as caught:
+        example_path(name)
+    assert str(caught.value) == (f"example:{name}: no such example; the shipped examples are "
+                                 "hinged_rod, pendulum.xml, superball, superball.xml")
+    assert caught.value.culprit == f"example:{name}"
+
+
+def test_an_engine_example_is_no_toml_model_file():
+    with pytest.raises(ModelFileError) as caught:
+        load_model_file("example:pendulum.xml")
+    assert str(caught.value) == (f"example:pendulum.xml: is an engine model, not a TOML model file; "
+                                 f"pass its path, {EXAMPLES / 'pendulum.xml'}")
 
 
 # -- reading -------------------------------------------------------------------------------

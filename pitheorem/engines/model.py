@@ -32,6 +32,7 @@ from ..dimensions import Dimension
 from ..errors import EngineModelError, InvalidRequestError, UnscalableParameterError
 from ..exact import read_scale_factor, read_value
 from ..immutable import immutable
+from ..modelfile import example_path
 from ..scaling import Scaling, float_power
 from ..simulation import positive_float
 from ..system import System
@@ -49,8 +50,6 @@ __all__ = [
 #: where a parameter's value comes from
 SOURCES = ("file", "default", "derived", "engine")
 
-#: the folder of the model files shipped with pitheorem (see :func:`example_path`)
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 
 class UnscalableModelWarning(UserWarning):
@@ -692,37 +691,6 @@ def warn_unscalable(path: str, element: str, reason: str) -> None:
     "a.xml: sensor 'x': unknown type"
     """
     warnings.warn(f"{path}: {element}: {reason}", UnscalableModelWarning, stacklevel=3)
-
-
-def example_path(name: str) -> Path:
-    """The path of a model file shipped in ``pitheorem/examples``.
-
-    Parameters
-    ----------
-    name : str
-        The file's name: ``"pendulum.xml"`` or ``"superball.xml"``.
-
-    Returns
-    -------
-    pathlib.Path
-
-    Raises
-    ------
-    InvalidRequestError
-        For a name that is no shipped file; the message lists the model
-        files that are.
-
-    Examples
-    --------
-    >>> from pitheorem import engines
-    >>> engines.example_path("pendulum.xml").name
-    'pendulum.xml'
-    """
-    path = EXAMPLES / name
-    if not path.is_file():
-        shipped = ", ".join(sorted(p.name for p in EXAMPLES.glob("*.xml")))
-        raise InvalidRequestError(f"no example model {name!r} in {EXAMPLES}; the shipped models are {shipped}")
-    return path
 
 
 def load(path, **options) -> EngineModel:

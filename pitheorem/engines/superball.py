@@ -49,8 +49,9 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InvalidRequestError
+from ..modelfile import EXAMPLES
 from ..system import System
-from .model import EXAMPLES, EngineModel, attribute_text
+from .model import EngineModel, attribute_text
 
 __all__ = [
     "PAPER_SCALING",
