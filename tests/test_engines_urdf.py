@@ -231,7 +231,7 @@ def test_the_loader_reads_its_scene_as_the_command_line_does(options, error, say
     with pytest.raises(error) as caught:
         engines.load(ARM, **options)
     assert says in str(caught.value)
-    name, value = next(iter(options.items()))
+    name = next(iter(options))
     if name in ("ground", "fixed_base", "base_position"):
         with pytest.raises(error, match=says.split(",")[0]):
             engines.load(ARM).with_settings(**options)

@@ -20,6 +20,7 @@ from pitheorem.modelfile import (
     load_model_file,
     write_model_file,
 )
+from tests.conftest import BROKEN_MODEL_FILES, broken_model_file
 
 
 def write(tmp_path, text: str, name: str = "model.toml"):
@@ -204,45 +205,9 @@ def test_model_file_is_a_record():
 
 # -- every broken file gives a ModelFileError naming file, variable and problem -------------
 
-BROKEN = {
-    "bad_toml": ('[variables]\nm = { dimension = "M"\n', ["line 2", "invalid TOML"]),
-    "bad_toml_value": ("[variables]\nm = = 1\n", ["line 2", "invalid TOML"]),
-    "missing_variables": ('name = "x"\n', ["no [variables]"]),
-    "variables_not_table": ("variables = 3\n", ["must be a table"]),
-    "empty_variables": ("[variables]\n", ["empty"]),
-    "unknown_top_key": ('nmae = "x"\n[variables]\nl = { dimension = "L" }\n', ["'nmae'", "did you mean 'name'"]),
-    "unknown_key": ('[variables]\nl = { dimension = "L", vaule = 2 }\n', ["variable 'l'", "'vaule'", "'value'"]),
-    "both": ('[variables]\nl = { dimension = "L", unit = "m" }\n', ["variable 'l'", "both dimension and unit"]),
-    "neither": ('[variables]\nl = { value = 2 }\n', ["variable 'l'", "neither dimension nor unit"]),
-    "unknown_dimension": ('[variables]\nq = { dimension = "Q" }\n', ["variable 'q'", "'Q'"]),
-    "bad_dimension_syntax": ('[variables]\nq = { dimension = "L^^2" }\n', ["variable 'q'", "'L^^2'"]),
-    "dimension_not_string": ("[variables]\nq = { dimension = 1 }\n", ["variable 'q'", "string"]),
-    "bad_unit": ('[variables]\nq = { unit = "furlongz" }\n', ["variable 'q'", "furlongz"]),
-    "duplicate": ('[variables]\nm = { dimension = "M" }\nm = { dimension = "L" }\n',
-                  ["line 3", "variable 'm'", "twice"]),
-    "duplicate_table": ('[variables.m]\ndimension = "M"\n[variables.m]\ndimension = "L"\n',
-                        ["line 3", "variable 'm'", "twice"]),
-    "duplicate_key_in_entry": ('[variables]\nm = { dimension = "M", dimension = "L" }\n', ["line 2"]),
-    "bad_role": ('[variables]\nt = { dimension = "T", role = "clock" }\n', ["variable 't'", "'clock'", "time"]),
-    "time_not_T": ('[variables]\nl = { dimension = "L", role = "time" }\n', ["variable 'l'", "dimension T"]),
-    "two_times": ('[variables]\nt = { dimension = "T", role = "time" }\ns = { dimension = "T", role = "time" }\n',
-                  ["variable 's'", "at most one"]),
-    "value_not_number": ('[variables]\nm = { dimension = "M", value = "heavy" }\n', ["variable 'm'", "'heavy'"]),
-    "value_bool": ('[variables]\nm = { dimension = "M", value = true }\n', ["variable 'm'", "true"]),
-    "value_list": ('[variables]\nm = { dimension = "M", value = [1, 2] }\n', ["variable 'm'", "number"]),
-    "value_zero_denominator": ('[variables]\nm = { dimension = "M", value = "1/0" }\n', ["variable 'm'", "1/0"]),
-    "value_nan": ('[variables]\nm = { dimension = "M", value = nan }\n', ["variable 'm'", "finite"]),
-    "entry_not_table": ('[variables]\nm = "M"\n', ["variable 'm'", "must be a table"]),
-    "bad_name": ('[variables]\n"k-theta" = { dimension = "M" }\n', ["variable 'k-theta'", "valid name"]),
-    "name_not_string": ('name = 3\n[variables]\nm = { dimension = "M" }\n', ["name must be a string"]),
-    "bad_base_dimensions": ('base_dimensions = "MLT"\n[variables]\nm = { dimension = "M" }\n', ["base_dimensions"]),
-}
-
-
-@pytest.mark.parametrize("case", sorted(BROKEN))
+@pytest.mark.parametrize("case", sorted(BROKEN_MODEL_FILES))
 def test_broken_file(tmp_path, case):
-    text, fragments = BROKEN[case]
-    path = write(tmp_path, text, f"{case}.toml")
+    path, fragments = broken_model_file(tmp_path, case)
     with pytest.raises(ModelFileError) as info:
         load_model_file(path)
     message = str(info.value)

@@ -132,7 +132,7 @@ def test_every_float_factor_is_one_power_float_in_float_out():
     # the value types take their float factors from it
     sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 2})
     assert sc.factors(0.1) == {"l": 0.1**2, "t": 1.0}
-    t, y = sc.map_back([0.0], [[1.0]], Fraction(1, 10), time="t", states=["l"])
-    assert y.tolist() == [[1 / 0.01]]
+    t, y = sc.map_back([2.0], [[1.0]], Fraction(1, 10), time="t", states=["l"])
+    assert (t.tolist(), y.tolist()) == ([2.0], [[1 / 0.01]])
     gravity = ModelScaling.of(pt.models.projectile(), {"g": 1, "t": 1}, s=0.1)
     assert gravity.factor("vx") == float_power(read_scale_factor(0.1), gravity.exponents["vx"], "vx") == 0.1**2
