@@ -166,8 +166,7 @@ class Scaling:
                     f"unknown base dimension {b!r} in unit_change; the system's base dimensions are {', '.join(bases)}"
                 )
         u = tuple(read_exponent(unit_change.get(b, 0), f"exponent of base unit {b!r}") for b in bases)
-        vector = tuple(sum((system.dimension(v).exponent_of(b) * x for b, x in zip(bases, u, strict=True)),
-                           Fraction(0))
+        vector = tuple(sum((c * x for c, x in zip(system.column(v), u, strict=True)), Fraction(0))
                        for v in system.variables)
         return cls(system, vector, u)
 
@@ -202,9 +201,8 @@ class Scaling:
         a = [Fraction(0)] * len(system.variables)
         for n in names:
             a[system.index(n)] = read_exponent(exponents[n], f"exponent of {n!r}")
-        bases = system.base_dimensions
-        rows = [[system.dimension(v).exponent_of(b) for b in bases] for v in system.variables]
-        u = solve(rows, a) if bases else ([] if not any(a) else None)
+        rows = [list(system.column(v)) for v in system.variables]
+        u = solve(rows, a) if system.base_dimensions else ([] if not any(a) else None)
         if u is None:
             raise InvalidRequestError(
                 f"exponents {dict(exponents)!r} are not a similarity scaling: they change a Pi group "

@@ -308,6 +308,30 @@ class System:
         """
         return dict(zip(self._variables, self._dimensions, strict=True))
 
+    def column(self, name: str) -> tuple[Fraction, ...]:
+        """A variable's column of the dimension matrix, as exact Fractions.
+
+        The exponents of its dimension over :attr:`base_dimensions`, in
+        that order (:attr:`matrix` holds the same numbers as sympy
+        Rationals).
+
+        Parameters
+        ----------
+        name : str
+            A variable of the system.
+
+        Returns
+        -------
+        tuple of Fraction
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"m": "M", "g": "L T^-2"}).column("g")
+        (Fraction(0, 1), Fraction(1, 1), Fraction(-2, 1))
+        """
+        return self._columns[self.index(name)]
+
     @property
     def time_variables(self) -> tuple[str, ...]:
         """The variables whose dimension is time alone (T), in system order.

@@ -41,3 +41,16 @@ def test_an_engine_search_holds_the_systems_time_variables_by_default():
 ])
 def test_default_repeaters_avoid_the_time_variables(variables, expected):
     assert pt.System(variables).default_repeating() == expected
+
+
+def test_a_column_is_the_exponents_of_the_variables_dimension_over_the_base_dimensions():
+    from fractions import Fraction
+
+    system = pt.System({"k": "M T^-2", "q": "Theta^(1/2) L", "one": "1"})
+    assert system.base_dimensions == ("M", "L", "T", "Theta")
+    assert system.column("k") == (1, 0, -2, 0)
+    assert system.column("q") == (0, 1, 0, Fraction(1, 2))
+    assert system.column("one") == (0, 0, 0, 0)
+    assert all(type(x) is Fraction for x in system.column("q"))
+    with pytest.raises(pt.UnknownVariableError, match="'x'"):
+        system.column("x")
