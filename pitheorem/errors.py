@@ -124,8 +124,11 @@ class UnitError(PiTheoremError, ValueError):
     Examples
     --------
     >>> import pitheorem as pt
-    >>> issubclass(pt.UnitError, ValueError)
-    True
+    >>> try:
+    ...     pt.System.from_units({"l": 3})
+    ... except pt.UnitError as err:
+    ...     print(err)
+    unit of 'l' must be a string such as 'kg*m/s^2', got 3
     """
 
 
@@ -276,8 +279,11 @@ class InvalidRequestError(PiTheoremError, ValueError):
     Examples
     --------
     >>> import pitheorem as pt
-    >>> issubclass(pt.InvalidRequestError, ValueError)
-    True
+    >>> try:
+    ...     pt.search(pt.System({"l": "L"}), scale={})
+    ... except pt.InvalidRequestError as err:
+    ...     print(err)
+    empty request: scale must prescribe at least one variable, e.g. scale={'g': 1}
     """
 
 

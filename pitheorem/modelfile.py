@@ -76,6 +76,7 @@ __all__ = [
     "example_path",
     "examples",
     "load_model_file",
+    "model_kind",
     "write_model_file",
 ]
 
@@ -225,6 +226,44 @@ def examples() -> tuple[str, ...]:
     """
     return tuple(sorted(p.stem if p.suffix == ".toml" else p.name for p in EXAMPLES.iterdir()
                         if p.is_file() and p.suffix in (".toml", ".xml")))
+
+
+def model_kind(path) -> str:
+    """``"mjcf"``, ``"urdf"`` or ``"toml"``: the kind of a model file, by suffix and root element.
+
+    The command line reads a TOML (or JSON) model file itself and an MJCF
+    or URDF file through :mod:`pitheorem.engines`; a shipped example
+    (``example:NAME``) is a TOML model file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file as the user named it.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.modelfile import model_kind
+    >>> model_kind("robot.urdf"), model_kind("model.toml"), model_kind("example:hinged_rod")
+    ('urdf', 'toml', 'toml')
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix == ".urdf":
+        return "urdf"
+    if suffix == ".toml" or str(path).startswith("example:"):
+        return "toml"
+    if suffix in (".xml", ".mjcf") and path.is_file():
+        head = path.read_bytes()[:4096].decode("utf-8", "replace")
+        if "<robot" in head and "<mujoco" not in head:
+            return "urdf"
+        return "mjcf"
+    if suffix in (".xml", ".mjcf"):
+        return "mjcf"
+    return "toml"
 
 
 def load_model_file(path) -> ModelFile:

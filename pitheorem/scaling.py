@@ -383,7 +383,8 @@ class Scaling:
                 continue
             number = read_number(value, f"the value of {name!r}", irrational_ok=True)
             if is_float(s):
-                out[name] = (float(value) if is_float(value) else float(number)) * float_power(s, p, f"the factor of {name!r}")
+                factor = float_power(s, p, f"the factor of {name!r}")
+                out[name] = (float(value) if is_float(value) else float(number)) * factor
             elif is_float(value):  # read as the decimal it prints as, scaled exactly, rounded once
                 out[name] = _rounded(number * _exact_power(s, p), name)
             else:

@@ -639,10 +639,8 @@ class System:
 
         Parameters
         ----------
-        exclude : iterable of str
-            Variables never to use as repeaters (e.g. time).
-        require : iterable of str
-            Variables every set must contain.
+        exclude, require : iterable of str
+            As for :meth:`bases`.
 
         Yields
         ------
@@ -701,10 +699,8 @@ class System:
 
         Parameters
         ----------
-        exclude : iterable of str
-            Variables never to use as repeaters (e.g. time).
-        require : iterable of str
-            Variables every set must contain.
+        exclude, require : iterable of str
+            As for :meth:`bases`.
 
         Returns
         -------

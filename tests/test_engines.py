@@ -187,6 +187,13 @@ def test_engine_unavailable_error_message_and_pickle():
     assert str(pickle.loads(pickle.dumps(err))) == str(err)
 
 
+def test_the_rods_default_time_steps_are_the_catalogues():
+    from pitheorem.engines.rod import DEFAULT_TIME_STEP
+
+    assert dict(DEFAULT_TIME_STEP) == {"bullet": 1 / 240, "mujoco": 0.002}
+    assert rod_mjcf(ROD.defaults).count('timestep="0.002"') == 1
+
+
 def test_each_engine_names_its_package_in_one_place(monkeypatch):
     # the catalogue's engines are the engines with a package, and every reader of an engine name agrees
     assert tuple(PACKAGES) == ENGINES == ("bullet", "mujoco")

@@ -238,3 +238,27 @@ def test_error_fields_and_pickling():
     again = pickle.loads(pickle.dumps(err))
     assert str(again) == str(err)
     assert again.variable == "t"
+
+
+def test_the_kind_of_a_model_file_is_told_in_one_place(tmp_path):
+    from pitheorem.modelfile import model_kind
+
+    urdf_in_xml = tmp_path / "robot.xml"
+    urdf_in_xml.write_text('<?xml version="1.0"?>\n<robot name="r"><link name="a"/></robot>\n')
+    mjcf = tmp_path / "world.xml"
+    mjcf.write_text('<mujoco model="w"><worldbody/></mujoco>\n')
+    kinds = {"robot.URDF": "urdf", "model.toml": "toml", "model.json": "toml", "example:superball": "toml",
+             str(urdf_in_xml): "urdf", str(mjcf): "mjcf", str(tmp_path / "absent.xml"): "mjcf", "hopper.mjcf": "mjcf"}
+    assert {path: model_kind(path) for path in kinds} == kinds
+
+
+def test_the_command_line_reads_toml_files_without_the_engines(monkeypatch, capsys):
+    import sys
+
+    from pitheorem.cli import main
+
+    for name in [m for m in sys.modules if m.startswith("pitheorem.engines")]:
+        monkeypatch.setitem(sys.modules, name, None)  # importing any of them now fails
+    monkeypatch.setitem(sys.modules, "pitheorem.engines", None)
+    assert main(["groups", "example:hinged_rod"]) == 0
+    assert capsys.readouterr().out.strip()

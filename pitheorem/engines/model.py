@@ -32,7 +32,7 @@ from ..dimensions import Dimension
 from ..errors import EngineModelError, InvalidRequestError, UnscalableParameterError
 from ..exact import read_scale_factor, read_value
 from ..immutable import immutable
-from ..modelfile import example_path
+from ..modelfile import example_path, model_kind
 from ..scaling import Scaling, float_power
 from ..simulation import positive_float
 from ..system import System
@@ -740,28 +740,3 @@ def load(path, **options) -> EngineModel:
     from .mjcf import load_mjcf
 
     return load_mjcf(path)
-
-
-def model_kind(path) -> str:
-    """``"mjcf"``, ``"urdf"`` or ``"toml"``: the kind of a model file, by suffix and root element.
-
-    Examples
-    --------
-    >>> from pitheorem.engines.model import model_kind
-    >>> model_kind("robot.urdf"), model_kind("model.toml")
-    ('urdf', 'toml')
-    """
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix == ".urdf":
-        return "urdf"
-    if suffix == ".toml" or str(path).startswith("example:"):
-        return "toml"
-    if suffix in (".xml", ".mjcf") and path.is_file():
-        head = path.read_bytes()[:4096].decode("utf-8", "replace")
-        if "<robot" in head and "<mujoco" not in head:
-            return "urdf"
-        return "mjcf"
-    if suffix in (".xml", ".mjcf"):
-        return "mjcf"
-    return "toml"

@@ -59,16 +59,17 @@ def check_engine(engine) -> str:
 
 
 def engine_module(engine: str):
-    """The engine's Python module (``pybullet`` or ``mujoco``), imported now.
+    """The engine's Python module, imported now.
 
     Parameters
     ----------
     engine : str
-        ``"bullet"`` or ``"mujoco"``.
+        As for :func:`check_engine`.
 
     Returns
     -------
     module
+        ``pybullet`` for ``"bullet"``, ``mujoco`` for ``"mujoco"``.
 
     Raises
     ------

@@ -46,13 +46,16 @@ from ..simulation import (
     verify_similarity,
 )
 from ..simulation import simulate as simulate_ode
+from .constants import hidden_constants
 from .packages import check_engine, engine_module, quiet_stdout
 
 __all__ = ["DEFAULT_TIME_STEP", "EngineSimilarityReport", "EngineUnavailableError", "simulate_rod",
            "verify_engine_similarity"]
 
-#: each engine's own default time step (see the catalogue in pitheorem.engines.constants)
-DEFAULT_TIME_STEP = MappingProxyType({"bullet": 1 / 240, "mujoco": 0.002})
+#: each engine's own default time step, as the catalogue of pitheorem.engines.constants has it
+DEFAULT_TIME_STEP = MappingProxyType({engine: hidden_constants(engine, names=[name])[0].default
+                                      for engine, name in (("bullet", "bullet_time_step"),
+                                                           ("mujoco", "mujoco_timestep"))})
 
 _MUJOCO_INTEGRATORS = ("Euler", "RK4", "implicit", "implicitfast")
 
@@ -107,7 +110,7 @@ def _run_bullet(p, y0, dt, n_steps, engine_defaults):
         pb.disconnect(physicsClientId=client)
 
 
-def rod_mjcf(params: Mapping[str, float], *, dt: float = 0.002, integrator: str = "Euler") -> str:
+def rod_mjcf(params: Mapping[str, float], *, dt: float = DEFAULT_TIME_STEP["mujoco"], integrator: str = "Euler") -> str:
     """The MJCF text of the hinged rod for MuJoCo.
 
     Parameters
