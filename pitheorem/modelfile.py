@@ -187,7 +187,7 @@ def example_path(name: str) -> Path:
         A TOML model file by its name, ``"hinged_rod"`` or ``"superball"``
         (the ``.toml`` suffix is optional), or an engine model by its file
         name, ``"pendulum.xml"`` or ``"superball.xml"``: one of
-        :func:`examples`.
+        ``pitheorem.modelfile.examples()``.
 
     Returns
     -------
