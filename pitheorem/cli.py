@@ -57,7 +57,7 @@ from . import __version__
 from .display import note_text, power_latex, power_text
 from .errors import CommandLineError, PiTheoremError
 from .exact import read_exponent, read_positive, short_text
-from .modelfile import ModelFile, load_model_file, write_model_file
+from .modelfile import ModelFile, load_model_file, model_kind, write_model_file
 from .scalesearch import SearchNote, SearchResult, search
 
 __all__ = ["EXIT_ERROR", "EXIT_INFEASIBLE", "EXIT_OK", "build_parser", "main"]
@@ -118,11 +118,7 @@ def _dump_json(doc) -> str:
 
 def _is_engine_file(path: str) -> bool:
     """Whether FILE is an MJCF or URDF model; examples and TOML/JSON files never load the engines package."""
-    if path.startswith("example:") or path.lower().endswith((".toml", ".json")):
-        return False
-    from .engines.cli import is_engine_file
-
-    return is_engine_file(path)
+    return model_kind(path) in ("mjcf", "urdf")
 
 
 def _load(path: str, scene: list[str] | None = None) -> ModelFile:

@@ -30,7 +30,7 @@ import numpy as np
 from .errors import InvalidRequestError, PiTheoremError, SystemMismatchError, UnknownVariableError
 from .exact import read_exponent, read_positive, short_text
 from .model import Model
-from .scaling import Scaling
+from .scaling import Scaling, float_power
 from .system import System
 
 __all__ = [
@@ -464,7 +464,7 @@ class ModelScaling:
         """
         if name not in self.exponents:
             raise UnknownVariableError(str(name), tuple(self.exponents), "the model's variables")
-        return float(self.s) ** float(self.exponents[name])
+        return float_power(self.s, self.exponents[name], f"the factor of {name!r}")
 
     def scale_params(self, params: Mapping[str, float]) -> dict[str, float]:
         """Parameter values times their factors.
