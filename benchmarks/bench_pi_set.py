@@ -19,7 +19,6 @@ Run: python benchmarks/bench_pi_set.py [--quick]
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
 import bridgman
 import sympy
@@ -28,13 +27,12 @@ from bench_bases import synthetic_system
 
 import pitheorem as pt
 from pitheorem import system as system_module
-
-EXAMPLES = Path(pt.__file__).resolve().parent / "examples"
+from pitheorem.modelfile import example_path
 
 
 def cases():
-    rod = pt.load_model_file(EXAMPLES / "hinged_rod.toml").system
-    superball = pt.load_model_file(EXAMPLES / "superball.toml").system
+    rod = pt.load_model_file(example_path("hinged_rod")).system
+    superball = pt.load_model_file(example_path("superball")).system
     yield "hinged rod", rod
     yield "SUPERball", superball
     yield "n=40, k=7", synthetic_system(40)

@@ -35,7 +35,14 @@ import numpy as np
 
 from .linalg import integer_rows, rank
 
-__all__ = ["count_independent_subsets", "independent_subsets", "lex_combinations"]
+__all__ = [
+    "LaplaceTables",
+    "PrefixDescent",
+    "count_independent_subsets",
+    "float_is_exact",
+    "independent_subsets",
+    "lex_combinations",
+]
 
 # primes below 2^31: a product of two residues fits in int64
 _PRIMES = (2147483647, 2147483629, 2147483587, 2147483579, 2147483563, 2147483549, 2147483543, 2147483497)
@@ -140,16 +147,28 @@ def _full_rank_mod_p(columns: np.ndarray, combos: np.ndarray, prime: int) -> np.
     return ok
 
 
-class _LaplaceTables:
+class LaplaceTables:
     """Index tables for exterior products of columns with ``r`` entries.
 
     Level ``j`` holds, for a prefix of ``j`` columns, its minors on every
     ``j``-subset of the ``r`` rows (in lexicographic order of row subsets).
     Extending to level ``j + 1`` expands each new minor along the new
     column: ``sum_q (-1)^(q + j) c[rows[q]] * minor(rows without rows[q])``.
+    Shared by the basis enumeration here and the minimal points of
+    :mod:`pitheorem.family`; build one with :meth:`get`, which keeps one
+    per ``r``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pitheorem.bases import LaplaceTables
+    >>> tables = LaplaceTables.get(2)
+    >>> first = tables.extend(np.ones((1, 1)), np.array([[1.0, 2.0]]), 0)   # the column (1, 2)
+    >>> tables.extend(first, np.array([[3.0, 4.0]]), 1).tolist()          # det [[1, 3], [2, 4]]
+    [[-2.0]]
     """
 
-    _cache: ClassVar[dict[int, _LaplaceTables]] = {}
+    _cache: ClassVar[dict[int, LaplaceTables]] = {}
 
     def __init__(self, r: int):
         self.r = r
@@ -172,7 +191,7 @@ class _LaplaceTables:
         self.last_signs = np.array([(-1.0) ** (i + r - 1) for i in range(r)])
 
     @classmethod
-    def get(cls, r: int) -> _LaplaceTables:
+    def get(cls, r: int) -> LaplaceTables:
         if r not in cls._cache:
             cls._cache[r] = cls(r)
         return cls._cache[r]
@@ -194,18 +213,28 @@ class _LaplaceTables:
         return wedge[:, self.last_order] * self.last_signs
 
 
-class _Descent:
+class PrefixDescent:
     """Depth-first, chunked growth of column prefixes in lexicographic order, with exterior products.
 
     ``columns`` is a float array (rows x m) of exact integers; ``start``
     the exterior product of columns every prefix begins with (``n0`` of them).
+    Shared by the basis enumeration here and the minimal points of
+    :mod:`pitheorem.family`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pitheorem.bases import PrefixDescent
+    >>> columns = np.array([[1.0, 2.0, 0.0], [0.0, 0.0, 1.0]])   # columns 0 and 1 are parallel
+    >>> [p.tolist() for p, _ in PrefixDescent(columns, np.ones((1, 1)), 0).prefixes(2, 0)]
+    [[[0, 2], [1, 2]]]
     """
 
     def __init__(self, columns: np.ndarray, start: np.ndarray, n0: int):
         self.a = columns
         self.at = np.ascontiguousarray(columns.T)
         self.m = columns.shape[1]
-        self.tables = _LaplaceTables.get(columns.shape[0])
+        self.tables = LaplaceTables.get(columns.shape[0])
         self.start = start
         self.n0 = n0
 
@@ -297,7 +326,7 @@ class _Enumerator:
         r = self.size
         float_rows = np.array(self.int_rows, dtype=float)
         a = float_rows[:, self.candidates]
-        tables = _LaplaceTables.get(r)
+        tables = LaplaceTables.get(r)
         # exterior product of the required columns: the state every prefix starts from
         wedge = np.ones((1, 1))
         for j, col in enumerate(self.required):
@@ -306,7 +335,7 @@ class _Enumerator:
             return
         start = len(self.required)
         m = a.shape[1]
-        for prefixes, minors in _Descent(a, wedge, start).prefixes(r - 1, 1):
+        for prefixes, minors in PrefixDescent(a, wedge, start).prefixes(r - 1, 1):
             dets = tables.last_column_weights(minors) @ a  # det(prefix + c) for every candidate c
             last = prefixes[:, -1] if prefixes.shape[1] else np.full(len(prefixes), -1)
             mask = (dets != 0) & (np.arange(m)[None, :] > last[:, None])

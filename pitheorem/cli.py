@@ -56,7 +56,7 @@ from .answers import ApplyAnswer, BasesAnswer, GroupsAnswer, SearchAnswer
 from .errors import CommandLineError, PiTheoremError
 from .exact import read_exponent, read_positive, short_text
 from .formatting import FORMATS, render
-from .modelfile import ModelFile, load_model_file, write_model_file
+from .modelfile import ModelFile, load_model_file, model_kind, write_model_file
 from .scalesearch import SearchResult, search
 
 __all__ = ["EXIT_ERROR", "EXIT_INFEASIBLE", "EXIT_OK", "build_parser", "main"]
@@ -79,11 +79,7 @@ _SCALE_HELP = ("NAME=EXP: EXP is the exponent of the scale factor s, not a facto
 
 def _is_engine_file(path: str) -> bool:
     """Whether FILE is an MJCF or URDF model; examples and TOML/JSON files never load the engines package."""
-    if path.startswith("example:") or path.lower().endswith((".toml", ".json")):
-        return False
-    from .engines.cli import is_engine_file
-
-    return is_engine_file(path)
+    return model_kind(path) in ("mjcf", "urdf")
 
 
 def _load(path: str, scene: list[str] | None = None) -> ModelFile:

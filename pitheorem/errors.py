@@ -1,15 +1,24 @@
 """Exceptions raised by pitheorem.
 
-Every error a user can provoke is defined here, derives from
-:class:`PiTheoremError` and from the matching builtin (``ValueError``,
+Every error a user can provoke is defined here (the engines' too), derives
+from :class:`PiTheoremError` and from the matching builtin (``ValueError``,
 ``KeyError``, ``TypeError``, ``ImportError``), so existing ``except
 ValueError`` code keeps working.  Each error carries its culprit (the
 offending name, token or value) in the ``culprit`` attribute, builds its
 message in ``__str__``, and pickles with everything it carries (for
 multiprocessing and pytest-xdist).
+
+The fields of an error are declared once, as the parameters of its
+constructor: the constructor hands them to ``PiTheoremError._keep`` with
+the culprit, which stores each under its parameter's name, and
+``PiTheoremError.__reduce__`` gives them back to the constructor when the
+error is unpickled.
 """
 
 from __future__ import annotations
+
+import inspect
+from functools import cache
 
 __all__ = [
     "CommandLineError",
@@ -17,6 +26,7 @@ __all__ = [
     "DimensionSyntaxError",
     "DuplicateVariableError",
     "EmptySystemError",
+    "EngineModelError",
     "EngineUnavailableError",
     "InvalidRequestError",
     "LimitError",
@@ -28,6 +38,7 @@ __all__ = [
     "SystemMismatchError",
     "UnitError",
     "UnknownVariableError",
+    "UnscalableParameterError",
 ]
 
 
@@ -49,19 +60,36 @@ class PiTheoremError(Exception):
 
     def __init__(self, message: str = "", culprit: object = None):
         super().__init__(message)
-        self.message = message
-        if culprit is not None:
-            self.culprit = culprit
+        self.message, self.culprit = message, culprit
+
+    def _keep(self, *fields: object, culprit: object) -> None:
+        """Store a subclass's fields, then its culprit and the message its ``__str__`` builds.
+
+        `fields` are the constructor's arguments in the order of its
+        signature; each becomes the attribute of the parameter's name, and
+        pickling passes them back to the constructor.
+        """
+        for name, value in zip(_field_names(type(self)), fields, strict=True):
+            setattr(self, name, value)
+        PiTheoremError.__init__(self, str(self), culprit)
 
     def __str__(self) -> str:
         return self.message
 
     def __reduce__(self):
-        return (type(self), (self.message, self.culprit))
+        return (type(self), tuple(getattr(self, name) for name in _field_names(type(self))))
+
+
+@cache
+def _field_names(cls: type) -> tuple[str, ...]:
+    """The parameters of an error class's constructor: the fields it keeps and pickles."""
+    return tuple(inspect.signature(cls.__init__).parameters)[1:]
 
 
 class DimensionSyntaxError(PiTheoremError, ValueError):
     """A dimension formula could not be parsed.
+
+    Its culprit is the formula from the offending token on.
 
     Parameters
     ----------
@@ -78,32 +106,16 @@ class DimensionSyntaxError(PiTheoremError, ValueError):
     >>> try:
     ...     pt.Dimension.parse("M L^^2")
     ... except pt.DimensionSyntaxError as err:
-    ...     print(err.position)
-    4
+    ...     print(err.position, err.culprit)
+    4 ^2
     """
 
     def __init__(self, text: str, position: int, reason: str):
-        self.text, self.position, self.reason = text, position, reason
-        super().__init__(str(self))
-
-    @property
-    def culprit(self) -> str:
-        """The formula from the offending token on.
-
-        Examples
-        --------
-        >>> from pitheorem.errors import DimensionSyntaxError
-        >>> DimensionSyntaxError("M L^^2", 4, "expected a number after '^'").culprit
-        '^2'
-        """
-        return self.text[self.position :]
+        self._keep(text, position, reason, culprit=text[position:])
 
     def __str__(self) -> str:
         pointer = " " * self.position + "^"
         return f"cannot parse dimension {self.text!r} at position {self.position}: {self.reason}\n    {self.text}\n    {pointer}"
-
-    def __reduce__(self):
-        return (type(self), (self.text, self.position, self.reason))
 
 
 class UnitError(PiTheoremError, ValueError):
@@ -112,8 +124,11 @@ class UnitError(PiTheoremError, ValueError):
     Examples
     --------
     >>> import pitheorem as pt
-    >>> issubclass(pt.UnitError, ValueError)
-    True
+    >>> try:
+    ...     pt.System.from_units({"l": 3})
+    ... except pt.UnitError as err:
+    ...     print(err)
+    unit of 'l' must be a string such as 'kg*m/s^2', got 3
     """
 
 
@@ -123,7 +138,7 @@ class UnknownVariableError(PiTheoremError, KeyError):
     Parameters
     ----------
     name : str
-        The unknown name.
+        The unknown name (the culprit).
     known : tuple of str
         The names that would be valid.
     context : str
@@ -141,31 +156,22 @@ class UnknownVariableError(PiTheoremError, KeyError):
     """
 
     def __init__(self, name: str, known: tuple[str, ...] = (), context: str = ""):
-        self.name, self.known, self.context = name, tuple(known), context
-        super().__init__(str(self))
-
-    @property
-    def culprit(self) -> str:
-        """The unknown name.
-
-        Examples
-        --------
-        >>> from pitheorem.errors import UnknownVariableError
-        >>> UnknownVariableError("mass", ("m", "l"), "repeating").culprit
-        'mass'
-        """
-        return self.name
+        self._keep(name, tuple(known), context, culprit=name)
 
     def __str__(self) -> str:
         where = f" in {self.context}" if self.context else ""
         return f"unknown variable {self.name!r}{where}; the system has {', '.join(self.known) or 'no variables'}"
 
-    def __reduce__(self):
-        return (type(self), (self.name, self.known, self.context))
-
 
 class DuplicateVariableError(PiTheoremError, ValueError):
     """The same variable named twice where names must be distinct.
+
+    Parameters
+    ----------
+    name : str
+        The name given twice (the culprit).
+    context : str
+        Where the names were given.
 
     Examples
     --------
@@ -179,27 +185,11 @@ class DuplicateVariableError(PiTheoremError, ValueError):
     """
 
     def __init__(self, name: str, context: str = ""):
-        self.name, self.context = name, context
-        super().__init__(str(self))
-
-    @property
-    def culprit(self) -> str:
-        """The name given twice.
-
-        Examples
-        --------
-        >>> from pitheorem.errors import DuplicateVariableError
-        >>> DuplicateVariableError("m", "repeating").culprit
-        'm'
-        """
-        return self.name
+        self._keep(name, context, culprit=name)
 
     def __str__(self) -> str:
         where = f" in {self.context}" if self.context else ""
         return f"variable {self.name!r} is named twice{where}; name each variable once"
-
-    def __reduce__(self):
-        return (type(self), (self.name, self.context))
 
 
 class EmptySystemError(PiTheoremError, ValueError):
@@ -223,6 +213,13 @@ class EmptySystemError(PiTheoremError, ValueError):
 class RepeatingCountError(PiTheoremError, ValueError):
     """A repeating set with the wrong number of variables.
 
+    Parameters
+    ----------
+    given : tuple of str
+        The repeating set given (the culprit).
+    expected : int
+        How many repeaters there must be: the rank.
+
     Examples
     --------
     >>> import pitheorem as pt
@@ -235,20 +232,7 @@ class RepeatingCountError(PiTheoremError, ValueError):
     """
 
     def __init__(self, given: tuple[str, ...], expected: int):
-        self.given, self.expected = tuple(given), expected
-        super().__init__(str(self))
-
-    @property
-    def culprit(self) -> tuple[str, ...]:
-        """The repeating set given.
-
-        Examples
-        --------
-        >>> from pitheorem.errors import RepeatingCountError
-        >>> RepeatingCountError(("m", "l"), 3).culprit
-        ('m', 'l')
-        """
-        return self.given
+        self._keep(tuple(given), expected, culprit=tuple(given))
 
     def __str__(self) -> str:
         return (
@@ -257,9 +241,6 @@ class RepeatingCountError(PiTheoremError, ValueError):
             "(System.bases() lists every valid choice)"
         )
 
-    def __reduce__(self):
-        return (type(self), (self.given, self.expected))
-
 
 class DependentRepeatingSetError(PiTheoremError, ValueError):
     """Repeating variables whose dimensions are not independent.
@@ -267,7 +248,7 @@ class DependentRepeatingSetError(PiTheoremError, ValueError):
     Parameters
     ----------
     repeating : tuple of str
-        The chosen repeaters.
+        The chosen repeaters (the culprit).
     product : str
         A dimensionless product the repeaters form on their own.
 
@@ -283,29 +264,13 @@ class DependentRepeatingSetError(PiTheoremError, ValueError):
     """
 
     def __init__(self, repeating: tuple[str, ...], product: str):
-        self.repeating, self.product = tuple(repeating), product
-        super().__init__(str(self))
-
-    @property
-    def culprit(self) -> tuple[str, ...]:
-        """The dependent repeating set.
-
-        Examples
-        --------
-        >>> from pitheorem.errors import DependentRepeatingSetError
-        >>> DependentRepeatingSetError(("l", "t", "g"), "l/(g*t**2)").culprit
-        ('l', 't', 'g')
-        """
-        return self.repeating
+        self._keep(tuple(repeating), product, culprit=tuple(repeating))
 
     def __str__(self) -> str:
         return (
             f"repeating set {self.repeating} is dependent: {self.product} is dimensionless, "
             "so these variables cannot serve as a basis; System.bases() lists every valid choice"
         )
-
-    def __reduce__(self):
-        return (type(self), (self.repeating, self.product))
 
 
 class InvalidRequestError(PiTheoremError, ValueError):
@@ -314,8 +279,11 @@ class InvalidRequestError(PiTheoremError, ValueError):
     Examples
     --------
     >>> import pitheorem as pt
-    >>> issubclass(pt.InvalidRequestError, ValueError)
-    True
+    >>> try:
+    ...     pt.search(pt.System({"l": "L"}), scale={})
+    ... except pt.InvalidRequestError as err:
+    ...     print(err)
+    empty request: scale must prescribe at least one variable, e.g. scale={'g': 1}
     """
 
 
@@ -328,7 +296,7 @@ class SystemMismatchError(InvalidRequestError):
     Parameters
     ----------
     name : str
-        The variable that is missing or has another dimension.
+        The variable that is missing or has another dimension (the culprit).
     reason : str
         What differs.
 
@@ -345,29 +313,13 @@ class SystemMismatchError(InvalidRequestError):
     """
 
     def __init__(self, name: str, reason: str):
-        self.name, self.reason = name, reason
-        PiTheoremError.__init__(self, str(self))
-
-    @property
-    def culprit(self) -> str:
-        """The variable that is missing or differs.
-
-        Examples
-        --------
-        >>> from pitheorem.errors import SystemMismatchError
-        >>> SystemMismatchError("m", "the scaling's system has no variable 'm'").culprit
-        'm'
-        """
-        return self.name
+        self._keep(name, reason, culprit=name)
 
     def __str__(self) -> str:
         return (
             f"the scaling does not belong to the model's system: {self.reason}; build the scaling "
             "from model.system (e.g. pt.search(model.system, ...))"
         )
-
-    def __reduce__(self):
-        return (type(self), (self.name, self.reason))
 
 
 class ModelEquationError(InvalidRequestError):
@@ -380,7 +332,7 @@ class ModelEquationError(InvalidRequestError):
     ----------
     equation : str or None
         The equation at fault, as text (``None`` when the fault lies in
-        the set of equations rather than in one of them).
+        the set of equations rather than in one of them); the culprit.
     reason : str
         What is wrong and what would be valid.
     index : int or None
@@ -399,29 +351,13 @@ class ModelEquationError(InvalidRequestError):
     """
 
     def __init__(self, equation: str | None, reason: str, index: int | None = None):
-        self.equation, self.reason, self.index = equation, reason, index
-        PiTheoremError.__init__(self, str(self))
-
-    @property
-    def culprit(self) -> str | None:
-        """The equation at fault, as text.
-
-        Examples
-        --------
-        >>> from pitheorem.errors import ModelEquationError
-        >>> ModelEquationError("Eq(x, 1)", "it holds no derivative", 2).culprit
-        'Eq(x, 1)'
-        """
-        return self.equation
+        self._keep(equation, reason, index, culprit=equation)
 
     def __str__(self) -> str:
         if self.equation is None:
             return f"the model's equations: {self.reason}"
         where = f"equation {self.index}" if self.index is not None else "equation"
         return f"{where} of the model, {self.equation}: {self.reason}"
-
-    def __reduce__(self):
-        return (type(self), (self.equation, self.reason, self.index))
 
 
 class NumberError(InvalidRequestError):
@@ -432,7 +368,7 @@ class NumberError(InvalidRequestError):
     Parameters
     ----------
     value : object
-        The value given.
+        The value given (the culprit).
     what : str
         What it was meant to be, e.g. ``"exponent of 'g'"``.
     expected : str
@@ -449,26 +385,10 @@ class NumberError(InvalidRequestError):
     """
 
     def __init__(self, value: object, what: str, expected: str):
-        self.value, self.what, self.expected = value, what, expected
-        PiTheoremError.__init__(self, str(self))
-
-    @property
-    def culprit(self) -> object:
-        """The value given.
-
-        Examples
-        --------
-        >>> from pitheorem.errors import NumberError
-        >>> NumberError("1/0", "exponent of 'g'", "a finite number").culprit
-        '1/0'
-        """
-        return self.value
+        self._keep(value, what, expected, culprit=value)
 
     def __str__(self) -> str:
         return f"{self.what} must be {self.expected}, got {self.value!r}"
-
-    def __reduce__(self):
-        return (type(self), (self.value, self.what, self.expected))
 
 
 class LimitError(InvalidRequestError):
@@ -480,7 +400,7 @@ class LimitError(InvalidRequestError):
     Parameters
     ----------
     value : object
-        The offending value (or formula).
+        The offending value or formula (the culprit).
     what : str
         What it was meant to be.
     limit : str
@@ -499,30 +419,16 @@ class LimitError(InvalidRequestError):
     """
 
     def __init__(self, value: object, what: str, limit: str, hint: str = ""):
-        self.value, self.what, self.limit, self.hint = value, what, limit, hint
-        PiTheoremError.__init__(self, str(self))
-
-    @property
-    def culprit(self) -> object:
-        """The offending value.
-
-        Examples
-        --------
-        >>> from pitheorem.errors import LimitError
-        >>> LimitError("L^100000", "exponent in 'L^100000'", "its magnitude exceeds the limit 1000").culprit
-        'L^100000'
-        """
-        return self.value
+        self._keep(value, what, limit, hint, culprit=value)
 
     def __str__(self) -> str:
         return f"{self.what} is {self.value}: {self.limit}" + (f"; {self.hint}" if self.hint else "")
 
-    def __reduce__(self):
-        return (type(self), (self.value, self.what, self.limit, self.hint))
-
 
 class ModelFileError(PiTheoremError, ValueError):
     """A model file that cannot be read: bad TOML, unknown keys, bad values ...
+
+    Its culprit is the variable at fault, or the file when no variable is.
 
     Parameters
     ----------
@@ -542,33 +448,77 @@ class ModelFileError(PiTheoremError, ValueError):
     rod.toml: variable 'm': unknown role 'input'
     >>> print(ModelFileError("rod.toml", "invalid TOML: unclosed inline table", line=3))
     rod.toml, line 3: invalid TOML: unclosed inline table
+    >>> ModelFileError("rod.toml", "unknown role 'input'", variable="m").culprit
+    'm'
     """
 
     def __init__(self, path, reason: str, variable: str | None = None, line: int | None = None):
-        self.path, self.reason, self.variable, self.line = str(path), reason, variable, line
-        super().__init__(str(self))
-
-    @property
-    def culprit(self) -> str:
-        """The variable at fault, or the file when no variable is.
-
-        Examples
-        --------
-        >>> from pitheorem.modelfile import ModelFileError
-        >>> ModelFileError("rod.toml", "unknown role 'input'", variable="m").culprit
-        'm'
-        >>> ModelFileError("rod.toml", "invalid TOML", line=3).culprit
-        'rod.toml'
-        """
-        return self.variable if self.variable is not None else self.path
+        self._keep(str(path), reason, variable, line, culprit=str(path) if variable is None else variable)
 
     def __str__(self) -> str:
         where = self.path + (f", line {self.line}" if self.line is not None else "")
         what = f" variable {self.variable!r}:" if self.variable is not None else ""
         return f"{where}:{what} {self.reason}"
 
-    def __reduce__(self):
-        return (type(self), (self.path, self.reason, self.variable, self.line))
+
+class EngineModelError(ModelFileError):
+    """A model file the engine cannot load, or an element the package cannot scale.
+
+    Its culprit is the file.
+
+    Parameters
+    ----------
+    path : str
+        The file.
+    element : str
+        The element at fault, e.g. ``"mesh 'torso'"``.
+    reason : str
+        What is wrong and what would be valid.
+
+    Examples
+    --------
+    >>> from pitheorem.engines import EngineModelError
+    >>> print(EngineModelError("robot.xml", "mesh 'torso'", "file torso.stl not found"))
+    robot.xml: mesh 'torso': file torso.stl not found
+    """
+
+    variable = line = None  # a ModelFileError's, which an engine's message does not use
+
+    def __init__(self, path, element: str, reason: str):
+        self._keep(str(path), element, reason, culprit=str(path))
+
+    def __str__(self) -> str:
+        where = f" {self.element}:" if self.element else ""
+        return f"{self.path}:{where} {self.reason}"
+
+
+class UnscalableParameterError(PiTheoremError, ValueError):
+    """A scaling that one number of a model cannot follow.
+
+    Raised by :meth:`pitheorem.engines.EngineModel.scaled` for a number that
+    mixes dimensions (a free joint's damping acts on lengths and on angles)
+    when the scaling needs two different factors for it, and for an engine
+    setting that no call can change.
+
+    Parameters
+    ----------
+    name : str
+        The parameter (the culprit).
+    reason : str
+        Why the scaling cannot reach it.
+
+    Examples
+    --------
+    >>> from pitheorem.engines import UnscalableParameterError
+    >>> print(UnscalableParameterError("joint_root_damping", "needs s^1 and s^3"))
+    cannot scale 'joint_root_damping': needs s^1 and s^3
+    """
+
+    def __init__(self, name: str, reason: str):
+        self._keep(name, reason, culprit=name)
+
+    def __str__(self) -> str:
+        return f"cannot scale {self.name!r}: {self.reason}"
 
 
 class CommandLineError(PiTheoremError, ValueError):
@@ -582,39 +532,25 @@ class CommandLineError(PiTheoremError, ValueError):
     """
 
 
-#: the Python package each engine needs
-_ENGINE_PACKAGES = {"bullet": "pybullet", "mujoco": "mujoco"}
-
-
 class EngineUnavailableError(PiTheoremError, ImportError):
     """An engine's Python package is not installed.
+
+    Parameters
+    ----------
+    engine : str
+        The engine asked for (the culprit), e.g. ``"bullet"``.
+    package : str
+        The Python package it needs, e.g. ``"pybullet"``.
 
     Examples
     --------
     >>> from pitheorem.errors import EngineUnavailableError
-    >>> print(EngineUnavailableError("bullet"))
+    >>> print(EngineUnavailableError("bullet", "pybullet"))
     engine 'bullet' needs the Python package 'pybullet': pip install "pitheorem[engines]"
     """
 
-    def __init__(self, engine: str):
-        self.engine = engine
-        PiTheoremError.__init__(self, str(self))
-
-    @property
-    def culprit(self) -> str:
-        """The engine asked for.
-
-        Examples
-        --------
-        >>> from pitheorem.errors import EngineUnavailableError
-        >>> EngineUnavailableError("mujoco").culprit
-        'mujoco'
-        """
-        return self.engine
+    def __init__(self, engine: str, package: str):
+        self._keep(engine, package, culprit=engine)
 
     def __str__(self) -> str:
-        package = _ENGINE_PACKAGES.get(self.engine, self.engine)
-        return f'engine {self.engine!r} needs the Python package {package!r}: pip install "pitheorem[engines]"'
-
-    def __reduce__(self):
-        return (type(self), (self.engine,))
+        return f'engine {self.engine!r} needs the Python package {self.package!r}: pip install "pitheorem[engines]"'

@@ -18,9 +18,10 @@ here, by :func:`read_number`, under one rule:
   :class:`~pitheorem.errors.NumberError` that names the value.
 
 Every exact number pitheorem gives back is a :class:`~fractions.Fraction`.
-Two further rules build on :func:`read_number`: :func:`read_positive` for a
-scale factor, and :func:`read_value` for a parameter value, which keeps a
-float a float (float in, float out) and makes any other number a Fraction.
+Further rules build on :func:`read_number`: :func:`read_positive` for a
+positive number, :func:`read_scale_factor` for the scale factor ``s``, and
+:func:`read_value` for a parameter value; the last two keep a float a float
+(float in, float out) and make any other number exact.
 
 Exponents (of base dimensions, and of the scale factor ``s``) must also lie
 within :data:`MAX_EXPONENT` in magnitude with a denominator of at most
@@ -52,6 +53,7 @@ __all__ = [
     "read_exponent",
     "read_number",
     "read_positive",
+    "read_scale_factor",
     "read_value",
     "short_text",
 ]
@@ -183,6 +185,41 @@ def read_positive(value, what: str, *, irrational_ok: bool = False) -> Fraction:
     if number <= 0:
         raise NumberError(value, what, expected)
     return number
+
+
+def read_scale_factor(s) -> float | Fraction | sympy.Expr:
+    """Read the scale factor ``s``: positive, and float in, float out.
+
+    A float (Python's, numpy's or sympy's) stays a float, so arithmetic
+    with it stays in floating point; an irrational sympy number
+    (``sqrt(2)``) stays exact as it is; any other number becomes a Fraction.
+
+    Parameters
+    ----------
+    s : number or str
+        As for :func:`read_positive`.
+
+    Returns
+    -------
+    float, Fraction or sympy number
+
+    Raises
+    ------
+    NumberError
+        For anything that is not a positive finite number; the message
+        names "the scale factor s".
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from pitheorem.exact import read_scale_factor
+    >>> read_scale_factor(2), read_scale_factor("1/2"), read_scale_factor(2.5), read_scale_factor(sympy.sqrt(2))
+    (Fraction(2, 1), Fraction(1, 2), 2.5, sqrt(2))
+    """
+    exact = read_positive(s, "the scale factor s", irrational_ok=True)
+    if is_float(s):
+        return float(s)
+    return s if isinstance(s, sympy.Basic) and not s.is_Rational else exact
 
 
 def is_float(value) -> bool:

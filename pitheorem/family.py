@@ -25,7 +25,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from .bases import _Descent, _LaplaceTables, float_is_exact
+from .bases import LaplaceTables, PrefixDescent, float_is_exact
 
 __all__ = ["MinimalPoints", "minimal_points"]
 
@@ -119,12 +119,12 @@ def minimal_points(a0_int: Sequence[int], dirs_int: Sequence[Sequence[int]], fre
     if not float_is_exact(rows, d + 1):
         return None
     m_all = np.array(rows, dtype=float)
-    tables = _LaplaceTables.get(d + 1)
+    tables = LaplaceTables.get(d + 1)
     free = np.asarray(free, dtype=np.int64)
     constrained = np.asarray(constrained, dtype=np.int64)
     a0_constrained = np.array([a0_int[j] for j in constrained], dtype=np.int64)
     parts, held, limit = [], 0, _MERGE_EVERY
-    for subsets, minors in _Descent(m_all[:, free], np.ones((1, 1)), 0).prefixes(d, 0):
+    for subsets, minors in PrefixDescent(m_all[:, free], np.ones((1, 1)), 0).prefixes(d, 0):
         independent = minors[:, 0] != 0  # the minor without the a0 row is det(V[:, S])
         subsets, minors = subsets[independent], minors[independent]
         if not len(subsets):

@@ -4,7 +4,8 @@ This module owns the model-file format read by the ``pitheorem`` command
 line (:mod:`pitheorem.cli`): :func:`load_model_file` reads one into a
 :class:`ModelFile`, :func:`dump_values` and :func:`write_model_file` write a
 copy with other (e.g. scaled) values, and :func:`example_path` finds the
-files shipped in ``pitheorem/examples/``.
+model files shipped in ``pitheorem/examples/`` (the engine models among
+them too: ``pitheorem.engines.example_path`` is the same function).
 
 The format
 ----------
@@ -67,6 +68,7 @@ from .immutable import immutable
 from .system import System
 
 __all__ = [
+    "EXAMPLES",
     "ROLES",
     "ModelFile",
     "ModelFileError",
@@ -74,6 +76,7 @@ __all__ = [
     "example_path",
     "examples",
     "load_model_file",
+    "model_kind",
     "write_model_file",
 ]
 
@@ -82,7 +85,8 @@ ROLES = ("parameter", "time", "state")
 
 _TOP_KEYS = ("name", "description", "base_dimensions", "variables")
 _VARIABLE_KEYS = ("dimension", "unit", "value", "role", "description")
-_EXAMPLES = Path(__file__).resolve().parent / "examples"
+#: the folder of the model files shipped with pitheorem: TOML model files and engine models
+EXAMPLES = Path(__file__).resolve().parent / "examples"
 _BARE_KEY = re.compile(r"^[A-Za-z0-9_-]+$")
 
 
@@ -180,37 +184,86 @@ def example_path(name: str) -> Path:
     Parameters
     ----------
     name : str
-        ``"hinged_rod"`` or ``"superball"`` (the ``.toml`` suffix is optional).
+        A TOML model file by its name, ``"hinged_rod"`` or ``"superball"``
+        (the ``.toml`` suffix is optional), or an engine model by its file
+        name, ``"pendulum.xml"`` or ``"superball.xml"``: one of
+        ``pitheorem.modelfile.examples()``.
 
     Returns
     -------
     pathlib.Path
 
+    Raises
+    ------
+    ModelFileError
+        For a name that is no shipped file; the message lists the ones
+        that are.
+
     Examples
     --------
     >>> from pitheorem.modelfile import example_path
-    >>> example_path("superball").name
-    'superball.toml'
+    >>> example_path("superball").name, example_path("superball.xml").name
+    ('superball.toml', 'superball.xml')
     """
-    stem = str(name).removesuffix(".toml")
-    path = _EXAMPLES / f"{stem}.toml"
-    if not path.is_file():
-        raise ModelFileError(
-            f"example:{stem}", f"no such example; the shipped examples are {', '.join(examples())}"
-        )
-    return path
+    text = str(name)
+    stem = text.removesuffix(".toml")
+    if stem in (shipped := examples()) and (stem == text or not Path(stem).suffix):
+        return EXAMPLES / (stem if Path(stem).suffix else f"{stem}.toml")
+    raise ModelFileError(f"example:{text}", f"no such example; the shipped examples are {', '.join(shipped)}")
 
 
 def examples() -> tuple[str, ...]:
-    """Names of the shipped example model files, sorted.
+    """Names of the shipped model files, sorted, as :func:`example_path` takes them.
+
+    TOML model files by their name without ``.toml`` (as the command line
+    reads them, ``example:hinged_rod``), engine models by their file name.
 
     Examples
     --------
     >>> from pitheorem.modelfile import examples
     >>> examples()
-    ('hinged_rod', 'superball')
+    ('hinged_rod', 'pendulum.xml', 'superball', 'superball.xml')
     """
-    return tuple(sorted(p.stem for p in _EXAMPLES.glob("*.toml")))
+    return tuple(sorted(p.stem if p.suffix == ".toml" else p.name for p in EXAMPLES.iterdir()
+                        if p.is_file() and p.suffix in (".toml", ".xml")))
+
+
+def model_kind(path) -> str:
+    """``"mjcf"``, ``"urdf"`` or ``"toml"``: the kind of a model file, by suffix and root element.
+
+    The command line reads a TOML (or JSON) model file itself and an MJCF
+    or URDF file through :mod:`pitheorem.engines`; a shipped example
+    (``example:NAME``) is a TOML model file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file as the user named it.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.modelfile import model_kind
+    >>> model_kind("robot.urdf"), model_kind("model.toml"), model_kind("example:hinged_rod")
+    ('urdf', 'toml', 'toml')
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix == ".urdf":
+        return "urdf"
+    if suffix == ".toml" or str(path).startswith("example:"):
+        return "toml"
+    if suffix in (".xml", ".mjcf") and path.is_file():
+        head = path.read_bytes()[:4096].decode("utf-8", "replace")
+        if "<robot" in head and "<mujoco" not in head:
+            return "urdf"
+        return "mjcf"
+    if suffix in (".xml", ".mjcf"):
+        return "mjcf"
+    return "toml"
 
 
 def load_model_file(path) -> ModelFile:
@@ -249,6 +302,8 @@ def load_model_file(path) -> ModelFile:
     text_path = str(path)
     if text_path.startswith("example:"):
         path = example_path(text_path.removeprefix("example:"))
+        if path.suffix != ".toml":
+            raise ModelFileError(text_path, f"is an engine model, not a TOML model file; pass its path, {path}")
     raw = Path(path).read_bytes()
     try:
         text = raw.decode("utf-8")

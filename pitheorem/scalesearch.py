@@ -27,7 +27,6 @@ from math import comb, gcd, lcm
 from types import MappingProxyType
 from typing import ClassVar
 
-from .dimensions import Dimension
 from .errors import InvalidRequestError
 from .exact import read_exponent
 from .formatting import TableDisplay, TextDisplay
@@ -39,11 +38,6 @@ from .scaling import Scaling
 from .system import System
 
 __all__ = ["SearchNote", "SearchResult", "search"]
-
-
-def _time_variables(system: System) -> tuple[str, ...]:
-    time = Dimension({"T": 1})
-    return tuple(n for n in system.variables if system.dimension(n) == time)
 
 
 def _dot(x, y) -> Fraction:
@@ -354,7 +348,8 @@ def _solve(system: System, scale: dict[str, Fraction], fixed: tuple[str, ...], n
     # allowed exponent vectors are combinations of these rows: the rows of
     # the dimension matrix (changes of units), or a symmetry basis
     is_units = generators is None
-    gens = ([[system.dimension(v).exponent_of(b) for v in system.variables] for b in system.base_dimensions]
+    columns = [system.column(v) for v in system.variables]
+    gens = ([[c[i] for c in columns] for i in range(len(system.base_dimensions))]
             if generators is None else [list(g) for g in generators])
     names = list(scale) + list(fixed)
     rhs = [scale[n] for n in scale] + [Fraction(0)] * len(fixed)
@@ -532,7 +527,7 @@ def search(
             raise InvalidRequestError(f"scale gives {n!r} exponent 0: to keep {n!r} unchanged, put it in fixed")
     notes = []
     if fixed is None:
-        held = tuple(n for n in _time_variables(system) if n not in exponents)
+        held = tuple(n for n in system.time_variables if n not in exponents)
         if held:
             notes.append(SearchNote("time_fixed", held))
     else:

@@ -17,13 +17,13 @@ import sympy
 
 from .dimensions import Dimension
 from .errors import InvalidRequestError, LimitError, PiTheoremError
-from .exact import is_float, numpy_if_loaded, read_exponent, read_number, read_positive, short_text
+from .exact import is_float, numpy_if_loaded, read_exponent, read_number, read_scale_factor, short_text
 from .formatting import MathDisplay
 from .immutable import immutable
 from .linalg import solve
 from .system import System
 
-__all__ = ["Scaling"]
+__all__ = ["Scaling", "float_power"]
 
 
 def _rational_as_fraction(x):
@@ -48,16 +48,47 @@ def _rounded(x, name: str) -> float:
                          "use an exact value (int or Fraction), or an s nearer to 1") from None
 
 
-def _float_factor(s, exact_s, exponent: Fraction, name: str) -> float:
-    """``s**exponent`` in floating point: from a float `s`, or rounded once from the exact power."""
+def float_power(s, exponent, what: str) -> float:
+    """``s ** exponent`` as a float: the factor of one quantity under a scaling.
+
+    Float in, float out: a float `s` is raised in floating point; an exact
+    `s` (a Fraction or an irrational sympy number) is raised exactly and
+    the power rounded once.  Every factor pitheorem computes in floating
+    point (scaled values, samples mapped back, engine models) is this one.
+
+    Parameters
+    ----------
+    s : float, Fraction or sympy number
+        The scale factor, as :func:`pitheorem.exact.read_scale_factor` reads it.
+    exponent : Fraction or int
+        The power of ``s``.
+    what : str
+        Whose factor it is, for the error message (``"the factor of 'g'"``).
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    LimitError
+        When the power is beyond the range of floating point.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem.scaling import float_power
+    >>> float_power(Fraction(10), Fraction(-2), "the factor of 'g'"), float_power(4.0, Fraction(1, 2), "a factor")
+    (0.01, 2.0)
+    """
+    exponent = Fraction(exponent)
     if exponent == 0:
         return 1.0
     try:
-        return float(s) ** float(exponent) if is_float(s) else float(_exact_power(exact_s, exponent))
+        return float(s) ** float(exponent) if is_float(s) else float(_exact_power(s, exponent))
     except OverflowError:  # s^p itself is beyond floating point
-        shown = short_text(exact_s) if isinstance(exact_s, Fraction) else str(exact_s)
-        raise LimitError(f"s^{exponent} with s = {shown}", f"the factor of {name!r}",
-                         "it is beyond the range of floating point",
+        shown = short_text(read_number(s, "s")) if is_float(s) or isinstance(s, Fraction) else str(s)
+        raise LimitError(f"s^{exponent} with s = {shown}", what, "it is beyond the range of floating point",
                          "use an exact value (int or Fraction), or an s nearer to 1") from None
 
 
@@ -135,8 +166,7 @@ class Scaling(MathDisplay):
                     f"unknown base dimension {b!r} in unit_change; the system's base dimensions are {', '.join(bases)}"
                 )
         u = tuple(read_exponent(unit_change.get(b, 0), f"exponent of base unit {b!r}") for b in bases)
-        vector = tuple(sum((system.dimension(v).exponent_of(b) * x for b, x in zip(bases, u, strict=True)),
-                           Fraction(0))
+        vector = tuple(sum((c * x for c, x in zip(system.column(v), u, strict=True)), Fraction(0))
                        for v in system.variables)
         return cls(system, vector, u)
 
@@ -171,9 +201,8 @@ class Scaling(MathDisplay):
         a = [Fraction(0)] * len(system.variables)
         for n in names:
             a[system.index(n)] = read_exponent(exponents[n], f"exponent of {n!r}")
-        bases = system.base_dimensions
-        rows = [[system.dimension(v).exponent_of(b) for b in bases] for v in system.variables]
-        u = solve(rows, a) if bases else ([] if not any(a) else None)
+        rows = [list(system.column(v)) for v in system.variables]
+        u = solve(rows, a) if system.base_dimensions else ([] if not any(a) else None)
         if u is None:
             raise InvalidRequestError(
                 f"exponents {dict(exponents)!r} are not a similarity scaling: they change a Pi group "
@@ -304,10 +333,11 @@ class Scaling(MathDisplay):
         >>> pt.Scaling.from_exponents(pt.System({"l": "L"}), {"l": "1/2"}).factors(2)
         {'l': sqrt(2)}
         """
-        exact_s = self._check_s(s)
+        s = read_scale_factor(s)
         if is_float(s):
-            return {n: _float_factor(s, exact_s, p, n) for n, p in zip(self.system.variables, self.vector, strict=True)}
-        return {n: _exact_power(exact_s, p) for n, p in zip(self.system.variables, self.vector, strict=True)}
+            return {n: float_power(s, p, f"the factor of {n!r}")
+                    for n, p in zip(self.system.variables, self.vector, strict=True)}
+        return {n: _exact_power(s, p) for n, p in zip(self.system.variables, self.vector, strict=True)}
 
     def apply(self, values: Mapping[str, object], s) -> dict[str, object]:
         """Scale a dict of parameter values: ``x -> s^a x``.
@@ -343,21 +373,22 @@ class Scaling(MathDisplay):
         >>> pt.Scaling.from_exponents(pt.System({"l": "L"}), {"l": "1/2"}).apply({"l": 3}, s=2)
         {'l': 3*sqrt(2)}
         """
-        exact_s = self._check_s(s)
+        s = read_scale_factor(s)
         np = numpy_if_loaded()  # a value cannot be an array unless numpy is loaded
         out = {}
         for name, value in values.items():
             p = self.vector[self.system.index(name, "values")]
             if np is not None and isinstance(value, np.ndarray):  # samples: scaled in floating point
-                out[name] = value * _float_factor(s, exact_s, p, name)
+                out[name] = value * float_power(s, p, f"the factor of {name!r}")
                 continue
             number = read_number(value, f"the value of {name!r}", irrational_ok=True)
             if is_float(s):
-                out[name] = (float(value) if is_float(value) else float(number)) * _float_factor(s, exact_s, p, name)
+                factor = float_power(s, p, f"the factor of {name!r}")
+                out[name] = (float(value) if is_float(value) else float(number)) * factor
             elif is_float(value):  # read as the decimal it prints as, scaled exactly, rounded once
-                out[name] = _rounded(number * _exact_power(exact_s, p), name)
+                out[name] = _rounded(number * _exact_power(s, p), name)
             else:
-                out[name] = _rational_as_fraction(_exact(value) * _exact_power(exact_s, p))
+                out[name] = _rational_as_fraction(_exact(value) * _exact_power(s, p))
         return out
 
     def map_back(self, t, y, s, *, time: str, states: Sequence[object]):
@@ -390,7 +421,7 @@ class Scaling(MathDisplay):
         """
         import numpy as np  # only here: the rest of the module (and the CLI) runs without numpy
 
-        self._check_s(s)
+        s = read_scale_factor(s)
         t = np.asarray(t, dtype=float)
         y = np.asarray(y, dtype=float)
         if y.ndim == 1:
@@ -405,14 +436,8 @@ class Scaling(MathDisplay):
             else self.exponent_of(st)
             for st in states
         ]
-        scale = np.array([float(s) ** float(p) for p in a_y])
-        return t / float(s) ** float(a_t), y / scale
-
-    @staticmethod
-    def _check_s(s):
-        """The scale factor, read exactly; an irrational sympy ``s`` is kept as it is."""
-        exact = read_positive(s, "the scale factor s", irrational_ok=True)
-        return s if isinstance(s, sympy.Basic) and not s.is_Rational else exact
+        scale = np.array([float_power(s, p, f"the factor of state {k}") for k, p in enumerate(a_y)])
+        return t / float_power(s, a_t, f"the factor of {time!r}"), y / scale
 
     # -- algebra ----------------------------------------------------------
     def inverse(self) -> Scaling:

@@ -31,7 +31,7 @@ from .errors import InvalidRequestError, PiTheoremError, SystemMismatchError, Un
 from .exact import read_exponent, read_positive, short_text
 from .formatting import TableDisplay
 from .model import Model
-from .scaling import Scaling
+from .scaling import Scaling, float_power
 from .system import System
 
 __all__ = [
@@ -465,7 +465,7 @@ class ModelScaling:
         """
         if name not in self.exponents:
             raise UnknownVariableError(str(name), tuple(self.exponents), "the model's variables")
-        return float(self.s) ** float(self.exponents[name])
+        return float_power(self.s, self.exponents[name], f"the factor of {name!r}")
 
     def scale_params(self, params: Mapping[str, float]) -> dict[str, float]:
         """Parameter values times their factors.

@@ -308,6 +308,47 @@ class System:
         """
         return dict(zip(self._variables, self._dimensions, strict=True))
 
+    def column(self, name: str) -> tuple[Fraction, ...]:
+        """A variable's column of the dimension matrix, as exact Fractions.
+
+        The exponents of its dimension over :attr:`base_dimensions`, in
+        that order (:attr:`matrix` holds the same numbers as sympy
+        Rationals).
+
+        Parameters
+        ----------
+        name : str
+            A variable of the system.
+
+        Returns
+        -------
+        tuple of Fraction
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"m": "M", "g": "L T^-2"}).column("g")
+        (Fraction(0, 1), Fraction(1, 1), Fraction(-2, 1))
+        """
+        return self._columns[self.index(name)]
+
+    @property
+    def time_variables(self) -> tuple[str, ...]:
+        """The variables whose dimension is time alone (T), in system order.
+
+        Time is hard to rescale in a running simulation (real-time
+        controllers, an engine's fixed step), so these are held fixed by
+        :func:`pitheorem.search` when no ``fixed`` is given, and avoided as
+        repeaters by :meth:`default_repeating`.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> pt.System({"t": "T", "l": "L", "tau": "T", "f": "T^-1"}).time_variables
+        ('t', 'tau')
+        """
+        return tuple(n for n, d in zip(self._variables, self._dimensions, strict=True) if d == _TIME)
+
     def dimension(self, name: str) -> Dimension:
         """The dimension of one variable.
 
@@ -550,7 +591,8 @@ class System:
         non-time variables first.  If they do not span, every basis needs
         time, and the first basis is the pivots in the plain order.
         """
-        avoid = [j for j, d in enumerate(self._dimensions) if d != _TIME]
+        time = self.time_variables
+        avoid = [j for j, n in enumerate(self._variables) if n not in time]
         reduced, order = self._eliminate(avoid)
         pivots = reduced[1]
         if pivots and pivots[-1] >= len(avoid):
@@ -597,10 +639,8 @@ class System:
 
         Parameters
         ----------
-        exclude : iterable of str
-            Variables never to use as repeaters (e.g. time).
-        require : iterable of str
-            Variables every set must contain.
+        exclude, require : iterable of str
+            As for :meth:`bases`.
 
         Yields
         ------
@@ -659,10 +699,8 @@ class System:
 
         Parameters
         ----------
-        exclude : iterable of str
-            Variables never to use as repeaters (e.g. time).
-        require : iterable of str
-            Variables every set must contain.
+        exclude, require : iterable of str
+            As for :meth:`bases`.
 
         Returns
         -------

@@ -51,7 +51,7 @@ from .exact import read_number, read_value, short_text
 from .formatting import MathDisplay, TableDisplay
 from .immutable import immutable
 from .linalg import nullspace
-from .scaling import Scaling
+from .scaling import Scaling, float_power
 from .system import System
 
 __all__ = ["RangeBound", "UnitFit", "fit_units"]
@@ -167,7 +167,7 @@ class _Problem:
         self.values = values
         bases = system.base_dimensions
         self.bases = bases
-        eq_rows = [[system.dimension(n).exponent_of(b) for b in bases] for n in fixed]
+        eq_rows = [list(system.column(n)) for n in fixed]
         eq_rows += [[Fraction(int(b == c)) for b in bases] for c in fixed_units]
         self.nice = nice
         if nice is None:
@@ -190,7 +190,7 @@ class _Problem:
         self.bounds: list[RangeBound] = []
         w_rows, rhs, centre, half = [], [], [], []
         for name, lo, hi in ranges:
-            d = np.array([float(system.dimension(name).exponent_of(b)) for b in bases])
+            d = np.array([float(x) for x in system.column(name)])
             w = d @ self.P if len(bases) else np.zeros(self.n_v)
             z0 = _log10(values[name])
             a, b = _log10(lo), _log10(hi)
@@ -211,7 +211,7 @@ class _Problem:
             h_rows += [self.P[i], -self.P[i]]
             h_rhs += [LIMIT, LIMIT]
         for name in system.variables:
-            d = np.array([float(system.dimension(name).exponent_of(b)) for b in bases])
+            d = np.array([float(x) for x in system.column(name)])
             w = d @ self.P if len(bases) else np.zeros(self.n_v)
             h_rows += [w, -w]
             h_rhs += [LIMIT, LIMIT]
@@ -459,7 +459,7 @@ class UnitFit(TableDisplay):
             if self.nice is not None and u.denominator == 1:
                 out[b] = Fraction(self.nice) ** int(u)
             else:
-                out[b] = float(self.s) ** float(u)
+                out[b] = float_power(float(self.s), u, f"the factor of {b}")
         return out
 
     @property

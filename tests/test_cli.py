@@ -19,6 +19,7 @@ import pytest
 import pitheorem as pt
 from pitheorem.cli import EXIT_ERROR, EXIT_INFEASIBLE, EXIT_OK, main
 from pitheorem.modelfile import example_path, load_model_file
+from tests.conftest import BROKEN_MODEL_FILES, broken_model_file
 
 ROD = str(example_path("hinged_rod"))
 SUPERBALL = str(example_path("superball"))
@@ -322,43 +323,9 @@ def test_apply_without_values(capsys, tmp_path):
     assert err.count("\n") == 1
 
 
-BROKEN_FILES = {
-    "bad_toml.toml": ('[variables]\nm = { dimension = "M"\n', ["line 2", "invalid TOML"]),
-    "not_utf8.toml": ('\udcff[variables]\n', ["not UTF-8"]),
-    "unknown_dimension.toml": ('[variables]\nq = { dimension = "Q" }\n', ["variable 'q'", "'Q'"]),
-    "bad_formula.toml": ('[variables]\nm = { dimension = "M L^^2" }\n', ["variable 'm'", "'M L^^2'", "position 4"]),
-    "outside_base_dimensions.toml": ('base_dimensions = ["M", "L"]\n[variables]\nt = { dimension = "T" }\n',
-                                     ["variable 't'", "unknown base dimension 'T'", "M, L"]),
-    "bad_base_dimensions.toml": ('base_dimensions = "M"\n[variables]\nm = { dimension = "M" }\n',
-                                 ["base_dimensions", "'M'"]),
-    "duplicate.toml": ('[variables]\nm = { dimension = "M" }\nm = { dimension = "L" }\n',
-                       ["line 3", "variable 'm'"]),
-    "no_variables.toml": ('name = "x"\n', ["[variables]"]),
-    "empty_variables.toml": ("[variables]\n", ["[variables]", "empty"]),
-    "variables_not_a_table.toml": ("variables = 3\n", ["variables", "table", "3"]),
-    "variable_not_a_table.toml": ('[variables]\nm = "M"\n', ["variable 'm'", "table"]),
-    "bad_name.toml": ('[variables]\nk-theta = { dimension = "M" }\n', ["variable 'k-theta'", "k_theta"]),
-    "unknown_top_level_key.toml": ('nmae = "x"\n[variables]\nm = { dimension = "M" }\n', ["'nmae'", "'name'"]),
-    "bad_role.toml": ('[variables]\nt = { dimension = "T", role = "clock" }\n', ["variable 't'", "'clock'"]),
-    "two_times.toml": ('[variables]\nt = { dimension = "T", role = "time" }\ntau = { dimension = "T", role = "time" }\n',
-                       ["variable 'tau'", "'t'", "at most one"]),
-    "time_not_T.toml": ('[variables]\nt = { dimension = "L", role = "time" }\n', ["variable 't'", "dimension L"]),
-    "bad_value.toml": ('[variables]\nm = { dimension = "M", value = "heavy" }\n', ["variable 'm'", "'heavy'"]),
-    "zero_denominator_value.toml": ('[variables]\nm = { dimension = "M", value = "1/0" }\n', ["variable 'm'", "'1/0'"]),
-    "boolean_value.toml": ('[variables]\nm = { dimension = "M", value = true }\n', ["variable 'm'", "true"]),
-    "nan_value.toml": ('[variables]\nm = { dimension = "M", value = nan }\n', ["variable 'm'", "finite", "nan"]),
-    "both.toml": ('[variables]\nl = { dimension = "L", unit = "m" }\n', ["variable 'l'", "both"]),
-    "bad_unit.toml": ('[variables]\nl = { unit = "furlongz" }\n', ["variable 'l'", "furlongz"]),
-    "unknown_key.toml": ('[variables]\nl = { dim = "L" }\n', ["variable 'l'", "'dim'"]),
-    "bad_description.toml": ('[variables]\nm = { dimension = "M", description = 3 }\n', ["variable 'm'", "description"]),
-}
-
-
-@pytest.mark.parametrize("name", sorted(BROKEN_FILES))
-def test_broken_model_file(capsys, tmp_path, name):
-    text, fragments = BROKEN_FILES[name]
-    path = tmp_path / name
-    path.write_bytes(text.encode("utf-8", errors="surrogateescape"))
+@pytest.mark.parametrize("case", sorted(BROKEN_MODEL_FILES))
+def test_broken_model_file(capsys, tmp_path, case):
+    path, fragments = broken_model_file(tmp_path, case)
     code, out, err = run(capsys, "groups", path)
     assert code == EXIT_ERROR
     assert out == ""

@@ -354,7 +354,7 @@ def test_from_units_declares_what_pint_names():
 
 def provoked_errors():
     """One real instance of every error class, provoked through the public API where possible."""
-    from pitheorem import errors
+    from pitheorem import engines, errors
     from pitheorem.cli import _parse_scale
 
     def catch(call):
@@ -383,7 +383,10 @@ def provoked_errors():
         errors.LimitError: (catch(lambda: pt.Dimension.parse("L^5000")), "5000"),
         errors.ModelFileError: (catch(lambda: pt.load_model_file("example:nope")), "example:nope"),
         errors.CommandLineError: (catch(lambda: _parse_scale(["g=1", "g=2"])), "g"),
-        errors.EngineUnavailableError: (errors.EngineUnavailableError("bullet"), "bullet"),
+        errors.EngineUnavailableError: (errors.EngineUnavailableError("bullet", "pybullet"), "bullet"),
+        errors.EngineModelError: (catch(lambda: engines.load("no_such_robot.xml")), "no_such_robot.xml"),
+        errors.UnscalableParameterError: (errors.UnscalableParameterError("joint_root_damping", "needs s^1 and s^3"),
+                                          "joint_root_damping"),
     }
 
 

@@ -23,6 +23,7 @@ from pitheorem.engines import (
     verify_engine_similarity,
     with_hidden_constants,
 )
+from pitheorem.engines.packages import PACKAGES, check_engine, engine_module
 from pitheorem.engines.rod import EngineUnavailableError, rod_mjcf
 
 ROD = pt.models.hinged_rod()
@@ -41,9 +42,6 @@ AGREE = 1e-10
 DIFFER = 1e-3
 
 REPO = Path(__file__).resolve().parents[1]
-
-PACKAGES = {"bullet": "pybullet", "mujoco": "mujoco"}
-
 
 @pytest.fixture(params=ENGINES)
 def engine(request):
@@ -182,11 +180,38 @@ def test_broken_constants_needs_a_scaling():
 
 
 def test_engine_unavailable_error_message_and_pickle():
-    err = EngineUnavailableError("mujoco")
+    err = EngineUnavailableError("mujoco", "mujoco")
     assert isinstance(err, pt.PiTheoremError)
     assert isinstance(err, ImportError)
     assert "pitheorem[engines]" in str(err)
     assert str(pickle.loads(pickle.dumps(err))) == str(err)
+
+
+def test_the_rods_default_time_steps_are_the_catalogues():
+    from pitheorem.engines.rod import DEFAULT_TIME_STEP
+
+    assert dict(DEFAULT_TIME_STEP) == {"bullet": 1 / 240, "mujoco": 0.002}
+    assert rod_mjcf(ROD.defaults).count('timestep="0.002"') == 1
+
+
+def test_each_engine_names_its_package_in_one_place(monkeypatch):
+    # the catalogue's engines are the engines with a package, and every reader of an engine name agrees
+    assert tuple(PACKAGES) == ENGINES == ("bullet", "mujoco")
+    assert PACKAGES["bullet"] == "pybullet"
+    for call in (lambda: check_engine("ode"), lambda: engine_module("ode"), lambda: hidden_constants("ode"),
+                 lambda: simulate_rod("ode")):
+        with pytest.raises(pt.InvalidRequestError) as caught:
+            call()
+        assert str(caught.value) == "unknown engine 'ode'; use 'bullet' or 'mujoco'"
+        assert caught.value.culprit == "ode"
+    with pytest.raises(pt.InvalidRequestError, match="unknown engine 3"):
+        check_engine(3)
+    # a missing package is named in the error, as the one list has it
+    monkeypatch.setitem(sys.modules, "pybullet", None)  # import pybullet now raises ImportError
+    with pytest.raises(EngineUnavailableError) as caught:
+        engine_module("bullet")
+    assert (caught.value.engine, caught.value.package, caught.value.culprit) == ("bullet", "pybullet", "bullet")
+    assert str(caught.value) == 'engine \'bullet\' needs the Python package \'pybullet\': pip install "pitheorem[engines]"'
 
 
 def test_rod_mjcf_bad_inputs():

@@ -46,9 +46,9 @@ def test_mujoco_defaults_match_the_engine():
 @pytest.fixture
 def bullet():
     pb = pytest.importorskip("pybullet")
-    from pitheorem.engines.rod import _quiet_stdout
+    from pitheorem.engines.packages import quiet_stdout
 
-    with _quiet_stdout():
+    with quiet_stdout():
         client = pb.connect(pb.DIRECT)
     yield pb, client
     # contactBreakingThreshold is a global of the process: put PyBullet's default back

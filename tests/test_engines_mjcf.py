@@ -17,6 +17,7 @@ mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip inst
 
 from pitheorem import engines  # noqa: E402
 from pitheorem.engines import EngineModelError, UnscalableParameterError  # noqa: E402
+from pitheorem.modelfile import ModelFileError  # noqa: E402
 
 DATA = Path(__file__).resolve().parent / "data" / "engines"
 
@@ -251,10 +252,10 @@ def test_an_engine_model_cannot_be_changed_by_assignment():
 
 def test_an_unknown_example_names_the_shipped_ones():
     assert engines.example_path("superball.xml").name == "superball.xml"
-    with pytest.raises(pt.InvalidRequestError) as caught:
+    with pytest.raises(ModelFileError) as caught:
         engines.example_path("hopper.xml")
-    assert "'hopper.xml'" in str(caught.value)
-    assert str(caught.value).endswith("the shipped models are pendulum.xml, superball.xml")
+    assert "example:hopper.xml" in str(caught.value)
+    assert str(caught.value).endswith("the shipped examples are hinged_rod, pendulum.xml, superball, superball.xml")
 
 
 def test_mixed_fixed_tendon_cannot_be_rewritten(tmp_path):
@@ -313,3 +314,46 @@ def test_bad_dimension_declarations_name_the_text(tmp_path, custom, culprit, hin
         engines.load(_custom_model(tmp_path, custom))
     assert culprit in str(caught.value)
     assert hint in str(caught.value)
+
+
+def test_engines_read_s_and_every_number_through_the_one_reader():
+    from fractions import Fraction
+
+    model = engines.load(engines.example_path("pendulum.xml"))
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    # an exact s however written gives one copy; a float s the same numbers for this model
+    exact = model.scaled(sc, 10).parameters
+    assert model.scaled(sc, "10").parameters == model.scaled(sc, Fraction(10)).parameters == exact
+    assert model.scaled(sc, 10.0).parameters == exact
+    assert model.scaled(sc, "1/2").parameter("g").value == (9.81 / 2,)
+    for bad in (True, 0, -1, "ten", math.nan):
+        for call in (lambda s: model.scaled(sc, s), lambda s: engines.verify(model, sc, s, duration=0.01)):
+            with pytest.raises(pt.NumberError) as caught:
+                call(bad)
+            assert str(caught.value) == (
+                f"the scale factor s must be a positive finite number such as 2, 0.5 or '1/3', got {bad!r}")
+    # a value and a factor: each names its parameter
+    assert model.with_values(g="19.62").parameters == model.with_values(g=19.62).parameters
+    with pytest.raises(pt.NumberError, match="the value of 'g' must be a finite real number"):
+        model.with_values(g="heavy")
+    with pytest.raises(pt.NumberError) as caught:
+        model.multiplied(g=True)
+    assert str(caught.value) == "the factor for 'g' must be a positive finite number such as 2, 0.5 or '1/3', got True"
+    # a factor beyond floating point is a LimitError naming the dimension, not a bare OverflowError
+    heavy = pt.Scaling.from_unit_change(model.system(), {"M": 5})
+    with pytest.raises(pt.LimitError, match=r"the factor of M L\^-3 is s\^5 with s = about 10\^100"):
+        model.scaled(heavy, 10**100)
+
+
+def test_an_engine_takes_a_change_of_units_over_m_l_and_t():
+    from pitheorem.engines.model import check_scaling
+
+    model = engines.load(engines.example_path("pendulum.xml"))
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    assert check_scaling(sc) is sc
+    lengths = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1})
+    for call in (lambda: model.scaled(lengths, 2), lambda: engines.verify(model, lengths, 2, duration=0.01),
+                 lambda: engines.verify(model, lengths, 2, duration=0.01, scaled=model)):
+        with pytest.raises(pt.InvalidRequestError) as caught:
+            call()
+        assert str(caught.value) == "the scaling's system has no base dimension 'M'; search on model.system()"

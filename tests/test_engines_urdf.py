@@ -214,3 +214,44 @@ def test_saved_model_reloads_with_its_settings_and_only_so(tmp_path):
     with pytest.raises(engines.EngineModelError, match="not well-formed XML") as caught:
         engines.load(out)
     assert "settings" not in str(caught.value)
+
+
+@pytest.mark.parametrize(("options", "error", "says"), [
+    ({"g": -9.81}, pt.InvalidRequestError, "g cannot be negative, got -9.81"),
+    ({"damping": -1e-9}, pt.InvalidRequestError, "damping cannot be negative"),
+    ({"damping": "x"}, pt.NumberError, "damping must be a finite real number"),
+    ({"ground": "yes"}, pt.InvalidRequestError, "ground is true or false, got 'yes'"),
+    ({"fixed_base": 1}, pt.InvalidRequestError, "fixed_base is true or false, got 1"),
+    ({"base_position": (0, 1)}, pt.InvalidRequestError, "base_position takes three numbers"),
+    ({"base_position": "001"}, pt.InvalidRequestError, "base_position takes three numbers"),
+    ({"base_position": (0, 0, float("inf"))}, pt.NumberError, "base_position must be a finite real number"),
+])
+def test_the_loader_reads_its_scene_as_the_command_line_does(options, error, says):
+    # one reader for the keyword options, --scene and with_settings: the same refusals everywhere
+    with pytest.raises(error) as caught:
+        engines.load(ARM, **options)
+    assert says in str(caught.value)
+    name = next(iter(options))
+    if name in ("ground", "fixed_base", "base_position"):
+        with pytest.raises(error, match=says.split(",")[0]):
+            engines.load(ARM).with_settings(**options)
+
+
+def test_scene_values_are_read_exactly_once_into_floats_and_flags():
+    from pitheorem.engines.urdf import scene_option
+
+    model = engines.load(ARM, g="9.8", damping=0, base_position=("0", 0, "1/2"), ground=np.True_)
+    settings = model.settings()
+    assert settings["gravity"] == [0.0, 0.0, -9.8]
+    assert settings["loadURDF"]["basePosition"] == [0.0, 0.0, 0.5]
+    assert settings["ground"] is not None
+    moved = model.with_settings(base_position=(1, 2, 3), split_impulse=False)
+    assert moved.settings()["loadURDF"]["basePosition"] == [1.0, 2.0, 3.0]
+    assert moved.settings()["setPhysicsEngineParameter"]["useSplitImpulse"] == 0
+    with pytest.raises(pt.InvalidRequestError, match="split_impulse is true or false, got 'no'"):
+        model.with_settings(split_impulse="no")
+    assert scene_option("split_impulse", False) is False
+    assert scene_option("g", 2) == 2.0
+    assert type(scene_option("g", 2)) is float
+    with pytest.raises(pt.InvalidRequestError, match="unknown scene option 'gravity'"):
+        scene_option("gravity", 1)

@@ -159,3 +159,61 @@ def test_errors_pickle_with_their_message(error):
     copy = pickle.loads(pickle.dumps(error))
     assert type(copy) is type(error)
     assert str(copy) == str(error)
+
+
+def _every_error_with_every_field_set():
+    from pitheorem import errors
+
+    return [
+        errors.DimensionSyntaxError("M^^", 2, "bad"),
+        errors.UnknownVariableError("x", ("a", "b"), "repeating"),
+        errors.DuplicateVariableError("a", "the system"),
+        errors.EmptySystemError("nothing here", culprit="{}"),
+        errors.RepeatingCountError(("a",), 2),
+        errors.DependentRepeatingSetError(("a", "b"), "a/b"),
+        errors.InvalidRequestError("nope", culprit="n"),
+        errors.UnitError("furlongz is no unit", culprit="furlongz"),
+        errors.CommandLineError("--s twice", culprit="--s"),
+        errors.SystemMismatchError("m", "no variable 'm'"),
+        errors.ModelEquationError("Eq(x, 1)", "it holds no derivative", 2),
+        errors.NumberError("1/0", "exponent of 'g'", "a finite number"),
+        errors.LimitError("L^5000", "exponent", "too big", "use a smaller one"),
+        errors.ModelFileError("rod.toml", "unknown role 'clock'", variable="t", line=4),
+        errors.EngineModelError("robot.xml", "mesh 'torso'", "not found"),
+        errors.UnscalableParameterError("joint_root_damping", "needs s^1 and s^3"),
+        errors.EngineUnavailableError("bullet", "pybullet"),
+    ]
+
+
+#: the culprit each error of _every_error_with_every_field_set names
+CULPRITS = {
+    "DimensionSyntaxError": "^", "UnknownVariableError": "x", "DuplicateVariableError": "a", "EmptySystemError": "{}",
+    "RepeatingCountError": ("a",), "DependentRepeatingSetError": ("a", "b"), "InvalidRequestError": "n",
+    "UnitError": "furlongz", "CommandLineError": "--s", "SystemMismatchError": "m", "ModelEquationError": "Eq(x, 1)",
+    "NumberError": "1/0", "LimitError": "L^5000", "ModelFileError": "t", "EngineModelError": "robot.xml",
+    "UnscalableParameterError": "joint_root_damping", "EngineUnavailableError": "bullet",
+}
+
+
+def test_every_error_class_is_built_with_every_field():
+    from pitheorem import errors
+
+    assert {type(e).__name__ for e in _every_error_with_every_field_set()} == set(errors.__all__) - {"PiTheoremError"}
+    assert set(CULPRITS) == set(errors.__all__) - {"PiTheoremError"}
+
+
+@pytest.mark.parametrize("error", _every_error_with_every_field_set(), ids=lambda e: type(e).__name__)
+def test_errors_keep_each_constructor_argument_and_pickle_all_of_them(error):
+    import inspect
+
+    fields = [name for name in inspect.signature(type(error)).parameters]
+    copy = pickle.loads(pickle.dumps(error))
+    # the fields are the constructor's arguments, each kept under its own name, and come back as they were
+    assert [getattr(copy, name) for name in fields] == [getattr(error, name) for name in fields]
+    assert all(getattr(error, name) is not None for name in fields)
+    assert (copy.culprit, copy.message, copy.args) == (error.culprit, error.message, error.args)
+    assert error.args == (str(error),) == (error.message,)
+    assert error.culprit == CULPRITS[type(error).__name__]
+    # rebuilding from the fields gives the same error: what pickling does
+    again = type(error)(*(getattr(error, name) for name in fields))
+    assert (str(again), again.culprit) == (str(error), error.culprit)

@@ -134,18 +134,14 @@ def test_bases_equal_brute_force_in_order(system, data):
     assert system.count_bases(exclude=exclude, require=require) == len(expected)
 
 
+@pytest.mark.parametrize(("exponent", "max_vars"), [
+    (huge, 6),  # entries far beyond 2^53 and int64: the float path must step aside, residues and exact rank decide
+    (reciprocal_primes, 7),
+], ids=["huge", "reciprocal_primes"])
 @settings(max_examples=60, deadline=None)
-@given(systems(exponent=huge, max_vars=6, max_bases=3))
-def test_bases_exact_with_huge_exponents(system):
-    # entries far beyond 2^53 and int64: the float path must step aside, residues and exact rank decide
-    expected = oracle_bases(system)
-    assert system.bases() == expected
-    assert system.count_bases() == len(expected)
-
-
-@settings(max_examples=60, deadline=None)
-@given(systems(exponent=reciprocal_primes, max_vars=7, max_bases=3))
-def test_bases_exact_with_reciprocal_prime_exponents(system):
+@given(data=st.data())
+def test_bases_exact_with_extreme_exponents(exponent, max_vars, data):
+    system = data.draw(systems(exponent=exponent, max_vars=max_vars, max_bases=3))
     expected = oracle_bases(system)
     assert system.bases() == expected
     assert system.count_bases() == len(expected)

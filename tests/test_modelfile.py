@@ -9,7 +9,9 @@ from fractions import Fraction
 import pytest
 
 import pitheorem as pt
+from pitheorem import engines
 from pitheorem.modelfile import (
+    EXAMPLES,
     ModelFile,
     ModelFileError,
     dump_values,
@@ -18,6 +20,7 @@ from pitheorem.modelfile import (
     load_model_file,
     write_model_file,
 )
+from tests.conftest import BROKEN_MODEL_FILES, broken_model_file
 
 
 def write(tmp_path, text: str, name: str = "model.toml"):
@@ -30,8 +33,14 @@ def write(tmp_path, text: str, name: str = "model.toml"):
 
 
 def test_examples_are_listed():
-    assert examples() == ("hinged_rod", "superball")
+    assert examples() == ("hinged_rod", "pendulum.xml", "superball", "superball.xml")
     assert example_path("hinged_rod.toml") == example_path("hinged_rod")
+    assert example_path("hinged_rod").name == "hinged_rod.toml"
+    assert example_path("pendulum.xml") == EXAMPLES / "pendulum.xml"
+    # the engines' call is the same function: one home for the shipped files
+    assert engines.example_path is example_path
+    assert sorted(p.name for p in EXAMPLES.iterdir() if p.suffix in (".toml", ".xml")) == [
+        "hinged_rod.toml", "pendulum.xml", "superball.toml", "superball.xml"]
 
 
 def test_hinged_rod_example_is_the_papers_rod():
@@ -53,9 +62,21 @@ def test_superball_example_has_the_section_4_list():
     assert sb.system.rank == 3
 
 
-def test_unknown_example():
-    with pytest.raises(ModelFileError, match="superball"):
-        example_path("superbal")
+@pytest.mark.parametrize("name", ["superbal", "pendulum", "hopper.xml", "../modelfile.py", "examples/pendulum.xml",
+                                  "pendulum.xml.toml", ""])
+def test_unknown_example(name):
+    with pytest.raises(ModelFileError) as caught:
+        example_path(name)
+    assert str(caught.value) == (f"example:{name}: no such example; the shipped examples are "
+                                 "hinged_rod, pendulum.xml, superball, superball.xml")
+    assert caught.value.culprit == f"example:{name}"
+
+
+def test_an_engine_example_is_no_toml_model_file():
+    with pytest.raises(ModelFileError) as caught:
+        load_model_file("example:pendulum.xml")
+    assert str(caught.value) == (f"example:pendulum.xml: is an engine model, not a TOML model file; "
+                                 f"pass its path, {EXAMPLES / 'pendulum.xml'}")
 
 
 # -- reading -------------------------------------------------------------------------------
@@ -184,45 +205,9 @@ def test_model_file_is_a_record():
 
 # -- every broken file gives a ModelFileError naming file, variable and problem -------------
 
-BROKEN = {
-    "bad_toml": ('[variables]\nm = { dimension = "M"\n', ["line 2", "invalid TOML"]),
-    "bad_toml_value": ("[variables]\nm = = 1\n", ["line 2", "invalid TOML"]),
-    "missing_variables": ('name = "x"\n', ["no [variables]"]),
-    "variables_not_table": ("variables = 3\n", ["must be a table"]),
-    "empty_variables": ("[variables]\n", ["empty"]),
-    "unknown_top_key": ('nmae = "x"\n[variables]\nl = { dimension = "L" }\n', ["'nmae'", "did you mean 'name'"]),
-    "unknown_key": ('[variables]\nl = { dimension = "L", vaule = 2 }\n', ["variable 'l'", "'vaule'", "'value'"]),
-    "both": ('[variables]\nl = { dimension = "L", unit = "m" }\n', ["variable 'l'", "both dimension and unit"]),
-    "neither": ('[variables]\nl = { value = 2 }\n', ["variable 'l'", "neither dimension nor unit"]),
-    "unknown_dimension": ('[variables]\nq = { dimension = "Q" }\n', ["variable 'q'", "'Q'"]),
-    "bad_dimension_syntax": ('[variables]\nq = { dimension = "L^^2" }\n', ["variable 'q'", "'L^^2'"]),
-    "dimension_not_string": ("[variables]\nq = { dimension = 1 }\n", ["variable 'q'", "string"]),
-    "bad_unit": ('[variables]\nq = { unit = "furlongz" }\n', ["variable 'q'", "furlongz"]),
-    "duplicate": ('[variables]\nm = { dimension = "M" }\nm = { dimension = "L" }\n',
-                  ["line 3", "variable 'm'", "twice"]),
-    "duplicate_table": ('[variables.m]\ndimension = "M"\n[variables.m]\ndimension = "L"\n',
-                        ["line 3", "variable 'm'", "twice"]),
-    "duplicate_key_in_entry": ('[variables]\nm = { dimension = "M", dimension = "L" }\n', ["line 2"]),
-    "bad_role": ('[variables]\nt = { dimension = "T", role = "clock" }\n', ["variable 't'", "'clock'", "time"]),
-    "time_not_T": ('[variables]\nl = { dimension = "L", role = "time" }\n', ["variable 'l'", "dimension T"]),
-    "two_times": ('[variables]\nt = { dimension = "T", role = "time" }\ns = { dimension = "T", role = "time" }\n',
-                  ["variable 's'", "at most one"]),
-    "value_not_number": ('[variables]\nm = { dimension = "M", value = "heavy" }\n', ["variable 'm'", "'heavy'"]),
-    "value_bool": ('[variables]\nm = { dimension = "M", value = true }\n', ["variable 'm'", "true"]),
-    "value_list": ('[variables]\nm = { dimension = "M", value = [1, 2] }\n', ["variable 'm'", "number"]),
-    "value_zero_denominator": ('[variables]\nm = { dimension = "M", value = "1/0" }\n', ["variable 'm'", "1/0"]),
-    "value_nan": ('[variables]\nm = { dimension = "M", value = nan }\n', ["variable 'm'", "finite"]),
-    "entry_not_table": ('[variables]\nm = "M"\n', ["variable 'm'", "must be a table"]),
-    "bad_name": ('[variables]\n"k-theta" = { dimension = "M" }\n', ["variable 'k-theta'", "valid name"]),
-    "name_not_string": ('name = 3\n[variables]\nm = { dimension = "M" }\n', ["name must be a string"]),
-    "bad_base_dimensions": ('base_dimensions = "MLT"\n[variables]\nm = { dimension = "M" }\n', ["base_dimensions"]),
-}
-
-
-@pytest.mark.parametrize("case", sorted(BROKEN))
+@pytest.mark.parametrize("case", sorted(BROKEN_MODEL_FILES))
 def test_broken_file(tmp_path, case):
-    text, fragments = BROKEN[case]
-    path = write(tmp_path, text, f"{case}.toml")
+    path, fragments = broken_model_file(tmp_path, case)
     with pytest.raises(ModelFileError) as info:
         load_model_file(path)
     message = str(info.value)
@@ -253,3 +238,27 @@ def test_error_fields_and_pickling():
     again = pickle.loads(pickle.dumps(err))
     assert str(again) == str(err)
     assert again.variable == "t"
+
+
+def test_the_kind_of_a_model_file_is_told_in_one_place(tmp_path):
+    from pitheorem.modelfile import model_kind
+
+    urdf_in_xml = tmp_path / "robot.xml"
+    urdf_in_xml.write_text('<?xml version="1.0"?>\n<robot name="r"><link name="a"/></robot>\n')
+    mjcf = tmp_path / "world.xml"
+    mjcf.write_text('<mujoco model="w"><worldbody/></mujoco>\n')
+    kinds = {"robot.URDF": "urdf", "model.toml": "toml", "model.json": "toml", "example:superball": "toml",
+             str(urdf_in_xml): "urdf", str(mjcf): "mjcf", str(tmp_path / "absent.xml"): "mjcf", "hopper.mjcf": "mjcf"}
+    assert {path: model_kind(path) for path in kinds} == kinds
+
+
+def test_the_command_line_reads_toml_files_without_the_engines(monkeypatch, capsys):
+    import sys
+
+    from pitheorem.cli import main
+
+    for name in [m for m in sys.modules if m.startswith("pitheorem.engines")]:
+        monkeypatch.setitem(sys.modules, name, None)  # importing any of them now fails
+    monkeypatch.setitem(sys.modules, "pitheorem.engines", None)
+    assert main(["groups", "example:hinged_rod"]) == 0
+    assert capsys.readouterr().out.strip()

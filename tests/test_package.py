@@ -7,6 +7,7 @@ pytest for that (``--import-mode=append``); this test checks the result.
 
 from __future__ import annotations
 
+import ast
 import importlib
 import importlib.util
 import sys
@@ -20,8 +21,8 @@ import pitheorem as pt
 ROOT = Path(__file__).resolve().parents[1] / "pitheorem"
 
 
-def _module_name(path: Path) -> str:
-    parts = path.relative_to(ROOT.parent).with_suffix("").parts
+def _module_name(path: Path, root: Path = ROOT) -> str:
+    parts = path.relative_to(root.parent).with_suffix("").parts
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
@@ -63,3 +64,44 @@ def test_submodules_and_the_functions_they_define_keep_apart():
     # and no public function shares its name with a module of the package
     modules = {path.stem for path in ROOT.glob("*.py")}
     assert modules.isdisjoint(name for name in pt.__all__ if callable(getattr(pt, name)))
+
+
+def _private_imports(path: Path, root: Path = ROOT) -> list[str]:
+    """``module.name`` for every leading-underscore name `path` imports from another pitheorem module."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    package = _module_name(path, root).split(".")
+    if path.name != "__init__.py":
+        package = package[:-1]
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:  # relative: from the package `level` steps up
+                base = package[: len(package) - node.level + 1]
+                module = ".".join([*base, *([node.module] if node.module else [])])
+            else:
+                module = node.module or ""
+            if module.split(".")[0] != "pitheorem":
+                continue
+            names = [f"{module}.{alias.name}" for alias in node.names]
+        elif isinstance(node, ast.Import):
+            names = [alias.name for alias in node.names if alias.name.split(".")[0] == "pitheorem"]
+        else:
+            continue
+        found += [name for name in names
+                  if any(part.startswith("_") and not part.startswith("__") for part in name.split("."))]
+    return found
+
+
+def test_no_module_imports_another_modules_private_names(tmp_path):
+    offenders = {str(path.relative_to(ROOT.parent)): found for path in sorted(ROOT.rglob("*.py"))
+                 if (found := _private_imports(path))}
+    assert offenders == {}
+    # the check finds each form it looks for: relative, absolute, a private module, and a package's own name
+    sample = tmp_path / "pitheorem" / "engines" / "sample.py"
+    sample.parent.mkdir(parents=True)
+    sample.write_text("from .rod import _quiet\nfrom ..bases import LaplaceTables, _Descent\n"
+                      "from pitheorem.engines.model import _check_s\nimport pitheorem._hidden\n"
+                      "from . import _private\nfrom os import _exit\nfrom .model import __all__\n")
+    assert _private_imports(sample, tmp_path / "pitheorem") == [
+        "pitheorem.engines.rod._quiet", "pitheorem.bases._Descent", "pitheorem.engines.model._check_s",
+        "pitheorem._hidden", "pitheorem.engines._private"]

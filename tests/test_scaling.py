@@ -108,3 +108,31 @@ def test_irrational_results_are_exact_sympy_numbers():
     assert half.factors(2)["l"] == sympy.sqrt(2)
     assert half.factors(2.0) == {"l": pytest.approx(2**0.5)}
     assert type(half.factors(2.0)["l"]) is float
+
+
+def test_every_float_factor_is_one_power_float_in_float_out():
+    import sympy
+
+    from pitheorem.exact import read_scale_factor
+    from pitheorem.scaling import float_power
+    from pitheorem.simulation import ModelScaling
+
+    # an exact s is raised exactly and rounded once; a float s is raised in floating point
+    assert float_power(Fraction(1, 10), Fraction(2), "x") == 0.01
+    assert float_power(0.1, Fraction(2), "x") == 0.1**2 != 0.01
+    assert float_power(sympy.sqrt(2), Fraction(2), "x") == 2.0 != float(sympy.sqrt(2)) ** 2
+    assert float_power(Fraction(2), Fraction(1, 2), "x") == float(sympy.sqrt(2).evalf(30))
+    assert float_power(7.5, 0, "x") == 1.0
+    assert isinstance(float_power(Fraction(3), Fraction(2), "x"), float)
+    with pytest.raises(pt.LimitError) as caught:
+        float_power(Fraction(10) ** 200, Fraction(2), "the factor of 'g'")
+    assert str(caught.value).startswith("the factor of 'g' is s^2 with s = about 10^200: it is beyond the range")
+    with pytest.raises(pt.LimitError, match=r"x is s\^2 with s = about 10\^200"):
+        float_power(1e200, Fraction(2), "x")
+    # the value types take their float factors from it
+    sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 2})
+    assert sc.factors(0.1) == {"l": 0.1**2, "t": 1.0}
+    t, y = sc.map_back([2.0], [[1.0]], Fraction(1, 10), time="t", states=["l"])
+    assert (t.tolist(), y.tolist()) == ([2.0], [[1 / 0.01]])
+    gravity = ModelScaling.of(pt.models.projectile(), {"g": 1, "t": 1}, s=0.1)
+    assert gravity.factor("vx") == float_power(read_scale_factor(0.1), gravity.exponents["vx"], "vx") == 0.1**2

@@ -36,6 +36,18 @@ def test_shipped_file_is_what_the_generator_writes():
     assert SHIPPED.read_text(encoding="utf-8") == sb.superball_mjcf()
 
 
+def test_every_parameter_has_a_dimension_and_cannot_be_changed():
+    from dataclasses import FrozenInstanceError
+
+    assert all(isinstance(p.dimension, pt.Dimension) for p in sb.PARAMETERS)
+    assert {p.name: p.dimension for p in sb.PARAMETERS} == sb.superball_system().dimensions
+    assert sb.PARAMETERS[0].dimension == pt.Dimension({"L": 1, "T": -2})
+    # the controller's dimensions are written into the file as formulas MuJoCo keeps as text
+    assert '<text name="dimension:K_eps" data="L T^-1"/>' in SHIPPED.read_text(encoding="utf-8")
+    with pytest.raises(FrozenInstanceError):
+        sb.PARAMETERS[0].dimension = "L T^-2"
+
+
 def test_every_kind_of_model_runs_alike():
     # MJCF text, a path (str or Path), a compiled MjModel and an EngineModel are one model to the runner
     from pitheorem import engines

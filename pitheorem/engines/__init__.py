@@ -10,7 +10,9 @@ engines with ``pip install "pitheorem[engines]"`` (``pybullet`` and
 * ``pitheorem.engines.rod``: the hinged rod of the white paper built in
   each engine, run, and compared after a similarity scaling;
 * ``pitheorem.engines.rules``: the engines' published rules for scaling
-  the world, checked as changes of units.
+  the world, checked as changes of units;
+* ``pitheorem.engines.packages``: the Python package each engine needs,
+  imported when a simulation asks for it.
 
 Examples
 --------

@@ -1,6 +1,6 @@
 """The command line on engine model files: ``params``, and ``groups``/``bases``/``search``/``apply`` on MJCF and URDF.
 
-:mod:`pitheorem.cli` dispatches here by file kind (:func:`is_engine_file`):
+:mod:`pitheorem.cli` dispatches here by file kind (:func:`pitheorem.modelfile.model_kind`):
 an engine model becomes a :class:`~pitheorem.modelfile.ModelFile` of its
 system and its one-number values (:func:`engine_model_file`), so the TOML
 commands work on it unchanged, and ``apply`` writes the scaled file the
@@ -15,24 +15,11 @@ from pathlib import Path
 
 from ..answers import EngineApplyAnswer, ParamsAnswer
 from ..errors import InvalidRequestError
-from ..exact import read_number
 from ..modelfile import ModelFile
-from .model import EngineModel, UnscalableParameterError, load, model_kind
-from .urdf import SCENE_OPTIONS
+from .model import EngineModel, UnscalableParameterError, load
+from .urdf import SCENE_OPTIONS, scene_option
 
-__all__ = ["apply_engine", "engine_model_file", "is_engine_file", "params_answer", "parse_scene", "scene_help"]
-
-
-def is_engine_file(path: str) -> bool:
-    """Whether a command-line FILE is an MJCF or URDF model (by suffix and root element).
-
-    Examples
-    --------
-    >>> from pitheorem.engines.cli import is_engine_file
-    >>> is_engine_file("robot.urdf"), is_engine_file("rod.toml"), is_engine_file("example:hinged_rod")
-    (True, False, False)
-    """
-    return not str(path).startswith("example:") and model_kind(path) in ("mjcf", "urdf")
+__all__ = ["apply_engine", "engine_model_file", "params_answer", "parse_scene", "scene_help"]
 
 
 _TRUTH = {"true": True, "yes": True, "1": True, "false": False, "no": False, "0": False}
@@ -96,16 +83,17 @@ def parse_scene(items: list[str] | None) -> dict:
         if kind == "flag":
             if text.lower() not in _TRUTH:
                 raise InvalidRequestError(f"--scene {item!r}: {name} is true or false")
-            options[name] = _TRUTH[text.lower()]
-            continue
-        parts = text.split(",")
-        if len(parts) != (3 if kind == "point" else 1):
-            raise InvalidRequestError(f"--scene {item!r}: {name} takes "
-                                      + ("three numbers such as 0,0,1" if kind == "point" else "one number"))
-        numbers = tuple(float(read_number(part.strip(), f"--scene {name}")) for part in parts)
-        if kind == "number" and not (numbers[0] >= 0):
-            raise InvalidRequestError(f"--scene {item!r}: {name} cannot be negative")
-        options[name] = numbers if kind == "point" else numbers[0]
+            value = _TRUTH[text.lower()]
+        else:
+            parts = [part.strip() for part in text.split(",")]
+            if len(parts) != (3 if kind == "point" else 1):
+                raise InvalidRequestError(f"--scene {item!r}: {name} takes "
+                                          + ("three numbers such as 0,0,1" if kind == "point" else "one number"))
+            value = parts if kind == "point" else parts[0]
+        try:
+            options[name] = scene_option(name, value)
+        except InvalidRequestError as err:
+            raise InvalidRequestError(f"--scene {item!r}: {err}", culprit=err.culprit) from None
     return options
 
 

@@ -32,6 +32,7 @@ from ..immutable import immutable
 from ..scalesearch import SearchResult, search
 from ..scaling import Scaling
 from ..system import System
+from .packages import check_engine
 
 __all__ = [
     "CATALOGUE",
@@ -105,11 +106,7 @@ ENGINES = tuple(dict.fromkeys(c.engine for c in CATALOGUE))
 
 
 def _check_engine(engine) -> str | None:
-    if engine is None:
-        return None
-    if engine not in ENGINES:
-        raise InvalidRequestError(f"unknown engine {engine!r}; the catalogue has {', '.join(map(repr, ENGINES))}")
-    return engine
+    return None if engine is None else check_engine(engine)
 
 
 def hidden_constants(engine: str | None = None, *, names: Iterable[str] | None = None,
@@ -245,10 +242,7 @@ def engine_search(system: System, engine: str, scale: Mapping[str, object], fixe
     """
     ext = with_hidden_constants(system, engine, names=names)
     added = tuple(n for n in ext.variables if n not in system.variables)
-    if fixed is None:
-        time = Dimension({"T": 1})
-        fixed = tuple(n for n in system.variables if system.dimension(n) == time)
-    fixed = tuple(fixed)
+    fixed = system.time_variables if fixed is None else tuple(fixed)
     return search(ext, scale, fixed=(*fixed, *(n for n in added if n not in fixed)), allow=allow)
 
 

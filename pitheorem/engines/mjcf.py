@@ -51,6 +51,7 @@ from .model import (
     unique_name,
     warn_unscalable,
 )
+from .packages import engine_module
 
 __all__ = ["MjcfBackend", "load_mjcf"]
 
@@ -63,9 +64,7 @@ _FORCE, _TORQUE = dim("M L T^-2"), dim("M L^2 T^-2")
 
 
 def _mujoco():
-    from .rod import _engine_module
-
-    return _engine_module("mujoco")
+    return engine_module("mujoco")
 
 
 def _joint_kind(mj, jtype) -> JointKind | None:

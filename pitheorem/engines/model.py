@@ -13,9 +13,11 @@ The engine-specific work (reading, writing, running) lives in
 ``pitheorem.engines.mjcf`` and ``pitheorem.engines.urdf``; this module
 only holds what both share: besides the model and its parameters, the
 dimensions of a joint's coordinate and force (``JointKind``), how a
-parameter is named (``identifier``, ``unique_name``), the factor of a
-dimension under a scaling (``dimension_factor``) and how a number is
-written back (``attribute_text``).
+parameter is named (``identifier``, ``unique_name``), which scalings a
+model takes (``check_scaling``), the factor of a dimension under a scaling
+(``dimension_factor``) and how a number is written back
+(``attribute_text``).  The engines' errors live with every other error, in
+:mod:`pitheorem.errors`.
 """
 
 from __future__ import annotations
@@ -27,11 +29,13 @@ from pathlib import Path
 from typing import ClassVar
 
 from ..dimensions import Dimension
-from ..errors import InvalidRequestError, PiTheoremError
+from ..errors import EngineModelError, InvalidRequestError, UnscalableParameterError
+from ..exact import read_scale_factor, read_value
 from ..formatting import TableDisplay
 from ..immutable import immutable
-from ..modelfile import ModelFileError
-from ..scaling import Scaling
+from ..modelfile import example_path, model_kind
+from ..scaling import Scaling, float_power
+from ..simulation import positive_float
 from ..system import System
 
 __all__ = [
@@ -47,65 +51,6 @@ __all__ = [
 #: where a parameter's value comes from
 SOURCES = ("file", "default", "derived", "engine")
 
-#: the folder of the model files shipped with pitheorem (see :func:`example_path`)
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
-
-
-class EngineModelError(ModelFileError):
-    """A model file the engine cannot load, or an element the package cannot scale.
-
-    Parameters
-    ----------
-    path : str
-        The file.
-    element : str
-        The element at fault, e.g. ``"mesh 'torso'"``.
-    reason : str
-        What is wrong and what would be valid.
-
-    Examples
-    --------
-    >>> from pitheorem.engines import EngineModelError
-    >>> print(EngineModelError("robot.xml", "mesh 'torso'", "file torso.stl not found"))
-    robot.xml: mesh 'torso': file torso.stl not found
-    """
-
-    def __init__(self, path, element: str, reason: str):
-        self.element = element
-        ModelFileError.__init__(self, path, reason)
-
-    def __str__(self) -> str:
-        where = f" {self.element}:" if self.element else ""
-        return f"{self.path}:{where} {self.reason}"
-
-    def __reduce__(self):
-        return (type(self), (self.path, self.element, self.reason))
-
-
-class UnscalableParameterError(PiTheoremError, ValueError):
-    """A scaling that one number of a model cannot follow.
-
-    Raised by :meth:`EngineModel.scaled` for a number that mixes dimensions
-    (a free joint's damping acts on lengths and on angles) when the scaling
-    needs two different factors for it, and for an engine setting that no
-    call can change.
-
-    Examples
-    --------
-    >>> from pitheorem.engines import UnscalableParameterError
-    >>> print(UnscalableParameterError("joint_root_damping", "needs s^1 and s^3"))
-    cannot scale 'joint_root_damping': needs s^1 and s^3
-    """
-
-    def __init__(self, name: str, reason: str):
-        self.name, self.reason = name, reason
-        PiTheoremError.__init__(self, str(self))
-
-    def __str__(self) -> str:
-        return f"cannot scale {self.name!r}: {self.reason}"
-
-    def __reduce__(self):
-        return (type(self), (self.name, self.reason))
 
 
 class UnscalableModelWarning(UserWarning):
@@ -193,15 +138,16 @@ class Parameter:
             return {self.name: self.dimension}
         return {f"{self.name}_{part}": dim for part, dim in self.parts}
 
-    def factor(self, scaling, s: float) -> float:
+    def factor(self, scaling, s) -> float:
         """The factor the scaling multiplies this number by.
 
         Parameters
         ----------
         scaling : Scaling
             A scaling of a system that holds this number's dimension.
-        s : float
-            The scale factor.
+        s : float or Fraction
+            The scale factor, as :func:`pitheorem.exact.read_scale_factor`
+            reads it.
 
         Returns
         -------
@@ -232,7 +178,7 @@ class Parameter:
             raise UnscalableParameterError(
                 self.name, f"the one number {self.path} acts with dimensions {self.dimension_text}, so the scaling "
                 f"needs {needs}; set it to 0 or hold the base units it mixes fixed")
-        return power_factor(s, next(iter(exponents.values())))
+        return float_power(s, next(iter(exponents.values())), f"the factor of {self.name!r}")
 
     @property
     def dimension_text(self) -> str:
@@ -252,29 +198,20 @@ class Parameter:
         return " | ".join(f"{dim} ({part})" for part, dim in self.parts)
 
 
-def power_factor(s: float, exponent) -> float:
-    """``s ** exponent`` as a float, exact for integer exponents of exact powers.
-
-    Examples
-    --------
-    >>> from fractions import Fraction
-    >>> from pitheorem.engines.model import power_factor
-    >>> power_factor(10.0, Fraction(-2)), power_factor(4.0, Fraction(1, 2))
-    (0.01, 2.0)
-    """
-    e = Fraction(exponent)
-    if e == 0:
-        return 1.0
-    if e.denominator == 1:
-        # an integer power by repeated multiplication of an exact value: 10^-2 is 1/100, not 10.0**-2
-        value = Fraction(s) ** e.numerator if isinstance(s, int | Fraction) or float(s).is_integer() else None
-        if value is not None:
-            return float(value)
-    return float(s) ** float(e)
-
-
-def dimension_factor(scaling, s: float, dimension) -> float:
+def dimension_factor(scaling, s, dimension) -> float:
     """The factor a scaling multiplies every number of one dimension by.
+
+    Parameters
+    ----------
+    scaling : Scaling
+    s : float or Fraction
+        The scale factor, as :func:`pitheorem.exact.read_scale_factor` reads it.
+    dimension : Dimension
+
+    Returns
+    -------
+    float
+        ``s`` to the dimension's exponent, by :func:`pitheorem.scaling.float_power`.
 
     Examples
     --------
@@ -284,7 +221,7 @@ def dimension_factor(scaling, s: float, dimension) -> float:
     >>> dimension_factor(sc, 10, dim("L T^-2"))
     0.1
     """
-    return power_factor(s, scaling.exponent_of(dimension))
+    return float_power(s, scaling.exponent_of(dimension), f"the factor of {dimension}")
 
 
 def attribute_text(values) -> str:
@@ -521,8 +458,8 @@ class EngineModel(TableDisplay):
         >>> round(model.scaled(sc, 10).parameter("g").value[0], 12)
         98.1
         """
-        s = _check_s(s)
-        _check_scaling(self, scaling)
+        s = read_scale_factor(s)
+        check_scaling(scaling)
         return self._times({p.name: p.factor(scaling, s) for p in self.parameters}, scaling, s)
 
     def with_values(self, **values) -> EngineModel:
@@ -559,7 +496,7 @@ class EngineModel(TableDisplay):
             p = self.parameter(name)
             if len(p.value) != 1 or p.value[0] == 0:
                 raise InvalidRequestError(f"with_values sets one nonzero number; {name} is {p.value}")
-            factors[name] = float(value) / p.value[0]
+            factors[name] = float(read_value(value, f"the value of {name!r}")) / p.value[0]
         # multiplied(...) by value / current value, except that the factor may be 0 or negative
         return self._times(factors)
 
@@ -596,7 +533,7 @@ class EngineModel(TableDisplay):
         """
         for name, factor in factors.items():
             self.parameter(name)
-            factors[name] = _check_factor(factor, name)
+            factors[name] = positive_float(factor, f"the factor for {name!r}")
         return self._times(factors)
 
     def _times(self, factors: dict[str, float], scaling=None, s=None) -> EngineModel:
@@ -696,24 +633,36 @@ class EngineModel(TableDisplay):
         return self._backend
 
 
-def _check_s(s) -> float:
-    from ..simulation import positive_float
+def check_scaling(scaling) -> Scaling:
+    """A scaling an engine model can take: a change of units over M, L and T.
 
-    if isinstance(s, bool):
-        raise InvalidRequestError(f"the scale factor s must be a positive finite number, got {s!r}")
-    x = positive_float(s, "the scale factor s")
-    return s if isinstance(s, int | Fraction) else x
+    Parameters
+    ----------
+    scaling : Scaling
+        From :func:`pitheorem.search` on :meth:`EngineModel.system`.
 
+    Returns
+    -------
+    Scaling
+        The same scaling.
 
-def _check_factor(value, name: str) -> float:
-    from ..simulation import positive_float
+    Raises
+    ------
+    InvalidRequestError
+        For anything else: no Scaling, a symmetry of particular equations
+        (no change of units), or a system without one of M, L and T.
 
-    if isinstance(value, bool):
-        raise InvalidRequestError(f"the factor for {name!r} must be a positive finite number, got {value!r}")
-    return positive_float(value, f"the factor for {name!r}")
-
-
-def _check_scaling(model: EngineModel, scaling) -> None:
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.engines.model import check_scaling
+    >>> sc = pt.Scaling.from_unit_change(pt.System({"l": "L"}), {"L": 1})
+    >>> try:
+    ...     check_scaling(sc)
+    ... except pt.InvalidRequestError as err:
+    ...     print(err)
+    the scaling's system has no base dimension 'M'; search on model.system()
+    """
     if not isinstance(scaling, Scaling):
         raise InvalidRequestError(f"scaling must be a pitheorem Scaling, got {type(scaling).__name__}")
     if not scaling.is_unit_change:
@@ -723,6 +672,7 @@ def _check_scaling(model: EngineModel, scaling) -> None:
     if missing:
         raise InvalidRequestError(f"the scaling's system has no base dimension {missing[0]!r}; "
                                   "search on model.system()")
+    return scaling
 
 
 def warn_unscalable(path: str, element: str, reason: str) -> None:
@@ -739,37 +689,6 @@ def warn_unscalable(path: str, element: str, reason: str) -> None:
     "a.xml: sensor 'x': unknown type"
     """
     warnings.warn(f"{path}: {element}: {reason}", UnscalableModelWarning, stacklevel=3)
-
-
-def example_path(name: str) -> Path:
-    """The path of a model file shipped in ``pitheorem/examples``.
-
-    Parameters
-    ----------
-    name : str
-        The file's name: ``"pendulum.xml"`` or ``"superball.xml"``.
-
-    Returns
-    -------
-    pathlib.Path
-
-    Raises
-    ------
-    InvalidRequestError
-        For a name that is no shipped file; the message lists the model
-        files that are.
-
-    Examples
-    --------
-    >>> from pitheorem import engines
-    >>> engines.example_path("pendulum.xml").name
-    'pendulum.xml'
-    """
-    path = EXAMPLES / name
-    if not path.is_file():
-        shipped = ", ".join(sorted(p.name for p in EXAMPLES.glob("*.xml")))
-        raise InvalidRequestError(f"no example model {name!r} in {EXAMPLES}; the shipped models are {shipped}")
-    return path
 
 
 def load(path, **options) -> EngineModel:
@@ -819,28 +738,3 @@ def load(path, **options) -> EngineModel:
     from .mjcf import load_mjcf
 
     return load_mjcf(path)
-
-
-def model_kind(path) -> str:
-    """``"mjcf"``, ``"urdf"`` or ``"toml"``: the kind of a model file, by suffix and root element.
-
-    Examples
-    --------
-    >>> from pitheorem.engines.model import model_kind
-    >>> model_kind("robot.urdf"), model_kind("model.toml")
-    ('urdf', 'toml')
-    """
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix == ".urdf":
-        return "urdf"
-    if suffix == ".toml" or str(path).startswith("example:"):
-        return "toml"
-    if suffix in (".xml", ".mjcf") and path.is_file():
-        head = path.read_bytes()[:4096].decode("utf-8", "replace")
-        if "<robot" in head and "<mujoco" not in head:
-            return "urdf"
-        return "mjcf"
-    if suffix in (".xml", ".mjcf"):
-        return "mjcf"
-    return "toml"

@@ -27,10 +27,7 @@ to the pure-ODE answer of :func:`pitheorem.verify_similarity`.
 
 from __future__ import annotations
 
-import contextlib
 import math
-import os
-import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from types import MappingProxyType
@@ -49,74 +46,26 @@ from ..simulation import (
     verify_similarity,
 )
 from ..simulation import simulate as simulate_ode
+from .constants import hidden_constants
+from .packages import check_engine, engine_module, quiet_stdout
 
 __all__ = ["DEFAULT_TIME_STEP", "EngineSimilarityReport", "EngineUnavailableError", "simulate_rod",
            "verify_engine_similarity"]
 
-#: each engine's own default time step (see the catalogue in pitheorem.engines.constants)
-DEFAULT_TIME_STEP = MappingProxyType({"bullet": 1 / 240, "mujoco": 0.002})
+#: each engine's own default time step, as the catalogue of pitheorem.engines.constants has it
+DEFAULT_TIME_STEP = MappingProxyType({engine: hidden_constants(engine, names=[name])[0].default
+                                      for engine, name in (("bullet", "bullet_time_step"),
+                                                           ("mujoco", "mujoco_timestep"))})
 
-_PACKAGES = {"bullet": "pybullet", "mujoco": "mujoco"}
 _MUJOCO_INTEGRATORS = ("Euler", "RK4", "implicit", "implicitfast")
-
-
-@contextlib.contextmanager
-def _quiet_stdout():
-    """Silence C-level writes to stdout and stderr (pybullet prints a banner on import)."""
-    for stream in (sys.stdout, sys.stderr):
-        with contextlib.suppress(AttributeError, OSError, ValueError):
-            stream.flush()
-    saved = []
-    try:
-        for fd in (1, 2):
-            saved.append((fd, os.dup(fd)))
-    except OSError:
-        for _, copy in saved:
-            os.close(copy)
-        yield
-        return
-    try:
-        with open(os.devnull, "w") as devnull:
-            for fd, _ in saved:
-                os.dup2(devnull.fileno(), fd)
-            yield
-    finally:
-        _flush_c_stdout()  # C's buffer may still hold the text when the stream is a pipe
-        for fd, copy in saved:
-            os.dup2(copy, fd)
-            os.close(copy)
-
-
-def _flush_c_stdout() -> None:
-    try:
-        import ctypes
-
-        ctypes.CDLL(None).fflush(None)
-    except (OSError, AttributeError, TypeError):  # no C library to flush (e.g. some Windows builds)
-        pass
-
-
-def _engine_module(engine: str):
-    if engine not in _PACKAGES:
-        raise InvalidRequestError(f"unknown engine {engine!r}; use 'bullet' or 'mujoco'")
-    try:
-        if engine == "bullet":
-            with _quiet_stdout():
-                import pybullet
-            return pybullet
-        import mujoco
-
-        return mujoco
-    except ImportError:
-        raise EngineUnavailableError(engine) from None
 
 
 # -- the rod in each engine --------------------------------------------------------------------
 
 
 def _run_bullet(p, y0, dt, n_steps, engine_defaults):
-    pb = _engine_module("bullet")
-    with _quiet_stdout():
+    pb = engine_module("bullet")
+    with quiet_stdout():
         client = pb.connect(pb.DIRECT)
     try:
         m, l, g = p["m"], p["l"], p["g"]  # noqa: E741
@@ -161,7 +110,7 @@ def _run_bullet(p, y0, dt, n_steps, engine_defaults):
         pb.disconnect(physicsClientId=client)
 
 
-def rod_mjcf(params: Mapping[str, float], *, dt: float = 0.002, integrator: str = "Euler") -> str:
+def rod_mjcf(params: Mapping[str, float], *, dt: float = DEFAULT_TIME_STEP["mujoco"], integrator: str = "Euler") -> str:
     """The MJCF text of the hinged rod for MuJoCo.
 
     Parameters
@@ -210,7 +159,7 @@ def rod_mjcf(params: Mapping[str, float], *, dt: float = 0.002, integrator: str 
 
 
 def _run_mujoco(p, y0, dt, n_steps, integrator):
-    mj = _engine_module("mujoco")
+    mj = engine_module("mujoco")
     model = mj.MjModel.from_xml_string(rod_mjcf(p, dt=dt, integrator=integrator))
     data = mj.MjData(model)
     data.qpos[0], data.qvel[0] = float(y0[0]), float(y0[1])
@@ -265,8 +214,7 @@ def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt:
     >>> len(tr)
     6
     """
-    if engine not in _PACKAGES:
-        raise InvalidRequestError(f"unknown engine {engine!r}; use 'bullet' or 'mujoco'")
+    check_engine(engine)
     if engine == "bullet" and integrator is not None:
         raise InvalidRequestError("integrator is a MuJoCo option; Bullet always uses semi-implicit Euler")
     if engine == "mujoco" and engine_defaults:

@@ -48,9 +48,12 @@ from pathlib import Path
 
 import numpy as np
 
+from ..dimensions import Dimension
 from ..errors import InvalidRequestError
+from ..immutable import immutable
+from ..modelfile import EXAMPLES
 from ..system import System
-from .model import EXAMPLES, EngineModel, attribute_text
+from .model import EngineModel, attribute_text, dim
 
 __all__ = [
     "PAPER_SCALING",
@@ -68,6 +71,7 @@ __all__ = [
 ]
 
 
+@immutable
 @dataclass(frozen=True, slots=True)
 class SuperballParameter:
     """One parameter of the SUPERball model.
@@ -78,7 +82,7 @@ class SuperballParameter:
         The symbol used in the System and the docs.
     value : float
         Its value in SI units (kg, m, s).
-    dimension : str
+    dimension : Dimension
         Its dimension over M, L, T.
     description : str
         What it is, and where it appears in the MJCF file.
@@ -89,12 +93,12 @@ class SuperballParameter:
     --------
     >>> from pitheorem.engines.superball import PARAMETERS
     >>> PARAMETERS[0].name, PARAMETERS[0].dimension
-    ('g', 'L T^-2')
+    ('g', Dimension.parse('L T^-2'))
     """
 
     name: str
     value: float
-    dimension: str
+    dimension: Dimension
     description: str
     source: str
 
@@ -107,32 +111,38 @@ _CHOSEN = "chosen here"
 #: its density multiplied by 1000 and its forces divided by 10; stiffness and
 #: damping (M T^-2 and M T^-1) have no length and keep their values.
 PARAMETERS: tuple[SuperballParameter, ...] = (
-    SuperballParameter("g", 9.81, "L T^-2", "gravitational acceleration (option gravity)", "Earth; NTRT uses 98.1 dm/s^2"),
-    SuperballParameter("rho", 688.0, "M L^-3", "density of the bars (geom density)", _NTRT + ": 0.688 kg/dm^3"),
-    SuperballParameter("l", 1.684, "L", "length of a bar (geom fromto)", _NTRT + ": 16.84 dm"),
-    SuperballParameter("r", 0.031, "L", "radius of a bar (geom size)", _NTRT + ": 0.31 dm"),
-    SuperballParameter("a", 0.75, "L", "offset of each bar from the centre (body pos)", _NTRT + ": rod_space 7.5 dm"),
-    SuperballParameter("k", 613.0, "M T^-2", "cable stiffness (tendon stiffness)", _NTRT + ": 613 kg/s^2"),
-    SuperballParameter("c", 200.0, "M T^-1", "cable damping (tendon damping)", _NTRT + ": 200 kg/s"),
-    SuperballParameter("F", 245.2, "M L T^-2", "cable pretension, k (span - x_r)", _NTRT + ": pretension 2452 kg dm/s^2"),
-    SuperballParameter("x_r", math.nan, "L", "cable rest length (tendon springlength)", "from F: span - F/k"),
-    SuperballParameter("F_max", 10000.0, "M L T^-2", "largest cable tension a reel motor adds (actuator ctrlrange)",
+    SuperballParameter("g", 9.81, dim("L T^-2"), "gravitational acceleration (option gravity)",
+                       "Earth; NTRT uses 98.1 dm/s^2"),
+    SuperballParameter("rho", 688.0, dim("M L^-3"), "density of the bars (geom density)", _NTRT + ": 0.688 kg/dm^3"),
+    SuperballParameter("l", 1.684, dim("L"), "length of a bar (geom fromto)", _NTRT + ": 16.84 dm"),
+    SuperballParameter("r", 0.031, dim("L"), "radius of a bar (geom size)", _NTRT + ": 0.31 dm"),
+    SuperballParameter("a", 0.75, dim("L"), "offset of each bar from the centre (body pos)",
+                       _NTRT + ": rod_space 7.5 dm"),
+    SuperballParameter("k", 613.0, dim("M T^-2"), "cable stiffness (tendon stiffness)", _NTRT + ": 613 kg/s^2"),
+    SuperballParameter("c", 200.0, dim("M T^-1"), "cable damping (tendon damping)", _NTRT + ": 200 kg/s"),
+    SuperballParameter("F", 245.2, dim("M L T^-2"), "cable pretension, k (span - x_r)",
+                       _NTRT + ": pretension 2452 kg dm/s^2"),
+    SuperballParameter("x_r", math.nan, dim("L"), "cable rest length (tendon springlength)", "from F: span - F/k"),
+    SuperballParameter("F_max", 10000.0, dim("M L T^-2"),
+                       "largest cable tension a reel motor adds (actuator ctrlrange)",
                        _NTRT + ": maxTens 100000 kg dm/s^2"),
-    SuperballParameter("v", 0.5, "L T^-1", "fastest reel speed, the target actuator velocity (custom numeric)",
+    SuperballParameter("v", 0.5, dim("L T^-1"), "fastest reel speed, the target actuator velocity (custom numeric)",
                        _CHOSEN + " (NTRT's 10000 dm/s never binds)"),
-    SuperballParameter("K_eps", 4.0, "L T^-1", "controller gain: reel speed per unit of cable strain (custom numeric)",
+    SuperballParameter("K_eps", 4.0, dim("L T^-1"),
+                       "controller gain: reel speed per unit of cable strain (custom numeric)", _CHOSEN),
+    SuperballParameter("A", 0.5, dim("1"), "largest strain the controller asks of a cable (custom numeric)", _CHOSEN),
+    SuperballParameter("t_on", 1.0, dim("T"), "time the controller starts (custom numeric)", _CHOSEN),
+    SuperballParameter("t_ramp", 0.5, dim("T"), "time its targets take to reach full strength (custom numeric)",
                        _CHOSEN),
-    SuperballParameter("A", 0.5, "1", "largest strain the controller asks of a cable (custom numeric)", _CHOSEN),
-    SuperballParameter("t_on", 1.0, "T", "time the controller starts (custom numeric)", _CHOSEN),
-    SuperballParameter("t_ramp", 0.5, "T", "time its targets take to reach full strength (custom numeric)", _CHOSEN),
-    SuperballParameter("mu", 0.99, "1", "sliding friction (geom friction)", _NTRT + ": friction 0.99"),
-    SuperballParameter("mu_roll", 0.001, "L", "torsional and rolling friction, lengths in MuJoCo (geom friction)",
+    SuperballParameter("mu", 0.99, dim("1"), "sliding friction (geom friction)", _NTRT + ": friction 0.99"),
+    SuperballParameter("mu_roll", 0.001, dim("L"),
+                       "torsional and rolling friction, lengths in MuJoCo (geom friction)",
                        _NTRT + ": rollFriction 0.01, read as decimetres"),
-    SuperballParameter("t_c", 0.02, "T", "contact time constant (geom solref)", "MuJoCo's default, written out"),
-    SuperballParameter("w", 0.001, "L", "contact impedance width (geom solimp)", "MuJoCo's default, written out"),
-    SuperballParameter("h0", 0.2, "L", "drop height of the lowest point (body pos)", _CHOSEN),
-    SuperballParameter("dt", 0.001, "T", "time step (option timestep)", _CHOSEN),
-    SuperballParameter("t", math.nan, "T", "time", "the simulation clock"),
+    SuperballParameter("t_c", 0.02, dim("T"), "contact time constant (geom solref)", "MuJoCo's default, written out"),
+    SuperballParameter("w", 0.001, dim("L"), "contact impedance width (geom solimp)", "MuJoCo's default, written out"),
+    SuperballParameter("h0", 0.2, dim("L"), "drop height of the lowest point (body pos)", _CHOSEN),
+    SuperballParameter("dt", 0.001, dim("T"), "time step (option timestep)", _CHOSEN),
+    SuperballParameter("t", math.nan, dim("T"), "time", "the simulation clock"),
 )
 
 #: The exponents of the white paper's Section 4 answer, x_r included: g and
@@ -343,7 +353,7 @@ def superball_mjcf(params=None) -> str:
 
 
 def _dimension(name: str) -> str:
-    return next(p.dimension for p in PARAMETERS if p.name == name)
+    return str(next(p.dimension for p in PARAMETERS if p.name == name))
 
 
 def _compiled(model):

@@ -29,12 +29,13 @@ from __future__ import annotations
 
 import copy
 import json
-import math
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
 
+from ..errors import InvalidRequestError
+from ..exact import read_number
 from ..simulation import nudged
 from .constants import hidden_constants
 from .model import (
@@ -48,8 +49,9 @@ from .model import (
     unique_name,
     warn_unscalable,
 )
+from .packages import engine_module, quiet_stdout
 
-__all__ = ["SCENE_OPTIONS", "UrdfBackend", "load_urdf"]
+__all__ = ["SCENE_OPTIONS", "UrdfBackend", "load_urdf", "scene_option"]
 
 _ONE, _L, _T, _M = dim("1"), dim("L"), dim("T"), dim("M")
 
@@ -86,9 +88,7 @@ SCENE_OPTIONS = {
 
 
 def _pybullet():
-    from .rod import _engine_module
-
-    return _engine_module("bullet")
+    return engine_module("bullet")
 
 
 def _floats(text: str | None) -> list[float]:
@@ -274,9 +274,7 @@ class UrdfBackend:
 
     def _connect(self):
         pb = _pybullet()
-        from .rod import _quiet_stdout
-
-        with _quiet_stdout():
+        with quiet_stdout():
             client = pb.connect(pb.DIRECT)
         return pb, client
 
@@ -285,13 +283,11 @@ class UrdfBackend:
         import os
         import tempfile
 
-        from .rod import _quiet_stdout
-
         fd, tmp = tempfile.mkstemp(suffix=".urdf", dir=self.source_dir)
         try:
             with os.fdopen(fd, "w") as fh:
                 fh.write(_xml_text(self.tree))
-            with _quiet_stdout():
+            with quiet_stdout():
                 body = pb.loadURDF(tmp, basePosition=list(self.scene["base_position"]),
                                    useFixedBase=self.scene["fixed_base"], physicsClientId=client)
         finally:
@@ -542,17 +538,13 @@ class UrdfBackend:
         st = json.loads(json.dumps(self._settings))
         scene = dict(self.scene)
         for key, value in changes.items():
-            if key == "split_impulse":
-                st["useSplitImpulse"] = int(bool(value))
-            elif key in ("ground", "fixed_base"):
-                scene[key] = bool(value)
-            elif key == "base_position":
-                scene[key] = tuple(float(v) for v in value)
-            else:
-                from ..errors import InvalidRequestError
-
+            if key not in ("split_impulse", *scene):
                 raise InvalidRequestError(f"unknown setting {key!r}; use split_impulse, ground, fixed_base or "
                                           "base_position")
+            if key == "split_impulse":
+                st["useSplitImpulse"] = int(scene_option(key, value))
+            else:
+                scene[key] = scene_option(key, value)
         return UrdfBackend(copy.deepcopy(self.tree), self.path, self.source_dir, st, scene=scene)
 
 
@@ -655,38 +647,85 @@ def load_urdf(path, *, settings=None, base_position=None, fixed_base=None, groun
     saved = Path(f"{path}.settings.json") if settings is None or settings is True else settings
     if saved is not False and Path(saved).is_file():
         if scene:
-            from ..errors import InvalidRequestError
-
             raise InvalidRequestError(f"{saved} fixes the scene of {path.name}; drop the options {sorted(scene)} "
                                       "or pass settings=False")
         return _load_saved(path, Path(saved))
     if saved is not False and settings not in (None, True):
         raise EngineModelError(str(saved), "", "no such settings file")
     defaults = {name: default for name, (_kind, default) in SCENE_OPTIONS.items()}
-    return EngineModel(_scene_backend(path, **{**defaults, **scene}), "pybullet", str(path))
+    return EngineModel(_scene_backend(path, {**defaults, **scene}), "pybullet", str(path))
 
 
-def _scene_backend(path: Path, *, base_position, fixed_base, ground, split_impulse, g, damping) -> UrdfBackend:
+def scene_option(name: str, value):
+    """One option of the scene, read by its kind in :data:`SCENE_OPTIONS`.
+
+    The one reader of the scene: :func:`load_urdf`'s keyword options, the
+    command line's ``--scene NAME=VALUE`` and a saved settings file all go
+    through it.
+
+    Parameters
+    ----------
+    name : str
+        A name of :data:`SCENE_OPTIONS`.
+    value : bool, number, str or sequence of three
+        A flag is ``True`` or ``False``; a number is read by
+        :func:`pitheorem.exact.read_number` and may not be negative; a point
+        is three numbers.
+
+    Returns
+    -------
+    bool, float or tuple of 3 float
+
+    Raises
+    ------
+    InvalidRequestError
+        For an unknown name or a value of the wrong kind (a
+        :class:`~pitheorem.NumberError` for one that is no finite number).
+
+    Examples
+    --------
+    >>> from pitheorem.engines.urdf import scene_option
+    >>> scene_option("ground", True), scene_option("damping", "0"), scene_option("base_position", (0, "0.5", 1))
+    (True, 0.0, (0.0, 0.5, 1.0))
+    """
+    if name not in SCENE_OPTIONS:
+        raise InvalidRequestError(f"unknown scene option {name!r}; the options are {', '.join(SCENE_OPTIONS)}",
+                                  culprit=name)
+    kind = SCENE_OPTIONS[name][0]
+    if kind == "flag":
+        if not isinstance(value, bool | np.bool_):
+            raise InvalidRequestError(f"{name} is true or false, got {value!r}", culprit=value)
+        return bool(value)
+    if kind == "point":
+        if isinstance(value, str | bytes) or np.ndim(value) != 1 or len(value) != 3:
+            raise InvalidRequestError(f"{name} takes three numbers such as (0, 0, 1), got {value!r}", culprit=value)
+        return tuple(float(read_number(v, name)) for v in value)
+    number = float(read_number(value, name))
+    if number < 0:
+        raise InvalidRequestError(f"{name} cannot be negative, got {value!r}", culprit=value)
+    return number
+
+
+def _scene_backend(path: Path, scene: dict) -> UrdfBackend:
+    """The backend of a URDF in a scene: each of :data:`SCENE_OPTIONS` given (``damping`` may be None)."""
+    scene = {name: None if value is None else scene_option(name, value) for name, value in scene.items()}
     try:
         tree = ET.parse(path)
     except ET.ParseError as err:
         raise EngineModelError(str(path), f"line {err.position[0]}", f"not well-formed XML ({err})") from None
     settings = {
-        "g": float(g),
+        "g": scene["g"],
         "timestep": _BULLET["bullet_time_step"].default,
         **{name: _BULLET[constant].default for name, constant, _note in ENGINE_PARAMETERS},
-        "useSplitImpulse": int(bool(split_impulse)),
+        "useSplitImpulse": int(scene["split_impulse"]),
         "margins": {}, "friction": {}, "damping": {}, "max_joint_velocity": {}, "inertia": {},
         "ground_margin": _BULLET["bullet_collision_margin"].default,
     }
-    scene = {"base_position": tuple(float(v) for v in base_position), "fixed_base": bool(fixed_base),
-             "ground": bool(ground)}
-    if not math.isfinite(sum(scene["base_position"])):
-        raise EngineModelError(str(path), "base_position", "must be finite")
-    backend = UrdfBackend(tree, str(path), path.resolve().parent, settings, scene=scene)
+    placed = {name: scene[name] for name in ("base_position", "fixed_base", "ground")}
+    backend = UrdfBackend(tree, str(path), path.resolve().parent, settings, scene=placed)
     _warn_compound_meshes(tree, str(path), path.resolve().parent)
-    if damping is not None:
-        backend._settings["damping"] = {str(index): {name: float(damping) for name, *_ in MIXED_DAMPING}
+    if scene["damping"] is not None:
+        backend._settings["damping"] = {str(index): {name: scene["damping"] for name, *_ in MIXED_DAMPING}
                                         for index, _ in backend._info["links"]}
     return backend
 
@@ -711,7 +750,7 @@ def _load_saved(path: Path, saved: Path) -> EngineModel:
     if sideways:
         raise EngineModelError(str(saved), "gravity", "pitheorem's URDF models have gravity along -z only")
     # the URDF's own errors (bad XML, a missing mesh) are raised here as they are, not as the settings file's
-    backend = _scene_backend(path, **scene)
+    backend = _scene_backend(path, scene)
     st = backend._settings
     try:
         st["timestep"] = float(doc["timeStep"])

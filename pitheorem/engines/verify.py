@@ -34,8 +34,10 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 
 from ..errors import InvalidRequestError
+from ..exact import read_scale_factor
+from ..scaling import float_power
 from ..simulation import SimilarityReport, Trajectory, positive_float, similarity_report
-from .model import EngineModel, _check_s, _check_scaling, dim, dimension_factor, power_factor
+from .model import EngineModel, check_scaling, dim, dimension_factor
 
 __all__ = ["EngineRunner", "verify"]
 
@@ -132,8 +134,8 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     """
     if not isinstance(model, EngineModel):
         raise InvalidRequestError(f"verify needs an EngineModel (engines.load(...)), got {type(model).__name__}")
-    s = _check_s(s)
-    _check_scaling(model, scaling)
+    s = read_scale_factor(s)
+    check_scaling(scaling)
     duration = positive_float(duration, "duration")
     if scaled is None:
         scaled = model.scaled(scaling, s)
@@ -159,7 +161,7 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     def factor(d):
         if d not in factor_of:
             exponent_of[d] = scaling.exponent_of(d)
-            factor_of[d] = power_factor(s, exponent_of[d])
+            factor_of[d] = float_power(s, exponent_of[d], f"the factor of {d}")
         return factor_of[d]
 
     factors = np.array([factor(d) for d in dims])

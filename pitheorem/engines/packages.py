@@ -1,0 +1,141 @@
+"""The engines' Python packages: which engine needs which, imported on demand and kept quiet.
+
+Nothing in :mod:`pitheorem.engines` imports an engine at import time: every
+module that runs one (the rod, MJCF and URDF models) asks
+:func:`engine_module` for it when a simulation needs it, and gets an
+:class:`~pitheorem.EngineUnavailableError` naming the package to install
+when it is missing.  PyBullet prints a banner from C on import and on
+connecting; :func:`quiet_stdout` silences such C-level output.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+from collections.abc import Iterator
+from types import MappingProxyType
+
+from ..errors import EngineUnavailableError, InvalidRequestError
+
+__all__ = ["PACKAGES", "check_engine", "engine_module", "quiet_stdout"]
+
+#: the Python package each engine needs (installed by ``pip install "pitheorem[engines]"``)
+PACKAGES = MappingProxyType({"bullet": "pybullet", "mujoco": "mujoco"})
+
+
+def check_engine(engine) -> str:
+    """An engine's name, or an error that lists the engines.
+
+    Parameters
+    ----------
+    engine : str
+        ``"bullet"`` or ``"mujoco"``.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    InvalidRequestError
+        For any other name.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.packages import check_engine
+    >>> check_engine("mujoco")
+    'mujoco'
+    >>> try:
+    ...     check_engine("ode")
+    ... except ValueError as err:
+    ...     print(err)
+    unknown engine 'ode'; use 'bullet' or 'mujoco'
+    """
+    if not isinstance(engine, str) or engine not in PACKAGES:
+        raise InvalidRequestError(f"unknown engine {engine!r}; use {' or '.join(map(repr, PACKAGES))}",
+                                  culprit=engine)
+    return engine
+
+
+def engine_module(engine: str):
+    """The engine's Python module, imported now.
+
+    Parameters
+    ----------
+    engine : str
+        As for :func:`check_engine`.
+
+    Returns
+    -------
+    module
+        ``pybullet`` for ``"bullet"``, ``mujoco`` for ``"mujoco"``.
+
+    Raises
+    ------
+    InvalidRequestError
+        For an unknown engine.
+    EngineUnavailableError
+        When its package is not installed.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.packages import engine_module
+    >>> engine_module("mujoco").__name__
+    'mujoco'
+    """
+    package = PACKAGES[check_engine(engine)]
+    try:
+        with quiet_stdout():  # pybullet prints a banner on import
+            return __import__(package)
+    except ImportError:
+        raise EngineUnavailableError(engine, package) from None
+
+
+@contextlib.contextmanager
+def quiet_stdout() -> Iterator[None]:
+    """Silence what is written to the file descriptors of stdout and stderr while the block runs.
+
+    That is what C libraries print (PyBullet's banner); where the
+    descriptors cannot be duplicated, nothing is silenced.
+
+    Examples
+    --------
+    >>> import os
+    >>> from pitheorem.engines.packages import quiet_stdout
+    >>> with quiet_stdout():
+    ...     written = os.write(1, b"not shown")
+    >>> written
+    9
+    """
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(AttributeError, OSError, ValueError):
+            stream.flush()
+    saved = []
+    try:
+        for fd in (1, 2):
+            saved.append((fd, os.dup(fd)))
+    except OSError:
+        for _, copy in saved:
+            os.close(copy)
+        yield
+        return
+    try:
+        with open(os.devnull, "w") as devnull:
+            for fd, _ in saved:
+                os.dup2(devnull.fileno(), fd)
+            yield
+    finally:
+        _flush_c_stdout()  # C's buffer may still hold the text when the stream is a pipe
+        for fd, copy in saved:
+            os.dup2(copy, fd)
+            os.close(copy)
+
+
+def _flush_c_stdout() -> None:
+    try:
+        import ctypes
+
+        ctypes.CDLL(None).fflush(None)
+    except (OSError, AttributeError, TypeError):  # no C library to flush (e.g. some Windows builds)
+        pass
