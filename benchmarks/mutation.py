@@ -73,6 +73,8 @@ TARGETS = {
     "model": ["tests/test_model.py", "tests/test_models.py", "tests/test_edges.py"],
     "models": ["tests/test_models.py", "tests/test_model.py", "tests/test_equations.py"],
     "simulation": ["tests/test_simulation.py", "tests/test_similarity_report.py", "tests/test_models.py"],
+    **{f"formatting/{name}": ["tests/test_formatting.py", "tests/test_cli.py", "tests/test_scalesearch.py"]
+       for name in ("__init__", "pieces", "text", "latex", "html", "json")},
 }
 
 _COMPARE_SWAP = {ast.Lt: ast.LtE, ast.LtE: ast.Lt, ast.Gt: ast.GtE, ast.GtE: ast.Gt, ast.Eq: ast.NotEq,

@@ -216,9 +216,16 @@ if not (_MATHJAX_STATIC / "mathjax" / "tex-chtml.js").is_file():
 # finds its extensions and its fonts (output/chtml/fonts/woff-v2) beside it.
 mathjax_path = "mathjax/tex-chtml.js"
 mathjax3_config = {
-    "tex": {"tags": "none"},  # Sphinx numbers equations itself (math_numfig)
+    # Sphinx numbers equations itself (math_numfig). pitheorem's HTML displays (a search
+    # result's table, in a notebook cell's output) write their math between $ signs, as
+    # Jupyter reads it; MathJax reads $ only in those outputs (myst_mathjax_classes below),
+    # and never in code or in the <pre> of printed text.
+    "tex": {"tags": "none", "inlineMath": [["$", "$"], ["\\(", "\\)"]]},
     "options": {"enableMenu": True},
 }
+# the classes MathJax typesets: myst's own (math, and the page's math roles) plus the HTML
+# output of notebook cells ("text_html"), whose math pitheorem writes between $ signs
+myst_mathjax_classes = "tex2jax_process|mathjax_process|math|output_area|text_html"
 
 # -- HTML output ----------------------------------------------------------------------
 

@@ -55,6 +55,7 @@ _LAZY = {
     "RangeBound": "unitfit",
     "UnitFit": "unitfit",
     "fit_units": "unitfit",
+    "formatting": None,
     "models": None,
     "plotting": None,
 }
@@ -107,6 +108,7 @@ __all__ = [
     "__version__",
     "check_dimensions",
     "fit_units",
+    "formatting",
     "load_model_file",
     "models",
     "plotting",

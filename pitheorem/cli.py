@@ -8,13 +8,14 @@ Four subcommands work on a TOML model file (format: :mod:`pitheorem.modelfile`;
     pitheorem search FILE --scale g=1 [l=-1 ...] [--fixed [t m ...]] [--allow ...] [--no-default-fixed]
     pitheorem apply  FILE --scale g=1 [--fixed ...] --s 2 [--solution K] [--output FILE.toml|FILE.json]
 
-Every subcommand takes ``--format text|json|latex`` (default ``text``: aligned
-plain text).  JSON is meant for programs: keys come in a fixed order (the
-file's variable order), Pi-group exponents are integers, and every exact
-rational (scaling exponents, unit changes, rational values) is a string
-such as ``"1/2"`` or ``"-2"``.
-Each of a search's notes is an object ``{"kind", "variables", "text"}``:
-the data of a :class:`pitheorem.scalesearch.SearchNote` and its sentence.
+Every subcommand takes ``--format text|latex|html|json`` (default ``text``:
+aligned plain text).  A subcommand computes its answer (a value of
+:mod:`pitheorem.answers`) and prints it in that format; every display is
+rendered by :mod:`pitheorem.formatting`, whose :mod:`~pitheorem.formatting.json`
+module says what the JSON holds: keys in a fixed order (the file's variable
+order), Pi-group exponents as integers, every exact rational (scaling
+exponents, unit changes, rational values) as a string such as ``"1/2"`` or
+``"-2"``, each of a search's notes as ``{"kind", "variables", "text"}``.
 
 ``--scale`` takes exponents of the scale factor ``s``, never factors:
 ``g=1`` means g -> s g, ``l=-1`` means l -> l / s, and ``g=1/6`` means
@@ -43,7 +44,6 @@ Exit codes
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import os
 import sys
@@ -51,14 +51,13 @@ from collections.abc import Sequence
 from fractions import Fraction
 from pathlib import Path
 
-import sympy
-
 from . import __version__
-from .display import note_text, power_latex, power_text
+from .answers import ApplyAnswer, BasesAnswer, GroupsAnswer, SearchAnswer
 from .errors import CommandLineError, PiTheoremError
 from .exact import read_exponent, read_positive, short_text
+from .formatting import FORMATS, render
 from .modelfile import ModelFile, load_model_file, model_kind, write_model_file
-from .scalesearch import SearchNote, SearchResult, search
+from .scalesearch import SearchResult, search
 
 __all__ = ["EXIT_ERROR", "EXIT_INFEASIBLE", "EXIT_OK", "build_parser", "main"]
 
@@ -69,10 +68,6 @@ EXIT_INFEASIBLE = 1
 #: exit code of bad input (and of argparse's usage errors)
 EXIT_ERROR = 2
 
-#: how the command line lets time change, closing the note that time was held fixed by default
-_TIME_REMEDY = "give --fixed with no names to let time change"
-
-
 _CommandError = CommandLineError  # the short name used throughout this module
 
 _SCALE_HELP = ("NAME=EXP: EXP is the exponent of the scale factor s, not a factor: NAME -> s^EXP NAME "
@@ -80,40 +75,6 @@ _SCALE_HELP = ("NAME=EXP: EXP is the exponent of the scale factor s, not a facto
 
 
 # -- helpers ---------------------------------------------------------------------------------
-
-
-def _json_number(value):
-    """Floats as they are; exact Fractions as integers, or strings such as "1/3"."""
-    if isinstance(value, Fraction):
-        return int(value) if value.denominator == 1 else str(value)
-    return value
-
-
-def _value_text(value) -> str:
-    if value is None:
-        return ""
-    if isinstance(value, float):
-        return f"{value:.6g}"
-    return str(value)
-
-
-def _value_latex(value) -> str:
-    if isinstance(value, Fraction) and value.denominator != 1:
-        return f"${sympy.latex(sympy.Rational(value.numerator, value.denominator))}$"
-    return _value_text(value)
-
-
-def _align(rows: list[list[str]]) -> str:
-    widths = [max(len(r[c]) for r in rows) for c in range(len(rows[0]))]
-    return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in rows)
-
-
-def _latex_name(name: str) -> str:
-    return sympy.latex(sympy.Symbol(name))
-
-
-def _dump_json(doc) -> str:
-    return json.dumps(doc, indent=2, ensure_ascii=False)
 
 
 def _is_engine_file(path: str) -> bool:
@@ -198,63 +159,20 @@ def _run_search(model: ModelFile, args) -> SearchResult:
     return search(model.system, scale, fixed, allow=args.allow)
 
 
-def _note_text(note: SearchNote) -> str:
-    """A search note in the command line's terms."""
-    return note_text(note, time_remedy=_TIME_REMEDY)
+# -- the commands: each computes its answer and prints it in the format asked for ------------
 
 
-def _notes_json(result: SearchResult) -> list[dict]:
-    """Each note as data (kind, variables) with its text: ``SearchNote(kind, variables)`` rebuilds it."""
-    return [{"kind": note.kind, "variables": list(note.variables), "text": _note_text(note)}
-            for note in result.notes]
-
-
-# -- groups ----------------------------------------------------------------------------------
+def _print(answer, args) -> None:
+    print(render(answer, args.format))
 
 
 def _cmd_groups(args) -> int:
     model = _load(args.file, args.scene)
-    system = model.system
-    groups = system.pi_groups(repeating=args.repeating)
-    values = []
-    for g in groups:
-        if all(n in model.values for n in g.exponents):
-            values.append(g.evaluate({n: model.values[n] for n in g.exponents}))
-        else:
-            values.append(None)
-    if args.format == "json":
-        doc = {
-            "model": model.name,
-            "variables": list(system.variables),
-            "rank": system.rank,
-            "repeating": list(groups.repeating),
-            "groups": [
-                {"name": g.name, "variable": g.variable, "expression": sympy.sstr(g.expr), "latex": g.latex,
-                 "exponents": g.exponents, "value": _json_number(v)}
-                for g, v in zip(groups, values, strict=True)
-            ],
-        }
-        print(_dump_json(doc))
-    elif args.format == "latex":
-        lines = [
-            rf"\Pi_{{{_latex_name(g.variable)}}} &= {g.latex}" if g.variable else rf"\Pi &= {g.latex}"
-            for g in groups
-        ]
-        print(r"\begin{align*}")
-        print(" \\\\\n".join(lines))
-        print(r"\end{align*}")
-    else:
-        print(f"{model.name}: {len(system)} variables, rank {system.rank}, {system.n_groups} dimensionless groups")
-        print(f"repeating variables: {', '.join(groups.repeating) or '(none)'}")
-        if len(groups):
-            rows = [["group", "expression", "value"]]
-            rows += [[g.name, sympy.sstr(g.expr), _value_text(v)] for g, v in zip(groups, values, strict=True)]
-            print()
-            print(_align(rows))
+    groups = model.system.pi_groups(repeating=args.repeating)
+    values = tuple(g.evaluate({n: model.values[n] for n in g.exponents})
+                   if all(n in model.values for n in g.exponents) else None for g in groups)
+    _print(GroupsAnswer(model.name, model.system, groups, values), args)
     return EXIT_OK
-
-
-# -- bases -----------------------------------------------------------------------------------
 
 
 def _cmd_bases(args) -> int:
@@ -266,141 +184,45 @@ def _cmd_bases(args) -> int:
     else:
         bases = system.bases(exclude=args.exclude, require=args.require)
         count = len(bases)
-    if args.format == "json":
-        doc = {"model": model.name, "rank": system.rank, "exclude": list(args.exclude),
-               "require": list(args.require), "count": count}
-        if bases is not None:
-            doc["bases"] = [list(b) for b in bases]
-        print(_dump_json(doc))
-        return EXIT_OK
-    if args.format == "latex":
-        if bases is None:
-            print(count)
-            return EXIT_OK
-        print(r"\begin{tabular}{rl}")
-        for k, b in enumerate(bases, 1):
-            print(f"{k} & ${', '.join(map(_latex_name, b))}$ \\\\")
-        print(r"\end{tabular}")
-        return EXIT_OK
-    if bases is None:
-        print(count)
-        return EXIT_OK
-    conditions = []
-    if args.exclude:
-        conditions.append(f"without {', '.join(args.exclude)}")
-    if args.require:
-        conditions.append(f"with {', '.join(args.require)}")
-    condition = f" ({'; '.join(conditions)})" if conditions else ""
-    print(f"{model.name}: {count} valid repeating sets of {system.rank} variables{condition}")
-    width = len(str(count))
-    for k, b in enumerate(bases, 1):
-        print(f"{k:>{width}}  {' '.join(b)}")
+    _print(BasesAnswer(model.name, system.rank, tuple(args.exclude), tuple(args.require), count, bases), args)
     return EXIT_OK
-
-
-# -- search ----------------------------------------------------------------------------------
-
-
-def _certificate_json(result: SearchResult):
-    cert = result.certificate
-    if cert is None:
-        return None
-    return {"expression": sympy.sstr(cert.expr), "latex": cert.latex, "exponents": cert.exponents,
-            "power": str(result.certificate_power)}
-
-
-def _scaling_json(sc) -> dict:
-    return {
-        "changed": list(sc.changed),
-        "exponents": {n: str(p) for n, p in sc.exponents.items()},
-        "unit_change": {b: str(u) for b, u in sc.unit_change.items()},
-    }
 
 
 def _cmd_search(args) -> int:
     model = _load(args.file, args.scene)
     result = _run_search(model, args)
-    code = EXIT_OK if result.feasible else EXIT_INFEASIBLE
-    if args.format == "json":
-        doc = {
-            "model": model.name,
-            "scale": {n: str(p) for n, p in result.scale.items()},
-            "fixed": list(result.fixed),
-            "feasible": result.feasible,
-            "count": result.n_scalings if result.feasible else 0,
-            "scalings": [_scaling_json(sc) for sc in result.scalings],
-            "certificate": _certificate_json(result),
-            "explanation": result.explanation(),
-            "notes": _notes_json(result),
-        }
-        print(_dump_json(doc))
-        return code
-    if args.format == "latex":
-        if not result.feasible:
-            cert = result.certificate
-            print(f"% {result.explanation()}")
-            print(rf"\[ {cert.latex} \;\to\; {power_latex(result.certificate_power)}\,{cert.latex} \]")
-            return code
-        n = result.n_scalings
-        print(rf"\begin{{tabular}}{{ll{'c' * n}}}")
-        print("variable & role & " + " & ".join(rf"\#{k}" for k in range(1, n + 1)) + r" \\ \hline")
-        points = [sc.vector for sc in result.scalings]
-        for i, name in enumerate(model.system.variables):
-            role = "scale" if name in result.scale else "fixed" if name in result.fixed else "free"
-            cells = " & ".join(f"${power_latex(p[i])}$" for p in points)
-            print(f"${_latex_name(name)}$ & {role} & {cells} \\\\")
-        print(r"\hline")  # the change of base units behind each scaling
-        for b in model.system.base_dimensions:
-            cells = " & ".join(f"${power_latex(sc.unit_change[b])}$" for sc in result.scalings)
-            print(f"$[\\mathrm{{{b}}}]$ & base unit & {cells} \\\\")
-        print(r"\end{tabular}")
-        return code
-    print(result.explanation())
-    for note in result.notes:
-        print(_note_text(note))
-    if result.feasible:
-        print()
-        print(result.table())
-    else:
-        print(f"certificate: {result.certificate} (the request multiplies it by "
-              f"{power_text(result.certificate_power)})")
-    return code
+    _print(SearchAnswer(model.name, result), args)
+    return EXIT_OK if result.feasible else EXIT_INFEASIBLE
 
 
-# -- apply -----------------------------------------------------------------------------------
+def _chosen_scaling(result: SearchResult, k: int):
+    """The K-th minimal scaling of a feasible search (``--solution K``)."""
+    count = result.n_scalings
+    if not 1 <= k <= count:
+        raise _CommandError(
+            f"--solution {k} is out of range: the request has {count} minimal scaling(s); choose 1 to {count}"
+        )
+    return result.scalings[k - 1]
 
 
 def _cmd_apply(args) -> int:
     model = _load(args.file, args.scene)
     s = read_positive(args.s, "--s")
-    if _is_engine_file(args.file):  # write the scaled file the engine loads
-        from .engines.cli import apply_engine, parse_scene
-
-        result = _run_search(model, args)
-        if not result.feasible:
-            print(f"pitheorem: {result.explanation()} Nothing written.", file=sys.stderr)
-            return EXIT_INFEASIBLE
-        if not 1 <= args.solution <= result.n_scalings:
-            raise _CommandError(f"--solution {args.solution} is out of range: choose 1 to {result.n_scalings}")
-        print("\n".join(apply_engine(args.file, result.scalings[args.solution - 1], s, args.output,
-                                      **parse_scene(args.scene))))
-        return EXIT_OK
-    if not model.values:
+    engine_file = _is_engine_file(args.file)
+    if not engine_file and not model.values:
         raise _CommandError(f"{args.file}: no variable has a value, so there is nothing to scale; "
                             "give values in the model file, e.g. m = { dimension = \"M\", value = 1.5 }")
     result = _run_search(model, args)
     if not result.feasible:
         print(f"pitheorem: {result.explanation()} Nothing written.", file=sys.stderr)
         return EXIT_INFEASIBLE
-    count = result.n_scalings
-    k = args.solution
-    if not 1 <= k <= count:
-        raise _CommandError(
-            f"--solution {k} is out of range: the request has {count} minimal scaling(s); choose 1 to {count}"
-        )
-    sc = result.scalings[k - 1]
+    sc = _chosen_scaling(result, args.solution)
+    if engine_file:  # write the scaled file the engine loads
+        from .engines.cli import apply_engine, parse_scene
+
+        _print(apply_engine(args.file, sc, s, args.output, **parse_scene(args.scene)), args)
+        return EXIT_OK
     scaled_model = model.with_values(_scaled_values(sc, model.values, s), name=f"{model.name}, scaled with s = {s}")
-    scaled = scaled_model.values
     output = None
     if args.output:
         out = Path(args.output)
@@ -411,56 +233,35 @@ def _cmd_apply(args) -> int:
         except OSError as err:
             raise _CommandError(f"cannot write {args.output!r}: {err.strerror or err}") from None
         output = str(out)
-    exps = sc.exponents
-    if count == 1:
-        which = "the only minimal scaling"
-    else:
-        which = f"minimal scaling #{k} of {count} (choose another with --solution K)"
-    if args.format == "json":
-        doc = {
-            "model": model.name,
-            "s": str(s),
-            "solution": k,
-            "count": count,
-            "scaling": _scaling_json(sc),
-            "values": {n: _json_number(v) for n, v in model.values.items()},
-            "scaled": {n: _json_number(v) for n, v in scaled.items()},
-            "output": output,
-            "notes": _notes_json(result),
-        }
-        print(_dump_json(doc))
-        return EXIT_OK
-    if args.format == "latex":
-        print(f"% {model.name}: {which}, s = {s}")
-        print(r"\begin{tabular}{lcll}")
-        print(r"variable & factor & value & scaled value \\ \hline")
-        for n, v in model.values.items():
-            print(f"${_latex_name(n)}$ & ${power_latex(exps[n])}$ & {_value_latex(v)} & {_value_latex(scaled[n])} \\\\")
-        print(r"\end{tabular}")
-        return EXIT_OK
-    print(f"{model.name}, s = {s}: {which}")
-    print(f"  {sc}")
-    for note in result.notes:
-        print(_note_text(note))
-    rows = [["variable", "factor", "value", "scaled value"]]
-    rows += [[n, power_text(exps[n]), _value_text(v), _value_text(scaled[n])] for n, v in model.values.items()]
-    print()
-    print(_align(rows))
-    if output:
-        print()
-        print(f"wrote {output}")
+    _print(ApplyAnswer(model.name, s, args.solution, result, sc, model.values, scaled_model.values, output), args)
     return EXIT_OK
 
 
 def _engine_params(args) -> int:
     if not _is_engine_file(args.file):
         raise _CommandError(f"{args.file}: params reads MJCF (.xml) or URDF (.urdf) model files")
-    from .engines.cli import parse_scene, print_params
+    from .engines.cli import params_answer, parse_scene
 
-    return print_params(args.file, args.format, **parse_scene(args.scene))
+    _print(params_answer(args.file, **parse_scene(args.scene)), args)
+    return EXIT_OK
 
 
 # -- parser and entry point ------------------------------------------------------------------
+
+
+class _Help(argparse.HelpFormatter):
+    """Argparse's help, with ``--scene``'s options listed from the engines' own list.
+
+    The list (``pitheorem.engines.urdf.SCENE_OPTIONS``) is read only when
+    help is shown: building the parser must not import the engines.
+    """
+
+    def _get_help_string(self, action):  # the hook argparse's own ArgumentDefaultsHelpFormatter overrides
+        if action.dest == "scene":
+            from .engines.cli import scene_help
+
+            return scene_help()
+        return super()._get_help_string(action)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -483,17 +284,15 @@ def build_parser() -> argparse.ArgumentParser:
         epilog="Exit codes: 0 success; 1 no similarity scaling meets the request (search, apply); "
         "2 bad input. FILE may be example:hinged_rod or example:superball.",
         allow_abbrev=False,
+        formatter_class=_Help,
     )
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     common = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
     common.add_argument("file", metavar="FILE", help="TOML, MJCF (.xml) or URDF (.urdf) model file (or example:NAME)")
-    common.add_argument("--format", choices=("text", "json", "latex"), default="text",
-                        help="output format (default: text)")
-    common.add_argument("--scene", nargs="+", metavar="NAME=VALUE",
-                        help="URDF files: PyBullet's scene and settings, e.g. ground=true damping=0 "
-                        "split_impulse=false fixed_base=true base_position=0,0,1 g=9.81")
+    common.add_argument("--format", choices=FORMATS, default="text", help="output format (default: text)")
+    common.add_argument("--scene", nargs="+", metavar="NAME=VALUE", help="URDF files: PyBullet's scene")
 
     request = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
     request.add_argument("--scale", nargs="+", required=True, metavar="NAME=EXP", help=_SCALE_HELP)
@@ -504,31 +303,32 @@ def build_parser() -> argparse.ArgumentParser:
     request.add_argument("--no-default-fixed", action="store_true",
                          help="do not hold time fixed by default (same as --fixed with no names)")
 
-    p = sub.add_parser("params", parents=[common], allow_abbrev=False,
+    options = {"allow_abbrev": False, "formatter_class": _Help}
+    p = sub.add_parser("params", parents=[common], **options,
                        help="parameters of an MJCF or URDF model, with dimensions",
                        description="List every dimensional number of an MJCF (MuJoCo) or URDF (PyBullet) model.")
     p.set_defaults(run=lambda args: _engine_params(args))
 
-    p = sub.add_parser("groups", parents=[common], allow_abbrev=False, help="Pi groups of the model",
+    p = sub.add_parser("groups", parents=[common], **options, help="Pi groups of the model",
                        description="Print the dimensionless (Pi) groups of the model.")
     p.add_argument("--repeating", nargs="+", metavar="NAME",
                    help="repeating variables (default: the first basis without time)")
     p.set_defaults(run=_cmd_groups)
 
-    p = sub.add_parser("bases", parents=[common], allow_abbrev=False, help="every valid repeating set",
+    p = sub.add_parser("bases", parents=[common], **options, help="every valid repeating set",
                        description="List every valid set of repeating variables, with their count.")
     p.add_argument("--exclude", nargs="*", default=[], metavar="NAME", help="never use these as repeaters")
     p.add_argument("--require", nargs="*", default=[], metavar="NAME", help="every set must contain these")
     p.add_argument("--count", action="store_true", help="print only the number of sets")
     p.set_defaults(run=_cmd_bases)
 
-    p = sub.add_parser("search", parents=[common, request], allow_abbrev=False,
+    p = sub.add_parser("search", parents=[common, request], **options,
                        help="every minimal similarity scaling, or a proof that none exists",
                        description="Find every minimal similarity scaling meeting the request, "
                        "or print a certificate that none exists (exit code 1).")
     p.set_defaults(run=_cmd_search)
 
-    p = sub.add_parser("apply", parents=[common, request], allow_abbrev=False,
+    p = sub.add_parser("apply", parents=[common, request], **options,
                        help="write a scaled copy of the model's values",
                        description="Scale the values of the model file by a minimal similarity scaling.")
     p.add_argument("--s", required=True, metavar="S",

@@ -22,6 +22,7 @@ from fractions import Fraction
 
 from .errors import DimensionSyntaxError, InvalidRequestError, LimitError
 from .exact import MAX_FORMULA_LENGTH, MAX_NESTING, check_exponent, read_number
+from .formatting import MathDisplay, render
 from .immutable import immutable
 
 __all__ = ["DEFAULT_BASE_DIMENSIONS", "OPT_IN_BASE_DIMENSIONS", "Dimension", "base_dimension_names"]
@@ -84,13 +85,9 @@ def _order_key(base: str) -> tuple[int, str]:
         return (len(_DISPLAY_ORDER), base)
 
 
-def _format_power(p: Fraction) -> str:
-    return str(p.numerator) if p.denominator == 1 else f"({p})"
-
-
 @immutable
 @dataclass(frozen=True, slots=True)
-class Dimension:
+class Dimension(MathDisplay):
     """An exact product of base dimensions, such as ``M L^2 T^-2``.
 
     Immutable and hashable.  Zero exponents are dropped, so two dimensions
@@ -258,12 +255,7 @@ class Dimension:
         e = read_number(exponent, "the power of a dimension")
         return Dimension((b, p * e) for b, p in self._exponents)
 
-    # -- display ----------------------------------------------------------
-    def __str__(self) -> str:
-        if not self._exponents:
-            return "1"
-        return " ".join(b if p == 1 else f"{b}^{_format_power(p)}" for b, p in self._exponents)
-
+    # -- display (text, LaTeX and the rest: pitheorem.formatting) -----------
     def __repr__(self) -> str:
         return f"Dimension.parse({str(self)!r})"
 
@@ -277,16 +269,7 @@ class Dimension:
         >>> Dimension.parse("L T^-2").latex
         '\\mathsf{L}\\,\\mathsf{T}^{-2}'
         """
-        if not self._exponents:
-            return "1"
-        parts = []
-        for b, p in self._exponents:
-            name = r"\Theta" if b == "Theta" else rf"\mathsf{{{b}}}"
-            parts.append(name if p == 1 else f"{name}^{{{p}}}")
-        return r"\,".join(parts)
-
-    def _repr_latex_(self) -> str:
-        return f"$\\displaystyle {self.latex}$"
+        return render(self, "latex")
 
 
 class _Parser:

@@ -29,6 +29,7 @@ from .bases import independent_subsets
 from .dimensions import Dimension
 from .errors import InvalidRequestError, UnknownVariableError
 from .exact import read_exponent, read_number
+from .formatting import TableDisplay
 from .immutable import immutable
 from .linalg import nullspace, primitive_integer_vector, rank, row_space_basis, solve
 from .system import System
@@ -97,7 +98,7 @@ def _vote(dims: list[Dimension]) -> list[Dimension]:
 
 @immutable
 @dataclass(frozen=True, slots=True)
-class DimensionReport:
+class DimensionReport(TableDisplay):
     """Result of :func:`check_dimensions`.
 
     Attributes
@@ -127,14 +128,6 @@ class DimensionReport:
     dimension: Dimension
     offending: tuple[tuple[sympy.Expr, Dimension, Dimension], ...]
     ties: tuple[str, ...] = ()
-
-    def __str__(self) -> str:
-        if self.consistent:
-            return f"consistent: dimension {self.dimension}"
-        lines = [f"inconsistent: {len(self.offending)} offending term(s)"]
-        lines += [f"  {sympy.sstr(term)} has dimension {got}, expected {want}" for term, got, want in self.offending]
-        lines += [f"  tie: {tie}" for tie in self.ties]
-        return "\n".join(lines)
 
 
 class _DimensionWalker:
@@ -382,7 +375,7 @@ class _WeightWalker:
 
 @immutable
 @dataclass(frozen=True, slots=True)
-class SymmetryReport:
+class SymmetryReport(TableDisplay):
     """Result of :func:`scaling_symmetries`: an exact subspace of exponent vectors.
 
     Attributes
@@ -457,20 +450,6 @@ class SymmetryReport:
         vec = [read_exponent(exponents.get(v, 0), f"exponent of {v!r}") for v in self.variables]
         rows = [[b[v] for v in self.variables] for b in self.basis]
         return rank([*rows, vec]) == rank(rows) if rows else not any(vec)
-
-    def __str__(self) -> str:
-        def fmt(vec):
-            return ", ".join(f"{n}: {p}" for n, p in vec.items() if p) or "0"
-
-        lines = [f"symmetry subspace of dimension {self.n_symmetries} over {', '.join(self.variables)}",
-                 f"changes of units: dimension {len(self.within_units)}"
-                 + ("" if self.contains_units else " (NOT all symmetries: the equations are inconsistent)")]
-        if self.beyond_units:
-            lines.append("symmetries beyond changes of units:")
-            lines += [f"  {fmt(v)}" for v in self.beyond_units]
-        else:
-            lines.append("no symmetries beyond changes of units")
-        return "\n".join(lines)
 
 
 def scaling_symmetries(equations, system: System, *, time: str | None = "t") -> SymmetryReport:

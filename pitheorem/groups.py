@@ -15,6 +15,7 @@ import sympy
 
 from .errors import InvalidRequestError
 from .exact import read_number, read_value
+from .formatting import MathDisplay
 from .immutable import immutable
 from .linalg import primitive_integer_vector, rank
 
@@ -27,7 +28,7 @@ def _symbol(name: str) -> sympy.Symbol:
 
 @immutable
 @dataclass(frozen=True, slots=True)
-class PiGroup:
+class PiGroup(MathDisplay):
     """A dimensionless product of powers of variables.
 
     Parameters
@@ -246,23 +247,13 @@ class PiGroup:
             result = result * v**p
         return result
 
-    def __str__(self) -> str:
-        return f"{self.name} = {sympy.sstr(self.expr)}"
-
     def __repr__(self) -> str:
         var = f", variable={self.variable!r}" if self.variable else ""
         return f"PiGroup.from_exponents({dict(self._exponents)!r}{var})"
 
-    def _latex_equation(self) -> str:
-        name = rf"\Pi_{{{sympy.latex(_symbol(self.variable))}}}" if self.variable else r"\Pi"
-        return f"{name} = {self.latex}"
-
-    def _repr_latex_(self) -> str:
-        return f"$\\displaystyle {self._latex_equation()}$"
-
 
 @immutable
-class PiSet(Sequence):
+class PiSet(MathDisplay, Sequence):
     """An immutable sequence of independent Pi groups.
 
     Parameters
@@ -380,14 +371,5 @@ class PiSet(Sequence):
         r = rank(mine) if mine else 0
         return r == (rank(theirs) if theirs else 0) == (rank(mine + theirs) if mine + theirs else 0)
 
-    def __str__(self) -> str:
-        return "\n".join(map(str, self._groups))
-
     def __repr__(self) -> str:
         return f"PiSet({list(self._groups)!r}, variables={self._variables!r}, repeating={self._repeating!r})"
-
-    def _repr_latex_(self) -> str:
-        if not self._groups:
-            return r"$\text{(no dimensionless groups)}$"
-        body = r" \\ ".join(line.replace(" = ", " &= ", 1) for line in map(PiGroup._latex_equation, self._groups))
-        return f"$\\displaystyle \\begin{{aligned}} {body} \\end{{aligned}}$"

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-from .display import power_text
+from .formatting.pieces import power_text, scale_text
 
 __all__ = ["plot_search", "plot_similarity"]
 
@@ -49,11 +49,10 @@ def plot_search(result, ax=None):
             p = Fraction(points[j][i])
             dark = abs(float(p)) > 0.6 * limit
             ax.text(j, i, power_text(p), ha="center", va="center", fontsize=10, color="white" if dark else "black")
-    roles = ["scale" if n in result.scale else "fixed" if n in result.fixed else "" for n in names]
-    ax.set_yticks(range(len(names)), [f"{n} ({r})" if r else n for n, r in zip(names, roles, strict=True)])
+    ax.set_yticks(range(len(names)), [n if role == "free" else f"{n} ({role})" for n, role in result.roles.items()])
     ax.set_xticks(range(len(points)), [f"#{k + 1}" for k in range(len(points))])
     ax.set_xlabel("minimal scaling")
-    request = ", ".join(f"{n} by {power_text(p)}" for n, p in result.scale.items())
+    request = scale_text(result)
     if result.feasible:
         title = f"{request}: {len(points)} minimal scaling(s)"
     else:

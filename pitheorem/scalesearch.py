@@ -20,7 +20,6 @@ zero, which is a linear system ``C u = b``:
 
 from __future__ import annotations
 
-import html
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field, fields
 from fractions import Fraction
@@ -28,9 +27,10 @@ from math import comb, gcd, lcm
 from types import MappingProxyType
 from typing import ClassVar
 
-from .display import note_text, power_text
 from .errors import InvalidRequestError
 from .exact import read_exponent
+from .formatting import TableDisplay, TextDisplay
+from .formatting.pieces import request_text
 from .groups import PiGroup
 from .immutable import immutable
 from .linalg import nullspace, rank, solve
@@ -46,12 +46,12 @@ def _dot(x, y) -> Fraction:
 
 @immutable
 @dataclass(frozen=True, slots=True)
-class SearchNote:
+class SearchNote(TextDisplay):
     """An assumption a search made, as data that each front end phrases.
 
     ``str(note)`` is the phrasing of the Python front end (the result's
     text and HTML); the command line phrases the same note with its own
-    options (both through ``pitheorem.display.note_text``).
+    options (both through ``pitheorem.formatting.pieces.note_text``).
 
     Attributes
     ----------
@@ -85,9 +85,6 @@ class SearchNote:
             raise InvalidRequestError(f"a note's variables are a sequence of names, got {self.variables!r}")
         object.__setattr__(self, "variables", tuple(self.variables))  # a list read from JSON becomes a tuple
 
-    def __str__(self) -> str:
-        return note_text(self)
-
 
 class _Once:
     """The minimal solutions of one request: enumerated on first use, then kept.
@@ -111,7 +108,7 @@ class _Once:
 
 @immutable
 @dataclass(frozen=True, slots=True)
-class SearchResult:
+class SearchResult(TableDisplay):
     """The answer of :func:`search`: every minimal scaling, or a proof of none.
 
     A frozen value, made whole by :func:`search`: its attributes cannot be
@@ -177,9 +174,6 @@ class SearchResult:
         """``(point, coords)`` of each minimal solution, enumerated on first call."""
         return self._minimal() if self._minimal is not None else []
 
-    def _vectors(self) -> list[tuple[Fraction, ...]]:
-        return [point for point, _ in self._enumerate()]
-
     @property
     def n_scalings(self) -> int:
         """Number of support-minimal scalings (computed exactly, not built).
@@ -238,11 +232,24 @@ class SearchResult:
         """
         return list(self.iter_scalings())
 
-    # -- display ----------------------------------------------------------
-    def _request(self) -> str:
-        request = ", ".join(f"{n} by {power_text(p)}" for n, p in self.scale.items())
-        return request + (f" with {', '.join(self.fixed)} fixed" if self.fixed else "")
+    @property
+    def roles(self) -> dict[str, str]:
+        """Each variable's role in the request: ``"scale"``, ``"fixed"`` or ``"free"``.
 
+        In system order; ``"fixed"`` includes the variables held by default
+        (time) and those outside `allow`.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> s = pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"})
+        >>> pt.search(s, scale={"g": 1}).roles
+        {'m': 'free', 'l': 'free', 'g': 'scale', 't': 'fixed'}
+        """
+        return {n: "scale" if n in self.scale else "fixed" if n in self.fixed else "free"
+                for n in self.system.variables}
+
+    # -- display (pitheorem.formatting renders it: text, LaTeX, HTML, JSON) --
     def explanation(self) -> str:
         """One sentence saying what was found, or why nothing can be.
 
@@ -253,24 +260,9 @@ class SearchResult:
         >>> print(pt.search(s, scale={"theta_r": 1}).explanation())
         Impossible: theta_r is dimensionless and built only from prescribed and fixed variables, but the request would multiply it by s, so no change of units (and hence no similarity scaling) can do it.
         """
-        if self.feasible:
-            extra = f" (a family of dimension {len(self.directions)})" if self.directions else " (unique)"
-            return f"Scaling {self._request()}: {self.n_scalings} minimal solution(s){extra}."
-        return (
-            f"Impossible: {self.certificate.expr} is dimensionless and built only from prescribed and fixed "
-            f"variables, but the request would multiply it by {power_text(self.certificate_power)}, so no change "
-            "of units (and hence no similarity scaling) can do it."
-        )
+        from .formatting.text import explanation
 
-    def _base_unit_rows(self) -> list[tuple[str, list[str]]]:
-        """``("[M]", powers...)`` for each base dimension: the change of units behind each scaling.
-
-        A symmetry of particular equations (``within=``) that is no change of units has none:
-        its cells read "none".
-        """
-        changes = [sc.unit_change if sc.is_unit_change else None for sc in self.iter_scalings()]
-        return [(f"[{b}]", [power_text(u[b]) if u is not None else "none" for u in changes])
-                for b in self.system.base_dimensions]
+        return explanation(self)
 
     def table(self) -> str:
         """Plain-text table: variables down, minimal solutions across.
@@ -293,19 +285,9 @@ class SearchResult:
         [L]       base   s
         [T]       base   -
         """
-        rows = [["variable", "role", *(f"#{k + 1}" for k in range(self.n_scalings))]]
-        for i, n in enumerate(self.system.variables):
-            role = "scale" if n in self.scale else "fixed" if n in self.fixed else "free"
-            rows.append([n, role, *(power_text(p[i]) for p in self._vectors())])
-        rows += [[label, "base", *cells] for label, cells in self._base_unit_rows()]
-        widths = [max(len(r[c]) for r in rows) for c in range(len(rows[0]))]
-        return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in rows)
+        from .formatting.text import search_table
 
-    def __str__(self) -> str:
-        lines = [self.explanation(), *(note_text(note) for note in self.notes)]
-        if self.feasible:
-            lines += ["", self.table()]
-        return "\n".join(lines)
+        return search_table(self)
 
     def __repr__(self) -> str:
         # cheap: the request and the size of the answer, never the enumeration
@@ -316,30 +298,7 @@ class SearchResult:
                       f"at most {self.max_n_scalings} minimal solution(s)")
         else:
             answer = "feasible, unique"
-        return f"<SearchResult {self._request()}: {answer}>"
-
-    def _repr_html_(self) -> str:
-        cell = 'style="padding: 0.15em 0.9em; text-align: center"'
-        head = "".join(f"<th {cell}>#{k + 1}</th>" for k in range(self.n_scalings))
-        body = []
-        for i, n in enumerate(self.system.variables):
-            role = "scale" if n in self.scale else "fixed" if n in self.fixed else "free"
-            cells = "".join(f"<td {cell}>{power_text(p[i])}</td>" for p in self._vectors())
-            body.append(f'<tr><th {cell}>{n}</th><td {cell}><em>{role}</em></td>{cells}</tr>')
-        # the change of base units behind each column, under a rule
-        for k, (label, powers) in enumerate(self._base_unit_rows()):
-            rule = ' style="border-top: 1px solid #999"' if k == 0 else ""
-            cells = "".join(f"<td {cell}>{p}</td>" for p in powers)
-            body.append(f'<tr class="base-unit"{rule}><th {cell}>{label}</th><td {cell}><em>base unit</em></td>'
-                        f"{cells}</tr>")
-        notes = "".join(f"<p>{note_text(note, time_remedy=_HTML_TIME_REMEDY, code=_html_code)}</p>"
-                        for note in self.notes)
-        table = (
-            f'<table style="border-collapse: collapse"><tr><th {cell}>variable</th><th {cell}>role</th>{head}</tr>'
-            f"{''.join(body)}</table>"
-            if self.feasible else ""
-        )
-        return f"<p>{html.escape(self.explanation())}</p>{notes}{table}"
+        return f"<SearchResult {request_text(self)}: {answer}>"
 
     def plot(self, ax=None):
         """Chart of the table, one colour per exponent.
@@ -357,11 +316,14 @@ class SearchResult:
 
         Examples
         --------
+        Draw into axes of your own figure:
+
+        >>> import matplotlib.pyplot as plt
         >>> import pitheorem as pt
-        >>> s = pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"})
-        >>> fig = pt.search(s, scale={"g": 1}).plot()
-        >>> len(fig.axes) >= 1
-        True
+        >>> fig, (left, right) = plt.subplots(1, 2)
+        >>> res = pt.search(pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"}), scale={"g": 1})
+        >>> res.plot(ax=right) is fig, right.get_xlabel()
+        (True, 'minimal scaling')
         """
         from .plotting import plot_search
 
@@ -370,13 +332,6 @@ class SearchResult:
 
 def _unpickle_result(state: dict) -> SearchResult:
     return SearchResult(**{**state, "scale": MappingProxyType(state["scale"])})
-
-
-def _html_code(text: str) -> str:
-    return f"<code>{html.escape(text)}</code>"
-
-
-_HTML_TIME_REMEDY = f"pass {_html_code('fixed=()')} to let time change"
 
 
 # -- solving a request ---------------------------------------------------------------------

@@ -16,9 +16,9 @@ from fractions import Fraction
 import sympy
 
 from .dimensions import Dimension
-from .display import power_text
 from .errors import InvalidRequestError, LimitError, PiTheoremError
 from .exact import is_float, numpy_if_loaded, read_exponent, read_number, read_scale_factor, short_text
+from .formatting import MathDisplay
 from .immutable import immutable
 from .linalg import solve
 from .system import System
@@ -101,7 +101,7 @@ def _exact(value):
 
 @immutable
 @dataclass(frozen=True, slots=True)
-class Scaling:
+class Scaling(MathDisplay):
     """A similarity scaling ``x -> s^a x`` of a system's variables.
 
     Build one with :func:`pitheorem.search`, :meth:`from_unit_change` or
@@ -485,22 +485,6 @@ class Scaling:
     def __hash__(self) -> int:
         return hash((self.system, self.vector))
 
-    def __str__(self) -> str:
-        parts = []
-        for n, p in zip(self.system.variables, self.vector, strict=True):
-            if p:
-                f = power_text(p)
-                parts.append(f"{n} -> {n}/{f[2:]}" if f.startswith("1/") else f"{n} -> {f} {n}")
-        return ", ".join(parts) or "identity (nothing changes)"
-
     def __repr__(self) -> str:
         exps = {n: str(p) if p.denominator != 1 else int(p) for n, p in zip(self.system.variables, self.vector, strict=True) if p}
         return f"Scaling.from_exponents({self.system!r}, {exps!r})"
-
-    def _repr_latex_(self) -> str:
-        parts = []
-        for n, p in zip(self.system.variables, self.vector, strict=True):
-            if p:
-                sym = sympy.latex(sympy.Symbol(n))
-                parts.append(rf"{sym} \to {sympy.latex(sympy.Symbol('s') ** sympy.Rational(p.numerator, p.denominator))}\,{sym}")
-        return "$" + (r",\quad ".join(parts) or r"\text{identity}") + "$"

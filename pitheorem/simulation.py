@@ -29,6 +29,7 @@ import numpy as np
 
 from .errors import InvalidRequestError, PiTheoremError, SystemMismatchError, UnknownVariableError
 from .exact import read_exponent, read_positive, short_text
+from .formatting import TableDisplay
 from .model import Model
 from .scaling import Scaling, float_power
 from .system import System
@@ -614,7 +615,7 @@ def _similarity_or_raise(system: System, exponents: Mapping[str, Fraction]) -> S
 
 
 @dataclass(frozen=True, eq=False)
-class SimilarityReport:
+class SimilarityReport(TableDisplay):
     """Result of :func:`verify_similarity`: the two runs compared.
 
     Attributes
@@ -697,20 +698,6 @@ class SimilarityReport:
         (1001, 2)
         """
         return self.mapped.y - self.original.y
-
-    def __str__(self) -> str:
-        verdict = "PASSED" if self.passed else "FAILED"
-        kind = "similarity scaling" if self.is_similarity else "NOT a similarity scaling"
-        per = ", ".join(f"{n}: {d:.3g}" for n, d in self.deviation.items())
-        if self.sensitivity is not None:
-            worst = max(self.sensitivity.values(), default=0.0)
-            judged = f"within {self.baseline_factor:g}x the one-ulp sensitivity (largest {worst:.3g}) per state"
-        else:
-            judged = f"tol {self.tol:g}"
-        return (
-            f"{verdict}: max deviation {self.max_deviation:.3g} ({judged}) at s={self.s:g}, "
-            f"{kind}, method {self.method}; per state {per}"
-        )
 
     def plot(self, states=None, units=None):
         """Figure comparing the original and the mapped-back scaled run.

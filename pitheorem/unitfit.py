@@ -48,6 +48,7 @@ from scipy.optimize import Bounds, LinearConstraint, linprog, milp
 from .dimensions import Dimension
 from .errors import DimensionSyntaxError, DuplicateVariableError, InvalidRequestError, LimitError
 from .exact import read_number, read_value, short_text
+from .formatting import MathDisplay, TableDisplay
 from .immutable import immutable
 from .linalg import nullspace
 from .scaling import Scaling, float_power
@@ -64,7 +65,7 @@ _HIGHS = {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1
 
 @immutable
 @dataclass(frozen=True, slots=True)
-class RangeBound:
+class RangeBound(MathDisplay):
     """One side of a variable's range: ``low <= x`` or ``x <= high``.
 
     Parameters
@@ -86,9 +87,6 @@ class RangeBound:
     name: str
     side: str
     bound: Fraction
-
-    def __str__(self) -> str:
-        return f"{self.name} {'>=' if self.side == 'low' else '<='} {self.bound}"
 
 
 # -- reading the request ------------------------------------------------------------------
@@ -367,7 +365,7 @@ def _log10(x) -> float:
 
 @immutable
 @dataclass(frozen=True, eq=False)
-class UnitFit:
+class UnitFit(TableDisplay):
     """The change of base units chosen by :func:`fit_units`.
 
     Attributes
@@ -498,30 +496,6 @@ class UnitFit:
         """
         return fit_units(self.system, dict(self.values), ranges={n: (lo, hi) for n, lo, hi in self.ranges},
                          fixed=self.fixed, fixed_units=self.fixed_units, nice=nice)
-
-    def __str__(self) -> str:
-        kind = f"factors rounded to powers of {self.nice}" if self.nice else "continuous fit"
-        head = "every value in range" if self.feasible else (
-            f"NOT every value fits: worst violation {self.worst_violation:.3g} decades")
-        lines = [f"unit fit ({kind}): {head}"]
-        for b, f in self.factors.items():
-            u = self.unit_change[b]
-            power = f"{self.nice}^{u}" if self.nice else f"10^{float(u):.6g}"
-            lines.append(f"  {b}: readings x {float(f):.6g} ({power}), new unit = {1 / float(f):.6g} old units")
-        ranged = {n: (lo, hi) for n, lo, hi in self.ranges}
-        for n in self.system.variables:
-            if n not in self.values:
-                continue
-            old, new = float(self.values[n]), float(self.scaled[n])
-            if n in ranged:
-                lo, hi = ranged[n]
-                mark = "ok" if n in self.satisfied else "OUT OF RANGE"
-                lines.append(f"  {n:>8s} {old:12.6g} -> {new:12.6g}   in [{float(lo):g}, {float(hi):g}]  {mark}")
-            else:
-                lines.append(f"  {n:>8s} {old:12.6g} -> {new:12.6g}")
-        if self.conflict:
-            lines.append("  conflicting bounds: " + "; ".join(str(c) for c in self.conflict))
-        return "\n".join(lines)
 
     def __repr__(self) -> str:
         return (f"UnitFit(feasible={self.feasible}, s={self.s!r}, unit_change={dict(self.unit_change)!r}, "

@@ -44,4 +44,3 @@ def test_display_order_follows_base_list():
     assert pt.Dimension.parse("T L M").base_dimensions == ("M", "L", "T")
     assert pt.Dimension.parse("A Theta M", base_dimensions=("M", "Theta", "A")).base_dimensions == ("M", "Theta", "A")
     assert pt.Dimension.parse("A Theta M", base_dimensions=("A", "Theta", "M")).base_dimensions == ("M", "Theta", "A")
-    assert pt.Dimension.parse("Theta").latex == r"\Theta"

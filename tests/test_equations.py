@@ -212,14 +212,8 @@ def test_bad_equation_inputs():
         pt.Model(s, [sympy.Eq(x, 0)])  # equations without a state define no model
 
 
-def test_reports_print():
-    s = pt.System({"x": "L", "y": "L", "t": "T"})
-    x, y = sympy.symbols("x y")
-    assert str(pt.check_dimensions(x + y, s)) == "consistent: dimension L"
+def test_symmetries_beyond_units_are_exact():  # the reports' text: tests/test_formatting.py
     proj = pt.models.projectile()
-    text = str(pt.scaling_symmetries(proj.equations, proj.system))
-    assert "beyond changes of units" in text
-    assert "x: 1, vx: 1" in text
     assert Fraction(1) in pt.scaling_symmetries(proj.equations, proj.system).beyond_units[0].values()
 
 

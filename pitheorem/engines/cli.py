@@ -4,24 +4,45 @@
 an engine model becomes a :class:`~pitheorem.modelfile.ModelFile` of its
 system and its one-number values (:func:`engine_model_file`), so the TOML
 commands work on it unchanged, and ``apply`` writes the scaled file the
-engine loads (:func:`apply_engine`).
+engine loads (:func:`apply_engine`).  Like the TOML commands, ``params``
+and ``apply`` return an answer (:mod:`pitheorem.answers`) that the command
+line prints in the format asked for.
 """
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
-from ..display import power_text
+from ..answers import EngineApplyAnswer, ParamsAnswer
 from ..errors import InvalidRequestError
 from ..modelfile import ModelFile
 from .model import EngineModel, UnscalableParameterError, load
 from .urdf import SCENE_OPTIONS, scene_option
 
-__all__ = ["apply_engine", "engine_model_file", "parse_scene", "print_params"]
+__all__ = ["apply_engine", "engine_model_file", "params_answer", "parse_scene", "scene_help"]
 
 
 _TRUTH = {"true": True, "yes": True, "1": True, "false": False, "no": False, "0": False}
+
+#: what each kind of scene option takes, as the help shows it
+_SCENE_VALUES = {"flag": "true|false", "number": "X", "point": "X,Y,Z"}
+
+
+def scene_help() -> str:
+    """The command line's help for ``--scene``: every name of ``SCENE_OPTIONS`` with what it takes.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.engines.cli import scene_help
+    >>> print(scene_help())
+    URDF files: PyBullet's scene and settings, any of fixed_base=true|false ground=true|false split_impulse=true|false g=X damping=X base_position=X,Y,Z (X a number)
+    """
+    options = " ".join(f"{name}={_SCENE_VALUES[kind]}" for name, (kind, _default) in SCENE_OPTIONS.items())
+    return f"URDF files: PyBullet's scene and settings, any of {options} (X a number)"
 
 
 def parse_scene(items: list[str] | None) -> dict:
@@ -96,32 +117,52 @@ def engine_model_file(path: str, **options) -> tuple[ModelFile, EngineModel]:
                      roles=roles, path=str(path)), model
 
 
-def print_params(path: str, fmt: str, **options) -> int:
-    """Print the parameter table of an engine model file (``pitheorem params FILE``).
+def params_answer(path: str, **options) -> ParamsAnswer:
+    """The parameter table of an engine model file (``pitheorem params FILE``).
+
+    Parameters
+    ----------
+    path : str
+        The file, as the command line names it.
+    **options
+        Scene options of a URDF file (:func:`parse_scene`).
+
+    Returns
+    -------
+    ParamsAnswer
 
     Examples
     --------
     >>> from pitheorem import engines
-    >>> from pitheorem.engines.cli import print_params
-    >>> code = print_params(str(engines.example_path("pendulum.xml")), "json")  # doctest: +ELLIPSIS
-    {...
+    >>> from pitheorem.engines.cli import params_answer
+    >>> answer = params_answer(str(engines.example_path("pendulum.xml")))
+    >>> format(answer, "json").splitlines()[2]
+    '  "engine": "mujoco",'
     """
-    model = load(path, **options)
-    if fmt == "json":
-        doc = {"model": str(path), "engine": model.engine, "parameters": [
-            {"name": p.name, "path": p.path, "value": list(p.value), "dimension": p.dimension_text,
-             "source": p.source, "settable": p.settable, "note": p.note} for p in model.parameters]}
-        print(json.dumps(doc, indent=2))
-        return 0
-    if fmt == "latex":
-        raise InvalidRequestError("params prints text or json")
-    print(f"{path}: {model.engine} model, {len(model.parameters)} parameters")
-    print(model.table())
-    return 0
+    return ParamsAnswer(str(path), load(path, **options))
 
 
-def apply_engine(path: str, scaling, s, output: str | None, **options) -> list[str]:
-    """Scale an engine model file and write it (``pitheorem apply FILE ... --output OUT``); lines to print.
+def apply_engine(path: str, scaling, s, output: str | None, **options) -> EngineApplyAnswer:
+    """Scale an engine model file and write it (``pitheorem apply FILE ... --output OUT``).
+
+    Parameters
+    ----------
+    path : str
+        The MJCF or URDF file.
+    scaling : Scaling
+        A scaling of its system (:func:`engine_model_file`).
+    s : Fraction
+        The scale factor.
+    output : str or None
+        Where to write the scaled file (PyBullet's settings are written
+        beside it); None writes nothing.
+    **options
+        Scene options of a URDF file (:func:`parse_scene`).
+
+    Returns
+    -------
+    EngineApplyAnswer
+        The parameters the scaling changes, and the files written.
 
     Examples
     --------
@@ -133,8 +174,8 @@ def apply_engine(path: str, scaling, s, output: str | None, **options) -> list[s
     >>> mf, _ = engine_model_file(path)
     >>> sc = pt.search(mf.system, scale={"g": 1}).scalings[0]
     >>> with tempfile.TemporaryDirectory() as tmp:
-    ...     lines = apply_engine(path, sc, 10, os.path.join(tmp, "p10.xml"))
-    >>> lines[-1].startswith("wrote")
+    ...     answer = apply_engine(path, sc, 10, os.path.join(tmp, "p10.xml"))
+    >>> str(answer).splitlines()[-1].startswith("wrote")
     True
     """
     model = load(path, **options)
@@ -144,17 +185,15 @@ def apply_engine(path: str, scaling, s, output: str | None, **options) -> list[s
         if model.engine == "pybullet" and err.name.endswith("Damping") and "damping" not in options:
             raise InvalidRequestError(f"{err}; on the command line: --scene damping=0") from None
         raise
-    lines = [f"{Path(path).name}, s = {s}: {scaling}"]
-    changed = [p for p in model.parameters if not p.mixed and scaling.exponent_of(p.dimension) != 0
-               and any(v != 0 for v in p.value)]
-    lines.append(f"{len(changed)} of {len(model.parameters)} parameters change, e.g.")
-    for p in changed[:8]:
-        lines.append(f"  {p.name}: x {power_text(scaling.exponent_of(p.dimension))}")
+    exponents = ((p.name, scaling.exponent_of(p.dimension)) for p in model.parameters
+                 if not p.mixed and any(v != 0 for v in p.value))
+    changed = tuple((name, e) for name, e in exponents if e != 0)
+    written, beside = None, ()
     if output:
         out = Path(output)
         if out.exists() and out.resolve() == Path(path).resolve():
             raise InvalidRequestError(f"--output {output!r} is the input file; choose another name")
         scaled.save(out)
-        lines.append(f"wrote {out}" + (f" (and {out}.settings.json, {out}.settings.py)"
-                                       if model.engine == "pybullet" else ""))
-    return lines
+        written = str(out)
+        beside = (f"{out}.settings.json", f"{out}.settings.py") if model.engine == "pybullet" else ()
+    return EngineApplyAnswer(Path(path).name, s, scaling, changed, len(model.parameters), written, beside)

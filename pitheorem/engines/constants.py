@@ -27,6 +27,7 @@ from pathlib import Path
 
 from ..dimensions import Dimension
 from ..errors import DuplicateVariableError, InvalidRequestError, UnknownVariableError
+from ..formatting import TextDisplay
 from ..immutable import immutable
 from ..scalesearch import SearchResult, search
 from ..scaling import Scaling
@@ -46,7 +47,7 @@ __all__ = [
 
 @immutable
 @dataclass(frozen=True, slots=True)
-class HiddenConstant:
+class HiddenConstant(TextDisplay):
     """One built-in constant of an engine, with its dimension and default.
 
     Parameters

@@ -31,6 +31,7 @@ from typing import ClassVar
 from ..dimensions import Dimension
 from ..errors import EngineModelError, InvalidRequestError, UnscalableParameterError
 from ..exact import read_scale_factor, read_value
+from ..formatting import TableDisplay
 from ..immutable import immutable
 from ..modelfile import example_path, model_kind
 from ..scaling import Scaling, float_power
@@ -317,7 +318,7 @@ def unique_name(ident: str, taken: set[str]) -> str:
 
 
 @immutable
-class EngineModel:
+class EngineModel(TableDisplay):
     """A MuJoCo or PyBullet model read from its file, with its numbers.
 
     Every dimensional number of the file and of the engine's settings is a
@@ -423,12 +424,9 @@ class EngineModel:
         >>> model.table().splitlines()[0].split()
         ['name', 'dimension', 'value', 'source', 'path']
         """
-        rows = [("name", "dimension", "value", "source", "path")]
-        for p in self.parameters:
-            value = " ".join(f"{v:.6g}" for v in p.value)
-            rows.append((p.name, p.dimension_text, value, p.source, p.path))
-        widths = [max(len(r[k]) for r in rows) + 2 for k in range(4)]
-        return "\n".join("".join(c.ljust(w) for c, w in zip(r[:4], widths, strict=True)) + r[4] for r in rows)
+        from ..formatting.text import parameter_table
+
+        return parameter_table(self)
 
     def scaled(self, scaling, s) -> EngineModel:
         """A copy with every parameter multiplied by ``s`` to its exponent.

@@ -266,14 +266,6 @@ class EngineSimilarityReport(SimilarityReport):
     engine_vs_ode: float | None = None
     ode_report: SimilarityReport | None = field(default=None, repr=False)
 
-    def __str__(self) -> str:
-        verdict = "PASSED" if self.passed else "FAILED"
-        kind = "similarity scaling" if self.is_similarity else "NOT a similarity scaling"
-        ode = "" if self.ode_report is None else f"; pure ODE: {self.ode_report.max_deviation:.3g}"
-        own = "" if self.engine_vs_ode is None else f"; engine vs exact ODE: {self.engine_vs_ode:.3g}"
-        return (f"{self.engine}: {verdict}, max deviation {self.max_deviation:.3g} (tol {self.tol:g}) at "
-                f"s={self.s:g}, {kind}, dt {self.dt:.6g} -> {self.dt_scaled:.6g}{ode}{own}")
-
 
 def verify_engine_similarity(engine: str, scaling, s, params=None, y0=None, t_final: float = 5.0, *,
                              dt: float | None = None, scale_dt: bool = True, tol: float = 1e-9,

@@ -33,6 +33,7 @@ from fractions import Fraction
 from ..dimensions import Dimension
 from ..errors import InvalidRequestError
 from ..exact import read_exponent
+from ..formatting import TextDisplay
 from ..groups import PiGroup
 from ..immutable import immutable
 from ..scalesearch import search
@@ -168,7 +169,7 @@ class RuleOfThumb:
 
 @immutable
 @dataclass(frozen=True, eq=False)
-class RuleVerdict:
+class RuleVerdict(TextDisplay):
     """What :func:`check_rule` found about a rule of thumb.
 
     Attributes
@@ -230,22 +231,6 @@ class RuleVerdict:
         False
         """
         return self.is_unit_change and not self.missing and not self.broken
-
-    def __str__(self) -> str:
-        lines = [f"{self.rule.name}:"]
-        if self.unit_change is None:
-            lines.append(f"  NOT a change of units: it changes {self.certificate}")
-            return "\n".join(lines)
-        units = ", ".join(f"{b} by X^{u}" for b, u in self.unit_change.items() if u) or "nothing"
-        lines.append(f"  a change of units: readings of {units}")
-        for name, dim, p in self.missing:
-            lines.append(f"  not named: {name} [{dim}] must scale by X^{p}")
-        if self.unchanged:
-            lines.append(f"  not named, rightly unchanged: {', '.join(self.unchanged)}")
-        for c in self.broken:
-            lines.append(f"  hidden constant left out: {c.name} [{c.dimension}] (default {c.default:g})"
-                         f" must scale by X^{self.scaling.exponent_of(c.dimension)}")
-        return "\n".join(lines)
 
 
 def _q(name, dimension, exponent, covers=()):

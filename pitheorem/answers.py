@@ -1,0 +1,228 @@
+"""The command line's answers: what each subcommand found about one model file, as values.
+
+``pitheorem groups``, ``bases``, ``search``, ``apply`` and ``params``
+compute one of these and print ``format(answer, FORMAT)``: its text, LaTeX,
+HTML or JSON comes from :mod:`pitheorem.formatting`, like every other
+display.  Each answer joins what one output shows: the model file's name
+with its Pi groups and their values, a search with the model's name, and
+so on.  They hold results and never compute.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from fractions import Fraction
+from typing import NamedTuple
+
+from .formatting import TextDisplay
+
+__all__ = ["ApplyAnswer", "BasesAnswer", "EngineApplyAnswer", "GroupsAnswer", "ParamsAnswer", "SearchAnswer"]
+
+
+class GroupsAnswer(NamedTuple):
+    """``pitheorem groups``: a model's Pi groups, with their values where the file gives them.
+
+    Parameters
+    ----------
+    model : str
+        The model's name.
+    system : System
+    groups : PiSet
+    values : tuple
+        Each group's value (Fraction or float), or None when a variable has no value.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.answers import GroupsAnswer
+    >>> s = pt.System({"l": "L", "h": "L"})
+    >>> print(GroupsAnswer("pair", s, s.pi_groups(repeating=("l",)), (None,)))
+    pair: 2 variables, rank 1, 1 dimensionless groups
+    repeating variables: l
+    <BLANKLINE>
+    group  expression  value
+    Pi_h   h/l
+    """
+
+    model: str
+    system: object
+    groups: object
+    values: tuple
+
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__
+
+
+
+class BasesAnswer(NamedTuple):
+    """``pitheorem bases``: the valid repeating sets of a model, or only their number.
+
+    Parameters
+    ----------
+    model : str
+    rank : int
+    exclude, require : tuple of str
+        The conditions asked for.
+    n_bases : int
+    bases : sequence of tuple of str, or None
+        The sets; None when only the count was asked for.
+
+    Examples
+    --------
+    >>> from pitheorem.answers import BasesAnswer
+    >>> print(BasesAnswer("pair", 1, (), (), 2, [("l",), ("h",)]))
+    pair: 2 valid repeating sets of 1 variables
+    1  l
+    2  h
+    """
+
+    model: str
+    rank: int
+    exclude: tuple[str, ...]
+    require: tuple[str, ...]
+    n_bases: int
+    bases: Sequence[tuple[str, ...]] | None
+
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__
+
+
+
+class SearchAnswer(NamedTuple):
+    """``pitheorem search``: a search on a model; its notes in the command line's terms.
+
+    Parameters
+    ----------
+    model : str
+    result : SearchResult
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.answers import SearchAnswer
+    >>> res = pt.search(pt.System({"l": "L", "g": "L T^-2", "t": "T"}), scale={"g": 1})
+    >>> print(format(SearchAnswer("drop", res), "text").splitlines()[1])
+    time variable t is held fixed by default; give --fixed with no names to let time change
+    """
+
+    model: str
+    result: object
+
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__
+
+
+
+class ApplyAnswer(NamedTuple):
+    """``pitheorem apply``: a model's values scaled by one minimal scaling.
+
+    Parameters
+    ----------
+    model : str
+    s : Fraction
+        The scale factor.
+    solution : int
+        Which minimal scaling of `result`, from 1.
+    result : SearchResult
+    scaling : Scaling
+        That scaling.
+    values, scaled : mapping of str to number
+        The file's values and the scaled ones.
+    output : str or None
+        The file written, if any.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from fractions import Fraction
+    >>> from pitheorem.answers import ApplyAnswer
+    >>> res = pt.search(pt.System({"l": "L", "t": "T"}), scale={"l": 1}, fixed=())
+    >>> sc = res.scalings[0]
+    >>> print(ApplyAnswer("rope", Fraction(2), 1, res, sc, {"l": 3}, sc.apply({"l": 3}, 2), None))
+    rope, s = 2: the only minimal scaling
+      l -> s l
+    <BLANKLINE>
+    variable  factor  value  scaled value
+    l         s       3      6
+    """
+
+    model: str
+    s: Fraction
+    solution: int
+    result: object
+    scaling: object
+    values: Mapping[str, object]
+    scaled: Mapping[str, object]
+    output: str | None
+
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__
+
+
+
+class ParamsAnswer(NamedTuple):
+    """``pitheorem params``: an engine model's parameter table, under the file name as given.
+
+    Parameters
+    ----------
+    model : str
+        The file, as the command line named it.
+    engine_model : EngineModel
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.answers import ParamsAnswer
+    >>> answer = ParamsAnswer("pendulum.xml", engines.load(engines.example_path("pendulum.xml")))
+    >>> str(answer).splitlines()[0]
+    'pendulum.xml: mujoco model, 49 parameters'
+    """
+
+    model: str
+    engine_model: object
+
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__
+
+
+
+class EngineApplyAnswer(NamedTuple):
+    """``pitheorem apply`` on an MJCF or URDF file: the parameters a scaling changes, and the files written.
+
+    Parameters
+    ----------
+    model : str
+        The file's name.
+    s : Fraction
+    scaling : Scaling
+    changed : tuple of (str, Fraction)
+        Each parameter the scaling changes, with its exponent of ``s``.
+    n_parameters : int
+        How many parameters the model has.
+    output : str or None
+        The scaled file written, if any.
+    also_written : tuple of str
+        Files written beside it (PyBullet's settings).
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from fractions import Fraction
+    >>> from pitheorem.answers import EngineApplyAnswer
+    >>> sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1})
+    >>> print(EngineApplyAnswer("arm.xml", Fraction(2), sc, (("l", Fraction(1)),), 2, None, ()))
+    arm.xml, s = 2: l -> s l
+    1 of 2 parameters change, e.g.
+      l: x s
+    """
+
+    model: str
+    s: Fraction
+    scaling: object
+    changed: tuple[tuple[str, Fraction], ...]
+    n_parameters: int
+    output: str | None
+    also_written: tuple[str, ...] = ()
+
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__

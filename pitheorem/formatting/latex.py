@@ -1,0 +1,254 @@
+r"""LaTeX source: what ``format(x, "latex")``, ``_repr_latex_`` and ``--format latex`` give.
+
+A math object (a dimension, a Pi group or set, a scaling, a range bound)
+renders as math-mode LaTeX, ready to put between ``$`` (its
+``_repr_latex_`` is ``$\displaystyle ...$`` of it); a table or a report
+renders as text-mode LaTeX, a ``tabular`` whose math cells are between
+``$``.  Names are written as sympy writes their symbols (``k_theta`` as
+``k_{\theta}``), powers of ``s`` as ``s^{2}``.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import sympy
+
+from . import render
+from .pieces import (
+    PYTHON_TIME_REMEDY,
+    base_latex,
+    group_name_latex,
+    latex_escape,
+    latex_name,
+    note_text,
+    power_latex,
+    rational_latex,
+    registry,
+    search_cells,
+    value_text,
+    which_scaling,
+)
+from .text import explanation, symmetry_head, unit_fit_head
+
+__all__ = ["RENDERERS"]
+
+#: renderer of each value type, by qualified type name
+RENDERERS: dict = {}
+_renders = registry(RENDERERS)
+
+
+def _tabular(columns: str, rows, header=None, rule_before=None) -> str:
+    r"""A ``tabular``: cells joined by ``&``, a ``\hline`` under the header and before row `rule_before`."""
+    lines = [rf"\begin{{tabular}}{{{columns}}}"]
+    if header is not None:
+        lines.append(" & ".join(header) + r" \\ \hline")
+    for k, row in enumerate(rows):
+        if k == rule_before:
+            lines.append(r"\hline")
+        lines.append(" & ".join(row) + r" \\")
+    lines.append(r"\end{tabular}")
+    return "\n".join(lines)
+
+
+def _math(latex: str) -> str:
+    return f"${latex}$"
+
+
+def _number(value) -> str:
+    """A value in a table cell: a non-integral Fraction as a fraction, anything else as its text."""
+    if isinstance(value, Fraction) and value.denominator != 1:
+        return _math(rational_latex(value))
+    return value_text(value)
+
+
+def _lines(lines) -> str:
+    """Plain-text lines as LaTeX text, a line break between them."""
+    return " \\\\\n".join(latex_escape(line.strip()) for line in lines)
+
+
+# -- dimensions, groups, scalings ------------------------------------------------------------
+
+
+@_renders("pitheorem.dimensions.Dimension")
+def _dimension(dim) -> str:
+    return r"\,".join(base_latex(b) if p == 1 else f"{base_latex(b)}^{{{p}}}" for b, p in dim.exponents.items()) or "1"
+
+
+@_renders("pitheorem.groups.PiGroup")
+def _pi_group(group) -> str:
+    return f"{group_name_latex(group)} = {group.latex}"
+
+
+@_renders("pitheorem.groups.PiSet")
+def _pi_set(groups) -> str:
+    if not len(groups):
+        return r"\text{(no dimensionless groups)}"
+    body = r" \\ ".join(f"{group_name_latex(g)} &= {g.latex}" for g in groups)
+    return rf"\begin{{aligned}} {body} \end{{aligned}}"
+
+
+@_renders("pitheorem.scaling.Scaling")
+def _scaling(sc) -> str:
+    parts = [rf"{latex_name(n)} \to {power_latex(p)}\,{latex_name(n)}" for n, p in sc.exponents.items() if p]
+    return r",\quad ".join(parts) or r"\text{identity (nothing changes)}"
+
+
+# -- search ----------------------------------------------------------------------------------
+
+
+@_renders("pitheorem.scalesearch.SearchNote")
+def _note(note) -> str:
+    return note_text(note, time_remedy=latex_escape(PYTHON_TIME_REMEDY),
+                     code=lambda name: rf"\texttt{{{latex_escape(name)}}}")
+
+
+@_renders("pitheorem.scalesearch.SearchResult")
+def _search_result(result) -> str:
+    if not result.feasible:
+        cert = result.certificate.latex
+        return (f"% {explanation(result)}\n"
+                rf"\[ {cert} \;\to\; {power_latex(result.certificate_power)}\,{cert} \]")
+    variables, base_units = search_cells(result, lambda p: _math(power_latex(p)))
+    rows = [[_math(latex_name(n)), role, *cells] for n, role, cells in variables]
+    rows += [[rf"$[\mathrm{{{b}}}]$", "base unit", *(cell or "none" for cell in cells)] for b, cells in base_units]
+    n = result.n_scalings
+    return _tabular(f"ll{'c' * n}", rows, ["variable", "role", *(rf"\#{k}" for k in range(1, n + 1))],
+                    rule_before=len(variables))
+
+
+# -- equations -------------------------------------------------------------------------------
+
+
+@_renders("pitheorem.equations.DimensionReport")
+def _dimension_report(report) -> str:
+    if report.consistent:
+        return f"consistent: dimension {_math(_dimension(report.dimension))}"
+    head = f"inconsistent: {len(report.offending)} offending term(s)"
+    rows = [[_math(sympy.latex(term)), _math(_dimension(got)), _math(_dimension(want))]
+            for term, got, want in report.offending]
+    ties = "".join(f"\n\ntie: {latex_escape(tie)}" for tie in report.ties)
+    return f"{head}\n\n{_tabular('lll', rows, ['term', 'dimension', 'expected'])}{ties}"
+
+
+@_renders("pitheorem.equations.SymmetryReport")
+def _symmetry_report(report) -> str:
+    head = _lines(symmetry_head(report))
+    if not report.beyond_units:
+        return head
+    rows = [[_math(rational_latex(vec.get(n, 0))) for n in report.variables] for vec in report.beyond_units]
+    header = [_math(latex_name(n)) for n in report.variables]
+    return f"{head}\n\n{_tabular('c' * len(report.variables), rows, header)}"
+
+
+# -- simulations -----------------------------------------------------------------------------
+
+
+@_renders("pitheorem.simulation.SimilarityReport")
+def _similarity_report(report) -> str:
+    header = ["state", "max deviation"] + (["one-ulp sensitivity"] if report.sensitivity is not None else [])
+    rows = [[_math(latex_name(n)), f"{d:.3g}",
+             *([f"{report.sensitivity[n]:.3g}"] if report.sensitivity is not None else [])]
+            for n, d in report.deviation.items()]
+    return f"{_lines([render(report, 'text')])}\n\n{_tabular('l' + 'r' * (len(header) - 1), rows, header)}"
+
+
+# -- unit fits -------------------------------------------------------------------------------
+
+
+@_renders("pitheorem.unitfit.RangeBound")
+def _range_bound(bound) -> str:
+    relation = r"\geq" if bound.side == "low" else r"\leq"
+    return f"{latex_name(bound.name)} {relation} {rational_latex(bound.bound)}"
+
+
+@_renders("pitheorem.unitfit.UnitFit")
+def _unit_fit(fit) -> str:
+    head = latex_escape(unit_fit_head(fit))
+    units = [[_math(base_latex(b)), f"{float(f):.6g}", f"{1 / float(f):.6g}"] for b, f in fit.factors.items()]
+    ranged = {n: (lo, hi) for n, lo, hi in fit.ranges}
+    rows = []
+    for n in fit.system.variables:
+        if n in fit.values:
+            lo, hi = ranged.get(n, (None, None))
+            where = f"[{float(lo):g}, {float(hi):g}]" if n in ranged else ""
+            mark = ("ok" if n in fit.satisfied else "OUT OF RANGE") if n in ranged else ""
+            rows.append([_math(latex_name(n)), f"{float(fit.values[n]):.6g}", f"{float(fit.scaled[n]):.6g}",
+                         where, mark])
+    parts = [head, _tabular("lrr", units, ["base", "readings times", "new unit (old units)"]),
+             _tabular("lrrll", rows, ["variable", "value", "new value", "range", ""])]
+    if fit.conflict:
+        parts.append("conflicting bounds: " + "; ".join(_math(_range_bound(c)) for c in fit.conflict))
+    return "\n\n".join(parts)
+
+
+# -- engines ---------------------------------------------------------------------------------
+
+
+@_renders("pitheorem.engines.constants.HiddenConstant")
+def _hidden_constant(constant) -> str:
+    return (rf"\texttt{{{latex_escape(constant.name)}}} [{_math(_dimension(constant.dimension))}] "
+            f"(default {constant.default:g})")
+
+
+@_renders("pitheorem.engines.rules.RuleVerdict")
+def _rule_verdict(verdict) -> str:
+    first, *rest = render(verdict, "text").splitlines()
+    items = "".join(f"\n\\item {latex_escape(line.strip())}" for line in rest)
+    return rf"\textbf{{{latex_escape(first)}}}" + "\n\\begin{itemize}" + items + "\n\\end{itemize}"
+
+
+def _parameter_table(name: str, model) -> str:
+    rows = [[rf"\texttt{{{latex_escape(p.name)}}}", latex_escape(p.dimension_text),
+             " ".join(f"{v:.6g}" for v in p.value), p.source, latex_escape(p.path)] for p in model.parameters]
+    head = f"% {name}: {model.engine} model, {len(model.parameters)} parameters"
+    return f"{head}\n{_tabular('lllll', rows, ['name', 'dimension', 'value', 'source', 'path'])}"
+
+
+@_renders("pitheorem.engines.model.EngineModel")
+def _engine_model(model) -> str:
+    return _parameter_table(model.path or "(unsaved)", model)
+
+
+# -- the command line's answers --------------------------------------------------------------
+
+
+@_renders("pitheorem.answers.GroupsAnswer")
+def _groups_answer(answer) -> str:
+    lines = [f"{group_name_latex(g)} &= {g.latex}" for g in answer.groups]
+    return "\\begin{align*}\n" + " \\\\\n".join(lines) + "\n\\end{align*}"
+
+
+@_renders("pitheorem.answers.BasesAnswer")
+def _bases_answer(answer) -> str:
+    if answer.bases is None:
+        return str(answer.n_bases)
+    rows = [[str(k), _math(", ".join(map(latex_name, b)))] for k, b in enumerate(answer.bases, 1)]
+    return _tabular("rl", rows)
+
+
+@_renders("pitheorem.answers.SearchAnswer")
+def _search_answer(answer) -> str:
+    return _search_result(answer.result)
+
+
+@_renders("pitheorem.answers.ApplyAnswer")
+def _apply_answer(answer) -> str:
+    exponents = answer.scaling.exponents
+    rows = [[_math(latex_name(n)), _math(power_latex(exponents[n])), _number(v), _number(answer.scaled[n])]
+            for n, v in answer.values.items()]
+    head = f"% {answer.model}: {which_scaling(answer.result, answer.solution)}, s = {answer.s}"
+    return f"{head}\n{_tabular('lcll', rows, ['variable', 'factor', 'value', 'scaled value'])}"
+
+
+@_renders("pitheorem.answers.ParamsAnswer")
+def _params_answer(answer) -> str:
+    return _parameter_table(answer.model, answer.engine_model)
+
+
+@_renders("pitheorem.answers.EngineApplyAnswer")
+def _engine_apply_answer(answer) -> str:
+    rows = [[rf"\texttt{{{latex_escape(name)}}}", _math(power_latex(p))] for name, p in answer.changed]
+    head = (f"% {answer.model}, s = {answer.s}: {len(answer.changed)} of {answer.n_parameters} parameters change"
+            + (f"; wrote {answer.output}" if answer.output else ""))
+    return f"{head}\n{_tabular('lc', rows, ['parameter', 'factor'])}"

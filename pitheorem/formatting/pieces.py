@@ -1,0 +1,508 @@
+r"""The pieces every format shares, each written once.
+
+* powers of the scale factor ``s``: :func:`power_text` (``s^2``, ``1/s``)
+  and :func:`power_latex` (``s^{2}``, ``s^{-1}``);
+* exact numbers: :func:`rational_text` for an exponent, :func:`json_number`
+  and :func:`value_text` for a value (a float, or an exact Fraction);
+* names and text in LaTeX: :func:`latex_name` (``k_theta`` as
+  ``k_{\theta}``) and :func:`latex_escape`;
+* how a search's notes and request are phrased: :func:`note_text`,
+  :func:`request_text`, and each front end's way to let time change
+  (:data:`PYTHON_TIME_REMEDY`, :data:`COMMAND_LINE_TIME_REMEDY`);
+* aligned plain-text columns: :func:`align`.
+
+No value type is imported here: a value is read by its attributes.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import sympy
+
+from ..errors import InvalidRequestError
+
+__all__ = [
+    "COMMAND_LINE_TIME_REMEDY",
+    "PYTHON_TIME_REMEDY",
+    "align",
+    "base_latex",
+    "group_name_latex",
+    "json_number",
+    "latex_escape",
+    "latex_name",
+    "note_text",
+    "power_latex",
+    "power_text",
+    "rational_latex",
+    "rational_text",
+    "registry",
+    "request_text",
+    "scale_text",
+    "search_cells",
+    "value_text",
+    "which_scaling",
+]
+
+#: how the Python front end says to let time change, closing a "time_fixed" note
+PYTHON_TIME_REMEDY = "pass fixed=() to let time change"
+#: how the command line says it
+COMMAND_LINE_TIME_REMEDY = "give --fixed with no names to let time change"
+
+
+def registry(renderers: dict):
+    """A decorator that files a renderer in `renderers` under the value types it renders.
+
+    Each format module keeps one ``RENDERERS`` dict, keyed by the qualified
+    name of each value type (the names of its class hierarchy are looked
+    up, so a subclass without a renderer of its own gets its parent's).
+
+    Parameters
+    ----------
+    renderers : dict
+        The format module's ``RENDERERS``.
+
+    Returns
+    -------
+    callable
+        ``renders(*names)``, a decorator.
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import registry
+    >>> RENDERERS = {}
+    >>> renders = registry(RENDERERS)
+    >>> @renders("fractions.Fraction")
+    ... def fraction(x):
+    ...     return f"{x.numerator} over {x.denominator}"
+    >>> RENDERERS["fractions.Fraction"](__import__("fractions").Fraction(1, 2))
+    '1 over 2'
+    """
+
+    def renders(*names: str):
+        def register(renderer):
+            for name in names:
+                renderers[name] = renderer
+            return renderer
+
+        return register
+
+    return renders
+
+
+# -- powers of s -----------------------------------------------------------------------------
+
+
+def power_text(exponent) -> str:
+    """Plain-text power of s: ``-`` for unchanged, ``s``, ``s^2``, ``1/s``, ``s^(1/2)``.
+
+    Parameters
+    ----------
+    exponent : int, Fraction or float
+        A float is read as the nearest small fraction.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import power_text
+    >>> [power_text(p) for p in (0, 1, 2, -1, -3, 0.5)]
+    ['-', 's', 's^2', '1/s', '1/s^3', 's^(1/2)']
+    """
+    p = Fraction(exponent).limit_denominator() if isinstance(exponent, float) else Fraction(exponent)
+    if p == 0:
+        return "-"
+    if p == 1:
+        return "s"
+    if p == -1:
+        return "1/s"
+    if p.denominator != 1:
+        return f"s^({p})"
+    return f"s^{p}" if p > 0 else f"1/s^{-p}"
+
+
+def power_latex(exponent) -> str:
+    r"""LaTeX power of s: ``1`` for unchanged, ``s``, ``s^{2}``, ``s^{-1/2}`` ...
+
+    Parameters
+    ----------
+    exponent : int or Fraction
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import power_latex
+    >>> from fractions import Fraction
+    >>> [power_latex(p) for p in (0, 1, -1, Fraction(1, 2))]
+    ['1', 's', 's^{-1}', 's^{1/2}']
+    """
+    p = Fraction(exponent)
+    if p == 0:
+        return "1"
+    if p == 1:
+        return "s"
+    return f"s^{{{p}}}"
+
+
+# -- exact numbers ---------------------------------------------------------------------------
+
+
+def rational_text(x) -> str:
+    """An exact exponent as text: ``"2"``, ``"-1/2"`` (what JSON holds for a rational).
+
+    Parameters
+    ----------
+    x : int or Fraction
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem.formatting.pieces import rational_text
+    >>> rational_text(Fraction(-1, 2)), rational_text(Fraction(4, 2))
+    ('-1/2', '2')
+    """
+    return str(Fraction(x))
+
+
+def rational_latex(x) -> str:
+    r"""An exact number as LaTeX math: ``2``, ``\frac{1}{2}``, ``- \frac{3}{4}``.
+
+    Parameters
+    ----------
+    x : int or Fraction
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem.formatting.pieces import rational_latex
+    >>> rational_latex(Fraction(-3, 4)), rational_latex(2)
+    ('- \\frac{3}{4}', '2')
+    """
+    x = Fraction(x)
+    return sympy.latex(sympy.Rational(x.numerator, x.denominator))
+
+
+def json_number(value):
+    """A value for JSON: a float as it is; a Fraction as an integer, or a string such as ``"1/3"``.
+
+    Parameters
+    ----------
+    value : float, int, Fraction or None
+
+    Returns
+    -------
+    float, int, str or None
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem.formatting.pieces import json_number
+    >>> json_number(Fraction(6, 2)), json_number(Fraction(1, 3)), json_number(0.5)
+    (3, '1/3', 0.5)
+    """
+    if isinstance(value, Fraction):
+        return int(value) if value.denominator == 1 else str(value)
+    return value
+
+
+def value_text(value) -> str:
+    """A value in a text table: a float to six digits, an exact number in full, nothing for None.
+
+    Parameters
+    ----------
+    value : float, Fraction or None
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem.formatting.pieces import value_text
+    >>> value_text(2 / 3), value_text(Fraction(2, 3)), value_text(None)
+    ('0.666667', '2/3', '')
+    """
+    if value is None:
+        return ""
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return str(value)
+
+
+# -- LaTeX -----------------------------------------------------------------------------------
+
+_LATEX_SPECIAL = {"\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "_": r"\_", "^": r"\^{}", "#": r"\#",
+                  "$": r"\$", "%": r"\%", "&": r"\&", "~": r"\textasciitilde{}"}
+
+
+def latex_name(name: str) -> str:
+    r"""A variable's name as LaTeX math, as sympy writes its symbol: ``k_theta`` is ``k_{\theta}``.
+
+    Parameters
+    ----------
+    name : str
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import latex_name
+    >>> latex_name("k_theta"), latex_name("g")
+    ('k_{\\theta}', 'g')
+    """
+    return sympy.latex(sympy.Symbol(name))
+
+
+def base_latex(name: str) -> str:
+    r"""A base dimension as LaTeX math: ``\mathsf{L}``, and ``\Theta`` for temperature.
+
+    Parameters
+    ----------
+    name : str
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import base_latex
+    >>> base_latex("L"), base_latex("Theta")
+    ('\\mathsf{L}', '\\Theta')
+    """
+    return r"\Theta" if name == "Theta" else rf"\mathsf{{{name}}}"
+
+
+def group_name_latex(group) -> str:
+    r"""A Pi group's name as LaTeX math: ``\Pi_{g}``, or ``\Pi`` for a group tied to no variable.
+
+    Parameters
+    ----------
+    group : PiGroup
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem import PiGroup
+    >>> from pitheorem.formatting.pieces import group_name_latex
+    >>> group_name_latex(PiGroup({"k_theta": 1}, "k_theta")), group_name_latex(PiGroup({"t": 1}))
+    ('\\Pi_{k_{\\theta}}', '\\Pi')
+    """
+    return rf"\Pi_{{{latex_name(group.variable)}}}" if group.variable else r"\Pi"
+
+
+def latex_escape(text: str) -> str:
+    r"""Text for LaTeX's text mode: the special characters escaped.
+
+    Parameters
+    ----------
+    text : str
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import latex_escape
+    >>> print(latex_escape("k_theta: 50% & more"))
+    k\_theta: 50\% \& more
+    """
+    return "".join(_LATEX_SPECIAL.get(c, c) for c in text)
+
+
+# -- a search's request and notes ------------------------------------------------------------
+
+
+def request_text(result) -> str:
+    """What a search asked, in words: ``g by s, l by 1/s with t fixed``.
+
+    Parameters
+    ----------
+    result : SearchResult
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.formatting.pieces import request_text
+    >>> request_text(pt.search(pt.System({"l": "L", "g": "L T^-2", "t": "T"}), scale={"g": 1}))
+    'g by s with t fixed'
+    """
+    return scale_text(result) + (f" with {', '.join(result.fixed)} fixed" if result.fixed else "")
+
+
+def scale_text(result) -> str:
+    """What a search prescribed, in words: ``g by s, l by 1/s``.
+
+    Parameters
+    ----------
+    result : SearchResult
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.formatting.pieces import scale_text
+    >>> scale_text(pt.search(pt.System({"l": "L", "g": "L T^-2"}), scale={"g": 1, "l": "1/2"}))
+    'g by s, l by s^(1/2)'
+    """
+    return ", ".join(f"{n} by {power_text(p)}" for n, p in result.scale.items())
+
+
+def note_text(note, *, time_remedy: str = PYTHON_TIME_REMEDY, code=str) -> str:
+    """One sentence for a search note, in a front end's own terms.
+
+    Parameters
+    ----------
+    note : SearchNote
+        The note, with its ``kind`` and ``variables``.
+    time_remedy : str, optional
+        How this front end lets time change, closing a ``"time_fixed"``
+        note (default: the Python call's ``fixed=()``).
+    code : callable, optional
+        Marks up each variable name (default: plain text; HTML wraps them
+        in ``<code>``).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    InvalidRequestError
+        For a kind of note this function does not know.
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import COMMAND_LINE_TIME_REMEDY, note_text
+    >>> from pitheorem.scalesearch import SearchNote
+    >>> note = SearchNote("time_fixed", ("t", "dt"))
+    >>> note_text(note)
+    'time variables t, dt are held fixed by default; pass fixed=() to let time change'
+    >>> note_text(note, time_remedy=COMMAND_LINE_TIME_REMEDY)
+    'time variables t, dt are held fixed by default; give --fixed with no names to let time change'
+    >>> note_text(SearchNote("outside_equations", ("m",)))
+    'variable m does not appear in the equations and is held fixed'
+    """
+    names = ", ".join(code(n) for n in note.variables)
+    one = len(note.variables) == 1
+    if note.kind == "time_fixed":
+        subject = f"time variable {names} is" if one else f"time variables {names} are"
+        return f"{subject} held fixed by default; {time_remedy}"
+    if note.kind == "outside_equations":
+        verb = "does not appear in the equations and is" if one else "do not appear in the equations and are"
+        return f"{'variable' if one else 'variables'} {names} {verb} held fixed"
+    raise InvalidRequestError(f"unknown note kind {note.kind!r}; the kinds are time_fixed, outside_equations")
+
+
+def search_cells(result, power):
+    """The cells of a search's table, each power of ``s`` written by `power`: variables, then base units.
+
+    Parameters
+    ----------
+    result : SearchResult
+    power : callable
+        Writes one exponent (:func:`power_text`, :func:`power_latex`, ...).
+
+    Returns
+    -------
+    rows : list of (str, str, list of str)
+        Each variable, its role (:attr:`pitheorem.SearchResult.roles`) and its power
+        in each minimal scaling.
+    base_rows : list of (str, list)
+        Each base dimension and the power of its unit behind each scaling:
+        None for a symmetry of equations that no change of units gives.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.formatting.pieces import power_text, search_cells
+    >>> rows, base = search_cells(pt.search(pt.System({"l": "L", "t": "T"}), scale={"l": 1}), power_text)
+    >>> rows, base
+    ([('l', 'scale', ['s']), ('t', 'fixed', ['-'])], [('L', ['s']), ('T', ['-'])])
+    """
+    scalings = result.scalings
+    columns = [sc.exponents for sc in scalings]
+    rows = [(n, role, [power(c[n]) for c in columns]) for n, role in result.roles.items()]
+    changes = [sc.unit_change if sc.is_unit_change else None for sc in scalings]
+    base_rows = [(b, [None if u is None else power(u[b]) for u in changes]) for b in result.system.base_dimensions]
+    return rows, base_rows
+
+
+def which_scaling(result, solution: int) -> str:
+    """Which of a search's minimal scalings the command line's ``apply`` used, in words.
+
+    Parameters
+    ----------
+    result : SearchResult
+    solution : int
+        Its number, from 1.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.formatting.pieces import which_scaling
+    >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k": "M L^2 T^-2", "t": "T"})
+    >>> which_scaling(pt.search(rod, scale={"g": 1}), 2)
+    'minimal scaling #2 of 2 (choose another with --solution K)'
+    """
+    if result.n_scalings == 1:
+        return "the only minimal scaling"
+    return f"minimal scaling #{solution} of {result.n_scalings} (choose another with --solution K)"
+
+
+# -- plain-text columns ----------------------------------------------------------------------
+
+
+def align(rows) -> str:
+    """Rows of cells as left-aligned columns two spaces apart, without trailing spaces.
+
+    Parameters
+    ----------
+    rows : sequence of sequence of str
+        The first row is usually the header; every row has as many cells.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import align
+    >>> print(align([["name", "value"], ["g", "9.81"], ["k_theta", "100"]]))
+    name     value
+    g        9.81
+    k_theta  100
+    """
+    widths = [max(len(r[c]) for r in rows) for c in range(len(rows[0]))]
+    return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in rows)
