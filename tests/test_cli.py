@@ -19,9 +19,11 @@ import pytest
 import pitheorem as pt
 from pitheorem.cli import EXIT_ERROR, EXIT_INFEASIBLE, EXIT_OK, main
 from pitheorem.modelfile import example_path, load_model_file
-from tests.conftest import BROKEN_MODEL_FILES, broken_model_file
+from tests.conftest import BROKEN_MODEL_FILES, broken_model_file, loaded_after
 
 ROD = str(example_path("hinged_rod"))
+
+
 SUPERBALL = str(example_path("superball"))
 
 
@@ -47,9 +49,6 @@ def _console_script() -> str | None:
     # environment's bin folder need not be on PATH (make test runs .venv/bin/python directly)
     beside = Path(sys.executable).with_name("pitheorem")
     return str(beside) if beside.exists() else shutil.which("pitheorem")
-
-
-# -- groups --------------------------------------------------------------------------------
 
 
 def test_groups_default_repeaters(capsys):
@@ -79,9 +78,6 @@ def test_groups_latex(capsys):
     assert out.startswith(r"\begin{align*}")
 
 
-# -- bases ---------------------------------------------------------------------------------
-
-
 def test_bases_count_and_list(capsys):
     system = pt.models.rod_system()
     code, out, _ = run(capsys, "bases", ROD, "--count")
@@ -95,9 +91,6 @@ def test_bases_count_and_list(capsys):
     code, out, _ = run(capsys, "bases", ROD, "--format", "latex")
     assert r"\begin{tabular}" in out
     assert r"k_{\theta}" in out
-
-
-# -- search --------------------------------------------------------------------------------
 
 
 def test_search_gravity_has_three_minimal_solutions(capsys):
@@ -206,9 +199,6 @@ def test_json_is_deterministic(capsys):
     assert run(capsys, "search", SUPERBALL, "--scale", "g=1", "--format", "json") == first
 
 
-# -- apply ---------------------------------------------------------------------------------
-
-
 def _groups_with_values(model):
     """Every Pi group, over all bases without time, whose variables all have values."""
     seen = {}
@@ -270,8 +260,6 @@ def test_apply_infeasible_writes_nothing(capsys, tmp_path):
     assert "g**2*m*t**2/k_theta" in err
     assert not out.exists()
 
-
-# -- bad input: exit code 2, one line on stderr naming the culprit --------------------------
 
 BAD_REQUESTS = {
     "scale_and_fixed": (["search", ROD, "--scale", "g=1", "--fixed", "g"], "'g'"),
@@ -360,9 +348,6 @@ def test_usage_errors_and_help(capsys):
     assert pt.__version__ in out
 
 
-# -- what the programs print, in-process; the real programs, in subprocesses -------------------
-
-
 def test_search_json_count(capsys):
     code, doc = run_json(capsys, "search", "example:hinged_rod", "--scale", "g=1")
     assert code == EXIT_OK
@@ -422,3 +407,11 @@ def test_console_script(tmp_path):
     proc = subprocess_run("groups", tmp_path / "nope.toml", program=[_console_script()])
     assert proc.returncode == EXIT_ERROR
     assert proc.stderr.count("\n") == 1
+
+
+def test_cli_groups_and_search_load_neither_scipy_nor_matplotlib(tmp_path):
+    run = ("import sys\nfrom pitheorem.cli import main\nsys.argv = ['pitheorem', *{args!r}]\n"
+           "try:\n    main()\nexcept SystemExit:\n    pass")
+    assert loaded_after(run.format(args=["groups", "example:hinged_rod"])) == set()
+    assert "scipy" not in loaded_after(run.format(args=["search", "example:hinged_rod", "--scale", "g=1"]))
+    assert "matplotlib" not in loaded_after(run.format(args=["bases", "example:hinged_rod"]))

@@ -6,6 +6,7 @@ import pickle
 import re
 
 import pytest
+import sympy
 
 import pitheorem as pt
 from tests.conftest import ROD
@@ -217,3 +218,76 @@ def test_errors_keep_each_constructor_argument_and_pickle_all_of_them(error):
     # rebuilding from the fields gives the same error: what pickling does
     again = type(error)(*(getattr(error, name) for name in fields))
     assert (str(again), again.culprit) == (str(error), error.culprit)
+
+
+def provoked_errors():
+    """One real instance of every error class, provoked through the public API where possible."""
+    from pitheorem import engines, errors
+    from pitheorem.cli import _parse_scale
+
+    def catch(call):
+        try:
+            call()
+        except pt.PiTheoremError as err:
+            return err
+        raise AssertionError(f"{call} raised nothing")
+
+    rod = pt.System(ROD)
+    return {
+        errors.DimensionSyntaxError: (catch(lambda: pt.Dimension.parse("M L^^2")), "^2"),
+        errors.UnknownVariableError: (catch(lambda: rod.pi_groups(repeating=("mass", "l", "t"))), "mass"),
+        errors.DuplicateVariableError: (catch(lambda: rod.pi_groups(repeating=("m", "m", "t"))), "m"),
+        errors.EmptySystemError: (catch(lambda: pt.System({})), None),
+        errors.RepeatingCountError: (catch(lambda: rod.pi_groups(repeating=("m", "l"))), ("m", "l")),
+        errors.DependentRepeatingSetError: (catch(lambda: rod.pi_groups(repeating=("l", "t", "g"))), ("l", "t", "g")),
+        errors.InvalidRequestError: (catch(lambda: pt.System({"x": "L"}, base_dimensions="LT")), "LT"),
+        errors.UnitError: (catch(lambda: pt.System.from_units({"x": "furlongs per flibber"})), None),
+        errors.SystemMismatchError: (catch(lambda: pt.verify_similarity(
+            pt.models.projectile(), pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1}),
+            s=2, t_final=0.1)), "m"),
+        errors.ModelEquationError: (catch(lambda: pt.Model(pt.System({"x": "L", "t": "T"}), [sympy.Eq(
+            sympy.Function("x")(sympy.Symbol("t")).diff("t", 2), 0)])), "Eq(Derivative(x(t), (t, 2)), 0)"),
+        errors.NumberError: (catch(lambda: pt.search(pt.System({"l": "L", "t": "T"}), scale={"l": float("nan")})), "nan"),
+        errors.LimitError: (catch(lambda: pt.Dimension.parse("L^5000")), "5000"),
+        errors.ModelFileError: (catch(lambda: pt.load_model_file("example:nope")), "example:nope"),
+        errors.CommandLineError: (catch(lambda: _parse_scale(["g=1", "g=2"])), "g"),
+        errors.EngineUnavailableError: (errors.EngineUnavailableError("bullet", "pybullet"), "bullet"),
+        errors.EngineModelError: (catch(lambda: engines.load("no_such_robot.xml")), "no_such_robot.xml"),
+        errors.UnscalableParameterError: (errors.UnscalableParameterError("joint_root_damping", "needs s^1 and s^3"),
+                                          "joint_root_damping"),
+    }
+
+
+PROVOKED = provoked_errors()
+
+
+def test_every_error_class_is_provoked_here():
+    from pitheorem import errors
+
+    names = {n for n in errors.__all__ if n != "PiTheoremError"}
+    assert {c.__name__ for c in PROVOKED} == names
+
+
+@pytest.mark.parametrize("cls", sorted(PROVOKED, key=lambda c: c.__name__), ids=lambda c: c.__name__)
+def test_error_contract(cls):
+    from pitheorem import errors
+
+    err, culprit = PROVOKED[cls]
+    assert type(err) is cls
+    assert cls.__module__ == errors.__name__  # every error class lives in errors.py
+    assert isinstance(err, pt.PiTheoremError)
+    assert isinstance(err, ValueError | KeyError | TypeError | ImportError)
+    if culprit is not None:
+        shown = err.culprit if isinstance(err.culprit, str | tuple) else repr(err.culprit)
+        assert shown == culprit or str(culprit) in str(shown)
+    copy = pickle.loads(pickle.dumps(err))
+    assert type(copy) is cls
+    assert str(copy) == str(err)
+    assert copy.culprit == err.culprit or repr(copy.culprit) == repr(err.culprit)
+    assert str(err).strip(), "an error must say what is wrong"
+
+
+def test_message_only_errors_pickle_their_culprit():
+    err = pt.InvalidRequestError("bad thing", culprit="thing")
+    copy = pickle.loads(pickle.dumps(err))
+    assert (copy.culprit, str(copy)) == ("thing", "bad thing")

@@ -11,11 +11,14 @@ import ast
 import importlib
 import importlib.util
 import sys
+import types
 from pathlib import Path
 
+import pytest
 from _pytest.pathlib import import_path
 
 import pitheorem as pt
+from tests.conftest import loaded_after
 
 #: the package in this checkout, whose doctests pytest collects
 ROOT = Path(__file__).resolve().parents[1] / "pitheorem"
@@ -105,3 +108,29 @@ def test_no_module_imports_another_modules_private_names(tmp_path):
     assert _private_imports(sample, tmp_path / "pitheorem") == [
         "pitheorem.engines.rod._quiet", "pitheorem.bases._Descent", "pitheorem.engines.model._check_s",
         "pitheorem._hidden", "pitheorem.engines._private"]
+
+
+
+
+def test_import_loads_neither_numpy_scipy_nor_matplotlib():
+    assert loaded_after("import pitheorem") == set()
+
+
+def test_lazy_names_resolve_to_the_functions_not_the_modules():
+    import pitheorem.scalesearch as scalesearch
+    import pitheorem.simulation as simulation
+
+    assert scalesearch.__name__ == "pitheorem.scalesearch"  # the module is the module
+    assert pt.search is scalesearch.search
+    assert pt.search.__name__ == "search"
+    assert pt.simulate.__name__ == "simulate"
+    assert callable(pt.simulate)
+    # the module's name differs from its functions': importing it gives the module
+    assert isinstance(simulation, types.ModuleType)
+    assert simulation.simulate is pt.simulate
+    assert simulation.verify_similarity is pt.verify_similarity
+    for name in pt.__all__:
+        assert getattr(pt, name) is not None
+        assert name in dir(pt)
+    with pytest.raises(AttributeError):
+        pt.no_such_name  # noqa: B018
