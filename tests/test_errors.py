@@ -9,6 +9,7 @@ import pytest
 import sympy
 
 import pitheorem as pt
+from pitheorem.engines.rod import EngineUnavailableError
 from tests.conftest import ROD
 
 BAD_FORMULAS = [
@@ -291,3 +292,11 @@ def test_message_only_errors_pickle_their_culprit():
     err = pt.InvalidRequestError("bad thing", culprit="thing")
     copy = pickle.loads(pickle.dumps(err))
     assert (copy.culprit, str(copy)) == ("thing", "bad thing")
+
+
+def test_engine_unavailable_error_message_and_pickle():
+    err = EngineUnavailableError("mujoco", "mujoco")
+    assert isinstance(err, pt.PiTheoremError)
+    assert isinstance(err, ImportError)
+    assert "pitheorem[engines]" in str(err)
+    assert str(pickle.loads(pickle.dumps(err))) == str(err)

@@ -675,3 +675,9 @@ def test_answers_in_latex_and_html():
     html = format(sample("search"), "html")
     rows = html.split("<tr")
     assert [i for i, row in enumerate(rows) if "border-top" in row] == [len(ROD.variables) + 2]  # the first base row
+
+
+def test_search_table_heads_the_minimal_scalings(rod):
+    table = pt.search(rod, scale={"g": 1}).table().splitlines()
+    assert table[0].split() == ["variable", "role", "#1", "#2", "#3"]
+    assert table[1].split() == ["m", "free", "1/s^2", "1/s", "-"]

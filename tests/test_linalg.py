@@ -1,4 +1,8 @@
-"""TODO"""
+"""pitheorem.linalg: exact Gauss-Jordan kernels, each against sympy's exact matrices.
+
+sympy's ``rref``, ``rank``, ``nullspace`` and ``gauss_jordan_solve`` are the
+oracles: they share no code with pitheorem's fraction-free elimination.
+"""
 
 from __future__ import annotations
 
@@ -10,13 +14,78 @@ import sympy
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pitheorem.linalg import integer_rref, primitive_integer_vector, solve
+from pitheorem.linalg import (
+    integer_rows,
+    integer_rref,
+    nullspace,
+    primitive_integer_vector,
+    rank,
+    row_space_basis,
+    rref,
+    solve,
+)
 from tests.conftest import rational_exponent
 
 
-def test_int_and_fraction_columns_share_integer_rows():
-    from pitheorem.linalg import integer_rows
+@st.composite
+def matrices(draw, max_rows=4, max_cols=5):
+    """Rows of small Fractions (zeros likely, so that ranks fall short)."""
+    n_cols = draw(st.integers(1, max_cols))
+    entry = st.one_of(st.just(Fraction(0)), rational_exponent)
+    return draw(st.lists(st.lists(entry, min_size=n_cols, max_size=n_cols), min_size=1, max_size=max_rows))
 
+
+def as_sympy(rows) -> sympy.Matrix:
+    return sympy.Matrix([[sympy.Rational(x.numerator, x.denominator) for x in row] for row in rows])
+
+
+def as_fractions(matrix: sympy.Matrix) -> list[list[Fraction]]:
+    return [[Fraction(int(x.p), int(x.q)) for x in matrix.row(i)] for i in range(matrix.rows)]
+
+
+@settings(max_examples=80, deadline=None)
+@given(matrices())
+def test_rref_rank_and_row_space_are_sympys(rows):
+    want, want_pivots = as_sympy(rows).rref()
+    got, pivots = rref(rows)
+    assert pivots == want_pivots
+    assert got == as_fractions(want)
+    assert all(type(x) is Fraction for row in got for x in row)
+    assert rank(rows) == as_sympy(rows).rank() == len(pivots)
+    assert row_space_basis(rows) == as_fractions(want)[: len(want_pivots)]
+
+
+@settings(max_examples=80, deadline=None)
+@given(matrices())
+def test_nullspace_is_sympys_canonical_basis(rows):
+    # sympy's basis has the same canonical form: 1 at its free column, 0 at the other free columns
+    want = [as_fractions(v.T)[0] for v in as_sympy(rows).nullspace()]
+    got = nullspace(rows)
+    assert got == want
+    assert len(got) == len(rows[0]) - rank(rows)
+
+
+def test_nullspace_of_no_rows_is_the_identity():
+    assert nullspace([], n_cols=3) == [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    assert nullspace([[0, 0]]) == [[1, 0], [0, 1]]
+    assert nullspace([[1, 2], [3, 4]]) == []
+
+
+@settings(max_examples=80, deadline=None)
+@given(matrices(), st.data())
+def test_solve_is_sympys_solution_with_the_free_unknowns_at_zero(rows, data):
+    rhs = data.draw(st.lists(rational_exponent, min_size=len(rows), max_size=len(rows)))
+    b = as_sympy([[x] for x in rhs])
+    try:
+        solution, params = as_sympy(rows).gauss_jordan_solve(b)
+    except ValueError:  # sympy: no solution
+        assert solve(rows, rhs) is None
+        return
+    want = as_fractions(solution.subs(dict.fromkeys(params, 0)).T)[0]
+    assert solve(rows, rhs) == want
+
+
+def test_int_and_fraction_columns_share_integer_rows():
     assert integer_rows([[Fraction(1, 2), 3, True], [np.int64(2), Fraction(4), 0]]) == [[1, 6, 2], [2, 4, 0]]
 
 

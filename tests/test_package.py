@@ -10,6 +10,7 @@ from __future__ import annotations
 import ast
 import importlib
 import importlib.util
+import subprocess
 import sys
 import types
 from pathlib import Path
@@ -18,7 +19,7 @@ import pytest
 from _pytest.pathlib import import_path
 
 import pitheorem as pt
-from tests.conftest import loaded_after
+from tests.conftest import REPO, loaded_after
 
 #: the package in this checkout, whose doctests pytest collects
 ROOT = Path(__file__).resolve().parents[1] / "pitheorem"
@@ -110,8 +111,6 @@ def test_no_module_imports_another_modules_private_names(tmp_path):
         "pitheorem._hidden", "pitheorem.engines._private"]
 
 
-
-
 def test_import_loads_neither_numpy_scipy_nor_matplotlib():
     assert loaded_after("import pitheorem") == set()
 
@@ -134,3 +133,9 @@ def test_lazy_names_resolve_to_the_functions_not_the_modules():
         assert name in dir(pt)
     with pytest.raises(AttributeError):
         pt.no_such_name  # noqa: B018
+
+
+def test_core_does_not_import_engines():
+    code = "import sys, pitheorem; print(any(m.startswith(('pitheorem.engines', 'pybullet', 'mujoco')) for m in sys.modules))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=REPO)
+    assert out.stdout.strip() == "False"

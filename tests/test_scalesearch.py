@@ -78,17 +78,6 @@ def test_allow_restricts_changes(rod):
     assert set(res.fixed) >= {"t", "k_theta", "c_theta", "tau", "theta_r"}
 
 
-def test_table_chart_and_html(rod):
-    res = pt.search(rod, scale={"g": 1})
-    table = res.table().splitlines()
-    assert table[0].split() == ["variable", "role", "#1", "#2", "#3"]
-    assert table[1].split() == ["m", "free", "1/s^2", "1/s", "-"]
-    fig = res.plot()
-    assert [t.get_text() for t in fig.axes[0].get_xticklabels()] == ["#1", "#2", "#3"]
-    infeasible = pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta"))
-    assert "impossible" in infeasible.plot().axes[0].get_title()
-
-
 def point_set(system, scale, fixed):
     """Brute force: every subset of free variables held at zero; keep unique points; filter minimal."""
     bases = system.base_dimensions

@@ -12,7 +12,6 @@ from hypothesis import strategies as st
 
 import pitheorem as pt
 from pitheorem import bases as bases_module
-from pitheorem.engines import engine_search
 from pitheorem.exact import (
     MAX_DENOMINATOR,
     MAX_EXPONENT,
@@ -33,16 +32,6 @@ def test_a_search_holds_every_time_variable_by_default():
     assert all(sc.exponents["t"] == sc.exponents["tau"] == 0 for sc in res.scalings)
     # a scaled time variable is not held as well
     assert pt.search(system, scale={"tau": 1}).notes[0].variables == ("t",)
-
-
-def test_an_engine_search_holds_the_systems_time_variables_by_default():
-    system = pt.System({"l": "L", "g": "L T^-2", "t": "T", "tau": "T"})
-    held = engine_search(system, "mujoco", {"g": 1}, names=[])
-    free = engine_search(system, "mujoco", {"g": 1}, fixed=(), names=[])
-    assert held.fixed == ("t", "tau")
-    assert free.fixed == ()
-    assert all(sc.exponents["tau"] == 0 for sc in held.scalings)
-    assert any(sc.exponents["tau"] != 0 for sc in free.scalings)
 
 
 @pytest.mark.parametrize(("variables", "expected"), [
