@@ -1,4 +1,8 @@
-"""TODO"""
+"""pitheorem.basis_sequence: the read-only sequence of repeating sets that ``System.bases`` returns.
+
+It must behave like the list of tuples it stands for (indexing, slicing,
+equality, membership, printing), against lists built by brute force.
+"""
 
 from __future__ import annotations
 

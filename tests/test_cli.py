@@ -23,8 +23,6 @@ from pitheorem.modelfile import example_path, load_model_file
 from tests.conftest import BROKEN_MODEL_FILES, broken_model_file, loaded_after
 
 ROD = str(example_path("hinged_rod"))
-
-
 SUPERBALL = str(example_path("superball"))
 
 

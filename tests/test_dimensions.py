@@ -104,3 +104,8 @@ def test_dimension_string_round_trip(powers):
     dim = pt.Dimension(powers)
     assert pt.Dimension.parse(str(dim)) == dim
     assert all(isinstance(p, Fraction) and p != 0 for p in dim.exponents.values())
+
+
+def test_base_dimensions_string_is_refused():
+    with pytest.raises(pt.InvalidRequestError, match="'LT'"):
+        pt.Dimension.parse("L", base_dimensions="LT")

@@ -1,4 +1,10 @@
-"""TODO"""
+"""pitheorem.engines.constants: the hidden-constant catalogue, engine_search and broken_constants.
+
+The catalogue's values are checked exactly against its data file and
+against the installed engines' own defaults (a fresh MjSpec, PyBullet's
+getPhysicsEngineParameters), and its dimensions by scaled runs: which way
+of treating a constant keeps a scaled run exact.
+"""
 
 from __future__ import annotations
 

@@ -144,6 +144,7 @@ def test_corpus_exhaustive(name, s, controls, folder):
 URDFS = ("cartpole.urdf", "pendulum5.urdf", "sphere2.urdf", "sphere_small.urdf", "sphere_with_restitution.urdf",
          "soccerball.urdf", "cube.urdf", "cube_small.urdf", "lego/lego.urdf", "jenga/jenga.urdf", "table/table.urdf",
          "kuka_iiwa/model.urdf")
+
 #: measured: not similar beyond the one-ulp baseline even at s = 2, and similar in the air (no contact): the
 #: duck and the teddy are convex decompositions whose parts' collision margins changeDynamics cannot reach
 #: (load warns); for r2d2 and TwoJointRobot, whose cylinders PyBullet turns into convex hulls, the cause is

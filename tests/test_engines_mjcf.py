@@ -16,8 +16,6 @@ from pitheorem import engines
 from pitheorem.engines import EngineModelError, UnscalableParameterError
 
 mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
-
-
 DATA = Path(__file__).resolve().parent / "data" / "engines"
 
 

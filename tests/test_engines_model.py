@@ -1,4 +1,11 @@
-"""TODO"""
+"""pitheorem.engines.model: EngineModel, the one type every engine file loads into.
+
+What a model does whatever its engine: it cannot be changed, it reads s and
+every value through the one number reader, takes a change of units over M,
+L and T only, and makes copies by value or by factor.  The example is the
+shipped MJCF pendulum; each backend's own reading is in test_engines_mjcf
+and test_engines_urdf.
+"""
 
 from __future__ import annotations
 

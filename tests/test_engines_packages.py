@@ -1,4 +1,4 @@
-"""TODO"""
+"""pitheorem.engines.packages: the one list of engine packages and how a missing one is reported."""
 
 from __future__ import annotations
 

@@ -21,8 +21,6 @@ m, l, g, k, c, x_r, th_r, k_th, c_th = sympy.symbols("m l g k c x_r theta_r k_th
 
 
 theta = sympy.Function("theta")(t)
-
-
 ROD_DIMS = {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1",
             "theta_r": "1", "t": "T", "theta": "1"}
 
@@ -238,8 +236,6 @@ x = sympy.Function("x")(t)
 
 
 psi = sympy.Function("psi")
-
-
 SYSTEM = pt.System({"t": "T", "X": "L", "Y": "L", "l": "L", "v": "L T^-1", "a": "1", "n": "1", "x": "L",
                     "psi": "1", "F": "M L T^-2"})
 

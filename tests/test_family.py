@@ -1,4 +1,4 @@
-"""TODO"""
+"""pitheorem.family: the minimal points of an affine family, against brute-force enumeration."""
 
 from __future__ import annotations
 

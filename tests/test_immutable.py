@@ -79,6 +79,7 @@ VALUE_TYPES = {
 }
 
 _ERROR = "an exception: Python itself sets __traceback__, __context__ and __cause__ on it as it propagates"
+
 #: exported classes that are no value types, with the reason
 NOT_VALUE_TYPES = {
     "PiTheoremError": _ERROR,

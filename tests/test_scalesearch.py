@@ -20,7 +20,7 @@ from pitheorem.exact import (
     MAX_DENOMINATOR,
 )
 from pitheorem.linalg import nullspace, solve
-from tests.conftest import dimension_of_group, oracle_search, systems
+from tests.conftest import PRIMES, dimension_of_group, oracle_search, systems
 
 
 def exps(scaling: pt.Scaling) -> dict[str, Fraction]:
@@ -322,8 +322,6 @@ def test_notes_are_data_phrased_by_each_front_end(rod):
 
 
 ROD = {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "theta_r": "1", "t": "T"}
-
-
 LT = pt.System({"l": "L", "t": "T"})
 
 
@@ -460,3 +458,10 @@ def test_certificate_is_as_small_as_any_changing_product():
         and all(sum(e * dims[n][i] for e, n in zip(vec, names, strict=True)) == 0 for i in range(3))
     )
     assert len(support(res.certificate)) == smallest == 4  # g^2 t^2 m / k, as in the paper
+
+
+def test_search_with_reciprocal_prime_exponents():
+    variables = {f"x{p}": {"L": Fraction(1, p), "T": Fraction(1, q)} for p, q in zip(PRIMES, (*PRIMES[1:], 2), strict=True)}
+    small = pt.System({n: variables[n] for n in ("x2", "x3", "x23", "x29")} | {"t": "T"})
+    result = pt.search(small, scale={"x23": 1}, fixed=())
+    assert [s.vector for s in result.scalings] == oracle_search(small, {"x23": 1}, ())
