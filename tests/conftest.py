@@ -22,6 +22,8 @@ matplotlib.use("Agg")
 
 
 REPO = Path(__file__).resolve().parents[1]
+
+
 REFERENCE = REPO.parent / "shared" / "reference"
 
 
@@ -32,17 +34,44 @@ if str(REPO) not in sys.path:  # lets tests import matlab_ports/ and benchmarks/
 #: the paper's hinged rod (Section 2.1) with force and torque, as name -> formula
 ROD = {name: str(dim) for name, dim in pt.models.rod_system().dimensions.items()}
 
+
 #: the NTRT SUPERball CONFIG list of Section 4, plus m and l, and the Corde moduli
 SUPERBALL = {name: str(dim) for name, dim in pt.models.superball_parameters().dimensions.items()}
+
 
 #: the paper's hinged rod as a model (its equations, defaults and initial state)
 HINGED_ROD = pt.models.hinged_rod()
 
+
 #: the paper's Figure 5 scaling: g by s, l by 1/s with m and k_theta held, hence c_theta by 1/s and t by 1/s
 FIG5 = pt.search(HINGED_ROD.system, scale={"g": 1, "l": -1}, fixed=("m", "k_theta")).scalings[0]
 
+
 #: every minimal scaling of g by s that leaves time alone
 TIME_FREE = pt.search(HINGED_ROD.system, scale={"g": 1}).scalings
+
+
+#: Formulas the parser refuses, each with the culprit its message must name: Dimension.parse
+#: (test_dimensions) and System (test_system) are checked on them.
+BAD_FORMULAS = [
+    # (formula, culprit that must appear in the message)
+    ("M L^^2", "'^'"),
+    ("M L^", "the end of the formula"),
+    ("M L^x", "'x'"),
+    ("kg", "'kg'"),
+    ("M $ L", "'$'"),
+    ("M L^(1/0)", "division by zero"),
+    ("M (L", "')'"),
+    ("M L)", "')'"),
+    ("2 M", "'2'"),
+    ("M / ", "formula ends too early"),
+    ("* M", "'*'"),
+    ("M L^(1/2", "')'"),
+    ("m", "'m'"),
+    ("M,L", "','"),
+    ("L^2.5.1", "'.1'"),
+    ("Length", "'Length'"),
+]
 
 #: Broken model files, each with what its one-line message must say: the reader
 #: (test_modelfile) and the command line (test_cli) are checked on every one.
@@ -117,6 +146,8 @@ def _close_figures():
 
 #: the base dimensions of random systems, in order
 BASES = ("M", "L", "T", "Theta")
+
+
 PRIMES = (2, 3, 5, 7, 11, 13, 17, 19, 23, 29)
 
 

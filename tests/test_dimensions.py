@@ -13,7 +13,7 @@ from pitheorem.exact import (
     MAX_FORMULA_LENGTH,
     MAX_NESTING,
 )
-from tests.conftest import BASES, rational_exponent
+from tests.conftest import BAD_FORMULAS, BASES, rational_exponent
 
 TORQUE = pt.Dimension({"M": 1, "L": 2, "T": -2})
 
@@ -109,3 +109,11 @@ def test_dimension_string_round_trip(powers):
 def test_base_dimensions_string_is_refused():
     with pytest.raises(pt.InvalidRequestError, match="'LT'"):
         pt.Dimension.parse("L", base_dimensions="LT")
+
+
+@pytest.mark.parametrize(("formula", "culprit"), BAD_FORMULAS)
+def test_bad_formula(formula, culprit):
+    with pytest.raises(pt.DimensionSyntaxError) as info:
+        pt.Dimension.parse(formula)
+    assert culprit in str(info.value)
+    assert 0 <= info.value.position <= len(formula)

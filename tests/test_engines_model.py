@@ -15,7 +15,33 @@ import pytest
 
 import pitheorem as pt
 from pitheorem import engines
+from pitheorem.engines import Parameter
+from pitheorem.engines.model import dim, dimension_factor
 from pitheorem.modelfile import ModelFileError
+
+
+def test_a_parameter_stands_for_one_variable_or_one_per_part():
+    mass = Parameter("body_torso_mass", "body 'torso' mass", (3.5,), dim("M"), "derived", "file")
+    assert (mass.mixed, mass.variables()) == (False, {"body_torso_mass": dim("M")})
+    parts = (("lin", dim("M T^-1")), ("rot", dim("M L^2 T^-1")))
+    damping = Parameter("joint_root_damping", "joint 'root' damping", (0.5,), None, "file", "file", parts=parts)
+    assert damping.mixed
+    assert damping.variables() == {"joint_root_damping_lin": dim("M T^-1"), "joint_root_damping_rot": dim("M L^2 T^-1")}
+    assert dim("M L T^-2") == pt.Dimension({"M": 1, "L": 1, "T": -2})
+
+
+@pytest.mark.parametrize(("unit_change", "dimension", "factor"), [
+    ({"L": 1}, "L T^-2", 10.0),  # gravity with lengths
+    ({"L": 1, "T": 1}, "L T^-2", 0.1),  # s / s^2
+    ({"M": 1, "L": 2}, "M L^2", 10.0**5),  # an inertia
+    ({"T": -1}, "1", 1.0),  # a number without dimension never moves
+])
+def test_dimension_factor_is_s_to_the_dimensions_exponent(unit_change, dimension, factor):
+    sc = pt.Scaling.from_unit_change(pt.System({"m": "M", "l": "L", "t": "T"}), unit_change)
+    assert dimension_factor(sc, 10, dim(dimension)) == factor
+
+
+mujoco = pytest.importorskip("mujoco", reason="the models below are MuJoCo's (pip install 'pitheorem[engines]')")
 
 
 def test_with_values_is_multiplied_by_the_ratio_and_may_reach_zero_or_change_sign():

@@ -44,3 +44,19 @@ def test_bullet_prints_no_banner():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=REPO)
     assert out.stdout == ""
     assert out.stderr == ""
+
+
+def test_quiet_stdout_silences_both_descriptors_and_restores_them(capfd):
+    import os
+
+    from pitheorem.engines.packages import quiet_stdout
+
+    print("before", flush=True)
+    with quiet_stdout():
+        os.write(1, b"C library banner on stdout\n")
+        os.write(2, b"C library warning on stderr\n")
+    os.write(1, b"after\n")
+    os.write(2, b"after on stderr\n")
+    out, err = capfd.readouterr()
+    assert out == "before\nafter\n"
+    assert err == "after on stderr\n"

@@ -11,10 +11,12 @@ import sympy
 import pitheorem as pt
 from pitheorem.exact import (
     MAX_DENOMINATOR,
+    MAX_EXPONENT,
     is_float,
     read_exponent,
     read_number,
     read_positive,
+    read_scale_factor,
     read_value,
     short_text,
 )
@@ -125,3 +127,38 @@ def test_short_text_is_exact_below_120_bits_and_a_magnitude_above():
 def test_huge_power_of_ten_string_is_refused_before_it_is_built():
     with pytest.raises(pt.LimitError, match="power of ten"):
         read_exponent("1e99999999", "x")
+
+
+@pytest.mark.parametrize(("s", "expected"), [
+    (2, Fraction(2)), ("1/2", Fraction(1, 2)), (np.int64(3), Fraction(3)), (sympy.Rational(3, 4), Fraction(3, 4)),
+    (Fraction(10, 4), Fraction(5, 2)), ("0.1", Fraction(1, 10)),
+])
+def test_read_scale_factor_makes_exact_numbers_fractions(s, expected):
+    got = read_scale_factor(s)
+    assert got == expected
+    assert type(got) is Fraction
+
+
+def test_read_scale_factor_keeps_floats_and_irrational_numbers():
+    for s, expected in ((2.5, 2.5), (np.float32(0.5), 0.5), (sympy.Float(0.25), 0.25)):
+        got = read_scale_factor(s)
+        assert (got, type(got)) == (expected, float)
+    assert read_scale_factor(sympy.sqrt(2)) is sympy.sqrt(2)  # exact as it is: powers of it stay exact
+    for bad in (0, -1, "-1/2", 0.0, float("nan"), float("inf"), True, "ten", None):
+        with pytest.raises(pt.NumberError, match="the scale factor s must be a positive finite number"):
+            read_scale_factor(bad)
+
+
+@pytest.mark.parametrize(("value", "expected"), [
+    ("-1/2", Fraction(-1, 2)), (0.25, Fraction(1, 4)), (3, Fraction(3)), ("1e-3", Fraction(1, 1000)),
+    (f"1/{MAX_DENOMINATOR}", Fraction(1, MAX_DENOMINATOR)), (MAX_EXPONENT, Fraction(MAX_EXPONENT)),
+])
+def test_read_exponent_reads_within_the_limits(value, expected):
+    assert read_exponent(value, "the exponent of 'x'") == expected
+
+
+@pytest.mark.parametrize("value", [MAX_EXPONENT + 1, -MAX_EXPONENT - 1, Fraction(1, MAX_DENOMINATOR + 1)])
+def test_read_exponent_refuses_beyond_the_limits(value):
+    with pytest.raises(pt.LimitError) as caught:
+        read_exponent(value, "the exponent of 'x'")
+    assert "the exponent of 'x'" in str(caught.value)

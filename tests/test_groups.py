@@ -149,3 +149,13 @@ def test_equivalent_needs_the_same_span_not_just_the_same_rank():
     assert not one.equivalent(other)
     assert not other.equivalent(one)
     assert one.equivalent(pt.System({"a": "L", "b": "L", "c": "T"}).pi_groups(repeating=("b", "c")))
+
+
+def test_bad_evaluate_and_group_lookup(rod):
+    pi_g = rod.pi_groups(repeating=("m", "l", "k_theta"))["g"]
+    with pytest.raises(pt.InvalidRequestError, match="'k_theta'"):
+        pi_g.evaluate({"m": 1, "l": 1, "g": 1})
+    with pytest.raises(pt.InvalidRequestError, match="'l' = 0"):
+        rod.pi_groups(repeating=("m", "l", "k_theta"))["t"].evaluate({"l": 0, "m": 1, "t": 1, "k_theta": 1})
+    with pytest.raises(pt.InvalidRequestError, match="'zzz'"):
+        rod.pi_groups()["zzz"]

@@ -1,7 +1,13 @@
-"""System: what it answers about its own variables (more in test_groups, test_fast_paths, test_edges)."""
+"""pitheorem.system: System, its input checks, and what it answers about its variables.
+
+Pi groups (``pi_groups``, ``default_repeating``) against sympy's solutions,
+dimension specs at and beyond the limits, the opt-in base letters, pint
+units (``from_units``).  The enumeration behind ``bases`` is in test_bases.
+"""
 
 from __future__ import annotations
 
+import re
 from fractions import Fraction
 
 import numpy as np
@@ -15,7 +21,7 @@ from pitheorem.exact import (
     MAX_DENOMINATOR,
     MAX_EXPONENT,
 )
-from tests.conftest import oracle_bases, oracle_groups, systems
+from tests.conftest import BAD_FORMULAS, ROD, oracle_bases, oracle_groups, systems
 
 
 def test_time_variables_are_those_of_dimension_time_alone_in_system_order():
@@ -202,3 +208,93 @@ def test_from_units_angle_as_base():
     s = pt.System.from_units({"k_theta": "N*m/rad", "theta": "rad"}, angle_as_base=True)
     assert str(s.dimension("k_theta")) == "M L^2 T^-2 A^-1"
     assert str(s.dimension("theta")) == "A"
+
+
+@pytest.mark.parametrize(("formula", "culprit"), BAD_FORMULAS[:6])
+def test_bad_formula_in_system_names_variable(formula, culprit):
+    with pytest.raises(pt.DimensionSyntaxError) as info:
+        pt.System({"ok": "L", "bad_one": formula})
+    assert "'bad_one'" in str(info.value)
+    assert culprit in str(info.value)
+
+
+BAD_SYSTEMS = [
+    ({}, pt.EmptySystemError, "at least one variable"),
+    ([], pt.EmptySystemError, "at least one variable"),
+    ([("a", "L"), ("a", "T")], pt.DuplicateVariableError, "'a'"),
+    ({"2x": "L"}, pt.InvalidRequestError, "'2x'"),
+    ({"a b": "L"}, pt.InvalidRequestError, "'a b'"),
+    ({"a": 3}, pt.InvalidRequestError, "'a'"),
+    ({"a": None}, pt.InvalidRequestError, "'a'"),
+    ({"a": {"L": "x"}}, pt.InvalidRequestError, "'a'"),
+    ({"a": {"Q": 1}}, pt.InvalidRequestError, "'Q'"),
+    (42, pt.InvalidRequestError, "int"),
+    ([("a",)], pt.InvalidRequestError, "('a',)"),
+]
+
+
+@pytest.mark.parametrize(("variables", "kind", "culprit"), BAD_SYSTEMS)
+def test_bad_system(variables, kind, culprit):
+    with pytest.raises(kind) as info:
+        pt.System(variables)
+    assert culprit in str(info.value)
+
+
+def test_bad_base_dimension_list():
+    with pytest.raises(pt.DuplicateVariableError, match="'M'"):
+        pt.System({"a": "M"}, base_dimensions=("M", "M"))
+    with pytest.raises(pt.InvalidRequestError, match="'1x'"):
+        pt.System({"a": "M"}, base_dimensions=("M", "1x"))
+
+
+def test_custom_base_dimension_accepted_when_declared():
+    s = pt.System({"q": "Q", "l": "L"}, base_dimensions=("L", "Q"))
+    assert s.base_dimensions == ("L", "Q")
+
+
+BAD_REPEATERS = [
+    (("m", "l"), pt.RepeatingCountError, "rank 3"),
+    (("m", "l", "k_theta", "t"), pt.RepeatingCountError, "exactly 3"),
+    (("m", "l", "mass"), pt.UnknownVariableError, "'mass'"),
+    (("m", "m", "t"), pt.DuplicateVariableError, "'m'"),
+    (("k_theta", "tau", "m"), pt.DependentRepeatingSetError, "k_theta/tau"),
+    (("l", "g", "t"), pt.DependentRepeatingSetError, "l/(g*t**2)"),
+    (("m", "l", "theta_r"), pt.DependentRepeatingSetError, "theta_r"),
+    ("m", pt.RepeatingCountError, "('m',)"),
+    ((1, 2, 3), pt.InvalidRequestError, "1"),
+    (5, pt.InvalidRequestError, "5"),
+]
+
+
+@pytest.mark.parametrize(("repeating", "kind", "culprit"), BAD_REPEATERS)
+def test_bad_repeaters(repeating, kind, culprit):
+    rod = pt.System(ROD)
+    with pytest.raises(kind) as info:
+        rod.pi_groups(repeating=repeating)
+    assert culprit in str(info.value)
+
+
+def test_bad_bases_arguments():
+    rod = pt.System(ROD)
+    with pytest.raises(pt.UnknownVariableError, match="'time'"):
+        rod.bases(exclude=("time",))
+    with pytest.raises(pt.InvalidRequestError, match="'t'"):
+        rod.bases(exclude=("t",), require=("t",))
+    with pytest.raises(pt.DependentRepeatingSetError, match="k_theta"):
+        rod.bases(require=("k_theta", "tau"))
+    with pytest.raises(pt.RepeatingCountError):
+        rod.count_bases(require=("m", "l", "t", "g"))
+
+
+def test_bad_units():
+    with pytest.raises(pt.UnitError, match="'furlongs_per_blob'"):
+        pt.System.from_units({"v": "furlongs_per_blob"})
+    with pytest.raises(pt.UnitError, match="'x'"):
+        pt.System.from_units({"x": 3})
+    with pytest.raises(pt.UnitError, match=re.escape("'kg**'")):
+        pt.System.from_units({"m": "kg**"})
+
+
+def test_an_unknown_variables_dimension_is_named(rod):
+    with pytest.raises(pt.UnknownVariableError, match="'q'"):
+        rod.dimension("q")
