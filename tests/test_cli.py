@@ -19,10 +19,15 @@ import pytest
 
 import pitheorem as pt
 from pitheorem.cli import EXIT_ERROR, EXIT_INFEASIBLE, EXIT_OK, main
-from pitheorem.modelfile import example_path, load_model_file
+from pitheorem.modelfile import (
+    example_path,
+    load_model_file,
+)
 from tests.conftest import BROKEN_MODEL_FILES, broken_model_file, loaded_after
 
 ROD = str(example_path("hinged_rod"))
+
+
 SUPERBALL = str(example_path("superball"))
 
 
@@ -532,3 +537,15 @@ def test_apply_rounds_once_from_the_exact_product(model, capsys, tmp_path):
     assert code == EXIT_OK, err
     assert 9.81 * 0.1 != 0.981
     assert tomllib.loads(out_path.read_text())["variables"]["g"]["value"] == 0.981
+
+
+def test_the_command_line_reads_toml_files_without_the_engines(monkeypatch, capsys):
+    import sys
+
+    from pitheorem.cli import main
+
+    for name in [m for m in sys.modules if m.startswith("pitheorem.engines")]:
+        monkeypatch.setitem(sys.modules, name, None)  # importing any of them now fails
+    monkeypatch.setitem(sys.modules, "pitheorem.engines", None)
+    assert main(["groups", "example:hinged_rod"]) == 0
+    assert capsys.readouterr().out.strip()

@@ -181,63 +181,6 @@ def test_bad_requests(rod, kwargs, kind, culprit):
     assert culprit in str(info.value)
 
 
-def test_bad_scaling_use(rod):
-    with pytest.raises(pt.InvalidRequestError, match="not a similarity scaling"):
-        pt.Scaling.from_exponents(rod, {"g": 1})
-    with pytest.raises(pt.InvalidRequestError, match="'Q'"):
-        pt.Scaling.from_unit_change(rod, {"Q": 1})
-    sc = pt.Scaling.from_unit_change(rod, {"L": 1})
-    with pytest.raises(pt.InvalidRequestError, match="positive"):
-        sc.apply({"l": 1}, s=-2)
-    with pytest.raises(pt.UnknownVariableError, match="'length'"):
-        sc.apply({"length": 1}, s=2)
-    with pytest.raises(pt.InvalidRequestError, match="shape"):
-        sc.map_back([0, 1], [[1, 2, 3]], 2, time="t", states=["1"])
-    with pytest.raises(pt.InvalidRequestError, match="System"):
-        pt.search({"g": "L"}, scale={"g": 1})
-
-
-def _power(cell: str) -> Fraction:
-    """Read a table cell ('-', 's', '1/s^2', 's^(1/2)', ...) back as an exponent of s."""
-    if cell == "-":
-        return Fraction(0)
-    sign, body = (-1, cell[2:]) if cell.startswith("1/") else (1, cell)
-    exp = body.partition("^")[2].strip("()") or "1"
-    return sign * Fraction(exp)
-
-
-@pytest.mark.parametrize(
-    ("model", "request_"),
-    [("rod", {"scale": {"g": 1}}), ("superball", {"scale": {"l": 1}, "fixed": ("t", "m")})],
-)
-def test_table_base_unit_rows_explain_every_column(rod, model, request_):
-    system = rod if model == "rod" else pt.models.superball_parameters()
-    res = pt.search(system, **request_)
-    rows = [line.split() for line in res.table().splitlines()[1:]]
-    base = {r[0][1:-1]: [_power(c) for c in r[2:]] for r in rows if r[1] == "base"}
-    variables = {r[0]: [_power(c) for c in r[2:]] for r in rows if r[1] != "base"}
-    assert sorted(base) == sorted(system.base_dimensions)
-    assert list(variables) == list(system.variables)
-    # each variable's power is its dimension applied to the column's change of base units
-    for name, powers in variables.items():
-        dim = system.dimension(name)
-        for k, power in enumerate(powers):
-            assert power == sum(dim.exponent_of(b) * base[b][k] for b in base)
-    html = res._repr_html_()
-    assert html.count('<tr class="base-unit"') == len(system.base_dimensions)
-
-
-def test_table_of_symmetries_beyond_units_says_they_have_no_unit_change():
-    proj = pt.models.projectile()
-    sym = pt.scaling_symmetries(proj.equations, proj.system)
-    res = pt.search(proj.system, scale={"x": 1}, fixed=("t", "g"), within=sym)
-    rows = [line.split() for line in res.table().splitlines()]
-    base = [r for r in rows if r[1] == "base"]
-    assert [r[0] for r in base] == [f"[{b}]" for b in proj.system.base_dimensions]
-    assert all(r[2:] == ["none"] for r in base)
-    assert res._repr_html_().count(">none</td>") == len(proj.system.base_dimensions)
-
-
 def test_within_takes_a_symmetry_report_not_a_look_alike():
     proj = pt.models.projectile()
     sym = pt.scaling_symmetries(proj.equations, proj.system)
@@ -322,6 +265,8 @@ def test_notes_are_data_phrased_by_each_front_end(rod):
 
 
 ROD = {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "theta_r": "1", "t": "T"}
+
+
 LT = pt.System({"l": "L", "t": "T"})
 
 
@@ -465,3 +410,17 @@ def test_search_with_reciprocal_prime_exponents():
     small = pt.System({n: variables[n] for n in ("x2", "x3", "x23", "x29")} | {"t": "T"})
     result = pt.search(small, scale={"x23": 1}, fixed=())
     assert [s.vector for s in result.scalings] == oracle_search(small, {"x23": 1}, ())
+
+
+def test_a_search_holds_every_time_variable_by_default():
+    system = pt.System({"l": "L", "g": "L T^-2", "t": "T", "tau": "T"})
+    res = pt.search(system, scale={"g": 1})
+    assert res.notes[0].variables == system.time_variables == ("t", "tau")
+    assert all(sc.exponents["t"] == sc.exponents["tau"] == 0 for sc in res.scalings)
+    # a scaled time variable is not held as well
+    assert pt.search(system, scale={"tau": 1}).notes[0].variables == ("t",)
+
+
+def test_search_needs_a_system():
+    with pytest.raises(pt.InvalidRequestError, match="System"):
+        pt.search({"g": "L"}, scale={"g": 1})

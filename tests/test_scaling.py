@@ -154,3 +154,17 @@ def test_scaling_apply_and_map_back(rod):
     assert (sc**2).exponents["l"] == -2
     assert pt.Scaling.from_exponents(rod, {"l": -1, "g": 1, "c_theta": -1, "t": -1, "F": 1}) == sc
     assert sc.factors(2.0)["t"] == 0.5
+
+
+def test_bad_scaling_use(rod):
+    with pytest.raises(pt.InvalidRequestError, match="not a similarity scaling"):
+        pt.Scaling.from_exponents(rod, {"g": 1})
+    with pytest.raises(pt.InvalidRequestError, match="'Q'"):
+        pt.Scaling.from_unit_change(rod, {"Q": 1})
+    sc = pt.Scaling.from_unit_change(rod, {"L": 1})
+    with pytest.raises(pt.InvalidRequestError, match="positive"):
+        sc.apply({"l": 1}, s=-2)
+    with pytest.raises(pt.UnknownVariableError, match="'length'"):
+        sc.apply({"length": 1}, s=2)
+    with pytest.raises(pt.InvalidRequestError, match="shape"):
+        sc.map_back([0, 1], [[1, 2, 3]], 2, time="t", states=["1"])

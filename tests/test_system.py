@@ -30,15 +30,6 @@ def test_time_variables_are_those_of_dimension_time_alone_in_system_order():
     assert pt.System({"l": "L", "f": "T^-1"}).time_variables == ()
 
 
-def test_a_search_holds_every_time_variable_by_default():
-    system = pt.System({"l": "L", "g": "L T^-2", "t": "T", "tau": "T"})
-    res = pt.search(system, scale={"g": 1})
-    assert res.notes[0].variables == system.time_variables == ("t", "tau")
-    assert all(sc.exponents["t"] == sc.exponents["tau"] == 0 for sc in res.scalings)
-    # a scaled time variable is not held as well
-    assert pt.search(system, scale={"tau": 1}).notes[0].variables == ("t",)
-
-
 @pytest.mark.parametrize(("variables", "expected"), [
     ({"t": "T", "l": "L", "g": "L T^-2"}, ("l", "g")),
     ({"tau": "T", "l": "L", "v": "L/T"}, ("l", "v")),
