@@ -775,9 +775,9 @@ class MjcfBackend:
         """
         import os
 
+        mj = _mujoco()  # names a missing MuJoCo before its submodule is imported
         from mujoco import rollout
 
-        mj = _mujoco()
         spec = mj.mjtState.mjSTATE_FULLPHYSICS
         models, initial, control, firsts = [], [], [], []
         for backend, controls, nudge, state in jobs:

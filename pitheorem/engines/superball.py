@@ -54,6 +54,7 @@ from ..immutable import immutable
 from ..modelfile import EXAMPLES
 from ..system import System
 from .model import EngineModel, attribute_text, dim
+from .packages import engine_module
 
 __all__ = [
     "PAPER_SCALING",
@@ -397,8 +398,7 @@ class CableController:
     """
 
     def __init__(self, model):
-        import mujoco
-
+        mujoco = engine_module("mujoco")
         model = _compiled(model)
 
         def numeric(name: str) -> float:
@@ -507,8 +507,7 @@ def simulate_superball(model, duration: float, *, controlled: bool = True, every
     >>> ends.shape, bool(ends[-1, :, :, 2].min() < ends[0, :, :, 2].min())   # it fell
     ((51, 6, 2, 3), True)
     """
-    import mujoco
-
+    mujoco = engine_module("mujoco")
     if isinstance(model, Path) or (isinstance(model, str) and not model.lstrip().startswith("<")):
         model = mujoco.MjModel.from_xml_path(str(model))
     elif isinstance(model, str):
