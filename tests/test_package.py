@@ -153,6 +153,7 @@ CROSS_CUTTING = {
     "test_package.py": "the package as a whole: its import, its private names, this layout",
     "test_check_pages.py": "docs tooling (docs/check_pages.py), not a module of pitheorem",
     "test_matlab_ports.py": "the matlab_ports namespace, not a module of pitheorem",
+    "test_architecture.py": "the layers of docs/explanation/architecture.md: every import of every module",
     "test_engines_corpus.py": "the whole engine path on the corpus of gymnasium's and pybullet_data's models",
 }
 
