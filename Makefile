@@ -17,8 +17,10 @@ $(VENV)/.docs-stamp: pyproject.toml
 	$(PY) -m pip install --quiet -e ".[test,docs,engines]"
 	touch $@
 
+# on every core (pytest-xdist), each test file whole on one worker, so that its module-scoped caches
+# (the engine corpus, SUPERball's runs) are built once; `pytest tests/test_x.py` alone runs serially
 test: $(VENV)/.test-stamp
-	$(PY) -m pytest
+	$(PY) -m pytest -n auto --dist loadfile
 
 docs: $(VENV)/.docs-stamp
 	rm -rf docs/reference/generated  # autosummary stubs of renamed or removed names would fail -W

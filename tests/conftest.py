@@ -1,28 +1,77 @@
-"""Shared fixtures: the white paper's systems, broken model files, and a matplotlib guard."""
+"""Shared fixtures and oracles: the white paper's systems, broken model files, a matplotlib guard, and
+independent oracles (sympy's exact rank and solutions, loops over every subset) that several test files
+check pitheorem against."""
 
 from __future__ import annotations
 
+import subprocess
 import sys
+from fractions import Fraction
+from itertools import combinations
+from math import gcd, lcm
 from pathlib import Path
 
 import matplotlib
 import pytest
+import sympy
+from hypothesis import strategies as st
+
+import pitheorem as pt
 
 matplotlib.use("Agg")
 
+
 REPO = Path(__file__).resolve().parents[1]
+
+
 REFERENCE = REPO.parent / "shared" / "reference"
+
+
 if str(REPO) not in sys.path:  # lets tests import matlab_ports/ and benchmarks/
     sys.path.insert(0, str(REPO))
 
-import pitheorem as pt  # noqa: E402
 
 #: the paper's hinged rod (Section 2.1) with force and torque, as name -> formula
 ROD = {name: str(dim) for name, dim in pt.models.rod_system().dimensions.items()}
 
+
 #: the NTRT SUPERball CONFIG list of Section 4, plus m and l, and the Corde moduli
 SUPERBALL = {name: str(dim) for name, dim in pt.models.superball_parameters().dimensions.items()}
 
+
+#: the paper's hinged rod as a model (its equations, defaults and initial state)
+HINGED_ROD = pt.models.hinged_rod()
+
+
+#: the paper's Figure 5 scaling: g by s, l by 1/s with m and k_theta held, hence c_theta by 1/s and t by 1/s
+FIG5 = pt.search(HINGED_ROD.system, scale={"g": 1, "l": -1}, fixed=("m", "k_theta")).scalings[0]
+
+
+#: every minimal scaling of g by s that leaves time alone
+TIME_FREE = pt.search(HINGED_ROD.system, scale={"g": 1}).scalings
+
+
+#: Formulas the parser refuses, each with the culprit its message must name: Dimension.parse
+#: (test_dimensions) and System (test_system) are checked on them.
+BAD_FORMULAS = [
+    # (formula, culprit that must appear in the message)
+    ("M L^^2", "'^'"),
+    ("M L^", "the end of the formula"),
+    ("M L^x", "'x'"),
+    ("kg", "'kg'"),
+    ("M $ L", "'$'"),
+    ("M L^(1/0)", "division by zero"),
+    ("M (L", "')'"),
+    ("M L)", "')'"),
+    ("2 M", "'2'"),
+    ("M / ", "formula ends too early"),
+    ("* M", "'*'"),
+    ("M L^(1/2", "')'"),
+    ("m", "'m'"),
+    ("M,L", "','"),
+    ("L^2.5.1", "'.1'"),
+    ("Length", "'Length'"),
+]
 
 #: Broken model files, each with what its one-line message must say: the reader
 #: (test_modelfile) and the command line (test_cli) are checked on every one.
@@ -93,3 +142,109 @@ def _close_figures():
     import matplotlib.pyplot as plt
 
     plt.close("all")
+
+
+#: the base dimensions of random systems, in order
+BASES = ("M", "L", "T", "Theta")
+
+
+PRIMES = (2, 3, 5, 7, 11, 13, 17, 19, 23, 29)
+
+
+#: exponents that are fractions with small denominators
+rational_exponent = st.fractions(min_value=-2, max_value=2, max_denominator=3)
+
+
+def columns_of(system: pt.System) -> list[list[Fraction]]:
+    return [[system.dimension(v).exponent_of(b) for b in system.base_dimensions] for v in system.variables]
+
+
+def sympy_rank(cols) -> int:
+    return sympy.Matrix([[sympy.Rational(x.numerator, x.denominator) for x in c] for c in cols]).rank() if cols else 0
+
+
+def oracle_bases(system: pt.System, exclude=(), require=()) -> list[tuple[str, ...]]:
+    cols = columns_of(system)
+    r = sympy_rank(cols)
+    found = []
+    for subset in combinations(range(len(cols)), r):
+        names = tuple(system.variables[j] for j in subset)
+        if set(names) & set(exclude) or not set(require) <= set(names):
+            continue
+        if sympy_rank([cols[j] for j in subset]) == r:
+            found.append(names)
+    return found
+
+
+def oracle_groups(system: pt.System, repeating) -> list[tuple[tuple[str, int], ...]]:
+    """Each non-repeating variable over the repeaters, solved by sympy, as primitive integers."""
+    cols = columns_of(system)
+    rep = [system.variables.index(n) for n in repeating]
+    d_r = sympy.Matrix([[sympy.Rational(str(cols[j][i])) for j in rep] for i in range(len(system.base_dimensions))])
+    out = []
+    for j, name in enumerate(system.variables):
+        if j in rep:
+            continue
+        target = sympy.Matrix([sympy.Rational(str(x)) for x in cols[j]])
+        x = d_r.solve(target) if rep else sympy.Matrix([])
+        exps = {n: Fraction(0) for n in system.variables}
+        exps[name] = Fraction(1)
+        for k, n in enumerate(repeating):
+            exps[n] -= Fraction(int(x[k].p), int(x[k].q))
+        den = lcm(*(e.denominator for e in exps.values()))
+        ints = {n: int(e * den) for n, e in exps.items()}
+        g = gcd(*ints.values())
+        out.append(tuple((n, ints[n] // g) for n in system.variables if ints[n]))
+    return out
+
+
+def oracle_search(system: pt.System, scale: dict, fixed) -> list[tuple[Fraction, ...]]:
+    """Support-minimal solutions by trying every set of free variables held at zero, with sympy."""
+    cols = columns_of(system)
+    d_t = sympy.Matrix([[sympy.Rational(str(x)) for x in c] for c in cols])  # a = D^T u
+    free = [n for n in system.variables if n not in scale and n not in fixed]
+    points = set()
+    for size in range(len(free) + 1):
+        for zero in combinations(free, size):
+            held = {**{n: sympy.Rational(str(Fraction(p))) for n, p in scale.items()},
+                    **dict.fromkeys([*fixed, *zero], sympy.Integer(0))}
+            rows = sympy.Matrix([d_t.row(system.variables.index(n)) for n in held])
+            rhs = sympy.Matrix(list(held.values()))
+            try:
+                sol, _ = rows.gauss_jordan_solve(rhs)
+            except ValueError:
+                continue
+            a = d_t * sol
+            if any(x.free_symbols for x in a):
+                continue
+            points.add(tuple(Fraction(int(x.p), int(x.q)) for x in a))
+    supports = {p: frozenset(i for i, x in enumerate(p) if x) for p in points}
+    minimal = [p for p in points if not any(supports[q] < supports[p] for q in points)]
+    keys = [(len(supports[p]), sorted(supports[p])) for p in minimal]
+    assert len({repr(key) for key in keys}) == len(keys), "two minimal points with one support"
+    return sorted(minimal, key=lambda p: (len(supports[p]), sorted(supports[p])))
+
+
+@st.composite
+def systems(draw, exponent=None, max_vars=8, max_bases=4):
+    """A random system of up to `max_vars` variables over the first 1 to `max_bases` of BASES."""
+    exponent = st.integers(-3, 3) if exponent is None else exponent
+    k = draw(st.integers(1, max_bases))
+    n = draw(st.integers(1, max_vars))
+    columns = draw(st.lists(st.lists(exponent, min_size=k, max_size=k), min_size=n, max_size=n))
+    return pt.System({f"x{j}": pt.Dimension(zip(BASES[:k], col, strict=True)) for j, col in enumerate(columns)})
+
+
+def dimension_of_group(system: pt.System, group: pt.PiGroup) -> pt.Dimension:
+    """The dimension of a group's product, multiplied out from its variables' dimensions."""
+    total = pt.Dimension.dimensionless()
+    for name, power in group.exponents.items():
+        total = total * system.dimension(name) ** power
+    return total
+
+
+def loaded_after(code: str) -> set[str]:
+    """Which of numpy, scipy and matplotlib a fresh interpreter has loaded after running `code`."""
+    probe = code + "\nimport sys\nprint('loaded:', *(m for m in ('numpy', 'scipy', 'matplotlib') if m in sys.modules))"
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True)
+    return set(out.stdout.strip().splitlines()[-1].split()[1:])

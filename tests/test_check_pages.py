@@ -1,4 +1,7 @@
-"""Tests of docs/check_pages.py, the CI check of what readers see, on small hand-written pages."""
+"""Tests of docs/check_pages.py, the CI check of what readers see, on small hand-written pages.
+
+Not a module of pitheorem: the docs tooling (``docs/check_pages.py``).
+"""
 
 from __future__ import annotations
 

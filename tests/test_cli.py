@@ -11,6 +11,7 @@ import json
 import shutil
 import subprocess
 import sys
+import tomllib
 from fractions import Fraction
 from pathlib import Path
 
@@ -18,10 +19,15 @@ import pytest
 
 import pitheorem as pt
 from pitheorem.cli import EXIT_ERROR, EXIT_INFEASIBLE, EXIT_OK, main
-from pitheorem.modelfile import example_path, load_model_file
-from tests.conftest import BROKEN_MODEL_FILES, broken_model_file
+from pitheorem.modelfile import (
+    example_path,
+    load_model_file,
+)
+from tests.conftest import BROKEN_MODEL_FILES, broken_model_file, loaded_after
 
 ROD = str(example_path("hinged_rod"))
+
+
 SUPERBALL = str(example_path("superball"))
 
 
@@ -47,9 +53,6 @@ def _console_script() -> str | None:
     # environment's bin folder need not be on PATH (make test runs .venv/bin/python directly)
     beside = Path(sys.executable).with_name("pitheorem")
     return str(beside) if beside.exists() else shutil.which("pitheorem")
-
-
-# -- groups --------------------------------------------------------------------------------
 
 
 def test_groups_default_repeaters(capsys):
@@ -79,9 +82,6 @@ def test_groups_latex(capsys):
     assert out.startswith(r"\begin{align*}")
 
 
-# -- bases ---------------------------------------------------------------------------------
-
-
 def test_bases_count_and_list(capsys):
     system = pt.models.rod_system()
     code, out, _ = run(capsys, "bases", ROD, "--count")
@@ -95,9 +95,6 @@ def test_bases_count_and_list(capsys):
     code, out, _ = run(capsys, "bases", ROD, "--format", "latex")
     assert r"\begin{tabular}" in out
     assert r"k_{\theta}" in out
-
-
-# -- search --------------------------------------------------------------------------------
 
 
 def test_search_gravity_has_three_minimal_solutions(capsys):
@@ -206,9 +203,6 @@ def test_json_is_deterministic(capsys):
     assert run(capsys, "search", SUPERBALL, "--scale", "g=1", "--format", "json") == first
 
 
-# -- apply ---------------------------------------------------------------------------------
-
-
 def _groups_with_values(model):
     """Every Pi group, over all bases without time, whose variables all have values."""
     seen = {}
@@ -270,8 +264,6 @@ def test_apply_infeasible_writes_nothing(capsys, tmp_path):
     assert "g**2*m*t**2/k_theta" in err
     assert not out.exists()
 
-
-# -- bad input: exit code 2, one line on stderr naming the culprit --------------------------
 
 BAD_REQUESTS = {
     "scale_and_fixed": (["search", ROD, "--scale", "g=1", "--fixed", "g"], "'g'"),
@@ -360,9 +352,6 @@ def test_usage_errors_and_help(capsys):
     assert pt.__version__ in out
 
 
-# -- what the programs print, in-process; the real programs, in subprocesses -------------------
-
-
 def test_search_json_count(capsys):
     code, doc = run_json(capsys, "search", "example:hinged_rod", "--scale", "g=1")
     assert code == EXIT_OK
@@ -422,3 +411,141 @@ def test_console_script(tmp_path):
     proc = subprocess_run("groups", tmp_path / "nope.toml", program=[_console_script()])
     assert proc.returncode == EXIT_ERROR
     assert proc.stderr.count("\n") == 1
+
+
+def test_cli_groups_and_search_load_neither_scipy_nor_matplotlib(tmp_path):
+    run = ("import sys\nfrom pitheorem.cli import main\nsys.argv = ['pitheorem', *{args!r}]\n"
+           "try:\n    main()\nexcept SystemExit:\n    pass")
+    assert loaded_after(run.format(args=["groups", "example:hinged_rod"])) == set()
+    assert "scipy" not in loaded_after(run.format(args=["search", "example:hinged_rod", "--scale", "g=1"]))
+    assert "matplotlib" not in loaded_after(run.format(args=["bases", "example:hinged_rod"]))
+
+
+MODEL = """
+[variables]
+g = { dimension = "L T^-2", value = 9.81 }
+l = { dimension = "L", value = 0.3 }
+m = { dimension = "M", value = "1/3" }
+t = { dimension = "T" }
+"""
+
+
+@pytest.fixture
+def model(tmp_path):
+    path = tmp_path / "model.toml"
+    path.write_text(MODEL, encoding="utf-8")
+    return path
+
+
+def assert_one_line_error(code, out, err, *fragments):
+    assert code == EXIT_ERROR, (code, out, err)
+    assert err.startswith("pitheorem: error: "), err
+    assert err.count("\n") == 1, err
+    assert "Traceback" not in err
+    for fragment in fragments:
+        assert fragment in err, err
+
+
+BAD_DIMENSIONS = [
+    ('"L^20000"', "1000"),
+    ('"L^99999999999999999999999"', "1000"),
+    ('"N"', "newton"),
+    ('"L^--2"', "'-'"),
+    ('"' + "(" * 200 + "L" + ")" * 200 + '"', "nest"),
+    ('"L^(1/0)"', "division by zero"),
+]
+
+
+@pytest.mark.parametrize(("dimension", "fragment"), BAD_DIMENSIONS)
+@pytest.mark.parametrize("command", [["groups"], ["bases"], ["search", "--scale", "x=1"]])
+def test_bad_dimension_in_file(tmp_path, capsys, dimension, fragment, command):
+    path = tmp_path / "bad.toml"
+    path.write_text(f'[variables]\nx = {{ dimension = {dimension}, value = 1 }}\nt = {{ dimension = "T" }}\n')
+    code, out, err = run(capsys, command[0], path, *command[1:])
+    assert_one_line_error(code, out, err, fragment, "'x'")
+
+
+@pytest.mark.parametrize(("entry", "fragments"), [
+    ("g=1e400", ["1000", "exponent of the scale factor s"]),
+    ("g=1/0", ["exponent of the scale factor s"]),
+    ("g=s^2", ["exponent of the scale factor s", "not a factor"]),
+    ("g=2s", ["exponent of the scale factor s"]),
+    ("g=*6", ["exponent of the scale factor s"]),
+    ("g=x6", ["exponent of the scale factor s"]),
+    ("g=nan", ["exponent of the scale factor s"]),
+    ("g=inf", ["exponent of the scale factor s"]),
+    ("g", ["NAME=EXP", "exponent of the scale factor s"]),
+    ("g=0.3333333333333333", ["1000000000000"]),
+    ("nope=1", ["'nope'"]),
+])
+def test_bad_scale_entries(model, capsys, entry, fragments):
+    code, out, err = run(capsys, "search", model, "--scale", entry)
+    assert_one_line_error(code, out, err, *fragments)
+
+
+@pytest.mark.parametrize("s", ["0", "-2", "abc", "1/0", "inf", "nan", "1e99999999"])
+def test_bad_s(model, capsys, s):
+    code, out, err = run(capsys, "apply", model, "--scale", "g=1", "--fixed", "--s", s)
+    assert_one_line_error(code, out, err, "--s")
+
+
+def test_scaled_value_out_of_float_range(model, capsys):
+    code, out, err = run(capsys, "apply", model, "--scale", "g=1000", "--fixed", "--s", "1e300")
+    assert_one_line_error(code, out, err, "floating point")
+
+
+def test_impossible_is_exit_1_and_only_that(model, capsys):
+    code, out, _err = run(capsys, "search", model, "--scale", "g=1", "--fixed", "t", "l")
+    assert code == EXIT_INFEASIBLE
+    assert "certificate" in out
+
+
+def test_scale_help_says_exponent_not_factor(capsys):
+    assert main(["search", "--help"]) == EXIT_OK
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert "exponent of the scale factor s, not a factor" in help_text
+    assert "g=1/6: g -> s^(1/6) g" in help_text
+
+
+def test_exponent_one_sixth_is_an_exponent(model, capsys):
+    code, out, err = run(capsys, "search", model, "--scale", "g=1/6")
+    assert code == EXIT_OK, err
+    assert "s^(1/6)" in out
+
+
+def test_apply_writes_no_float_noise(model, capsys, tmp_path):
+    out_path = tmp_path / "scaled.toml"
+    code, out, err = run(capsys, "apply", model, "--scale", "g=1", "--fixed", "--s", "10", "--output", out_path)
+    assert code == EXIT_OK, err
+    text = out_path.read_text()
+    assert "98.1 " in text
+    assert "98.10000000000001" not in text
+    assert "3.0 " in text  # 0.3 * 10, not 3.0000000000000004
+    values = tomllib.loads(text)["variables"]
+    assert values["g"]["value"] == 98.1
+    assert values["l"]["value"] == 3.0
+    assert Fraction(values["m"]["value"]) == Fraction(1, 3)  # exact values stay exact
+    # the printed table too
+    assert "98.1" in out
+    assert "98.10000000000001" not in out
+
+
+def test_apply_rounds_once_from_the_exact_product(model, capsys, tmp_path):
+    # s = 1/10 and exponent 1: 9.81 * 0.1 in floats is 0.9810000000000001
+    out_path = tmp_path / "small.toml"
+    code, _, err = run(capsys, "apply", model, "--scale", "g=1", "--fixed", "--s", "0.1", "--output", out_path)
+    assert code == EXIT_OK, err
+    assert 9.81 * 0.1 != 0.981
+    assert tomllib.loads(out_path.read_text())["variables"]["g"]["value"] == 0.981
+
+
+def test_the_command_line_reads_toml_files_without_the_engines(monkeypatch, capsys):
+    import sys
+
+    from pitheorem.cli import main
+
+    for name in [m for m in sys.modules if m.startswith("pitheorem.engines")]:
+        monkeypatch.setitem(sys.modules, name, None)  # importing any of them now fails
+    monkeypatch.setitem(sys.modules, "pitheorem.engines", None)
+    assert main(["groups", "example:hinged_rod"]) == 0
+    assert capsys.readouterr().out.strip()

@@ -5,8 +5,15 @@ from __future__ import annotations
 from fractions import Fraction
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import pitheorem as pt
+from pitheorem.exact import (
+    MAX_FORMULA_LENGTH,
+    MAX_NESTING,
+)
+from tests.conftest import BAD_FORMULAS, BASES, rational_exponent
 
 TORQUE = pt.Dimension({"M": 1, "L": 2, "T": -2})
 
@@ -44,3 +51,69 @@ def test_display_order_follows_base_list():
     assert pt.Dimension.parse("T L M").base_dimensions == ("M", "L", "T")
     assert pt.Dimension.parse("A Theta M", base_dimensions=("M", "Theta", "A")).base_dimensions == ("M", "Theta", "A")
     assert pt.Dimension.parse("A Theta M", base_dimensions=("A", "Theta", "M")).base_dimensions == ("M", "Theta", "A")
+
+
+def test_nesting_limit():
+    ok = "(" * MAX_NESTING + "L" + ")" * MAX_NESTING
+    assert pt.Dimension.parse(ok) == pt.Dimension({"L": 1})
+    with pytest.raises(pt.LimitError, match=str(MAX_NESTING)):
+        pt.Dimension.parse("(" * (MAX_NESTING + 1) + "L" + ")" * (MAX_NESTING + 1))
+    with pytest.raises(pt.LimitError):  # was RecursionError
+        pt.Dimension.parse("(" * 5000 + "L" + ")" * 5000)
+
+
+def test_base_names_must_be_strings():
+    with pytest.raises(pt.InvalidRequestError, match="must be strings") as info:
+        pt.Dimension({1: 2})
+    assert info.value.culprit == 1
+
+
+def test_text_after_a_complete_formula_is_named():
+    with pytest.raises(pt.DimensionSyntaxError, match="unexpected '\\)' after a complete formula"):
+        pt.Dimension.parse("L T)")
+
+
+def test_double_sign_is_a_syntax_error():
+    # was read as L^2 (mutation survivor: the parser reading --2 as -2 went unnoticed)
+    for text in ("L^--2", "L^+-2", "L^(--1/2)"):
+        with pytest.raises(pt.DimensionSyntaxError):
+            pt.Dimension.parse(text)
+    assert pt.Dimension.parse("L^-2").exponent_of("L") == -2
+    assert pt.Dimension.parse("L^+2").exponent_of("L") == 2
+    assert pt.Dimension.parse("L^(-1/-2)").exponent_of("L") == Fraction(1, 2)
+
+
+def test_formula_over_the_length_limit_shows_its_first_twenty_characters():
+    text = "L*" * (MAX_FORMULA_LENGTH // 2 + 1)
+    with pytest.raises(pt.LimitError) as info:
+        pt.Dimension.parse(text)
+    assert info.value.value == "L*L*L*L*L*L*L*L*L*L*..."
+    assert str(len(text)) in info.value.limit
+
+
+def test_exponents_have_at_most_forty_digits():
+    assert pt.Dimension.parse("L^" + "0" * 39 + "1") == pt.Dimension({"L": 1})  # 40 digits, value 1
+    with pytest.raises(pt.LimitError, match="more than 40 digits") as info:
+        pt.Dimension.parse("L^" + "0" * 40 + "1")
+    assert info.value.value == "0" * 20 + "..."
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.dictionaries(st.sampled_from(BASES), rational_exponent, max_size=4))
+def test_dimension_string_round_trip(powers):
+    dim = pt.Dimension(powers)
+    assert pt.Dimension.parse(str(dim)) == dim
+    assert all(isinstance(p, Fraction) and p != 0 for p in dim.exponents.values())
+
+
+def test_base_dimensions_string_is_refused():
+    with pytest.raises(pt.InvalidRequestError, match="'LT'"):
+        pt.Dimension.parse("L", base_dimensions="LT")
+
+
+@pytest.mark.parametrize(("formula", "culprit"), BAD_FORMULAS)
+def test_bad_formula(formula, culprit):
+    with pytest.raises(pt.DimensionSyntaxError) as info:
+        pt.Dimension.parse(formula)
+    assert culprit in str(info.value)
+    assert 0 <= info.value.position <= len(formula)

@@ -15,6 +15,9 @@ and for each public method, property, classmethod and staticmethod its classes d
   is checked against its constructor when its docstring has a ``Parameters`` section.
 
 Modelled on python-control's ``docstrings_test.py``.
+
+Cross-cutting: a meta-test over every public object of every namespace, not the
+behaviour of one module.
 """
 
 from __future__ import annotations
@@ -32,6 +35,7 @@ from numpydoc.docscrape import ClassDoc, FunctionDoc, NumpyDocString
 import pitheorem as pt
 
 REPO = Path(__file__).resolve().parents[1]
+
 #: folders whose modules pytest collects doctests from (pyproject.toml, testpaths)
 DOCTEST_ROOTS = (REPO / "pitheorem", REPO / "matlab_ports")
 

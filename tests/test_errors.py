@@ -1,139 +1,20 @@
-"""Malformed input raises PiTheoremError subclasses that name the culprit."""
+"""pitheorem.errors: every error class is a PiTheoremError and a builtin, keeps its fields, names its culprit, pickles.
+
+Each class is provoked once through the public API where it can be; which
+input each module refuses, and with what message, is tested in that
+module's file.
+"""
 
 from __future__ import annotations
 
 import pickle
-import re
 
 import pytest
+import sympy
 
 import pitheorem as pt
+from pitheorem.engines.rod import EngineUnavailableError
 from tests.conftest import ROD
-
-BAD_FORMULAS = [
-    # (formula, culprit that must appear in the message)
-    ("M L^^2", "'^'"),
-    ("M L^", "the end of the formula"),
-    ("M L^x", "'x'"),
-    ("kg", "'kg'"),
-    ("M $ L", "'$'"),
-    ("M L^(1/0)", "division by zero"),
-    ("M (L", "')'"),
-    ("M L)", "')'"),
-    ("2 M", "'2'"),
-    ("M / ", "formula ends too early"),
-    ("* M", "'*'"),
-    ("M L^(1/2", "')'"),
-    ("m", "'m'"),
-    ("M,L", "','"),
-    ("L^2.5.1", "'.1'"),
-    ("Length", "'Length'"),
-]
-
-
-@pytest.mark.parametrize(("formula", "culprit"), BAD_FORMULAS)
-def test_bad_formula(formula, culprit):
-    with pytest.raises(pt.DimensionSyntaxError) as info:
-        pt.Dimension.parse(formula)
-    assert culprit in str(info.value)
-    assert 0 <= info.value.position <= len(formula)
-
-
-@pytest.mark.parametrize(("formula", "culprit"), BAD_FORMULAS[:6])
-def test_bad_formula_in_system_names_variable(formula, culprit):
-    with pytest.raises(pt.DimensionSyntaxError) as info:
-        pt.System({"ok": "L", "bad_one": formula})
-    assert "'bad_one'" in str(info.value)
-    assert culprit in str(info.value)
-
-
-BAD_SYSTEMS = [
-    ({}, pt.EmptySystemError, "at least one variable"),
-    ([], pt.EmptySystemError, "at least one variable"),
-    ([("a", "L"), ("a", "T")], pt.DuplicateVariableError, "'a'"),
-    ({"2x": "L"}, pt.InvalidRequestError, "'2x'"),
-    ({"a b": "L"}, pt.InvalidRequestError, "'a b'"),
-    ({"a": 3}, pt.InvalidRequestError, "'a'"),
-    ({"a": None}, pt.InvalidRequestError, "'a'"),
-    ({"a": {"L": "x"}}, pt.InvalidRequestError, "'a'"),
-    ({"a": {"Q": 1}}, pt.InvalidRequestError, "'Q'"),
-    (42, pt.InvalidRequestError, "int"),
-    ([("a",)], pt.InvalidRequestError, "('a',)"),
-]
-
-
-@pytest.mark.parametrize(("variables", "kind", "culprit"), BAD_SYSTEMS)
-def test_bad_system(variables, kind, culprit):
-    with pytest.raises(kind) as info:
-        pt.System(variables)
-    assert culprit in str(info.value)
-
-
-def test_bad_base_dimension_list():
-    with pytest.raises(pt.DuplicateVariableError, match="'M'"):
-        pt.System({"a": "M"}, base_dimensions=("M", "M"))
-    with pytest.raises(pt.InvalidRequestError, match="'1x'"):
-        pt.System({"a": "M"}, base_dimensions=("M", "1x"))
-
-
-def test_custom_base_dimension_accepted_when_declared():
-    s = pt.System({"q": "Q", "l": "L"}, base_dimensions=("L", "Q"))
-    assert s.base_dimensions == ("L", "Q")
-
-
-BAD_REPEATERS = [
-    (("m", "l"), pt.RepeatingCountError, "rank 3"),
-    (("m", "l", "k_theta", "t"), pt.RepeatingCountError, "exactly 3"),
-    (("m", "l", "mass"), pt.UnknownVariableError, "'mass'"),
-    (("m", "m", "t"), pt.DuplicateVariableError, "'m'"),
-    (("k_theta", "tau", "m"), pt.DependentRepeatingSetError, "k_theta/tau"),
-    (("l", "g", "t"), pt.DependentRepeatingSetError, "l/(g*t**2)"),
-    (("m", "l", "theta_r"), pt.DependentRepeatingSetError, "theta_r"),
-    ("m", pt.RepeatingCountError, "('m',)"),
-    ((1, 2, 3), pt.InvalidRequestError, "1"),
-    (5, pt.InvalidRequestError, "5"),
-]
-
-
-@pytest.mark.parametrize(("repeating", "kind", "culprit"), BAD_REPEATERS)
-def test_bad_repeaters(repeating, kind, culprit):
-    rod = pt.System(ROD)
-    with pytest.raises(kind) as info:
-        rod.pi_groups(repeating=repeating)
-    assert culprit in str(info.value)
-
-
-def test_bad_bases_arguments():
-    rod = pt.System(ROD)
-    with pytest.raises(pt.UnknownVariableError, match="'time'"):
-        rod.bases(exclude=("time",))
-    with pytest.raises(pt.InvalidRequestError, match="'t'"):
-        rod.bases(exclude=("t",), require=("t",))
-    with pytest.raises(pt.DependentRepeatingSetError, match="k_theta"):
-        rod.bases(require=("k_theta", "tau"))
-    with pytest.raises(pt.RepeatingCountError):
-        rod.count_bases(require=("m", "l", "t", "g"))
-
-
-def test_bad_units():
-    with pytest.raises(pt.UnitError, match="'furlongs_per_blob'"):
-        pt.System.from_units({"v": "furlongs_per_blob"})
-    with pytest.raises(pt.UnitError, match="'x'"):
-        pt.System.from_units({"x": 3})
-    with pytest.raises(pt.UnitError, match=re.escape("'kg**'")):
-        pt.System.from_units({"m": "kg**"})
-
-
-def test_bad_evaluate_and_lookup(rod):
-    pi_g = rod.pi_groups(repeating=("m", "l", "k_theta"))["g"]
-    with pytest.raises(pt.InvalidRequestError, match="'k_theta'"):
-        pi_g.evaluate({"m": 1, "l": 1, "g": 1})
-    with pytest.raises(pt.InvalidRequestError, match="'l' = 0"):
-        rod.pi_groups(repeating=("m", "l", "k_theta"))["t"].evaluate({"l": 0, "m": 1, "t": 1, "k_theta": 1})
-    with pytest.raises(pt.InvalidRequestError, match="'zzz'"):
-        rod.pi_groups()["zzz"]
-    with pytest.raises(pt.UnknownVariableError, match="'q'"):
-        rod.dimension("q")
 
 
 def test_errors_are_builtin_subclasses():
@@ -217,3 +98,84 @@ def test_errors_keep_each_constructor_argument_and_pickle_all_of_them(error):
     # rebuilding from the fields gives the same error: what pickling does
     again = type(error)(*(getattr(error, name) for name in fields))
     assert (str(again), again.culprit) == (str(error), error.culprit)
+
+
+def provoked_errors():
+    """One real instance of every error class, provoked through the public API where possible."""
+    from pitheorem import engines, errors
+    from pitheorem.cli import _parse_scale
+
+    def catch(call):
+        try:
+            call()
+        except pt.PiTheoremError as err:
+            return err
+        raise AssertionError(f"{call} raised nothing")
+
+    rod = pt.System(ROD)
+    return {
+        errors.DimensionSyntaxError: (catch(lambda: pt.Dimension.parse("M L^^2")), "^2"),
+        errors.UnknownVariableError: (catch(lambda: rod.pi_groups(repeating=("mass", "l", "t"))), "mass"),
+        errors.DuplicateVariableError: (catch(lambda: rod.pi_groups(repeating=("m", "m", "t"))), "m"),
+        errors.EmptySystemError: (catch(lambda: pt.System({})), None),
+        errors.RepeatingCountError: (catch(lambda: rod.pi_groups(repeating=("m", "l"))), ("m", "l")),
+        errors.DependentRepeatingSetError: (catch(lambda: rod.pi_groups(repeating=("l", "t", "g"))), ("l", "t", "g")),
+        errors.InvalidRequestError: (catch(lambda: pt.System({"x": "L"}, base_dimensions="LT")), "LT"),
+        errors.UnitError: (catch(lambda: pt.System.from_units({"x": "furlongs per flibber"})), None),
+        errors.SystemMismatchError: (catch(lambda: pt.verify_similarity(
+            pt.models.projectile(), pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1}),
+            s=2, t_final=0.1)), "m"),
+        errors.ModelEquationError: (catch(lambda: pt.Model(pt.System({"x": "L", "t": "T"}), [sympy.Eq(
+            sympy.Function("x")(sympy.Symbol("t")).diff("t", 2), 0)])), "Eq(Derivative(x(t), (t, 2)), 0)"),
+        errors.NumberError: (catch(lambda: pt.search(pt.System({"l": "L", "t": "T"}), scale={"l": float("nan")})), "nan"),
+        errors.LimitError: (catch(lambda: pt.Dimension.parse("L^5000")), "5000"),
+        errors.ModelFileError: (catch(lambda: pt.load_model_file("example:nope")), "example:nope"),
+        errors.CommandLineError: (catch(lambda: _parse_scale(["g=1", "g=2"])), "g"),
+        errors.EngineUnavailableError: (errors.EngineUnavailableError("bullet", "pybullet"), "bullet"),
+        errors.EngineModelError: (catch(lambda: engines.load("no_such_robot.xml")), "no_such_robot.xml"),
+        errors.UnscalableParameterError: (errors.UnscalableParameterError("joint_root_damping", "needs s^1 and s^3"),
+                                          "joint_root_damping"),
+    }
+
+
+PROVOKED = provoked_errors()
+
+
+def test_every_error_class_is_provoked_here():
+    from pitheorem import errors
+
+    names = {n for n in errors.__all__ if n != "PiTheoremError"}
+    assert {c.__name__ for c in PROVOKED} == names
+
+
+@pytest.mark.parametrize("cls", sorted(PROVOKED, key=lambda c: c.__name__), ids=lambda c: c.__name__)
+def test_error_contract(cls):
+    from pitheorem import errors
+
+    err, culprit = PROVOKED[cls]
+    assert type(err) is cls
+    assert cls.__module__ == errors.__name__  # every error class lives in errors.py
+    assert isinstance(err, pt.PiTheoremError)
+    assert isinstance(err, ValueError | KeyError | TypeError | ImportError)
+    if culprit is not None:
+        shown = err.culprit if isinstance(err.culprit, str | tuple) else repr(err.culprit)
+        assert shown == culprit or str(culprit) in str(shown)
+    copy = pickle.loads(pickle.dumps(err))
+    assert type(copy) is cls
+    assert str(copy) == str(err)
+    assert copy.culprit == err.culprit or repr(copy.culprit) == repr(err.culprit)
+    assert str(err).strip(), "an error must say what is wrong"
+
+
+def test_message_only_errors_pickle_their_culprit():
+    err = pt.InvalidRequestError("bad thing", culprit="thing")
+    copy = pickle.loads(pickle.dumps(err))
+    assert (copy.culprit, str(copy)) == ("thing", "bad thing")
+
+
+def test_engine_unavailable_error_message_and_pickle():
+    err = EngineUnavailableError("mujoco", "mujoco")
+    assert isinstance(err, pt.PiTheoremError)
+    assert isinstance(err, ImportError)
+    assert "pitheorem[engines]" in str(err)
+    assert str(pickle.loads(pickle.dumps(err))) == str(err)

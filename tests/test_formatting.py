@@ -36,10 +36,8 @@ from pitheorem.formatting.pieces import power_latex, power_text
 
 engines = pytest.importorskip("pitheorem.engines")
 
+
 ROD = pt.models.rod_system()
-
-
-# -- one or more real values of every displayed type -----------------------------------------
 
 
 def _search(**request):
@@ -148,9 +146,6 @@ def _qualified(cls) -> str:
     return f"{cls.__module__}.{cls.__qualname__}"
 
 
-# -- what each format promises ---------------------------------------------------------------
-
-
 def _exact(x):
     """A number of a JSON document as the exact number it stands for (rationals are strings)."""
     assert isinstance(x, int | str), x
@@ -208,6 +203,7 @@ JSON_NUMBERS = {
     "EngineApplyAnswer": lambda v, doc: [_exact(c["exponent"]) for c in doc["changed"]] == [p for _, p in v.changed],
 }
 
+
 #: sympy's internals that must never reach a user's text
 SYMPY_NOISE = re.compile(r"\b(Symbol|Rational|Integer|Mul|Pow|Add|Float|Function|Derivative)\(")
 
@@ -252,9 +248,6 @@ def math_of(html: str) -> list[str]:
     text = "".join(parsed.text)
     assert text.count("$") % 2 == 0, text
     return text.split("$")[1::2]
-
-
-# -- (a) every displayed type in every format --------------------------------------------------
 
 
 def test_every_renderer_has_a_sample_and_every_format_renders_every_type():
@@ -326,12 +319,11 @@ def test_notebook_hooks_by_kind(name):
             or isinstance(value, pt.DimensionReport | pt.SymmetryReport)
 
 
-# -- (b) the value types take their display from the home ------------------------------------
-
 #: public classes that do not display as values, by kind, with the reason
 NOT_DISPLAYED = {
     BaseException: "errors and warnings say what is wrong in their message, which errors.py builds: no display",
 }
+
 
 _HOOKS = ("__str__", "__format__", "_repr_latex_", "_repr_html_")
 
@@ -387,8 +379,6 @@ def test_a_format_loads_on_first_use_and_alone():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.splitlines() == ["[]", "['pieces', 'text']"]
 
-
-# -- the shared pieces against oracles ---------------------------------------------------------
 
 exponents = st.fractions(min_value=-12, max_value=12, max_denominator=6)
 
@@ -448,9 +438,6 @@ def test_every_table_cell_is_the_power_of_its_scaling():
     assert _exact_map(doc["scalings"][0]["unit_change"]) == sc.unit_change
 
 
-# -- displays moved here from the modules' own test files ---------------------------------------
-
-
 def test_group_and_set_display(rod):
     pi_g = rod.pi_groups(repeating=("m", "l", "k_theta"))["g"]
     assert str(pi_g) == "Pi_g = g*l*m/k_theta"
@@ -508,9 +495,6 @@ def test_search_notes_are_phrased_by_each_front_end():
     assert json.loads(format(answer, "json"))["notes"][0]["text"].endswith("give --fixed with no names to let "
                                                                              "time change")
     assert "give <code>--fixed</code> with no names" in format(answer, "html")
-
-
-# -- exact outputs of small values (each checked by hand) ----------------------------------------
 
 
 def _plain(html: str) -> str:
@@ -675,3 +659,42 @@ def test_answers_in_latex_and_html():
     html = format(sample("search"), "html")
     rows = html.split("<tr")
     assert [i for i, row in enumerate(rows) if "border-top" in row] == [len(ROD.variables) + 2]  # the first base row
+
+
+def test_search_table_heads_the_minimal_scalings(rod):
+    table = pt.search(rod, scale={"g": 1}).table().splitlines()
+    assert table[0].split() == ["variable", "role", "#1", "#2", "#3"]
+    assert table[1].split() == ["m", "free", "1/s^2", "1/s", "-"]
+
+
+
+@pytest.mark.parametrize(
+    ("model", "request_"),
+    [("rod", {"scale": {"g": 1}}), ("superball", {"scale": {"l": 1}, "fixed": ("t", "m")})],
+)
+def test_table_base_unit_rows_explain_every_column(rod, model, request_):
+    system = rod if model == "rod" else pt.models.superball_parameters()
+    res = pt.search(system, **request_)
+    rows = [line.split() for line in res.table().splitlines()[1:]]
+    base = {r[0][1:-1]: [_read_power_text(c) for c in r[2:]] for r in rows if r[1] == "base"}
+    variables = {r[0]: [_read_power_text(c) for c in r[2:]] for r in rows if r[1] != "base"}
+    assert sorted(base) == sorted(system.base_dimensions)
+    assert list(variables) == list(system.variables)
+    # each variable's power is its dimension applied to the column's change of base units
+    for name, powers in variables.items():
+        dim = system.dimension(name)
+        for k, power in enumerate(powers):
+            assert power == sum(dim.exponent_of(b) * base[b][k] for b in base)
+    html = res._repr_html_()
+    assert html.count('<tr class="base-unit"') == len(system.base_dimensions)
+
+
+def test_table_of_symmetries_beyond_units_says_they_have_no_unit_change():
+    proj = pt.models.projectile()
+    sym = pt.scaling_symmetries(proj.equations, proj.system)
+    res = pt.search(proj.system, scale={"x": 1}, fixed=("t", "g"), within=sym)
+    rows = [line.split() for line in res.table().splitlines()]
+    base = [r for r in rows if r[1] == "base"]
+    assert [r[0] for r in base] == [f"[{b}]" for b in proj.system.base_dimensions]
+    assert all(r[2:] == ["none"] for r in base)
+    assert res._repr_html_().count(">none</td>") == len(proj.system.base_dimensions)

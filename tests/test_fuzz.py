@@ -9,6 +9,9 @@ other than a PiTheoremError fails the test, and so does a case that runs
 longer than the deadline.  Answers are checked against oracles that do
 not use the code under test (sympy's own rank, exponent arithmetic
 written out here).
+
+Cross-cutting: its one test spans every public entry point at once, so that the
+draw mixes them; each module's own bad-input cases are in that module's file.
 """
 
 from __future__ import annotations

@@ -84,36 +84,6 @@ def test_not_equivalent_when_groups_differ():
     assert not groups.equivalent(partial)
 
 
-def test_rank_deficient_system_uses_rank_repeaters():
-    # only force and length occur: rank 2 inside M, L, T
-    s = pt.System({"F1": "M L T^-2", "F2": "M L T^-2", "a": "L", "b": "L"})
-    assert s.rank == 2
-    assert s.n_groups == 2
-    assert s.bases() == [("F1", "a"), ("F1", "b"), ("F2", "a"), ("F2", "b")]
-    groups = s.pi_groups(repeating=("F1", "a"))
-    assert [g.exponents for g in groups] == [{"F1": -1, "F2": 1}, {"a": -1, "b": 1}]
-
-
-def test_default_repeaters_avoid_time(rod):
-    assert "t" not in rod.default_repeating()
-    assert rod.pi_groups().repeating == rod.default_repeating()
-
-
-def test_from_units_matches_formulas():
-    s = pt.System.from_units(
-        {"m": "kg", "l": "m", "g": "m/s^2", "k_theta": "N*m/rad", "c_theta": "N*m*s/rad", "t": "s"}
-    )
-    assert s.dimensions == pt.System(
-        {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "t": "T"}
-    ).dimensions
-
-
-def test_from_units_angle_as_base():
-    s = pt.System.from_units({"k_theta": "N*m/rad", "theta": "rad"}, angle_as_base=True)
-    assert str(s.dimension("k_theta")) == "M L^2 T^-2 A^-1"
-    assert str(s.dimension("theta")) == "A"
-
-
 def test_constructor_takes_integer_exponents_as_given():
     group = pt.PiGroup({"t": 2, "l": Fraction(-4, 2), "g": 0, "m": np.int64(1)}, "t")
     assert list(group.exponents.items()) == [("t", 2), ("l", -2), ("m", 1)]  # zeros dropped, order kept
@@ -170,3 +140,22 @@ def test_group_symbols_are_positive(rod):
     group = rod.pi_groups()[0]
     assert all(symbol.is_positive for symbol in group.expr.free_symbols)
     assert sympy.sqrt(group.expr**2) == group.expr  # true only for positive symbols
+
+
+def test_equivalent_needs_the_same_span_not_just_the_same_rank():
+    one = pt.System({"a": "L", "b": "L", "c": "T"}).pi_groups()  # b/a
+    other = pt.System({"a": "L", "b": "T", "c": "T"}).pi_groups()  # c/b
+    assert len(one) == len(other) == 1
+    assert not one.equivalent(other)
+    assert not other.equivalent(one)
+    assert one.equivalent(pt.System({"a": "L", "b": "L", "c": "T"}).pi_groups(repeating=("b", "c")))
+
+
+def test_bad_evaluate_and_group_lookup(rod):
+    pi_g = rod.pi_groups(repeating=("m", "l", "k_theta"))["g"]
+    with pytest.raises(pt.InvalidRequestError, match="'k_theta'"):
+        pi_g.evaluate({"m": 1, "l": 1, "g": 1})
+    with pytest.raises(pt.InvalidRequestError, match="'l' = 0"):
+        rod.pi_groups(repeating=("m", "l", "k_theta"))["t"].evaluate({"l": 0, "m": 1, "t": 1, "k_theta": 1})
+    with pytest.raises(pt.InvalidRequestError, match="'zzz'"):
+        rod.pi_groups()["zzz"]

@@ -4,6 +4,9 @@ One test walks every class that ``pitheorem`` and ``pitheorem.engines``
 export: each is either built here as a real instance and probed, or
 excluded below with a reason.  A class added to either ``__all__`` later
 fails until it is one or the other.
+
+The module's file (pitheorem.immutable, the decorator), and across modules: the
+walk over every exported class keeps the rule true wherever a value type lives.
 """
 
 from __future__ import annotations
@@ -79,6 +82,7 @@ VALUE_TYPES = {
 }
 
 _ERROR = "an exception: Python itself sets __traceback__, __context__ and __cause__ on it as it propagates"
+
 #: exported classes that are no value types, with the reason
 NOT_VALUE_TYPES = {
     "PiTheoremError": _ERROR,

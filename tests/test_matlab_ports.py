@@ -4,6 +4,9 @@ The hinged-rod port is compared with the MATLAB figure files of the white paper:
 100001 points) when ``../shared/reference/ntrt_scaling_analysis/*.fig`` sits beside the
 repository, and always against the every-1000th-point sample kept in
 ``tests/data/matlab_fig_samples.json`` (see its ``provenance`` entry).
+
+Not a module of pitheorem: the ``matlab_ports`` namespace, ports of the white paper's
+MATLAB programs, checked against those programs' figures.
 """
 
 from __future__ import annotations

@@ -18,6 +18,7 @@ from pitheorem import models
 T = sympy.Symbol("t")
 X, V = sympy.Function("x")(T), sympy.Function("v")(T)
 TAU, L = sympy.symbols("tau l")
+
 #: x (a length), v (a speed), and the parameters tau (a time) and l (a length)
 DIMS = {"tau": "T", "l": "L", "t": "T", "x": "L", "v": "L T^-1"}
 

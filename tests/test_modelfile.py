@@ -29,9 +29,6 @@ def write(tmp_path, text: str, name: str = "model.toml"):
     return path
 
 
-# -- the shipped examples ------------------------------------------------------------------
-
-
 def test_examples_are_listed():
     assert examples() == ("hinged_rod", "pendulum.xml", "superball", "superball.xml")
     assert example_path("hinged_rod.toml") == example_path("hinged_rod")
@@ -77,9 +74,6 @@ def test_an_engine_example_is_no_toml_model_file():
         load_model_file("example:pendulum.xml")
     assert str(caught.value) == (f"example:pendulum.xml: is an engine model, not a TOML model file; "
                                  f"pass its path, {EXAMPLES / 'pendulum.xml'}")
-
-
-# -- reading -------------------------------------------------------------------------------
 
 
 def test_minimal_file_defaults(tmp_path):
@@ -137,9 +131,6 @@ a = { dimension = "L" }
 dimension = "M"
 """))
     assert model.system.variables == ("z", "a", "m")
-
-
-# -- writing -------------------------------------------------------------------------------
 
 
 def test_round_trip_toml(tmp_path):
@@ -203,8 +194,6 @@ def test_model_file_is_a_record():
         hash(model)
 
 
-# -- every broken file gives a ModelFileError naming file, variable and problem -------------
-
 @pytest.mark.parametrize("case", sorted(BROKEN_MODEL_FILES))
 def test_broken_file(tmp_path, case):
     path, fragments = broken_model_file(tmp_path, case)
@@ -250,15 +239,3 @@ def test_the_kind_of_a_model_file_is_told_in_one_place(tmp_path):
     kinds = {"robot.URDF": "urdf", "model.toml": "toml", "model.json": "toml", "example:superball": "toml",
              str(urdf_in_xml): "urdf", str(mjcf): "mjcf", str(tmp_path / "absent.xml"): "mjcf", "hopper.mjcf": "mjcf"}
     assert {path: model_kind(path) for path in kinds} == kinds
-
-
-def test_the_command_line_reads_toml_files_without_the_engines(monkeypatch, capsys):
-    import sys
-
-    from pitheorem.cli import main
-
-    for name in [m for m in sys.modules if m.startswith("pitheorem.engines")]:
-        monkeypatch.setitem(sys.modules, name, None)  # importing any of them now fails
-    monkeypatch.setitem(sys.modules, "pitheorem.engines", None)
-    assert main(["groups", "example:hinged_rod"]) == 0
-    assert capsys.readouterr().out.strip()

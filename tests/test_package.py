@@ -3,6 +3,10 @@
 ``isinstance`` checks in pitheorem compare against its own classes; they
 only hold if every module is imported once.  pyproject.toml configures
 pytest for that (``--import-mode=append``); this test checks the result.
+
+Cross-cutting: the package as a whole (how pytest imports it, what ``import
+pitheorem`` loads, which module may import which name) and the layout of these
+tests: each module of ``pitheorem`` and ``pitheorem.engines`` has its test file.
 """
 
 from __future__ import annotations
@@ -10,12 +14,16 @@ from __future__ import annotations
 import ast
 import importlib
 import importlib.util
+import subprocess
 import sys
+import types
 from pathlib import Path
 
+import pytest
 from _pytest.pathlib import import_path
 
 import pitheorem as pt
+from tests.conftest import REPO, loaded_after
 
 #: the package in this checkout, whose doctests pytest collects
 ROOT = Path(__file__).resolve().parents[1] / "pitheorem"
@@ -105,3 +113,99 @@ def test_no_module_imports_another_modules_private_names(tmp_path):
     assert _private_imports(sample, tmp_path / "pitheorem") == [
         "pitheorem.engines.rod._quiet", "pitheorem.bases._Descent", "pitheorem.engines.model._check_s",
         "pitheorem._hidden", "pitheorem.engines._private"]
+
+
+def test_import_loads_neither_numpy_scipy_nor_matplotlib():
+    assert loaded_after("import pitheorem") == set()
+
+
+def test_lazy_names_resolve_to_the_functions_not_the_modules():
+    import pitheorem.scalesearch as scalesearch
+    import pitheorem.simulation as simulation
+
+    assert scalesearch.__name__ == "pitheorem.scalesearch"  # the module is the module
+    assert pt.search is scalesearch.search
+    assert pt.search.__name__ == "search"
+    assert pt.simulate.__name__ == "simulate"
+    assert callable(pt.simulate)
+    # the module's name differs from its functions': importing it gives the module
+    assert isinstance(simulation, types.ModuleType)
+    assert simulation.simulate is pt.simulate
+    assert simulation.verify_similarity is pt.verify_similarity
+    for name in pt.__all__:
+        assert getattr(pt, name) is not None
+        assert name in dir(pt)
+    with pytest.raises(AttributeError):
+        pt.no_such_name  # noqa: B018
+
+
+def test_core_does_not_import_engines():
+    code = "import sys, pitheorem; print(any(m.startswith(('pitheorem.engines', 'pybullet', 'mujoco')) for m in sys.modules))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=REPO)
+    assert out.stdout.strip() == "False"
+
+
+#: test files that test no single module, and why (each says so in its docstring too)
+CROSS_CUTTING = {
+    "test_properties.py": "hypothesis properties tying system, groups, bases and linalg together on one random system",
+    "test_fuzz.py": "one fuzz test drawing from every public entry point at once",
+    "test_docstrings.py": "a meta-test over every public object of pitheorem, pitheorem.engines and matlab_ports",
+    "test_package.py": "the package as a whole: its import, its private names, this layout",
+    "test_check_pages.py": "docs tooling (docs/check_pages.py), not a module of pitheorem",
+    "test_matlab_ports.py": "the matlab_ports namespace, not a module of pitheorem",
+    "test_architecture.py": "the layers of docs/explanation/architecture.md: every import of every module",
+    "test_engines_corpus.py": "the whole engine path on the corpus of gymnasium's and pybullet_data's models",
+}
+
+
+def module_test_files(root: Path = ROOT) -> dict[str, str]:
+    """The test file each module of the package must have: tests/test_<module>.py, test_engines_<module>.py for
+    pitheorem.engines; a subpackage (formatting) has one file, or one per part (test_formatting_<part>.py)."""
+    files = {}
+    for path in sorted(root.rglob("*.py")):
+        parts = path.relative_to(root).with_suffix("").parts
+        if parts[-1] == "__init__":
+            parts = parts[:-1]  # a subpackage is its __init__
+        if parts in ((), ("__main__",), ("engines",)):
+            continue  # the package itself: test_package; `python -m pitheorem`: test_cli; engines re-exports
+        if parts[0] == "engines":
+            files[".".join(parts)] = f"test_engines_{parts[-1]}.py"
+        else:
+            files[".".join(parts)] = f"test_{parts[0]}.py"
+    return files
+
+
+def test_every_module_has_its_test_file_and_every_test_file_a_module_or_a_reason():
+    tests = Path(__file__).resolve().parent
+    present = {path.name for path in tests.glob("test_*.py")}
+    wanted = module_test_files()
+    # formatting's parts may have files of their own: test_formatting_<part>.py
+    parts_covered = {name for name in wanted if name.startswith("formatting.")
+                     and f"test_formatting_{name.split('.')[-1]}.py" in present}
+    assert {name: file for name, file in wanted.items() if file not in present and name not in parts_covered} == {}
+    allowed = set(wanted.values()) | {f"test_formatting_{name.split('.')[-1]}.py" for name in wanted
+                                      if name.startswith("formatting.")} | set(CROSS_CUTTING)
+    assert sorted(present - allowed) == []
+    assert set(CROSS_CUTTING) <= present  # no stale reason
+    assert not set(CROSS_CUTTING) & set(wanted.values())
+    # the modules of the issue's list, so that a rename shows up here
+    assert {file for file in wanted.values() if not file.startswith("test_engines_")} == {
+        f"test_{m}.py" for m in ("answers", "bases", "basis_sequence", "cli", "dimensions", "equations", "errors",
+                                 "exact", "family", "formatting", "groups", "immutable", "linalg", "model",
+                                 "modelfile", "models", "plotting", "scalesearch", "scaling", "simulation",
+                                 "system", "unitfit")}
+    assert {file for file in wanted.values() if file.startswith("test_engines_")} == {
+        f"test_engines_{m}.py" for m in ("cli", "constants", "mjcf", "model", "packages", "rod", "rules",
+                                         "superball", "urdf", "verify")}
+
+
+def test_the_layout_check_finds_a_missing_file_and_a_stray_one(tmp_path):
+    package = tmp_path / "pitheorem"
+    (package / "engines").mkdir(parents=True)
+    for name in ("__init__.py", "__main__.py", "alpha.py", "engines/__init__.py", "engines/beta.py"):
+        (package / name).write_text("")
+    (package / "formatting").mkdir()
+    (package / "formatting" / "__init__.py").write_text("")
+    (package / "formatting" / "gamma.py").write_text("")
+    assert module_test_files(package) == {"alpha": "test_alpha.py", "engines.beta": "test_engines_beta.py",
+                                          "formatting": "test_formatting.py", "formatting.gamma": "test_formatting.py"}

@@ -2,25 +2,31 @@
 
 from __future__ import annotations
 
+import pickle
 from fractions import Fraction
-from itertools import combinations
+from itertools import combinations, product
 from types import SimpleNamespace
 from unittest import mock
 
+import numpy as np
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import pitheorem as pt
+from pitheorem import bases as bases_module
+from pitheorem import family as family_module
+from pitheorem.exact import (
+    MAX_DENOMINATOR,
+)
 from pitheorem.linalg import nullspace, solve
-from tests.test_properties import dimension_of_group, systems
+from tests.conftest import PRIMES, dimension_of_group, oracle_search, systems
 
 
 def exps(scaling: pt.Scaling) -> dict[str, Fraction]:
     return {n: Fraction(p) for n, p in zip(scaling.system.variables, scaling.vector, strict=True) if p}
 
 
-# -- the paper's questions ------------------------------------------------------------
 def test_rod_gravity_time_free_has_exactly_three_minimal_solutions(rod):
     res = pt.search(rod, scale={"g": 1})
     assert res.feasible
@@ -72,36 +78,6 @@ def test_allow_restricts_changes(rod):
     assert set(res.fixed) >= {"t", "k_theta", "c_theta", "tau", "theta_r"}
 
 
-def test_table_chart_and_html(rod):
-    res = pt.search(rod, scale={"g": 1})
-    table = res.table().splitlines()
-    assert table[0].split() == ["variable", "role", "#1", "#2", "#3"]
-    assert table[1].split() == ["m", "free", "1/s^2", "1/s", "-"]
-    fig = res.plot()
-    assert [t.get_text() for t in fig.axes[0].get_xticklabels()] == ["#1", "#2", "#3"]
-    infeasible = pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta"))
-    assert "impossible" in infeasible.plot().axes[0].get_title()
-
-
-def test_scaling_apply_and_map_back(rod):
-    (sc,) = pt.search(rod, scale={"g": 1, "l": -1}, fixed=("m", "k_theta")).scalings
-    params = {"m": Fraction(3, 2), "l": 2, "g": Fraction(981, 100), "c_theta": 10}
-    scaled = sc.apply(params, s=2)
-    assert scaled == {"m": Fraction(3, 2), "l": 1, "g": Fraction(981, 50), "c_theta": 5}
-    for group in rod.pi_groups(repeating=("m", "l", "k_theta")):
-        values = dict.fromkeys(rod.variables, 3) | params
-        new = values | sc.apply(values, s=2)
-        assert group.evaluate(values) == group.evaluate(new)
-    t, y = sc.map_back([0.0, 1.0], [[0.5, 1.0], [0.6, 2.0]], 2, time="t", states=["1", "1/T"])
-    assert t.tolist() == [0.0, 2.0]
-    assert y.tolist() == [[0.5, 0.5], [0.6, 1.0]]
-    assert (sc * sc.inverse()).changed == ()
-    assert (sc**2).exponents["l"] == -2
-    assert pt.Scaling.from_exponents(rod, {"l": -1, "g": 1, "c_theta": -1, "t": -1, "F": 1}) == sc
-    assert sc.factors(2.0)["t"] == 0.5
-
-
-# -- properties -----------------------------------------------------------------------
 def point_set(system, scale, fixed):
     """Brute force: every subset of free variables held at zero; keep unique points; filter minimal."""
     bases = system.base_dimensions
@@ -181,7 +157,6 @@ def test_certificates_prove_impossibility(request):
     assert change == res.certificate_power
 
 
-# -- bad requests ---------------------------------------------------------------------
 BAD = [
     ({"scale": {}}, pt.InvalidRequestError, "empty request"),
     ({"scale": {"gravity": 1}}, pt.UnknownVariableError, "'gravity'"),
@@ -206,63 +181,6 @@ def test_bad_requests(rod, kwargs, kind, culprit):
     assert culprit in str(info.value)
 
 
-def test_bad_scaling_use(rod):
-    with pytest.raises(pt.InvalidRequestError, match="not a similarity scaling"):
-        pt.Scaling.from_exponents(rod, {"g": 1})
-    with pytest.raises(pt.InvalidRequestError, match="'Q'"):
-        pt.Scaling.from_unit_change(rod, {"Q": 1})
-    sc = pt.Scaling.from_unit_change(rod, {"L": 1})
-    with pytest.raises(pt.InvalidRequestError, match="positive"):
-        sc.apply({"l": 1}, s=-2)
-    with pytest.raises(pt.UnknownVariableError, match="'length'"):
-        sc.apply({"length": 1}, s=2)
-    with pytest.raises(pt.InvalidRequestError, match="shape"):
-        sc.map_back([0, 1], [[1, 2, 3]], 2, time="t", states=["1"])
-    with pytest.raises(pt.InvalidRequestError, match="System"):
-        pt.search({"g": "L"}, scale={"g": 1})
-
-
-def _power(cell: str) -> Fraction:
-    """Read a table cell ('-', 's', '1/s^2', 's^(1/2)', ...) back as an exponent of s."""
-    if cell == "-":
-        return Fraction(0)
-    sign, body = (-1, cell[2:]) if cell.startswith("1/") else (1, cell)
-    exp = body.partition("^")[2].strip("()") or "1"
-    return sign * Fraction(exp)
-
-
-@pytest.mark.parametrize(
-    ("model", "request_"),
-    [("rod", {"scale": {"g": 1}}), ("superball", {"scale": {"l": 1}, "fixed": ("t", "m")})],
-)
-def test_table_base_unit_rows_explain_every_column(rod, model, request_):
-    system = rod if model == "rod" else pt.models.superball_parameters()
-    res = pt.search(system, **request_)
-    rows = [line.split() for line in res.table().splitlines()[1:]]
-    base = {r[0][1:-1]: [_power(c) for c in r[2:]] for r in rows if r[1] == "base"}
-    variables = {r[0]: [_power(c) for c in r[2:]] for r in rows if r[1] != "base"}
-    assert sorted(base) == sorted(system.base_dimensions)
-    assert list(variables) == list(system.variables)
-    # each variable's power is its dimension applied to the column's change of base units
-    for name, powers in variables.items():
-        dim = system.dimension(name)
-        for k, power in enumerate(powers):
-            assert power == sum(dim.exponent_of(b) * base[b][k] for b in base)
-    html = res._repr_html_()
-    assert html.count('<tr class="base-unit"') == len(system.base_dimensions)
-
-
-def test_table_of_symmetries_beyond_units_says_they_have_no_unit_change():
-    proj = pt.models.projectile()
-    sym = pt.scaling_symmetries(proj.equations, proj.system)
-    res = pt.search(proj.system, scale={"x": 1}, fixed=("t", "g"), within=sym)
-    rows = [line.split() for line in res.table().splitlines()]
-    base = [r for r in rows if r[1] == "base"]
-    assert [r[0] for r in base] == [f"[{b}]" for b in proj.system.base_dimensions]
-    assert all(r[2:] == ["none"] for r in base)
-    assert res._repr_html_().count(">none</td>") == len(proj.system.base_dimensions)
-
-
 def test_within_takes_a_symmetry_report_not_a_look_alike():
     proj = pt.models.projectile()
     sym = pt.scaling_symmetries(proj.equations, proj.system)
@@ -272,7 +190,6 @@ def test_within_takes_a_symmetry_report_not_a_look_alike():
             pt.search(proj.system, scale={"x": 1}, fixed=("t", "g"), within=bad)
 
 
-# -- the result is a frozen value, enumerated once and lazily ------------------------------
 def _search_module():
     import pitheorem.scalesearch as module  # the module; pt.search is its function
 
@@ -323,7 +240,6 @@ def test_equal_requests_give_equal_hashable_results(rod):
 
 
 def test_results_pickle_before_and_after_enumerating(rod):
-    import pickle
 
     for res in (pt.search(rod, scale={"g": 1}), pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta"))):
         again = pickle.loads(pickle.dumps(res))
@@ -346,3 +262,165 @@ def test_notes_are_data_phrased_by_each_front_end(rod):
         pt.SearchNote("a sentence", ("t",))
     two = pt.System({"l": "L", "g": "L T^-2", "t": "T", "dt": "T"})
     assert str(pt.search(two, scale={"g": 1}).notes[0]).startswith("time variables t, dt are held fixed")
+
+
+ROD = {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "theta_r": "1", "t": "T"}
+
+
+LT = pt.System({"l": "L", "t": "T"})
+
+
+def test_search_with_two_large_coprime_denominators():
+    # was: OverflowError (the lcm of the denominators, ~1e24, entered an int64 array)
+    s = pt.System({"l": "L", "t": "T", "m": "M", "v": "L/T"})
+    q1, q2 = 999_999_999_989, 999_999_999_959
+    res = pt.search(s, scale={"l": Fraction(1, q1), "t": Fraction(1, q2)}, fixed=())
+    assert res.n_scalings == 1
+    sc = res.scalings[0]
+    assert sc.exponents["v"] == Fraction(1, q1) - Fraction(1, q2)
+    assert sc.exponents["m"] == 0
+
+
+@pytest.mark.parametrize("p", [2, 3, 5, 7, 11, 13, 17, 19, 23, 29])
+def test_exponent_one_over_prime(p):
+    rod = pt.System(ROD)
+    res = pt.search(rod, scale={"g": Fraction(1, p)})
+    assert res.feasible
+    for sc in res.scalings:
+        assert sc.exponents["g"] == Fraction(1, p)
+        assert sc.exponents["t"] == 0
+
+
+@pytest.mark.parametrize("value", [1 / 3, 0.123456789012345, 1e-13])
+def test_float_exponent_beyond_denominator_limit_is_named(value):
+    with pytest.raises(pt.LimitError) as info:
+        pt.search(LT, scale={"l": value}, fixed=())
+    assert str(MAX_DENOMINATOR) in str(info.value)
+    assert "Fraction(1, 3)" in str(info.value)  # says how to write it exactly
+
+
+@pytest.mark.parametrize(("value", "exponent"), [
+    (Fraction(1, 10**9), Fraction(1, 10**9)),
+    (1e-9, Fraction(1, 10**9)),
+    (0.123456789, Fraction(123456789, 10**9)),
+    (np.float64(0.5), Fraction(1, 2)),
+    (np.float32(0.1), Fraction(1, 10)),
+    (np.int64(2), Fraction(2)),
+    ("1/3", Fraction(1, 3)),
+])
+def test_exponents_read_as_written(value, exponent):
+    res = pt.search(LT, scale={"l": value}, fixed=())
+    assert res.n_scalings == 1
+    assert res.scalings[0].exponents["l"] == exponent
+
+
+def test_fraction_one_over_ten_to_twenty_is_named():
+    with pytest.raises(pt.LimitError, match=str(MAX_DENOMINATOR)):
+        pt.search(LT, scale={"l": Fraction(1, 10**20)}, fixed=())
+
+
+@pytest.mark.parametrize("g", [Fraction(1, 3), Fraction(1, 10**9), Fraction(1, 10**12)])
+def test_search_with_large_denominators_on_the_rod(g):
+    rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1",
+                     "t": "T"})
+    result = pt.search(rod, scale={"g": g}, fixed=())
+    expected = oracle_search(rod, {"g": g}, ())
+    assert result.n_scalings == len(expected)
+    assert [s.vector for s in result.scalings] == expected
+
+
+def test_denominator_over_the_limit_is_named():
+    rod = pt.System({"l": "L", "g": "L T^-2", "t": "T"})
+    with pytest.raises(pt.errors.LimitError, match="denominator"):
+        pt.search(rod, scale={"g": Fraction(1, 10**20)}, fixed=())
+
+
+def test_search_one_third_on_length_and_time():
+    system = pt.System({"l": "L", "t": "T"})
+    result = pt.search(system, scale={"l": Fraction(1, 3)}, fixed=())
+    assert result.n_scalings == len(oracle_search(system, {"l": Fraction(1, 3)}, ())) == 1
+
+
+@settings(max_examples=50, deadline=None)
+@given(systems(exponent=st.sampled_from([-2, -1, 0, 0, 1, 2, Fraction(1, 2)]), max_vars=6, max_bases=3),
+       st.data())
+def test_search_equals_brute_force_in_order(system, data):
+    name = data.draw(st.sampled_from(system.variables))
+    power = data.draw(st.sampled_from([1, -1, 2, Fraction(1, 3), Fraction(-3, 2)]))
+    others = [n for n in system.variables if n != name]
+    fixed = tuple(data.draw(st.lists(st.sampled_from(others), unique=True, max_size=2))) if others else ()
+    result = pt.search(system, scale={name: power}, fixed=fixed)
+    if not result.feasible:
+        return
+    expected = oracle_search(system, {name: power}, fixed)
+    assert [s.vector for s in result.scalings] == expected
+    # the exact fallback agrees, coordinates included
+    with mock.patch.object(family_module, "minimal_points", return_value=None):
+        exact = pt.search(system, scale={name: power}, fixed=fixed)
+        assert list(exact._enumerate()) == list(result._enumerate())
+    with mock.patch.object(family_module, "_MERGE_EVERY", 1), mock.patch.object(bases_module, "_CHUNK", 2):
+        assert list(pt.search(system, scale={name: power}, fixed=fixed)._enumerate()) == list(result._enumerate())
+
+
+def test_batched_search_takes_the_vectorised_path_and_scalings_are_units():
+    system = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k": "M T^-2", "t": "T", "v": "L/T"})
+    result = pt.search(system, scale={"g": 1}, fixed=())
+    assert isinstance(result._enumerate(), family_module.MinimalPoints)
+    for scaling in result.scalings:
+        exps = scaling.vector
+        unit = scaling.unit_change
+        for j, n in enumerate(system.variables):
+            assert exps[j] == sum(system.dimension(n).exponent_of(b) * unit[b] for b in system.base_dimensions)
+
+
+def support(group) -> set[str]:
+    return {n for n, p in group.exponents.items() if p}
+
+
+@pytest.mark.parametrize(("variables", "expected"), [
+    # four lengths: every pair is a certificate; the first pair in system order is chosen
+    ({"a": "L", "b": "L", "c": "L", "d": "L"}, {"a", "b"}),
+    # a/d (two variables) beats a*b/c (three)
+    ({"c": "L M", "b": "M", "a": "L", "d": "L"}, {"a", "d"}),
+    ({"d": "L", "c": "L M", "b": "M", "a": "L"}, {"a", "d"}),
+])
+def test_certificate_has_fewest_variables(variables, expected):
+    res = pt.search(pt.System(variables), scale={"a": 1}, fixed=tuple(n for n in variables if n != "a"))
+    assert not res.feasible
+    assert support(res.certificate) == expected
+
+
+def test_certificate_is_as_small_as_any_changing_product():
+    # oracle: brute force over small integer exponent vectors of the fixed and scaled variables
+    names = ("m", "l", "g", "k", "t")
+    dims = {"m": (1, 0, 0), "l": (0, 1, 0), "g": (0, 1, -2), "k": (1, 2, -2), "t": (0, 0, 1)}
+    system = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k": "M L^2 T^-2", "t": "T"})
+    res = pt.search(system, scale={"g": 1}, fixed=("m", "k", "t"))
+    smallest = min(
+        sum(1 for e in vec if e)
+        for vec in product(range(-2, 3), repeat=len(names))
+        if vec[names.index("g")] != 0 and vec[names.index("l")] == 0
+        and all(sum(e * dims[n][i] for e, n in zip(vec, names, strict=True)) == 0 for i in range(3))
+    )
+    assert len(support(res.certificate)) == smallest == 4  # g^2 t^2 m / k, as in the paper
+
+
+def test_search_with_reciprocal_prime_exponents():
+    variables = {f"x{p}": {"L": Fraction(1, p), "T": Fraction(1, q)} for p, q in zip(PRIMES, (*PRIMES[1:], 2), strict=True)}
+    small = pt.System({n: variables[n] for n in ("x2", "x3", "x23", "x29")} | {"t": "T"})
+    result = pt.search(small, scale={"x23": 1}, fixed=())
+    assert [s.vector for s in result.scalings] == oracle_search(small, {"x23": 1}, ())
+
+
+def test_a_search_holds_every_time_variable_by_default():
+    system = pt.System({"l": "L", "g": "L T^-2", "t": "T", "tau": "T"})
+    res = pt.search(system, scale={"g": 1})
+    assert res.notes[0].variables == system.time_variables == ("t", "tau")
+    assert all(sc.exponents["t"] == sc.exponents["tau"] == 0 for sc in res.scalings)
+    # a scaled time variable is not held as well
+    assert pt.search(system, scale={"tau": 1}).notes[0].variables == ("t",)
+
+
+def test_search_needs_a_system():
+    with pytest.raises(pt.InvalidRequestError, match="System"):
+        pt.search({"g": "L"}, scale={"g": 1})

@@ -136,3 +136,35 @@ def test_every_float_factor_is_one_power_float_in_float_out():
     assert (t.tolist(), y.tolist()) == ([2.0], [[1 / 0.01]])
     gravity = ModelScaling.of(pt.models.projectile(), {"g": 1, "t": 1}, s=0.1)
     assert gravity.factor("vx") == float_power(read_scale_factor(0.1), gravity.exponents["vx"], "vx") == 0.1**2
+
+
+def test_scaling_apply_and_map_back(rod):
+    (sc,) = pt.search(rod, scale={"g": 1, "l": -1}, fixed=("m", "k_theta")).scalings
+    params = {"m": Fraction(3, 2), "l": 2, "g": Fraction(981, 100), "c_theta": 10}
+    scaled = sc.apply(params, s=2)
+    assert scaled == {"m": Fraction(3, 2), "l": 1, "g": Fraction(981, 50), "c_theta": 5}
+    for group in rod.pi_groups(repeating=("m", "l", "k_theta")):
+        values = dict.fromkeys(rod.variables, 3) | params
+        new = values | sc.apply(values, s=2)
+        assert group.evaluate(values) == group.evaluate(new)
+    t, y = sc.map_back([0.0, 1.0], [[0.5, 1.0], [0.6, 2.0]], 2, time="t", states=["1", "1/T"])
+    assert t.tolist() == [0.0, 2.0]
+    assert y.tolist() == [[0.5, 0.5], [0.6, 1.0]]
+    assert (sc * sc.inverse()).changed == ()
+    assert (sc**2).exponents["l"] == -2
+    assert pt.Scaling.from_exponents(rod, {"l": -1, "g": 1, "c_theta": -1, "t": -1, "F": 1}) == sc
+    assert sc.factors(2.0)["t"] == 0.5
+
+
+def test_bad_scaling_use(rod):
+    with pytest.raises(pt.InvalidRequestError, match="not a similarity scaling"):
+        pt.Scaling.from_exponents(rod, {"g": 1})
+    with pytest.raises(pt.InvalidRequestError, match="'Q'"):
+        pt.Scaling.from_unit_change(rod, {"Q": 1})
+    sc = pt.Scaling.from_unit_change(rod, {"L": 1})
+    with pytest.raises(pt.InvalidRequestError, match="positive"):
+        sc.apply({"l": 1}, s=-2)
+    with pytest.raises(pt.UnknownVariableError, match="'length'"):
+        sc.apply({"length": 1}, s=2)
+    with pytest.raises(pt.InvalidRequestError, match="shape"):
+        sc.map_back([0, 1], [[1, 2, 3]], 2, time="t", states=["1"])

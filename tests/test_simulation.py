@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 import pitheorem as pt
 from matlab_ports import scaling_counterexample_nonlinear as nonlinear
 from pitheorem import models
-from pitheorem.simulation import ModelScaling, fixed_steps, positive_float
+from pitheorem.simulation import ModelScaling, fixed_steps, nudged, positive_float, similarity_report
 
 #: the paper's wrong scalings of the hinged rod (Figures 2-4), time unchanged
 WRONG = {
@@ -42,9 +42,6 @@ def figure5(hinged):
 @pytest.fixture(scope="module")
 def figure1():
     return nonlinear.simulate_figures()["figure1"]
-
-
-# -- (a) valid scalings agree to solver tolerance ------------------------------------------------
 
 
 def test_search_scaling_is_figure5(figure5):
@@ -92,9 +89,6 @@ def test_dict_of_exponents_is_completed_from_the_units(hinged):
     assert rep3.passed
 
 
-# -- (b) the paper's wrong scalings fail --------------------------------------------------------
-
-
 @pytest.mark.parametrize("figure", sorted(WRONG))
 def test_papers_wrong_scalings_fail(hinged, figure):
     rep = pt.verify_similarity(hinged, WRONG[figure], s=2, t_final=10.0, check=False)
@@ -121,9 +115,6 @@ def test_wrong_scaling_matches_the_matlab_figures(hinged):
     rep = pt.verify_similarity(hinged, WRONG["figure3"], s=2, t_final=2.0, method="euler", dt=1e-4, check=False)
     np.testing.assert_allclose(rep.mapped["theta"], data["figure3"][1], rtol=0, atol=1e-9)
     np.testing.assert_allclose(rep.original["theta"], data["figure1"][1], rtol=0, atol=1e-9)
-
-
-# -- (c) fixed-step Euler: dt is a parameter of dimension T --------------------------------------
 
 
 def test_euler_exact_only_with_scaled_dt(hinged, figure5, figure1):
@@ -165,9 +156,6 @@ def test_euler_with_time_fixed_scaling_needs_no_dt_change(hinged, rod):
         assert rep.max_deviation < 1e-10
 
 
-# -- (e) Euler reproduces the MATLAB program -----------------------------------------------------
-
-
 def test_euler_reproduces_figure1(hinged, figure1):
     t, theta = figure1
     tr = pt.simulate(hinged, t_final=10.0, method="euler", dt=1e-4)
@@ -181,9 +169,6 @@ def test_solve_ivp_is_close_to_euler(hinged, figure1):
     tr = pt.simulate(hinged, t_final=10.0, t_eval=t[::1000])
     # Euler at dt = 1e-4 is first order: the two agree to about 1e-4
     np.testing.assert_allclose(tr["theta"], theta[::1000], atol=5e-4)
-
-
-# -- simulate ------------------------------------------------------------------------------------
 
 
 def test_simulate_defaults_and_overrides(hinged):
@@ -270,9 +255,6 @@ def test_scaling_of_a_superset_system_is_accepted(hinged, rod, figure5):
     big = pt.System({**rod.dimensions, "theta": "1", "omega": "T^-1", "alpha": "T^-2"})
     sc = pt.Scaling.from_unit_change(big, figure5.unit_change)
     assert pt.verify_similarity(hinged, sc, s=2, t_final=1.0).passed
-
-
-# -- (f) bad inputs -----------------------------------------------------------------------------
 
 
 def test_bad_simulate_inputs(hinged):
@@ -379,33 +361,6 @@ def test_system_mismatch_error_pickles():
     assert str(again) == str(err)
 
 
-# -- (g) the report's plot ----------------------------------------------------------------------
-
-
-def test_report_plot(hinged):
-    rep = pt.verify_similarity(hinged, WRONG["figure2"], s=2, t_final=1.0, check=False)
-    fig = rep.plot()
-    top, bottom = fig.axes
-    labels = [line.get_label() for line in top.get_lines()]
-    assert labels == ["theta (original)", "theta (scaled, mapped back)", "omega (original)",
-                      "omega (scaled, mapped back)"]
-    assert top.get_legend() is not None
-    assert bottom.get_legend() is not None
-    diff_labels = [line.get_label() for line in bottom.get_lines()]
-    assert "|theta difference|" in diff_labels
-    assert "|omega difference|" in diff_labels
-    assert bottom.get_xlabel() == "t, original units"
-    assert "NOT similar" in top.get_title()
-    np.testing.assert_array_equal(top.get_lines()[0].get_ydata(), rep.original["theta"])
-    np.testing.assert_array_equal(top.get_lines()[1].get_ydata(), rep.mapped["theta"])
-    one = rep.plot(states=["omega"]).axes[0]
-    assert [line.get_label() for line in one.get_lines()] == ["omega (original)", "omega (scaled, mapped back)"]
-    with pytest.raises(pt.UnknownVariableError, match="'phi'"):
-        rep.plot(states=["phi"])
-
-
-# -- hypothesis -----------------------------------------------------------------------------------
-
 unit_exponent = st.integers(-2, 2)
 
 
@@ -434,22 +389,6 @@ def test_state_exponent_must_be_determined():
     unchecked = pt.verify_similarity(model, {"t": 1, "a": -1}, s=2, t_final=1.0, check=False)
     assert unchecked.exponents["x"] == 0  # applied as given
     assert not unchecked.is_similarity
-
-
-def test_report_plot_names_a_unit_on_every_axis(hinged):
-    sc = pt.search(hinged.system, scale={"g": 1}).scalings[0]
-    rep = pt.verify_similarity(hinged, sc, s=2, t_final=0.5)
-    top, bottom = rep.plot().axes
-    # without units given, each axis shows the dimension of what it plots
-    assert top.get_ylabel() == "theta [1], omega [T^-1]"
-    assert bottom.get_xlabel() == "t [T]"
-    assert bottom.get_ylabel() == "|difference|: theta [1], omega [T^-1]"
-    top, bottom = rep.plot(units={"theta": "rad", "omega": "rad/s", "t": "s"}).axes
-    assert top.get_ylabel() == "theta [rad], omega [rad/s]"
-    assert bottom.get_xlabel() == "t [s]"
-
-
-# -- what the engines share: ModelScaling, fixed_steps, positive_float --------------------------
 
 
 def test_model_scaling_of_a_scaling_and_of_exponents(hinged, figure5):
@@ -545,3 +484,85 @@ def test_positive_float_refuses_and_names(bad):
         positive_float(bad, "dt")
     assert positive_float("2.5", "dt") == 2.5
     assert positive_float(np.float32(0.5), "dt") == 0.5
+
+
+@pytest.mark.parametrize("s", [1e-6, 1e-9])
+def test_tolerances_scale_with_each_state(s):
+    # with one atol for every state, the shrunken positions are integrated to a tolerance
+    # far coarser than theirs, and the mapped-back run drifts (about 2e-6 at s = 1e-6)
+    model = pt.models.spring_mass_damper()
+    sc = pt.Scaling.from_unit_change(model.system, {"L": 1})
+    rep = pt.verify_similarity(model, sc, s=s, t_final=5)
+    assert rep.max_deviation < 1e-9
+
+
+def runs(dev, base, values=(1.0, 2.0)):
+    t = [0.0, 1.0]
+    original = pt.Trajectory(t, [[values[0]], [values[1]]], ("x",))
+    mapped = pt.Trajectory(t, [[values[0]], [values[1] + dev]], ("x",))
+    nudge = pt.Trajectory(t, [[values[0]], [values[1] + base]], ("x",))
+    return original, mapped, nudge
+
+
+def test_verdict_is_ten_times_the_baseline_per_state():
+    # a constant signal: no range to fall back on, the baseline alone decides
+    for dev, base, similar in ((9e-12, 1e-12, True), (1.1e-11, 1e-12, False), (0.0, 0.0, True), (1e-15, 0.0, False)):
+        original, mapped, nudge = runs(dev, base, values=(2.0, 2.0))
+        rep = similarity_report(original, mapped, s=2, scaling={}, exponents={}, nudged=nudge)
+        assert rep.similar is similar
+        assert math.isnan(rep.tol)  # judged against the baseline, not a tolerance
+        assert rep.sensitivity["x"] == pytest.approx(base, rel=1e-3)
+
+
+def test_zero_baseline_falls_back_to_a_billionth_of_the_range():
+    # the signal spans 1 (from 1 to 2); the nudge changed nothing
+    original, mapped, nudge = runs(0.9e-9, 0.0)
+    assert similarity_report(original, mapped, s=2, scaling={}, exponents={}, nudged=nudge).similar
+    original, mapped, nudge = runs(1.1e-9, 0.0)
+    assert not similarity_report(original, mapped, s=2, scaling={}, exponents={}, nudged=nudge).similar
+
+
+def test_absolute_tolerance_without_a_baseline():
+    original, mapped, _ = runs(1e-7, 0.0)
+    assert similarity_report(original, mapped, s=2, scaling={}, exponents={}, tol=1e-6).passed
+    assert not similarity_report(original, mapped, s=2, scaling={}, exponents={}, tol=1e-8).passed
+    exact = similarity_report(*runs(0.5, 0.0)[:2], s=2, scaling={}, exponents={}, tol=0.5)
+    assert (exact.max_deviation, exact.passed) == (0.5, True)  # a deviation of exactly tol passes
+    assert exact.scaled_dt is True  # the default: nothing says the step was not scaled
+    with pytest.raises(pt.InvalidRequestError, match="tol"):
+        similarity_report(original, mapped, s=2, scaling={}, exponents={})
+    short = pt.Trajectory([0.0], [[1.0]], ("x",))
+    with pytest.raises(pt.InvalidRequestError, match="cannot be compared"):
+        similarity_report(original, short, s=2, scaling={}, exponents={}, tol=1.0)
+
+
+@given(st.floats(min_value=-1e6, max_value=1e6, allow_nan=False))
+def test_nudge_moves_by_one_ulp_of_the_value_or_of_one(x):
+    moved = float(nudged([x])[0])
+    assert moved > x
+    if abs(x) >= 1:  # the next double up, exactly (math.nextafter is the independent oracle)
+        assert moved == math.nextafter(x, math.inf)
+    else:  # the ulp of 1, up to the rounding of the sum x + 2^-52 itself (half an ulp of the sum)
+        assert abs((moved - x) - 2.0**-52) <= math.ulp(max(abs(moved), 2.0**-52)) / 2
+
+
+def test_verify_similarity_with_a_baseline():
+    rod = pt.models.hinged_rod()
+    sc = pt.search(rod.system, scale={"g": 1, "l": -1}, fixed=("m", "k_theta")).scalings[0]
+    rep = pt.verify_similarity(rod, sc, s=10, t_final=2, baseline=True)
+    assert rep.similar
+    assert rep.sensitivity is not None
+    assert rep.nudged.y.shape == rep.original.y.shape
+    assert rep.sensitivity["theta"] > 0
+    bad = pt.verify_similarity(rod, {"g": 1}, s=10, t_final=2, check=False, baseline=True)
+    assert not bad.similar
+
+
+def test_check_names_the_pi_group_and_prints_plain_exponents():
+    rod = pt.models.hinged_rod()
+    with pytest.raises(pt.InvalidRequestError) as caught:
+        pt.verify_similarity(rod, {"g": 1, "l": "1/2"}, s=2, t_final=0.1)
+    message = str(caught.value)
+    assert "Fraction" not in message
+    assert "(l: 1/2, g: 1)" in message
+    assert "Pi group k_theta/(g*l*m) by s^-3/2" in message

@@ -1,36 +1,33 @@
-"""System: what it answers about its own variables (more in test_groups, test_fast_paths, test_edges)."""
+"""pitheorem.system: System, its input checks, and what it answers about its variables.
+
+Pi groups (``pi_groups``, ``default_repeating``) against sympy's solutions,
+dimension specs at and beyond the limits, the opt-in base letters, pint
+units (``from_units``).  The enumeration behind ``bases`` is in test_bases.
+"""
 
 from __future__ import annotations
 
+import re
+from fractions import Fraction
+
+import numpy as np
 import pytest
+import sympy
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import pitheorem as pt
-from pitheorem.engines import engine_search
+from pitheorem.exact import (
+    MAX_DENOMINATOR,
+    MAX_EXPONENT,
+)
+from tests.conftest import BAD_FORMULAS, ROD, oracle_bases, oracle_groups, systems
 
 
 def test_time_variables_are_those_of_dimension_time_alone_in_system_order():
     system = pt.System({"tau": "T", "l": "L", "f": "T^-1", "t": "T", "t2": "T^2", "c": "M T", "x": {"T": 1, "L": 0}})
     assert system.time_variables == ("tau", "t", "x")
     assert pt.System({"l": "L", "f": "T^-1"}).time_variables == ()
-
-
-def test_a_search_holds_every_time_variable_by_default():
-    system = pt.System({"l": "L", "g": "L T^-2", "t": "T", "tau": "T"})
-    res = pt.search(system, scale={"g": 1})
-    assert res.notes[0].variables == system.time_variables == ("t", "tau")
-    assert all(sc.exponents["t"] == sc.exponents["tau"] == 0 for sc in res.scalings)
-    # a scaled time variable is not held as well
-    assert pt.search(system, scale={"tau": 1}).notes[0].variables == ("t",)
-
-
-def test_an_engine_search_holds_the_systems_time_variables_by_default():
-    system = pt.System({"l": "L", "g": "L T^-2", "t": "T", "tau": "T"})
-    held = engine_search(system, "mujoco", {"g": 1}, names=[])
-    free = engine_search(system, "mujoco", {"g": 1}, fixed=(), names=[])
-    assert held.fixed == ("t", "tau")
-    assert free.fixed == ()
-    assert all(sc.exponents["tau"] == 0 for sc in held.scalings)
-    assert any(sc.exponents["tau"] != 0 for sc in free.scalings)
 
 
 @pytest.mark.parametrize(("variables", "expected"), [
@@ -54,3 +51,241 @@ def test_a_column_is_the_exponents_of_the_variables_dimension_over_the_base_dime
     assert all(type(x) is Fraction for x in system.column("q"))
     with pytest.raises(pt.UnknownVariableError, match="'x'"):
         system.column("x")
+
+
+@pytest.mark.parametrize("spec", ["L^99999999999999999999999", {"L": 1e300}, {"L": 10**400}, "L^1001", "L^(1/1000000000001)"])
+def test_exponent_limits(spec):
+    with pytest.raises(pt.LimitError) as info:
+        pt.System({"x": spec})
+    assert str(MAX_EXPONENT) in str(info.value) or str(MAX_DENOMINATOR) in str(info.value)
+
+
+def test_exponents_at_the_limits_are_accepted():
+    s = pt.System({"x": f"L^{MAX_EXPONENT}", "y": f"T^(-1/{MAX_DENOMINATOR})"})
+    assert s.dimension("x").exponent_of("L") == MAX_EXPONENT
+    assert s.dimension("y").exponent_of("T") == Fraction(-1, MAX_DENOMINATOR)
+
+
+@pytest.mark.parametrize("bad", [float("inf"), float("-inf"), float("nan"), True, None, "x", np.bool_(True)])
+def test_non_numbers_in_mappings(bad):
+    with pytest.raises(pt.NumberError) as info:
+        pt.System({"x": {"L": bad}})
+    assert info.value.culprit is bad or repr(info.value.culprit) == repr(bad)
+    assert "'x'" in str(info.value)
+
+
+def test_decimal_in_mapping_is_the_decimal_written():
+    assert pt.System({"x": {"L": 0.1}}).dimension("x") == pt.Dimension.parse("L^(1/10)")
+    assert pt.System({"x": {"L": np.float64(0.5)}}).dimension("x") == pt.Dimension.parse("L^(1/2)")
+
+
+def test_base_dimensions_string_is_refused():
+    with pytest.raises(pt.InvalidRequestError, match="'LT'"):
+        pt.System({"x": "L"}, base_dimensions="LT")
+
+
+@pytest.mark.parametrize("irrational", [sympy.pi, sympy.sqrt(2), sympy.E])
+def test_irrational_exponents_are_refused(irrational):
+    with pytest.raises(pt.NumberError):
+        pt.System({"x": {"L": irrational}})
+
+
+@pytest.mark.parametrize(("letter", "unit"), [("N", "newton"), ("J", "joule"), ("A", "ampere")])
+def test_unit_lookalike_letters_are_not_silent(letter, unit):
+    with pytest.raises(pt.DimensionSyntaxError) as info:
+        pt.System({"F": letter, "x": "L"})
+    assert unit in str(info.value)
+    assert "base_dimensions" in str(info.value)
+
+
+def test_opt_in_letters_in_a_mapping_are_not_silent():
+    # the mapping path (not the parser) names the letter and how to declare it
+    with pytest.raises(pt.InvalidRequestError) as info:
+        pt.System({"F": {"N": 1}})
+    assert "base_dimensions=(..., 'N')" in str(info.value)
+    with pytest.raises(pt.InvalidRequestError) as info:
+        pt.System({"F": {"J": 1, "A": 2}})
+    assert "base_dimensions=(..., 'J')" in str(info.value)
+    assert info.value.culprit == "J"
+
+
+def test_opt_in_letters_work_when_declared():
+    s = pt.System({"n": "N", "a": "A", "x": "L"}, base_dimensions=("M", "L", "T", "N", "A"))
+    assert s.base_dimensions == ("L", "N", "A")
+    assert s.rank == 3
+
+
+def test_from_units_declares_what_pint_names():
+    s = pt.System.from_units({"c": "mol/m^3", "F": "N"})
+    assert str(s.dimension("c")) == "L^-3 N"
+    assert str(s.dimension("F")) == "M L T^-2"
+    a = pt.System.from_units({"k": "N*m/rad"}, angle_as_base=True)
+    assert str(a.dimension("k")) == "M L^2 T^-2 A^-1"
+
+
+def test_exponents_near_two_to_the_59_are_refused_by_name():
+    # the enumeration on this very matrix, whose determinant is 2^64: tests/test_bases.py
+    a, b, c = (2**27 + 1) * 2**32, (2**27 + 2) * 2**32, 2**59
+    with pytest.raises(pt.errors.LimitError, match="exceeds the limit"):
+        pt.System({"a": {"L": a, "T": b}, "b": {"L": c, "T": a}})
+
+
+def test_default_repeaters_need_time_when_the_rest_do_not_span():
+    system = pt.System({"t": "T", "m": "M", "l": "L", "x": "L"})
+    assert system.default_repeating() == ("t", "m", "l")  # the first basis: every basis holds t
+    assert system.pi_groups().repeating == ("t", "m", "l")
+
+
+@settings(max_examples=100, deadline=None)
+@given(systems(exponent=st.sampled_from([-2, -1, 0, 0, 1, 2, Fraction(1, 2)]), max_vars=7), st.booleans(),
+       st.integers(0, 7))
+def test_pi_groups_equal_sympy_solutions(system, with_time, at):
+    if with_time:  # a variable of dimension time, anywhere in the order
+        items = [(n, system.dimension(n)) for n in system.variables]
+        items.insert(min(at, len(items)), ("t", pt.Dimension({"T": 1})))
+        system = pt.System(items)
+    every = oracle_bases(system)
+    timelike = {n for n in system.variables if system.dimension(n) == pt.Dimension({"T": 1})}
+    avoiding = [b for b in every if not timelike & set(b)]
+    default = (avoiding or every)[0]
+    assert system.default_repeating() == default
+    groups = system.pi_groups()
+    assert groups.repeating == default
+    assert [tuple(g.exponents.items()) for g in groups] == oracle_groups(system, default)
+    for basis in every[:3]:
+        assert [tuple(g.exponents.items()) for g in system.pi_groups(repeating=basis[::-1])] == oracle_groups(
+            system, basis[::-1])
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from(["M", "L", "T", "Theta", "I", "N", "J", "A", "Q", "kg"]),
+                          st.integers(-120, 120)), min_size=1, max_size=4), st.booleans())
+def test_quick_formula_reader_agrees_with_the_parser(factors, spaced):
+    text = (" " if spaced else "  ").join(f"{b}^{p}" if p != 1 else b for b, p in factors)
+    try:
+        expected = pt.Dimension.parse(text)
+    except pt.PiTheoremError as err:
+        with pytest.raises(type(err)):
+            pt.System({"x": text})
+        return
+    assert pt.System({"x": text}).dimension("x") == expected
+
+
+def test_rank_deficient_system_uses_rank_repeaters():
+    # only force and length occur: rank 2 inside M, L, T
+    s = pt.System({"F1": "M L T^-2", "F2": "M L T^-2", "a": "L", "b": "L"})
+    assert s.rank == 2
+    assert s.n_groups == 2
+    assert s.bases() == [("F1", "a"), ("F1", "b"), ("F2", "a"), ("F2", "b")]
+    groups = s.pi_groups(repeating=("F1", "a"))
+    assert [g.exponents for g in groups] == [{"F1": -1, "F2": 1}, {"a": -1, "b": 1}]
+
+
+def test_default_repeaters_avoid_time(rod):
+    assert "t" not in rod.default_repeating()
+    assert rod.pi_groups().repeating == rod.default_repeating()
+
+
+def test_from_units_matches_formulas():
+    s = pt.System.from_units(
+        {"m": "kg", "l": "m", "g": "m/s^2", "k_theta": "N*m/rad", "c_theta": "N*m*s/rad", "t": "s"}
+    )
+    assert s.dimensions == pt.System(
+        {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "t": "T"}
+    ).dimensions
+
+
+def test_from_units_angle_as_base():
+    s = pt.System.from_units({"k_theta": "N*m/rad", "theta": "rad"}, angle_as_base=True)
+    assert str(s.dimension("k_theta")) == "M L^2 T^-2 A^-1"
+    assert str(s.dimension("theta")) == "A"
+
+
+@pytest.mark.parametrize(("formula", "culprit"), BAD_FORMULAS[:6])
+def test_bad_formula_in_system_names_variable(formula, culprit):
+    with pytest.raises(pt.DimensionSyntaxError) as info:
+        pt.System({"ok": "L", "bad_one": formula})
+    assert "'bad_one'" in str(info.value)
+    assert culprit in str(info.value)
+
+
+BAD_SYSTEMS = [
+    ({}, pt.EmptySystemError, "at least one variable"),
+    ([], pt.EmptySystemError, "at least one variable"),
+    ([("a", "L"), ("a", "T")], pt.DuplicateVariableError, "'a'"),
+    ({"2x": "L"}, pt.InvalidRequestError, "'2x'"),
+    ({"a b": "L"}, pt.InvalidRequestError, "'a b'"),
+    ({"a": 3}, pt.InvalidRequestError, "'a'"),
+    ({"a": None}, pt.InvalidRequestError, "'a'"),
+    ({"a": {"L": "x"}}, pt.InvalidRequestError, "'a'"),
+    ({"a": {"Q": 1}}, pt.InvalidRequestError, "'Q'"),
+    (42, pt.InvalidRequestError, "int"),
+    ([("a",)], pt.InvalidRequestError, "('a',)"),
+]
+
+
+@pytest.mark.parametrize(("variables", "kind", "culprit"), BAD_SYSTEMS)
+def test_bad_system(variables, kind, culprit):
+    with pytest.raises(kind) as info:
+        pt.System(variables)
+    assert culprit in str(info.value)
+
+
+def test_bad_base_dimension_list():
+    with pytest.raises(pt.DuplicateVariableError, match="'M'"):
+        pt.System({"a": "M"}, base_dimensions=("M", "M"))
+    with pytest.raises(pt.InvalidRequestError, match="'1x'"):
+        pt.System({"a": "M"}, base_dimensions=("M", "1x"))
+
+
+def test_custom_base_dimension_accepted_when_declared():
+    s = pt.System({"q": "Q", "l": "L"}, base_dimensions=("L", "Q"))
+    assert s.base_dimensions == ("L", "Q")
+
+
+BAD_REPEATERS = [
+    (("m", "l"), pt.RepeatingCountError, "rank 3"),
+    (("m", "l", "k_theta", "t"), pt.RepeatingCountError, "exactly 3"),
+    (("m", "l", "mass"), pt.UnknownVariableError, "'mass'"),
+    (("m", "m", "t"), pt.DuplicateVariableError, "'m'"),
+    (("k_theta", "tau", "m"), pt.DependentRepeatingSetError, "k_theta/tau"),
+    (("l", "g", "t"), pt.DependentRepeatingSetError, "l/(g*t**2)"),
+    (("m", "l", "theta_r"), pt.DependentRepeatingSetError, "theta_r"),
+    ("m", pt.RepeatingCountError, "('m',)"),
+    ((1, 2, 3), pt.InvalidRequestError, "1"),
+    (5, pt.InvalidRequestError, "5"),
+]
+
+
+@pytest.mark.parametrize(("repeating", "kind", "culprit"), BAD_REPEATERS)
+def test_bad_repeaters(repeating, kind, culprit):
+    rod = pt.System(ROD)
+    with pytest.raises(kind) as info:
+        rod.pi_groups(repeating=repeating)
+    assert culprit in str(info.value)
+
+
+def test_bad_bases_arguments():
+    rod = pt.System(ROD)
+    with pytest.raises(pt.UnknownVariableError, match="'time'"):
+        rod.bases(exclude=("time",))
+    with pytest.raises(pt.InvalidRequestError, match="'t'"):
+        rod.bases(exclude=("t",), require=("t",))
+    with pytest.raises(pt.DependentRepeatingSetError, match="k_theta"):
+        rod.bases(require=("k_theta", "tau"))
+    with pytest.raises(pt.RepeatingCountError):
+        rod.count_bases(require=("m", "l", "t", "g"))
+
+
+def test_bad_units():
+    with pytest.raises(pt.UnitError, match="'furlongs_per_blob'"):
+        pt.System.from_units({"v": "furlongs_per_blob"})
+    with pytest.raises(pt.UnitError, match="'x'"):
+        pt.System.from_units({"x": 3})
+    with pytest.raises(pt.UnitError, match=re.escape("'kg**'")):
+        pt.System.from_units({"m": "kg**"})
+
+
+def test_an_unknown_variables_dimension_is_named(rod):
+    with pytest.raises(pt.UnknownVariableError, match="'q'"):
+        rod.dimension("q")

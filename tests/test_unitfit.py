@@ -16,10 +16,9 @@ import pitheorem as pt
 #: plausible SUPERball values in SI units (illustration, as in tutorial 04), time step as t
 SB_VALUES = {"m": 1.5, "l": 1.7, "k": 600.0, "x_r": 0.8, "g": 9.81, "c": 20.0, "F": 40.0, "t": 1 / 240,
              "G": 8e10, "E": 2e11, "v": 0.05, "rho": 1500.0}
+
+
 BULLET = (0.05, 10)
-
-
-# -- an independent feasibility check: Fourier-Motzkin elimination --------------------------
 
 
 def rows_of(system, values, bounds, *, frozen=()):
@@ -100,9 +99,6 @@ def in_range(fit):
         assert math.log10(lo) - 1e-8 <= z <= math.log10(hi) + 1e-8, name
 
 
-# -- SUPERball ------------------------------------------------------------------------------
-
-
 def test_superball_fits_bullet_ranges(superball):
     fit = pt.fit_units(superball, SB_VALUES, dimension_ranges={"L": BULLET, "M": BULLET}, ranges={"g": (1, 100)},
                        fixed=("t",))
@@ -158,9 +154,6 @@ def test_deterministic(superball):
     assert a.unit_change == b.unit_change
     assert a.conflict == b.conflict
     assert str(a) == str(b)
-
-
-# -- conventions ------------------------------------------------------------------------------
 
 
 def test_convention_matches_scaling_from_unit_change():
@@ -233,9 +226,6 @@ def test_str_repr_and_no_ranges():
     assert repr(fit).startswith("UnitFit(feasible=True")
 
 
-# -- bad input ----------------------------------------------------------------------------------
-
-
 BAD = [
     ({"values": {"mass": 1}}, pt.UnknownVariableError, "mass"),
     ({"ranges": {"lenght": (1, 2)}}, pt.UnknownVariableError, "lenght"),
@@ -278,8 +268,6 @@ def test_not_a_system():
     with pytest.raises(pt.InvalidRequestError, match="needs a System"):
         pt.fit_units({"l": "L"}, {"l": 1})
 
-
-# -- properties ----------------------------------------------------------------------------------
 
 BASES = ("M", "L", "T")
 
@@ -340,3 +328,9 @@ def test_rounded_fit_names_a_conflict_that_only_exact_arithmetic_sees():
     assert fit.violated == ("x",)
     assert fit.scaled["x"] == 10.000000000000002
     assert [(b.name, b.side) for b in fit.conflict] == [("x", "low"), ("x", "high")]
+
+
+def test_fit_units_with_huge_value_is_named():
+    s = pt.System({"r": "L", "t": "T"})
+    with pytest.raises(pt.LimitError, match="1e300"):
+        pt.fit_units(s, {"r": 10**400, "t": 1}, ranges={"r": (1, 10)})

@@ -1,0 +1,182 @@
+"""pitheorem.bases: every independent column subset, in lexicographic order, exactly.
+
+The oracles loop over every subset (itertools) and decide independence by
+sympy's exact rank or by a determinant written out in Python integers:
+nothing of the float, residue and Laplace paths under test.  The
+enumeration through ``System.bases`` is checked here too; the property that
+it equals brute force on any system is in test_properties.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from itertools import combinations
+from unittest import mock
+
+import pytest
+import sympy
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+import pitheorem as pt
+from pitheorem import bases as bases_module
+from pitheorem.bases import count_independent_subsets, independent_chunks, independent_subsets
+from tests.conftest import PRIMES, columns_of, oracle_bases, sympy_rank, systems
+
+
+def det2(a, b, c, d):
+    return a * d - b * c
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.integers(1, 3), st.integers(1, 7), st.data())
+def test_independent_subsets_of_candidates_with_required_columns_equal_brute_force(size, n_cols, data):
+    rows = data.draw(st.lists(st.lists(st.integers(-3, 3), min_size=n_cols, max_size=n_cols),
+                              min_size=size, max_size=size))
+    assume(sympy.Matrix(rows).rank() == size)  # the functions take a matrix of full row rank
+    roles = data.draw(st.lists(st.sampled_from(["candidate", "required", "left out"]), min_size=n_cols,
+                               max_size=n_cols))
+    candidates = [j for j, role in enumerate(roles) if role == "candidate"]
+    required = [j for j, role in enumerate(roles) if role == "required"]
+    assume(len(required) <= size)  # System refuses more required variables than the rank before this
+    expected = []
+    for extra in combinations(candidates, size - len(required)):
+        subset = tuple(sorted((*required, *extra)))
+        if sympy.Matrix([[row[j] for j in subset] for row in rows]).rank() == size:
+            expected.append(subset)
+    expected.sort()
+    assert list(independent_subsets(rows, candidates, required, size)) == expected
+    assert count_independent_subsets(rows, candidates, required, size) == len(expected)
+    assert [tuple(c) for chunk in independent_chunks(rows, candidates, required, size) for c in chunk.tolist()] == (
+        expected)
+
+
+def test_determinant_two_to_the_64_is_not_zero():
+    # was: rank 2 but no basis (float cancellation of 2^118-sized products); System refuses such exponents
+    a, b, c = (2**27 + 1) * 2**32, (2**27 + 2) * 2**32, 2**59
+    rows = [[a, c], [b, a]]
+    assert det2(a, c, b, a) == 2**64
+    assert sympy.Matrix(rows).det() == 2**64  # the oracle: exact, and nonzero
+    assert count_independent_subsets(rows, [0, 1], [], 2) == 1
+    assert list(independent_subsets(rows, [0, 1], [], 2)) == [(0, 1)]
+
+
+@pytest.mark.parametrize("big", [3_100_000_000, 2**40, 2**62 + 1, 2**70, 10**30])
+def test_entries_beyond_int64_safe_range(big):
+    # was: (columns**2).sum() wrapped (math domain error) or OverflowError building int64 arrays
+    rows = [[big, big + 1, 1], [1, 1, 0]]
+    expected = [(i, j) for i, j in [(0, 1), (0, 2), (1, 2)]
+                if det2(rows[0][i], rows[0][j], rows[1][i], rows[1][j]) != 0]
+    assert list(independent_subsets(rows, [0, 1, 2], [], 2)) == expected
+    assert count_independent_subsets(rows, [0, 1, 2], [], 2) == len(expected)
+
+
+def test_dependent_columns_with_huge_entries_stay_dependent():
+    big = 2**80 + 7
+    rows = [[big, 2 * big, 1], [3, 6, 1]]  # columns 0 and 1 are parallel
+    assert list(independent_subsets(rows, [0, 1, 2], [], 2)) == [(0, 2), (1, 2)]
+
+
+huge = st.integers(-(2**70), 2**70)
+reciprocal_primes = st.sampled_from([Fraction(s, p) for p in PRIMES for s in (1, -1)] + [Fraction(0)])
+
+
+@settings(max_examples=150, deadline=None)
+@given(systems(), st.data())
+def test_bases_equal_brute_force_in_order(system, data):
+    exclude = tuple(data.draw(st.lists(st.sampled_from(system.variables), unique=True, max_size=2)))
+    require = tuple(n for n in data.draw(st.lists(st.sampled_from(system.variables), unique=True, max_size=2))
+                    if n not in exclude)
+    try:
+        got = system.bases(exclude=exclude, require=require)
+    except (pt.DependentRepeatingSetError, pt.RepeatingCountError):
+        assert sympy_rank([columns_of(system)[system.index(n)] for n in require]) < len(require)
+        return
+    expected = oracle_bases(system, exclude, require)
+    assert got == expected
+    assert list(got) == expected
+    assert list(system.iter_bases(exclude=exclude, require=require)) == expected
+    assert system.count_bases(exclude=exclude, require=require) == len(expected)
+
+
+@pytest.mark.parametrize(("exponent", "max_vars"), [
+    (huge, 6),  # entries far beyond 2^53 and int64: the float path must step aside, residues and exact rank decide
+    (reciprocal_primes, 7),
+], ids=["huge", "reciprocal_primes"])
+@settings(max_examples=60, deadline=None)
+@given(data=st.data())
+def test_bases_exact_with_extreme_exponents(exponent, max_vars, data):
+    system = data.draw(systems(exponent=exponent, max_vars=max_vars, max_bases=3))
+    expected = oracle_bases(system)
+    assert system.bases() == expected
+    assert system.count_bases() == len(expected)
+
+
+@settings(max_examples=40, deadline=None)
+@given(systems(max_vars=9), st.integers(1, 5))
+def test_small_chunks_keep_answers_and_order(system, chunk):
+    # the depth-first descent in chunks of `chunk` rows visits subsets in the same order
+    with mock.patch.object(bases_module, "_CHUNK", chunk):
+        assert system.bases() == oracle_bases(system)
+        assert system.count_bases() == len(oracle_bases(system))
+
+
+@settings(max_examples=40, deadline=None)
+@given(systems(max_vars=8))
+def test_residue_path_equals_float_path(system):
+    expected = oracle_bases(system)
+    with mock.patch.object(bases_module, "float_is_exact", return_value=False):
+        assert system.bases() == expected
+        assert system.count_bases() == len(expected)
+
+
+def test_hadamard_bound_is_computed_in_python_integers():
+    big = [[2**62, 1], [1, 2**62]]
+    assert bases_module.hadamard_squared(big, 2) == (2**124 + 1) ** 2
+    assert not bases_module.float_is_exact(big, 2)
+    assert bases_module.float_is_exact([[3, 0], [0, 4]], 2)
+    assert all(sympy.isprime(p) and p < 2**31 for p in bases_module._PRIMES)
+
+
+def test_reciprocal_prime_exponents():
+    variables = {f"x{p}": {"L": Fraction(1, p), "T": Fraction(1, q)} for p, q in zip(PRIMES, (*PRIMES[1:], 2), strict=True)}
+    system = pt.System({**variables, "m": "M"})
+    assert system.bases() == oracle_bases(system)
+    assert system.count_bases() == len(oracle_bases(system))
+
+
+def test_rank_zero_system_has_the_empty_basis():
+    system = pt.System({"a": "1", "b": "1"})
+    assert system.bases() == [()]
+    assert list(system.bases()) == [()]
+    assert system.count_bases() == 1
+    assert system.bases().indices.shape == (1, 0)
+
+
+@pytest.mark.parametrize("m", range(7))
+@pytest.mark.parametrize("k", range(8))
+def test_lex_combinations_are_itertools_combinations(m, k):
+    got = bases_module.lex_combinations(m, k)
+    expected = [list(c) for c in combinations(range(m), k)]
+    assert got.shape == (len(expected), k)
+    assert got.tolist() == expected
+
+
+@settings(max_examples=60, deadline=None)
+@given(systems(exponent=st.integers(-(10**6), 10**6), max_vars=8))
+def test_huge_exponents_take_the_modular_path_and_stay_exact(system):
+    # Hadamard bounds far beyond 2^53: the float path is refused, mod-p + exact fallback decide
+    assert system.bases() == oracle_bases(system)
+
+
+@settings(max_examples=60, deadline=None)
+@given(systems(max_vars=9))
+def test_modular_path_equals_brute_force(system):
+    import pitheorem.bases as bases_module
+
+    saved = bases_module._EXACT_FLOAT
+    bases_module._EXACT_FLOAT = 0.0  # force the modular path on ordinary systems
+    try:
+        assert system.bases() == oracle_bases(system)
+    finally:
+        bases_module._EXACT_FLOAT = saved

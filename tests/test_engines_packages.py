@@ -1,0 +1,62 @@
+"""pitheorem.engines.packages: the one list of engine packages and how a missing one is reported."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+import pitheorem as pt
+from pitheorem.engines import (
+    ENGINES,
+    hidden_constants,
+    simulate_rod,
+)
+from pitheorem.engines.packages import PACKAGES, check_engine, engine_module
+from pitheorem.engines.rod import EngineUnavailableError
+from tests.conftest import REPO
+
+
+def test_each_engine_names_its_package_in_one_place(monkeypatch):
+    # the catalogue's engines are the engines with a package, and every reader of an engine name agrees
+    assert tuple(PACKAGES) == ENGINES == ("bullet", "mujoco")
+    assert PACKAGES["bullet"] == "pybullet"
+    for call in (lambda: check_engine("ode"), lambda: engine_module("ode"), lambda: hidden_constants("ode"),
+                 lambda: simulate_rod("ode")):
+        with pytest.raises(pt.InvalidRequestError) as caught:
+            call()
+        assert str(caught.value) == "unknown engine 'ode'; use 'bullet' or 'mujoco'"
+        assert caught.value.culprit == "ode"
+    with pytest.raises(pt.InvalidRequestError, match="unknown engine 3"):
+        check_engine(3)
+    # a missing package is named in the error, as the one list has it
+    monkeypatch.setitem(sys.modules, "pybullet", None)  # import pybullet now raises ImportError
+    with pytest.raises(EngineUnavailableError) as caught:
+        engine_module("bullet")
+    assert (caught.value.engine, caught.value.package, caught.value.culprit) == ("bullet", "pybullet", "bullet")
+    assert str(caught.value) == 'engine \'bullet\' needs the Python package \'pybullet\': pip install "pitheorem[engines]"'
+
+
+def test_bullet_prints_no_banner():
+    pytest.importorskip("pybullet", reason="pybullet is not installed (pip install 'pitheorem[engines]')")
+    code = "from pitheorem.engines import simulate_rod; simulate_rod('bullet', t_final=0.01)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=REPO)
+    assert out.stdout == ""
+    assert out.stderr == ""
+
+
+def test_quiet_stdout_silences_both_descriptors_and_restores_them(capfd):
+    import os
+
+    from pitheorem.engines.packages import quiet_stdout
+
+    print("before", flush=True)
+    with quiet_stdout():
+        os.write(1, b"C library banner on stdout\n")
+        os.write(2, b"C library warning on stderr\n")
+    os.write(1, b"after\n")
+    os.write(2, b"after on stderr\n")
+    out, err = capfd.readouterr()
+    assert out == "before\nafter\n"
+    assert err == "after on stderr\n"

@@ -1,0 +1,164 @@
+"""pitheorem.exact: the one number reader and its limits, against Fractions worked out by hand."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+import sympy
+
+import pitheorem as pt
+from pitheorem.exact import (
+    MAX_DENOMINATOR,
+    MAX_EXPONENT,
+    is_float,
+    read_exponent,
+    read_number,
+    read_positive,
+    read_scale_factor,
+    read_value,
+    short_text,
+)
+
+
+@pytest.mark.parametrize(("value", "expected"), [
+    (0.1, Fraction(1, 10)), (2.5e-3, Fraction(1, 400)), (1e22, Fraction(10**22)), (-0.0, Fraction(0)),
+    (np.float64(0.5), Fraction(1, 2)), (np.float32(0.1), Fraction(1, 10)), (np.float16(0.25), Fraction(1, 4)),
+    (np.int8(-3), Fraction(-3)), (np.array(0.2), Fraction(1, 5)), ("  -7/21 ", Fraction(-1, 3)),
+    ("1e-3", Fraction(1, 1000)), (Fraction(2, 6), Fraction(1, 3)), (10**40, Fraction(10**40)),
+])
+def test_read_number_rule(value, expected):
+    assert read_number(value) == expected
+
+
+@pytest.mark.parametrize("bad", ["1/0", "1e", "0x10", "1.5/2", "", "--1", "nan", "inf", [1], {}, 1j, object()])
+def test_read_number_refuses(bad):
+    with pytest.raises(pt.NumberError):
+        read_number(bad, "the test value")
+
+
+@pytest.mark.parametrize(("value", "expected"), [(2, Fraction(2)), ("1/3", Fraction(1, 3)), (0.5, Fraction(1, 2)),
+                                               (sympy.Rational(3, 4), Fraction(3, 4))])
+def test_read_positive_reads_like_read_number(value, expected):
+    assert read_positive(value, "the scale factor s") == expected
+
+
+@pytest.mark.parametrize("bad", [0, -2, "-1/3", 0.0, "big", True, float("inf"), -sympy.sqrt(2)])
+def test_read_positive_refuses_everything_but_positive_numbers(bad):
+    with pytest.raises(pt.NumberError, match="the scale factor s must be a positive finite number") as info:
+        read_positive(bad, "the scale factor s", irrational_ok=True)
+    assert info.value.culprit is bad
+
+
+def test_read_value_keeps_floats_and_makes_the_rest_fractions():
+    # float in, float out: the one rule for parameter values
+    for value in (9.81, np.float32(0.5), sympy.Float(0.25), sympy.pi):
+        assert type(read_value(value, "v")) is float
+    assert read_value(sympy.pi, "v") == pytest.approx(3.141592653589793)
+    for value, exact in ((3, Fraction(3)), ("1/3", Fraction(1, 3)), (sympy.Rational(1, 7), Fraction(1, 7)),
+                         (np.int64(-4), Fraction(-4))):
+        got = read_value(value, "v")
+        assert got == exact
+        assert type(got) is Fraction
+    with pytest.raises(pt.NumberError, match="'v'"):
+        read_value(True, "'v'")
+    assert is_float(np.array([1, 2]))
+    assert not is_float("0.5")
+
+
+def test_number_strings_up_to_a_thousand_characters_are_read():
+    # mutation run: the limit 1000 -> 1001 went unnoticed
+    assert read_number("1" * 1000) == Fraction(int("1" * 1000))
+    with pytest.raises(pt.LimitError, match="at most 1000 characters") as info:
+        read_number("1" * 1001)
+    assert info.value.value == "1" * 20 + "..."
+
+
+@pytest.mark.parametrize(("irrational", "printed"), [
+    (sympy.pi, "3.141592653589793"), (sympy.sqrt(2), "1.4142135623730951"), (sympy.E, "2.718281828459045"),
+])
+def test_irrational_numbers_need_the_opt_in(irrational, printed):
+    # an exponent must be rational: pi is refused unless the caller accepts irrationals (values, not exponents)
+    with pytest.raises(pt.NumberError, match="rational number"):
+        read_number(irrational)
+    assert read_number(irrational, irrational_ok=True) == Fraction(printed)
+
+
+def test_long_exponent_strings_are_shortened_to_forty_characters_in_the_error():
+    with pytest.raises(pt.LimitError) as info:
+        read_exponent("9" * 45, "the exponent of 'x'")
+    assert info.value.value == "9" * 40 + "..."
+    with pytest.raises(pt.LimitError) as info:
+        read_exponent("9" * 41, "the exponent of 'x'")
+    assert info.value.value == "9" * 40 + "..."
+    with pytest.raises(pt.LimitError) as info:
+        read_exponent("9" * 40, "the exponent of 'x'")
+    assert info.value.value == "9" * 40
+
+
+def test_powers_of_ten_up_to_10000_are_read():
+    assert read_number("1e10000") == Fraction(10**10000)
+    assert read_number("1e-10000") == Fraction(1, 10**10000)
+    for text in ("1e10001", "1e-10001"):
+        with pytest.raises(pt.LimitError, match="10\\^10000"):
+            read_number(text)
+
+
+def test_the_float_hint_is_given_only_for_floats():
+    # numpy is loaded here; the hint about floats must still follow the value's type
+    too_fine = Fraction(1, MAX_DENOMINATOR + 1)
+    for exact in (too_fine, f"1/{MAX_DENOMINATOR + 1}"):
+        with pytest.raises(pt.LimitError) as info:
+            read_exponent(exact, "x")
+        assert "float" not in str(info.value)
+    for inexact in (1 / 3, np.float64(1 / 3)):
+        with pytest.raises(pt.LimitError, match="a float is read as the decimal"):
+            read_exponent(inexact, "x")
+
+
+def test_short_text_is_exact_below_120_bits_and_a_magnitude_above():
+    # numerator and denominator together: 2**117 has 118 bits (+1 for the denominator 1)
+    assert short_text(Fraction(2**117)) == str(2**117)
+    assert short_text(Fraction(2**118)) == "about 10^36"  # 2**118 = 3.3e35
+    assert short_text(Fraction(1, 2**118)) == "about 10^-36"
+
+
+def test_huge_power_of_ten_string_is_refused_before_it_is_built():
+    with pytest.raises(pt.LimitError, match="power of ten"):
+        read_exponent("1e99999999", "x")
+
+
+@pytest.mark.parametrize(("s", "expected"), [
+    (2, Fraction(2)), ("1/2", Fraction(1, 2)), (np.int64(3), Fraction(3)), (sympy.Rational(3, 4), Fraction(3, 4)),
+    (Fraction(10, 4), Fraction(5, 2)), ("0.1", Fraction(1, 10)),
+])
+def test_read_scale_factor_makes_exact_numbers_fractions(s, expected):
+    got = read_scale_factor(s)
+    assert got == expected
+    assert type(got) is Fraction
+
+
+def test_read_scale_factor_keeps_floats_and_irrational_numbers():
+    for s, expected in ((2.5, 2.5), (np.float32(0.5), 0.5), (sympy.Float(0.25), 0.25)):
+        got = read_scale_factor(s)
+        assert (got, type(got)) == (expected, float)
+    assert read_scale_factor(sympy.sqrt(2)) is sympy.sqrt(2)  # exact as it is: powers of it stay exact
+    for bad in (0, -1, "-1/2", 0.0, float("nan"), float("inf"), True, "ten", None):
+        with pytest.raises(pt.NumberError, match="the scale factor s must be a positive finite number"):
+            read_scale_factor(bad)
+
+
+@pytest.mark.parametrize(("value", "expected"), [
+    ("-1/2", Fraction(-1, 2)), (0.25, Fraction(1, 4)), (3, Fraction(3)), ("1e-3", Fraction(1, 1000)),
+    (f"1/{MAX_DENOMINATOR}", Fraction(1, MAX_DENOMINATOR)), (MAX_EXPONENT, Fraction(MAX_EXPONENT)),
+])
+def test_read_exponent_reads_within_the_limits(value, expected):
+    assert read_exponent(value, "the exponent of 'x'") == expected
+
+
+@pytest.mark.parametrize("value", [MAX_EXPONENT + 1, -MAX_EXPONENT - 1, Fraction(1, MAX_DENOMINATOR + 1)])
+def test_read_exponent_refuses_beyond_the_limits(value):
+    with pytest.raises(pt.LimitError) as caught:
+        read_exponent(value, "the exponent of 'x'")
+    assert "the exponent of 'x'" in str(caught.value)
