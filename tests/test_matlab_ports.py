@@ -123,6 +123,7 @@ def test_fast_mode_truncates():
 
 # --- (b) titles, labels, axis limits -----------------------------------------------------------
 
+# transcribed from the paper's Figures 1-5, not imported from the ports: the oracle must not be the code under test
 TITLES = {
     "figure1": "Original, unscaled simulation",
     "figure2": "With only gravity scaled",
