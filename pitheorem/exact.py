@@ -115,16 +115,14 @@ def read_number(value, what: str = "the number", *, irrational_ok: bool = False)
         return Fraction(int(value))
     if isinstance(value, Fraction):
         return value
+    # floats and Decimals go through their text: "inf", "nan", "Infinity" and "NaN" match no number
+    # text, so _from_text refuses them with the same message as any other non-number
     if isinstance(value, float) or (np is not None and isinstance(value, np.floating)):
-        if not math.isfinite(value):
-            raise NumberError(value, what, _EXPECTED)
         # the shortest decimal that prints as this float; numpy's own str for
         # float32 and friends, whose shortest decimal differs from float64's
         text = repr(float(value)) if isinstance(value, float) else str(value)  # np.float64 is a float
         return _from_text(text, value, what)
     if isinstance(value, Decimal):
-        if not value.is_finite():
-            raise NumberError(value, what, _EXPECTED)
         return _from_text(str(value), value, what)
     if isinstance(value, sympy.Basic):
         if value.is_Rational:

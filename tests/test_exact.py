@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from decimal import Decimal
 from fractions import Fraction
 
 import numpy as np
@@ -36,6 +37,14 @@ def test_read_number_rule(value, expected):
 def test_read_number_refuses(bad):
     with pytest.raises(pt.NumberError):
         read_number(bad, "the test value")
+
+
+@pytest.mark.parametrize("bad", [float("inf"), float("-inf"), float("nan"), np.float32("inf"), np.float64("nan"),
+                                 Decimal("Infinity"), Decimal("-Infinity"), Decimal("NaN"), Decimal("sNaN")])
+def test_read_number_refuses_non_finite_numbers_of_every_type_by_name(bad):
+    with pytest.raises(pt.NumberError, match="the test value must be") as info:
+        read_number(bad, "the test value")
+    assert info.value.culprit is bad
 
 
 @pytest.mark.parametrize(("value", "expected"), [(2, Fraction(2)), ("1/3", Fraction(1, 3)), (0.5, Fraction(1, 2)),
