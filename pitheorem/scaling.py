@@ -16,7 +16,7 @@ from fractions import Fraction
 import sympy
 
 from .dimensions import Dimension
-from .errors import InvalidRequestError, LimitError, PiTheoremError
+from .errors import InvalidRequestError, LimitError
 from .exact import is_float, numpy_if_loaded, read_exponent, read_number, read_scale_factor, short_text
 from .formatting import MathDisplay
 from .immutable import immutable
@@ -466,7 +466,10 @@ class Scaling(MathDisplay):
         if not isinstance(other, Scaling):
             return NotImplemented
         if other.system != self.system:
-            raise PiTheoremError("cannot compose scalings of different systems")
+            raise InvalidRequestError(
+                f"cannot compose scalings of different systems, {self.system!r} and {other.system!r}; "
+                "build both scalings from the same System"
+            )
         return Scaling(
             self.system,
             tuple(a + b for a, b in zip(self.vector, other.vector, strict=True)),

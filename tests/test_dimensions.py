@@ -91,6 +91,15 @@ def test_formula_over_the_length_limit_shows_its_first_twenty_characters():
     assert str(len(text)) in info.value.limit
 
 
+def test_formula_length_limit_is_ten_thousand_characters_inclusive():
+    # the documented limit, written out: the test must not read it from the code it checks
+    assert MAX_FORMULA_LENGTH == 10_000
+    at_limit = "L" + " " * 9_999
+    assert pt.Dimension.parse(at_limit) == pt.Dimension({"L": 1})
+    with pytest.raises(pt.LimitError, match="its length 10001 exceeds the limit of 10000 characters"):
+        pt.Dimension.parse(at_limit + " ")
+
+
 def test_exponents_have_at_most_forty_digits():
     assert pt.Dimension.parse("L^" + "0" * 39 + "1") == pt.Dimension({"L": 1})  # 40 digits, value 1
     with pytest.raises(pt.LimitError, match="more than 40 digits") as info:

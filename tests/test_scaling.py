@@ -24,6 +24,13 @@ def test_composition_adds_exponents_and_unit_changes():
     assert both.unit_change == {"L": 1, "T": 2}
 
 
+def test_composition_refuses_scalings_of_different_systems():
+    other = pt.System({"l": "L", "t": "T"})
+    with pytest.raises(pt.InvalidRequestError, match=r"different systems, System\(\{'l': 'L', 't': 'T', 'v': 'L T\^-1'\}\)"
+                       r" and System\(\{'l': 'L', 't': 'T'\}\); build both scalings from the same System"):
+        pt.Scaling.from_unit_change(LT, {"L": 1}) * pt.Scaling.from_unit_change(other, {"L": 1})
+
+
 def test_composition_with_a_scaling_without_units_has_none():
     units = pt.Scaling.from_unit_change(LT, {"L": 1})
     bare = pt.Scaling(LT, (Fraction(0), Fraction(0), Fraction(1)), None)  # v alone: not a change of units
