@@ -56,7 +56,8 @@ PACKAGE = ROOT / "pitheorem"
 
 #: the tests that exercise each core module (fast: no simulations, no docs; ``-m "not slow"``)
 TARGETS = {
-    "exact": ["tests/test_exact.py", "tests/test_cli.py", "tests/test_errors.py", "tests/test_system.py"],
+    "exact": ["tests/test_exact.py", "tests/test_cli.py", "tests/test_errors.py", "tests/test_system.py",
+              "tests/test_dimensions.py"],
     "dimensions": ["tests/test_dimensions.py", "tests/test_system.py", "tests/test_errors.py"],
     "system": ["tests/test_system.py", "tests/test_errors.py", "tests/test_groups.py", "tests/test_dimensions.py"],
     "groups": ["tests/test_groups.py", "tests/test_system.py", "tests/test_errors.py"],
