@@ -18,15 +18,18 @@ from .pieces import (
     COMMAND_LINE_TIME_REMEDY,
     PYTHON_TIME_REMEDY,
     base_latex,
+    deviation_rows,
     group_name_latex,
     latex_name,
     note_text,
+    parameters_head,
     power_latex,
+    range_cells,
     rational_latex,
     registry,
     search_cells,
+    unit_fit_rows,
     value_text,
-    which_scaling,
 )
 from .text import explanation, symmetry_head, unit_fit_head
 
@@ -149,10 +152,7 @@ def _symmetry_report(report) -> str:
 
 @_renders("pitheorem.simulation.SimilarityReport")
 def _similarity_report(report) -> str:
-    sensitivity = report.sensitivity
-    header = ["state", "max deviation"] + (["one-ulp sensitivity"] if sensitivity is not None else [])
-    rows = [[_math(latex_name(n)), f"{d:.3g}", *([f"{sensitivity[n]:.3g}"] if sensitivity is not None else [])]
-            for n, d in report.deviation.items()]
+    header, rows = deviation_rows(report, lambda n: _math(latex_name(n)))
     return _p(escape(render(report, "text"))) + _table(header, rows)
 
 
@@ -162,15 +162,8 @@ def _similarity_report(report) -> str:
 @_renders("pitheorem.unitfit.UnitFit")
 def _unit_fit(fit) -> str:
     units = [[_math(base_latex(b)), f"{float(f):.6g}", f"{1 / float(f):.6g}"] for b, f in fit.factors.items()]
-    ranged = {n: (lo, hi) for n, lo, hi in fit.ranges}
-    rows = []
-    for n in fit.system.variables:
-        if n in fit.values:
-            lo, hi = ranged.get(n, (None, None))
-            where = f"[{float(lo):g}, {float(hi):g}]" if n in ranged else ""
-            mark = ("ok" if n in fit.satisfied else "<strong>OUT OF RANGE</strong>") if n in ranged else ""
-            rows.append([_math(latex_name(n)), f"{float(fit.values[n]):.6g}", f"{float(fit.scaled[n]):.6g}",
-                         where, mark])
+    rows = [[_math(latex_name(n)), f"{old:.6g}", f"{new:.6g}", *range_cells(bounds, ok, "<strong>OUT OF RANGE</strong>")]
+            for n, old, new, bounds, ok in unit_fit_rows(fit)]
     conflict = (_p("conflicting bounds: " + "; ".join(map(_latex, fit.conflict))) if fit.conflict else "")
     return (_p(escape(unit_fit_head(fit))) + _table(["base", "readings times", "new unit (old units)"], units)
             + _table(["variable", "value", "new value", "range", ""], rows) + conflict)
@@ -194,7 +187,7 @@ def _rule_verdict(verdict) -> str:
 def _parameters(name: str, model) -> str:
     rows = [[_code(p.name), _latex(p.dimension) if p.dimension is not None else escape(p.dimension_text),
              " ".join(f"{v:.6g}" for v in p.value), escape(p.source), escape(p.path)] for p in model.parameters]
-    return (_p(escape(f"{name}: {model.engine} model, {len(model.parameters)} parameters"))
+    return (_p(escape(parameters_head(name, model)))
             + _table(["name", "dimension", "value", "source", "path"], rows))
 
 
@@ -208,9 +201,8 @@ def _engine_model(model) -> str:
 
 @_renders("pitheorem.answers.GroupsAnswer")
 def _groups_answer(answer) -> str:
-    system, groups = answer.system, answer.groups
-    head = (_p(escape(f"{answer.model}: {len(system)} variables, rank {system.rank}, "
-                      f"{system.n_groups} dimensionless groups"))
+    groups = answer.groups
+    head = (_p(escape(render(answer, "text").splitlines()[0]))
             + _p("repeating variables: " + (", ".join(_math(latex_name(n)) for n in groups.repeating) or "(none)")))
     if not len(groups):
         return head
@@ -235,7 +227,7 @@ def _search_answer(answer) -> str:
 @_renders("pitheorem.answers.ApplyAnswer")
 def _apply_answer(answer) -> str:
     exponents = answer.scaling.exponents
-    head = (_p(escape(f"{answer.model}, s = {answer.s}: {which_scaling(answer.result, answer.solution)}"))
+    head = (_p(escape(render(answer, "text").splitlines()[0]))
             + _p(_latex(answer.scaling)) + "".join(_note(n, COMMAND_LINE_TIME_REMEDY) for n in answer.result.notes))
     rows = [[_math(latex_name(n)), _math(power_latex(exponents[n])), escape(value_text(v)),
              escape(value_text(answer.scaled[n]))] for n, v in answer.values.items()]

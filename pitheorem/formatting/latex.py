@@ -18,14 +18,18 @@ from . import render
 from .pieces import (
     PYTHON_TIME_REMEDY,
     base_latex,
+    deviation_rows,
     group_name_latex,
     latex_escape,
     latex_name,
     note_text,
+    parameters_head,
     power_latex,
+    range_cells,
     rational_latex,
     registry,
     search_cells,
+    unit_fit_rows,
     value_text,
     which_scaling,
 )
@@ -146,10 +150,7 @@ def _symmetry_report(report) -> str:
 
 @_renders("pitheorem.simulation.SimilarityReport")
 def _similarity_report(report) -> str:
-    header = ["state", "max deviation"] + (["one-ulp sensitivity"] if report.sensitivity is not None else [])
-    rows = [[_math(latex_name(n)), f"{d:.3g}",
-             *([f"{report.sensitivity[n]:.3g}"] if report.sensitivity is not None else [])]
-            for n, d in report.deviation.items()]
+    header, rows = deviation_rows(report, lambda n: _math(latex_name(n)))
     return f"{_lines([render(report, 'text')])}\n\n{_tabular('l' + 'r' * (len(header) - 1), rows, header)}"
 
 
@@ -166,15 +167,8 @@ def _range_bound(bound) -> str:
 def _unit_fit(fit) -> str:
     head = latex_escape(unit_fit_head(fit))
     units = [[_math(base_latex(b)), f"{float(f):.6g}", f"{1 / float(f):.6g}"] for b, f in fit.factors.items()]
-    ranged = {n: (lo, hi) for n, lo, hi in fit.ranges}
-    rows = []
-    for n in fit.system.variables:
-        if n in fit.values:
-            lo, hi = ranged.get(n, (None, None))
-            where = f"[{float(lo):g}, {float(hi):g}]" if n in ranged else ""
-            mark = ("ok" if n in fit.satisfied else "OUT OF RANGE") if n in ranged else ""
-            rows.append([_math(latex_name(n)), f"{float(fit.values[n]):.6g}", f"{float(fit.scaled[n]):.6g}",
-                         where, mark])
+    rows = [[_math(latex_name(n)), f"{old:.6g}", f"{new:.6g}", *range_cells(bounds, ok)]
+            for n, old, new, bounds, ok in unit_fit_rows(fit)]
     parts = [head, _tabular("lrr", units, ["base", "readings times", "new unit (old units)"]),
              _tabular("lrrll", rows, ["variable", "value", "new value", "range", ""])]
     if fit.conflict:
@@ -201,7 +195,7 @@ def _rule_verdict(verdict) -> str:
 def _parameter_table(name: str, model) -> str:
     rows = [[rf"\texttt{{{latex_escape(p.name)}}}", latex_escape(p.dimension_text),
              " ".join(f"{v:.6g}" for v in p.value), p.source, latex_escape(p.path)] for p in model.parameters]
-    head = f"% {name}: {model.engine} model, {len(model.parameters)} parameters"
+    head = f"% {parameters_head(name, model)}"
     return f"{head}\n{_tabular('lllll', rows, ['name', 'dimension', 'value', 'source', 'path'])}"
 
 

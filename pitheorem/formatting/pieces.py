@@ -27,19 +27,23 @@ __all__ = [
     "PYTHON_TIME_REMEDY",
     "align",
     "base_latex",
+    "deviation_rows",
     "group_name_latex",
     "json_number",
     "latex_escape",
     "latex_name",
     "note_text",
+    "parameters_head",
     "power_latex",
     "power_text",
+    "range_cells",
     "rational_latex",
     "rational_text",
     "registry",
     "request_text",
     "scale_text",
     "search_cells",
+    "unit_fit_rows",
     "value_text",
     "which_scaling",
 ]
@@ -479,6 +483,121 @@ def which_scaling(result, solution: int) -> str:
     if result.n_scalings == 1:
         return "the only minimal scaling"
     return f"minimal scaling #{solution} of {result.n_scalings} (choose another with --solution K)"
+
+
+# -- the rows of reports ---------------------------------------------------------------------
+
+
+def deviation_rows(report, name):
+    """The header and rows of a similarity report's table: each state, its deviation and sensitivity.
+
+    Parameters
+    ----------
+    report : SimilarityReport
+    name : callable
+        Writes a state's name in the format.
+
+    Returns
+    -------
+    tuple of (list of str, list of list of str)
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.formatting.pieces import deviation_rows
+    >>> rod = pt.models.hinged_rod()
+    >>> sc = pt.search(rod.system, scale={"g": 1}, fixed=()).scalings[0]
+    >>> report = pt.verify_similarity(rod, sc, s=2, t_final=0.5)
+    >>> header, rows = deviation_rows(report, str)
+    >>> header, [row[0] for row in rows]
+    (['state', 'max deviation'], ['theta', 'omega'])
+    >>> deviation_rows(pt.verify_similarity(rod, sc, s=2, t_final=0.5, baseline=True), str)[0]
+    ['state', 'max deviation', 'one-ulp sensitivity']
+    """
+    sensitivity = report.sensitivity
+    header = ["state", "max deviation"] + (["one-ulp sensitivity"] if sensitivity is not None else [])
+    rows = [[name(n), f"{d:.3g}", *([f"{sensitivity[n]:.3g}"] if sensitivity is not None else [])]
+            for n, d in report.deviation.items()]
+    return header, rows
+
+
+def unit_fit_rows(fit):
+    """Each variable of a unit fit that has a value: its name, value, new value, range and verdict.
+
+    The range is ``(low, high)`` as floats and the verdict ``True`` when
+    the new value lies in it; both are ``None`` for a variable without a
+    range.
+
+    Parameters
+    ----------
+    fit : UnitFit
+
+    Returns
+    -------
+    list of tuple
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.formatting.pieces import unit_fit_rows
+    >>> fit = pt.fit_units(pt.System({"l": "L", "t": "T"}), {"l": 500, "t": 2}, ranges={"l": (1, 10)})
+    >>> [(name, bounds, ok) for name, _, _, bounds, ok in unit_fit_rows(fit)]
+    [('l', (1.0, 10.0), True), ('t', None, None)]
+    """
+    ranged = {n: (float(lo), float(hi)) for n, lo, hi in fit.ranges}
+    return [(n, float(fit.values[n]), float(fit.scaled[n]), ranged.get(n), (n in fit.satisfied) if n in ranged else None)
+            for n in fit.system.variables if n in fit.values]
+
+
+def range_cells(bounds, ok, out_of_range: str = "OUT OF RANGE") -> list[str]:
+    """A unit fit's range and verdict as two cells, both empty for a variable without a range.
+
+    Parameters
+    ----------
+    bounds : tuple of float or None
+        ``(low, high)``, as :func:`unit_fit_rows` gives it.
+    ok : bool or None
+        Whether the new value lies in the range.
+    out_of_range : str, optional
+        The verdict's words when it does not (HTML makes them bold).
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import range_cells
+    >>> range_cells((1.0, 10.0), True), range_cells((1.0, 10.0), False), range_cells(None, None)
+    (['[1, 10]', 'ok'], ['[1, 10]', 'OUT OF RANGE'], ['', ''])
+    """
+    if bounds is None:
+        return ["", ""]
+    return [f"[{bounds[0]:g}, {bounds[1]:g}]", "ok" if ok else out_of_range]
+
+
+def parameters_head(name: str, model) -> str:
+    """The line above an engine model's parameter table.
+
+    Parameters
+    ----------
+    name : str
+        The model's file, or how the command line named it.
+    model : EngineModel
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.formatting.pieces import parameters_head
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> parameters_head("pendulum.xml", model)
+    'pendulum.xml: mujoco model, 49 parameters'
+    """
+    return f"{name}: {model.engine} model, {len(model.parameters)} parameters"
 
 
 # -- plain-text columns ----------------------------------------------------------------------

@@ -15,10 +15,13 @@ from .pieces import (
     PYTHON_TIME_REMEDY,
     align,
     note_text,
+    parameters_head,
     power_text,
+    range_cells,
     registry,
     request_text,
     search_cells,
+    unit_fit_rows,
     value_text,
     which_scaling,
 )
@@ -257,17 +260,12 @@ def _unit_fit(fit) -> str:
         u = fit.unit_change[b]
         power = f"{fit.nice}^{u}" if fit.nice else f"10^{float(u):.6g}"
         lines.append(f"  {b}: readings x {float(f):.6g} ({power}), new unit = {1 / float(f):.6g} old units")
-    ranged = {n: (lo, hi) for n, lo, hi in fit.ranges}
-    for n in fit.system.variables:
-        if n not in fit.values:
-            continue
-        old, new = float(fit.values[n]), float(fit.scaled[n])
-        if n in ranged:
-            lo, hi = ranged[n]
-            mark = "ok" if n in fit.satisfied else "OUT OF RANGE"
-            lines.append(f"  {n:>8s} {old:12.6g} -> {new:12.6g}   in [{float(lo):g}, {float(hi):g}]  {mark}")
-        else:
-            lines.append(f"  {n:>8s} {old:12.6g} -> {new:12.6g}")
+    for n, old, new, bounds, ok in unit_fit_rows(fit):
+        line = f"  {n:>8s} {old:12.6g} -> {new:12.6g}"
+        if bounds is not None:
+            where, mark = range_cells(bounds, ok)
+            line += f"   in {where}  {mark}"
+        lines.append(line)
     if fit.conflict:
         lines.append("  conflicting bounds: " + "; ".join(map(_range_bound, fit.conflict)))
     return "\n".join(lines)
@@ -324,7 +322,7 @@ def parameter_table(model) -> str:
 
 
 def _parameters(name: str, model) -> str:
-    return f"{name}: {model.engine} model, {len(model.parameters)} parameters\n{parameter_table(model)}"
+    return f"{parameters_head(name, model)}\n{parameter_table(model)}"
 
 
 @_renders("pitheorem.engines.model.EngineModel")
