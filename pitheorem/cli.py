@@ -53,7 +53,7 @@ from pathlib import Path
 
 from . import __version__
 from .answers import ApplyAnswer, BasesAnswer, GroupsAnswer, SearchAnswer
-from .errors import CommandLineError, PiTheoremError
+from .errors import CommandLineError, LimitError, PiTheoremError
 from .exact import read_exponent, read_positive, short_text
 from .formatting import FORMATS, render
 from .modelfile import ModelFile, load_model_file, model_kind, write_model_file
@@ -83,14 +83,19 @@ def _is_engine_file(path: str) -> bool:
 
 
 def _load(path: str, scene: list[str] | None = None) -> ModelFile:
+    return _load_with_engine(path, scene)[0]
+
+
+def _load_with_engine(path: str, scene: list[str] | None = None) -> tuple[ModelFile, object]:
+    """The model file and, for MJCF or URDF, the engine's model it was read from (else None)."""
     if _is_engine_file(path):  # MJCF or URDF: its system and scalar values, through the engine
         from .engines.cli import engine_model_file, parse_scene
 
-        return engine_model_file(path, **parse_scene(scene))[0]
+        return engine_model_file(path, **parse_scene(scene))
     if scene:
         raise _CommandError(f"--scene sets up URDF models; {path} is no URDF file")
     try:
-        return load_model_file(path)
+        return load_model_file(path), None
     except IsADirectoryError:
         raise _CommandError(f"cannot read model file {path!r}: it is a directory") from None
     except OSError as err:
@@ -133,8 +138,12 @@ def _scaled_values(sc, values: dict, s: Fraction) -> dict:
     98.10000000000001); an exact value stays exact when its scaled value is
     rational, and becomes the nearest float when not.
     """
+    try:
+        scaled = sc.apply(values, s)
+    except LimitError as err:  # a float value rounded beyond floating point: said in the command line's terms
+        raise _out_of_float_range(err.what, err.culprit) from None
     out = {}
-    for n, new in sc.apply(values, s).items():
+    for n, new in scaled.items():
         if isinstance(new, Fraction):
             if max(new.numerator.bit_length(), new.denominator.bit_length()) > _MAX_DIGITS * 3.32:
                 raise _CommandError(f"the scaled value of {n!r} is {short_text(new)}, with more than {_MAX_DIGITS} "
@@ -142,10 +151,14 @@ def _scaled_values(sc, values: dict, s: Fraction) -> dict:
         elif not isinstance(new, float):  # an irrational exact number
             new = float(new) if abs(new) < 1e308 else math.inf
         if isinstance(new, float) and (not math.isfinite(new) or (new == 0 and values[n] != 0)):
-            raise _CommandError(f"the scaled value of {n!r} is beyond the range of floating point "
-                                f"(about 1e-308 to 1e308); choose an --s nearer to 1", culprit=n)
+            raise _out_of_float_range(f"the scaled value of {n!r}", n)
         out[n] = new
     return out
+
+
+def _out_of_float_range(what: str, culprit) -> CommandLineError:
+    return _CommandError(f"{what} is beyond the range of floating point (about 1e-308 to 1e308); "
+                         "choose an --s nearer to 1", culprit=culprit)
 
 
 def _run_search(model: ModelFile, args) -> SearchResult:
@@ -206,10 +219,9 @@ def _chosen_scaling(result: SearchResult, k: int):
 
 
 def _cmd_apply(args) -> int:
-    model = _load(args.file, args.scene)
+    model, engine_model = _load_with_engine(args.file, args.scene)
     s = read_positive(args.s, "--s")
-    engine_file = _is_engine_file(args.file)
-    if not engine_file and not model.values:
+    if engine_model is None and not model.values:
         raise _CommandError(f"{args.file}: no variable has a value, so there is nothing to scale; "
                             "give values in the model file, e.g. m = { dimension = \"M\", value = 1.5 }")
     result = _run_search(model, args)
@@ -217,10 +229,10 @@ def _cmd_apply(args) -> int:
         print(f"pitheorem: {result.explanation()} Nothing written.", file=sys.stderr)
         return EXIT_INFEASIBLE
     sc = _chosen_scaling(result, args.solution)
-    if engine_file:  # write the scaled file the engine loads
+    if engine_model is not None:  # write the scaled file the engine loads
         from .engines.cli import apply_engine, parse_scene
 
-        _print(apply_engine(args.file, sc, s, args.output, **parse_scene(args.scene)), args)
+        _print(apply_engine(engine_model, sc, s, args.output, scene=parse_scene(args.scene)), args)
         return EXIT_OK
     scaled_model = model.with_values(_scaled_values(sc, model.values, s), name=f"{model.name}, scaled with s = {s}")
     output = None

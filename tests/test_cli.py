@@ -489,9 +489,12 @@ def test_bad_s(model, capsys, s):
     assert_one_line_error(code, out, err, "--s")
 
 
-def test_scaled_value_out_of_float_range(model, capsys):
-    code, out, err = run(capsys, "apply", model, "--scale", "g=1000", "--fixed", "--s", "1e300")
-    assert_one_line_error(code, out, err, "floating point")
+@pytest.mark.parametrize("s", ["1e300", "1e-300"])  # above and below the range of floats
+def test_scaled_value_out_of_float_range(model, capsys, s):
+    code, out, err = run(capsys, "apply", model, "--scale", "g=1000", "--fixed", "--s", s)
+    # the command line's remedy, never the Python caller's ("use an exact value")
+    assert_one_line_error(code, out, err, "the scaled value of 'g' is beyond the range of floating point "
+                                          "(about 1e-308 to 1e308); choose an --s nearer to 1")
 
 
 def test_impossible_is_exit_1_and_only_that(model, capsys):

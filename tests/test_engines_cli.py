@@ -43,6 +43,18 @@ def test_search_and_apply_write_a_file_the_engine_loads(tmp_path, capsys):
     assert main(["apply", PENDULUM, "--scale", "g=1", "--s", "10", "--output", PENDULUM]) == 2
 
 
+def test_apply_loads_the_engine_file_once(tmp_path, capsys, monkeypatch):
+    import pitheorem.engines.cli as engine_cli
+
+    loaded = []
+    real_load = engine_cli.load
+    monkeypatch.setattr(engine_cli, "load", lambda path, **options: loaded.append(path) or real_load(path, **options))
+    out = tmp_path / "pendulum_g2.xml"
+    assert main(["apply", PENDULUM, "--scale", "g=1", "--s", "2", "--output", str(out)]) == 0
+    assert loaded == [PENDULUM]
+    assert f"wrote {out}" in capsys.readouterr().out
+
+
 def test_apply_urdf_writes_settings_or_names_the_mixed_damping(tmp_path, capsys):
     urdf = str(DATA / "slider_arm.urdf")
     # PyBullet's multibody damping mixes a rate and an inverse length: scaling lengths cannot keep it

@@ -142,13 +142,14 @@ def params_answer(path: str, **options) -> ParamsAnswer:
     return ParamsAnswer(str(path), load(path, **options))
 
 
-def apply_engine(path: str, scaling, s, output: str | None, **options) -> EngineApplyAnswer:
+def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None) -> EngineApplyAnswer:
     """Scale an engine model file and write it (``pitheorem apply FILE ... --output OUT``).
 
     Parameters
     ----------
-    path : str
-        The MJCF or URDF file.
+    model : EngineModel
+        The model loaded from the MJCF or URDF file (:func:`engine_model_file`
+        gives it with the system the scaling was searched on).
     scaling : Scaling
         A scaling of its system (:func:`engine_model_file`).
     s : Fraction
@@ -156,8 +157,10 @@ def apply_engine(path: str, scaling, s, output: str | None, **options) -> Engine
     output : str or None
         Where to write the scaled file (PyBullet's settings are written
         beside it); None writes nothing.
-    **options
-        Scene options of a URDF file (:func:`parse_scene`).
+    scene : dict, optional
+        The scene options the URDF file was loaded with (:func:`parse_scene`);
+        without ``damping``, a refusal of PyBullet's mixed damping names
+        ``--scene damping=0``.
 
     Returns
     -------
@@ -171,18 +174,17 @@ def apply_engine(path: str, scaling, s, output: str | None, **options) -> Engine
     >>> from pitheorem import engines
     >>> from pitheorem.engines.cli import apply_engine, engine_model_file
     >>> path = str(engines.example_path("pendulum.xml"))
-    >>> mf, _ = engine_model_file(path)
+    >>> mf, model = engine_model_file(path)
     >>> sc = pt.search(mf.system, scale={"g": 1}).scalings[0]
     >>> with tempfile.TemporaryDirectory() as tmp:
-    ...     answer = apply_engine(path, sc, 10, os.path.join(tmp, "p10.xml"))
+    ...     answer = apply_engine(model, sc, 10, os.path.join(tmp, "p10.xml"))
     >>> str(answer).splitlines()[-1].startswith("wrote")
     True
     """
-    model = load(path, **options)
     try:
         scaled = model.scaled(scaling, s)
     except UnscalableParameterError as err:
-        if model.engine == "pybullet" and err.name.endswith("Damping") and "damping" not in options:
+        if model.engine == "pybullet" and err.name.endswith("Damping") and "damping" not in (scene or {}):
             raise InvalidRequestError(f"{err}; on the command line: --scene damping=0") from None
         raise
     exponents = ((p.name, scaling.exponent_of(p.dimension)) for p in model.parameters
@@ -191,9 +193,9 @@ def apply_engine(path: str, scaling, s, output: str | None, **options) -> Engine
     written, beside = None, ()
     if output:
         out = Path(output)
-        if out.exists() and out.resolve() == Path(path).resolve():
+        if out.exists() and out.resolve() == Path(model.path).resolve():
             raise InvalidRequestError(f"--output {output!r} is the input file; choose another name")
         scaled.save(out)
         written = str(out)
         beside = (f"{out}.settings.json", f"{out}.settings.py") if model.engine == "pybullet" else ()
-    return EngineApplyAnswer(Path(path).name, s, scaling, changed, len(model.parameters), written, beside)
+    return EngineApplyAnswer(Path(model.path).name, s, scaling, changed, len(model.parameters), written, beside)
