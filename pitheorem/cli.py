@@ -182,7 +182,7 @@ def _print(answer, args) -> None:
 def _cmd_groups(args) -> int:
     model = _load(args.file, args.scene)
     groups = model.system.pi_groups(repeating=args.repeating)
-    values = tuple(g.evaluate({n: model.values[n] for n in g.exponents})
+    values = tuple(g.evaluate(model.values)
                    if all(n in model.values for n in g.exponents) else None for g in groups)
     _print(GroupsAnswer(model.name, model.system, groups, values), args)
     return EXIT_OK

@@ -64,6 +64,7 @@ from pathlib import Path
 from .dimensions import DEFAULT_BASE_DIMENSIONS, OPT_IN_BASE_DIMENSIONS, Dimension
 from .errors import DimensionSyntaxError, LimitError, ModelFileError, PiTheoremError
 from .exact import read_value
+from .formatting.pieces import json_number
 from .immutable import immutable
 from .system import System
 
@@ -249,15 +250,20 @@ def model_kind(path) -> str:
     >>> from pitheorem.modelfile import model_kind
     >>> model_kind("robot.urdf"), model_kind("model.toml"), model_kind("example:hinged_rod")
     ('urdf', 'toml', 'toml')
+    >>> model_kind("example:robot.urdf")
+    'toml'
     """
+    if str(path).startswith("example:"):  # whatever the name ends with: the command line lists the examples
+        return "toml"
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix == ".urdf":
         return "urdf"
-    if suffix == ".toml" or str(path).startswith("example:"):
+    if suffix == ".toml":
         return "toml"
     if suffix in (".xml", ".mjcf") and path.is_file():
-        head = path.read_bytes()[:4096].decode("utf-8", "replace")
+        with path.open("rb") as file:  # the root element is near the top: read no more of a large model
+            head = file.read(4096).decode("utf-8", "replace")
         if "<robot" in head and "<mujoco" not in head:
             return "urdf"
         return "mjcf"
@@ -496,12 +502,6 @@ def _toml_value(value) -> str:
     return str(value)
 
 
-def _json_value(value):
-    if isinstance(value, Fraction):
-        return value.numerator if value.denominator == 1 else str(value)
-    return value
-
-
 def dump_values(model: ModelFile, values: Mapping[str, object] | None = None, *, format: str = "toml") -> str:
     """Text of a model file like `model`, with other values.
 
@@ -553,7 +553,7 @@ def dump_values(model: ModelFile, values: Mapping[str, object] | None = None, *,
         entries[n] = entry
     if format == "json":
         doc = {"name": model.name, "description": model.description,
-               "variables": {n: {k: _json_value(v) for k, v in e.items()} for n, e in entries.items()}}
+               "variables": {n: {k: json_number(v) for k, v in e.items()} for n, e in entries.items()}}
         return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
     lines = [f"name = {_toml_string(model.name)}"]
     if model.description:

@@ -284,6 +284,7 @@ BAD_REQUESTS = {
     "missing_file": (["groups", "no_such_model.toml"], "no_such_model.toml"),
     "directory": (["groups", "."], "'.'"),
     "unknown_example": (["groups", "example:rod"], "example:rod"),
+    "unknown_example_named_like_urdf": (["groups", "example:robot.urdf"], "the shipped examples are hinged_rod"),
     "bad_s": (["apply", ROD, "--scale", "g=1", "--s", "big"], "'big'"),
     "negative_s": (["apply", ROD, "--scale", "g=1", "--s", "-2"], "'-2'"),
     "solution_out_of_range": (["apply", ROD, "--scale", "g=1", "--s", "2", "--solution", "4"], "--solution 4"),

@@ -236,6 +236,8 @@ def test_the_kind_of_a_model_file_is_told_in_one_place(tmp_path):
     urdf_in_xml.write_text('<?xml version="1.0"?>\n<robot name="r"><link name="a"/></robot>\n')
     mjcf = tmp_path / "world.xml"
     mjcf.write_text('<mujoco model="w"><worldbody/></mujoco>\n')
+    # a shipped example is named by the command line's example list, whatever its name ends with
     kinds = {"robot.URDF": "urdf", "model.toml": "toml", "model.json": "toml", "example:superball": "toml",
+             "example:robot.urdf": "toml", "example:pendulum.xml": "toml",
              str(urdf_in_xml): "urdf", str(mjcf): "mjcf", str(tmp_path / "absent.xml"): "mjcf", "hopper.mjcf": "mjcf"}
     assert {path: model_kind(path) for path in kinds} == kinds
