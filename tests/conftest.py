@@ -243,8 +243,8 @@ def dimension_of_group(system: pt.System, group: pt.PiGroup) -> pt.Dimension:
     return total
 
 
-def loaded_after(code: str) -> set[str]:
-    """Which of numpy, scipy and matplotlib a fresh interpreter has loaded after running `code`."""
-    probe = code + "\nimport sys\nprint('loaded:', *(m for m in ('numpy', 'scipy', 'matplotlib') if m in sys.modules))"
+def loaded_after(code: str, watch=("numpy", "scipy", "matplotlib")) -> set[str]:
+    """Which of the modules `watch` (numpy, scipy and matplotlib) a fresh interpreter has loaded after running `code`."""
+    probe = code + f"\nimport sys\nprint('loaded:', *(m for m in {tuple(watch)!r} if m in sys.modules))"
     out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True)
     return set(out.stdout.strip().splitlines()[-1].split()[1:])

@@ -11,7 +11,8 @@ import ast
 import re
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from tests.conftest import REPO as ROOT
+
 PACKAGE = ROOT / "pitheorem"
 PAGE = ROOT / "docs" / "explanation" / "architecture.md"
 

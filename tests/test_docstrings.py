@@ -33,8 +33,7 @@ import pytest
 from numpydoc.docscrape import ClassDoc, FunctionDoc, NumpyDocString
 
 import pitheorem as pt
-
-REPO = Path(__file__).resolve().parents[1]
+from tests.conftest import REPO
 
 #: folders whose modules pytest collects doctests from (pyproject.toml, testpaths)
 DOCTEST_ROOTS = (REPO / "pitheorem", REPO / "matlab_ports")
