@@ -9,6 +9,7 @@ stored as an exponent per variable together with one such unit change.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -41,11 +42,18 @@ def _exact_power(s, exponent: Fraction):
 def _rounded(x, name: str) -> float:
     """An exact number rounded once to the nearest float."""
     try:
-        return float(x)
+        return _finite(float(x))
     except OverflowError:
         raise LimitError(short_text(x) if isinstance(x, Fraction) else str(x), f"the scaled value of {name!r}",
                          "it is beyond the range of floating point (about 1e308)",
                          "use an exact value (int or Fraction), or an s nearer to 1") from None
+
+
+def _finite(x: float) -> float:
+    """`x`, or OverflowError for infinity: float() of a sympy number overflows to inf without raising."""
+    if math.isinf(x):
+        raise OverflowError
+    return x
 
 
 def float_power(s, exponent, what: str) -> float:
@@ -85,18 +93,11 @@ def float_power(s, exponent, what: str) -> float:
     if exponent == 0:
         return 1.0
     try:
-        return float(s) ** float(exponent) if is_float(s) else float(_exact_power(s, exponent))
-    except OverflowError:  # s^p itself is beyond floating point
+        return float(s) ** float(exponent) if is_float(s) else _finite(float(_exact_power(s, exponent)))
+    except OverflowError:  # s^p itself is beyond floating point, however exact the values it multiplies
         shown = short_text(read_number(s, "s")) if is_float(s) or isinstance(s, Fraction) else str(s)
         raise LimitError(f"s^{exponent} with s = {shown}", what, "it is beyond the range of floating point",
-                         "use an exact value (int or Fraction), or an s nearer to 1") from None
-
-
-def _exact(value):
-    """An exact value as a Fraction, or as itself when it is an irrational sympy number."""
-    if isinstance(value, sympy.Basic) and not value.is_Rational:
-        return value
-    return read_number(value, "the value")
+                         "choose an s nearer to 1") from None
 
 
 @immutable
@@ -388,7 +389,9 @@ class Scaling(MathDisplay):
             elif is_float(value):  # read as the decimal it prints as, scaled exactly, rounded once
                 out[name] = _rounded(number * _exact_power(s, p), name)
             else:
-                out[name] = _rational_as_fraction(_exact(value) * _exact_power(s, p))
+                # an irrational sympy value stays itself (number is its rounding, for the float branches)
+                exact = value if isinstance(value, sympy.Basic) and not value.is_Rational else number
+                out[name] = _rational_as_fraction(exact * _exact_power(s, p))
         return out
 
     def map_back(self, t, y, s, *, time: str, states: Sequence[object]):
@@ -436,7 +439,8 @@ class Scaling(MathDisplay):
             else self.exponent_of(st)
             for st in states
         ]
-        scale = np.array([float_power(s, p, f"the factor of state {k}") for k, p in enumerate(a_y)])
+        scale = np.array([float_power(s, p, f"the factor of state {st!r}" if isinstance(st, str)
+                                      else f"the factor of a state of dimension {st}") for st, p in zip(states, a_y, strict=True)])
         return t / float_power(s, a_t, f"the factor of {time!r}"), y / scale
 
     # -- algebra ----------------------------------------------------------

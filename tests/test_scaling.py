@@ -136,6 +136,8 @@ def test_every_float_factor_is_one_power_float_in_float_out():
     assert str(caught.value).startswith("the factor of 'g' is s^2 with s = about 10^200: it is beyond the range")
     with pytest.raises(pt.LimitError, match=r"x is s\^2 with s = about 10\^200"):
         float_power(1e200, Fraction(2), "x")
+    # the factor overflows however exact the values are: the remedy is a smaller s
+    assert str(caught.value).endswith("; choose an s nearer to 1")
     # the value types take their float factors from it
     sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 2})
     assert sc.factors(0.1) == {"l": 0.1**2, "t": 1.0}
@@ -175,3 +177,29 @@ def test_bad_scaling_use(rod):
         sc.apply({"length": 1}, s=2)
     with pytest.raises(pt.InvalidRequestError, match="shape"):
         sc.map_back([0, 1], [[1, 2, 3]], 2, time="t", states=["1"])
+
+
+def test_an_irrational_s_beyond_floats_is_refused_like_a_rational_one():
+    import sympy
+
+    # float() of a sympy number gives inf instead of raising: every float factor must still refuse it
+    sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 3})
+    huge = sympy.sqrt(2) * 10**150
+    with pytest.raises(pt.LimitError, match=r"the scaled value of 'l' is .*beyond the range of floating point"):
+        sc.apply({"l": 1.5}, huge)
+    with pytest.raises(pt.LimitError, match=r"the factor of 'l' is s\^3 .*; choose an s nearer to 1"):
+        sc.apply({"l": np.array([1.0])}, huge)
+    # map_back names the state, by name or by dimension
+    with pytest.raises(pt.LimitError, match=r"the factor of state 'l' is s\^3"):
+        sc.map_back([0.0], [1.0], huge, time="t", states=["l"])
+    with pytest.raises(pt.LimitError, match=r"the factor of a state of dimension L is s\^3"):
+        sc.map_back([0.0], [1.0], huge, time="t", states=[pt.Dimension.parse("L")])
+
+
+def test_apply_keeps_an_irrational_exact_value_exact():
+    import sympy
+
+    sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 2})
+    scaled = sc.apply({"l": sympy.pi, "t": sympy.sqrt(2)}, 3)
+    assert scaled["l"] == 9 * sympy.pi  # not 9 times pi's decimal rounding
+    assert scaled["t"] == sympy.sqrt(2)
