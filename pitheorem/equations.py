@@ -500,8 +500,7 @@ def scaling_symmetries(equations, system: System, *, time: str | None = "t") -> 
     names = tuple(v for v in system.variables if v in walker.used)
     rows = [[c.get(n, Fraction(0)) for n in names] for c in walker.conditions]
     basis = nullspace(rows, len(names)) if rows else nullspace([], len(names))
-    columns = [system.column(n) for n in names]
-    units = [[c[i] for c in columns] for i in range(len(system.base_dimensions))]
+    units = system.rows(names)
     unit_rows = [u for u in units if any(u)]
     unit_basis = [row for row in _independent(unit_rows)]
     contains = all(all(sum(c.get(n, 0) * u[i] for i, n in enumerate(names)) == 0 for c in walker.conditions)

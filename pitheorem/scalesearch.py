@@ -348,9 +348,7 @@ def _solve(system: System, scale: dict[str, Fraction], fixed: tuple[str, ...], n
     # allowed exponent vectors are combinations of these rows: the rows of
     # the dimension matrix (changes of units), or a symmetry basis
     is_units = generators is None
-    columns = [system.column(v) for v in system.variables]
-    gens = ([[c[i] for c in columns] for i in range(len(system.base_dimensions))]
-            if generators is None else [list(g) for g in generators])
+    gens = system.rows() if generators is None else [list(g) for g in generators]
     names = list(scale) + list(fixed)
     rhs = [scale[n] for n in scale] + [Fraction(0)] * len(fixed)
     rows = [[g[system.index(n)] for g in gens] for n in names]

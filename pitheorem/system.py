@@ -8,7 +8,7 @@ the exact kernels in :mod:`pitheorem.linalg` and :mod:`pitheorem.bases`.
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from fractions import Fraction
 from functools import lru_cache
 from math import gcd, lcm
@@ -332,6 +332,30 @@ class System:
         """
         return self._columns[self.index(name)]
 
+    def rows(self, names: Sequence[str] | None = None) -> list[list[Fraction]]:
+        """The dimension matrix as exact rows: one per base dimension, a column per name.
+
+        The rows of :attr:`matrix` as Fractions, over `names` only (the
+        changes of units, as exponent vectors of those variables).
+
+        Parameters
+        ----------
+        names : sequence of str, optional
+            Variables of the system, in the order wanted (default: all).
+
+        Returns
+        -------
+        list of list of Fraction
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> [[str(x) for x in row] for row in pt.System({"m": "M", "g": "L T^-2"}).rows(["g"])]
+        [['0'], ['1'], ['-2']]
+        """
+        cols = range(len(self._variables)) if names is None else [self.index(n) for n in names]
+        return self._submatrix(cols)
+
     @property
     def time_variables(self) -> tuple[str, ...]:
         """The variables whose dimension is time alone (T), in system order.
@@ -500,7 +524,7 @@ class System:
         >>> pt.System({"a": "L", "b": "L"}).dimensionless_products()
         [[Fraction(-1, 1), Fraction(1, 1)]]
         """
-        rows = self._submatrix(range(len(self._variables)))
+        rows = self.rows()
         return nullspace(rows, len(self._variables)) if rows else nullspace([], len(self._variables))
 
     # -- groups -----------------------------------------------------------

@@ -344,8 +344,7 @@ class _Problem:
         powers = [round(float(x)) for x in v]
         for j in keep:
             bound = self.bounds[j]
-            dim = self.system.dimension(bound.name)
-            power = sum((dim.exponent_of(b) * p for b, p in zip(self.bases, powers, strict=True)), Fraction(0))
+            power = sum((c * p for c, p in zip(self.system.column(bound.name), powers, strict=True)), Fraction(0))
             if power.denominator != 1:
                 continue  # an irrational factor: the floats' judgement stands
             new = self.values[bound.name] * Fraction(self.nice) ** int(power)

@@ -289,3 +289,19 @@ def test_bad_units():
 def test_an_unknown_variables_dimension_is_named(rod):
     with pytest.raises(pt.UnknownVariableError, match="'q'"):
         rod.dimension("q")
+
+
+@settings(max_examples=60, deadline=None)
+@given(systems(), st.data())
+def test_rows_are_the_dimension_matrix_over_the_names_asked(system, data):
+    names = data.draw(st.lists(st.sampled_from(system.variables), unique=True))
+    # the oracle: each variable's Dimension, read base by base
+    expected = [[system.dimension(n).exponent_of(b) for n in names] for b in system.base_dimensions]
+    assert system.rows(names) == expected
+    assert system.rows() == [[Fraction(int(x.p), int(x.q)) for x in system.matrix.row(i)]
+                             for i in range(len(system.base_dimensions))]
+
+
+def test_rows_refuse_an_unknown_name():
+    with pytest.raises(pt.UnknownVariableError, match="unknown variable 'mass'"):
+        pt.System(ROD).rows(["m", "mass"])
