@@ -27,7 +27,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from .errors import InvalidRequestError, PiTheoremError, SystemMismatchError, UnknownVariableError
+from .errors import InvalidRequestError, NumberError, PiTheoremError, SystemMismatchError, UnknownVariableError
 from .exact import read_exponent, read_positive, short_text
 from .formatting import TableDisplay
 from .model import Model
@@ -147,8 +147,20 @@ def positive_float(value, what: str) -> float:
     ... except ValueError as err:
     ...     print(err)
     dt must be a positive finite number such as 2, 0.5 or '1/3', got 0
+    >>> try:
+    ...     positive_float("1e-400", "dt")
+    ... except ValueError as err:
+    ...     print(err)
+    dt must be a positive number within the range of floating point (about 1e-308 to 1e308), got '1e-400'
     """
-    return float(read_positive(value, what, irrational_ok=True))
+    number = read_positive(value, what, irrational_ok=True)
+    try:
+        x = float(number)
+    except OverflowError:
+        x = math.inf
+    if not 0.0 < x < math.inf:  # exact and positive, but it rounds to 0 or overflows
+        raise NumberError(value, what, "a positive number within the range of floating point (about 1e-308 to 1e308)")
+    return x
 
 
 _METHODS = ("solve_ivp", "euler")
@@ -819,16 +831,19 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
     tol = positive_float(tol, "tol")
     original = simulate(model, params, y0, t_final, method=method, dt=dt, rtol=rtol, atol=atol,
                         ivp_method=ivp_method)
+    # read as simulate read them ("1/2", Fractions): it has refused what is no positive number
+    t_final = positive_float(t_final, "t_final")
+    dt = None if dt is None else positive_float(dt, "dt")
     p = model.resolve_params(params)
     y_init = model.resolve_initial(y0)
     f_t = scaled.factor(model.time)
-    t_final_scaled = float(t_final) * f_t
+    t_final_scaled = t_final * f_t
     y_scaled = scaled.scale_state(y_init)
     if method == "euler":
         if scale_dt:
             dt_scaled, n_steps = dt * f_t, len(original) - 1  # same steps, one for one
         else:
-            dt_scaled = float(dt)
+            dt_scaled = dt
             n_steps = fixed_steps(t_final_scaled, dt_scaled)
         run = _run(model, scaled.scale_params(p), y_scaled, t_final_scaled, method, dt_scaled, n_steps, None,
                    rtol, atol, ivp_method)

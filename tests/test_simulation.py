@@ -566,3 +566,23 @@ def test_check_names_the_pi_group_and_prints_plain_exponents():
     assert "Fraction" not in message
     assert "(l: 1/2, g: 1)" in message
     assert "Pi group k_theta/(g*l*m) by s^-3/2" in message
+
+
+@pytest.mark.parametrize(("option", "value"), [("dt", "1e-400"), ("tol", "1e-400"), ("s", "1e400"), ("s", 10**400),
+                                               ("t_final", "1e400")])
+def test_numbers_that_no_float_can_hold_are_refused_by_name(hinged, figure5, option, value):
+    # exact and positive, but 1e-400 rounds to 0.0 and 1e400 overflows: neither can drive a simulation
+    request = {"s": 2, "t_final": 0.5, "method": "euler", "dt": 0.01, option: value}
+    with pytest.raises(pt.NumberError, match=f"{'the scale factor s' if option == 's' else option} must be a "
+                                              r"positive number within the range of floating point") as info:
+        pt.verify_similarity(hinged, figure5, **request)
+    assert info.value.culprit is value
+
+
+def test_verify_similarity_reads_t_final_and_dt_as_simulate_does(hinged, figure5):
+    exact = pt.verify_similarity(hinged, figure5, s=2, t_final="1/2", method="euler", dt="1/100")
+    floats = pt.verify_similarity(hinged, figure5, s=2, t_final=0.5, method="euler", dt=0.01)
+    assert exact.passed and floats.passed
+    assert exact.scaled_dt == floats.scaled_dt
+    assert np.array_equal(exact.original.y, floats.original.y)
+    assert np.array_equal(exact.mapped.y, floats.mapped.y)
