@@ -582,7 +582,8 @@ def test_numbers_that_no_float_can_hold_are_refused_by_name(hinged, figure5, opt
 def test_verify_similarity_reads_t_final_and_dt_as_simulate_does(hinged, figure5):
     exact = pt.verify_similarity(hinged, figure5, s=2, t_final="1/2", method="euler", dt="1/100")
     floats = pt.verify_similarity(hinged, figure5, s=2, t_final=0.5, method="euler", dt=0.01)
-    assert exact.passed and floats.passed
+    assert exact.passed
+    assert floats.passed
     assert exact.scaled_dt == floats.scaled_dt
     assert np.array_equal(exact.original.y, floats.original.y)
     assert np.array_equal(exact.mapped.y, floats.mapped.y)
