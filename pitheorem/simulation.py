@@ -423,25 +423,25 @@ class ModelScaling:
         variables = (*model.parameters, model.time, *model.states)
         if isinstance(scaling, Scaling):
             _check_scaling_system(model, scaling, variables)
-            exps = scaling.exponents
-            return cls(model, s, scaling, MappingProxyType({n: Fraction(exps[n]) for n in variables}))
-        if not isinstance(scaling, Mapping):
+            sc = scaling
+        elif isinstance(scaling, Mapping):
+            for n in scaling:
+                if n not in variables:
+                    raise UnknownVariableError(str(n), variables, "scaling exponents")
+            given = {n: read_exponent(v, f"exponent of {n!r}") for n, v in scaling.items()}
+            try:
+                sc = _similarity_of_model(model, given)
+            except InvalidRequestError:
+                if check:
+                    raise
+                raw = MappingProxyType({n: given.get(n, Fraction(0)) for n in variables})
+                return cls(model, s, raw, raw)
+        else:
             raise InvalidRequestError(
                 f"scaling must be a pitheorem Scaling or a dict of exponents, got {type(scaling).__name__}"
             )
-        for n in scaling:
-            if n not in variables:
-                raise UnknownVariableError(str(n), variables, "scaling exponents")
-        given = {n: read_exponent(v, f"exponent of {n!r}") for n, v in scaling.items()}
-        try:
-            sc = _similarity_of_model(model, given)
-        except InvalidRequestError:
-            if check:
-                raise
-            raw = MappingProxyType({n: given.get(n, Fraction(0)) for n in variables})
-            return cls(model, s, raw, raw)
         exps = sc.exponents
-        return cls(model, s, sc, MappingProxyType({n: Fraction(exps[n]) for n in variables}))
+        return cls(model, s, sc, MappingProxyType({n: exps[n] for n in variables}))
 
     @property
     def is_similarity(self) -> bool:
@@ -599,10 +599,10 @@ def _similarity_of_model(model: Model, given: Mapping[str, Fraction]) -> Scaling
     scaling = Scaling.from_unit_change(model.system, partial.unit_change)
     exps = scaling.exponents
     for n in model.states:
-        if n in given and given[n] != Fraction(exps[n]):
+        if n in given and given[n] != exps[n]:
             raise InvalidRequestError(
                 f"exponent {short_text(given[n])} of state {n!r} contradicts the scaling of the parameters and "
-                f"time, which gives it {short_text(Fraction(exps[n]))}"
+                f"time, which gives it {short_text(exps[n])}"
             )
     return scaling
 

@@ -37,7 +37,7 @@ from ..errors import InvalidRequestError
 from ..exact import read_scale_factor
 from ..scaling import float_power
 from ..simulation import SimilarityReport, Trajectory, positive_float, similarity_report
-from .model import EngineModel, check_scaling, dim, dimension_factor
+from .model import EngineModel, check_scaling, dim
 
 __all__ = ["EngineRunner", "verify"]
 
@@ -147,15 +147,6 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         raise InvalidRequestError(f"controller must be callable (run_model -> policy), got {type(controller).__name__}")
     original, copy = model.backend, scaled.backend
 
-    f_time = dimension_factor(scaling, s, dim("T"))
-    dt = original.timestep()
-    if not math.isclose(copy.timestep(), dt * f_time, rel_tol=1e-12):
-        raise InvalidRequestError(
-            f"the scaled model's time step {copy.timestep()!r} is not the original's {dt!r} times {f_time!r}")
-    n_steps = max(1, round(duration / dt))
-    names, dims = original.coordinate_dimensions()
-    if len(copy.coordinate_dimensions()[0]) != len(names):
-        raise InvalidRequestError("the scaled model has other coordinates than the original")
     factor_of, exponent_of = {}, {}  # a model has hundreds of coordinates but a handful of dimensions
 
     def factor(d):
@@ -164,6 +155,15 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
             factor_of[d] = float_power(s, exponent_of[d], f"the factor of {d}")
         return factor_of[d]
 
+    f_time = factor(dim("T"))
+    dt = original.timestep()
+    if not math.isclose(copy.timestep(), dt * f_time, rel_tol=1e-12):
+        raise InvalidRequestError(
+            f"the scaled model's time step {copy.timestep()!r} is not the original's {dt!r} times {f_time!r}")
+    n_steps = max(1, round(duration / dt))
+    names, dims = original.coordinate_dimensions()
+    if len(copy.coordinate_dimensions()[0]) != len(names):
+        raise InvalidRequestError("the scaled model has other coordinates than the original")
     factors = np.array([factor(d) for d in dims])
     control_factors = np.array([factor(d) for d in original.control_dimensions()])
 
