@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 
 from .formatting.pieces import power_text, scale_text
+from .scaling import Scaling
 
 __all__ = ["plot_search", "plot_similarity"]
 
@@ -65,9 +67,8 @@ def _unit_label(name, report, units) -> str:
     """``name [unit]``: the unit given, else the dimension from the scaling's system."""
     if units and name in units:
         return f"{name} [{units[name]}]"
-    system = getattr(report.scaling, "system", None)
-    if system is not None and name in system.variables:
-        return f"{name} [{system.dimension(name)}]"
+    if isinstance(report.scaling, Scaling) and name in report.scaling.system.variables:
+        return f"{name} [{report.scaling.system.dimension(name)}]"
     return f"{name}, original units"
 
 
@@ -125,7 +126,8 @@ def plot_similarity(report, states=None, units=None):
     top.legend(loc="best", fontsize="small")
     verdict = "similar" if report.passed else "NOT similar"
     top.set_title(f"s = {report.s:g}: {verdict} (max deviation {report.max_deviation:.2g})")
-    bottom.axhline(report.tol, color="0.5", linestyle=":", label=f"tol = {report.tol:g}")
+    if math.isfinite(report.tol):  # a report judged against its one-ulp baseline has no tolerance (NaN)
+        bottom.axhline(report.tol, color="0.5", linestyle=":", label=f"tol = {report.tol:g}")
     bottom.set_xlabel(_unit_label(report.original.time, report, units))
     bottom.set_ylabel(f"|difference|: {quantities}")
     bottom.legend(loc="best", fontsize="small")

@@ -13,7 +13,9 @@ What every simulator of the package shares lives here too, public, for
 :mod:`pitheorem.engines`: :class:`ModelScaling` (a scaling applied to one
 model's inputs and mapped back from its run), :func:`similarity_report`
 (the one comparison and verdict), :func:`nudged` (the one-ulp baseline),
-:func:`fixed_steps` (the step count of a fixed-step engine) and
+:func:`fixed_steps` (the step count of Euler and of the paper's rod in an
+engine; :func:`pitheorem.engines.verify` takes ``round(duration / dt)``
+steps of the model's own time step) and
 :func:`positive_float` (the check of a time, a step, a tolerance or ``s``).
 """
 

@@ -103,3 +103,7 @@ def test_plot_similarity_is_the_reports_plot(hinged):
     assert list(tol.get_ydata()) == [rep.tol, rep.tol]
     assert top.get_title() == f"s = 2: similar (max deviation {rep.max_deviation:.2g})"
     assert (top.get_ylabel(), bottom.get_xlabel()) == ("theta [1]", "t [s]")
+    # judged against its one-ulp baseline, a report has no tolerance to draw (no "tol = nan")
+    judged = pt.verify_similarity(hinged, sc, s=2, t_final=0.5, baseline=True)
+    assert [line.get_label() for line in plot_similarity(judged, states=["theta"]).axes[1].get_lines()] == [
+        "|theta difference|"]

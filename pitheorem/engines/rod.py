@@ -21,8 +21,9 @@ built in a real engine:
 
 :func:`verify_engine_similarity` runs the engine on the original and on
 the scaled parameters (time step scaled with time, or not), maps the
-scaled run back with :meth:`pitheorem.Scaling.map_back` and compares, next
-to the pure-ODE answer of :func:`pitheorem.verify_similarity`.
+scaled run back to original units (the mapping of
+:meth:`pitheorem.Scaling.map_back`) and compares, next to the pure-ODE
+answer of :func:`pitheorem.verify_similarity`.
 """
 
 from __future__ import annotations
@@ -277,8 +278,8 @@ def verify_engine_similarity(engine: str, scaling, s, params=None, y0=None, t_fi
                              compare_ode: bool = True) -> EngineSimilarityReport:
     """Check in a real engine that a scaled rod reproduces the original.
 
-    Runs the rod in `engine` with `params`, then with
-    ``scaling.apply(params, s)``, the initial state and end time scaled,
+    Runs the rod in `engine` with `params`, then with the parameters
+    scaled (as ``scaling.apply(params, s)`` scales them), the initial state and end time scaled,
     and the time step multiplied by ``s^(a_t)`` (``scale_dt=True``) or kept;
     maps the scaled run back to original units and compares step by step
     (interpolating when the grids differ).
