@@ -6,7 +6,6 @@ import math
 from fractions import Fraction
 
 from .formatting.pieces import power_text, scale_text
-from .scaling import Scaling
 
 __all__ = ["plot_search", "plot_similarity"]
 
@@ -67,7 +66,7 @@ def _unit_label(name, report, units) -> str:
     """``name [unit]``: the unit given, else the dimension from the scaling's system."""
     if units and name in units:
         return f"{name} [{units[name]}]"
-    if isinstance(report.scaling, Scaling) and name in report.scaling.system.variables:
+    if report.is_similarity and name in report.scaling.system.variables:  # a Scaling knows its system
         return f"{name} [{report.scaling.system.dimension(name)}]"
     return f"{name}, original units"
 
