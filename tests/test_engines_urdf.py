@@ -216,6 +216,28 @@ def test_saved_model_reloads_with_its_settings_and_only_so(tmp_path):
     assert "settings" not in str(caught.value)
 
 
+@pytest.mark.parametrize(("where", "bad", "says"), [
+    (("gravity",), [0, 0, 9.81], "gravity along -z only"),
+    (("loadURDF", "basePosition"), [0, 0, "x"], "base_position must be a finite real number"),
+    (("loadURDF", "basePosition"), [0, 0], "base_position takes three numbers"),
+    (("loadURDF", "useFixedBase"), "no", "fixed_base is true or false, got 'no'"),
+])
+def test_a_saved_settings_file_with_a_bad_scene_is_named(tmp_path, where, bad, says):
+    model = engines.load(ARM, damping=0.0, split_impulse=False)
+    out = model.scaled(pt.search(model.system(), scale={"g": 1}).scalings[0], 2).save(tmp_path / "arm2.urdf")
+    settings = Path(f"{out}.settings.json")
+    doc = json.loads(settings.read_text())
+    *parents, key = where
+    place = doc
+    for parent in parents:
+        place = place[parent]
+    place[key] = bad
+    settings.write_text(json.dumps(doc))
+    with pytest.raises(engines.EngineModelError, match=r"arm2\.urdf\.settings\.json") as caught:
+        engines.load(out)
+    assert says in str(caught.value)
+
+
 @pytest.mark.parametrize(("options", "error", "says"), [
     ({"g": -9.81}, pt.InvalidRequestError, "g cannot be negative, got -9.81"),
     ({"damping": -1e-9}, pt.InvalidRequestError, "damping cannot be negative"),

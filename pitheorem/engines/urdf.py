@@ -741,14 +741,18 @@ def _load_saved(path: Path, saved: Path) -> EngineModel:
         doc = json.loads(saved.read_text())
         gravity, load = doc["gravity"], doc["loadURDF"]
         engine = doc["setPhysicsEngineParameter"]
-        scene = {"base_position": tuple(load["basePosition"]), "fixed_base": bool(load["useFixedBase"]),
-                 "ground": doc["ground"] is not None, "split_impulse": bool(engine["useSplitImpulse"]),
-                 "g": -float(gravity[2]), "damping": None}
-        sideways = gravity[0] or gravity[1]
+        sideways = gravity[0] or gravity[1] or gravity[2] > 0
     except (OSError, ValueError, KeyError, TypeError, IndexError) as err:
         raise malformed(err) from None
     if sideways:
         raise EngineModelError(str(saved), "gravity", "pitheorem's URDF models have gravity along -z only")
+    try:  # the scene's one reader, as for engines.load's options: a bad value is the settings file's fault
+        given = {"base_position": load["basePosition"], "fixed_base": load["useFixedBase"],
+                 "ground": doc["ground"] is not None, "split_impulse": bool(engine["useSplitImpulse"]),
+                 "g": -float(gravity[2])}
+        scene = {**{name: scene_option(name, value) for name, value in given.items()}, "damping": None}
+    except (ValueError, KeyError, TypeError, IndexError) as err:
+        raise malformed(err) from None
     # the URDF's own errors (bad XML, a missing mesh) are raised here as they are, not as the settings file's
     backend = _scene_backend(path, scene)
     st = backend._settings
