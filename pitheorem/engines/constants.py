@@ -105,10 +105,6 @@ CATALOGUE: tuple[HiddenConstant, ...] = _catalogue(Path(__file__).with_name("con
 ENGINES = tuple(dict.fromkeys(c.engine for c in CATALOGUE))
 
 
-def _check_engine(engine) -> str | None:
-    return None if engine is None else check_engine(engine)
-
-
 def hidden_constants(engine: str | None = None, *, names: Iterable[str] | None = None,
                      dimensional: bool | None = None) -> tuple[HiddenConstant, ...]:
     """The catalogued hidden constants of one engine (or of all).
@@ -140,7 +136,7 @@ def hidden_constants(engine: str | None = None, *, names: Iterable[str] | None =
     >>> [c.name for c in hidden_constants("mujoco", dimensional=True)][:3]
     ['mujoco_timestep', 'mujoco_solref_timeconst', 'mujoco_solimp_width']
     """
-    engine = _check_engine(engine)
+    engine = None if engine is None else check_engine(engine)
     pool = [c for c in CATALOGUE if engine is None or c.engine == engine]
     if names is not None:
         by_name = {c.name: c for c in pool}

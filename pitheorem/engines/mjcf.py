@@ -38,7 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from ..dimensions import Dimension
-from ..errors import PiTheoremError
+from ..errors import PiTheoremError, UnscalableParameterError
 from ..simulation import nudged
 from .model import (
     EngineModel,
@@ -412,8 +412,6 @@ class _Walker:
 
         def write(factor):
             if factor != 1.0:
-                from .model import UnscalableParameterError
-
                 raise UnscalableParameterError(name, f"{path} joins a slide and a hinge joint, so its coefficient "
                                                f"has dimension {dimension}, and MuJoCo's MjSpec cannot rewrite it")
 

@@ -233,24 +233,20 @@ class RuleVerdict(TextDisplay):
         return self.is_unit_change and not self.missing and not self.broken
 
 
-def _q(name, dimension, exponent, covers=()):
-    return RuleQuantity(name, dimension, exponent, tuple(covers))
-
-
 BULLET_SCALE_THE_WORLD = RuleOfThumb(
     name="Bullet wiki: Scaling The World",
     engine="bullet",
     source="Bullet Physics wiki, 'Scaling The World' (bulletphysics.org mediawiki-1.5.8)",
     quantities=(
-        _q("mass", "M", 0),  # "you should not have to change the mass"
-        _q("length", "L", 1),  # collision shapes and positions
-        _q("velocity", "L T^-1", 1, ["bullet_linear_sleep_threshold"]),  # linear velocities, linear sleep threshold
-        _q("gravity", "L T^-2", 1),
-        _q("impulse", "M L T^-1", 1),  # "impulses you supply"
-        _q("torque", "M L^2 T^-2", 2),
-        _q("inertia", "M L^2", 2),
-        _q("angular_velocity", "T^-1", 0),  # "should not need to be changed"
-        _q("damping", "1", 0),  # "damping is a ratio"
+        RuleQuantity("mass", "M", 0),  # "you should not have to change the mass"
+        RuleQuantity("length", "L", 1),  # collision shapes and positions
+        RuleQuantity("velocity", "L T^-1", 1, ["bullet_linear_sleep_threshold"]),  # linear velocities, linear sleep threshold
+        RuleQuantity("gravity", "L T^-2", 1),
+        RuleQuantity("impulse", "M L T^-1", 1),  # "impulses you supply"
+        RuleQuantity("torque", "M L^2 T^-2", 2),
+        RuleQuantity("inertia", "M L^2", 2),
+        RuleQuantity("angular_velocity", "T^-1", 0),  # "should not need to be changed"
+        RuleQuantity("damping", "1", 0),  # "damping is a ratio"
     ),
     note="scaling the mass by Y as well is mentioned as an option; the time step is not mentioned",
 )
@@ -260,18 +256,18 @@ MUJOCO_FRAME_SIMILAR = RuleOfThumb(
     engine="mujoco",
     source="MuJoCo 3.16.0 changelog (frame scale, scaling, massscale); powers measured with mujoco 4.0.0",
     quantities=(
-        _q("length", "L", 1, ["mujoco_solimp_width", "mujoco_torsional_friction", "mujoco_rolling_friction",
+        RuleQuantity("length", "L", 1, ["mujoco_solimp_width", "mujoco_torsional_friction", "mujoco_rolling_friction",
                               "mujoco_geom_margin"]),
-        _q("mass", "M", 3),  # "masses scale with volume"
-        _q("gravity", "L T^-2", 1),  # the premise: "proportionally scaled gravity" (a model parameter)
-        _q("inertia", "M L^2", 5),  # measured: body_inertia x 32 at scale 2
-        _q("force", "M L T^-2", 4),  # measured: slide frictionloss, motor forcerange x 16
-        _q("torque", "M L^2 T^-2", 5),  # measured: hinge stiffness, frictionloss, forcerange x 32
-        _q("angular_damping", "M L^2 T^-1", 5),  # measured: hinge damping x 32
-        _q("linear_stiffness", "M T^-2", 3),  # measured: slide stiffness x 8
-        _q("linear_damping", "M T^-1", 3),  # measured: slide damping x 8
-        _q("time", "T", 0, ["mujoco_solref_timeconst", "mujoco_timestep"]),  # measured: solref, timestep x 1
-        _q("angle", "1", 0),  # measured: hinge springref x 1
+        RuleQuantity("mass", "M", 3),  # "masses scale with volume"
+        RuleQuantity("gravity", "L T^-2", 1),  # the premise: "proportionally scaled gravity" (a model parameter)
+        RuleQuantity("inertia", "M L^2", 5),  # measured: body_inertia x 32 at scale 2
+        RuleQuantity("force", "M L T^-2", 4),  # measured: slide frictionloss, motor forcerange x 16
+        RuleQuantity("torque", "M L^2 T^-2", 5),  # measured: hinge stiffness, frictionloss, forcerange x 32
+        RuleQuantity("angular_damping", "M L^2 T^-1", 5),  # measured: hinge damping x 32
+        RuleQuantity("linear_stiffness", "M T^-2", 3),  # measured: slide stiffness x 8
+        RuleQuantity("linear_damping", "M T^-1", 3),  # measured: slide damping x 8
+        RuleQuantity("time", "T", 0, ["mujoco_solref_timeconst", "mujoco_timestep"]),  # measured: solref, timestep x 1
+        RuleQuantity("angle", "1", 0),  # measured: hinge springref x 1
     ),
     note="the frame does not touch option/gravity (a global setting): multiply it by X yourself; with "
          "massscale the frame also scales masses independently, which with scale gives any time-free change "

@@ -34,7 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InvalidRequestError
+from ..errors import InvalidRequestError, UnscalableParameterError
 from ..exact import read_number
 from ..simulation import nudged
 from .constants import hidden_constants
@@ -437,11 +437,10 @@ class UrdfBackend:
             name = _joint_speed_parameter(jname)
             st["max_joint_velocity"][str(j)] = params[name].value[0] * factors.get(name, 1.0)
         if "splitImpulsePenetrationThreshold" in params and factors.get("splitImpulsePenetrationThreshold", 1) != 1:
-            from .model import UnscalableParameterError
-
+            threshold = _BULLET["bullet_split_impulse_penetration_threshold"].default
             raise UnscalableParameterError(
-                "splitImpulsePenetrationThreshold", "Bullet's split-impulse threshold (-0.04, a length) cannot be "
-                "set from Python; load the model with split_impulse=False (useSplitImpulse=0) in both runs")
+                "splitImpulsePenetrationThreshold", f"Bullet's split-impulse threshold ({threshold:g}, a length) "
+                "cannot be set from Python; load the model with split_impulse=False (useSplitImpulse=0) in both runs")
         if self.scene["ground"]:
             st["ground_margin"] *= factors.get("ground_collision_margin", 1.0)
         scene = dict(self.scene)
