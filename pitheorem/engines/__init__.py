@@ -24,6 +24,7 @@ Examples
 ['bullet_time_step']
 """
 
+from .causes import CAUSE_KINDS, Cause
 from .constants import (
     CATALOGUE,
     ENGINES,
@@ -57,9 +58,11 @@ from .verify import verify
 __all__ = [
     "BULLET_SCALE_THE_WORLD",
     "CATALOGUE",
+    "CAUSE_KINDS",
     "ENGINES",
     "MUJOCO_FRAME_SIMILAR",
     "RULES",
+    "Cause",
     "EngineModel",
     "EngineModelError",
     "EngineSimilarityReport",
