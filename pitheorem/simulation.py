@@ -658,6 +658,27 @@ class SimilarityReport(TableDisplay):
     method : str
     scaled_dt : bool
         Whether the Euler step was scaled with time.
+    sensitivity : mapping of str to float or None
+        The yardstick per state: how far the model's own twins (one ulp
+        off) move from the original run; None when judged by `tol`.
+    baseline_factor : float
+        How many times its yardstick a state's deviation may reach.
+    nudged : Trajectory or None
+        One twin's run (the first), for plots.
+    exact : bool
+        Every state of the mapped run equals the original's bit for bit at
+        every time.
+    first_divergence : tuple of (float, str) or None
+        The first time at which the runs differ and the state that differs
+        most there; None when `exact`.
+    excited : bool or None
+        Whether the original run moved some state beyond its yardstick; a
+        run that moved nothing proves nothing.  None without a yardstick.
+    causes : tuple of Cause
+        Why the runs are not exact or not similar, where an engine check
+        found out (:func:`pitheorem.engines.verify`).
+    ensemble : int
+        How many twins made the yardstick.
 
     Examples
     --------
@@ -684,6 +705,11 @@ class SimilarityReport(TableDisplay):
     sensitivity: Mapping[str, float] | None = None
     baseline_factor: float = 10.0
     nudged: Trajectory | None = field(default=None, repr=False)
+    exact: bool = False
+    first_divergence: tuple[float, str] | None = None
+    excited: bool | None = None
+    causes: tuple = ()
+    ensemble: int = 0
 
     @property
     def similar(self) -> bool:
@@ -894,7 +920,7 @@ def _max_abs(diff: np.ndarray) -> float:
 def similarity_report(original: Trajectory, mapped: Trajectory, *, s: float, scaling, exponents,
                       tol: float | None = None, nudged: Trajectory | None = None, baseline_factor: float = 10.0,
                       is_similarity: bool = True, method: str = "solve_ivp",
-                      scaled_dt: bool = True) -> SimilarityReport:
+                      scaled_dt: bool = True, twins=None, causes=()) -> SimilarityReport:
     """Compare an original run with a scaled run mapped back: the one verdict of every simulator.
 
     :func:`verify_similarity` (scipy or Euler) and
@@ -919,6 +945,12 @@ def similarity_report(original: Trajectory, mapped: Trajectory, *, s: float, sca
     baseline_factor : float
     is_similarity, method, scaled_dt
         Recorded in the report.
+    twins : sequence of Trajectory, optional
+        Runs of twins of the original (every stored number one ulp off):
+        the yardstick is their largest distance from the original, per
+        state, instead of `nudged`'s alone.
+    causes : sequence of Cause
+        Recorded in the report.
 
     Returns
     -------
@@ -939,18 +971,24 @@ def similarity_report(original: Trajectory, mapped: Trajectory, *, s: float, sca
         raise InvalidRequestError(f"runs of shapes {original.y.shape} and {mapped.y.shape} cannot be compared")
     diff = np.abs(mapped.y - original.y)
     states = original.states
+    divergence = first_divergence(original, mapped)
     per_state = {n: _max_abs(diff[:, j]) for j, n in enumerate(states)}
     worst = _max_abs(diff)
-    sensitivity = None
-    if nudged is not None:
-        base = np.abs(nudged.y - original.y)
+    sensitivity = excited = None
+    twins = tuple(twins or ()) or ((nudged,) if nudged is not None else ())
+    if twins:
+        nudged = twins[0]
+        base = np.max([np.abs(twin.y - original.y) for twin in twins], axis=0)
         sensitivity = {n: _max_abs(base[:, j]) for j, n in enumerate(states)}
         span = np.ptp(original.y, axis=0) if len(original) else np.zeros(len(states))
-        passed = True
+        moved = np.max(np.abs(original.y - original.y[:1]), axis=0) if len(original) else np.zeros(len(states))
+        passed, excited = True, False
         for j, n in enumerate(states):
             limit = max(baseline_factor * sensitivity[n], 1e-9 * float(span[j]))
             if not per_state[n] <= limit:
                 passed = False
+            if moved[j] > limit:
+                excited = True
         tol = math.nan if tol is None else tol
     else:
         if tol is None:
@@ -972,4 +1010,32 @@ def similarity_report(original: Trajectory, mapped: Trajectory, *, s: float, sca
         sensitivity=None if sensitivity is None else MappingProxyType(sensitivity),
         baseline_factor=baseline_factor,
         nudged=nudged,
+        exact=divergence is None,
+        first_divergence=divergence,
+        excited=excited,
+        causes=tuple(causes),
+        ensemble=len(twins),
     )
+
+
+def first_divergence(original: Trajectory, mapped: Trajectory) -> tuple[float, str] | None:
+    """The first time two runs differ in any bit, and the state that differs most there; None if identical.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.simulation import first_divergence
+    >>> a = pt.Trajectory([0.0, 1.0, 2.0], [[1.0, 5.0], [2.0, 5.0], [3.0, 5.0]], ("x", "v"))
+    >>> b = pt.Trajectory([0.0, 1.0, 2.0], [[1.0, 5.0], [2.0, 5.5], [3.1, 5.0]], ("x", "v"))
+    >>> first_divergence(a, b), first_divergence(a, a)
+    ((1.0, 'v'), None)
+    """
+    same = original.y == mapped.y  # a NaN equals nothing: a run that blew up is never exact
+    rows = np.nonzero(~same.all(axis=1))[0]
+    if not rows.size:
+        return None
+    i = int(rows[0])
+    with np.errstate(invalid="ignore"):
+        gap = np.abs(mapped.y[i] - original.y[i])
+    j = int(np.argmax(np.where(np.isnan(gap), np.inf, gap)))
+    return float(original.t[i]), original.states[j]

@@ -24,6 +24,7 @@ Examples
 ['bullet_time_step']
 """
 
+from .audit import Audit, audit
 from .causes import CAUSE_KINDS, Cause
 from .constants import (
     CATALOGUE,
@@ -53,9 +54,10 @@ from .rules import (
     RuleVerdict,
     check_rule,
 )
-from .verify import verify
+from .verify import smooth_controls, verify
 
 __all__ = [
+    "Audit",
     "BULLET_SCALE_THE_WORLD",
     "CATALOGUE",
     "CAUSE_KINDS",
@@ -73,6 +75,7 @@ __all__ = [
     "RuleVerdict",
     "UnscalableModelWarning",
     "UnscalableParameterError",
+    "audit",
     "broken_constants",
     "check_rule",
     "engine_search",
@@ -80,6 +83,7 @@ __all__ = [
     "hidden_constants",
     "load",
     "simulate_rod",
+    "smooth_controls",
     "verify",
     "verify_engine_similarity",
     "with_hidden_constants",

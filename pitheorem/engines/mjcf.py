@@ -432,7 +432,16 @@ class _Walker:
                 pass  # a divisor is a dimensionless ratio
         self.add("tendon", tendon, ident, path, "range", q)
         self.add("tendon", tendon, ident, path, "margin", q)
-        self.add("tendon", tendon, ident, path, "springlength", q)
+        if np.all(np.asarray(tendon.springlength, dtype=float) == -1):
+            # MuJoCo's sentinel: the spring's rest length is the tendon's length at qpos0, computed by the
+            # compiler from the scaled geometry; scaling the -1 itself would turn it into a real length
+            tid = tendon.id if tendon.id >= 0 else index
+            rest = tuple(float(v) for v in self.model.tendon_lengthspring[tid])
+            self.slots.append(Slot(self.unique(f"{ident}_springlength"), f"{path} springlength", lambda: rest,
+                                   lambda factor: None, q, "derived",
+                                   note="springlength -1: computed by MuJoCo from the pose, scaled with it"))
+        else:
+            self.add("tendon", tendon, ident, path, "springlength", q)
         self.spring_and_drive("tendon", tendon, ident, path, kind)
         self.add("tendon", tendon, ident, path, "width", _L)
         self.limit_and_friction_softness("tendon", tendon, ident, path, q)
@@ -700,6 +709,115 @@ class MjcfBackend:
             if len(key.act) and model.na and len(fa) == len(key.act):
                 key.act = np.asarray(key.act) * fa
 
+    # -- what the engine holds: the audit's numbers, the yardstick's twins ----------------------
+
+    def stored_numbers(self) -> dict[str, np.ndarray]:
+        """Every floating-point number the compiled model holds, by field: a copy, in its own precision.
+
+        The arrays of ``MjModel`` (mesh vertices in float32 where MuJoCo keeps them so) and the
+        floating-point fields of ``opt`` and ``stat``; colours are left out (they draw, not move).
+        """
+        m, out = self.mjmodel, {}
+        for field in _stored_fields(m):
+            holder, attr = _holder(m, field)
+            out[field] = np.array(getattr(holder, attr), copy=True, ndmin=1)
+        return out
+
+    def twin(self, seed: int) -> MjcfBackend:
+        """A copy whose every stored number is one unit in its own last place off, the signs drawn from `seed`.
+
+        Zeros stay zero (a scaled copy keeps them exactly); the time step stays, for it is the grid
+        the runs are compared on.  The model is copied, not compiled again.
+        """
+        import copy
+
+        rng = np.random.default_rng(seed)
+        twin = copy.copy(self)
+        twin.mjmodel = m = copy.copy(self.mjmodel)
+        for field in _stored_fields(m):
+            if field == "opt.timestep":
+                continue
+            holder, attr = _holder(m, field)
+            value = np.asarray(getattr(holder, attr))
+            up = rng.integers(0, 2, size=value.shape).astype(bool)
+            moved = np.where(up, np.nextafter(value, value.dtype.type(np.inf)),
+                             np.nextafter(value, value.dtype.type(-np.inf)))
+            moved = np.where(value == 0, value, moved)
+            if np.ndim(getattr(holder, attr)) == 0:
+                setattr(holder, attr, moved.item())
+            else:
+                getattr(holder, attr)[...] = moved
+        return twin
+
+    def variant(self, *, tolerance: float | None = None, contacts: bool = True,
+                solver: str | None = None) -> MjcfBackend:
+        """A copy run with another solver or tolerance, or with contacts switched off: a counter-run's model."""
+        import copy
+
+        mj = _mujoco()
+        out = copy.copy(self)
+        out.mjmodel = m = copy.copy(self.mjmodel)
+        if solver is not None:
+            m.opt.solver = int(getattr(mj.mjtSolver, f"mjSOL_{solver.upper()}"))
+        if tolerance is not None:
+            m.opt.tolerance = tolerance
+            m.opt.noslip_tolerance = tolerance
+        if not contacts:
+            m.opt.disableflags |= int(mj.mjtDisableBit.mjDSBL_CONTACT)
+        return out
+
+    def control_ranges(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each actuator's control range where the file limits it; -inf and inf where it does not."""
+        m = self.mjmodel
+        limited = np.asarray(m.actuator_ctrllimited, dtype=bool)
+        low = np.where(limited, m.actuator_ctrlrange[:, 0], -np.inf)
+        high = np.where(limited, m.actuator_ctrlrange[:, 1], np.inf)
+        return low, high
+
+    def solver_settings(self) -> dict[str, float]:
+        """The solver's stopping rules that have no pure dimension, nonzero ones only."""
+        opt = self.mjmodel.opt
+        return {name: float(getattr(opt, name)) for name in ("tolerance", "noslip_tolerance")
+                if getattr(opt, name) != 0 and (name == "tolerance" or opt.noslip_iterations > 0)}
+
+    def solver_name(self) -> str:
+        """The constraint solver: ``"PGS"``, ``"CG"`` or ``"Newton"``."""
+        return {0: "PGS", 1: "CG", 2: "Newton"}.get(int(self.mjmodel.opt.solver), str(self.mjmodel.opt.solver))
+
+    def contact_log(self, n_steps: int, controls=None) -> list[frozenset]:
+        """The geom pairs in contact after each step of an open-loop run (stepped in Python to read them)."""
+        mj, m = _mujoco(), self.mjmodel
+        data, _ = self._start(False, None)
+        rows = self._control_rows(controls, n_steps)
+        log = []
+        for i in range(n_steps):
+            if rows is not None:
+                data.ctrl[:] = rows[i]
+            mj.mj_step(m, data)
+            log.append(frozenset((self._geom_name(c.geom1), self._geom_name(c.geom2))
+                                 for c in data.contact[:data.ncon]))
+        return log
+
+    def element_name(self, field: str, row: int) -> str:
+        """A row of a stored field, named by its element where the field has one row per element."""
+        mj, m = _mujoco(), self.mjmodel
+        prefix = field.split("_", 1)[0]
+        kind = _FIELD_OBJECTS.get(prefix)
+        rows = np.asarray(getattr(m, field)).shape[0] if "." not in field else 0
+        if prefix == "dof" and rows == m.nv:
+            kind, row = "joint", int(m.dof_jntid[row])
+        elif prefix == "mesh" and rows == m.nmeshvert and m.nmesh:
+            kind, row = "mesh", int(np.searchsorted(m.mesh_vertadr, row, side="right") - 1)
+        elif kind is None or rows != getattr(m, _COUNTS.get(kind, f"n{kind}"), -1):
+            return f"{field}[{row}]"
+        name = mj.mj_id2name(m, getattr(mj.mjtObj, f"mjOBJ_{kind.upper()}"), row)
+        return f"{kind} {name!r}" if name else f"{kind} #{row}"
+
+    def _geom_name(self, index: int) -> str:
+        mj = _mujoco()
+        name = mj.mj_id2name(self.mjmodel, mj.mjtObj.mjOBJ_GEOM, int(index))
+        return f"geom {name!r}" if name else f"geom #{index}"
+
     # -- running ------------------------------------------------------------------------------
 
     def coordinate_dimensions(self):
@@ -834,6 +952,43 @@ class MjcfBackend:
             mj.mj_step(m, data)
             qpos[i], qvel[i], act[i] = data.qpos, data.qvel, data.act
         return out
+
+
+#: the element each prefix of a compiled field belongs to, and the count of that element where not n<kind>
+_FIELD_OBJECTS = {"body": "body", "geom": "geom", "jnt": "joint", "site": "site", "cam": "camera", "light": "light",
+                  "mesh": "mesh", "tendon": "tendon", "actuator": "actuator", "sensor": "sensor", "eq": "equality",
+                  "pair": "pair", "key": "key", "hfield": "hfield", "numeric": "numeric", "mat": "material"}
+_COUNTS = {"joint": "njnt", "camera": "ncam", "actuator": "nu", "equality": "neq", "material": "nmat"}
+
+_STRUCT_FIELDS = {
+    "opt": ("timestep", "gravity", "wind", "magnetic", "density", "viscosity", "impratio", "tolerance",
+            "ls_tolerance", "noslip_tolerance", "ccd_tolerance", "sleep_tolerance", "o_margin", "o_solref",
+            "o_solimp", "o_friction"),
+    "stat": ("meaninertia", "meanmass", "meansize", "extent", "center"),
+}
+
+
+def _stored_fields(m) -> list[str]:
+    """The names of the floating-point fields of a compiled model, in a fixed order (``opt.x`` for structs)."""
+    fields = []
+    for attr in sorted(dir(m)):
+        if attr.startswith("_") or attr.endswith("rgba"):
+            continue
+        value = getattr(m, attr, None)
+        if isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.size:
+            fields.append(attr)
+    for struct, attrs in _STRUCT_FIELDS.items():
+        holder = getattr(m, struct)
+        fields.extend(f"{struct}.{a}" for a in attrs if hasattr(holder, a))
+    return fields
+
+
+def _holder(m, field: str):
+    """The object and attribute name of a field of :func:`_stored_fields`."""
+    if "." in field:
+        struct, attr = field.split(".")
+        return getattr(m, struct), attr
+    return m, field
 
 
 @contextmanager

@@ -269,6 +269,7 @@ class UrdfBackend:
         self._attrs = _attributes(tree, path, source_dir)
         self._settings = settings
         self._info = self._probe()
+        self.nudge_start = False  # a twin starts one ulp off
 
     # -- reading -------------------------------------------------------------------------------
 
@@ -481,27 +482,102 @@ class UrdfBackend:
     def control_dimensions(self):
         return [_joint_kind(jtype).force for _j, _n, jtype in self._info["joints"]]
 
+    def _setup(self, pb, client) -> int:
+        """The scene, the robot and every setting, as a run starts them; the robot's body id."""
+        st = self._settings
+        pb.setGravity(0.0, 0.0, -st["g"], physicsClientId=client)
+        pb.setTimeStep(st["timestep"], physicsClientId=client)
+        pb.setPhysicsEngineParameter(numSubSteps=0, useSplitImpulse=int(st["useSplitImpulse"]),
+                                     **{n: st[n] for n, *_ in ENGINE_PARAMETERS}, physicsClientId=client)
+        if self.scene["ground"]:
+            plane = pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=client)
+            ground = pb.createMultiBody(0, plane, physicsClientId=client)
+            pb.changeDynamics(ground, -1, collisionMargin=st["ground_margin"], physicsClientId=client)
+        body = self._load(pb, client)
+        for call in self._dynamics_calls():
+            call = dict(call)
+            index = call.pop("linkIndex")
+            for key, value in call.items():  # one setting per call (see rod.py on pybullet 3.2.7)
+                pb.changeDynamics(body, index, **{key: value}, physicsClientId=client)
+        for j, _n, _t in self._info["joints"]:
+            pb.setJointMotorControl2(body, j, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=client)
+        return body
+
+    # -- what the engine holds: the audit's numbers, the yardstick's twins ------------------------
+
+    def stored_numbers(self) -> dict[str, np.ndarray]:
+        """What PyBullet holds once the robot is loaded and set: each link's dynamics, each joint's info.
+
+        Fields are ``link.<quantity>`` (one row per link, the base first) and ``joint.<quantity>`` (one
+        row per movable joint); the collision margins are left to :meth:`ignored_settings`.
+        """
+        pb, client = self._connect()
+        try:
+            body = self._setup(pb, client)
+            links = [index for index, _ in self._info["links"]]
+            dyn = [pb.getDynamicsInfo(body, i, physicsClientId=client) for i in links]
+            out = {f"link.{name}": np.array([np.atleast_1d(d[k]) for d in dyn], dtype=float)
+                   for k, name in _DYNAMICS_FIELDS}
+            joints = [pb.getJointInfo(body, j, physicsClientId=client) for j, _n, _t in self._info["joints"]]
+            if joints:
+                out.update({f"joint.{name}": np.array([np.atleast_1d(info[k]) for info in joints], dtype=float)
+                            for k, name in _JOINT_FIELDS})
+            return out
+        finally:
+            pb.disconnect(physicsClientId=client)
+
+    def element_name(self, field: str, row: int) -> str:
+        """A row of a stored field, named by its link or joint."""
+        if field.startswith("link."):
+            return f"link {self._info['links'][row][1]!r} {field[5:]}"
+        return f"joint {self._info['joints'][row][1]!r} {field[6:]}"
+
+    def ignored_settings(self) -> tuple:
+        """The ``changeDynamics`` settings PyBullet does not take: each as a ``setting`` Cause."""
+        from .causes import Cause
+
+        pb, client = self._connect()
+        try:
+            body = self._setup(pb, client)
+            missed = []
+            for index, lname in self._info["links"]:
+                wanted = self._link_dynamics(index).get("collisionMargin")
+                held = pb.getDynamicsInfo(body, index, physicsClientId=client)[11]
+                if wanted is not None and held != wanted:
+                    missed.append((lname, wanted, held))
+            if not missed:
+                return ()
+            lname, wanted, held = missed[0]
+            names = ", ".join(repr(n) for n, *_ in missed[:3]) + (f" and {len(missed) - 3} more" if len(missed) > 3
+                                                                   else "")
+            return (Cause("setting", "changeDynamics(collisionMargin)", f"{len(missed)} link(s) ({names}) keep "
+                          f"another margin than the one set (link {lname!r}: set {wanted:.17g}, PyBullet keeps "
+                          f"{held:.17g}): the call does not reach these links' shapes, so their margins are not "
+                          "scaled"),)
+        finally:
+            pb.disconnect(physicsClientId=client)
+
+    def twin(self, seed: int) -> UrdfBackend:
+        """A copy with every parameter moved by about one ulp (random signs from `seed`) and its start nudged."""
+        rng = np.random.default_rng(seed)
+        factors = {p.name: 1.0 + float(rng.choice((-1.0, 1.0))) * 2.0**-52 for p in self.parameters()
+                   if p.name != "timestep"}
+        out = self.scaled(factors, None, None)
+        out.nudge_start = True
+        return out
+
+    def control_ranges(self) -> tuple[np.ndarray, np.ndarray]:
+        """Unlimited for every movable joint: under torque control PyBullet applies no effort limit."""
+        high = np.full(len(self._info["joints"]), np.inf)
+        return -high, high
+
     def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None):
+        nudge = nudge or self.nudge_start
         pb, client = self._connect()
         try:
             st = self._settings
-            pb.setGravity(0.0, 0.0, -st["g"], physicsClientId=client)
-            pb.setTimeStep(st["timestep"], physicsClientId=client)
-            pb.setPhysicsEngineParameter(numSubSteps=0, useSplitImpulse=int(st["useSplitImpulse"]),
-                                         **{n: st[n] for n, *_ in ENGINE_PARAMETERS}, physicsClientId=client)
-            if self.scene["ground"]:
-                plane = pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=client)
-                ground = pb.createMultiBody(0, plane, physicsClientId=client)
-                pb.changeDynamics(ground, -1, collisionMargin=st["ground_margin"], physicsClientId=client)
-            body = self._load(pb, client)
-            for call in self._dynamics_calls():
-                call = dict(call)
-                index = call.pop("linkIndex")
-                for key, value in call.items():  # one setting per call (see rod.py on pybullet 3.2.7)
-                    pb.changeDynamics(body, index, **{key: value}, physicsClientId=client)
+            body = self._setup(pb, client)
             joints = [j for j, _n, _t in self._info["joints"]]
-            for j in joints:
-                pb.setJointMotorControl2(body, j, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=client)
             if nudge:
                 pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=client)
                 pb.resetBasePositionAndOrientation(body, nudged(pos).tolist(), orn, physicsClientId=client)
@@ -545,6 +621,14 @@ class UrdfBackend:
             else:
                 scene[key] = scene_option(key, value)
         return UrdfBackend(copy.deepcopy(self.tree), self.path, self.source_dir, st, scene=scene)
+
+
+#: getDynamicsInfo's numbers (index, name), the margin (11) aside; getJointInfo's for a movable joint
+_DYNAMICS_FIELDS = ((0, "mass"), (1, "lateralFriction"), (2, "localInertiaDiagonal"), (3, "localInertialPos"),
+                    (5, "restitution"), (6, "rollingFriction"), (7, "spinningFriction"), (8, "contactDamping"),
+                    (9, "contactStiffness"))
+_JOINT_FIELDS = ((6, "damping"), (7, "friction"), (8, "lowerLimit"), (9, "upperLimit"), (10, "maxForce"),
+                 (11, "maxVelocity"), (14, "parentFramePos"))
 
 
 def _snippet(name: str, settings: dict) -> str:

@@ -5,10 +5,22 @@ for step (the scaled time step is the original's times ``s`` to the power
 of time), feeds both the same controls in original units, maps every
 recorded coordinate of the scaled run back by its own dimension, and
 hands both runs to ``pitheorem.simulation.similarity_report``, the one
-comparison every simulator of pitheorem shares.  Next to them runs the
-original once more with its initial state nudged by one ulp: a chaotic
-model (a bouncing ball, a walker falling over) moves that far on its own,
-so a scaled run is judged against that baseline, not against zero.
+comparison every simulator of pitheorem shares.  Next to them run *twins*
+of the original: copies in which every number the engine stores for the
+model (parameters, compiled values such as mesh vertices and inertias, the
+initial pose) is moved by one unit in its own last place, float32 where
+the engine keeps float32, with random signs from a fixed seed.  How far
+the twins drift from the original is the model's own sensitivity to
+rounding, the yardstick a scaled run is judged by: a chaotic model (a
+bouncing ball, a walker falling over) moves that far on its own.
+
+At ``s`` a power of four every factor is exact in binary, so a faithful
+engine reproduces the original bit for bit (``rep.exact``): a proof.
+When a run is not exact where it should be, or not similar, ``verify``
+finds out why (``rep.causes``): :func:`pitheorem.engines.audit` holds
+every stored number against the original times its factor, and
+counter-runs test the dynamic causes: contacts switched off, the
+solver's tolerance set to 0.
 
 Controls come in two kinds.  Open-loop ``controls`` are a function of time
 in original units, converted for the scaled run by each input's dimension.
@@ -20,13 +32,15 @@ shows up as a broken similarity (Section 6 of the white paper).
 
 A backend (see ``pitheorem.engines.mjcf``, ``pitheorem.engines.urdf``)
 provides ``timestep()``, ``coordinate_dimensions()``,
-``control_dimensions()`` and ``run(n_steps, controls, nudge, policy)``; one
-that also has ``run_many(n_steps, jobs)`` (MuJoCo's) gets the three
-open-loop runs in one batch, which its engine may spread over the cores.
+``control_dimensions()``, ``run(n_steps, controls, nudge, policy)`` and
+``twin(seed)``; one that also has ``run_many(n_steps, jobs)`` (MuJoCo's)
+gets the open-loop runs in one batch, which its engine spreads over the
+cores.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 from typing import Protocol, runtime_checkable
@@ -39,7 +53,7 @@ from ..scaling import float_power
 from ..simulation import SimilarityReport, Trajectory, positive_float, similarity_report
 from .model import EngineModel, check_scaling, dim
 
-__all__ = ["EngineRunner", "verify"]
+__all__ = ["EngineRunner", "smooth_controls", "verify"]
 
 
 @runtime_checkable
@@ -74,8 +88,9 @@ class EngineRunner(Protocol):
 
 
 def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None, *, controller=None,
-           scaled: EngineModel | None = None, baseline_factor: float = 10.0) -> SimilarityReport:
-    """Run a model and its scaled copy and compare them in original units.
+           scaled: EngineModel | None = None, baseline_factor: float = 10.0, ensemble: int = 4,
+           seed: int = 0, diagnose: bool = True) -> SimilarityReport:
+    """Run a model and its scaled copy, compare them in original units, and say why they differ.
 
     Parameters
     ----------
@@ -83,37 +98,46 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     scaling : Scaling
         A scaling of ``model.system()``.
     s : float
-        The scale factor.
+        The scale factor.  A power of four (4, 16, 1/4, ...) makes every
+        factor exact in binary: the scaled run must then reproduce the
+        original bit for bit (``exact``).
     duration : float
         Simulated time of the original run, in its units.
     controls : callable, optional
         ``t -> array`` of actuator inputs in original units (MuJoCo:
         ``data.ctrl``; PyBullet: one torque or force per movable joint).
-        Default: zero input.  It is called once per step, at the start
+        Default: zero input (see :func:`smooth_controls` for an input that
+        moves the model).  It is called once per step, at the start
         ``t = i dt`` of step ``i`` of the original run; the scaled run gets
-        the same inputs, each times its own factor (its step ``i`` starts at
-        the same original time).
+        the same inputs, each times its own factor.
     controller : callable, optional
         A closed-loop controller instead of `controls`:
-        ``controller(run_model)`` is called once per run (the original, its
-        one-ulp nudged twin and the scaled copy) with that run's
+        ``controller(run_model)`` is called once per run with that run's
         EngineModel and returns a policy giving the inputs at each step in
         that model's own units.  MuJoCo calls ``policy(mjmodel, mjdata)``
-        (the arguments of MuJoCo's control callback; return ``data.ctrl``);
-        PyBullet calls ``policy(client, body, t)`` (return one torque or
-        force per movable joint).  A controller whose numbers live in the
-        model file is scaled with it; one whose numbers live in Python is
-        not, and the report shows it.
+        (return ``data.ctrl``); PyBullet calls ``policy(client, body, t)``
+        (return one torque or force per movable joint).  A controller
+        whose numbers live in the model file is scaled with it; one whose
+        numbers live in Python is not, and the report shows it.
     scaled : EngineModel, optional
         The scaled model (e.g. a saved and reloaded file); default
         ``model.scaled(scaling, s)``.
     baseline_factor : float
-        How many times the one-ulp sensitivity a deviation may reach.
+        The margin: how many times its yardstick a coordinate's deviation
+        may reach (default 10).
+    ensemble : int
+        How many twins make the yardstick (default 4, at least 1).
+    seed : int
+        The seed of the twins' random signs.
+    diagnose : bool
+        Look for causes when the runs are not exact at a power of four or
+        not similar (default True).
 
     Returns
     -------
     SimilarityReport
-        ``.similar``, ``.max_deviation``, ``.deviation`` and
+        ``.exact``, ``.first_divergence``, ``.similar``, ``.excited``,
+        ``.causes``, ``.max_deviation``, ``.deviation`` and
         ``.sensitivity`` per coordinate, the runs as trajectories.
 
     Raises
@@ -128,15 +152,20 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     >>> from pitheorem import engines
     >>> model = engines.load(engines.example_path("pendulum.xml"))
     >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    >>> proof = engines.verify(model, sc, s=4, duration=0.5, controls=lambda t: [0.1])
+    >>> proof.exact, proof.excited
+    (True, True)
     >>> rep = engines.verify(model, sc, s=10, duration=0.5, controls=lambda t: [0.1])
-    >>> rep.similar
-    True
+    >>> rep.exact, rep.similar, rep.causes
+    (False, True, ())
     """
     if not isinstance(model, EngineModel):
         raise InvalidRequestError(f"verify needs an EngineModel (engines.load(...)), got {type(model).__name__}")
     s = read_scale_factor(s)
     check_scaling(scaling)
     duration = positive_float(duration, "duration")
+    ensemble = _count(ensemble, "ensemble")
+    seed = _count(seed, "seed", least=0)
     if scaled is None:
         scaled = model.scaled(scaling, s)
     elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:
@@ -146,14 +175,7 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     if controller is not None and not callable(controller):
         raise InvalidRequestError(f"controller must be callable (run_model -> policy), got {type(controller).__name__}")
     original, copy = model.backend, scaled.backend
-
-    factor_of, exponent_of = {}, {}  # a model has hundreds of coordinates but a handful of dimensions
-
-    def factor(d):
-        if d not in factor_of:
-            exponent_of[d] = scaling.exponent_of(d)
-            factor_of[d] = float_power(s, exponent_of[d], f"the factor of {d}")
-        return factor_of[d]
+    factor, exponent_of = _factor_cache(scaling, s)
 
     f_time = factor(dim("T"))
     dt = original.timestep()
@@ -166,21 +188,131 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         raise InvalidRequestError("the scaled model has other coordinates than the original")
     factors = np.array([factor(d) for d in dims])
     control_factors = np.array([factor(d) for d in original.control_dimensions()])
+    u_original = _open_loop_rows(controls, n_steps, dt, control_factors.size)
+    u_scaled = None if u_original is None else u_original * control_factors
+    policy = _policies(controller, control_factors.size)
 
-    # open-loop inputs once, at the start of each step in original time; the scaled run gets the same
-    # rows times each input's factor (its step i starts at i dt s^a_T, which is original time i dt)
-    if controls is None:
-        u_original = u_scaled = None
+    twins = [original.twin(seed + k) for k in range(ensemble)]
+    t = np.arange(n_steps + 1) * dt
+    if controller is None and hasattr(original, "run_many") and type(copy) is type(original):
+        # one batch: the engine runs them at once (MuJoCo's rollout spreads them over the cores)
+        jobs = [(original, u_original, False, None), (copy, u_scaled, False, None),
+                *((twin, u_original, False, None) for twin in twins)]
+        run, scaled_run, *twin_runs = original.run_many(n_steps, jobs)
     else:
-        u_original = np.empty((n_steps, control_factors.size))
-        for i in range(n_steps):
-            u = np.asarray(controls(i * dt), dtype=float).reshape(-1)
-            if u.shape != control_factors.shape:
-                raise InvalidRequestError(f"controls(t) must give {control_factors.size} inputs, got {u.size}")
-            u_original[i] = u
-        u_scaled = u_original * control_factors
+        run = original.run(n_steps, u_original, policy=policy(model))
+        scaled_run = copy.run(n_steps, u_scaled, policy=policy(scaled))
+        twin_runs = [twin.run(n_steps, u_original, policy=policy(model)) for twin in twins]
 
-    def policy(run_model):  # a fresh controller per run: controllers keep state (a reel, an integral)
+    def trajectory(rows):
+        return Trajectory(t, rows, tuple(names))
+
+    report = similarity_report(
+        trajectory(run), trajectory(scaled_run / factors), s=float(s), scaling=scaling,
+        exponents={n: exponent_of[d] for n, d in zip(names, dims, strict=True)},
+        twins=[trajectory(rows) for rows in twin_runs], baseline_factor=baseline_factor, method=model.engine,
+    )
+    exact_expected = all(_power_of_two(f) for f in factors) and _power_of_two(f_time)
+    if not diagnose or controller is not None or (report.similar and (report.exact or not exact_expected)):
+        return report
+    from .diagnose import find_causes
+
+    causes = find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factors, report,
+                         exact_expected)
+    return dataclasses.replace(report, causes=causes)
+
+
+def smooth_controls(model: EngineModel, amplitude: float = 0.3, period: float = 0.5):
+    """A smooth open-loop input that moves a model: each actuator a sine of its own phase.
+
+    The input of actuator ``i`` is ``amplitude * sin(2 pi t / period + i)``,
+    times the half-width of its control range where the file limits it
+    (about the range's middle), so that a position servo sweeps part of its
+    range and a motor pushes with part of its force.  A verdict on a model
+    that does not move proves nothing (``rep.excited``).
+
+    Parameters
+    ----------
+    model : EngineModel
+    amplitude : float
+        The fraction of each range (or, unlimited, the input itself).
+    period : float
+        In the model's time unit.
+
+    Returns
+    -------
+    callable
+        ``t -> array`` for :func:`verify`'s `controls`.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> u = engines.smooth_controls(model)
+    >>> [round(float(v), 3) for v in u(0.125)]
+    [0.3]
+    """
+    if not isinstance(model, EngineModel):
+        raise InvalidRequestError(f"smooth_controls needs an EngineModel, got {type(model).__name__}")
+    amplitude = positive_float(amplitude, "amplitude")
+    period = positive_float(period, "period")
+    low, high = model.backend.control_ranges()
+    middle = np.where(np.isfinite(low) & np.isfinite(high), (low + high) / 2, 0.0)
+    half = np.where(np.isfinite(low) & np.isfinite(high), (high - low) / 2, 1.0)
+    phase = np.arange(middle.size)
+
+    def controls(time):
+        return middle + amplitude * half * np.sin(2 * np.pi * time / period + phase)
+
+    return controls
+
+
+def _count(value, what: str, least: int = 1) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
+        raise InvalidRequestError(f"{what} must be a whole number of at least {least}, got {value!r}")
+    return int(value)
+
+
+def _power_of_two(f: float) -> bool:
+    return f > 0 and math.frexp(f)[0] == 0.5
+
+
+def _factor_cache(scaling, s):
+    """``factor(d)``: ``s`` to the exponent of dimension ``d``, each computed once, and the exponents."""
+    factor_of, exponent_of = {}, {}  # a model has hundreds of coordinates but a handful of dimensions
+
+    def factor(d):
+        if d not in factor_of:
+            exponent_of[d] = scaling.exponent_of(d)
+            factor_of[d] = float_power(s, exponent_of[d], f"the factor of {d}")
+        return factor_of[d]
+
+    return factor, exponent_of
+
+
+def _open_loop_rows(controls, n_steps: int, dt: float, size: int):
+    """The open-loop inputs once, at the start of each step in original time (None for zero input).
+
+    The scaled run gets the same rows times each input's factor: its step ``i`` starts at
+    ``i dt s^a_T``, which is original time ``i dt``.
+    """
+    if controls is None:
+        return None
+    if not callable(controls):
+        raise InvalidRequestError(f"controls must be a callable t -> inputs, got {type(controls).__name__}")
+    rows = np.empty((n_steps, size))
+    for i in range(n_steps):
+        u = np.asarray(controls(i * dt), dtype=float).reshape(-1)
+        if u.shape != (size,):
+            raise InvalidRequestError(f"controls(t) must give {size} inputs, got {u.size}")
+        rows[i] = u
+    return rows
+
+
+def _policies(controller, size: int):
+    """``policy(run_model)``: a fresh closed-loop law per run (controllers keep state: a reel, an integral)."""
+
+    def policy(run_model):
         if controller is None:
             return None
         law = controller(run_model)
@@ -189,25 +321,10 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
 
         def checked(*state):
             u = np.asarray(law(*state), dtype=float).reshape(-1)
-            if u.shape != control_factors.shape:
-                raise InvalidRequestError(f"the controller's policy must give {control_factors.size} inputs, "
-                                          f"got {u.size}")
+            if u.shape != (size,):
+                raise InvalidRequestError(f"the controller's policy must give {size} inputs, got {u.size}")
             return u
 
         return checked
 
-    t = np.arange(n_steps + 1) * dt
-    if controller is None and hasattr(original, "run_many") and type(copy) is type(original):
-        # one batch: the engine may run the three at once (MuJoCo's rollout spreads them over the cores)
-        jobs = [(original, u_original, False, None), (original, u_original, True, None), (copy, u_scaled, False, None)]
-        run, nudged, scaled_run = original.run_many(n_steps, jobs)
-    else:
-        run = original.run(n_steps, u_original, policy=policy(model))
-        nudged = original.run(n_steps, u_original, nudge=True, policy=policy(model))
-        scaled_run = copy.run(n_steps, u_scaled, policy=policy(scaled))
-    back = scaled_run / factors
-    return similarity_report(
-        Trajectory(t, run, tuple(names)), Trajectory(t, back, tuple(names)), s=float(s), scaling=scaling,
-        exponents={n: exponent_of[d] for n, d in zip(names, dims, strict=True)},
-        nudged=Trajectory(t, nudged, tuple(names)), baseline_factor=baseline_factor, method=model.engine,
-    )
+    return policy

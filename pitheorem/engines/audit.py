@@ -1,0 +1,237 @@
+"""The static half of a verdict: every number the engine holds, against the original times its factor.
+
+A scaled file can be right and the engine still run something else: it
+computes numbers at load (masses from geoms, a tendon's rest length from
+the pose), keeps some in float32 (mesh vertices), reads sentinels (``-1``:
+"compute it"), clamps others at its thresholds, and ignores some settings.
+:func:`audit` compiles the original and the scaled model and holds every
+number the engine keeps for the one against the other, without simulating.
+
+What factor should each compiled number get?  The engine says so itself:
+the model scaled by the same change of units at ``s = 4`` (a *probe*) is
+compiled too.  There every factor ``4**k`` with ``k`` a multiple of 1/2 is
+exact in binary, so a number that scales at all shows its exponent ``k``
+exactly; a number whose probe ratio is no power of 4 (a sentinel, a value
+the engine derives in a way no change of units reaches) is itself a cause.
+Then at the requested ``s`` each number must equal the original times
+``s**k``: where it does not, a float32 field is named as ``precision`` and
+a float64 field, off by more than rounding, as ``unscaled``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+
+from ..errors import InvalidRequestError
+from ..exact import read_scale_factor
+from ..immutable import immutable
+from ..scaling import float_power
+from .causes import Cause, sorted_causes
+from .model import EngineModel, check_scaling
+
+__all__ = ["Audit", "audit"]
+
+#: the exact probe factor: every s**k with k a multiple of 1/2 is a power of two
+PROBE = 4
+#: a float64 number this far (relative) from its expected value is not rounding but another number
+ROUNDING = 1e-9
+#: an entry below this many ulps of its field's largest is a rounding residue of a zero (a centre at 1e-16)
+RESIDUE = 64
+#: at most this many element names quoted in a cause's detail
+SHOWN = 3
+#: compiled fields no step of the engine reads, held against nothing (why, for the reader of the code):
+#: ``actuator_acc0`` converts a position servo's ``dampratio`` at compile time (a changed gain shows in
+#: ``actuator_biasprm``); bounding volumes only choose which pairs are tested, and a plane's is a fixed 5e9;
+#: ``stat.meaninertia`` (a mean of masses and moments of inertia) only normalises the solver's tolerance,
+#: which is named as a solver cause of its own
+NOT_STEPPED = ("actuator_acc0", "bvh_aabb", "stat.meaninertia")
+
+
+@immutable
+@dataclass(frozen=True, slots=True)
+class Audit:
+    """The answer of :func:`audit`.
+
+    Attributes
+    ----------
+    causes : tuple of Cause
+        Every number the engine holds that is not the original times its
+        factor, every float32 number rounded, every solver setting of no
+        pure dimension and every setting the engine does not apply.
+    compared : int
+        How many stored numbers were held against their expected value.
+    s : float
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    >>> a = engines.audit(model, sc, s=4)
+    >>> a.compared > 0, [c.kind for c in a.causes]
+    (True, ['solver'])
+    """
+
+    causes: tuple[Cause, ...]
+    compared: int
+    s: float
+
+    def __str__(self) -> str:
+        head = f"audit at s = {self.s:g}: {self.compared} stored numbers compared, "
+        if not self.causes:
+            return head + "every one the original times its factor"
+        return head + f"{len(self.causes)} cause(s):\n" + "\n".join(f"  {c}" for c in self.causes)
+
+
+def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) -> Audit:
+    """Hold every number the engine keeps for a scaled model against the original times its factor.
+
+    Parameters
+    ----------
+    model : EngineModel
+    scaling : Scaling
+        A scaling of ``model.system()``.
+    s : float or Fraction
+        The scale factor.
+    scaled : EngineModel, optional
+        The scaled model to audit (e.g. a saved and reloaded file);
+        default ``model.scaled(scaling, s)``.
+
+    Returns
+    -------
+    Audit
+
+    Raises
+    ------
+    InvalidRequestError
+        For something that is no EngineModel or no scaling of it.
+
+    Examples
+    --------
+    A tendon whose rest length the file leaves to MuJoCo (``springlength``
+    ``-1``) keeps that sentinel, and MuJoCo computes the length from the
+    scaled pose:
+
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> model = engines.load(engines.example_path("superball.xml"))
+    >>> sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    >>> [c.kind for c in engines.audit(model, sc, s=10).causes]
+    []
+    """
+    if not isinstance(model, EngineModel):
+        raise InvalidRequestError(f"audit needs an EngineModel (engines.load(...)), got {type(model).__name__}")
+    s = read_scale_factor(s)
+    check_scaling(scaling)
+    if scaled is None:
+        scaled = model.scaled(scaling, s)
+    elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:
+        raise InvalidRequestError("scaled must be an EngineModel of the same engine as model")
+    backend = model.backend
+    original = backend.stored_numbers()
+    probe = model.scaled(scaling, PROBE).backend.stored_numbers()
+    copy = scaled.backend.stored_numbers()
+    causes, compared = [], 0
+    probed = {}  # field -> (exponents, clean): pass one, for the largest number of each exponent
+    scale: dict[float, float] = {}
+    for field, before in original.items():
+        if field in NOT_STEPPED:
+            continue
+        if field not in copy or copy[field].shape != before.shape or probe[field].shape != before.shape:
+            causes.append(Cause("unscaled", field, "the scaled model holds another number of values here"))
+            continue
+        k, clean = probed[field] = _probe_exponents(before, probe[field])
+        if not clean.all():
+            causes.append(_not_a_power(backend, field, before, probe[field], ~clean))
+        magnitude = np.abs(before.astype(float))
+        for e in np.unique(k[clean]):
+            scale[e] = max(scale.get(e, 0.0), float(np.max(magnitude[clean & (k == e)], initial=0.0)))
+    for field, (k, clean) in probed.items():
+        before = original[field]
+        factor = _factors(s, k, clean)
+        expected = before.astype(float) * factor
+        got = copy[field].astype(float)
+        ok = clean & np.isfinite(expected)
+        compared += int(ok.sum())
+        if before.dtype == np.float32:
+            off = ok & (got != expected)
+            if off.any():
+                causes.append(_rounded(backend, field, before, got, expected, off))
+            continue
+        # rounding: relative to the number, or to the largest number of its dimension (a residue of 1e-16
+        # left by a difference of lengths of order one is rounding too)
+        allowed = ROUNDING * np.abs(expected) + RESIDUE * np.spacing(np.vectorize(scale.get)(k, 0.0)) * factor
+        off = ok & (np.abs(got - expected) > allowed)
+        if off.any():
+            causes.append(_mismatch(backend, field, got, expected, off))
+    for name, value in getattr(backend, "solver_settings", dict)().items():
+        causes.append(Cause("solver", f"option {name}", f"{value:g}: a stopping rule of no pure dimension (MuJoCo "
+                            "compares it with a cost normalised by the mean inertia), so the scaled run may stop "
+                            "after another number of iterations; with_values(tolerance=0) runs every iteration"))
+    causes.extend(getattr(scaled.backend, "ignored_settings", tuple)())
+    return Audit(sorted_causes(causes), compared, float(s))
+
+
+def _probe_exponents(before: np.ndarray, probe: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per entry: the power ``k`` of 4 that the probe multiplied it by, and whether it was one at all.
+
+    A zero must stay zero (exponent 0); a nonzero entry must have a positive ratio ``4**k`` with
+    ``2k`` an integer, up to the rounding of a number derived from others.
+    """
+    b, p = before.astype(float), probe.astype(float)
+    k = np.zeros(b.shape)
+    clean = np.ones(b.shape, dtype=bool)
+    finite = np.isfinite(b)
+    floor = RESIDUE * np.spacing(np.max(np.abs(b[finite]), initial=0.0))
+    zero = np.abs(b) <= floor  # a zero, or the rounding residue of one: held to nothing
+    clean[zero] = np.abs(p[zero]) <= PROBE**2 * floor
+    live = ~zero & finite
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(live, p / np.where(live, b, 1.0), 1.0)
+        half = np.where(ratio > 0, np.round(2 * np.log(np.abs(ratio)) / math.log(PROBE)) / 2, 0.0)
+    clean[live] = (ratio[live] > 0) & (np.abs(ratio[live] - float(PROBE) ** half[live])
+                                       <= ROUNDING * float(PROBE) ** half[live])
+    k[live] = half[live]
+    return k, clean
+
+
+def _factors(s, k: np.ndarray, clean: np.ndarray) -> np.ndarray:
+    """``s**k`` per entry, each distinct exponent's factor computed once, exactly rounded."""
+    out = np.ones(k.shape)
+    for e in np.unique(k[clean]):
+        out[clean & (k == e)] = float_power(s, Fraction(float(e)), "an audited factor")
+    return out
+
+
+def _where(backend, field: str, mask: np.ndarray) -> str:
+    """Up to :data:`SHOWN` entries of a field, by element name where the engine names them."""
+    rows = np.unique(np.nonzero(mask.reshape(mask.shape[0], -1))[0]) if mask.ndim else np.array([0])
+    name_of = getattr(backend, "element_name", None)
+    names = [name_of(field, int(r)) if name_of else f"{field}[{int(r)}]" for r in rows[:SHOWN]]
+    more = f" and {len(rows) - SHOWN} more" if len(rows) > SHOWN else ""
+    return ", ".join(names) + more
+
+
+def _not_a_power(backend, field, before, probe, mask) -> Cause:
+    i = tuple(np.argwhere(mask)[0]) if mask.ndim else ()
+    return Cause("unscaled", field, f"{_where(backend, field, mask)}: scaled by {PROBE} as a change of units, "
+                 f"{float(before[i]):.17g} became {float(probe[i]):.17g}, no power of {PROBE}: the engine reads a "
+                 "sentinel or derives this number in a way no change of units carries")
+
+
+def _rounded(backend, field, before, got, expected, mask) -> Cause:
+    rel = np.abs(got[mask] - expected[mask]) / np.abs(expected[mask])
+    return Cause("precision", field, f"{int(mask.sum())} of {before.size} values ({_where(backend, field, mask)}) "
+                 f"rounded to float32, by up to {float(rel.max()):.2g} relative: the engine keeps them in float32, "
+                 "where only a power-of-4 s scales them exactly")
+
+
+def _mismatch(backend, field, got, expected, mask) -> Cause:
+    i = tuple(np.argwhere(mask)[0])
+    return Cause("unscaled", field, f"{_where(backend, field, mask)}: the engine holds {float(got[i]):.17g}, the "
+                 f"original times its factor is {float(expected[i]):.17g}")

@@ -1,0 +1,132 @@
+"""Why a scaled run is not exact or not similar: causes found by counter-runs, not guessed.
+
+:func:`pitheorem.engines.verify` calls :func:`find_causes` when a run at a
+power of four is not bit for bit the original, or a run is not similar.
+Each cause is established, not presumed:
+
+* the static ones by :func:`pitheorem.engines.audit` (numbers the engine
+  holds that are not the original times their factor, float32 rounding,
+  settings the engine ignores);
+* ``solver``: the original and the scaled copy run again with the
+  solver's tolerance at 0 (every iteration done); it is a cause when
+  the pair then agrees (bit for bit at a power of four, or within the
+  yardstick) where it did not;
+* ``contact``: the geom pairs in contact after each step, in the original
+  and in the scaled run; the first step where they differ is named, and a
+  counter-run with contacts switched off says whether the difference goes
+  with them.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .audit import audit
+from .causes import Cause, sorted_causes
+
+__all__ = ["find_causes"]
+
+
+def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factors, report,
+                exact_expected: bool) -> tuple[Cause, ...]:
+    """The causes of a verdict that is not exact (at a power of four) or not similar.
+
+    Parameters
+    ----------
+    model, scaled : EngineModel
+        The original and its scaled copy.
+    scaling, s
+        As given to :func:`pitheorem.engines.verify`.
+    n_steps : int
+    u_original, u_scaled : ndarray or None
+        The open-loop inputs of each run, one row per step.
+    factors : ndarray
+        Each recorded coordinate's factor.
+    report : SimilarityReport
+        The verdict to explain.
+    exact_expected : bool
+        Whether every factor is a power of two (the runs should be bit for bit equal).
+
+    Returns
+    -------
+    tuple of Cause
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> model = engines.load(engines.example_path("pendulum.xml")).with_values(tolerance=1e-3)
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    >>> rep = engines.verify(model, sc, s=4, duration=1.0, controls=lambda t: [0.1])
+    >>> rep.exact, [c.kind for c in rep.causes]
+    (True, [])
+    """
+    original, copy = model.backend, scaled.backend
+    causes = [c for c in audit(model, scaling, s, scaled=scaled).causes if c.kind != "solver"]
+    limits = _limits(report)
+
+    def counter(variant_options) -> tuple[bool, float]:
+        """Both runs again with other options: (agree, largest deviation)."""
+        a, b = original.variant(**variant_options), copy.variant(**variant_options)
+        run, other = a.run_many(n_steps, [(a, u_original, False, None), (b, u_scaled, False, None)])
+        back = other / factors
+        if exact_expected:
+            agree = bool(np.array_equal(run, back))
+        else:
+            agree = bool(np.all(np.abs(back - run).max(axis=0) <= limits))
+        return agree, _largest(back - run)
+
+    if not hasattr(original, "variant"):
+        return sorted_causes(causes)
+    solver = original.solver_settings()
+    if solver:
+        agree, worst = counter({"tolerance": 0.0})
+        if agree:
+            names = ", ".join(f"option {k} = {v:g}" for k, v in solver.items())
+            causes.append(Cause("solver", names, "a stopping rule of no pure dimension: the scaled run stops after "
+                                f"other iterations; with it at 0 in both runs they agree (largest deviation {worst:.3g}"
+                                f" instead of {report.max_deviation:.3g}); load with with_values(tolerance=0)"))
+    if original.solver_name() != "Newton":
+        agree, worst = counter({"solver": "Newton"})
+        if agree:
+            causes.append(Cause("solver", f"option solver = {original.solver_name()}", "this solver's iterations are "
+                                f"not scale-free; with Newton's in both runs they agree (largest "
+                                f"deviation {worst:.3g} instead of {report.max_deviation:.3g}): load the file with "
+                                '<option solver="Newton"/> to scale it'))
+    contact = _contact_difference(original, copy, n_steps, u_original, u_scaled, report.original.t)
+    agree, worst = counter({"contacts": False})
+    if contact is not None or agree:
+        pairs, detail = contact if contact is not None else ("every contact", "the same pairs touch at every step")
+        verdict = "agree" if agree else "still differ"
+        causes.append(Cause("contact", pairs, f"{detail}; with contacts off in both runs they {verdict} (largest "
+                            f"deviation {worst:.3g} instead of {report.max_deviation:.3g})"))
+    return sorted_causes(causes)
+
+
+def _limits(report) -> np.ndarray:
+    """Each coordinate's allowed deviation, as the report judged it."""
+    states = report.original.states
+    span = np.ptp(report.original.y, axis=0)
+    return np.array([max(report.baseline_factor * report.sensitivity[n], 1e-9 * float(span[j]))
+                     for j, n in enumerate(states)])
+
+
+def _largest(diff: np.ndarray) -> float:
+    diff = np.abs(diff)
+    return float(diff.max()) if diff.size and np.all(np.isfinite(diff)) else float("inf")
+
+
+def _contact_difference(original, copy, n_steps, u_original, u_scaled, t):
+    """The first step at which other geom pairs touch in the scaled run: (pairs, detail), or None."""
+    before = original.contact_log(n_steps, u_original)
+    after = copy.contact_log(n_steps, u_scaled)
+    for i, (a, b) in enumerate(zip(before, after, strict=True)):
+        if a != b:
+            only_scaled, only_original = sorted(b - a), sorted(a - b)
+            pair = (only_scaled or only_original)[0]
+            where = "the scaled run only" if only_scaled else "the original only"
+            extra = len(only_scaled) + len(only_original) - 1
+            more = f" (and {extra} other pair{'s' if extra > 1 else ''})" if extra else ""
+            return " / ".join(pair), (f"in contact in {where} after step {i + 1} (t = {float(t[i + 1]):.6g}){more}: a "
+                                      "contact that starts or ends at another step")
+    return None
