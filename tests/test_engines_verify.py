@@ -122,10 +122,10 @@ def test_controller_is_built_once_per_run_from_that_runs_model():
         seen.append(run_model.parameter("g").value[0])
         return lambda m, d: np.zeros(m.nu)
 
-    rep = engines.verify(model, sc, 10, duration=0.05, controller=controller)
+    rep = engines.verify(model, sc, 10, duration=0.05, controller=controller, ensemble=2)
     assert rep.similar
     g = model.parameter("g").value[0]
-    assert seen == [g, g, pytest.approx(10 * g, rel=1e-15)]  # the original, its nudged twin, the scaled copy
+    assert seen == [g, pytest.approx(10 * g, rel=1e-15), g, g]  # the original, the scaled copy, two twins
 
 
 def test_controller_misuse_is_named():

@@ -57,13 +57,13 @@ from .rules import (
 from .verify import smooth_controls, verify
 
 __all__ = [
-    "Audit",
     "BULLET_SCALE_THE_WORLD",
     "CATALOGUE",
     "CAUSE_KINDS",
     "ENGINES",
     "MUJOCO_FRAME_SIMILAR",
     "RULES",
+    "Audit",
     "Cause",
     "EngineModel",
     "EngineModelError",

@@ -88,6 +88,8 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
                                 f" instead of {report.max_deviation:.3g}); load with with_values(tolerance=0)"))
     if original.solver_name() != "Newton":
         agree, worst = counter({"solver": "Newton"})
+        if not agree:  # Newton's own stopping rule may stop it at another iteration too
+            agree, worst = counter({"solver": "Newton", "tolerance": 0.0})
         if agree:
             causes.append(Cause("solver", f"option solver = {original.solver_name()}", "this solver's iterations are "
                                 f"not scale-free; with Newton's in both runs they agree (largest "

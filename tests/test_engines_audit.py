@@ -1,0 +1,108 @@
+"""engines.audit: every number the engine holds against the original times its factor, without simulating."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import pitheorem as pt
+
+mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
+
+from pitheorem import engines  # noqa: E402
+
+DATA = Path(__file__).resolve().parent / "data" / "engines"
+
+
+def searched(path, **values):
+    model = engines.load(path)
+    if values:
+        model = model.with_values(**values)
+    return model, pt.search(model.system(), scale={"g": 1}).scalings[0]
+
+
+def kinds(audit):
+    return sorted({c.kind for c in audit.causes})
+
+
+@pytest.mark.parametrize("s", [4, 10, 0.0625])
+def test_a_faithful_copy_has_no_cause_once_the_solver_runs_exactly(s):
+    model, sc = searched(DATA / "contact.xml")  # tolerance 0 in the file
+    audit = engines.audit(model, sc, s)
+    assert audit.causes == ()
+    assert audit.compared > 100
+
+
+def test_the_default_tolerance_is_named_a_solver_cause_and_tolerance_zero_removes_it():
+    model, sc = searched(engines.example_path("pendulum.xml"))
+    assert kinds(engines.audit(model, sc, 10)) == ["solver"]
+    assert "tolerance" in engines.audit(model, sc, 10).causes[0].element
+    exact_model, sc0 = searched(engines.example_path("pendulum.xml"), tolerance=0)
+    assert engines.audit(exact_model, sc0, 10).causes == ()
+
+
+def test_a_mass_left_unscaled_is_named_with_both_numbers():
+    model, sc = searched(DATA / "contact.xml")
+    name = "geom2_density"  # the box's geom: its body's mass comes from it
+    factor = model.parameter(name).factor(sc, 10)
+    assert factor != 1.0
+    wrong = model.scaled(sc, 10).multiplied(**{name: 1 / factor})  # the box keeps its original density
+    audit = engines.audit(model, sc, 10, scaled=wrong)
+    unscaled = [c for c in audit.causes if c.kind == "unscaled"]
+    assert unscaled and any("body 'box'" in c.detail for c in unscaled if c.element == "body_mass")
+    # what MuJoCo holds: the scaled volume times the original density; what it should: the scaled mass
+    held = wrong.parameter("body_box_mass").value[0]
+    should = model.parameter("body_box_mass").value[0] * model.parameter("body_box_mass").factor(sc, 10)
+    detail = next(c.detail for c in unscaled if c.element == "body_mass")
+    assert f"{held:.17g}" in detail and f"{should:.17g}" in detail
+
+
+def test_mesh_vertices_kept_in_float32_are_a_precision_cause_except_at_powers_of_four():
+    model, sc = searched(DATA / "mesh_drop.xml")
+    at_ten = engines.audit(model, sc, 10)
+    assert "precision" in kinds(at_ten)
+    assert any(c.element == "mesh_vert" and "float32" in c.detail for c in at_ten.causes)
+    # the counter-run: at a power of four every vertex is scaled exactly
+    assert engines.audit(model, sc, 4).causes == ()
+    assert engines.audit(model, sc, 0.25).causes == ()
+
+
+def test_a_tendon_rest_length_left_to_mujoco_stays_a_sentinel():
+    model, sc = searched(DATA / "spring_tendon.xml")
+    p = model.parameter("tendon_spring_springlength")
+    assert p.source == "derived" and p.value[0] > 0  # MuJoCo's length in the initial pose, not -1
+    scaled = model.scaled(sc, 10)
+    assert scaled.backend.spec.tendons[0].springlength[0] == -1  # the file still asks MuJoCo to compute it
+    assert scaled.backend.mjmodel.tendon_lengthspring[0][0] == pytest.approx(10 * p.value[0], rel=1e-14)
+    assert engines.audit(model, sc, 10).causes == ()
+
+
+def test_a_mixed_derived_number_is_named_when_it_is_no_power_of_the_probe(tmp_path):
+    """A number the engine computes that no change of units carries is named, with its two values.
+
+    The probe is independent of the audit: the same scaled spec compiled by MuJoCo at 4 and 1/4.
+    """
+    model, sc = searched(DATA / "spring_tendon.xml")
+    # scale the tendon's rest length by hand into a sentinel-free number that ignores the scaling
+    wrong = model.scaled(sc, 10).multiplied(tendon_spring_stiffness=3.0)
+    audit = engines.audit(model, sc, 10, scaled=wrong)
+    assert [c.element for c in audit.causes if c.kind == "unscaled"] == ["tendon_stiffness"]
+
+
+def test_bad_arguments_are_named():
+    model, sc = searched(engines.example_path("pendulum.xml"))
+    with pytest.raises(pt.InvalidRequestError, match="EngineModel"):
+        engines.audit("pendulum.xml", sc, 2)
+    with pytest.raises(pt.InvalidRequestError, match="same engine"):
+        engines.audit(model, sc, 2, scaled="copy")
+    with pytest.raises(pt.PiTheoremError):
+        engines.audit(model, sc, -1)
+    with pytest.raises(pt.InvalidRequestError, match="scaling"):
+        engines.audit(model, {"g": 1}, 2)
+
+
+def test_the_audit_reads_as_text():
+    model, sc = searched(engines.example_path("pendulum.xml"))
+    text = str(engines.audit(model, sc, 10))
+    assert text.startswith("audit at s = 10:") and "solver: option tolerance" in text

@@ -1,0 +1,138 @@
+"""The verdicts of engines.verify: a proof at powers of four, the twins' yardstick, and causes shown true.
+
+Each kind of cause is shown by its counter-run: remove it (contacts off, another solver, a power-of-four s)
+and the runs agree.  And the verdict is honest both ways: wrong copies are caught on every corpus model.
+"""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pitheorem as pt
+
+mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
+gymnasium = pytest.importorskip("gymnasium", reason="gymnasium's MuJoCo models are the corpus")
+
+from pitheorem import engines  # noqa: E402
+
+DATA = Path(__file__).resolve().parent / "data" / "engines"
+ASSETS = Path(gymnasium.__file__).parent / "envs" / "mujoco" / "assets"
+CORPUS = sorted(p.name for p in ASSETS.glob("*.xml"))
+PGS = ("humanoid.xml", "humanoidstandup.xml")  # gymnasium's humanoids use the PGS solver
+
+
+def searched(path):
+    with warnings.catch_warnings():  # gymnasium's custom numerics (frame_skip, init_qpos) have no dimension
+        warnings.simplefilter("ignore", engines.UnscalableModelWarning)
+        model = engines.load(path)
+    return model, pt.search(model.system(), scale={"g": 1}).scalings[0]
+
+
+def moves_apart(a, b, u, n=200) -> bool:
+    """Whether two models' runs differ beyond 1e-6: MuJoCo's own runs, not verify's."""
+    rows = None if u is None else np.array([u(i * a.backend.timestep()) for i in range(n)])
+    return bool(np.max(np.abs(a.backend.run(n, rows) - b.backend.run(n, rows))) > 1e-6)
+
+
+def limb_left_unscaled(model, right, sc):
+    """``right`` with the density or mass of one geom of a moving body put back to the original's."""
+    m = right.backend.mjmodel
+    for p in model.parameters:
+        if not (p.name.startswith("geom") and p.name.endswith(("_density", "_mass")) and p.value[0] > 0):
+            continue
+        wrong = right.multiplied(**{p.name: 1 / p.factor(sc, 10)})
+        changed = np.nonzero(wrong.backend.mjmodel.body_mass != m.body_mass)[0]
+        if any(m.body_dofnum[b] > 0 for b in changed):
+            return wrong
+    raise AssertionError("no geom of a moving body")
+
+
+def test_the_corpus_is_the_fourteen_gymnasium_models():
+    assert len(CORPUS) == 14
+
+
+@pytest.mark.parametrize("name", CORPUS)
+def test_at_four_exact_or_the_solver_named_and_at_ten_similar_under_a_smooth_input(name):
+    model, sc = searched(ASSETS / name)
+    u = engines.smooth_controls(model)
+    proof = engines.verify(model, sc, 4, duration=1.0, controls=u)
+    assert proof.excited
+    if name in PGS:
+        assert not proof.exact and not proof.similar
+        assert [c.element for c in proof.causes] == ["option solver = PGS"]
+        assert "agree (largest deviation 0 instead of" in proof.causes[0].detail  # the counter-run: Newton
+        return
+    assert proof.exact and proof.first_divergence is None and proof.max_deviation == 0.0 and proof.causes == ()
+    rep = engines.verify(model, sc, 10, duration=1.0, controls=u)
+    assert rep.similar and rep.excited and not rep.exact, rep
+    assert rep.first_divergence is not None
+
+
+@pytest.mark.parametrize("name", [n for n in CORPUS if n not in PGS])
+def test_wrong_copies_are_caught(name):
+    """Gravity put back, or one limb's density left unscaled: not similar, under an input that moves the model."""
+    model, sc = searched(ASSETS / name)
+    u = engines.smooth_controls(model)
+    right = model.scaled(sc, 10)
+    if moves_apart(model, model.multiplied(g=2), u):  # where gravity acts at all (not on the planar reacher)
+        g_back = right.multiplied(g=0.1)
+        rep = engines.verify(model, sc, 10, duration=1.0, controls=u, scaled=g_back, diagnose=False)
+        assert rep.excited and not rep.similar
+    rep = engines.verify(model, sc, 10, duration=1.0, controls=u, scaled=limb_left_unscaled(model, right, sc),
+                         diagnose=False)
+    assert rep.excited and not rep.similar
+
+
+def test_a_run_that_moves_nothing_proves_nothing():
+    model, sc = searched(DATA / "hanging.xml")
+    wrong = model.scaled(sc, 10).multiplied(g=0.1)
+    still = engines.verify(model, sc, 10, duration=0.5, scaled=wrong)
+    assert still.similar and still.excited is False  # similar, but only because nothing moved
+    moved = engines.verify(model, sc, 10, duration=0.5, scaled=wrong, controls=engines.smooth_controls(model))
+    assert moved.excited and not moved.similar
+
+
+def test_a_contact_that_starts_at_another_step_is_named_and_goes_with_contacts():
+    """The foot starts on the floor: scaled by 10, rounding puts it 7.8e-16 into it, a contact the original lacks."""
+    model, sc = searched(DATA / "walker_on_floor.xml")
+    start = model.backend.contact_log(1)[0], model.scaled(sc, 10).backend.contact_log(1)[0]
+    assert start[0] != start[1]  # independent of verify: MuJoCo's own contact list after one step
+    rep = engines.verify(model, sc, 10, duration=1.0, controls=engines.smooth_controls(model), baseline_factor=1e-9)
+    assert not rep.similar
+    contact = [c for c in rep.causes if c.kind == "contact"]
+    assert len(contact) == 1
+    assert set(contact[0].element.split(" / ")) == {"geom 'floor'", "geom 'foot'"}
+    assert "scaled run only after step 1 " in contact[0].detail and "they agree" in contact[0].detail
+    assert engines.verify(model, sc, 4, duration=1.0, controls=engines.smooth_controls(model)).exact
+
+
+def test_the_twins_move_every_stored_number_by_one_ulp_and_zeros_not_at_all():
+    model, _ = searched(DATA / "mesh_drop.xml")
+    before = model.backend.stored_numbers()
+    after = model.backend.twin(7).stored_numbers()
+    moved = 0
+    for field, a in before.items():
+        b = after[field]
+        if field == "opt.timestep":
+            assert np.array_equal(a, b)
+            continue
+        assert np.array_equal(a == 0, b == 0), field
+        live = a != 0
+        gap = np.abs(b[live].astype(np.float64) - a[live].astype(np.float64))
+        assert np.all(gap == np.abs(np.spacing(a[live]))) or np.all(gap <= np.abs(np.spacing(a[live]))), field
+        moved += int(live.sum())
+    assert moved > 100
+    assert model.backend.twin(7).stored_numbers()["mesh_vert"].dtype == np.float32
+
+
+def test_an_ensemble_of_one_is_the_least_and_the_seed_is_checked():
+    model, sc = searched(engines.example_path("pendulum.xml"))
+    with pytest.raises(pt.InvalidRequestError, match="ensemble"):
+        engines.verify(model, sc, 2, ensemble=0)
+    with pytest.raises(pt.InvalidRequestError, match="seed"):
+        engines.verify(model, sc, 2, seed=-1)
+    assert engines.verify(model, sc, 2, duration=0.1, ensemble=1).ensemble == 1
