@@ -50,12 +50,14 @@ def test_a_mass_left_unscaled_is_named_with_both_numbers():
     wrong = model.scaled(sc, 10).multiplied(**{name: 1 / factor})  # the box keeps its original density
     audit = engines.audit(model, sc, 10, scaled=wrong)
     unscaled = [c for c in audit.causes if c.kind == "unscaled"]
-    assert unscaled and any("body 'box'" in c.detail for c in unscaled if c.element == "body_mass")
+    assert unscaled
+    assert any("body 'box'" in c.detail for c in unscaled if c.element == "body_mass")
     # what MuJoCo holds: the scaled volume times the original density; what it should: the scaled mass
     held = wrong.parameter("body_box_mass").value[0]
     should = model.parameter("body_box_mass").value[0] * model.parameter("body_box_mass").factor(sc, 10)
     detail = next(c.detail for c in unscaled if c.element == "body_mass")
-    assert f"{held:.17g}" in detail and f"{should:.17g}" in detail
+    assert f"{held:.17g}" in detail
+    assert f"{should:.17g}" in detail
 
 
 def test_mesh_vertices_kept_in_float32_are_a_precision_cause_except_at_powers_of_four():
@@ -71,7 +73,8 @@ def test_mesh_vertices_kept_in_float32_are_a_precision_cause_except_at_powers_of
 def test_a_tendon_rest_length_left_to_mujoco_stays_a_sentinel():
     model, sc = searched(DATA / "spring_tendon.xml")
     p = model.parameter("tendon_spring_springlength")
-    assert p.source == "derived" and p.value[0] > 0  # MuJoCo's length in the initial pose, not -1
+    assert p.source == "derived"
+    assert p.value[0] > 0
     scaled = model.scaled(sc, 10)
     assert scaled.backend.spec.tendons[0].springlength[0] == -1  # the file still asks MuJoCo to compute it
     assert scaled.backend.mjmodel.tendon_lengthspring[0][0] == pytest.approx(10 * p.value[0], rel=1e-14)
@@ -105,4 +108,5 @@ def test_bad_arguments_are_named():
 def test_the_audit_reads_as_text():
     model, sc = searched(engines.example_path("pendulum.xml"))
     text = str(engines.audit(model, sc, 10))
-    assert text.startswith("audit at s = 10:") and "solver: option tolerance" in text
+    assert text.startswith("audit at s = 10:")
+    assert "solver: option tolerance" in text

@@ -62,11 +62,15 @@ def test_at_four_exact_or_the_solver_named_and_at_ten_similar_under_a_smooth_inp
     proof = engines.verify(model, sc, 4, duration=1.0, controls=u)
     assert proof.excited
     if name in PGS:
-        assert not proof.exact and not proof.similar
+        assert not proof.exact
+        assert not proof.similar
         assert [c.element for c in proof.causes] == ["option solver = PGS"]
         assert "agree (largest deviation 0 instead of" in proof.causes[0].detail  # the counter-run: Newton
         return
-    assert proof.exact and proof.first_divergence is None and proof.max_deviation == 0.0 and proof.causes == ()
+    assert proof.exact
+    assert proof.first_divergence is None
+    assert proof.max_deviation == 0.0
+    assert proof.causes == ()
     rep = engines.verify(model, sc, 10, duration=1.0, controls=u)
     assert rep.similar and rep.excited and not rep.exact, rep
     assert rep.first_divergence is not None
@@ -81,19 +85,23 @@ def test_wrong_copies_are_caught(name):
     if moves_apart(model, model.multiplied(g=2), u):  # where gravity acts at all (not on the planar reacher)
         g_back = right.multiplied(g=0.1)
         rep = engines.verify(model, sc, 10, duration=1.0, controls=u, scaled=g_back, diagnose=False)
-        assert rep.excited and not rep.similar
+        assert rep.excited
+        assert not rep.similar
     rep = engines.verify(model, sc, 10, duration=1.0, controls=u, scaled=limb_left_unscaled(model, right, sc),
                          diagnose=False)
-    assert rep.excited and not rep.similar
+    assert rep.excited
+    assert not rep.similar
 
 
 def test_a_run_that_moves_nothing_proves_nothing():
     model, sc = searched(DATA / "hanging.xml")
     wrong = model.scaled(sc, 10).multiplied(g=0.1)
     still = engines.verify(model, sc, 10, duration=0.5, scaled=wrong)
-    assert still.similar and still.excited is False  # similar, but only because nothing moved
+    assert still.similar
+    assert still.excited is False
     moved = engines.verify(model, sc, 10, duration=0.5, scaled=wrong, controls=engines.smooth_controls(model))
-    assert moved.excited and not moved.similar
+    assert moved.excited
+    assert not moved.similar
 
 
 def test_a_contact_that_starts_at_another_step_is_named_and_goes_with_contacts():
@@ -106,7 +114,8 @@ def test_a_contact_that_starts_at_another_step_is_named_and_goes_with_contacts()
     contact = [c for c in rep.causes if c.kind == "contact"]
     assert len(contact) == 1
     assert set(contact[0].element.split(" / ")) == {"geom 'floor'", "geom 'foot'"}
-    assert "scaled run only after step 1 " in contact[0].detail and "they agree" in contact[0].detail
+    assert "scaled run only after step 1 " in contact[0].detail
+    assert "they agree" in contact[0].detail
     assert engines.verify(model, sc, 4, duration=1.0, controls=engines.smooth_controls(model)).exact
 
 
