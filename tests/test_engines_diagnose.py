@@ -72,7 +72,9 @@ def test_at_four_exact_or_the_solver_named_and_at_ten_similar_under_a_smooth_inp
     assert proof.max_deviation == 0.0
     assert proof.causes == ()
     rep = engines.verify(model, sc, 10, duration=1.0, controls=u)
-    assert rep.similar and rep.excited and not rep.exact, rep
+    assert rep.similar, rep
+    assert rep.excited
+    assert not rep.exact
     assert rep.first_divergence is not None
 
 
