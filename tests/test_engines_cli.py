@@ -190,3 +190,29 @@ def test_bad_model_files_exit_2_in_every_format(tmp_path, capsys, name, text, el
     assert len(lines) == 1, lines
     assert name in lines[0]
     assert element in lines[0]
+
+
+def test_verify_exits_0_when_similar_1_when_not_and_2_on_bad_input(capsys, tmp_path):
+    from pitheorem.cli import main
+
+    pendulum = str(engines.example_path("pendulum.xml"))
+    assert main(["verify", pendulum, "--scale", "g=1", "--s", "4", "--duration", "0.5"]) == 0
+    assert capsys.readouterr().out.startswith("exact: the scaled copy, mapped back, equals the original bit for bit")
+    assert main(["verify", pendulum, "--scale", "g=1", "--s", "10", "--format", "json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["similar"] is True
+    assert data["exact"] is False
+    assert data["causes"] == []
+    # the contact test model with MuJoCo's default stopping rule and the PGS solver: not exact at s = 4
+    pgs = tmp_path / "pgs.xml"
+    pgs.write_text((Path(__file__).parent / "data" / "engines" / "contact.xml").read_text()
+                   .replace('<option timestep="0.002" tolerance="0"/>', '<option timestep="0.002" solver="PGS"/>'))
+    code = main(["verify", str(pgs), "--scale", "g=1", "--s", "4"])
+    out = capsys.readouterr().out
+    assert code == 1, out
+    assert out.startswith("NOT similar")
+    assert "causes:\n  solver: option tolerance" in out
+    assert main(["verify", pendulum, "--scale", "g=1", "--s", "-1"]) == 2
+    assert "--s" in capsys.readouterr().err
+    assert main(["verify", pendulum, "--scale", "g=1", "--s", "4", "--format", "latex"]) == 2
+    assert main(["verify", "example:hinged_rod", "--scale", "g=1", "--s", "4"]) == 2
