@@ -20,7 +20,7 @@ Examples
 >>> from pitheorem.engines import broken_constants
 >>> rod = pt.models.hinged_rod()
 >>> fig5 = pt.search(rod.system, scale={"g": 1, "l": -1}, fixed=("m", "k_theta")).scalings[0]
->>> [c.name for c in broken_constants(fig5, "bullet", names=["bullet_time_step", "bullet_erp"])]
+>>> [c.name for c in broken_constants(fig5, "pybullet", names=["bullet_time_step", "bullet_erp"])]
 ['bullet_time_step']
 """
 
