@@ -48,7 +48,7 @@ def test_catalogue_entries_are_complete():
         ("bullet_collision_margin", "L", 0.001),
         ("bullet_contact_breaking_threshold", "1", 0.02),
         ("bullet_contact_slop", "L", 1e-5),
-        ("bullet_solver_residual_threshold", "L^2 T^-2", 1e-7),
+        ("bullet_solver_residual_threshold", "1", 1e-7),
         ("bullet_max_joint_velocity", "T^-1", 100.0),
         ("bullet_max_prismatic_joint_velocity", "L T^-1", 100.0),
         ("bullet_contact_erp", "1", 0.08),
