@@ -11,6 +11,9 @@ engines with ``pip install "pitheorem[engines]"`` (``pybullet`` and
   each engine, run, and compared after a similarity scaling;
 * ``pitheorem.engines.rules``: the engines' published rules for scaling
   the world, checked as changes of units;
+* ``pitheorem.engines.thresholds``: the numbers at which an engine stops
+  taking a model's numbers as they are (floors, ceilings, refusals), and
+  :func:`check`, the thresholds a model sits beyond or near;
 * ``pitheorem.engines.packages``: the Python package each engine needs,
   imported when a simulation asks for it.
 
@@ -53,6 +56,7 @@ from .rules import (
     RuleVerdict,
     check_rule,
 )
+from .thresholds import check
 from .verify import verify
 
 __all__ = [
@@ -74,6 +78,7 @@ __all__ = [
     "UnscalableModelWarning",
     "UnscalableParameterError",
     "broken_constants",
+    "check",
     "check_rule",
     "engine_search",
     "example_path",

@@ -14,7 +14,9 @@ The catalogue itself is data, ``constants.toml`` beside this module: one
 entry per constant with its dimension, default, where a user sets it and
 the source its value was read from (and, where stated, measured with
 pybullet 3.2.7 and mujoco 4.0.0).  A new constant, or a new engine's
-table, goes there.  Nothing here imports an engine.
+table, goes there; so do the engines' thresholds (floors, ceilings,
+refusals), which :mod:`pitheorem.engines.thresholds` reads.  Nothing here
+imports an engine.
 """
 
 from __future__ import annotations
@@ -93,6 +95,7 @@ def _catalogue(path: Path) -> tuple[HiddenConstant, ...]:
     """The entries of the catalogue file, engine by engine, in the file's order."""
     doc = tomllib.loads(path.read_text(encoding="utf-8"))
     sources = doc.pop("sources")
+    doc.pop("thresholds")  # read by pitheorem.engines.thresholds
     return tuple(HiddenConstant(engine, **{**entry, "source": entry["source"].format_map(sources)})
                  for engine, entries in doc.items() for entry in entries)
 
