@@ -251,3 +251,18 @@ def test_an_engine_search_holds_the_systems_time_variables_by_default():
     assert free.fixed == ()
     assert all(sc.exponents["tau"] == 0 for sc in held.scalings)
     assert any(sc.exponents["tau"] != 0 for sc in free.scalings)
+
+
+def test_every_model_names_its_engine_as_the_catalogue_does(tmp_path):
+    pytest.importorskip("pybullet")
+    pytest.importorskip("mujoco")
+    from pitheorem import engines
+
+    urdf = tmp_path / "box.urdf"
+    urdf.write_text('<robot name="box"><link name="base"><inertial><mass value="1"/>'
+                    '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>')
+    for model in (engines.load(urdf), engines.load(engines.example_path("pendulum.xml"))):
+        assert model.engine in ENGINES
+        constants = hidden_constants(model.engine)
+        assert constants
+        assert {c.engine for c in constants} == {model.engine}

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import textwrap
 from pathlib import Path
 
@@ -58,8 +59,8 @@ def test_every_threshold_is_complete_and_of_a_catalogued_engine():
         assert t.effect
         assert "{" not in t.source
         assert "measured with" in t.source  # every threshold is shown against the installed engine
-        # only a floor or a ceiling is compared with the model's numbers; a stopping rule or an ignored
-        # setting is crossed by nothing the model's table holds
+        # only a floor or a ceiling is compared with the model's numbers; an internal threshold or an
+        # ignored setting is crossed by nothing the model's table holds
         if t.applies:
             assert t.bound in ("below", "above")
 
@@ -227,7 +228,7 @@ def solver_iterations(path) -> tuple[list[int], float]:
 
 def test_mujoco_solver_tolerance_is_held_against_a_normalisation_of_no_pure_dimension(tmp_path):
     (t,) = thresholds(names=["mujoco_solver_tolerance"])
-    assert (t.bound, t.dimension, t.applies) == ("stop", None, ())
+    assert (t.bound, t.dimension, t.applies) == ("internal", None, ())
     model = hopper()
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]  # lengths and gravity by s, masses by 1/s^2
     original, inertia = solver_iterations(model.save(tmp_path / "hopper.xml"))
@@ -426,6 +427,11 @@ def test_check_flags_a_shrunk_hopper_and_not_the_original():
     assert {c.element for c in causes} == {f"geom_{g}_friction_torsional_rolling" for g in (
         "floor", "torso_geom", "thigh_geom", "leg_geom", "foot_geom")}
     assert all(c.kind == "threshold" and "below mujoco_minmu" in c.detail for c in causes)
+    # each cause names the change of units that clears it: lengths by the largest factor named clear them all
+    needs = [float(re.search(r"dimension L by (\S+) clears it", c.detail).group(1)) for c in causes]
+    lengths = pt.Scaling.from_unit_change(shrunk.system(), {"L": 1})
+    assert engines.check(shrunk.scaled(lengths, max(needs))) == ()
+    assert engines.check(shrunk.scaled(lengths, max(needs) / 4)) != ()
 
 
 def test_check_flags_a_urdf_box_below_the_minimum_size(tmp_path):

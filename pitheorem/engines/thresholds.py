@@ -41,9 +41,9 @@ from .packages import check_engine
 
 __all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "thresholds"]
 
-#: how a threshold acts: on numbers below it, above it, as a solver's stopping rule (nothing in a model
-#: crosses it), or as a setting the engine does not apply
-BOUNDS = ("below", "above", "stop", "unapplied")
+#: how a threshold acts: on numbers below it, above it, on numbers the engine computes as it runs (a solver's
+#: residual, a contact's separation: nothing in a model's table), or as a setting the engine does not apply
+BOUNDS = ("below", "above", "internal", "unapplied")
 
 _M, _ML2, _L, _T = (Dimension.parse(d) for d in ("M", "M L^2", "L", "T"))
 
@@ -77,9 +77,10 @@ class Threshold:
     dimension : Dimension or None
         None when the numbers it is compared with have no one dimension
         (MuJoCo holds ``mjMINVAL`` against masses and inertias alike).
-    bound : {"below", "above", "stop", "unapplied"}
-        Numbers below it, or above it, are changed or refused; ``"stop"``:
-        a solver's stopping rule; ``"unapplied"``: a setting the engine
+    bound : {"below", "above", "internal", "unapplied"}
+        Numbers below it, or above it, are changed or refused;
+        ``"internal"``: held against numbers the engine computes as it runs
+        (a solver's residual); ``"unapplied"``: a setting the engine
         ignores.
     applies : tuple of str
         The kinds of parameter it is compared with (keys of :data:`KINDS`).
@@ -290,16 +291,21 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
             beyond = worst < limit if t.bound == "below" else worst > limit
             close = worst < limit * near if t.bound == "below" else worst > limit / near
             if beyond or close:
-                causes.append(Cause("threshold", p.name, _detail(p, t, worst, limit, None if beyond else near)))
+                causes.append(Cause("threshold", p.name, _detail(p, t, worst, limit, near, beyond)))
     return sorted_causes(causes)
 
 
-def _detail(p, t: Threshold, worst: float, limit: float, near: float | None) -> str:
+def _detail(p, t: Threshold, worst: float, limit: float, near: float, beyond: bool) -> str:
     """What a cause says: the number, the threshold, what the engine does, and the way out."""
-    where = f"is {t.bound}" if near is None else f"is within a factor {near:g} of"
+    where = f"is {t.bound}" if beyond else f"is within a factor {near:g} of"
     of = f" = {t.value!r} {t.relative_to}" if t.relative_to else ""
-    return (f"{p.path} = {worst!r} {where} {t.name} ({limit!r}{of}): {t.effect}; units in which it is "
-            f"further from {limit!r} clear it")
+    # the factor that puts the number a factor `near` clear of the threshold
+    need = limit * near / worst if t.bound == "below" else limit / (near * worst)
+    if t.relative_to:  # a multiple of another number of the same dimension: units move both alike
+        remedy = f"no change of units clears it; change it or {t.relative_to} by a factor {need:.3g}"
+    else:
+        remedy = f"a change of units that multiplies numbers of dimension {p.dimension_text} by {need:.3g} clears it"
+    return f"{p.path} = {worst!r} {where} {t.name} ({limit!r}{of}): {t.effect}; {remedy}"
 
 
 def check(model) -> tuple[Cause, ...]:
