@@ -457,12 +457,17 @@ def test_bad_requests_name_their_culprit():
     table = hopper().parameters
     for call, culprit in ((lambda: crossed("ode", table), "ode"),
                           (lambda: crossed("mujoco", table, {"no_such": 2.0}), "no_such"),
-                          (lambda: crossed("mujoco", table, {"timestep": -1.0}), "timestep"),
-                          (lambda: crossed("mujoco", table, {"timestep": True}), "timestep"),
-                          (lambda: crossed("mujoco", table, near=0.5), 0.5)):
+                          (lambda: crossed("mujoco", table, near=0.5), 0.5),
+                          (lambda: crossed("mujoco", [*table, "body_mass"]), "body_mass")):
         with pytest.raises(pt.InvalidRequestError) as caught:
             call()
         assert caught.value.culprit == culprit
+    # numbers that are no positive factor: the message names which
+    for call, named in ((lambda: crossed("mujoco", table, {"timestep": -1.0}), "the factor of 'timestep'"),
+                        (lambda: crossed("mujoco", table, {"timestep": True}), "the factor of 'timestep'"),
+                        (lambda: crossed("mujoco", table, near=float("nan")), "near")):
+        with pytest.raises(pt.NumberError, match=named):
+            call()
     with pytest.raises(pt.InvalidRequestError, match="factors must map"):
         crossed("mujoco", table, [2.0])
     with pytest.raises(pt.InvalidRequestError, match="check needs an EngineModel"):

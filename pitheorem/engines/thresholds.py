@@ -35,8 +35,9 @@ from pathlib import Path
 from ..dimensions import Dimension
 from ..errors import InvalidRequestError
 from ..immutable import immutable
+from ..simulation import positive_float
 from .causes import Cause, sorted_causes
-from .model import EngineModel
+from .model import EngineModel, Parameter
 from .packages import check_engine
 
 __all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "thresholds"]
@@ -199,24 +200,30 @@ def thresholds(engine: str | None = None, *, names: Iterable[str] | None = None)
 
 
 def _read_near(near) -> float:
-    if isinstance(near, bool) or not isinstance(near, int | float) or not math.isfinite(near) or near < 1:
-        raise InvalidRequestError(f"near must be a number at least 1 (a factor), got {near!r}", culprit=near)
-    return float(near)
+    near = positive_float(near, "near")
+    if near < 1:
+        raise InvalidRequestError(f"near must be a factor of at least 1, got {near!r}", culprit=near)
+    return near
 
 
-def _factors(factors, names) -> dict[str, float]:
+def _read_table(parameters) -> tuple[Parameter, ...]:
+    table = tuple(parameters)
+    for p in table:
+        if not isinstance(p, Parameter):
+            raise InvalidRequestError(f"crossed needs a table of Parameter (EngineModel.parameters), got "
+                                      f"{type(p).__name__}", culprit=p)
+    return table
+
+
+def _read_factors(factors, names) -> dict[str, float]:
     if factors is None:
         return {}
     if not isinstance(factors, Mapping):
         raise InvalidRequestError(f"factors must map parameter names to numbers, got {type(factors).__name__}")
-    out = {}
-    for name, f in factors.items():
+    for name in factors:
         if name not in names:
             raise InvalidRequestError(f"factors names {name!r}, which is no parameter of the table", culprit=name)
-        if isinstance(f, bool) or not isinstance(f, int | float) or not math.isfinite(f) or f <= 0:
-            raise InvalidRequestError(f"the factor of {name!r} must be a positive number, got {f!r}", culprit=name)
-        out[name] = float(f)
-    return out
+    return {name: positive_float(f, f"the factor of {name!r}") for name, f in factors.items()}
 
 
 def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None, *,
@@ -249,13 +256,14 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
     Returns
     -------
     tuple of Cause
-        In a deterministic order (by parameter, then threshold).
+        In a deterministic order (by parameter name).
 
     Raises
     ------
     InvalidRequestError
-        For an unknown engine, a factor that is no positive number or
-        names no parameter, or a `near` below 1.
+        For an unknown engine, a table that holds no Parameter, a factor
+        that is no positive number or names no parameter, or a `near`
+        below 1.
 
     Examples
     --------
@@ -270,9 +278,9 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
     ()
     """
     engine = check_engine(engine)
-    table = tuple(parameters)
+    table = _read_table(parameters)
     near = _read_near(near)
-    factors = _factors(factors, {p.name for p in table})
+    factors = _read_factors(factors, {p.name for p in table})
     scalars = {p.name: p.value[0] * factors.get(p.name, 1.0) for p in table if len(p.value) == 1}
     causes = []
     for p in table:
@@ -311,7 +319,7 @@ def _detail(p, t: Threshold, worst: float, limit: float, near: float, beyond: bo
 def check(model) -> tuple[Cause, ...]:
     """The engine thresholds a model sits beyond or near: a tuple of Cause.
 
-    :func:`crossed` on the model's own parameters, against the thresholds
+    ``pitheorem.engines.thresholds.crossed`` on the model's own parameters, against the thresholds
     of the model's engine.
 
     Parameters
