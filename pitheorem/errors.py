@@ -538,15 +538,15 @@ class EngineUnavailableError(PiTheoremError, ImportError):
     Parameters
     ----------
     engine : str
-        The engine asked for (the culprit), e.g. ``"bullet"``.
+        The engine asked for (the culprit), e.g. ``"pybullet"``.
     package : str
         The Python package it needs, e.g. ``"pybullet"``.
 
     Examples
     --------
     >>> from pitheorem.errors import EngineUnavailableError
-    >>> print(EngineUnavailableError("bullet", "pybullet"))
-    engine 'bullet' needs the Python package 'pybullet': pip install "pitheorem[engines]"
+    >>> print(EngineUnavailableError("pybullet", "pybullet"))
+    engine 'pybullet' needs the Python package 'pybullet': pip install "pitheorem[engines]"
     """
 
     def __init__(self, engine: str, package: str):

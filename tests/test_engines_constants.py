@@ -33,7 +33,8 @@ def test_catalogue_entries_are_complete():
     for c in CATALOGUE:
         assert c.engine in ENGINES
         assert c.name.isidentifier()
-        assert c.name.startswith(c.engine + "_")
+        # PyBullet's constants are the Bullet library's, and keep its name: bullet_time_step
+        assert c.name.startswith({"pybullet": "bullet_", "mujoco": "mujoco_"}[c.engine])
         assert isinstance(c.dimension, pt.Dimension)
         assert c.source
         assert c.where
@@ -47,7 +48,7 @@ def test_catalogue_entries_are_complete():
         ("bullet_collision_margin", "L", 0.001),
         ("bullet_contact_breaking_threshold", "1", 0.02),
         ("bullet_contact_slop", "L", 1e-5),
-        ("bullet_solver_residual_threshold", "L^2 T^-2", 1e-7),
+        ("bullet_solver_residual_threshold", "1", 1e-7),
         ("bullet_max_joint_velocity", "T^-1", 100.0),
         ("bullet_max_prismatic_joint_velocity", "L T^-1", 100.0),
         ("bullet_contact_erp", "1", 0.08),
@@ -70,9 +71,10 @@ def test_catalogue_values(name, dimension, default):
 
 def test_catalogue_is_read_whole_and_exactly_from_its_data_file():
     # the values a float literal cannot show at a glance, compared exactly (not approx)
-    assert ENGINES == ("bullet", "mujoco")
-    assert [c.engine for c in CATALOGUE] == sorted(c.engine for c in CATALOGUE)  # the file's order, by engine
-    assert len(hidden_constants("bullet")) == 23
+    assert ENGINES == ("pybullet", "mujoco")
+    # the file's order: engine by engine
+    assert [c.engine for c in CATALOGUE] == [e for e in ENGINES for c in CATALOGUE if c.engine == e]
+    assert len(hidden_constants("pybullet")) == 23
     assert len(hidden_constants("mujoco")) == 18
     assert hidden_constants(names=["bullet_time_step"])[0].default == 1 / 240
     assert hidden_constants(names=["mujoco_angle_unit"])[0].default == math.pi / 180
@@ -91,21 +93,21 @@ def test_catalogue_is_read_whole_and_exactly_from_its_data_file():
 
 def test_hidden_constants_filters():
     assert all(c.engine == "mujoco" for c in hidden_constants("mujoco"))
-    assert all(not c.dimension.is_dimensionless for c in hidden_constants("bullet", dimensional=True))
-    assert all(c.dimension.is_dimensionless for c in hidden_constants("bullet", dimensional=False))
+    assert all(not c.dimension.is_dimensionless for c in hidden_constants("pybullet", dimensional=True))
+    assert all(c.dimension.is_dimensionless for c in hidden_constants("pybullet", dimensional=False))
 
 
 def test_hidden_constants_bad_inputs():
     with pytest.raises(pt.InvalidRequestError, match="'ode'"):
         hidden_constants("ode")
     with pytest.raises(pt.UnknownVariableError, match="bullet_timestep"):
-        hidden_constants("bullet", names=["bullet_timestep"])
+        hidden_constants("pybullet", names=["bullet_timestep"])
 
 
 def test_with_hidden_constants_adds_dimensional_ones():
-    ext = with_hidden_constants(HINGED_ROD.system, "bullet")
+    ext = with_hidden_constants(HINGED_ROD.system, "pybullet")
     added = ext.variables[len(HINGED_ROD.system.variables):]
-    assert added == tuple(c.name for c in hidden_constants("bullet", dimensional=True))
+    assert added == tuple(c.name for c in hidden_constants("pybullet", dimensional=True))
     assert ext.dimension("bullet_linear_damping_k2") == pt.Dimension.parse("L^-1")
     with pytest.raises(pt.DuplicateVariableError, match="mujoco_timestep"):
         with_hidden_constants(pt.System({"mujoco_timestep": "T"}), "mujoco")
@@ -115,7 +117,7 @@ def test_with_hidden_constants_adds_dimensional_ones():
 
 def test_engine_search_shows_the_engine_breaks_every_gravity_scaling():
     # with Bullet's length and time constants fixed, no unit change may touch L or T: g cannot move
-    res = engine_search(HINGED_ROD.system, "bullet", {"g": 1})
+    res = engine_search(HINGED_ROD.system, "pybullet", {"g": 1})
     assert not res.feasible
     assert set(res.certificate.exponents) <= {"g", "t", *(c.name for c in CATALOGUE)}
 
@@ -127,7 +129,7 @@ def test_engine_search_with_only_the_time_step_keeps_the_time_free_answers():
 
 
 def test_broken_constants_of_the_papers_scaling():
-    broken = {c.name for c in broken_constants(FIG5, "bullet")}
+    broken = {c.name for c in broken_constants(FIG5, "pybullet")}
     assert "bullet_time_step" in broken
     assert "bullet_linear_damping_k1" in broken
     assert {"mujoco_timestep", "mujoco_solref_timeconst"} <= {c.name for c in broken_constants(FIG5, "mujoco")}
@@ -137,7 +139,7 @@ def test_broken_constants_of_the_papers_scaling():
 
 def test_broken_constants_of_a_time_free_scaling():
     lengths = next(sc for sc in TIME_FREE if sc.unit_change == {"M": 0, "L": 1, "T": 0})
-    names = {c.name for c in broken_constants(lengths, "bullet")}
+    names = {c.name for c in broken_constants(lengths, "pybullet")}
     assert "bullet_time_step" not in names
     assert {"bullet_collision_margin", "bullet_linear_damping_k2"} <= names
     assert lengths.exponent_of("L^-1") == Fraction(-1)
@@ -145,12 +147,12 @@ def test_broken_constants_of_a_time_free_scaling():
 
 def test_broken_constants_needs_a_scaling():
     with pytest.raises(pt.InvalidRequestError, match="Scaling"):
-        broken_constants({"g": 1}, "bullet")
+        broken_constants({"g": 1}, "pybullet")
     sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1})
     look_alike = SimpleNamespace(system=sc.system, powers=sc.vector, exponent_of=sc.exponent_of,
                                  unit_change=sc.unit_change)  # what the old attribute check accepted
     with pytest.raises(pt.InvalidRequestError, match="needs a Scaling, got SimpleNamespace"):
-        broken_constants(look_alike, "bullet")
+        broken_constants(look_alike, "pybullet")
 
 
 def default(name):
@@ -249,3 +251,18 @@ def test_an_engine_search_holds_the_systems_time_variables_by_default():
     assert free.fixed == ()
     assert all(sc.exponents["tau"] == 0 for sc in held.scalings)
     assert any(sc.exponents["tau"] != 0 for sc in free.scalings)
+
+
+def test_every_model_names_its_engine_as_the_catalogue_does(tmp_path):
+    pytest.importorskip("pybullet")
+    pytest.importorskip("mujoco")
+    from pitheorem import engines
+
+    urdf = tmp_path / "box.urdf"
+    urdf.write_text('<robot name="box"><link name="base"><inertial><mass value="1"/>'
+                    '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>')
+    for model in (engines.load(urdf), engines.load(engines.example_path("pendulum.xml"))):
+        assert model.engine in ENGINES
+        constants = hidden_constants(model.engine)
+        assert constants
+        assert {c.engine for c in constants} == {model.engine}

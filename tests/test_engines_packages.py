@@ -20,27 +20,31 @@ from tests.conftest import REPO
 
 def test_each_engine_names_its_package_in_one_place(monkeypatch):
     # the catalogue's engines are the engines with a package, and every reader of an engine name agrees
-    assert tuple(PACKAGES) == ENGINES == ("bullet", "mujoco")
-    assert PACKAGES["bullet"] == "pybullet"
+    assert tuple(PACKAGES) == ENGINES == ("pybullet", "mujoco")
+    assert PACKAGES["pybullet"] == "pybullet"
     for call in (lambda: check_engine("ode"), lambda: engine_module("ode"), lambda: hidden_constants("ode"),
                  lambda: simulate_rod("ode")):
         with pytest.raises(pt.InvalidRequestError) as caught:
             call()
-        assert str(caught.value) == "unknown engine 'ode'; use 'bullet' or 'mujoco'"
+        assert str(caught.value) == "unknown engine 'ode'; use 'pybullet' or 'mujoco'"
         assert caught.value.culprit == "ode"
     with pytest.raises(pt.InvalidRequestError, match="unknown engine 3"):
         check_engine(3)
+    # the old spelling is read as the one name, and every reader answers with the one name
+    assert check_engine("bullet") == "pybullet"
+    assert hidden_constants("bullet") == hidden_constants("pybullet")
+    assert all(c.engine == "pybullet" for c in hidden_constants("bullet"))
     # a missing package is named in the error, as the one list has it
     monkeypatch.setitem(sys.modules, "pybullet", None)  # import pybullet now raises ImportError
     with pytest.raises(EngineUnavailableError) as caught:
-        engine_module("bullet")
-    assert (caught.value.engine, caught.value.package, caught.value.culprit) == ("bullet", "pybullet", "bullet")
-    assert str(caught.value) == 'engine \'bullet\' needs the Python package \'pybullet\': pip install "pitheorem[engines]"'
+        engine_module("pybullet")
+    assert (caught.value.engine, caught.value.package, caught.value.culprit) == ("pybullet", "pybullet", "pybullet")
+    assert str(caught.value) == 'engine \'pybullet\' needs the Python package \'pybullet\': pip install "pitheorem[engines]"'
 
 
 def test_bullet_prints_no_banner():
     pytest.importorskip("pybullet", reason="pybullet is not installed (pip install 'pitheorem[engines]')")
-    code = "from pitheorem.engines import simulate_rod; simulate_rod('bullet', t_final=0.01)"
+    code = "from pitheorem.engines import simulate_rod; simulate_rod('pybullet', t_final=0.01)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=REPO)
     assert out.stdout == ""
     assert out.stderr == ""

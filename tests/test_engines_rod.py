@@ -41,7 +41,7 @@ def engine(request):
 def test_the_rods_default_time_steps_are_the_catalogues():
     from pitheorem.engines.rod import DEFAULT_TIME_STEP
 
-    assert dict(DEFAULT_TIME_STEP) == {"bullet": 1 / 240, "mujoco": 0.002}
+    assert dict(DEFAULT_TIME_STEP) == {"pybullet": 1 / 240, "mujoco": 0.002}
     assert rod_mjcf(HINGED_ROD.defaults).count('timestep="0.002"') == 1
 
 
@@ -56,7 +56,7 @@ def test_unknown_engine_and_options():
     with pytest.raises(pt.InvalidRequestError, match="'ode'"):
         simulate_rod("ode")
     with pytest.raises(pt.InvalidRequestError, match="integrator"):
-        simulate_rod("bullet", integrator="RK4")
+        simulate_rod("pybullet", integrator="RK4")
     with pytest.raises(pt.InvalidRequestError, match="engine_defaults"):
         simulate_rod("mujoco", engine_defaults=True)
 
@@ -65,7 +65,7 @@ def test_original_run_is_close_to_the_ode(engine):
     rep = verify_engine_similarity(engine, TIME_FREE[0], s=2)
     # a first-order engine at its default step: within 0.05 rad and rad/s of the exact solution
     assert rep.engine_vs_ode < 0.05
-    assert rep.original.t[1] == pytest.approx({"bullet": 1 / 240, "mujoco": 0.002}[engine])
+    assert rep.original.t[1] == pytest.approx({"pybullet": 1 / 240, "mujoco": 0.002}[engine])
 
 
 @pytest.mark.parametrize("s", [2, 10])
@@ -101,8 +101,8 @@ def test_papers_figure3_scaling_does_not_agree(engine, s):
 def test_bullet_default_damping_breaks_a_length_scaling():
     pytest.importorskip("pybullet", reason="pybullet is not installed (pip install 'pitheorem[engines]')")
     lengths = next(sc for sc in TIME_FREE if sc.unit_change == {"M": 0, "L": 1, "T": 0})
-    clean = verify_engine_similarity("bullet", lengths, s=2, tol=AGREE, compare_ode=False)
-    default = verify_engine_similarity("bullet", lengths, s=2, tol=AGREE, compare_ode=False, engine_defaults=True)
+    clean = verify_engine_similarity("pybullet", lengths, s=2, tol=AGREE, compare_ode=False)
+    default = verify_engine_similarity("pybullet", lengths, s=2, tol=AGREE, compare_ode=False, engine_defaults=True)
     assert clean.passed
     assert default.max_deviation > DIFFER
 

@@ -76,7 +76,7 @@ def test_each_rule_agrees_with_search(rod):
 
 
 def test_a_wrong_rule_gets_a_certificate():
-    wrong = RuleOfThumb("torques by X", "bullet", "made up", (
+    wrong = RuleOfThumb("torques by X", "pybullet", "made up", (
         RuleQuantity("length", "L", 1), RuleQuantity("mass", "M", 0), RuleQuantity("torque", "M L^2 T^-2", 1),
         RuleQuantity("time", "T", 0)))
     v = check_rule(wrong)

@@ -116,10 +116,10 @@ SAMPLES = {
     "unit_fit_conflict": lambda: pt.fit_units(pt.System({"l": "L", "a": "L^2"}), {"l": 1, "a": 1000},
                                               ranges={"l": (1, 2), "a": (1, 2)}),
     "range_bound": lambda: pt.RangeBound("k_theta", "low", Fraction(-1, 20)),
-    "hidden_constant": lambda: engines.hidden_constants("bullet", names=["bullet_time_step"])[0],
+    "hidden_constant": lambda: engines.hidden_constants("pybullet", names=["bullet_time_step"])[0],
     "rule_verdict": lambda: engines.check_rule(engines.BULLET_SCALE_THE_WORLD, ROD),
     "rule_verdict_no_units": lambda: engines.check_rule(engines.RuleOfThumb(
-        "wrong", "bullet", "made up", (engines.RuleQuantity("length", pt.Dimension.parse("L"), Fraction(1)),
+        "wrong", "pybullet", "made up", (engines.RuleQuantity("length", pt.Dimension.parse("L"), Fraction(1)),
                                        engines.RuleQuantity("time", pt.Dimension.parse("T"), Fraction(0)),
                                        engines.RuleQuantity("speed", pt.Dimension.parse("L T^-1"), Fraction(0))))),
     "engine_model": _engine_model,
@@ -587,7 +587,7 @@ def test_rule_verdict_text():
     assert format(verdict, "latex").splitlines()[:3] == [
         r"\textbf{Bullet wiki: Scaling The World:}", r"\begin{itemize}",
         r"\item a change of units: readings of L by X\^{}1"]
-    nothing = engines.check_rule(engines.RuleOfThumb("still", "bullet", "", (
+    nothing = engines.check_rule(engines.RuleOfThumb("still", "pybullet", "", (
         engines.RuleQuantity("length", "L", 0),)))
     assert str(nothing).splitlines()[1] == "  a change of units: readings of nothing"
 

@@ -11,6 +11,9 @@ engines with ``pip install "pitheorem[engines]"`` (``pybullet`` and
   each engine, run, and compared after a similarity scaling;
 * ``pitheorem.engines.rules``: the engines' published rules for scaling
   the world, checked as changes of units;
+* ``pitheorem.engines.thresholds``: the numbers at which an engine stops
+  taking a model's numbers as they are (floors, ceilings, refusals), and
+  :func:`check`, the thresholds a model sits beyond or near;
 * ``pitheorem.engines.packages``: the Python package each engine needs,
   imported when a simulation asks for it.
 
@@ -20,7 +23,7 @@ Examples
 >>> from pitheorem.engines import broken_constants
 >>> rod = pt.models.hinged_rod()
 >>> fig5 = pt.search(rod.system, scale={"g": 1, "l": -1}, fixed=("m", "k_theta")).scalings[0]
->>> [c.name for c in broken_constants(fig5, "bullet", names=["bullet_time_step", "bullet_erp"])]
+>>> [c.name for c in broken_constants(fig5, "pybullet", names=["bullet_time_step", "bullet_erp"])]
 ['bullet_time_step']
 """
 
@@ -54,6 +57,7 @@ from .rules import (
     RuleVerdict,
     check_rule,
 )
+from .thresholds import check
 from .verify import smooth_controls, verify
 
 __all__ = [
@@ -77,6 +81,7 @@ __all__ = [
     "UnscalableParameterError",
     "audit",
     "broken_constants",
+    "check",
     "check_rule",
     "engine_search",
     "example_path",

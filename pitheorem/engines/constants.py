@@ -14,7 +14,9 @@ The catalogue itself is data, ``constants.toml`` beside this module: one
 entry per constant with its dimension, default, where a user sets it and
 the source its value was read from (and, where stated, measured with
 pybullet 3.2.7 and mujoco 4.0.0).  A new constant, or a new engine's
-table, goes there.  Nothing here imports an engine.
+table, goes there; so do the engines' thresholds (floors, ceilings,
+refusals), which :mod:`pitheorem.engines.thresholds` reads.  Nothing here
+imports an engine.
 """
 
 from __future__ import annotations
@@ -53,7 +55,7 @@ class HiddenConstant(TextDisplay):
     Parameters
     ----------
     engine : str
-        ``"bullet"`` or ``"mujoco"``.
+        ``"pybullet"`` or ``"mujoco"``.
     name : str
         Identifier used as a variable name, e.g. ``"bullet_time_step"``.
     dimension : Dimension
@@ -71,7 +73,7 @@ class HiddenConstant(TextDisplay):
     Examples
     --------
     >>> from pitheorem.engines import hidden_constants
-    >>> dt = hidden_constants("bullet", names=["bullet_time_step"])[0]
+    >>> dt = hidden_constants("pybullet", names=["bullet_time_step"])[0]
     >>> dt.dimension, round(1 / dt.default)
     (Dimension.parse('T'), 240)
     """
@@ -93,6 +95,7 @@ def _catalogue(path: Path) -> tuple[HiddenConstant, ...]:
     """The entries of the catalogue file, engine by engine, in the file's order."""
     doc = tomllib.loads(path.read_text(encoding="utf-8"))
     sources = doc.pop("sources")
+    doc.pop("thresholds")  # read by pitheorem.engines.thresholds
     return tuple(HiddenConstant(engine, **{**entry, "source": entry["source"].format_map(sources)})
                  for engine, entries in doc.items() for entry in entries)
 
@@ -111,7 +114,7 @@ def hidden_constants(engine: str | None = None, *, names: Iterable[str] | None =
 
     Parameters
     ----------
-    engine : {"bullet", "mujoco"}, optional
+    engine : {"pybullet", "mujoco"}, optional
         Default: every engine.
     names : iterable of str, optional
         Only these entries, in the order given.
@@ -158,7 +161,7 @@ def with_hidden_constants(system: System, engine: str, *, names: Iterable[str] |
     Parameters
     ----------
     system : System
-    engine : {"bullet", "mujoco"}
+    engine : {"pybullet", "mujoco"}
     names : iterable of str, optional
         Only these constants (default: all of the engine's).
     include_dimensionless : bool
@@ -208,7 +211,7 @@ def engine_search(system: System, engine: str, scale: Mapping[str, object], fixe
     Parameters
     ----------
     system : System
-    engine : {"bullet", "mujoco"}
+    engine : {"pybullet", "mujoco"}
     scale : mapping of str to number
         As in :func:`pitheorem.search`.
     fixed : iterable of str, optional
@@ -231,7 +234,7 @@ def engine_search(system: System, engine: str, scale: Mapping[str, object], fixe
     >>> import pitheorem as pt
     >>> from pitheorem.engines import engine_search
     >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "t": "T"})
-    >>> res = engine_search(rod, "bullet", {"g": 1}, fixed=(),
+    >>> res = engine_search(rod, "pybullet", {"g": 1}, fixed=(),
     ...                     names=["bullet_time_step", "bullet_collision_margin"])
     >>> res.feasible, str(res.certificate)
     (False, 'Pi = bullet_time_step**2*g/bullet_collision_margin')
@@ -254,7 +257,7 @@ def broken_constants(scaling, engine: str, *, names: Iterable[str] | None = None
     scaling : Scaling
         A change-of-units scaling (from :func:`pitheorem.search` or
         :meth:`pitheorem.Scaling.from_unit_change`).
-    engine : {"bullet", "mujoco"}
+    engine : {"pybullet", "mujoco"}
     names : iterable of str, optional
         Check only these constants.
 

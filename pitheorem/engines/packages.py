@@ -18,10 +18,15 @@ from types import MappingProxyType
 
 from ..errors import EngineUnavailableError, InvalidRequestError
 
-__all__ = ["PACKAGES", "check_engine", "engine_module", "quiet_stdout"]
+__all__ = ["ALIASES", "PACKAGES", "check_engine", "engine_module", "quiet_stdout"]
 
-#: the Python package each engine needs (installed by ``pip install "pitheorem[engines]"``)
-PACKAGES = MappingProxyType({"bullet": "pybullet", "mujoco": "mujoco"})
+#: the Python package each engine needs (installed by ``pip install "pitheorem[engines]"``); an
+#: engine is named as :attr:`pitheorem.engines.EngineModel.engine` names it, everywhere
+PACKAGES = MappingProxyType({"pybullet": "pybullet", "mujoco": "mujoco"})
+
+#: older spellings still read: "bullet" was PyBullet's name here before the engines layer named each
+#: engine as its model does (kept so that code written then keeps working; never answered back)
+ALIASES = MappingProxyType({"bullet": "pybullet"})
 
 
 def check_engine(engine) -> str:
@@ -30,11 +35,12 @@ def check_engine(engine) -> str:
     Parameters
     ----------
     engine : str
-        ``"bullet"`` or ``"mujoco"``.
+        ``"pybullet"`` or ``"mujoco"`` (``"bullet"`` is read as ``"pybullet"``).
 
     Returns
     -------
     str
+        The engine's one name.
 
     Raises
     ------
@@ -44,14 +50,15 @@ def check_engine(engine) -> str:
     Examples
     --------
     >>> from pitheorem.engines.packages import check_engine
-    >>> check_engine("mujoco")
-    'mujoco'
+    >>> check_engine("mujoco"), check_engine("bullet")
+    ('mujoco', 'pybullet')
     >>> try:
     ...     check_engine("ode")
     ... except ValueError as err:
     ...     print(err)
-    unknown engine 'ode'; use 'bullet' or 'mujoco'
+    unknown engine 'ode'; use 'pybullet' or 'mujoco'
     """
+    engine = ALIASES.get(engine, engine) if isinstance(engine, str) else engine
     if not isinstance(engine, str) or engine not in PACKAGES:
         raise InvalidRequestError(f"unknown engine {engine!r}; use {' or '.join(map(repr, PACKAGES))}",
                                   culprit=engine)
@@ -69,7 +76,7 @@ def engine_module(engine: str):
     Returns
     -------
     module
-        ``pybullet`` for ``"bullet"``, ``mujoco`` for ``"mujoco"``.
+        ``pybullet`` for ``"pybullet"``, ``mujoco`` for ``"mujoco"``.
 
     Raises
     ------
@@ -89,7 +96,7 @@ def engine_module(engine: str):
         with quiet_stdout():  # pybullet prints a banner on import
             return __import__(package)
     except ImportError:
-        raise EngineUnavailableError(engine, package) from None
+        raise EngineUnavailableError(check_engine(engine), package) from None
 
 
 @contextlib.contextmanager

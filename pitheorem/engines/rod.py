@@ -59,7 +59,7 @@ __all__ = ["DEFAULT_TIME_STEP", "EngineSimilarityReport", "EngineUnavailableErro
 
 #: each engine's own default time step, as the catalogue of pitheorem.engines.constants has it
 DEFAULT_TIME_STEP = MappingProxyType({engine: hidden_constants(engine, names=[name])[0].default
-                                      for engine, name in (("bullet", "bullet_time_step"),
+                                      for engine, name in (("pybullet", "bullet_time_step"),
                                                            ("mujoco", "mujoco_timestep"))})
 
 _MUJOCO_INTEGRATORS = ("Euler", "RK4", "implicit", "implicitfast")
@@ -69,7 +69,7 @@ _MUJOCO_INTEGRATORS = ("Euler", "RK4", "implicit", "implicitfast")
 
 
 def _run_bullet(p, y0, dt, n_steps, engine_defaults):
-    pb = engine_module("bullet")
+    pb = engine_module("pybullet")
     with quiet_stdout():
         client = pb.connect(pb.DIRECT)
     try:
@@ -183,7 +183,7 @@ def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt:
 
     Parameters
     ----------
-    engine : {"bullet", "mujoco"}
+    engine : {"pybullet", "mujoco"}
     params : mapping of str to float, optional
         Rod parameters; unlisted ones take the defaults of
         :func:`pitheorem.models.hinged_rod`.
@@ -219,8 +219,8 @@ def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt:
     >>> len(tr)
     6
     """
-    check_engine(engine)
-    if engine == "bullet" and integrator is not None:
+    engine = check_engine(engine)
+    if engine == "pybullet" and integrator is not None:
         raise InvalidRequestError("integrator is a MuJoCo option; Bullet always uses semi-implicit Euler")
     if engine == "mujoco" and engine_defaults:
         raise InvalidRequestError("engine_defaults is a Bullet option; the MuJoCo rod has no hidden setting to keep")
@@ -230,7 +230,7 @@ def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt:
     t_final = positive_float(t_final, "t_final")
     dt = DEFAULT_TIME_STEP[engine] if dt is None else positive_float(dt, "dt")
     n_steps = fixed_steps(t_final, dt)
-    if engine == "bullet":
+    if engine == "pybullet":
         states = _run_bullet(p, y, dt, n_steps, engine_defaults)
     else:
         states = _run_mujoco(p, y, dt, n_steps, integrator or "Euler")
@@ -286,7 +286,7 @@ def verify_engine_similarity(engine: str, scaling, s, params=None, y0=None, t_fi
 
     Parameters
     ----------
-    engine : {"bullet", "mujoco"}
+    engine : {"pybullet", "mujoco"}
     scaling : Scaling or mapping of str to number
         As in :func:`pitheorem.verify_similarity`, for the system of
         :func:`pitheorem.models.hinged_rod`.
@@ -319,17 +319,18 @@ def verify_engine_similarity(engine: str, scaling, s, params=None, y0=None, t_fi
     >>> from pitheorem.engines import verify_engine_similarity
     >>> rod = pt.models.hinged_rod()
     >>> sc = pt.search(rod.system, scale={"g": 1}).scalings[0]   # time-free
-    >>> rep = verify_engine_similarity("bullet", sc, s=2, t_final=1.0)
+    >>> rep = verify_engine_similarity("pybullet", sc, s=2, t_final=1.0)
     >>> rep.passed
     True
     """
+    engine = check_engine(engine)
     model = _rod_model()
     scaled = ModelScaling.of(model, scaling, s, check=check)
     tol = positive_float(tol, "tol")
     p = model.resolve_params(params)
     y_init = model.resolve_initial(y0)
     t_final = positive_float(t_final, "t_final")
-    dt = DEFAULT_TIME_STEP.get(engine, None) if dt is None else positive_float(dt, "dt")
+    dt = DEFAULT_TIME_STEP[engine] if dt is None else positive_float(dt, "dt")
     opts = {"integrator": integrator, "engine_defaults": engine_defaults}
     original = simulate_rod(engine, p, y_init, t_final, dt=dt, **opts)
 

@@ -98,7 +98,7 @@ class RuleOfThumb:
     ----------
     name : str
     engine : str
-        ``"bullet"`` or ``"mujoco"`` (whose hidden constants apply).
+        ``"pybullet"`` or ``"mujoco"`` (whose hidden constants apply).
     source : str
         Where the rule is stated.
     quantities : tuple of RuleQuantity
@@ -235,7 +235,7 @@ class RuleVerdict(TextDisplay):
 
 BULLET_SCALE_THE_WORLD = RuleOfThumb(
     name="Bullet wiki: Scaling The World",
-    engine="bullet",
+    engine="pybullet",
     source="Bullet Physics wiki, 'Scaling The World' (bulletphysics.org mediawiki-1.5.8)",
     quantities=(
         RuleQuantity("mass", "M", 0),  # "you should not have to change the mass"

@@ -1,0 +1,354 @@
+"""The numbers at which an engine stops taking a model's numbers as they are, and the models that reach them.
+
+An engine computes in floating point and guards itself with constants:
+MuJoCo refuses masses below ``mjMINVAL`` (1e-15), floors the softness of
+constraints at the same number, raises torsional and rolling friction to
+``mjMINMU`` (1e-5 m), zeroes controls beyond ``mjMAXVAL`` (1e10) and
+stiffens no constraint beyond two time steps; PyBullet lets boxes smaller
+than twice its collision margin fall through the ground.  Such a constant
+is a number of fixed size: a model scaled far enough crosses it, and a
+change of units is a similarity scaling, so the *units* a model is
+written in decide whether the engine simulates it faithfully (issue 24).
+
+Each threshold is a :class:`Threshold` read from the catalogue
+``constants.toml`` (its ``[thresholds]`` tables), with the value measured
+against the installed engine.  :func:`crossed` holds a table of
+:class:`~pitheorem.engines.Parameter` (optionally multiplied by the
+factors of a scaling) against them; :func:`check` does it for a model.
+Both answer with :class:`~pitheorem.engines.Cause` records of kind
+``"threshold"``.
+
+Which parameters a threshold is compared with goes by the parameter's
+kind (:data:`KINDS`), read from its name, path and dimension as the MJCF
+and URDF readers write them (``body_torso_mass``, ``geom 'floor' friction
+torsional rolling``, ``actuator0_ctrlrange``, ...).
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..dimensions import Dimension
+from ..errors import InvalidRequestError
+from ..immutable import immutable
+from ..simulation import positive_float
+from .causes import Cause, sorted_causes
+from .model import EngineModel, Parameter
+from .packages import check_engine
+
+__all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "thresholds"]
+
+#: how a threshold acts: on numbers below it, above it, on numbers the engine computes as it runs (a solver's
+#: residual, a contact's separation: nothing in a model's table), or as a setting the engine does not apply
+BOUNDS = ("below", "above", "internal", "unapplied")
+
+_M, _ML2, _L, _T = (Dimension.parse(d) for d in ("M", "M L^2", "L", "T"))
+
+#: the kinds of parameter a threshold is compared with: a description, and the test on a Parameter
+KINDS: Mapping[str, tuple[str, Callable]] = {
+    "mass": ("a body's or link's mass", lambda p: p.dimension == _M and p.name.endswith("_mass")),
+    "inertia": ("a body's or link's inertia", lambda p: p.dimension == _ML2 and "inertia" in p.path),
+    "friction_length": ("torsional and rolling friction (MJCF friction's second and third numbers)",
+                        lambda p: p.dimension == _L and p.path.endswith("friction torsional rolling")),
+    "solref_timeconst": ("the time constant of a solref",
+                         lambda p: p.dimension == _T and p.name.endswith("timeconst")),
+    "control_range": ("an actuator's ctrlrange", lambda p: p.name.endswith("_ctrlrange")),
+    "collision_size": ("a URDF collision geometry's size, radius or length",
+                       lambda p: p.dimension == _L and " collision #" in p.path
+                       and p.name.endswith(("_size", "_radius", "_length"))),
+}
+
+
+@immutable
+@dataclass(frozen=True, slots=True)
+class Threshold:
+    """One threshold of an engine: a number beyond which the engine changes or refuses a model's numbers.
+
+    Parameters
+    ----------
+    engine : {"pybullet", "mujoco"}
+    name : str
+        Identifier, prefixed as the engine's constants are (``mujoco_minmu``).
+    value : float
+        The threshold; with `relative_to`, a multiple of that parameter.
+    dimension : Dimension or None
+        None when the numbers it is compared with have no one dimension
+        (MuJoCo holds ``mjMINVAL`` against masses and inertias alike).
+    bound : {"below", "above", "internal", "unapplied"}
+        Numbers below it, or above it, are changed or refused;
+        ``"internal"``: held against numbers the engine computes as it runs
+        (a solver's residual); ``"unapplied"``: a setting the engine
+        ignores.
+    applies : tuple of str
+        The kinds of parameter it is compared with (keys of :data:`KINDS`).
+    crossed_by : str
+        What crosses it, in words.
+    effect : str
+        What the engine does then.
+    source : str
+        The engine's source, and the measurement that shows the clamp.
+    relative_to : str
+        The parameter whose value multiplies `value` (``"timestep"``), or "".
+
+    Examples
+    --------
+    >>> from pitheorem.engines.thresholds import thresholds
+    >>> mu = thresholds("mujoco", names=["mujoco_minmu"])[0]
+    >>> mu.value, mu.dimension, mu.bound, mu.applies
+    (1e-05, None, 'below', ('friction_length',))
+    """
+
+    engine: str
+    name: str
+    value: float
+    dimension: Dimension | None
+    bound: str
+    applies: tuple[str, ...]
+    crossed_by: str
+    effect: str
+    source: str
+    relative_to: str = ""
+
+    def __post_init__(self) -> None:
+        if isinstance(self.dimension, str):
+            object.__setattr__(self, "dimension", None if self.dimension == "none" else Dimension.parse(self.dimension))
+        object.__setattr__(self, "applies", tuple(self.applies))
+        if self.bound not in BOUNDS:
+            raise InvalidRequestError(f"threshold {self.name!r}: unknown bound {self.bound!r}; valid: {', '.join(BOUNDS)}")
+        unknown = [k for k in self.applies if k not in KINDS]
+        if unknown:
+            raise InvalidRequestError(f"threshold {self.name!r}: unknown kind {unknown[0]!r}; valid: {', '.join(KINDS)}")
+
+    def limit(self, parameters: Mapping[str, float] | None = None) -> float | None:
+        """The threshold's value for a model: `value`, or `value` times the `relative_to` parameter.
+
+        Parameters
+        ----------
+        parameters : mapping of str to float, optional
+            The model's numbers by name (only `relative_to` is read).
+
+        Returns
+        -------
+        float or None
+            None when the threshold is relative to a parameter the model
+            lacks.
+
+        Examples
+        --------
+        >>> from pitheorem.engines.thresholds import thresholds
+        >>> refsafe = thresholds("mujoco", names=["mujoco_refsafe"])[0]
+        >>> refsafe.limit({"timestep": 0.002}), refsafe.limit({}) is None
+        (0.004, True)
+        """
+        if not self.relative_to:
+            return self.value
+        base = (parameters or {}).get(self.relative_to)
+        return None if base is None else self.value * base
+
+
+def _read(path: Path) -> tuple[Threshold, ...]:
+    """The ``[thresholds]`` tables of the catalogue file, engine by engine, in the file's order."""
+    doc = tomllib.loads(path.read_text(encoding="utf-8"))
+    sources = doc["sources"]
+    return tuple(Threshold(engine, **{**entry, "source": entry["source"].format_map(sources)})
+                 for engine, entries in doc["thresholds"].items() for entry in entries)
+
+
+#: every catalogued threshold, read from ``constants.toml`` beside this module
+THRESHOLDS: tuple[Threshold, ...] = _read(Path(__file__).with_name("constants.toml"))
+
+
+def thresholds(engine: str | None = None, *, names: Iterable[str] | None = None) -> tuple[Threshold, ...]:
+    """The catalogued thresholds of one engine (or of all).
+
+    Parameters
+    ----------
+    engine : {"pybullet", "mujoco"}, optional
+        Default: every engine.
+    names : iterable of str, optional
+        Only these, in the order given.
+
+    Returns
+    -------
+    tuple of Threshold
+
+    Raises
+    ------
+    InvalidRequestError
+        For an unknown engine, or a name that is no threshold of it.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.thresholds import thresholds
+    >>> [t.name for t in thresholds("mujoco")][:3]
+    ['mujoco_minval_mass', 'mujoco_minval_softness', 'mujoco_minmu']
+    """
+    engine = None if engine is None else check_engine(engine)
+    pool = [t for t in THRESHOLDS if engine is None or t.engine == engine]
+    if names is None:
+        return tuple(pool)
+    by_name = {t.name: t for t in pool}
+    for n in names:
+        if n not in by_name:
+            raise InvalidRequestError(f"no threshold {n!r} of {engine or 'any engine'}; valid: {', '.join(by_name)}",
+                                      culprit=n)
+    return tuple(by_name[n] for n in names)
+
+
+def _read_near(near) -> float:
+    near = positive_float(near, "near")
+    if near < 1:
+        raise InvalidRequestError(f"near must be a factor of at least 1, got {near!r}", culprit=near)
+    return near
+
+
+def _read_table(parameters) -> tuple[Parameter, ...]:
+    table = tuple(parameters)
+    for p in table:
+        if not isinstance(p, Parameter):
+            raise InvalidRequestError(f"crossed needs a table of Parameter (EngineModel.parameters), got "
+                                      f"{type(p).__name__}", culprit=p)
+    return table
+
+
+def _read_factors(factors, names) -> dict[str, float]:
+    if factors is None:
+        return {}
+    if not isinstance(factors, Mapping):
+        raise InvalidRequestError(f"factors must map parameter names to numbers, got {type(factors).__name__}")
+    for name in factors:
+        if name not in names:
+            raise InvalidRequestError(f"factors names {name!r}, which is no parameter of the table", culprit=name)
+    return {name: positive_float(f, f"the factor of {name!r}") for name, f in factors.items()}
+
+
+def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None, *,
+            near: float = 2.0) -> tuple[Cause, ...]:
+    """The parameters beyond or near a threshold of the engine, as causes of kind ``"threshold"``.
+
+    Each parameter of a kind a threshold applies to (:data:`KINDS`) is
+    compared, number by number, with the threshold: a number past it is
+    *beyond*; one on the right side but within a factor `near` of it is
+    *near* (a scaling by that factor would cross it).  Zeros are left
+    out (a zero is scale-free: no scaling moves it), and so are the
+    option's override values (``o_friction``, ``o_solref``: used only
+    with the override flag).  One cause per parameter and threshold, for
+    its worst number.
+
+    Parameters
+    ----------
+    engine : {"pybullet", "mujoco"}
+    parameters : iterable of Parameter
+        A model's table (:attr:`pitheorem.engines.EngineModel.parameters`).
+    factors : mapping of str to float, optional
+        A factor per parameter name: the numbers are compared as a scaled
+        copy would hold them (each value times its factor; default 1).
+    near : float
+        The factor within which a number counts as near (default 2:
+        MuJoCo's own defaults sit a factor 5 and 10 from their floors,
+        the solref time constant 0.02 from two steps of 0.002 and rolling
+        friction 1e-4 from ``mjMINMU``).
+
+    Returns
+    -------
+    tuple of Cause
+        In a deterministic order (by parameter name).
+
+    Raises
+    ------
+    InvalidRequestError
+        For an unknown engine, a table that holds no Parameter, a factor
+        that is no positive number or names no parameter, or a `near`
+        below 1.
+
+    Examples
+    --------
+    >>> from pitheorem import Dimension
+    >>> from pitheorem.engines import Parameter
+    >>> from pitheorem.engines.thresholds import crossed
+    >>> mass = Parameter("body_ant_mass", "body 'ant' mass", (1e-16,), Dimension.parse("M"), "file", "file")
+    >>> for cause in crossed("mujoco", [mass]):
+    ...     print(cause.element, "|", cause.detail.split(":")[0])
+    body_ant_mass | body 'ant' mass = 1e-16 is below mujoco_minval_mass (1e-15)
+    >>> crossed("mujoco", [mass], factors={"body_ant_mass": 100.0})
+    ()
+    """
+    engine = check_engine(engine)
+    table = _read_table(parameters)
+    near = _read_near(near)
+    factors = _read_factors(factors, {p.name for p in table})
+    scalars = {p.name: p.value[0] * factors.get(p.name, 1.0) for p in table if len(p.value) == 1}
+    causes = []
+    for p in table:
+        if p.path.startswith("option o_"):
+            continue
+        values = [abs(v) * factors.get(p.name, 1.0) for v in p.value if math.isfinite(v) and v != 0]
+        if not values:
+            continue
+        for t in thresholds(engine):
+            if t.bound not in ("below", "above") or not any(KINDS[k][1](p) for k in t.applies):
+                continue
+            limit = t.limit(scalars)
+            if limit is None:
+                continue
+            worst = min(values) if t.bound == "below" else max(values)
+            beyond = worst < limit if t.bound == "below" else worst > limit
+            close = worst < limit * near if t.bound == "below" else worst > limit / near
+            if beyond or close:
+                causes.append(Cause("threshold", p.name, _detail(p, t, worst, limit, near, beyond)))
+    return sorted_causes(causes)
+
+
+def _detail(p, t: Threshold, worst: float, limit: float, near: float, beyond: bool) -> str:
+    """What a cause says: the number, the threshold, what the engine does, and the way out."""
+    where = f"is {t.bound}" if beyond else f"is within a factor {near:g} of"
+    of = f" = {t.value!r} {t.relative_to}" if t.relative_to else ""
+    # the factor that puts the number a factor `near` clear of the threshold
+    need = limit * near / worst if t.bound == "below" else limit / (near * worst)
+    if t.relative_to:  # a multiple of another number of the same dimension: units move both alike
+        remedy = f"no change of units clears it; change it or {t.relative_to} by a factor {need:.3g}"
+    else:
+        remedy = f"a change of units that multiplies numbers of dimension {p.dimension_text} by {need:.3g} clears it"
+    return f"{p.path} = {worst!r} {where} {t.name} ({limit!r}{of}): {t.effect}; {remedy}"
+
+
+def check(model) -> tuple[Cause, ...]:
+    """The engine thresholds a model sits beyond or near: a tuple of Cause.
+
+    ``pitheorem.engines.thresholds.crossed`` on the model's own parameters, against the thresholds
+    of the model's engine.
+
+    Parameters
+    ----------
+    model : EngineModel
+
+    Returns
+    -------
+    tuple of Cause
+        Of kind ``"threshold"``; ``()`` when the model is clear of every
+        catalogued threshold.
+
+    Raises
+    ------
+    InvalidRequestError
+        When `model` is no EngineModel.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> engines.check(model)
+    ()
+    >>> lengths = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    >>> for cause in engines.check(model.scaled(lengths, 1e-3)):
+    ...     print(cause.element, "|", cause.detail.split(" is ")[1].split(":")[0])
+    geom_rod_friction_torsional_rolling | below mujoco_minmu (1e-05)
+    """
+    if not isinstance(model, EngineModel):
+        raise InvalidRequestError(f"check needs an EngineModel (from engines.load), got {type(model).__name__}")
+    return crossed(model.engine, model.parameters)
