@@ -54,21 +54,22 @@ def icosphere(radius: float, subdivisions: int) -> tuple[list[Vertex], list[Face
     vertices = [tuple(float(c) for c in v) for v in vertices]
     for _ in range(subdivisions):
         middle: dict[tuple[int, int], int] = {}
-
-        def mid(a, b):
-            key = (min(a, b), max(a, b))
-            if key not in middle:
-                middle[key] = len(vertices)
-                vertices.append(tuple((p + q) / 2 for p, q in zip(vertices[a], vertices[b], strict=True)))
-            return middle[key]
-
         split = []
         for a, b, c in faces:
-            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+            ab, bc, ca = (_midpoint(vertices, middle, i, j) for i, j in ((a, b), (b, c), (c, a)))
             split += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
         faces = split
     vertices = [tuple(radius * c / math.sqrt(sum(x * x for x in v)) for c in v) for v in vertices]
     return vertices, faces
+
+
+def _midpoint(vertices: list[Vertex], middle: dict, a: int, b: int) -> int:
+    """The index of the midpoint of edge (a, b), appended to `vertices` the first time it is asked for."""
+    key = (min(a, b), max(a, b))
+    if key not in middle:
+        middle[key] = len(vertices)
+        vertices.append(tuple((p + q) / 2 for p, q in zip(vertices[a], vertices[b], strict=True)))
+    return middle[key]
 
 
 def capsule(radius: float, half_length: float, sides: int) -> tuple[list[Vertex], list[Face]]:
