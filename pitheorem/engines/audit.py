@@ -65,7 +65,8 @@ class Audit:
     causes : tuple of Cause
         Every number the engine holds that is not the original times its
         factor, every float32 number rounded, every solver setting of no
-        pure dimension and every setting the engine does not apply.
+        pure dimension, every setting the engine does not apply and every
+        engine threshold a number of either model is beyond.
     compared : int
         How many stored numbers were held against their expected value.
     s : float
@@ -197,6 +198,12 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
                             "compares it with a cost normalised by the mean inertia), so the scaled run may stop "
                             "after another number of iterations; with_values(tolerance=0) runs every iteration"))
     causes.extend(getattr(scaled.backend, "ignored_settings", tuple)())
+    # the engine's floors and clamps (mjMINVAL, mjMINMU, ...) that a number of either model is beyond:
+    # the engine runs with the threshold, not with the number, so the copy is not the original scaled
+    from .thresholds import crossed
+
+    for which in (scaled, model):
+        causes.extend(crossed(model.engine, which.parameters, near=1.0))
     return Audit(sorted_causes(causes), compared, float(s))
 
 

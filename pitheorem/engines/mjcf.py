@@ -198,11 +198,14 @@ class _Walker:
         self.compiler()
         for i, mesh in enumerate(spec.meshes):
             ident, path = self.label("mesh", mesh, i)
-            self.add("mesh", mesh, ident, path, "scale", _L,
-                     note="a dimensionless factor times the file's vertex units, a length")
-            self.add("mesh", mesh, ident, path, "refpos", _L)
+            # MuJoCo multiplies the vertices by scale, whether they come from a file or from the element:
+            # scale one of the two, never both (inline vertices scaled and scale scaled: s^2)
             if len(mesh.uservert):
                 self.add("mesh", mesh, ident, path, "uservert", _L)
+            else:
+                self.add("mesh", mesh, ident, path, "scale", _L,
+                         note="a dimensionless factor times the file's vertex units, a length")
+            self.add("mesh", mesh, ident, path, "refpos", _L)
         for i, hfield in enumerate(spec.hfields):
             ident, path = self.label("hfield", hfield, i)
             self.add("hfield", hfield, ident, path, "size", _L)
