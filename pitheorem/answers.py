@@ -29,7 +29,12 @@ class GroupsAnswer(NamedTuple):
     system : System
     groups : PiSet
     values : tuple
-        Each group's value (Fraction or float), or None when a variable has no value.
+        Each group's value (Fraction or float), None when a variable has no
+        value, or a phrase such as ``"undefined (density = 0)"`` when a
+        zero value meets a negative exponent.
+    passed_over : tuple of str, optional
+        The variables whose value is 0, which the default repeaters avoid
+        (empty when the repeaters were given).
 
     Examples
     --------
@@ -48,6 +53,7 @@ class GroupsAnswer(NamedTuple):
     system: object
     groups: object
     values: tuple
+    passed_over: tuple[str, ...] = ()
 
     __str__ = TextDisplay.__str__
     __format__ = TextDisplay.__format__
@@ -161,13 +167,15 @@ class ApplyAnswer(NamedTuple):
 
 
 class ParamsAnswer(NamedTuple):
-    """``pitheorem params``: an engine model's parameter table, under the file name as given.
+    """``pitheorem params``: a model's parameter table, under the file name as given.
 
     Parameters
     ----------
     model : str
         The file, as the command line named it.
-    engine_model : EngineModel
+    engine_model : EngineModel or ModelFile
+        The engine model of an MJCF or URDF file, or the model of a TOML
+        file (its variables are its parameters).
 
     Examples
     --------
@@ -203,6 +211,9 @@ class EngineApplyAnswer(NamedTuple):
         The scaled file written, if any.
     also_written : tuple of str
         Files written beside it (PyBullet's settings).
+    details : tuple of (str, tuple, tuple), optional
+        For each changed parameter, in the order of `changed`: its
+        dimension's text, its values and its scaled values.
 
     Examples
     --------
@@ -223,6 +234,7 @@ class EngineApplyAnswer(NamedTuple):
     n_parameters: int
     output: str | None
     also_written: tuple[str, ...] = ()
+    details: tuple[tuple[str, tuple, tuple], ...] = ()
 
     __str__ = TextDisplay.__str__
     __format__ = TextDisplay.__format__
