@@ -221,10 +221,15 @@ class EngineApplyAnswer(NamedTuple):
     >>> from fractions import Fraction
     >>> from pitheorem.answers import EngineApplyAnswer
     >>> sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1})
-    >>> print(EngineApplyAnswer("arm.xml", Fraction(2), sc, (("l", Fraction(1)),), 2, None, ()))
-    arm.xml, s = 2: l -> s l
-    1 of 2 parameters change, e.g.
-      l: x s
+    >>> print(EngineApplyAnswer("arm.xml", Fraction(2), sc, (("l", Fraction(1)),), 2, None, (),
+    ...                         (("L", (0.5,), (1.0,)),)))
+    arm.xml, s = 2: units of L by s
+    1 of 2 parameters change, by dimension:
+      dimension  factor  parameters
+      L          s       1: l
+    <BLANKLINE>
+    parameter  factor  value  scaled value
+    l          s       0.5    1
     """
 
     model: str

@@ -187,7 +187,7 @@ def test_search_latex_table(capsys):
     # the change of base units behind each scaling, as in the text table
     assert r"$[\mathrm{M}]$ & base unit & $s^{-2}$ & $s^{-1}$ & - \\" in out
     assert r"$[\mathrm{L}]$ & base unit & $s$ & $s$ & $s$ \\" in out
-    assert r"$[\mathrm{T}]$ & base unit & $1$ & $1$ & $1$ \\" in out
+    assert r"$[\mathrm{T}]$ & base unit & - & - & - \\" in out
 
 
 def test_search_text_table_shows_the_base_unit_change(capsys):

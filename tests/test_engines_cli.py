@@ -33,7 +33,8 @@ def test_params_on_a_toml_file_lists_its_variables(capsys):
     rows = {p["name"]: p for p in doc["parameters"]}
     assert doc["engine"] is None
     assert rows["k_theta"]["dimension"] == "M L^2 T^-2"
-    assert rows["m"]["value"] == [1.5] and rows["t"]["value"] == []
+    assert rows["m"]["value"] == [1.5]
+    assert rows["t"]["value"] == []
     assert main(["params", "example:hinged_rod"]) == 0
     assert capsys.readouterr().out.splitlines()[0] == "example:hinged_rod: model file, 9 variables"
 
@@ -224,7 +225,8 @@ def test_every_command_succeeds_on_every_shipped_and_gymnasium_model(capsys, mod
             code = main([verb, model, *request])
         out, err = capsys.readouterr()
         assert code == 0, (verb, err)
-        assert "Traceback" not in err and all(line.startswith("pitheorem: warning: ") for line in err.splitlines())
+        assert "Traceback" not in err
+        assert all(line.startswith("pitheorem: warning: ") for line in err.splitlines())
         # a summary first: the first lines name the model and fit on a screen whatever its size
         assert all(len(line) < 400 for line in out.splitlines()[:3]), (verb, out[:800])
     assert len(MODELS) >= 4 + (14 if _gymnasium_models() else 0)
@@ -238,7 +240,8 @@ def test_groups_avoids_zero_repeaters_and_says_which(capsys):
     assert main(["groups", PENDULUM, "--format", "json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert not set(doc["repeating"]) & set(zero)
-    assert "t" not in doc["repeating"] and "timestep" not in doc["repeating"]
+    assert "t" not in doc["repeating"]
+    assert "timestep" not in doc["repeating"]
     # every group has a value now, each the product of the file's values to its exponents
     values = {p.name: p.value[0] for p in model.parameters if len(p.value) == 1}
     for group in doc["groups"]:
@@ -249,7 +252,8 @@ def test_groups_avoids_zero_repeaters_and_says_which(capsys):
             assert group["value"] == pytest.approx(expected, rel=1e-12)
     assert main(["groups", PENDULUM]) == 0
     text = capsys.readouterr().out.splitlines()
-    assert text[2].startswith("(the first valid set without time variables") and "density" in text[2]
+    assert text[2].startswith("(the first valid set without time variables")
+    assert "density" in text[2]
 
 
 def test_groups_with_a_zero_repeater_given_shows_the_undefined_group_in_its_row(capsys):
@@ -263,7 +267,8 @@ def test_shipped_engine_models_are_named_like_the_others(capsys):
     assert capsys.readouterr().out.startswith("example:pendulum.xml: mujoco model, ")
     assert main(["groups", "example:pendulum"]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "hinged_rod, pendulum.xml, superball, superball.xml" in err
+    assert err.count("\n") == 1
+    assert "hinged_rod, pendulum.xml, superball, superball.xml" in err
     assert main(["--help"]) == 0
     help_text = capsys.readouterr().out
     assert "TOML model file." not in help_text
@@ -289,7 +294,8 @@ def test_search_on_a_large_model_opens_with_a_short_summary(capsys):
     times = model.system().time_variables
     assert len(times) > 10
     # the long list of time variables held fixed is shortened with a count, in the first line and the note
-    assert f"and {len(times) - 6} more ({len(times)} in all) fixed: " in lines[0] and len(lines[0]) < 300
+    assert f"and {len(times) - 6} more ({len(times)} in all) fixed: " in lines[0]
+    assert len(lines[0]) < 300
     n = int(lines[0].split(" fixed: ")[1].split()[0])
     start = lines.index(f"summary (the table below has a row for each of the {len(model.system())} variables):")
     assert [line.split(":")[0].strip() for line in lines[start + 1:start + n + 1]] == [f"#{k}" for k in

@@ -449,7 +449,7 @@ def unit_change_text(scaling) -> str:
     >>> import pitheorem as pt
     >>> from pitheorem.formatting.pieces import unit_change_text
     >>> unit_change_text(pt.Scaling.from_unit_change(pt.System({"l": "L", "m": "M", "t": "T"}), {"L": 1, "M": 3}))
-    'units of L by s, M by s^3'
+    'units of M by s^3, L by s'
     """
     if not scaling.is_unit_change:
         return "no change of units gives it"

@@ -99,9 +99,7 @@ def explanation(result) -> str:
     """
     if result.feasible:
         d = len(result.directions)
-        extra = (f" (the solutions form a family with {d} free parameter{'' if d == 1 else 's'}; "
-                 f"{'this is its minimal member' if result.n_scalings == 1 else 'these are its minimal members'})"
-                 if d else " (unique)")
+        extra = f" (of a family with {d} free parameter{'' if d == 1 else 's'})" if d else " (unique)"
         return f"Scaling {request_text(result)}: {solutions_text(result.n_scalings)}{extra}."
     return (
         f"Impossible: {result.certificate.expr} is dimensionless and built only from prescribed and fixed "
