@@ -535,7 +535,7 @@ def test_search_of_a_family_in_latex_and_html():
         r"$[\mathrm{T}]$ & base unit & - & $s^{-1/2}$ \\",
         r"\end{tabular}"])
     html = _plain(format(res, "html"))
-    assert html.startswith("<p>Scaling g by s: 2 minimal solutions (of a family with 2 free parameters).</p><table>"
+    assert html.startswith("<p>Scaling g by s: 2 minimal solutions of a 2-parameter family.</p><table>"
                            "<tr><th>variable</th><th>role</th><th>#1</th><th>#2</th></tr>"
                            "<tr><th>$m$</th><td><em>free</em></td><td>-</td><td>-</td></tr>")
     assert html.endswith('<tr class="base-unit"><th>$[\\mathrm{T}]$</th><td><em>base unit</em></td>'

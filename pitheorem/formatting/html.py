@@ -20,6 +20,7 @@ from .pieces import (
     UNCHANGED,
     base_latex,
     changed_rows,
+    default_text,
     deviation_rows,
     group_name_latex,
     latex_name,
@@ -182,7 +183,7 @@ def _unit_fit(fit) -> str:
 
 @_renders("pitheorem.engines.constants.HiddenConstant")
 def _hidden_constant(constant) -> str:
-    return f"<span>{_code(constant.name)} [{_latex(constant.dimension)}] (default {constant.default:g})</span>"
+    return f"<span>{_code(constant.name)} [{_latex(constant.dimension)}] ({default_text(constant.default)})</span>"
 
 
 @_renders("pitheorem.engines.rules.RuleVerdict")

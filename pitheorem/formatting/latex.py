@@ -20,6 +20,7 @@ from .pieces import (
     UNCHANGED,
     base_latex,
     changed_rows,
+    default_text,
     deviation_rows,
     group_name_latex,
     latex_escape,
@@ -190,7 +191,7 @@ def _unit_fit(fit) -> str:
 @_renders("pitheorem.engines.constants.HiddenConstant")
 def _hidden_constant(constant) -> str:
     return (rf"\texttt{{{latex_escape(constant.name)}}} [{_math(_dimension(constant.dimension))}] "
-            f"(default {constant.default:g})")
+            f"({default_text(constant.default)})")
 
 
 @_renders("pitheorem.engines.rules.RuleVerdict")

@@ -24,12 +24,14 @@ from ..errors import InvalidRequestError
 
 __all__ = [
     "COMMAND_LINE_TIME_REMEDY",
+    "NAMES_SHOWN",
     "PYTHON_TIME_REMEDY",
     "UNCHANGED",
     "align",
     "base_latex",
     "changed_by_kind",
     "changed_rows",
+    "default_text",
     "deviation_rows",
     "group_name_latex",
     "json_number",
@@ -417,6 +419,18 @@ def names_text(names, *, code=str, shown: int = NAMES_SHOWN) -> str:
     if len(names) <= shown + 1:
         return ", ".join(map(code, names))
     return f"{', '.join(map(code, names[:shown]))} and {len(names) - shown} more ({len(names)} in all)"
+
+
+def default_text(default: float) -> str:
+    """An engine constant's default in words: ``default 0.002``, or ``no documented default`` for NaN.
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import default_text
+    >>> default_text(0.002), default_text(float("nan"))
+    ('default 0.002', 'no documented default')
+    """
+    return "no documented default" if default != default else f"default {default:g}"  # NaN != NaN
 
 
 def solutions_text(n: int) -> str:

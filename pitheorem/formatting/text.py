@@ -16,6 +16,7 @@ from .pieces import (
     align,
     changed_by_kind,
     changed_rows,
+    default_text,
     names_text,
     note_text,
     parameter_rows,
@@ -99,7 +100,7 @@ def explanation(result) -> str:
     """
     if result.feasible:
         d = len(result.directions)
-        extra = f" (of a family with {d} free parameter{'' if d == 1 else 's'})" if d else " (unique)"
+        extra = f" of a {d}-parameter family" if d else " (unique)"
         return f"Scaling {request_text(result)}: {solutions_text(result.n_scalings)}{extra}."
     return (
         f"Impossible: {result.certificate.expr} is dimensionless and built only from prescribed and fixed "
@@ -303,7 +304,7 @@ def _unit_fit(fit) -> str:
 
 @_renders("pitheorem.engines.constants.HiddenConstant")
 def _hidden_constant(constant) -> str:
-    return f"{constant.name} [{_dimension(constant.dimension)}] (default {constant.default:g})"
+    return f"{constant.name} [{_dimension(constant.dimension)}] ({default_text(constant.default)})"
 
 
 @_renders("pitheorem.engines.rules.RuleVerdict")
