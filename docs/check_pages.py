@@ -26,19 +26,87 @@ BUILD_DIR defaults to ``docs/_build/html`` next to this file. The script reads e
   (``div.doctest``, on the API reference pages) are exempt: they follow the code's line
   length, and ``custom.css`` wraps them at every width.
 
+Then, where a headless Chromium is installed (``chromium``, ``chromium-browser`` or
+``google-chrome`` on the path; ``--no-browser`` skips it), every page is laid out at
+:data:`PHONE_WIDTH` px, a phone's width, and measured (:func:`layout_problems`):
+
+* an aligned code or output block that wraps (it shows more lines than its text has): the
+  columns of a table printed as text would turn to mush; it must scroll sideways instead;
+* a display equation or a table wider than its column that neither fits nor scrolls
+  inside it (its end is clipped or runs past the column).
+
 Exit status: 0 when every check passes, 1 when one fails (each finding printed as
 ``page: what``), 2 when the build folder is missing or holds no HTML. Only the standard
-library is used.
+library is used (and the browser, when there is one).
 """
 
 from __future__ import annotations
 
 import hashlib
+import json
+import shutil
+import subprocess
 import sys
+import tempfile
 from html.parser import HTMLParser
 from pathlib import Path
 
-__all__ = ["MAX_LINE", "MIN_FIGURES", "PageScan", "check_page", "main"]
+__all__ = ["MAX_LINE", "MIN_FIGURES", "PHONE_WIDTH", "PageScan", "browser", "check_page", "layout_problems", "main"]
+
+#: the window width, in px, at which pages are laid out and measured (a phone's)
+PHONE_WIDTH = 390
+
+#: JavaScript run on each laid-out page: the aligned blocks that wrap, and the display
+#: equations and tables that overflow their column without scrolling inside it
+_PROBE = r"""
+function probe(d, w) {
+  const found = [];
+  const scrolls = el => ['auto', 'scroll'].includes(w.getComputedStyle(el).overflowX);
+  const clipped = el => {
+    // the first box from el outwards that is narrower than its content must scroll
+    for (let box = el; box && box !== d.body; box = box.parentElement) {
+      if (box.scrollWidth > box.clientWidth + 1) return !scrolls(box);
+      if (box.tagName === 'ARTICLE' || box.tagName === 'MAIN') break;
+    }
+    const column = d.querySelector('article') || d.body;
+    return el.getBoundingClientRect().right > column.getBoundingClientRect().right + 1;
+  };
+  for (const pre of d.querySelectorAll('div.highlight pre, div.cell_output pre')) {
+    if (pre.closest('div.doctest')) continue;  // docstring examples wrap on purpose
+    const st = w.getComputedStyle(pre);
+    const lineHeight = parseFloat(st.lineHeight) || 1.2 * parseFloat(st.fontSize);
+    const text = pre.textContent.replace(/\n$/, '');
+    const lines = text.split('\n').length;
+    const shown = (pre.clientHeight - parseFloat(st.paddingTop) - parseFloat(st.paddingBottom)) / lineHeight;
+    if (shown > lines + 0.6) {
+      const longest = text.split('\n').reduce((a, b) => (b.length > a.length ? b : a), '');
+      found.push(`an aligned block wraps (${lines} lines shown on ${Math.round(shown)}): ${longest.slice(0, 50)}`);
+    }
+  }
+  for (const eq of d.querySelectorAll('mjx-container[display="true"]')) {
+    if (clipped(eq)) found.push(`a display equation is clipped: ${eq.textContent.slice(0, 40)}`);
+  }
+  for (const table of d.querySelectorAll('article table')) {
+    if (clipped(table)) found.push(`a table is clipped (${table.scrollWidth} px wide)`);
+  }
+  return found;
+}
+const pages = PAGES, results = {};
+const frame = document.getElementById('page');
+async function run() {
+  for (const page of pages) {
+    await new Promise(done => { frame.onload = done; frame.src = page; });
+    const w = frame.contentWindow;
+    if (w.MathJax && w.MathJax.startup && w.MathJax.startup.promise) {
+      await w.MathJax.startup.promise;
+    }
+    await new Promise(done => setTimeout(done, 50));
+    results[page] = probe(frame.contentDocument, w);
+  }
+  document.getElementById('out').textContent = JSON.stringify(results);
+}
+run();
+"""
 
 #: longest line, in characters, that a code or output block may hold (see the module docstring)
 MAX_LINE = 88
@@ -162,9 +230,45 @@ def check_page(page: Path, root: Path) -> list[str]:
     return [f"{rel}: {p}" for p in problems]
 
 
+def browser() -> str | None:
+    """The headless browser the layout checks use: Chromium or Chrome on the path, else None."""
+    return next(filter(None, map(shutil.which, ("chromium", "chromium-browser", "google-chrome"))), None)
+
+
+def layout_problems(pages: list[Path], root: Path, program: str, width: int = PHONE_WIDTH) -> list[str]:
+    """Lay out pages in a headless browser `width` px wide; return what wraps or is clipped.
+
+    The pages load one after the other in a frame of a page written for the purpose, which
+    measures each (after MathJax has typeset it) and writes the findings into itself; the
+    browser prints that page's final DOM (``--dump-dom``), where they are read.
+    """
+    if not pages:
+        return []
+    with tempfile.TemporaryDirectory() as tmp:
+        runner = Path(tmp) / "layout.html"
+        script = _PROBE.replace("PAGES", json.dumps([p.resolve().as_uri() for p in pages]))
+        runner.write_text(
+            f'<html><body style="margin:0"><iframe id="page" style="width:{width}px;height:1200px;border:0">'
+            f'</iframe><pre id="out"></pre><script>{script}</script></body></html>', encoding="utf-8")
+        dom = subprocess.run(
+            [program, "--headless", "--no-sandbox", "--disable-gpu", "--allow-file-access-from-files",
+             f"--window-size={width + 20},1300", f"--virtual-time-budget={60000 * len(pages)}", "--dump-dom",
+             runner.as_uri()], capture_output=True, text=True, timeout=60 + 10 * len(pages), check=False).stdout
+    start, end = dom.find('<pre id="out">'), dom.find("</pre>", dom.find('<pre id="out">'))
+    text = dom[start + len('<pre id="out">'):end] if start >= 0 else ""
+    if not text.strip():
+        return [f"layout check at {width} px: the browser measured nothing ({program})"]
+    found = json.loads(text.replace("&lt;", "<").replace("&gt;", ">").replace("&quot;", '"').replace("&amp;", "&"))
+    by_uri = {p.resolve().as_uri(): p for p in pages}
+    return [f"{by_uri[uri].relative_to(root).as_posix()}: at {width} px, {what}"
+            for uri, whats in found.items() for what in whats]
+
+
 def main(argv: list[str] | None = None) -> int:
     """Check every page; print findings; return the exit status."""
     args = sys.argv[1:] if argv is None else argv
+    use_browser = "--no-browser" not in args
+    args = [a for a in args if a != "--no-browser"]
     root = Path(args[0]) if args else Path(__file__).parent / "_build" / "html"
     pages = sorted(root.rglob("*.html")) if root.is_dir() else []
     if not pages:
@@ -174,6 +278,11 @@ def main(argv: list[str] | None = None) -> int:
     problems = [f"{p}: page is missing from the build" for p in missing]
     for page in pages:
         problems += check_page(page, root)
+    program = browser() if use_browser else None
+    if program is not None:  # the generated API stubs are left out: docstring examples wrap on purpose
+        problems += layout_problems([p for p in pages if "generated" not in p.parts], root, program)
+    else:
+        print(f"check_pages: layout checks at {PHONE_WIDTH} px skipped (no headless Chromium on the path)")
     for line in problems:
         print(line)
     print(f"check_pages: {'FAILED' if problems else 'ok'}: {len(pages)} pages checked, {len(problems)} problem(s)")

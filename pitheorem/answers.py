@@ -29,7 +29,12 @@ class GroupsAnswer(NamedTuple):
     system : System
     groups : PiSet
     values : tuple
-        Each group's value (Fraction or float), or None when a variable has no value.
+        Each group's value (Fraction or float), None when a variable has no
+        value, or a phrase such as ``"undefined (density = 0)"`` when a
+        zero value meets a negative exponent.
+    passed_over : tuple of str, optional
+        The variables whose value is 0, which the default repeaters avoid
+        (empty when the repeaters were given).
 
     Examples
     --------
@@ -48,6 +53,7 @@ class GroupsAnswer(NamedTuple):
     system: object
     groups: object
     values: tuple
+    passed_over: tuple[str, ...] = ()
 
     __str__ = TextDisplay.__str__
     __format__ = TextDisplay.__format__
@@ -161,13 +167,15 @@ class ApplyAnswer(NamedTuple):
 
 
 class ParamsAnswer(NamedTuple):
-    """``pitheorem params``: an engine model's parameter table, under the file name as given.
+    """``pitheorem params``: a model's parameter table, under the file name as given.
 
     Parameters
     ----------
     model : str
         The file, as the command line named it.
-    engine_model : EngineModel
+    engine_model : EngineModel or ModelFile
+        The engine model of an MJCF or URDF file, or the model of a TOML
+        file (its variables are its parameters).
 
     Examples
     --------
@@ -203,6 +211,9 @@ class EngineApplyAnswer(NamedTuple):
         The scaled file written, if any.
     also_written : tuple of str
         Files written beside it (PyBullet's settings).
+    details : tuple of (str, tuple, tuple), optional
+        For each changed parameter, in the order of `changed`: its
+        dimension's text, its values and its scaled values.
 
     Examples
     --------
@@ -210,10 +221,15 @@ class EngineApplyAnswer(NamedTuple):
     >>> from fractions import Fraction
     >>> from pitheorem.answers import EngineApplyAnswer
     >>> sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1})
-    >>> print(EngineApplyAnswer("arm.xml", Fraction(2), sc, (("l", Fraction(1)),), 2, None, ()))
-    arm.xml, s = 2: l -> s l
-    1 of 2 parameters change, e.g.
-      l: x s
+    >>> print(EngineApplyAnswer("arm.xml", Fraction(2), sc, (("l", Fraction(1)),), 2, None, (),
+    ...                         (("L", (0.5,), (1.0,)),)))
+    arm.xml, s = 2: units of L by s
+    1 of 2 parameters change, by dimension:
+      dimension  factor  parameters
+      L          s       1: l
+    <BLANKLINE>
+    parameter  factor  value  scaled value
+    l          s       0.5    1
     """
 
     model: str
@@ -223,6 +239,7 @@ class EngineApplyAnswer(NamedTuple):
     n_parameters: int
     output: str | None
     also_written: tuple[str, ...] = ()
+    details: tuple[tuple[str, tuple, tuple], ...] = ()
 
     __str__ = TextDisplay.__str__
     __format__ = TextDisplay.__format__

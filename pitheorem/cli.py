@@ -1,12 +1,24 @@
-"""The ``pitheorem`` command line: groups, bases, search and apply on a model file.
+"""The ``pitheorem`` command line: params, groups, bases, search and apply on a model file.
 
-Four subcommands work on a TOML model file (format: :mod:`pitheorem.modelfile`;
-``example:hinged_rod`` and ``example:superball`` name the shipped examples)::
+Every subcommand reads a TOML model file (format: :mod:`pitheorem.modelfile`),
+an MJCF (MuJoCo) or a URDF (PyBullet) file, or a shipped example
+``example:NAME``, NAME one of ``hinged_rod``, ``superball`` (TOML) and
+``pendulum.xml``, ``superball.xml`` (MJCF): the names
+:func:`pitheorem.modelfile.examples` lists::
 
+    pitheorem params FILE
     pitheorem groups FILE [--repeating m l k_theta]
-    pitheorem bases  FILE [--exclude t] [--require m] [--count]
+    pitheorem bases  FILE [--exclude t] [--require m] [--count | --all]
     pitheorem search FILE --scale g=1 [l=-1 ...] [--fixed [t m ...]] [--allow ...] [--no-default-fixed]
-    pitheorem apply  FILE --scale g=1 [--fixed ...] --s 2 [--solution K] [--output FILE.toml|FILE.json]
+    pitheorem apply  FILE --scale g=1 [--fixed ...] --s 2 [--solution K] [--output OUT]
+
+``groups`` without ``--repeating`` takes the first valid set of repeating
+variables without time variables; if one of them has the value 0 (which
+would leave groups undefined), the first set without time variables,
+without zero values and without variables lacking one value, and it says
+which variables are 0; a group that is undefined for the file's values (a zero
+to a negative power) says so in its row.  ``bases`` lists the first
+:data:`BASES_SHOWN` sets, and every one with ``--all``.
 
 Every subcommand takes ``--format text|latex|html|json`` (default ``text``:
 aligned plain text).  A subcommand computes its answer (a value of
@@ -47,19 +59,20 @@ import argparse
 import math
 import os
 import sys
+import warnings
 from collections.abc import Sequence
 from fractions import Fraction
+from itertools import islice
 from pathlib import Path
 
 from . import __version__
-from .answers import ApplyAnswer, BasesAnswer, GroupsAnswer, SearchAnswer
-from .errors import CommandLineError, LimitError, PiTheoremError
-from .exact import read_exponent, read_positive, short_text
+from .errors import CommandLineError, InvalidRequestError, LimitError, PiTheoremError
 from .formatting import FORMATS, render
-from .modelfile import ModelFile, load_model_file, model_kind, write_model_file
-from .scalesearch import SearchResult, search
+from .modelfile import ModelFile, example_path, examples, load_model_file, model_kind, write_model_file
 
-__all__ = ["EXIT_ERROR", "EXIT_INFEASIBLE", "EXIT_OK", "build_parser", "main"]
+# The answers, the search and the exact readers load when a command needs them (start-up time)
+
+__all__ = ["BASES_SHOWN", "EXIT_ERROR", "EXIT_INFEASIBLE", "EXIT_OK", "build_parser", "main"]
 
 #: exit code of a successful run
 EXIT_OK = 0
@@ -70,6 +83,12 @@ EXIT_ERROR = 2
 
 _CommandError = CommandLineError  # the short name used throughout this module
 
+#: how many repeating sets ``pitheorem bases`` lists without ``--all``
+BASES_SHOWN = 50
+
+#: how the help and the error for a bad ``example:`` name list the shipped examples
+_EXAMPLES_TEXT = "example:NAME, NAME one of " + ", ".join(examples())
+
 _SCALE_HELP = ("NAME=EXP: EXP is the exponent of the scale factor s, not a factor: NAME -> s^EXP NAME "
                "(g=1: g -> s g; l=-1/2: l -> s^(-1/2) l; g=1/6: g -> s^(1/6) g)")
 
@@ -77,9 +96,19 @@ _SCALE_HELP = ("NAME=EXP: EXP is the exponent of the scale factor s, not a facto
 # -- helpers ---------------------------------------------------------------------------------
 
 
-def _is_engine_file(path: str) -> bool:
-    """Whether FILE is an MJCF or URDF model; examples and TOML/JSON files never load the engines package."""
-    return model_kind(path) in ("mjcf", "urdf")
+def _engine_path(path: str) -> str | None:
+    """FILE as the engines read it when it is an MJCF or URDF model (a shipped one by its path), else None.
+
+    TOML and JSON files, shipped or not, never load the engines package.
+    """
+    if path.startswith("example:"):
+        name = path.removeprefix("example:")
+        if name not in examples():
+            raise _CommandError(f"{path}: no such example; the shipped examples are {', '.join(examples())}",
+                                culprit=path)
+        shipped = example_path(name)
+        return str(shipped) if model_kind(shipped) in ("mjcf", "urdf") else None
+    return path if model_kind(path) in ("mjcf", "urdf") else None
 
 
 def _load(path: str, scene: list[str] | None = None) -> ModelFile:
@@ -88,10 +117,11 @@ def _load(path: str, scene: list[str] | None = None) -> ModelFile:
 
 def _load_with_engine(path: str, scene: list[str] | None = None) -> tuple[ModelFile, object]:
     """The model file and, for MJCF or URDF, the engine's model it was read from (else None)."""
-    if _is_engine_file(path):  # MJCF or URDF: its system and scalar values, through the engine
+    engine_path = _engine_path(path)
+    if engine_path is not None:  # MJCF or URDF: its system and scalar values, through the engine
         from .engines.cli import engine_model_file, parse_scene
 
-        return engine_model_file(path, **parse_scene(scene))
+        return engine_model_file(engine_path, **parse_scene(scene))
     if scene:
         raise _CommandError(f"--scene sets up URDF models; {path} is no URDF file")
     try:
@@ -103,6 +133,8 @@ def _load_with_engine(path: str, scene: list[str] | None = None) -> tuple[ModelF
 
 
 def _parse_scale(entries: Sequence[str]) -> dict[str, Fraction]:
+    from .exact import read_exponent
+
     scale: dict[str, Fraction] = {}
     for entry in entries:
         name, sep, text = entry.partition("=")
@@ -138,6 +170,8 @@ def _scaled_values(sc, values: dict, s: Fraction) -> dict:
     98.10000000000001); an exact value stays exact when its scaled value is
     rational, and becomes the nearest float when not.
     """
+    from .exact import short_text
+
     try:
         scaled = sc.apply(values, s)
     except LimitError as err:  # a float value rounded beyond floating point: said in the command line's terms
@@ -161,7 +195,9 @@ def _out_of_float_range(what: str, culprit) -> CommandLineError:
                          "choose an --s nearer to 1", culprit=culprit)
 
 
-def _run_search(model: ModelFile, args) -> SearchResult:
+def _run_search(model: ModelFile, args):
+    from .scalesearch import search
+
     scale = _parse_scale(args.scale)
     if args.fixed is not None:
         fixed = tuple(args.fixed)
@@ -179,46 +215,100 @@ def _print(answer, args) -> None:
     print(render(answer, args.format))
 
 
+def _zero_valued(model: ModelFile) -> tuple[str, ...]:
+    """The variables whose value in the file is 0, in file order."""
+    return tuple(n for n, v in model.values.items() if v == 0)
+
+
+def _default_repeating(model: ModelFile) -> tuple[str, ...]:
+    """The repeaters of ``groups`` without ``--repeating``: the system's default, unless one of them is 0.
+
+    A repeater whose value is 0 leaves every group it divides undefined.
+    Then the first valid set (in ``bases`` order) is taken that avoids time
+    variables, zero values and variables without one value (so that every
+    group gets a value), or failing that the first without time variables
+    and zero values, or the first without zero values; if every set needs
+    a zero, the system's default after all.
+    """
+    system = model.system
+    default = system.default_repeating()
+    zero = set(_zero_valued(model))
+    if not zero & set(default):
+        return default
+    time = set(system.time_variables)
+    valueless = set(system.variables) - set(model.values)
+    for avoid in (zero | time | valueless, zero | time, zero):
+        first = next(system.iter_bases(exclude=[n for n in system.variables if n in avoid]), None)
+        if first is not None:
+            return first
+    return default
+
+
+def _group_value(group, values):
+    """A group's value from the file's values: None without every value, a phrase when it is undefined."""
+    if not all(n in values for n in group.exponents):
+        return None
+    try:
+        return group.evaluate(values)
+    except InvalidRequestError:  # a zero to a negative power (evaluate's one refusal of known values)
+        zero = next(n for n, p in group.exponents.items() if p < 0 and values[n] == 0)
+        return f"undefined ({zero} = 0)"
+
+
 def _cmd_groups(args) -> int:
+    from .answers import GroupsAnswer
+
     model = _load(args.file, args.scene)
-    groups = model.system.pi_groups(repeating=args.repeating)
-    values = tuple(g.evaluate(model.values)
-                   if all(n in model.values for n in g.exponents) else None for g in groups)
-    _print(GroupsAnswer(model.name, model.system, groups, values), args)
+    repeating = args.repeating if args.repeating is not None else _default_repeating(model)
+    groups = model.system.pi_groups(repeating=repeating)
+    values = tuple(_group_value(g, model.values) for g in groups)
+    passed_over = () if args.repeating is not None else _zero_valued(model)
+    _print(GroupsAnswer(model.name, model.system, groups, values, passed_over), args)
     return EXIT_OK
 
 
 def _cmd_bases(args) -> int:
+    from .answers import BasesAnswer
+
     model = _load(args.file, args.scene)
     system = model.system
-    if args.count:
-        count = system.count_bases(exclude=args.exclude, require=args.require)
-        bases = None
-    else:
+    if args.count and args.all:
+        raise _CommandError("--count prints only the number of sets and --all lists every one; give one of them")
+    if args.all:
         bases = system.bases(exclude=args.exclude, require=args.require)
         count = len(bases)
+    else:  # the count, and the first sets only: a large model has millions
+        count = system.count_bases(exclude=args.exclude, require=args.require)
+        bases = None if args.count else tuple(
+            islice(system.iter_bases(exclude=args.exclude, require=args.require), BASES_SHOWN))
     _print(BasesAnswer(model.name, system.rank, tuple(args.exclude), tuple(args.require), count, bases), args)
     return EXIT_OK
 
 
 def _cmd_search(args) -> int:
+    from .answers import SearchAnswer
+
     model = _load(args.file, args.scene)
     result = _run_search(model, args)
     _print(SearchAnswer(model.name, result), args)
     return EXIT_OK if result.feasible else EXIT_INFEASIBLE
 
 
-def _chosen_scaling(result: SearchResult, k: int):
+def _chosen_scaling(result, k: int):
     """The K-th minimal scaling of a feasible search (``--solution K``)."""
     count = result.n_scalings
     if not 1 <= k <= count:
         raise _CommandError(
-            f"--solution {k} is out of range: the request has {count} minimal scaling(s); choose 1 to {count}"
+            f"--solution {k} is out of range: the request has {count} minimal "
+            f"{'scaling' if count == 1 else 'scalings'}; choose " + ("1" if count == 1 else f"1 to {count}")
         )
     return result.scalings[k - 1]
 
 
 def _cmd_apply(args) -> int:
+    from .answers import ApplyAnswer
+    from .exact import read_positive
+
     model, engine_model = _load_with_engine(args.file, args.scene)
     s = read_positive(args.s, "--s")
     if engine_model is None and not model.values:
@@ -250,11 +340,13 @@ def _cmd_apply(args) -> int:
 
 
 def _cmd_verify(args) -> int:
-    if not _is_engine_file(args.file):
+    if _engine_path(args.file) is None:
         raise _CommandError(f"{args.file}: verify runs MJCF (.xml) or URDF (.urdf) model files in their engine")
     if args.format not in ("text", "json"):
         raise _CommandError(f"--format {args.format}: verify prints text or json")
     model, engine_model = _load_with_engine(args.file, args.scene)
+    from .exact import read_positive
+
     s = read_positive(args.s, "--s")
     duration = read_positive(args.duration, "--duration")
     result = _run_search(model, args)
@@ -269,16 +361,25 @@ def _cmd_verify(args) -> int:
     return EXIT_OK if similar else EXIT_INFEASIBLE
 
 
-def _engine_params(args) -> int:
-    if not _is_engine_file(args.file):
-        raise _CommandError(f"{args.file}: params reads MJCF (.xml) or URDF (.urdf) model files")
+def _cmd_params(args) -> int:
+    engine_path = _engine_path(args.file)
+    if engine_path is None:  # a TOML or JSON model file: its variables, dimensions and values
+        from .answers import ParamsAnswer
+
+        _print(ParamsAnswer(args.file, _load(args.file, args.scene)), args)
+        return EXIT_OK
     from .engines.cli import params_answer, parse_scene
 
-    _print(params_answer(args.file, **parse_scene(args.scene)), args)
+    _print(params_answer(engine_path, **parse_scene(args.scene), name=args.file), args)
     return EXIT_OK
 
 
 # -- parser and entry point ------------------------------------------------------------------
+
+
+def _one_line_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """A warning as the command line shows it: ``pitheorem: warning: ...``, never Python's source line."""
+    print(f"pitheorem: warning: {message}", file=sys.stderr if file is None else file)
 
 
 class _Help(argparse.HelpFormatter):
@@ -312,9 +413,10 @@ def build_parser() -> argparse.ArgumentParser:
     """
     parser = argparse.ArgumentParser(
         prog="pitheorem",
-        description="Exact dimensional analysis and similarity-scaling search on a TOML model file.",
+        description="Exact dimensional analysis and similarity-scaling search on a model file: "
+        "TOML, MJCF (MuJoCo) or URDF (PyBullet).",
         epilog="Exit codes: 0 success; 1 no similarity scaling meets the request (search, apply); "
-        "2 bad input. FILE may be example:hinged_rod or example:superball.",
+        f"2 bad input. FILE may be a shipped example, {_EXAMPLES_TEXT}.",
         allow_abbrev=False,
         formatter_class=_Help,
     )
@@ -322,7 +424,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     common = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
-    common.add_argument("file", metavar="FILE", help="TOML, MJCF (.xml) or URDF (.urdf) model file (or example:NAME)")
+    common.add_argument("file", metavar="FILE", help=f"TOML, MJCF (.xml) or URDF (.urdf) model file, or {_EXAMPLES_TEXT}")
     common.add_argument("--format", choices=FORMATS, default="text", help="output format (default: text)")
     common.add_argument("--scene", nargs="+", metavar="NAME=VALUE", help="URDF files: PyBullet's scene")
 
@@ -337,14 +439,16 @@ def build_parser() -> argparse.ArgumentParser:
 
     options = {"allow_abbrev": False, "formatter_class": _Help}
     p = sub.add_parser("params", parents=[common], **options,
-                       help="parameters of an MJCF or URDF model, with dimensions",
-                       description="List every dimensional number of an MJCF (MuJoCo) or URDF (PyBullet) model.")
-    p.set_defaults(run=lambda args: _engine_params(args))
+                       help="every variable or engine parameter, with its dimension and value",
+                       description="List every variable of a TOML model file, or every dimensional number of "
+                       "an MJCF (MuJoCo) or URDF (PyBullet) model, with its dimension and value.")
+    p.set_defaults(run=_cmd_params)
 
     p = sub.add_parser("groups", parents=[common], **options, help="Pi groups of the model",
                        description="Print the dimensionless (Pi) groups of the model.")
     p.add_argument("--repeating", nargs="+", metavar="NAME",
-                   help="repeating variables (default: the first basis without time)")
+                   help="repeating variables (default: the first valid set without time variables, "
+                   "and without variables whose value is 0 where those would be in it)")
     p.set_defaults(run=_cmd_groups)
 
     p = sub.add_parser("bases", parents=[common], **options, help="every valid repeating set",
@@ -352,6 +456,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--exclude", nargs="*", default=[], metavar="NAME", help="never use these as repeaters")
     p.add_argument("--require", nargs="*", default=[], metavar="NAME", help="every set must contain these")
     p.add_argument("--count", action="store_true", help="print only the number of sets")
+    p.add_argument("--all", action="store_true",
+                   help=f"list every set (default: the number of sets and the first {BASES_SHOWN})")
     p.set_defaults(run=_cmd_bases)
 
     p = sub.add_parser("search", parents=[common, request], **options,
@@ -361,13 +467,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(run=_cmd_search)
 
     p = sub.add_parser("apply", parents=[common, request], **options,
-                       help="write a scaled copy of the model's values",
-                       description="Scale the values of the model file by a minimal similarity scaling.")
+                       help="scale the model's values by a minimal scaling (and write them with --output)",
+                       description="Scale the values of the model file by a minimal similarity scaling; "
+                       "--output writes the scaled file.")
     p.add_argument("--s", required=True, metavar="S",
                    help="the scale factor s itself, e.g. 2 or 1/2 (each variable is multiplied by s^EXP)")
     p.add_argument("--solution", type=int, default=1, metavar="K",
                    help="use the K-th minimal scaling (default 1)")
-    p.add_argument("--output", metavar="OUT", help="write the scaled model file (.toml or .json; MJCF/URDF as read)")
+    p.add_argument("--output", metavar="OUT",
+                   help="write the scaled model file: .toml or .json for a TOML model, the same kind for MJCF/URDF")
     p.set_defaults(run=_cmd_apply)
 
     p = sub.add_parser("verify", parents=[common, request], **options,
@@ -426,7 +534,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as exc:  # --help, --version, and argparse's usage errors
         return exc.code if isinstance(exc.code, int) else EXIT_ERROR
     try:
-        return args.run(args)
+        with warnings.catch_warnings():  # restores Python's own display when the command returns
+            warnings.showwarning = _one_line_warning
+            return args.run(args)
     except PiTheoremError as err:
         message = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
         print(f"pitheorem: error: {message}", file=sys.stderr)

@@ -490,7 +490,7 @@ def search(
     ...                  "c_theta": "M L^2 T^-1", "t": "T", "F": "M L T^-2", "tau": "M L^2 T^-2"})
     >>> res = pt.search(rod, scale={"g": 1})
     >>> print(res)
-    Scaling g by s with t fixed: 3 minimal solution(s) (a family of dimension 1).
+    Scaling g by s with t fixed: 3 minimal solutions of a 1-parameter family.
     time variable t is held fixed by default; pass fixed=() to let time change
     <BLANKLINE>
     variable  role   #1     #2   #3

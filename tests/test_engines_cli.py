@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import warnings
 from pathlib import Path
 
 import pytest
@@ -10,7 +11,8 @@ import pytest
 pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
 
 from pitheorem import engines
-from pitheorem.cli import main
+from pitheorem.cli import BASES_SHOWN, main
+from pitheorem.modelfile import examples
 
 DATA = Path(__file__).resolve().parent / "data" / "engines"
 PENDULUM = str(engines.example_path("pendulum.xml"))
@@ -25,9 +27,16 @@ def test_params_lists_dimensions(capsys):
     assert rows["g"]["value"] == [9.81]
 
 
-def test_params_on_a_toml_file_is_refused(capsys):
-    assert main(["params", "example:hinged_rod"]) == 2
-    assert "MJCF" in capsys.readouterr().err
+def test_params_on_a_toml_file_lists_its_variables(capsys):
+    assert main(["params", "example:hinged_rod", "--format", "json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    rows = {p["name"]: p for p in doc["parameters"]}
+    assert doc["engine"] is None
+    assert rows["k_theta"]["dimension"] == "M L^2 T^-2"
+    assert rows["m"]["value"] == [1.5]
+    assert rows["t"]["value"] == []
+    assert main(["params", "example:hinged_rod"]) == 0
+    assert capsys.readouterr().out.splitlines()[0] == "example:hinged_rod: model file, 9 variables"
 
 
 def test_search_and_apply_write_a_file_the_engine_loads(tmp_path, capsys):
@@ -216,3 +225,104 @@ def test_verify_exits_0_when_similar_1_when_not_and_2_on_bad_input(capsys, tmp_p
     assert "--s" in capsys.readouterr().err
     assert main(["verify", pendulum, "--scale", "g=1", "--s", "4", "--format", "latex"]) == 2
     assert main(["verify", "example:hinged_rod", "--scale", "g=1", "--s", "4"]) == 2
+
+
+# -- every command on every shipped example and every gymnasium MuJoCo model ----------------------
+
+
+def _gymnasium_models() -> list[Path]:
+    try:
+        import gymnasium
+    except ImportError:  # an install without the test extra: the shipped examples still run
+        return []
+    return sorted((Path(gymnasium.__file__).parent / "envs" / "mujoco" / "assets").glob("*.xml"))
+
+
+#: each command with the least a request needs
+VERBS = (["params"], ["groups"], ["bases"], ["search", "--scale", "g=1"], ["apply", "--scale", "g=1", "--s", "2"])
+MODELS = [f"example:{name}" for name in examples()] + [str(p) for p in _gymnasium_models()]
+
+
+@pytest.mark.parametrize("model", MODELS, ids=[Path(m).name for m in MODELS])
+def test_every_command_succeeds_on_every_shipped_and_gymnasium_model(capsys, model):
+    for verb, *request in VERBS:
+        with warnings.catch_warnings():
+            warnings.simplefilter("always")  # e.g. ant.xml's custom numeric data: shown, not raised
+            code = main([verb, model, *request])
+        out, err = capsys.readouterr()
+        assert code == 0, (verb, err)
+        assert "Traceback" not in err
+        assert all(line.startswith("pitheorem: warning: ") for line in err.splitlines())
+        # a summary first: the first lines name the model and fit on a screen whatever its size
+        assert all(len(line) < 400 for line in out.splitlines()[:3]), (verb, out[:800])
+    assert len(MODELS) >= 4 + (14 if _gymnasium_models() else 0)
+
+
+def test_groups_avoids_zero_repeaters_and_says_which(capsys):
+    # pendulum.xml's default set would hold density = 0, so every group it divides would be undefined
+    model = engines.load(PENDULUM)
+    zero = [p.name for p in model.parameters if len(p.value) == 1 and p.value[0] == 0]
+    assert "density" in zero
+    assert main(["groups", PENDULUM, "--format", "json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert not set(doc["repeating"]) & set(zero)
+    assert "t" not in doc["repeating"]
+    assert "timestep" not in doc["repeating"]
+    # every group has a value now, each the product of the file's values to its exponents
+    values = {p.name: p.value[0] for p in model.parameters if len(p.value) == 1}
+    for group in doc["groups"]:
+        if all(n in values for n in group["exponents"]):
+            expected = 1.0
+            for n, p in group["exponents"].items():
+                expected *= values[n] ** p
+            assert group["value"] == pytest.approx(expected, rel=1e-12)
+    assert main(["groups", PENDULUM]) == 0
+    text = capsys.readouterr().out.splitlines()
+    assert text[2].startswith("(the first valid set without time variables")
+    assert "density" in text[2]
+
+
+def test_groups_with_a_zero_repeater_given_shows_the_undefined_group_in_its_row(capsys):
+    assert main(["groups", PENDULUM, "--repeating", "g", "density", "ccd_tolerance"]) == 0
+    rows = {line.split()[0]: line for line in capsys.readouterr().out.splitlines()[3:]}
+    assert rows["Pi_geom_rod_density"].endswith("undefined (density = 0)")
+
+
+def test_shipped_engine_models_are_named_like_the_others(capsys):
+    assert main(["params", "example:pendulum.xml"]) == 0
+    assert capsys.readouterr().out.startswith("example:pendulum.xml: mujoco model, ")
+    assert main(["groups", "example:pendulum"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1
+    assert "hinged_rod, pendulum.xml, superball, superball.xml" in err
+    assert main(["--help"]) == 0
+    help_text = capsys.readouterr().out
+    assert "TOML model file." not in help_text
+    assert "example:NAME, NAME one of hinged_rod, pendulum.xml, superball, superball.xml" in " ".join(
+        help_text.split())
+
+
+def test_bases_of_a_large_model_lists_the_first_sets_after_their_count(capsys):
+    assert main(["bases", "example:superball.xml"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    count = int(lines[0].split(": ")[1].split()[0])
+    assert count > 10**6
+    assert lines[1].startswith(f"the first {BASES_SHOWN} (--all lists every one")
+    assert len(lines) == 2 + BASES_SHOWN
+    assert main(["bases", "example:superball.xml", "--count", "--all"]) == 2
+    capsys.readouterr()
+
+
+def test_search_on_a_large_model_opens_with_a_short_summary(capsys):
+    assert main(["search", "example:superball.xml", "--scale", "g=1"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    model = engines.load(engines.example_path("superball.xml"))
+    times = model.system().time_variables
+    assert len(times) > 10
+    # the long list of time variables held fixed is shortened with a count, in the first line and the note
+    assert f"and {len(times) - 6} more ({len(times)} in all) fixed: " in lines[0]
+    assert len(lines[0]) < 300
+    n = int(lines[0].split(" fixed: ")[1].split()[0])
+    start = lines.index(f"summary (the table below has a row for each of the {len(model.system())} variables):")
+    assert [line.split(":")[0].strip() for line in lines[start + 1:start + n + 1]] == [f"#{k}" for k in
+                                                                                       range(1, n + 1)]

@@ -10,8 +10,11 @@ and test_engines_urdf.
 from __future__ import annotations
 
 import math
+from decimal import Decimal, localcontext
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import pitheorem as pt
 from pitheorem import engines
@@ -135,3 +138,26 @@ def test_an_engine_takes_a_change_of_units_over_m_l_and_t():
         with pytest.raises(pt.InvalidRequestError) as caught:
             call()
         assert str(caught.value) == "the scaling's system has no base dimension 'M'; search on model.system()"
+
+
+@settings(max_examples=200, deadline=None)
+@given(digits=st.integers(-10**6, 10**6), places=st.integers(0, 6), factor=st.sampled_from([10, 0.1, 2, 0.5, 1e3, 3]))
+def test_attribute_text_writes_the_exact_decimal_product(digits, places, factor):
+    from pitheorem.engines.model import attribute_text, exact_product
+
+    value = float(f"{digits}e-{places}")  # a decimal as a file writes it, e.g. 9.81
+    # oracle: the product of the two decimals in decimal arithmetic wide enough to be exact, rounded once
+    with localcontext() as ctx:
+        ctx.prec = 60
+        expected = float(Decimal(repr(value)) * Decimal(repr(float(factor))))
+    assert exact_product(value, factor) == expected
+    assert attribute_text([value, value], factor) == f"{expected!r} {expected!r}"
+    assert attribute_text([value]) == repr(value)
+
+
+def test_attribute_text_writes_98_1_for_9_81_times_10():
+    from pitheorem.engines.model import attribute_text
+
+    assert 9.81 * 10 != 98.1  # the float product rounds twice
+    assert attribute_text([0, 0, -9.81], 10) == "0.0 0.0 -98.1"
+    assert attribute_text([math.inf], 2) == "inf"

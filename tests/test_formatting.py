@@ -77,10 +77,12 @@ def _apply_answer():
 def _engine_apply_answer():
     model = _engine_model()
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    changed = tuple((p.name, sc.exponent_of(p.dimension)) for p in model.parameters
-                    if not p.mixed and sc.exponent_of(p.dimension))
+    kept = [p for p in model.parameters if not p.mixed and sc.exponent_of(p.dimension)]
+    changed = tuple((p.name, sc.exponent_of(p.dimension)) for p in kept)
+    scaled = model.scaled(sc, 10)
+    details = tuple((p.dimension_text, p.value, scaled.parameter(p.name).value) for p in kept)
     return EngineApplyAnswer("pendulum.xml", Fraction(10), sc, changed, len(model.parameters), "p.xml",
-                             ("p.xml.settings.json",))
+                             ("p.xml.settings.json",), details)
 
 
 SAMPLES = {
@@ -395,7 +397,7 @@ def _read_power_text(text: str) -> Fraction:
 
 
 def _read_power_latex(latex: str) -> Fraction:
-    if latex == "1":
+    if latex in ("1", "-"):  # "-" is the unchanged mark of a table cell, as in plain text
         return Fraction(0)
     if latex == "s":
         return Fraction(1)
@@ -432,7 +434,8 @@ def test_every_table_cell_is_the_power_of_its_scaling():
     latex = format(res, "latex").splitlines()[2:len(ROD.variables) + 2]
     assert [_read_power_latex(row.split(" & ")[2].removesuffix(r" \\").strip("$")) for row in latex] == list(
         sc.vector)
-    html_powers = [_read_power_latex(m) for m in math_of(format(res, "html")) if m.startswith(("s", "1"))]
+    cells = re.findall(r"<td[^>]*>([^<]*)</td>", format(res, "html"))
+    html_powers = [_read_power_latex(c.strip("$")) for c in cells if c.startswith(("$s", "-"))]
     assert html_powers[:len(ROD.variables)] == list(sc.vector)
     doc = json.loads(format(res, "json"))
     assert _exact_map(doc["scalings"][0]["unit_change"]) == sc.unit_change
@@ -522,21 +525,21 @@ def test_search_of_a_family_in_latex_and_html():
     assert format(res, "latex") == "\n".join([
         r"\begin{tabular}{llcc}",
         r"variable & role & \#1 & \#2 \\ \hline",
-        r"$m$ & free & $1$ & $1$ \\",
-        r"$l$ & free & $s$ & $1$ \\",
+        r"$m$ & free & - & - \\",
+        r"$l$ & free & $s$ & - \\",
         r"$g$ & scale & $s$ & $s$ \\",
-        r"$t$ & free & $1$ & $s^{-1/2}$ \\",
+        r"$t$ & free & - & $s^{-1/2}$ \\",
         r"\hline",
-        r"$[\mathrm{M}]$ & base unit & $1$ & $1$ \\",
-        r"$[\mathrm{L}]$ & base unit & $s$ & $1$ \\",
-        r"$[\mathrm{T}]$ & base unit & $1$ & $s^{-1/2}$ \\",
+        r"$[\mathrm{M}]$ & base unit & - & - \\",
+        r"$[\mathrm{L}]$ & base unit & $s$ & - \\",
+        r"$[\mathrm{T}]$ & base unit & - & $s^{-1/2}$ \\",
         r"\end{tabular}"])
     html = _plain(format(res, "html"))
-    assert html.startswith("<p>Scaling g by s: 2 minimal solution(s) (a family of dimension 2).</p><table>"
+    assert html.startswith("<p>Scaling g by s: 2 minimal solutions of a 2-parameter family.</p><table>"
                            "<tr><th>variable</th><th>role</th><th>#1</th><th>#2</th></tr>"
-                           "<tr><th>$m$</th><td><em>free</em></td><td>$1$</td><td>$1$</td></tr>")
+                           "<tr><th>$m$</th><td><em>free</em></td><td>-</td><td>-</td></tr>")
     assert html.endswith('<tr class="base-unit"><th>$[\\mathrm{T}]$</th><td><em>base unit</em></td>'
-                         "<td>$1$</td><td>$s^{-1/2}$</td></tr></table>")
+                         "<td>-</td><td>$s^{-1/2}$</td></tr></table>")
 
 
 def test_unit_fit_in_text_latex_and_html():
@@ -623,9 +626,18 @@ def test_answers_of_the_command_line():
     applied = sample("engine_apply_answer")
     assert len(applied.changed) > 8
     lines = str(applied).splitlines()
-    assert lines[2:10] == [f"  {name}: x {power_text(p)}" for name, p in applied.changed[:8]]  # the first eight
-    assert lines[10:] == ["wrote p.xml (and p.xml.settings.json)"]
-    assert len(json.loads(format(applied, "json"))["changed"]) == len(applied.changed)  # all of them
+    assert lines[1] == f"{len(applied.changed)} of {applied.n_parameters} parameters change, by dimension:"
+    # the summary: one row per dimension, whose counts add up to every changed parameter
+    summary = lines[3:lines.index("")]
+    assert sum(int(line.split(":")[0].split()[-1]) for line in summary) == len(applied.changed)
+    table = lines[lines.index("") + 2:-2]  # then every changed parameter with its factor, value and scaled value
+    assert [row.split()[:2] for row in table] == [[name, power_text(p)] for name, p in applied.changed]
+    g_row = next(row.split() for row in table if row.split()[0] == "g")
+    assert g_row[2:] == ["9.81", "98.1"]
+    assert lines[-2:] == ["", "wrote p.xml (and p.xml.settings.json)"]
+    changed = json.loads(format(applied, "json"))["changed"]
+    assert len(changed) == len(applied.changed)  # all of them
+    assert next(c for c in changed if c["name"] == "g")["value"] == [9.81]
 
 
 def test_json_counts_no_scaling_for_an_impossible_request_and_keeps_unicode():
@@ -696,5 +708,6 @@ def test_table_of_symmetries_beyond_units_says_they_have_no_unit_change():
     rows = [line.split() for line in res.table().splitlines()]
     base = [r for r in rows if r[1] == "base"]
     assert [r[0] for r in base] == [f"[{b}]" for b in proj.system.base_dimensions]
-    assert all(r[2:] == ["none"] for r in base)
-    assert res._repr_html_().count(">none</td>") == len(proj.system.base_dimensions)
+    assert all(r[2:] == ["n/a"] for r in base)
+    assert "n/a: that scaling is a symmetry of the equations, not a change of units" in res.table()
+    assert res._repr_html_().count(">n/a</td>") == len(proj.system.base_dimensions)

@@ -117,13 +117,16 @@ def engine_model_file(path: str, **options) -> tuple[ModelFile, EngineModel]:
                      roles=roles, path=str(path)), model
 
 
-def params_answer(path: str, **options) -> ParamsAnswer:
+def params_answer(path: str, *, name: str | None = None, **options) -> ParamsAnswer:
     """The parameter table of an engine model file (``pitheorem params FILE``).
 
     Parameters
     ----------
     path : str
-        The file, as the command line names it.
+        The file.
+    name : str, optional
+        The file as the command line named it (``example:pendulum.xml``);
+        default: `path`.
     **options
         Scene options of a URDF file (:func:`parse_scene`).
 
@@ -139,7 +142,7 @@ def params_answer(path: str, **options) -> ParamsAnswer:
     >>> format(answer, "json").splitlines()[2]
     '  "engine": "mujoco",'
     """
-    return ParamsAnswer(str(path), load(path, **options))
+    return ParamsAnswer(str(path) if name is None else name, load(path, **options))
 
 
 def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None) -> EngineApplyAnswer:
@@ -187,9 +190,11 @@ def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None)
         if model.engine == "pybullet" and err.name.endswith("Damping") and "damping" not in (scene or {}):
             raise InvalidRequestError(f"{err}; on the command line: --scene damping=0") from None
         raise
-    exponents = ((p.name, scaling.exponent_of(p.dimension)) for p in model.parameters
+    exponents = ((p, scaling.exponent_of(p.dimension)) for p in model.parameters
                  if not p.mixed and any(v != 0 for v in p.value))
-    changed = tuple((name, e) for name, e in exponents if e != 0)
+    changed_parameters = [(p, e) for p, e in exponents if e != 0]
+    changed = tuple((p.name, e) for p, e in changed_parameters)
+    details = tuple((p.dimension_text, p.value, scaled.parameter(p.name).value) for p, _ in changed_parameters)
     written, beside = None, ()
     if output:
         out = Path(output)
@@ -198,7 +203,9 @@ def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None)
         scaled.save(out)
         written = str(out)
         beside = (f"{out}.settings.json", f"{out}.settings.py") if model.engine == "pybullet" else ()
-    return EngineApplyAnswer(Path(model.path).name, s, scaling, changed, len(model.parameters), written, beside)
+    return EngineApplyAnswer(Path(model.path).name, s, scaling, changed, len(model.parameters), written, beside,
+                             details)
+
 
 
 def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str = "smooth",

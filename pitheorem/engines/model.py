@@ -22,6 +22,7 @@ model takes (``check_scaling``), the factor of a dimension under a scaling
 
 from __future__ import annotations
 
+import math
 import warnings
 from dataclasses import dataclass
 from fractions import Fraction
@@ -30,7 +31,7 @@ from typing import ClassVar
 
 from ..dimensions import Dimension
 from ..errors import EngineModelError, InvalidRequestError, UnscalableParameterError
-from ..exact import read_scale_factor, read_value
+from ..exact import read_number, read_scale_factor, read_value
 from ..formatting import TableDisplay
 from ..immutable import immutable
 from ..modelfile import example_path, model_kind
@@ -224,16 +225,60 @@ def dimension_factor(scaling, s, dimension) -> float:
     return float_power(s, scaling.exponent_of(dimension), f"the factor of {dimension}")
 
 
-def attribute_text(values) -> str:
+def attribute_text(values, factor=None) -> str:
     """Numbers as the text of an XML attribute, each at full precision (its shortest exact repr).
+
+    Parameters
+    ----------
+    values : iterable of float
+        The numbers, as read from the file.
+    factor : float, optional
+        Multiply each number by it first, exactly: the number read as the
+        decimal it prints as (``9.81``, the text of the file), times the
+        factor read the same way, rounded once to a float.  So 9.81 times
+        10 is written ``98.1``, where the float product is
+        98.10000000000001 (9.81 is a hair above its double's neighbour).
+        A number that is no finite decimal is multiplied as a float.
+
+    Returns
+    -------
+    str
 
     Examples
     --------
     >>> from pitheorem.engines.model import attribute_text
     >>> attribute_text([0.1, 2, -1 / 3])
     '0.1 2.0 -0.3333333333333333'
+    >>> attribute_text([0, 0, -9.81], 10), repr(-9.81 * 10)
+    ('0.0 0.0 -98.1', '-98.10000000000001')
     """
-    return " ".join(repr(float(v)) for v in values)
+    if factor is None:
+        return " ".join(repr(float(v)) for v in values)
+    return " ".join(repr(exact_product(v, factor)) for v in values)
+
+
+def exact_product(value, factor) -> float:
+    """A file's number times a factor, as the float nearest the exact product of their decimals.
+
+    The float product rounds twice (once each when the decimals were read,
+    once when multiplied); this rounds once, so a scaled value prints as
+    the decimal a person would write (98.1 for 9.81 times 10).
+
+    Examples
+    --------
+    >>> from pitheorem.engines.model import exact_product
+    >>> exact_product(9.81, 10), 9.81 * 10
+    (98.1, 98.10000000000001)
+    """
+    value, factor = float(value), float(factor)
+    if not (math.isfinite(value) and math.isfinite(factor)):
+        return value * factor
+    # read as the decimal each prints as (its shortest repr): the number as the file wrote it
+    exact = read_number(value, "a file's number") * read_number(factor, "a scale factor")
+    try:
+        return float(exact)
+    except OverflowError:  # beyond the largest double: the float product is infinite too
+        return value * factor
 
 
 def dim(text: str) -> Dimension:

@@ -17,11 +17,15 @@ from . import render
 from .pieces import (
     COMMAND_LINE_TIME_REMEDY,
     PYTHON_TIME_REMEDY,
+    UNCHANGED,
     base_latex,
+    changed_rows,
+    default_text,
     deviation_rows,
     group_name_latex,
     latex_name,
     note_text,
+    parameter_rows,
     parameters_head,
     power_latex,
     range_cells,
@@ -44,6 +48,11 @@ _CELL = 'style="padding: 0.15em 0.9em; text-align: center"'
 
 def _math(latex: str) -> str:
     return f"${escape(latex, quote=False)}$"
+
+
+def _power_cell(exponent) -> str:
+    """A power of s in a table cell; an unchanged entry shows the same mark as in plain text."""
+    return _math(power_latex(exponent)) if exponent else UNCHANGED
 
 
 def _code(text: str) -> str:
@@ -113,9 +122,9 @@ def _search_result(result, time_remedy: str = PYTHON_TIME_REMEDY) -> str:
         cert = result.certificate
         return head + _p(f"certificate: {_latex(cert)} (the request multiplies it by "
                          f"{_math(power_latex(result.certificate_power))})")
-    variables, base_units = search_cells(result, lambda p: _math(power_latex(p)))
+    variables, base_units = search_cells(result, _power_cell)
     rows = [[_math(latex_name(n)), f"<em>{role}</em>", *cells] for n, role, cells in variables]
-    below = [[_math(rf"[\mathrm{{{b}}}]"), "<em>base unit</em>", *(cell or "none" for cell in cells)]
+    below = [[_math(rf"[\mathrm{{{b}}}]"), "<em>base unit</em>", *(cell or "n/a" for cell in cells)]
              for b, cells in base_units]
     header = ["variable", "role", *(f"#{k}" for k in range(1, result.n_scalings + 1))]
     return head + _table(header, rows, below)
@@ -174,7 +183,7 @@ def _unit_fit(fit) -> str:
 
 @_renders("pitheorem.engines.constants.HiddenConstant")
 def _hidden_constant(constant) -> str:
-    return f"<span>{_code(constant.name)} [{_latex(constant.dimension)}] (default {constant.default:g})</span>"
+    return f"<span>{_code(constant.name)} [{_latex(constant.dimension)}] ({default_text(constant.default)})</span>"
 
 
 @_renders("pitheorem.engines.rules.RuleVerdict")
@@ -185,8 +194,9 @@ def _rule_verdict(verdict) -> str:
 
 
 def _parameters(name: str, model) -> str:
-    rows = [[_code(p.name), _latex(p.dimension) if p.dimension is not None else escape(p.dimension_text),
-             " ".join(f"{v:.6g}" for v in p.value), escape(p.source), escape(p.path)] for p in model.parameters]
+    rows = [[_code(name), _latex(dimension) if dimension is not None else escape(text),
+             escape(" ".join(map(value_text, value))), escape(source), escape(path)]
+            for name, dimension, text, value, source, path in parameter_rows(model)]
     return (_p(escape(parameters_head(name, model)))
             + _table(["name", "dimension", "value", "source", "path"], rows))
 
@@ -229,7 +239,7 @@ def _apply_answer(answer) -> str:
     exponents = answer.scaling.exponents
     head = (_p(escape(render(answer, "text").splitlines()[0]))
             + _p(_latex(answer.scaling)) + "".join(_note(n, COMMAND_LINE_TIME_REMEDY) for n in answer.result.notes))
-    rows = [[_math(latex_name(n)), _math(power_latex(exponents[n])), escape(value_text(v)),
+    rows = [[_math(latex_name(n)), _power_cell(exponents[n]), escape(value_text(v)),
              escape(value_text(answer.scaled[n]))] for n, v in answer.values.items()]
     wrote = _p(f"wrote {_code(answer.output)}") if answer.output else ""
     return head + _table(["variable", "factor", "value", "scaled value"], rows) + wrote
@@ -242,8 +252,9 @@ def _params_answer(answer) -> str:
 
 @_renders("pitheorem.answers.EngineApplyAnswer")
 def _engine_apply_answer(answer) -> str:
-    head = _p(escape(f"{answer.model}, s = {answer.s}: {len(answer.changed)} of {answer.n_parameters} "
-                     "parameters change") + f" ({_latex(answer.scaling)})")
-    rows = [[_code(name), _math(power_latex(p))] for name, p in answer.changed]
+    head = _p(escape(render(answer, "text").splitlines()[0]))
+    head += _p(escape(f"{len(answer.changed)} of {answer.n_parameters} parameters change"))
+    rows = [[_code(name), _power_cell(p), escape(" ".join(map(value_text, old))), escape(" ".join(map(value_text, new)))]
+            for name, p, _, old, new in changed_rows(answer)]
     wrote = _p(f"wrote {_code(answer.output)}") if answer.output else ""
-    return head + _table(["parameter", "factor"], rows) + wrote
+    return head + _table(["parameter", "factor", "value", "scaled value"], rows) + wrote

@@ -21,8 +21,10 @@ from . import render
 from .pieces import (
     COMMAND_LINE_TIME_REMEDY,
     PYTHON_TIME_REMEDY,
+    changed_rows,
     json_number,
     note_text,
+    parameter_rows,
     rational_text,
     registry,
 )
@@ -214,6 +216,10 @@ def _rule_verdict(verdict) -> dict:
 
 
 def _parameters(name: str, model) -> dict:
+    if not hasattr(model, "parameters"):  # a TOML model file: each variable with its role and description
+        return {"model": name, "engine": None, "parameters": [
+            {"name": n, "path": "", "value": [json_number(v) for v in value], "dimension": text, "source": role,
+             "description": description} for n, _, text, value, role, description in parameter_rows(model)]}
     return {"model": name, "engine": model.engine, "parameters": [
         {"name": p.name, "path": p.path, "value": list(p.value), "dimension": p.dimension_text,
          "source": p.source, "settable": p.settable, "note": p.note} for p in model.parameters]}
@@ -277,7 +283,8 @@ def _params_answer(answer) -> dict:
 def _engine_apply_answer(answer) -> dict:
     return {"model": answer.model, "s": rational_text(answer.s), "scaling": _scaling(answer.scaling),
             "parameters": answer.n_parameters,
-            "changed": [{"name": name, "exponent": rational_text(p)} for name, p in answer.changed],
+            "changed": [{"name": name, "exponent": rational_text(p), "dimension": dim, "value": list(old),
+                         "scaled_value": list(new)} for name, p, dim, old, new in changed_rows(answer)],
             "output": answer.output, "also_written": list(answer.also_written)}
 
 

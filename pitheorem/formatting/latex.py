@@ -17,12 +17,16 @@ import sympy
 from . import render
 from .pieces import (
     PYTHON_TIME_REMEDY,
+    UNCHANGED,
     base_latex,
+    changed_rows,
+    default_text,
     deviation_rows,
     group_name_latex,
     latex_escape,
     latex_name,
     note_text,
+    parameter_rows,
     parameters_head,
     power_latex,
     range_cells,
@@ -57,6 +61,11 @@ def _tabular(columns: str, rows, header=None, rule_before=None) -> str:
 
 def _math(latex: str) -> str:
     return f"${latex}$"
+
+
+def _power_cell(exponent) -> str:
+    """A power of s in a table cell; an unchanged entry shows the same mark as in plain text."""
+    return _math(power_latex(exponent)) if exponent else UNCHANGED
 
 
 def _number(value) -> str:
@@ -113,9 +122,9 @@ def _search_result(result) -> str:
         cert = result.certificate.latex
         return (f"% {explanation(result)}\n"
                 rf"\[ {cert} \;\to\; {power_latex(result.certificate_power)}\,{cert} \]")
-    variables, base_units = search_cells(result, lambda p: _math(power_latex(p)))
+    variables, base_units = search_cells(result, _power_cell)
     rows = [[_math(latex_name(n)), role, *cells] for n, role, cells in variables]
-    rows += [[rf"$[\mathrm{{{b}}}]$", "base unit", *(cell or "none" for cell in cells)] for b, cells in base_units]
+    rows += [[rf"$[\mathrm{{{b}}}]$", "base unit", *(cell or "n/a" for cell in cells)] for b, cells in base_units]
     n = result.n_scalings
     return _tabular(f"ll{'c' * n}", rows, ["variable", "role", *(rf"\#{k}" for k in range(1, n + 1))],
                     rule_before=len(variables))
@@ -182,7 +191,7 @@ def _unit_fit(fit) -> str:
 @_renders("pitheorem.engines.constants.HiddenConstant")
 def _hidden_constant(constant) -> str:
     return (rf"\texttt{{{latex_escape(constant.name)}}} [{_math(_dimension(constant.dimension))}] "
-            f"(default {constant.default:g})")
+            f"({default_text(constant.default)})")
 
 
 @_renders("pitheorem.engines.rules.RuleVerdict")
@@ -193,8 +202,8 @@ def _rule_verdict(verdict) -> str:
 
 
 def _parameter_table(name: str, model) -> str:
-    rows = [[rf"\texttt{{{latex_escape(p.name)}}}", latex_escape(p.dimension_text),
-             " ".join(f"{v:.6g}" for v in p.value), p.source, latex_escape(p.path)] for p in model.parameters]
+    rows = [[rf"\texttt{{{latex_escape(name)}}}", latex_escape(text), " ".join(map(_number, value)),
+             latex_escape(source), latex_escape(path)] for name, _, text, value, source, path in parameter_rows(model)]
     head = f"% {parameters_head(name, model)}"
     return f"{head}\n{_tabular('lllll', rows, ['name', 'dimension', 'value', 'source', 'path'])}"
 
@@ -229,7 +238,7 @@ def _search_answer(answer) -> str:
 @_renders("pitheorem.answers.ApplyAnswer")
 def _apply_answer(answer) -> str:
     exponents = answer.scaling.exponents
-    rows = [[_math(latex_name(n)), _math(power_latex(exponents[n])), _number(v), _number(answer.scaled[n])]
+    rows = [[_math(latex_name(n)), _power_cell(exponents[n]), _number(v), _number(answer.scaled[n])]
             for n, v in answer.values.items()]
     head = f"% {answer.model}: {which_scaling(answer.result, answer.solution)}, s = {answer.s}"
     return f"{head}\n{_tabular('lcll', rows, ['variable', 'factor', 'value', 'scaled value'])}"
@@ -242,7 +251,8 @@ def _params_answer(answer) -> str:
 
 @_renders("pitheorem.answers.EngineApplyAnswer")
 def _engine_apply_answer(answer) -> str:
-    rows = [[rf"\texttt{{{latex_escape(name)}}}", _math(power_latex(p))] for name, p in answer.changed]
+    rows = [[rf"\texttt{{{latex_escape(name)}}}", _power_cell(p), " ".join(map(_number, old)), " ".join(map(_number, new))]
+            for name, p, _, old, new in changed_rows(answer)]
     head = (f"% {answer.model}, s = {answer.s}: {len(answer.changed)} of {answer.n_parameters} parameters change"
             + (f"; wrote {answer.output}" if answer.output else ""))
-    return f"{head}\n{_tabular('lc', rows, ['parameter', 'factor'])}"
+    return f"{head}\n{_tabular('lcll', rows, ['parameter', 'factor', 'value', 'scaled value'])}"

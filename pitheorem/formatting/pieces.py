@@ -24,15 +24,22 @@ from ..errors import InvalidRequestError
 
 __all__ = [
     "COMMAND_LINE_TIME_REMEDY",
+    "NAMES_SHOWN",
     "PYTHON_TIME_REMEDY",
+    "UNCHANGED",
     "align",
     "base_latex",
+    "changed_by_kind",
+    "changed_rows",
+    "default_text",
     "deviation_rows",
     "group_name_latex",
     "json_number",
     "latex_escape",
     "latex_name",
+    "names_text",
     "note_text",
+    "parameter_rows",
     "parameters_head",
     "power_latex",
     "power_text",
@@ -43,6 +50,8 @@ __all__ = [
     "request_text",
     "scale_text",
     "search_cells",
+    "solutions_text",
+    "unit_change_text",
     "unit_fit_rows",
     "value_text",
     "which_scaling",
@@ -52,6 +61,10 @@ __all__ = [
 PYTHON_TIME_REMEDY = "pass fixed=() to let time change"
 #: how the command line says it
 COMMAND_LINE_TIME_REMEDY = "give --fixed with no names to let time change"
+#: the mark of an unchanged entry (a power s^0) in a table cell, the same in text, LaTeX and HTML
+UNCHANGED = "-"
+#: how many names a sentence lists before it says how many more there are
+NAMES_SHOWN = 6
 
 
 def registry(renderers: dict):
@@ -98,7 +111,7 @@ def registry(renderers: dict):
 
 
 def power_text(exponent) -> str:
-    """Plain-text power of s: ``-`` for unchanged, ``s``, ``s^2``, ``1/s``, ``s^(1/2)``.
+    """Plain-text power of s: ``-`` (:data:`UNCHANGED`) for unchanged, ``s``, ``s^2``, ``1/s``, ``s^(1/2)``.
 
     Parameters
     ----------
@@ -117,7 +130,7 @@ def power_text(exponent) -> str:
     """
     p = Fraction(exponent).limit_denominator() if isinstance(exponent, float) else Fraction(exponent)
     if p == 0:
-        return "-"
+        return UNCHANGED
     if p == 1:
         return "s"
     if p == -1:
@@ -355,7 +368,7 @@ def request_text(result) -> str:
     >>> request_text(pt.search(pt.System({"l": "L", "g": "L T^-2", "t": "T"}), scale={"g": 1}))
     'g by s with t fixed'
     """
-    return scale_text(result) + (f" with {', '.join(result.fixed)} fixed" if result.fixed else "")
+    return scale_text(result) + (f" with {names_text(result.fixed)} fixed" if result.fixed else "")
 
 
 def scale_text(result) -> str:
@@ -377,6 +390,140 @@ def scale_text(result) -> str:
     'g by s, l by s^(1/2)'
     """
     return ", ".join(f"{n} by {power_text(p)}" for n, p in result.scale.items())
+
+
+def names_text(names, *, code=str, shown: int = NAMES_SHOWN) -> str:
+    """Names for a sentence: all of a few, or the first few and how many more.
+
+    Parameters
+    ----------
+    names : sequence of str
+    code : callable, optional
+        Marks up each name (HTML wraps them in ``<code>``).
+    shown : int, optional
+        How many names a long list keeps (default :data:`NAMES_SHOWN`).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import names_text
+    >>> names_text(["t", "dt"])
+    't, dt'
+    >>> names_text([f"x{k}" for k in range(10)], shown=3)
+    'x0, x1, x2 and 7 more (10 in all)'
+    """
+    names = list(names)
+    if len(names) <= shown + 1:
+        return ", ".join(map(code, names))
+    return f"{', '.join(map(code, names[:shown]))} and {len(names) - shown} more ({len(names)} in all)"
+
+
+def default_text(default: float) -> str:
+    """An engine constant's default in words: ``default 0.002``, or ``no documented default`` for NaN.
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import default_text
+    >>> default_text(0.002), default_text(float("nan"))
+    ('default 0.002', 'no documented default')
+    """
+    return "no documented default" if default != default else f"default {default:g}"  # NaN != NaN
+
+
+def solutions_text(n: int) -> str:
+    """``1 minimal solution``, ``3 minimal solutions``.
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import solutions_text
+    >>> solutions_text(1), solutions_text(3)
+    ('1 minimal solution', '3 minimal solutions')
+    """
+    return f"{n} minimal solution{'' if n == 1 else 's'}"
+
+
+def unit_change_text(scaling) -> str:
+    """The change of units behind a scaling, in words: ``L by s, M by s^3`` (``T`` unchanged is left out).
+
+    Parameters
+    ----------
+    scaling : Scaling
+
+    Returns
+    -------
+    str
+        ``"no change of units"`` for the identity, ``"no change of units
+        gives it"`` for a symmetry of equations beyond changes of units.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.formatting.pieces import unit_change_text
+    >>> unit_change_text(pt.Scaling.from_unit_change(pt.System({"l": "L", "m": "M", "t": "T"}), {"L": 1, "M": 3}))
+    'units of M by s^3, L by s'
+    """
+    if not scaling.is_unit_change:
+        return "no change of units gives it"
+    parts = [f"{b} by {power_text(u)}" for b, u in scaling.unit_change.items() if u]
+    return f"units of {', '.join(parts)}" if parts else "no change of units"
+
+
+def changed_rows(answer):
+    """An engine apply's changed parameters: name, exponent, dimension's text, values, scaled values.
+
+    Parameters
+    ----------
+    answer : EngineApplyAnswer
+
+    Returns
+    -------
+    list of (str, Fraction, str, tuple, tuple)
+        Blank dimension and values where the answer holds none.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from fractions import Fraction
+    >>> from pitheorem.answers import EngineApplyAnswer
+    >>> from pitheorem.formatting.pieces import changed_rows
+    >>> sc = pt.Scaling.from_unit_change(pt.System({"l": "L"}), {"L": 1})
+    >>> changed_rows(EngineApplyAnswer("a.xml", Fraction(2), sc, (("l", Fraction(1)),), 1, None, (),
+    ...                                (("L", (0.5,), (1.0,)),)))
+    [('l', Fraction(1, 1), 'L', (0.5,), (1.0,))]
+    """
+    details = answer.details or tuple(("", (), ()) for _ in answer.changed)
+    return [(name, p, *detail) for (name, p), detail in zip(answer.changed, details, strict=True)]
+
+
+def changed_by_kind(rows):
+    """Changed parameters grouped by dimension: the one-screen summary of an engine model's scaling.
+
+    Parameters
+    ----------
+    rows : iterable of (str, Fraction, str)
+        Each changed parameter's name, its exponent of ``s`` and its
+        dimension's text.
+
+    Returns
+    -------
+    list of (str, Fraction, list of str)
+        Each dimension, its exponent and its parameters, in order of first
+        appearance.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem.formatting.pieces import changed_by_kind
+    >>> changed_by_kind([("a", Fraction(1), "L"), ("m", Fraction(3), "M"), ("b", Fraction(1), "L")])
+    [('L', Fraction(1, 1), ['a', 'b']), ('M', Fraction(3, 1), ['m'])]
+    """
+    kinds: dict = {}
+    for name, exponent, dimension in rows:
+        kinds.setdefault((dimension, exponent), []).append(name)
+    return [(dimension, exponent, names) for (dimension, exponent), names in kinds.items()]
 
 
 def note_text(note, *, time_remedy: str = PYTHON_TIME_REMEDY, code=str) -> str:
@@ -414,7 +561,7 @@ def note_text(note, *, time_remedy: str = PYTHON_TIME_REMEDY, code=str) -> str:
     >>> note_text(SearchNote("outside_equations", ("m",)))
     'variable m does not appear in the equations and is held fixed'
     """
-    names = ", ".join(code(n) for n in note.variables)
+    names = names_text(note.variables, code=code)
     one = len(note.variables) == 1
     if note.kind == "time_fixed":
         subject = f"time variable {names} is" if one else f"time variables {names} are"
@@ -597,7 +744,37 @@ def parameters_head(name: str, model) -> str:
     >>> parameters_head("pendulum.xml", model)
     'pendulum.xml: mujoco model, 49 parameters'
     """
+    if not hasattr(model, "parameters"):  # a TOML model file: its variables are its parameters
+        return f"{name}: model file, {len(model.system)} variables"
     return f"{name}: {model.engine} model, {len(model.parameters)} parameters"
+
+
+def parameter_rows(model):
+    """The rows of a parameter table: an engine model's parameters, or a model file's variables.
+
+    Parameters
+    ----------
+    model : EngineModel or ModelFile
+
+    Returns
+    -------
+    list of (str, Dimension or None, str, tuple, str, str)
+        Each parameter's name, dimension (None for a mixed number), the
+        dimension's text, its values, its source and its path: for a model
+        file's variable, its value (if any), its role and its description.
+
+    Examples
+    --------
+    >>> from pitheorem.modelfile import example_path, load_model_file
+    >>> from pitheorem.formatting.pieces import parameter_rows
+    >>> parameter_rows(load_model_file(example_path("hinged_rod")))[0][2:]
+    ('M', (1.5,), 'parameter', 'mass of the rod')
+    """
+    if hasattr(model, "parameters"):
+        return [(p.name, p.dimension, p.dimension_text, p.value, p.source, p.path) for p in model.parameters]
+    dims = model.system.dimensions
+    return [(n, dims[n], str(dims[n]), (model.values[n],) if n in model.values else (), model.roles.get(n, ""),
+             model.descriptions.get(n, "")) for n in model.system.variables]
 
 
 # -- plain-text columns ----------------------------------------------------------------------

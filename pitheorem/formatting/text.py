@@ -14,13 +14,20 @@ from .pieces import (
     COMMAND_LINE_TIME_REMEDY,
     PYTHON_TIME_REMEDY,
     align,
+    changed_by_kind,
+    changed_rows,
+    default_text,
+    names_text,
     note_text,
+    parameter_rows,
     parameters_head,
     power_text,
     range_cells,
     registry,
     request_text,
     search_cells,
+    solutions_text,
+    unit_change_text,
     unit_fit_rows,
     value_text,
     which_scaling,
@@ -89,11 +96,12 @@ def explanation(result) -> str:
     >>> import pitheorem as pt
     >>> from pitheorem.formatting.text import explanation
     >>> explanation(pt.search(pt.System({"l": "L", "t": "T"}), scale={"l": 1}))
-    'Scaling l by s with t fixed: 1 minimal solution(s) (unique).'
+    'Scaling l by s with t fixed: 1 minimal solution (unique).'
     """
     if result.feasible:
-        extra = f" (a family of dimension {len(result.directions)})" if result.directions else " (unique)"
-        return f"Scaling {request_text(result)}: {result.n_scalings} minimal solution(s){extra}."
+        d = len(result.directions)
+        extra = f" of a {d}-parameter family" if d else " (unique)"
+        return f"Scaling {request_text(result)}: {solutions_text(result.n_scalings)}{extra}."
     return (
         f"Impossible: {result.certificate.expr} is dimensionless and built only from prescribed and fixed "
         f"variables, but the request would multiply it by {power_text(result.certificate_power)}, so no change "
@@ -126,8 +134,27 @@ def search_table(result) -> str:
     variables, base_units = search_cells(result, power_text)
     rows = [["variable", "role", *(f"#{k}" for k in range(1, result.n_scalings + 1))]]
     rows += [[n, role, *cells] for n, role, cells in variables]
-    rows += [[f"[{b}]", "base", *(cell or "none" for cell in cells)] for b, cells in base_units]
-    return align(rows)
+    rows += [[f"[{b}]", "base", *(cell or "n/a" for cell in cells)] for b, cells in base_units]
+    table = align(rows)
+    if any(cell is None for _, cells in base_units for cell in cells):
+        table += "\n(n/a: that scaling is a symmetry of the equations, not a change of units)"
+    return table
+
+
+#: a search with more variables than this opens its table with a summary of each scaling
+SUMMARY_OVER = 20
+
+
+def _search_summary(result) -> list[str]:
+    """For a large model: each minimal scaling's change of units and how many variables it changes."""
+    if len(result.system) <= SUMMARY_OVER:
+        return []
+    lines = ["", "summary (the table below has a row for each of the "
+             f"{len(result.system)} variables):"]
+    for k, sc in enumerate(result.scalings, 1):
+        changed = [n for n, p in sc.exponents.items() if p]
+        lines.append(f"  #{k}: {unit_change_text(sc)}; changes {len(changed)} of {len(result.system)} variables")
+    return lines
 
 
 @_renders("pitheorem.scalesearch.SearchResult")
@@ -135,6 +162,7 @@ def _search_result(result, *, time_remedy: str = PYTHON_TIME_REMEDY) -> str:
     """A search's explanation, its notes in a front end's terms, then its table or certificate."""
     lines = [explanation(result), *(note_text(note, time_remedy=time_remedy) for note in result.notes)]
     if result.feasible:
+        lines += _search_summary(result)
         lines += ["", search_table(result)]
     else:
         lines.append(f"certificate: {_pi_group(result.certificate)} (the request multiplies it by "
@@ -276,7 +304,7 @@ def _unit_fit(fit) -> str:
 
 @_renders("pitheorem.engines.constants.HiddenConstant")
 def _hidden_constant(constant) -> str:
-    return f"{constant.name} [{_dimension(constant.dimension)}] (default {constant.default:g})"
+    return f"{constant.name} [{_dimension(constant.dimension)}] ({default_text(constant.default)})"
 
 
 @_renders("pitheorem.engines.rules.RuleVerdict")
@@ -316,8 +344,8 @@ def parameter_table(model) -> str:
     ['name', 'dimension', 'value', 'source', 'path']
     """
     rows = [("name", "dimension", "value", "source", "path")]
-    rows += [(p.name, p.dimension_text, " ".join(f"{v:.6g}" for v in p.value), p.source, p.path)
-             for p in model.parameters]
+    rows += [(name, text, " ".join(map(value_text, value)), source, path)
+             for name, _, text, value, source, path in parameter_rows(model)]
     return align(rows)
 
 
@@ -338,6 +366,9 @@ def _groups_answer(answer) -> str:
     system, groups = answer.system, answer.groups
     lines = [f"{answer.model}: {len(system)} variables, rank {system.rank}, {system.n_groups} dimensionless groups",
              f"repeating variables: {', '.join(groups.repeating) or '(none)'}"]
+    if answer.passed_over:
+        lines.append("(the first valid set without time variables, variables lacking one value, and the "
+                     f"variables whose value is 0: {names_text(answer.passed_over)})")
     if len(groups):
         rows = [["group", "expression", "value"]]
         rows += [[g.name, sympy.sstr(g.expr), value_text(v)] for g, v in zip(groups, answer.values, strict=True)]
@@ -355,8 +386,10 @@ def _bases_answer(answer) -> str:
     if answer.require:
         conditions.append(f"with {', '.join(answer.require)}")
     condition = f" ({'; '.join(conditions)})" if conditions else ""
-    width = len(str(answer.n_bases))
+    width = len(str(len(answer.bases)))
     lines = [f"{answer.model}: {answer.n_bases} valid repeating sets of {answer.rank} variables{condition}"]
+    if len(answer.bases) < answer.n_bases:
+        lines.append(f"the first {len(answer.bases)} (--all lists every one, --count only their number):")
     lines += [f"{k:>{width}}  {' '.join(b)}" for k, b in enumerate(answer.bases, 1)]
     return "\n".join(lines)
 
@@ -387,10 +420,20 @@ def _params_answer(answer) -> str:
 
 @_renders("pitheorem.answers.EngineApplyAnswer")
 def _engine_apply_answer(answer) -> str:
-    lines = [f"{answer.model}, s = {answer.s}: {_scaling(answer.scaling)}",
-             f"{len(answer.changed)} of {answer.n_parameters} parameters change, e.g."]
-    lines += [f"  {name}: x {power_text(p)}" for name, p in answer.changed[:8]]
+    lines = [f"{answer.model}, s = {answer.s}: {unit_change_text(answer.scaling)}",
+             f"{len(answer.changed)} of {answer.n_parameters} parameters change"
+             + (", by dimension:" if answer.changed else "")]
+    if answer.changed:
+        changed = changed_rows(answer)
+        rows = [["dimension", "factor", "parameters"]]
+        rows += [[dim, power_text(p), f"{len(names)}: {names_text(names, shown=3)}"]
+                 for dim, p, names in changed_by_kind((name, p, dim) for name, p, dim, _, _ in changed)]
+        lines.append("\n".join("  " + line for line in align(rows).splitlines()))
+        rows = [["parameter", "factor", "value", "scaled value"]]
+        rows += [[name, power_text(p), " ".join(map(value_text, old)), " ".join(map(value_text, new))]
+                 for name, p, _, old, new in changed]
+        lines += ["", align(rows)]
     if answer.output:
         also = f" (and {', '.join(answer.also_written)})" if answer.also_written else ""
-        lines.append(f"wrote {answer.output}{also}")
+        lines += ["", f"wrote {answer.output}{also}"]
     return "\n".join(lines)
