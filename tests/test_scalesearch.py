@@ -266,7 +266,7 @@ def test_exponent_one_over_prime(p):
         assert sc.exponents["t"] == 0
 
 
-@pytest.mark.parametrize("value", [1 / 3, 0.123456789012345, 1e-13])
+@pytest.mark.parametrize("value", [1e-13, np.float64(3e-13), 1 / 3e12])
 def test_float_exponent_beyond_denominator_limit_is_named(value):
     with pytest.raises(pt.LimitError) as info:
         pt.search(LT, scale={"l": value}, fixed=())
@@ -278,6 +278,8 @@ def test_float_exponent_beyond_denominator_limit_is_named(value):
     (Fraction(1, 10**9), Fraction(1, 10**9)),
     (1e-9, Fraction(1, 10**9)),
     (0.123456789, Fraction(123456789, 10**9)),
+    (1 / 3, Fraction(1, 3)),  # a computed float: the simplest fraction that rounds to it
+    (np.float64(2 / 7), Fraction(2, 7)),
     (np.float64(0.5), Fraction(1, 2)),
     (np.float32(0.1), Fraction(1, 10)),
     (np.int64(2), Fraction(2)),
