@@ -190,7 +190,7 @@ def test_every_module_has_its_test_file_and_every_test_file_a_module_or_a_reason
                                  "modelfile", "models", "plotting", "scalesearch", "scaling", "simulation",
                                  "system", "unitfit")}
     assert {file for file in wanted.values() if file.startswith("test_engines_")} == {
-        f"test_engines_{m}.py" for m in ("cli", "constants", "mjcf", "model", "packages", "rod", "rules",
+        f"test_engines_{m}.py" for m in ("cli", "constants", "mjcf", "model", "numbers", "packages", "rod", "rules",
                                          "superball", "urdf", "verify")}
 
 
