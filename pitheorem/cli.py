@@ -397,6 +397,16 @@ class _Help(argparse.HelpFormatter):
         return super()._get_help_string(action)
 
 
+class _Parser(argparse.ArgumentParser):
+    """Argparse's parser, whose usage errors are one line, as every other error of the command.
+
+    Its subcommands' parsers are of the same class (``add_subparsers`` makes them so).
+    """
+
+    def error(self, message: str):
+        self.exit(EXIT_ERROR, f"pitheorem: error: {message} (see '{self.prog} --help')\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argparse parser of the ``pitheorem`` command.
 
@@ -411,7 +421,7 @@ def build_parser() -> argparse.ArgumentParser:
     >>> args.command, args.scale, args.fixed
     ('search', ['g=1'], [])
     """
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="pitheorem",
         description="Exact dimensional analysis and similarity-scaling search on a model file: "
         "TOML, MJCF (MuJoCo) or URDF (PyBullet).",

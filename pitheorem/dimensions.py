@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from .errors import DimensionSyntaxError, InvalidRequestError, LimitError
-from .exact import MAX_FORMULA_LENGTH, MAX_NESTING, check_exponent, read_number
+from .exact import MAX_DENOMINATOR, MAX_FORMULA_LENGTH, MAX_NESTING, check_exponent, read_number, short_text
 from .formatting import MathDisplay, render
 from .immutable import immutable
 
@@ -118,14 +118,39 @@ class Dimension(MathDisplay):
     _exponents: tuple[tuple[str, Fraction], ...]
 
     def __init__(self, exponents: Mapping[str, object] | Iterable[tuple[str, object]] = ()):
-        items = exponents.items() if isinstance(exponents, Mapping) else exponents
         total: dict[str, Fraction] = {}
-        for base, p in items:
-            if not isinstance(base, str):
-                raise InvalidRequestError(f"base dimension names must be strings, got {base!r}", culprit=base)
+        for base, p in _pairs(exponents):
+            if not isinstance(base, str) or not base.isidentifier():
+                raise InvalidRequestError(f"base dimension names must be identifiers such as 'L' or 'Theta', "
+                                          f"got {base!r}", culprit=base)
             total[base] = total.get(base, Fraction(0)) + read_number(p, f"the exponent of {base!r}")
-        clean = tuple(sorted(((b, p) for b, p in total.items() if p != 0), key=lambda bp: _order_key(bp[0])))
-        object.__setattr__(self, "_exponents", clean)
+        # the limits hold for the total, however it was reached: many small terms, or a power of a power
+        for base, p in total.items():
+            check_exponent(p, f"the exponent of {base!r}")
+        object.__setattr__(self, "_exponents", _clean(total))
+
+    @classmethod
+    def _combined(cls, pairs: Iterable[tuple[str, Fraction]]) -> Dimension:
+        """The product of exact (base, exponent) pairs of valid dimensions, unchecked.
+
+        The algebra's own constructor: a product or a power of valid
+        dimensions may pass the exponent limits (the dimension of a term of
+        an equation, of a Pi group), as exact arithmetic allows; a formula
+        and a mapping are checked here, and a System checks every dimension
+        that enters it.
+        """
+        total: dict[str, Fraction] = {}
+        for base, p in pairs:
+            total[base] = total.get(base, Fraction(0)) + p
+        dim = object.__new__(cls)
+        object.__setattr__(dim, "_exponents", _clean(total))
+        return dim
+
+    def _within_limits(self) -> Dimension:
+        """This dimension, if every exponent lies within the limits; else LimitError."""
+        for base, p in self._exponents:
+            check_exponent(p, f"the exponent of {base!r}")
+        return self
 
     # -- construction -----------------------------------------------------
     @classmethod
@@ -244,16 +269,21 @@ class Dimension(MathDisplay):
     def __mul__(self, other: Dimension) -> Dimension:
         if not isinstance(other, Dimension):
             return NotImplemented
-        return Dimension(self._exponents + other._exponents)
+        return Dimension._combined(self._exponents + other._exponents)
 
     def __truediv__(self, other: Dimension) -> Dimension:
         if not isinstance(other, Dimension):
             return NotImplemented
-        return Dimension(self._exponents + tuple((b, -p) for b, p in other._exponents))
+        return Dimension._combined(self._exponents + tuple((b, -p) for b, p in other._exponents))
 
     def __pow__(self, exponent) -> Dimension:
+        # algebra, as exact as * and / (a Pi group's dimension takes integer powers beyond MAX_EXPONENT); a
+        # System checks the limits of what enters it.  The power's size is bounded so that results stay printable
         e = read_number(exponent, "the power of a dimension")
-        return Dimension((b, p * e) for b, p in self._exponents)
+        if max(abs(e.numerator), e.denominator) > MAX_DENOMINATOR:
+            raise LimitError(short_text(e), "the power of a dimension",
+                             f"its numerator and denominator may not exceed {MAX_DENOMINATOR} in magnitude")
+        return Dimension._combined((b, p * e) for b, p in self._exponents)
 
     # -- display (text, LaTeX and the rest: pitheorem.formatting) -----------
     def __repr__(self) -> str:
@@ -270,6 +300,28 @@ class Dimension(MathDisplay):
         '\\mathsf{L}\\,\\mathsf{T}^{-2}'
         """
         return render(self, "latex")
+
+
+def _clean(total: dict[str, Fraction]) -> tuple[tuple[str, Fraction], ...]:
+    """Nonzero exponents in display order."""
+    return tuple(sorted(((b, p) for b, p in total.items() if p != 0), key=lambda bp: _order_key(bp[0])))
+
+
+def _pairs(exponents) -> list[tuple[object, object]]:
+    """The (base, exponent) pairs of a mapping or an iterable of pairs; anything else is refused by name."""
+    expected = "a mapping of base names to exponents, such as {'L': 1, 'T': -2} (use Dimension.parse for a formula)"
+    if isinstance(exponents, Mapping):
+        return list(exponents.items())
+    if isinstance(exponents, str | bytes):
+        raise InvalidRequestError(f"a Dimension takes {expected}, not the string {exponents!r}", culprit=exponents)
+    try:
+        pairs = [tuple(pair) for pair in exponents]
+    except TypeError:
+        raise InvalidRequestError(f"a Dimension takes {expected}, got {exponents!r}", culprit=exponents) from None
+    for pair in pairs:
+        if len(pair) != 2:
+            raise InvalidRequestError(f"a Dimension takes {expected}, got the entry {pair!r}", culprit=pair)
+    return pairs
 
 
 class _Parser:
@@ -333,6 +385,7 @@ class _Parser:
                 dim = dim * self.power()  # juxtaposition: "M L^2"
             else:
                 return dim
+            dim._within_limits()  # the total of a formula, not only each exponent: "L^1000 L^1000"
 
     def power(self) -> Dimension:
         dim = self.atom()

@@ -54,7 +54,7 @@ _DEFAULT_TIME = "t"
 
 
 def _exponent(exp) -> Fraction | None:
-    """A numeric exponent as an exact Fraction (a float as the decimal it prints as), else None."""
+    """A numeric exponent as an exact Fraction (a float by the float rule of pitheorem.exact), else None."""
     if exp.is_Rational or exp.is_Float:
         return read_number(exp, "an exponent in the equation")
     return None
@@ -485,6 +485,9 @@ def scaling_symmetries(equations, system: System, *, time: str | None = "t") -> 
         raise InvalidRequestError(f"scaling_symmetries needs a System, got {type(system).__name__}")
     if isinstance(equations, sympy.Basic):
         equations = [equations]
+    if isinstance(equations, str) or not isinstance(equations, Iterable):
+        raise InvalidRequestError(f"scaling_symmetries needs sympy equations (a list of sympy.Eq or expressions), "
+                                  f"got {equations!r}", culprit=equations)
     equations = list(equations)
     if not equations:
         raise InvalidRequestError("scaling_symmetries needs at least one equation")

@@ -6,12 +6,18 @@ here, by :func:`read_number`, under one rule:
 
 * ``int``, :class:`~fractions.Fraction`, ``Decimal``, sympy
   Rationals and numpy integers are exact already and kept as they are.
-* A float -- Python's or numpy's -- is read as the shortest decimal that
-  prints as it (its ``repr``): the number the user typed.  So ``0.1`` is
-  1/10, ``np.float64(0.5)`` is 1/2, ``2.5e-3`` is 1/400.  A float computed
-  rather than typed, such as ``1/3``, prints as ``0.3333333333333333`` and is
-  read as that decimal; to mean one third, pass ``Fraction(1, 3)`` or
-  ``"1/3"``.
+* A float -- Python's or numpy's -- is read by the *float rule*.  When
+  its shortest decimal form (its ``repr``) has at most
+  :data:`FLOAT_DIGITS` (12) significant digits, the float is read as that
+  decimal: the number the user typed.  So ``0.1`` is 1/10,
+  ``np.float64(0.5)`` is 1/2, ``2.5e-3`` is 1/400 and ``0.123456789`` is
+  123456789/10^9.  A float with more digits is the result of a computation
+  (``1/3`` prints as ``0.3333333333333333``): it is read as the simplest
+  fraction -- smallest denominator, then smallest numerator -- whose
+  nearest double is that float, so ``1/3`` is 1/3 and ``0.1 + 0.2`` is the
+  simplest fraction that rounds to ``0.30000000000000004``.  Either way the
+  reading rounds back to the same float.  The exponent limits below apply
+  to the fraction read.
 * A string is an integer, a decimal (``"0.1"``, ``"1e-3"``) or a fraction
   ``"p/q"``, read exactly.
 * ``True``/``False``, infinities, NaN and anything else are refused with a
@@ -45,6 +51,7 @@ import sympy
 from .errors import LimitError, NumberError
 
 __all__ = [
+    "FLOAT_DIGITS",
     "MAX_DENOMINATOR",
     "MAX_EXPONENT",
     "MAX_FORMULA_LENGTH",
@@ -56,6 +63,7 @@ __all__ = [
     "read_scale_factor",
     "read_value",
     "short_text",
+    "simplest_fraction_rounding_to",
 ]
 
 #: largest magnitude of an exponent (of a base dimension or of ``s``)
@@ -66,6 +74,8 @@ MAX_DENOMINATOR = 10**12
 MAX_NESTING = 100
 #: longest dimension formula, in characters
 MAX_FORMULA_LENGTH = 10_000
+#: most significant digits of a float's shortest decimal form that is read as that decimal
+FLOAT_DIGITS = 12
 #: largest power of ten written in a number string (``"1e400"`` is fine, ``"1e99999999"`` is not)
 _MAX_DECIMAL_EXPONENT = 10_000
 _MAX_STRING_LENGTH = 1_000
@@ -81,7 +91,7 @@ def read_number(value, what: str = "the number", *, irrational_ok: bool = False)
     Parameters
     ----------
     value : int, float, Fraction, Decimal, str, numpy or sympy number
-        The number.  Floats are read as the decimal they print as.
+        The number.  Floats are read by the float rule (module notes).
     what : str
         What the number is, for the error message (``"exponent of 'g'"``).
     irrational_ok : bool
@@ -105,6 +115,8 @@ def read_number(value, what: str = "the number", *, irrational_ok: bool = False)
     >>> from pitheorem.exact import read_number
     >>> read_number(0.1), read_number(np.float64(0.5)), read_number("1/3"), read_number("2.5e-3")
     (Fraction(1, 10), Fraction(1, 2), Fraction(1, 3), Fraction(1, 400))
+    >>> read_number(1 / 3), read_number(2 / 7), read_number(0.123456789)
+    (Fraction(1, 3), Fraction(2, 7), Fraction(123456789, 1000000000))
     """
     np = numpy_if_loaded()
     if isinstance(value, bool) or (np is not None and isinstance(value, np.bool_)):
@@ -118,10 +130,7 @@ def read_number(value, what: str = "the number", *, irrational_ok: bool = False)
     # floats and Decimals go through their text: "inf", "nan", "Infinity" and "NaN" match no number
     # text, so _from_text refuses them with the same message as any other non-number
     if isinstance(value, float) or (np is not None and isinstance(value, np.floating)):
-        # the shortest decimal that prints as this float; numpy's own str for
-        # float32 and friends, whose shortest decimal differs from float64's
-        text = repr(float(value)) if isinstance(value, float) else str(value)  # np.float64 is a float
-        return _from_text(text, value, what)
+        return _from_float(value, what)
     if isinstance(value, Decimal):
         return _from_text(str(value), value, what)
     if isinstance(value, sympy.Basic):
@@ -216,7 +225,7 @@ def read_scale_factor(s) -> float | Fraction | sympy.Expr:
     """
     exact = read_positive(s, "the scale factor s", irrational_ok=True)
     if is_float(s):
-        return float(s)
+        return _finite_float(s, exact, "the scale factor s")
     return s if isinstance(s, sympy.Basic) and not s.is_Rational else exact
 
 
@@ -268,8 +277,17 @@ def read_value(value, what: str) -> float | Fraction:
     """
     exact = read_number(value, what, irrational_ok=True)
     if is_float(value) or (isinstance(value, sympy.Basic) and not value.is_Rational):
-        return float(value)
+        return _finite_float(value, exact, what)
     return exact
+
+
+def _finite_float(value, exact: Fraction, what: str) -> float:
+    """``float(value)``, or LimitError where it is infinite: a sympy Float such as 1e400 is beyond doubles."""
+    number = float(value)
+    if math.isinf(number):
+        raise LimitError(short_text(exact), what, "it is beyond the range of floating point (about 1.8e308)",
+                         "pass it exactly, as an int, a Fraction or a string")
+    return number
 
 
 def numpy_if_loaded():
@@ -278,6 +296,63 @@ def numpy_if_loaded():
     Looking it up instead of importing it keeps ``import pitheorem`` free of numpy.
     """
     return sys.modules.get("numpy")
+
+
+def _from_float(value, what: str) -> Fraction:
+    """A Python or numpy float under the float rule (module notes)."""
+    if not isinstance(value, float):  # numpy's float32 and friends: their own shortest decimal, as typed
+        return _from_text(str(value), value, what)
+    if not math.isfinite(value):
+        raise NumberError(value, what, _EXPECTED)
+    text = repr(float(value))  # np.float64 is a float too; its repr is numpy's
+    digits = text.lstrip("-").split("e")[0].replace(".", "").strip("0")
+    if len(digits) <= FLOAT_DIGITS:
+        return _from_text(text, value, what)
+    return simplest_fraction_rounding_to(float(value))
+
+
+def simplest_fraction_rounding_to(x: float) -> Fraction:
+    """The simplest fraction whose nearest double is `x`.
+
+    Simplest: the smallest denominator, and among those the smallest
+    numerator in magnitude.  The fractions that round to `x` fill the
+    interval between the midpoints to its neighbouring doubles; the
+    midpoints themselves round to `x` when its last bit is even (ties to
+    even).
+
+    Examples
+    --------
+    >>> from pitheorem.exact import simplest_fraction_rounding_to
+    >>> simplest_fraction_rounding_to(1 / 3), simplest_fraction_rounding_to(-22 / 7)
+    (Fraction(1, 3), Fraction(-22, 7))
+    >>> simplest_fraction_rounding_to(0.1 + 0.2)  # not 3/10, which rounds to 0.29999999999999999
+    Fraction(415716888680356, 1385722962267853)
+    """
+    if x < 0:
+        return -simplest_fraction_rounding_to(-x)
+    if x == 0:
+        return Fraction(0)
+    exact = Fraction(x)
+    low = (exact + Fraction(math.nextafter(x, 0))) / 2
+    high = (exact + Fraction(math.nextafter(x, math.inf))) / 2 if x < sys.float_info.max else None
+    ties_to_x = int(x / math.ulp(x)) % 2 == 0  # round half to even: an even significand keeps the ties
+    return _simplest_between(low, high, ties_to_x)
+
+
+def _simplest_between(low: Fraction, high: Fraction | None, closed: bool) -> Fraction:
+    """The simplest fraction in the interval from `low` > 0 to `high` (None: no upper end), ends included if `closed`.
+
+    Stern-Brocot descent through continued fractions: take the smallest
+    integer in the interval if there is one; else both ends share an integer
+    part n, and the answer is n + 1/y for the simplest y between the
+    reciprocals of the ends' fractional parts.
+    """
+    whole = math.floor(low) if closed and low.denominator == 1 else math.floor(low) + 1
+    if high is None or whole < high or (closed and whole == high):
+        return Fraction(whole)
+    n = math.floor(low)
+    inverse_high = None if low == n else 1 / (low - n)  # low == n: an open end at n, no upper end for y
+    return n + 1 / _simplest_between(1 / (high - n), inverse_high, closed)
 
 
 def _from_text(text: str, value, what: str) -> Fraction:
@@ -319,7 +394,8 @@ def check_exponent(exponent: Fraction, what: str, *, shown: object = None) -> Fr
     if exponent.denominator > MAX_DENOMINATOR:
         hint = ""
         if from_decimal:
-            hint = "a float is read as the decimal it prints as; pass an exact exponent such as Fraction(1, 3) or '1/3'"
+            hint = ("a float is read as the decimal it prints as, or as the simplest fraction that rounds to it; "
+                    "pass an exact exponent such as Fraction(1, 3) or '1/3'")
         raise LimitError(shown, what, f"its denominator {short_text(Fraction(exponent.denominator))} exceeds the limit {MAX_DENOMINATOR}",
                          hint)
     return exponent
@@ -335,10 +411,10 @@ def read_exponent(value, what: str) -> Fraction:
     (Fraction(-1, 2), Fraction(1, 4))
     >>> from pitheorem import LimitError
     >>> try:
-    ...     read_exponent(1 / 3, "exponent of 'g'")
+    ...     read_exponent(1e-13, "exponent of 'g'")
     ... except LimitError as err:
     ...     print(err.limit)
-    its denominator 10000000000000000 exceeds the limit 1000000000000
+    its denominator 10000000000000 exceeds the limit 1000000000000
     """
     return check_exponent(read_number(value, what), what, shown=value)
 

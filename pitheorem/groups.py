@@ -7,13 +7,14 @@ for a group not tied to one variable, on the first variable it uses).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
 import sympy
 
-from .errors import InvalidRequestError
+from .errors import InvalidRequestError, LimitError
 from .exact import read_number, read_value
 from .formatting import MathDisplay
 from .immutable import immutable
@@ -238,12 +239,27 @@ class PiGroup(MathDisplay):
         if missing:
             raise InvalidRequestError(f"evaluate needs a value for {', '.join(map(repr, missing))} of {self}")
         read = [read_value(values[n], f"the value of {n!r}") for n, _ in self._exponents]
-        exact = all(isinstance(v, Fraction) for v in read)
-        result = Fraction(1) if exact else 1.0
         for (n, p), v in zip(self._exponents, read, strict=True):
-            v = v if exact else float(v)
             if v == 0 and p < 0:
                 raise InvalidRequestError(f"{n!r} = 0 appears with exponent {p} in {self}: the group is undefined")
+        if all(isinstance(v, Fraction) for v in read):
+            return self._product(read, Fraction(1))
+        try:
+            result = self._product([float(v) for v in read], 1.0)
+        except OverflowError:  # a power beyond floating point (1e-200 ** -2), though the product may not be
+            result = math.inf
+        if math.isfinite(result):
+            return result
+        # a float overflowed on the way: the exact product of the floats' values, rounded once
+        try:
+            return float(self._product([Fraction(v) for v in read], Fraction(1)))
+        except OverflowError:
+            raise LimitError(str(self), "the value of the group", "it is beyond the range of floating point "
+                             "(about 1.8e308)") from None
+
+    def _product(self, values, one):
+        result = one
+        for (_, p), v in zip(self._exponents, values, strict=True):
             result = result * v**p
         return result
 

@@ -54,6 +54,7 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import json
+import os
 import re
 import tomllib
 from collections.abc import Mapping
@@ -305,6 +306,9 @@ def load_model_file(path) -> ModelFile:
     >>> load_model_file("example:hinged_rod").values["theta_r"]
     1.0471975511965976
     """
+    if not isinstance(path, str | os.PathLike):
+        raise ModelFileError(repr(path), f"a model file is named by a path (str or pathlib.Path), "
+                             f"not a {type(path).__name__}")
     text_path = str(path)
     if text_path.startswith("example:"):
         path = example_path(text_path.removeprefix("example:"))

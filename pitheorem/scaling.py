@@ -49,6 +49,19 @@ def _rounded(x, name: str) -> float:
                          "use an exact value (int or Fraction), or an s nearer to 1") from None
 
 
+def _beyond_floats(what: str, shown: str) -> LimitError:
+    return LimitError(shown, what, "it is beyond the range of floating point (about 1.8e308)",
+                      "use an exact s (an int, a Fraction or a string such as '1/2'), or an s nearer to 1")
+
+
+def _check_arguments(system, mapping, what: str, example: str) -> None:
+    """A Scaling's constructors take a System and a mapping; anything else is named."""
+    if not isinstance(system, System):
+        raise InvalidRequestError(f"a Scaling needs a System, got {type(system).__name__}", culprit=system)
+    if not isinstance(mapping, Mapping):
+        raise InvalidRequestError(f"{what} must be a mapping such as {example}, got {mapping!r}", culprit=mapping)
+
+
 def _finite(x: float) -> float:
     """`x`, or OverflowError for infinity: float() of a sympy number overflows to inf without raising."""
     if math.isinf(x):
@@ -160,6 +173,7 @@ class Scaling(MathDisplay):
         >>> print(pt.Scaling.from_unit_change(s, {"T": -1}))
         v -> s v, t -> t/s
         """
+        _check_arguments(system, unit_change, "unit_change", "{'L': 1}")
         bases = system.base_dimensions
         for b in unit_change:
             if b not in bases:
@@ -198,6 +212,7 @@ class Scaling(MathDisplay):
         >>> pt.Scaling.from_exponents(rod, {"l": 1, "g": 1}).unit_change
         {'M': Fraction(0, 1), 'L': Fraction(1, 1), 'T': Fraction(0, 1)}
         """
+        _check_arguments(system, exponents, "exponents", "{'l': 1}")
         names = system.check_names(tuple(exponents), "exponents")
         a = [Fraction(0)] * len(system.variables)
         for n in names:
@@ -346,9 +361,10 @@ class Scaling(MathDisplay):
         Keys must be variables of the system; values are numbers or numpy
         arrays.  Float in, float out: a float ``s`` makes every result a
         float, and a float value (or an array) gives a float (array) for
-        any ``s``; with an exact ``s``, a float value is read as the decimal
-        it prints as, scaled exactly and rounded once (9.81 times 10 is
-        98.1).  An exact value with an exact ``s`` (int, Fraction, sympy
+        any ``s``; with an exact ``s``, a float value is read by the float
+        rule of :mod:`pitheorem.exact` (9.81 is 981/100), scaled exactly and
+        rounded once (9.81 times 10 is 98.1).  A float result beyond the
+        range of floating point raises :class:`~pitheorem.LimitError`.  An exact value with an exact ``s`` (int, Fraction, sympy
         Rational, a string such as ``"1/2"``) gives an exact result: a
         Fraction when it is rational, and an exact sympy number when it is
         not (``s = 2`` with exponent 1/2 gives a multiple of ``sqrt(2)``).
@@ -374,19 +390,28 @@ class Scaling(MathDisplay):
         >>> pt.Scaling.from_exponents(pt.System({"l": "L"}), {"l": "1/2"}).apply({"l": 3}, s=2)
         {'l': 3*sqrt(2)}
         """
+        if not isinstance(values, Mapping):
+            raise InvalidRequestError(f"values must be a mapping of variable names to numbers, such as {{'l': 2}}, "
+                                      f"got {type(values).__name__}", culprit=values)
         s = read_scale_factor(s)
         np = numpy_if_loaded()  # a value cannot be an array unless numpy is loaded
         out = {}
         for name, value in values.items():
             p = self.vector[self.system.index(name, "values")]
             if np is not None and isinstance(value, np.ndarray):  # samples: scaled in floating point
-                out[name] = value * float_power(s, p, f"the factor of {name!r}")
+                factor = float_power(s, p, f"the factor of {name!r}")
+                with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused below, by name
+                    out[name] = value * factor
+                if not np.all(np.isfinite(out[name][np.isfinite(value)])):
+                    raise _beyond_floats(f"the scaled samples of {name!r}", f"a sample times {factor!r}")
                 continue
             number = read_number(value, f"the value of {name!r}", irrational_ok=True)
             if is_float(s):
                 factor = float_power(s, p, f"the factor of {name!r}")
                 out[name] = (float(value) if is_float(value) else float(number)) * factor
-            elif is_float(value):  # read as the decimal it prints as, scaled exactly, rounded once
+                if math.isinf(out[name]):
+                    raise _beyond_floats(f"the scaled value of {name!r}", f"{float(number)!r} times {factor!r}")
+            elif is_float(value):  # read by the float rule, scaled exactly, rounded once
                 out[name] = _rounded(number * _exact_power(s, p), name)
             else:
                 # an irrational sympy value stays itself (number is its rounding, for the float branches)

@@ -28,7 +28,7 @@ from .errors import (
     UnitError,
     UnknownVariableError,
 )
-from .exact import read_exponent
+from .exact import check_exponent, read_exponent
 from .groups import PiGroup, PiSet
 from .immutable import immutable
 from .linalg import integer_rref, nullspace, rank
@@ -42,6 +42,9 @@ _ZERO = Fraction(0)
 __all__ = ["System"]
 
 # pint's names for the SI base dimensions, mapped to ours
+#: a power followed by a division by a number, 'm^-1/2': pint divides the unit by 2, a reader means m^(-1/2)
+_AMBIGUOUS_POWER = re.compile(r"(\^|\*\*)\s*[+-]?\s*(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?\s*/\s*[\d.]")
+
 _PINT_BASES = {
     "[mass]": "M",
     "[length]": "L",
@@ -188,6 +191,8 @@ class System:
     def _read_dimension(name: str, spec, allowed) -> Dimension:
         if isinstance(spec, Dimension):
             dim = spec
+            for base, power in dim.exponents.items():  # a product or power of dimensions may pass the limits
+                check_exponent(power, f"the exponent of {base!r} in the dimension of {name!r}")
         elif isinstance(spec, str):
             try:
                 dim = _parse(spec, allowed)
@@ -244,10 +249,17 @@ class System:
         import pint
 
         registry = _unit_registry()
+        if not isinstance(units, Mapping):
+            raise UnitError(f"units must map each variable to a unit string, such as {{'l': 'm'}}, got {units!r}")
         dims = {}
-        for name, text in dict(units).items():
+        for name, text in units.items():
             if not isinstance(text, str):
                 raise UnitError(f"unit of {name!r} must be a string such as 'kg*m/s^2', got {text!r}")
+            ambiguous = _AMBIGUOUS_POWER.search(text)
+            if ambiguous:
+                # pint reads 'm^-1/2' as (m^-1)/2, a length to the -1; Dimension.parse refuses 'L^-1/2'
+                raise UnitError(f"the unit {text!r} of {name!r} is ambiguous: {ambiguous.group(0).strip()!r} is a power "
+                                "divided by a number; write a fractional power in brackets, such as 'm^(-1/2)'")
             try:
                 quantity = registry.parse_expression(text) if text.strip() else registry.Quantity(1)
                 if not isinstance(quantity, pint.Quantity):  # a bare number
@@ -259,13 +271,15 @@ class System:
                     err = "malformed unit expression"  # its own message is empty or cryptic
                 raise UnitError(f"cannot read the unit {text!r} of {name!r}: {err}") from None
             exponents = {}
+            what = f"the unit {text!r} of {name!r}" if len(text) <= 40 else f"the unit of {name!r}"
             for key, p in dimensionality.items():
                 if key not in _PINT_BASES:
                     raise UnitError(f"unit {text!r} of {name!r} has dimension {key}, which pitheorem does not know")
-                exponents[_PINT_BASES[key]] = Fraction(p).limit_denominator()
+                # pint's exponents are floats (1/3 is 0.333...): read by the float rule, as every float is
+                exponents[_PINT_BASES[key]] = read_exponent(p, f"the exponent of {key} in {what}")
             if angle_as_base and root.get("radian"):
                 # pint treats angles as dimensionless; its root unit still records radians
-                exponents["A"] = Fraction(root["radian"]).limit_denominator()
+                exponents["A"] = read_exponent(root["radian"], f"the exponent of radian in {what}")
             dims[name] = Dimension(exponents)
         # pint names the dimension, so an opt-in letter (N for [substance]) is meant here
         used = {b for d in dims.values() for b in d.base_dimensions}

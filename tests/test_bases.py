@@ -11,8 +11,10 @@ from __future__ import annotations
 
 from fractions import Fraction
 from itertools import combinations
+from math import comb, prod
 from unittest import mock
 
+import numpy as np
 import pytest
 import sympy
 from hypothesis import assume, given, settings
@@ -180,3 +182,87 @@ def test_modular_path_equals_brute_force(system):
         assert system.bases() == oracle_bases(system)
     finally:
         bases_module._EXACT_FLOAT = saved
+
+
+# -- every enumeration path against brute force (issue 23): the chunked candidate lists, entries beyond
+# float64's exact range, minors that are multiples of the residue primes, and the exact fallback.
+# Oracles: itertools.combinations, and determinants of small integer matrices (numpy's, rounded: exact
+# for entries this small) or sympy's, never the code under test.
+
+def _small_independent(small, k):
+    """Lex-ordered k-subsets of the columns of a small integer matrix with nonzero determinant."""
+    small = np.array(small, dtype=float)
+    subsets = list(combinations(range(small.shape[1]), k))
+    dets = np.round(np.linalg.det(np.stack([small[:, list(s)] for s in subsets])))
+    return [s for s, d in zip(subsets, dets, strict=True) if d != 0]
+
+
+@pytest.mark.parametrize(("m", "k", "limit"), [(7, 3, 4), (9, 4, 10), (6, 6, 1), (8, 1, 3), (10, 5, 100), (5, 0, 1)])
+def test_chunked_lex_combinations_are_itertools_combinations(m, k, limit):
+    chunks = list(bases_module._lex_combination_chunks(m, k, limit))
+    assert all(len(c) <= max(limit, 1) or k == 0 for c in chunks)
+    assert [tuple(row) for c in chunks for row in c.tolist()] == list(combinations(range(m), k))
+
+
+def test_more_than_65536_candidates_on_the_residue_path_equal_brute_force():
+    # 40 columns, rank 4: 91,390 candidate subsets, listed in chunks; each column times a factor near 2^40
+    # (which keeps independence) puts the entries beyond float64's exact range, so residues decide
+    rng = np.random.default_rng(23)
+    small = rng.integers(-2, 3, size=(4, 40))
+    small[:, 0] = [1, 0, 0, 0]  # no zero column, full row rank
+    small[:, (small == 0).all(axis=0)] = 1
+    assert comb(40, 4) > 1 << 16
+    rows = [[int(x) * (2**40 + j) for j, x in enumerate(row)] for row in small.tolist()]
+    assert not bases_module.float_is_exact(rows, 4)
+    expected = _small_independent(small, 4)
+    assert list(independent_subsets(rows, range(40), [], 4)) == expected
+    assert count_independent_subsets(rows, range(40), [], 4) == len(expected)
+
+
+def test_a_determinant_float64_cannot_hold_is_decided_exactly():
+    # det [[2^30+1, 2^30], [2^30, 2^30-1]] = -1, but in float64 (2^30+1)(2^30-1) rounds to 2^60: a
+    # weakened guard ((k/biggest)^2, a bound of 2^159, the smallest norms instead of the largest ones,
+    # which the two unit columns make tiny) would take the float path and lose that basis
+    a = 2**30
+    rows = [[1, 0, a + 1, a], [0, 1, a, a - 1]]
+    assert sympy.Matrix([[a + 1, a], [a, a - 1]]).det() == -1
+    assert float(a + 1) * float(a - 1) - float(a) * float(a) == 0  # what float64 would say
+    assert not bases_module.float_is_exact(rows, 2)
+    assert list(independent_subsets(rows, range(4), [], 2)) == list(combinations(range(4), 2))
+    assert count_independent_subsets(rows, range(4), [], 2) == 6
+
+
+def test_a_minor_that_is_a_multiple_of_the_first_residue_prime_is_not_zero():
+    # the row L^(1/p), L over integers: [1, p]; y's 1x1 minor is p itself, zero modulo the first prime,
+    # so a second prime must decide: the Hadamard bound 2p + 2 exceeds p, which a shrunken bound would not
+    p = bases_module._PRIMES[0]
+    system = pt.System({"x": f"L^(1/{p})", "y": "L"})
+    assert system.bases() == [("x",), ("y",)]
+    assert system.count_bases() == 2
+
+
+@pytest.mark.parametrize("primes", [1, 2, 3, 5])
+def test_minors_that_are_multiples_of_several_residue_primes(primes):
+    # every entry a multiple of the first `primes` residue primes: every minor vanishes modulo them,
+    # and only the primes after them (as many as the bound asks for) can tell zero from nonzero
+    factor = prod(bases_module._PRIMES[:primes])
+    small = [[1, 2, 0, 1, 3], [0, 0, 1, 1, -1]]
+    rows = [[x * factor for x in row] for row in small]
+    expected = _small_independent(small, 2)
+    assert expected != list(combinations(range(5), 2))  # (0, 1) is dependent: the test has both kinds
+    assert list(independent_subsets(rows, range(5), [], 2)) == expected
+    assert count_independent_subsets(rows, range(5), [], 2) == len(expected)
+
+
+def test_the_exact_fallback_decides_when_every_residue_prime_divides_every_minor():
+    # entries multiples of the product of all eight primes: every minor is zero modulo each, and the
+    # Hadamard bound exceeds their product, so exact rank decides each subset
+    factor = prod(bases_module._PRIMES)
+    small = [[1, 2, 0, 1], [0, 0, 1, 1], [1, 2, 1, 0]]
+    rows = [[x * factor for x in row] for row in small]
+    expected = [s for s in combinations(range(4), 3)
+                if sympy.Matrix([[row[j] for j in s] for row in small]).det() != 0]
+    assert 0 < len(expected) < 4
+    with mock.patch.object(bases_module, "rank", wraps=bases_module.rank) as exact_rank:
+        assert list(independent_subsets(rows, range(4), [], 3)) == expected
+    assert exact_rank.call_count >= 4  # every subset went to the exact fallback

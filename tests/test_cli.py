@@ -553,3 +553,34 @@ def test_the_command_line_reads_toml_files_without_the_engines(monkeypatch, caps
     monkeypatch.setitem(sys.modules, "pitheorem.engines", None)
     assert main(["groups", "example:hinged_rod"]) == 0
     assert capsys.readouterr().out.strip()
+
+
+@pytest.mark.parametrize(("argv", "fragment"), [
+    ([], "COMMAND"),
+    (["frobnicate", ROD], "'frobnicate'"),
+    (["groups", ROD, "--format", "yaml"], "'yaml'"),
+    (["apply", ROD, "--scale", "g=1", "--s", "2", "--solution", "x"], "--solution"),
+    (["search", ROD], "--scale"),
+])
+def test_usage_errors_are_one_line_not_the_usage_block(capsys, argv, fragment):
+    code, out, err = run(capsys, *argv)
+    assert_one_line_error(code, out, err, fragment)
+    assert "usage:" not in err
+
+
+@pytest.mark.parametrize(("unit", "fragment"), [("m**inf", "finite"), ("m**-1e400", "finite"),
+                                                ("m**100000", "1000"), ("m^-1/2", "ambiguous")])
+def test_a_bad_unit_exponent_in_a_file_is_named_not_reported_as_a_bug(capsys, tmp_path, unit, fragment):
+    path = tmp_path / "units.toml"
+    path.write_text(f'[variables]\nx = {{ unit = "{unit}", value = 1.0 }}\ny = {{ dimension = "L", value = 2.0 }}\n')
+    code, out, err = run(capsys, "groups", path)
+    assert_one_line_error(code, out, err, "'x'", fragment)
+    assert "please report" not in err
+
+
+def test_groups_whose_value_overflows_floats_is_a_named_error(capsys, tmp_path):
+    path = tmp_path / "tiny.toml"
+    path.write_text('[variables]\nx = { dimension = "L^2", value = 1.0 }\ny = { dimension = "L", value = 1e-200 }\n')
+    code, out, err = run(capsys, "groups", path, "--repeating", "y")
+    assert_one_line_error(code, out, err, "beyond the range of floating point")
+    assert "please report" not in err

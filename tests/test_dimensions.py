@@ -63,7 +63,7 @@ def test_nesting_limit():
 
 
 def test_base_names_must_be_strings():
-    with pytest.raises(pt.InvalidRequestError, match="must be strings") as info:
+    with pytest.raises(pt.InvalidRequestError, match="must be identifiers") as info:
         pt.Dimension({1: 2})
     assert info.value.culprit == 1
 
@@ -126,3 +126,71 @@ def test_bad_formula(formula, culprit):
         pt.Dimension.parse(formula)
     assert culprit in str(info.value)
     assert 0 <= info.value.position <= len(formula)
+
+
+# -- the limits hold for totals, and the arguments are checked by name (issue 23's reproducers)
+
+@pytest.mark.parametrize("build", [
+    lambda: pt.Dimension({"L": Fraction(1, 10**5000)}),  # str() would hit Python's digit limit
+    lambda: pt.Dimension.parse("L^1000 L^1000"),
+    lambda: pt.Dimension.parse("L^1000 * L"),
+    lambda: pt.Dimension.parse("L") ** Fraction(1, 10**13),
+    lambda: pt.Dimension.parse("L") ** 10**5000,
+    lambda: pt.Dimension([("L", 600), ("L", 600)]),
+    lambda: pt.Dimension(pt.Dimension.parse("L^999").exponents | {"L": 1001}),
+])
+def test_exponent_limits_hold_for_the_total(build):
+    with pytest.raises(pt.LimitError, match=r"exponent of 'L'|the power of a dimension"):
+        build()
+
+
+def test_many_factors_each_within_the_limits_cannot_pass_together():
+    primes = [p for p in range(2, 2500) if all(p % d for d in range(2, int(p**0.5) + 1))][:360]
+    formula = " ".join(f"L^(1/{p})" for p in primes)
+    assert len(formula) < 10_000  # within the length limit: it is the denominator that is refused
+    with pytest.raises(pt.LimitError, match="denominator"):
+        pt.Dimension.parse(formula)
+
+
+def test_the_algebra_of_valid_dimensions_stays_exact_beyond_the_limits():
+    # a product is the dimension of a term of a model's equation: exact arithmetic, no limit to refuse
+    product = pt.Dimension.parse("L^999") * pt.Dimension.parse("L^2")
+    assert product.exponents == {"L": 1001}
+    assert str(product) == "L^1001"
+    assert (product / pt.Dimension.parse("L^2")).exponents == {"L": 999}
+    power = pt.Dimension.parse("L^(4/3)") ** 1001  # a Pi group's exponents may pass 1000
+    assert power.exponents == {"L": Fraction(4004, 3)}
+    assert str(power) == "L^(4004/3)"
+    with pytest.raises(pt.LimitError, match="exponent of 'L' in the dimension of 'x'"):  # but no System takes it
+        pt.System({"x": power})
+    with pytest.raises(pt.LimitError, match="exponent of 'L' in the dimension of 'x'"):
+        pt.System({"x": pt.Dimension.parse("L") ** 1001})
+
+
+def test_exponents_at_the_limits_are_kept():
+    assert pt.Dimension.parse("L^500 L^500").exponents == {"L": 1000}
+    assert pt.Dimension({"L": Fraction(1, 10**12)}).exponents == {"L": Fraction(1, 10**12)}
+    assert str(pt.Dimension.parse("L^1000 / L^1000")) == "1"
+
+
+@pytest.mark.parametrize("bad", [3, "L", b"L", 1.5, None, [("L",)], [3], [("L", 1, 2)]])
+def test_a_dimension_takes_a_mapping_or_pairs_and_names_anything_else(bad):
+    with pytest.raises(pt.InvalidRequestError, match="a Dimension takes a mapping"):
+        pt.Dimension(bad)
+
+
+@pytest.mark.parametrize("name", ["1L", "", "L T", "L-1", "L^2"])
+def test_base_names_must_be_identifiers(name):
+    with pytest.raises(pt.InvalidRequestError, match="identifiers") as info:
+        pt.Dimension({name: 1})
+    assert info.value.culprit == name
+
+
+def test_a_dimension_from_pairs_equals_the_one_from_a_mapping():
+    assert pt.Dimension([("L", 1), ("T", -2)]) == pt.Dimension({"L": 1, "T": -2}) == pt.Dimension.parse("L/T^2")
+
+
+@pytest.mark.parametrize("bad", [3, None, 1.5, ["L"]])
+def test_parse_takes_a_string_only(bad):
+    with pytest.raises(pt.DimensionSyntaxError, match="expected a string"):
+        pt.Dimension.parse(bad)

@@ -261,3 +261,51 @@ def test_bad_dimension_declarations_name_the_text(tmp_path, custom, culprit, hin
         engines.load(_custom_model(tmp_path, custom))
     assert culprit in str(caught.value)
     assert hint in str(caught.value)
+
+
+# -- bad numbers in the file (issue 23): refused by name, not dropped (nan) or kept (inf)
+
+_PENDULUM = """<mujoco model="p">
+  <option timestep="{timestep}"/>
+  <worldbody>
+    <body name="b" pos="0 0 1">
+      <joint name="h" type="hinge" damping="{damping}" stiffness="{stiffness}"/>
+      <geom name="g" type="capsule" size="0.05" fromto="0 0 0 0 0 -1" mass="1"/>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+@pytest.mark.parametrize(("numbers", "element", "attribute"), [
+    ({"damping": "nan"}, "<joint name='h'>", "damping='nan'"),
+    ({"stiffness": "inf"}, "<joint name='h'>", "stiffness='inf'"),
+    ({"timestep": "nan"}, "<option>", "timestep='nan'"),
+    ({"damping": "1e999"}, "<joint name='h'>", "damping='1e999'"),
+])
+def test_nan_and_infinite_numbers_are_refused_by_name(tmp_path, numbers, element, attribute):
+    path = tmp_path / "bad.xml"
+    path.write_text(_PENDULUM.format(**{"timestep": "0.002", "damping": "0.1", "stiffness": "0", **numbers}))
+    with pytest.raises(EngineModelError) as caught:
+        engines.load(path)
+    assert str(caught.value) == f"{path}: {element}: {attribute} is not a finite number; a model holds finite numbers only"
+
+
+def test_the_same_file_with_finite_numbers_loads_them():
+    # the oracle of the test above: the file itself is fine, and its damping is a parameter
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "good.xml"
+        path.write_text(_PENDULUM.format(timestep="0.002", damping="0.1", stiffness="0"))
+        values = {p.name: p.value for p in engines.load(path).parameters}
+    assert values["joint_h_damping"] == (0.1,)
+    assert values["timestep"] == (0.002,)
+
+
+def test_a_byte_that_is_not_utf8_is_refused_by_line(tmp_path):
+    path = tmp_path / "latin1.xml"
+    path.write_bytes(_PENDULUM.format(timestep="0.002", damping="0.1", stiffness="0")
+                     .replace('name="b"', 'name="b\xe9"').encode("latin-1"))
+    with pytest.raises(EngineModelError, match=r"latin1\.xml: line 4: byte 0xe9 .* not UTF-8"):
+        engines.load(path)

@@ -279,3 +279,42 @@ def test_scene_values_are_read_exactly_once_into_floats_and_flags():
     assert type(scene_option("g", 2)) is float
     with pytest.raises(pt.InvalidRequestError, match="unknown scene option 'gravity'"):
         scene_option("gravity", 1)
+
+
+# -- bad numbers in the file (issue 23): refused by name, never written into a scaled copy
+
+_ARM_TEXT = ARM.read_text()
+
+
+@pytest.mark.parametrize(("old", "new", "says"), [
+    ('<mass value="2.0"', '<mass value="nan"', "value='nan' is not a finite number"),
+    ('<mass value="2.0"', '<mass value="inf"', "value='inf' is not a finite number"),
+    ('<mass value="2.0"', '<mass value=""', "inertial mass: value='' must be a finite number"),
+    ('<mass value="2.0"', '<mass value="heavy"', "inertial mass: value='heavy' must be a finite number"),
+    ('<mass value="2.0"', '<mass value="-1"', "inertial mass: value='-1' must be a finite number, such as 1.5, and not "
+                                             "negative"),
+    ('izz="', 'izz="nan" old_izz="', "izz='nan' is not a finite number"),
+    ('damping="', 'damping="nan" old_damping="', "damping='nan' is not a finite number"),
+])
+def test_bad_numbers_are_refused_by_element_and_attribute(tmp_path, old, new, says):
+    assert old in _ARM_TEXT
+    path = tmp_path / "bad.urdf"
+    path.write_text(_ARM_TEXT.replace(old, new, 1))
+    with pytest.raises(EngineModelError) as caught:
+        engines.load(path)
+    message = str(caught.value)
+    assert message.startswith(f"{path}: ")
+    assert says in message
+    assert "\n" not in message
+
+
+def test_params_on_a_urdf_with_a_word_for_a_mass_is_one_line(tmp_path, capsys):
+    from pitheorem.cli import main
+
+    path = tmp_path / "heavy.urdf"
+    path.write_text(_ARM_TEXT.replace('<mass value="2.0"', '<mass value="heavy"', 1))
+    assert main(["params", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("pitheorem: error: ")
+    assert err.count("\n") == 1
+    assert "'heavy'" in err

@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import math
 from decimal import Decimal
 from fractions import Fraction
 
 import numpy as np
 import pytest
 import sympy
+from hypothesis import assume, given
+from hypothesis import strategies as st
 
 import pitheorem as pt
 from pitheorem.exact import (
@@ -20,6 +23,7 @@ from pitheorem.exact import (
     read_scale_factor,
     read_value,
     short_text,
+    simplest_fraction_rounding_to,
 )
 
 
@@ -88,10 +92,14 @@ def test_number_strings_up_to_a_thousand_characters_are_read():
     (sympy.pi, "3.141592653589793"), (sympy.sqrt(2), "1.4142135623730951"), (sympy.E, "2.718281828459045"),
 ])
 def test_irrational_numbers_need_the_opt_in(irrational, printed):
-    # an exponent must be rational: pi is refused unless the caller accepts irrationals (values, not exponents)
+    # an exponent must be rational: pi is refused unless the caller accepts irrationals (values, not exponents);
+    # accepted, it is read through its nearest float, whose 16 digits make it a computed float: the simplest
+    # fraction rounding to it, far simpler than the printed decimal
     with pytest.raises(pt.NumberError, match="rational number"):
         read_number(irrational)
-    assert read_number(irrational, irrational_ok=True) == Fraction(printed)
+    read = read_number(irrational, irrational_ok=True)
+    assert float(read) == float(printed)
+    assert read.denominator < 10**9 < Fraction(printed).denominator
 
 
 def test_long_exponent_strings_are_shortened_to_forty_characters_in_the_error():
@@ -121,7 +129,7 @@ def test_the_float_hint_is_given_only_for_floats():
         with pytest.raises(pt.LimitError) as info:
             read_exponent(exact, "x")
         assert "float" not in str(info.value)
-    for inexact in (1 / 3, np.float64(1 / 3)):
+    for inexact in (1e-13, np.float64(1e-13)):
         with pytest.raises(pt.LimitError, match="a float is read as the decimal"):
             read_exponent(inexact, "x")
 
@@ -171,3 +179,81 @@ def test_read_exponent_refuses_beyond_the_limits(value):
     with pytest.raises(pt.LimitError) as caught:
         read_exponent(value, "the exponent of 'x'")
     assert "the exponent of 'x'" in str(caught.value)
+
+
+# -- the float rule: a float of at most 12 significant digits is the decimal typed; a longer one, the
+# simplest fraction whose nearest double it is.  Oracles: decimal strings built here, float() of a
+# Fraction (correctly rounded), and Fraction.limit_denominator for minimality.
+
+@given(st.integers(-(10**12) + 1, 10**12 - 1), st.integers(-290, 290))
+def test_a_float_of_at_most_twelve_digits_reads_as_the_decimal_typed(mantissa, exponent):
+    typed = f"{mantissa}e{exponent}"
+    assert read_number(float(typed)) == Fraction(mantissa) * Fraction(10) ** exponent
+
+
+@given(st.floats(allow_nan=False, allow_infinity=False))
+def test_every_float_reads_as_a_fraction_that_rounds_back_to_it(x):
+    assert float(read_number(x)) == x
+
+
+@given(st.floats(allow_nan=False, allow_infinity=False, min_value=1e-300, max_value=1e300))
+def test_a_long_float_reads_as_the_simplest_fraction_that_rounds_to_it(x):
+    digits = repr(x).split("e")[0].replace(".", "").strip("0")
+    assume(len(digits) > 12 and math.frexp(x)[0] != 0.5)  # a power of two has a lopsided rounding interval
+    read = read_number(x)
+    assert float(read) == x
+    if read.denominator > 1:
+        # the closest fraction with a smaller denominator does not round to x: none does
+        assert float(Fraction(x).limit_denominator(read.denominator - 1)) != x
+    assert read.denominator <= Fraction(repr(x)).denominator
+
+
+@given(st.integers(-(10**4), 10**4), st.integers(1, 10**4))
+def test_a_computed_quotient_of_small_integers_reads_as_that_fraction(p, q):
+    assert read_number(p / q) == Fraction(p, q)
+
+
+@pytest.mark.parametrize(("value", "expected"), [
+    (1 / 3, Fraction(1, 3)), (-22 / 7, Fraction(-22, 7)), (0.1, Fraction(1, 10)), (0.123456789, Fraction(123456789, 10**9)),
+    (123456789012.0, Fraction(123456789012)), (0.000123456789012, Fraction(123456789012, 10**15)),
+    (np.float64(2 / 3), Fraction(2, 3)), (sympy.Float(1 / 7), Fraction(1, 7)),
+])
+def test_float_rule_examples(value, expected):
+    assert read_number(value) == expected
+
+
+def test_thirteen_digits_are_a_computed_float():
+    read = read_number(0.1234567890123)
+    assert read != Fraction("0.1234567890123")
+    assert float(read) == 0.1234567890123
+    assert read.denominator < 10**13
+
+
+def test_a_sum_that_misses_its_decimal_is_not_read_as_that_decimal():
+    # 0.1 + 0.2 prints as 0.30000000000000004: 3/10 rounds to another double, so it cannot be the reading
+    read = read_number(0.1 + 0.2)
+    assert read != Fraction(3, 10)
+    assert float(read) == 0.1 + 0.2
+
+
+@pytest.mark.parametrize("x", [5e-324, 2.0**-1074 * 3, 2.0**-1022, 2.0**70, 1.7976931348623157e308, 2.0**53 + 2])
+def test_the_simplest_fraction_at_the_ends_of_the_doubles_rounds_back(x):
+    read = simplest_fraction_rounding_to(x)
+    assert float(read) == x
+    assert simplest_fraction_rounding_to(-x) == -read
+
+
+def test_rounding_ties_belong_to_the_double_with_an_even_significand():
+    # 2**53 + 2 has an odd significand at spacing 2: the odd integers beside it are ties that round to its
+    # even neighbours, so the only integer in its interval is itself; 2**53 + 4 (even) owns its ties
+    assert simplest_fraction_rounding_to(2.0**53 + 2) == 2**53 + 2
+    assert simplest_fraction_rounding_to(2.0**53 + 4) == 2**53 + 3
+    assert float(2**53 + 3) == 2.0**53 + 4
+
+
+def test_a_sympy_float_beyond_doubles_is_a_limit_error_where_a_float_is_kept():
+    big = sympy.Float("1e400")
+    assert read_number(big) == 10**400  # exact readings are fine
+    for read in (lambda: read_value(big, "the value of 'x'"), lambda: read_scale_factor(big)):
+        with pytest.raises(pt.LimitError, match="beyond the range of floating point"):
+            read()

@@ -159,3 +159,21 @@ def test_bad_evaluate_and_group_lookup(rod):
         rod.pi_groups(repeating=("m", "l", "k_theta"))["t"].evaluate({"l": 0, "m": 1, "t": 1, "k_theta": 1})
     with pytest.raises(pt.InvalidRequestError, match="'zzz'"):
         rod.pi_groups()["zzz"]
+
+
+# -- evaluate beyond floating point (issue 23)
+
+def test_evaluate_names_a_float_value_beyond_floating_point():
+    with pytest.raises(pt.LimitError, match="beyond the range of floating point"):
+        pt.PiGroup({"x": 1, "y": -2}).evaluate({"x": 1.0, "y": 1e-200})
+
+
+def test_evaluate_names_a_sympy_float_beyond_doubles():
+    with pytest.raises(pt.LimitError, match="beyond the range of floating point"):
+        pt.PiGroup({"x": 1, "y": -2}).evaluate({"x": sympy.Float("1e400"), "y": 2})
+
+
+def test_evaluate_survives_an_overflow_on_the_way_to_a_finite_value():
+    # 1e200**2 overflows a float, yet x^2/y^2 is 1/4 exactly: the floats' exact product, rounded once
+    assert pt.PiGroup({"x": 2, "y": -2}).evaluate({"x": 1e200, "y": 2e200}) == 0.25
+    assert pt.PiGroup({"x": 1, "y": -2}).evaluate({"x": 1, "y": Fraction(1, 10**200)}) == Fraction(10**400)

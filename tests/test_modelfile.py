@@ -241,3 +241,9 @@ def test_the_kind_of_a_model_file_is_told_in_one_place(tmp_path):
              "example:robot.urdf": "toml", "example:pendulum.xml": "toml",
              str(urdf_in_xml): "urdf", str(mjcf): "mjcf", str(tmp_path / "absent.xml"): "mjcf", "hopper.mjcf": "mjcf"}
     assert {path: model_kind(path) for path in kinds} == kinds
+
+
+@pytest.mark.parametrize("bad", [3, None, ["rod.toml"]])
+def test_load_model_file_names_a_path_that_is_no_path(bad):
+    with pytest.raises(pt.ModelFileError, match="named by a path"):
+        pt.load_model_file(bad)

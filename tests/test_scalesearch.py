@@ -266,7 +266,7 @@ def test_exponent_one_over_prime(p):
         assert sc.exponents["t"] == 0
 
 
-@pytest.mark.parametrize("value", [1 / 3, 0.123456789012345, 1e-13])
+@pytest.mark.parametrize("value", [1e-13, np.float64(3e-13), 1 / 3e12])
 def test_float_exponent_beyond_denominator_limit_is_named(value):
     with pytest.raises(pt.LimitError) as info:
         pt.search(LT, scale={"l": value}, fixed=())
@@ -278,6 +278,8 @@ def test_float_exponent_beyond_denominator_limit_is_named(value):
     (Fraction(1, 10**9), Fraction(1, 10**9)),
     (1e-9, Fraction(1, 10**9)),
     (0.123456789, Fraction(123456789, 10**9)),
+    (1 / 3, Fraction(1, 3)),  # a computed float: the simplest fraction that rounds to it
+    (np.float64(2 / 7), Fraction(2, 7)),
     (np.float64(0.5), Fraction(1, 2)),
     (np.float32(0.1), Fraction(1, 10)),
     (np.int64(2), Fraction(2)),
@@ -399,3 +401,21 @@ def test_a_search_holds_every_time_variable_by_default():
 def test_search_needs_a_system():
     with pytest.raises(pt.InvalidRequestError, match="System"):
         pt.search({"g": "L"}, scale={"g": 1})
+
+
+@pytest.mark.parametrize(("variables", "name", "power"), [
+    # found by mutating _exact_points (gcd(den // z_den, ...)): solutions whose denominator exceeds the
+    # system's common one came out with the prescribed exponent 2 turned into 95/47
+    ({"x0": {"M": Fraction(2, 3), "L": 2, "T": 3}, "x1": {"M": 2, "L": Fraction(1, 3)},
+      "x2": {"M": 3, "L": Fraction(1, 3), "T": Fraction(2, 3)}, "x3": {"M": 3, "T": 2}, "x4": {"L": Fraction(1, 2)}},
+     "x0", 2),
+    ({"x0": {"M": Fraction(1, 2), "T": 3}, "x1": {"M": Fraction(2, 3), "L": 3, "T": 3}, "x2": {"M": -1, "T": Fraction(1, 2)},
+      "x3": {"L": 2, "T": Fraction(-3, 2)}, "x4": {"M": 3, "L": -1, "T": 3}, "x5": {"T": 2}}, "x3", 2),
+])
+def test_exact_fallback_with_solution_denominators_beyond_the_systems(variables, name, power):
+    system = pt.System(variables)
+    expected = oracle_search(system, {name: power}, ())
+    with mock.patch.object(family_module, "minimal_points", return_value=None):  # the exact path, one solve each
+        result = pt.search(system, scale={name: power}, fixed=())
+        assert [s.vector for s in result.scalings] == expected
+    assert [s.vector for s in pt.search(system, scale={name: power}, fixed=()).scalings] == expected

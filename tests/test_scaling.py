@@ -203,3 +203,53 @@ def test_apply_keeps_an_irrational_exact_value_exact():
     scaled = sc.apply({"l": sympy.pi, "t": sympy.sqrt(2)}, 3)
     assert scaled["l"] == 9 * sympy.pi  # not 9 times pi's decimal rounding
     assert scaled["t"] == sympy.sqrt(2)
+
+
+# -- arguments checked by name, and no silent infinity (issue 23's reproducers)
+
+def test_apply_takes_a_mapping_of_values():
+    sc = pt.Scaling.from_unit_change(LT, {"L": 1})
+    with pytest.raises(pt.InvalidRequestError, match="mapping of variable names"):
+        sc.apply([("l", 1)], 2)
+
+
+@pytest.mark.parametrize("build", [
+    lambda: pt.Scaling.from_unit_change(LT, None),
+    lambda: pt.Scaling.from_exponents(LT, None),
+    lambda: pt.Scaling.from_unit_change(LT, ["L"]),
+    lambda: pt.Scaling.from_exponents(LT, "l"),
+    lambda: pt.Scaling.from_unit_change(None, {"L": 1}),
+    lambda: pt.Scaling.from_exponents({"l": "L"}, {"l": 1}),
+])
+def test_constructors_name_a_wrong_argument(build):
+    with pytest.raises(pt.InvalidRequestError, match=r"a Scaling needs a System|must be a mapping"):
+        build()
+
+
+@pytest.mark.parametrize(("value", "s"), [(3, 1e308), (3.0, 1e308), (1e300, 1e10), (3, np.float64(1e308))])
+def test_apply_refuses_a_float_result_beyond_floating_point(value, s):
+    sc = pt.Scaling.from_unit_change(LT, {"L": 1})
+    with pytest.raises(pt.LimitError, match="beyond the range of floating point"):
+        sc.apply({"l": value}, s=s)
+
+
+def test_apply_refuses_a_sympy_float_s_beyond_doubles():
+    import sympy
+
+    sc = pt.Scaling.from_unit_change(LT, {"L": 1})
+    with pytest.raises(pt.LimitError, match="scale factor s"):
+        sc.apply({"l": 3}, s=sympy.Float("1e400"))
+    assert sc.apply({"l": 3}, s=sympy.Float("1e300")) == {"l": 3e300}
+
+
+def test_apply_refuses_samples_that_overflow_but_keeps_given_infinities():
+    sc = pt.Scaling.from_unit_change(LT, {"L": 1})
+    with pytest.raises(pt.LimitError, match="samples of 'l'"):
+        sc.apply({"l": np.array([1.0, 1e300])}, s=1e10)
+    out = sc.apply({"l": np.array([1.0, np.inf])}, s=2.0)["l"]
+    assert out.tolist() == [2.0, np.inf]
+
+
+def test_apply_at_the_edge_of_floating_point_is_exact_in_range():
+    sc = pt.Scaling.from_unit_change(LT, {"L": 1})
+    assert sc.apply({"l": 1.5}, s=1e308) == {"l": 1.5e308}

@@ -305,3 +305,62 @@ def test_rows_are_the_dimension_matrix_over_the_names_asked(system, data):
 def test_rows_refuse_an_unknown_name():
     with pytest.raises(pt.UnknownVariableError, match="unknown variable 'mass'"):
         pt.System(ROD).rows(["m", "mass"])
+
+
+# -- from_units: pint's float exponents under the float rule, never rounded to a nearby fraction
+
+@pytest.mark.parametrize(("unit", "exponent"), [
+    ("m**1e-7", Fraction(1, 10**7)),  # was dimensionless
+    ("m**0.3333333", Fraction(3333333, 10**7)),  # was 1/3
+    ("m**(1/3)", Fraction(1, 3)),  # pint's 0.3333333333333333, a computed float
+    ("m**(2/7)", Fraction(2, 7)),
+    ("m**1.5", Fraction(3, 2)),
+    ("m**(1/1000)", Fraction(1, 1000)),
+])
+def test_from_units_reads_exponents_by_the_float_rule(unit, exponent):
+    assert pt.System.from_units({"x": unit}).dimension("x") == pt.Dimension({"L": exponent})
+
+
+def test_from_units_reads_an_irrational_power_as_the_fraction_that_rounds_to_it():
+    # 2**0.5 is a computed float: the simplest fraction rounding to it, not limit_denominator's 665857/470832
+    exponent = pt.System.from_units({"x": "m**(2**0.5)"}).dimension("x").exponent_of("L")
+    assert float(exponent) == 2**0.5
+    assert exponent != Fraction(665857, 470832)
+
+
+def test_from_units_refuses_a_power_it_cannot_hold_exactly():
+    # 1/1000001 prints as 9.99999000001e-07 (12 digits): that decimal's denominator 10^18 is beyond the limit,
+    # refused by name rather than read as 1/1000000
+    with pytest.raises(pt.LimitError, match="denominator"):
+        pt.System.from_units({"x": "m**(1/1000001)"})
+
+
+@pytest.mark.parametrize(("unit", "error", "fragment"), [
+    ("m**inf", pt.NumberError, "finite"), ("m**-1e400", pt.NumberError, "finite"),
+    ("m**nan", pt.UnitError, "nan"), ("m**100000", pt.LimitError, "1000"), ("m**1e-13", pt.LimitError, "denominator"),
+])
+def test_from_units_refuses_exponents_beyond_the_limits_by_name(unit, error, fragment):
+    with pytest.raises(error, match=fragment) as info:
+        pt.System.from_units({"x": unit})
+    assert unit in str(info.value)
+
+
+@pytest.mark.parametrize("unit", ["m^-1/2", "m**-1/2", "kg*m^2/2", "m^0.5 / 3"])
+def test_from_units_refuses_a_power_divided_by_a_number_as_dimension_parse_does(unit):
+    with pytest.raises(pt.UnitError, match="ambiguous"):
+        pt.System.from_units({"x": unit})
+    with pytest.raises(pt.DimensionSyntaxError):
+        pt.Dimension.parse(unit.replace("kg", "M").replace("m", "L"))
+
+
+def test_from_units_still_reads_a_power_divided_by_a_unit():
+    s = pt.System.from_units({"a": "m^2/s", "b": "m^(-1/2)", "c": "m**2/(s*kg)"})
+    assert s.dimension("a") == pt.Dimension.parse("L^2/T")
+    assert s.dimension("b") == pt.Dimension.parse("L^(-1/2)")
+    assert s.dimension("c") == pt.Dimension.parse("L^2/(T M)")
+
+
+@pytest.mark.parametrize("bad", [3, "m", ["m"], None])
+def test_from_units_takes_a_mapping(bad):
+    with pytest.raises(pt.UnitError, match="must map each variable"):
+        pt.System.from_units(bad)

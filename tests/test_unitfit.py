@@ -320,13 +320,14 @@ def test_property_fit(req):
 
 
 def test_rounded_fit_names_a_conflict_that_only_exact_arithmetic_sees():
-    # found by test_property_fit: 1.0000000000000002e-06 (read as that decimal) times 10^7 is
-    # 10.000000000000002, above the bound 10 by far less than the floats' tolerance; 10^6 gives
-    # 1.0000000000000002, below the low bound. The fit says so exactly, and so must the conflict.
+    # found by test_property_fit: 1.0000000000000002e-06 (a computed float, read as the simplest fraction
+    # that rounds to it, just above 10^-6) times 10^7 is just above the bound 10, by far less than the
+    # floats' tolerance; 10^6 gives just above 1, below the low bound. The fit says so exactly, and so must
+    # the conflict.
     fit = pt.fit_units(pt.System({"x": "T"}), {"x": 1.0000000000000002e-06}, ranges={"x": (1.2589254117941673, 10.0)},
                        nice=10)
     assert fit.violated == ("x",)
-    assert fit.scaled["x"] == 10.000000000000002
+    assert 10 < fit.scaled["x"] < 10 + 1e-14
     assert [(b.name, b.side) for b in fit.conflict] == [("x", "low"), ("x", "high")]
 
 

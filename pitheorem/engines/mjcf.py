@@ -51,6 +51,7 @@ from .model import (
     unique_name,
     warn_unscalable,
 )
+from .numbers import check_model_file
 from .packages import engine_module
 
 __all__ = ["MjcfBackend", "load_mjcf"]
@@ -1054,6 +1055,7 @@ def load_mjcf(path) -> EngineModel:
     """
     mj = _mujoco()
     path = Path(path)
+    check_model_file(path)  # MuJoCo drops damping="nan" and keeps "inf"; a non-UTF-8 byte breaks its names
     try:
         spec = mj.MjSpec.from_file(str(path))
     except ValueError as err:

@@ -49,6 +49,7 @@ from .model import (
     unique_name,
     warn_unscalable,
 )
+from .numbers import check_model_file, check_numbers
 from .packages import engine_module, quiet_stdout
 
 __all__ = ["SCENE_OPTIONS", "UrdfBackend", "load_urdf", "scene_option"]
@@ -125,6 +126,7 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
     def add(ident, where, element, attr, dimension, note=""):
         if element is None or element.get(attr) is None:
             return
+        check_numbers(path, where, attr, element.get(attr), nonnegative=dimension == _M)  # a mass cannot be < 0
         out.append(_Attr(unique_name(ident, names), where, element, attr, dimension, note))
 
     for link in root.findall("link"):
@@ -792,6 +794,7 @@ def scene_option(name: str, value):
 def _scene_backend(path: Path, scene: dict) -> UrdfBackend:
     """The backend of a URDF in a scene: each of :data:`SCENE_OPTIONS` given (``damping`` may be None)."""
     scene = {name: None if value is None else scene_option(name, value) for name, value in scene.items()}
+    check_model_file(path)
     try:
         tree = ET.parse(path)
     except ET.ParseError as err:

@@ -21,6 +21,7 @@ from fractions import Fraction
 import sympy
 
 from ..errors import InvalidRequestError
+from ..exact import read_number
 
 __all__ = [
     "COMMAND_LINE_TIME_REMEDY",
@@ -116,7 +117,7 @@ def power_text(exponent) -> str:
     Parameters
     ----------
     exponent : int, Fraction or float
-        A float is read as the nearest small fraction.
+        A float is read by :func:`pitheorem.exact.read_number`'s float rule.
 
     Returns
     -------
@@ -128,7 +129,7 @@ def power_text(exponent) -> str:
     >>> [power_text(p) for p in (0, 1, 2, -1, -3, 0.5)]
     ['-', 's', 's^2', '1/s', '1/s^3', 's^(1/2)']
     """
-    p = Fraction(exponent).limit_denominator() if isinstance(exponent, float) else Fraction(exponent)
+    p = read_number(exponent, "a power of s")  # a float by the float rule, as every number pitheorem reads
     if p == 0:
         return UNCHANGED
     if p == 1:

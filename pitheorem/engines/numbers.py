@@ -1,0 +1,147 @@
+"""The numbers of an MJCF or URDF file, checked before an engine reads them.
+
+MuJoCo reads ``damping="nan"`` as "unset" and drops it, and ``stiffness="inf"``
+as infinity; Python's ``float()`` takes ``"nan"``, ``"inf"`` and ``"1e999"``
+too.  A model holds neither, so the loaders refuse them up front, naming the
+file, the element and the attribute:
+
+* :func:`check_model_file` reads the whole file: it must be UTF-8 text, and
+  no attribute may hold NaN or an infinity;
+* :func:`check_numbers` reads one attribute that must be numbers (a URDF
+  mass, inertia, damping ...): finite, at least one, and not negative where
+  the quantity cannot be.
+
+Nothing here imports an engine.
+"""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+from ..errors import EngineModelError
+
+__all__ = ["check_model_file", "check_numbers"]
+
+# attributes that name things (other elements, files, classes): "nan" there is a name, not a number
+_NAMES = frozenset({
+    "name", "class", "childclass", "prefix", "content_type", "model", "link", "material", "texture", "mesh", "hfield",
+    "joint", "joint1", "joint2", "body", "body1", "body2", "site", "site1", "site2", "tendon", "geom", "geom1",
+    "geom2", "target", "objname", "refname", "actuator", "slidersite", "cranksite", "key", "plugin", "instance",
+    "skin", "camera", "light", "flex", "sensor", "meshdir", "texturedir", "assetdir", "type",
+})
+
+
+def _element(element: ET.Element, parents: dict) -> str:
+    """``<joint name='h'>``, or an unnamed element with its nearest named ancestor: ``<mass> in <link name='b'>``."""
+    def label(e):
+        return f"<{e.tag} name={e.get('name')!r}>" if e.get("name") else f"<{e.tag}>"
+
+    ancestor = element
+    while ancestor is not None and not ancestor.get("name"):
+        ancestor = parents.get(ancestor)
+    if ancestor is None or ancestor is element:
+        return label(element)
+    return f"{label(element)} in {label(ancestor)}"
+
+
+def check_model_file(path) -> None:
+    """Refuse a model file that is not UTF-8 text, or whose attributes hold NaN or an infinity.
+
+    A file that cannot be read, or is not well-formed XML, passes: the
+    engine's own reader names its fault.
+
+    Parameters
+    ----------
+    path : str or Path
+        The MJCF or URDF file.
+
+    Raises
+    ------
+    EngineModelError
+        Naming the file, the element (or the line of a bad byte) and the
+        attribute.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from pitheorem.engines.numbers import check_model_file
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "m.xml"
+    >>> _ = path.write_text('<mujoco><option timestep="nan"/></mujoco>')
+    >>> try:
+    ...     check_model_file(path)
+    ... except Exception as err:
+    ...     print(str(err).replace(str(path), "m.xml"))
+    m.xml: <option>: timestep='nan' is not a finite number; a model holds finite numbers only
+    """
+    try:
+        raw = Path(path).read_bytes()
+    except OSError:
+        return
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as err:
+        line = raw[: err.start].count(b"\n") + 1
+        raise EngineModelError(str(path), f"line {line}", f"byte {raw[err.start]:#04x} at offset {err.start} is "
+                               "not UTF-8; save the file as UTF-8 text") from None
+    try:
+        root = ET.fromstring(text)
+    except ET.ParseError:
+        return  # the engine's reader names the fault, with its own words
+    parents = {child: parent for parent in root.iter() for child in parent}
+    for element in root.iter():
+        for attr, value in element.attrib.items():
+            if attr in _NAMES or attr.startswith("file"):
+                continue
+            for token in value.split():
+                try:
+                    number = float(token)
+                except ValueError:
+                    break  # not a list of numbers: text of some kind, which the engine reads
+                if not math.isfinite(number):
+                    raise EngineModelError(str(path), _element(element, parents), f"{attr}={value!r} is not a finite number; "
+                                           "a model holds finite numbers only")
+
+
+def check_numbers(path, element: str, attr: str, text: str | None, *, nonnegative: bool = False) -> None:
+    """Refuse an attribute that should be numbers and is not: empty, not numbers, NaN, infinite (or negative).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file, for the message.
+    element : str
+        The element, for the message (``"link 'arm' inertial mass"``).
+    attr : str
+        The attribute's name.
+    text : str or None
+        Its text as the file has it (None: absent, which passes).
+    nonnegative : bool
+        Refuse negative numbers too (a mass).
+
+    Raises
+    ------
+    EngineModelError
+
+    Examples
+    --------
+    >>> from pitheorem.engines.numbers import check_numbers
+    >>> check_numbers("r.urdf", "link 'a' inertial mass", "value", "2.5")
+    >>> try:
+    ...     check_numbers("r.urdf", "link 'a' inertial mass", "value", "heavy", nonnegative=True)
+    ... except Exception as err:
+    ...     print(err)
+    r.urdf: link 'a' inertial mass: value='heavy' must be a finite number, such as 1.5, and not negative
+    """
+    if text is None:
+        return
+    expected = "a finite number, such as 1.5" + (", and not negative" if nonnegative else "")
+    tokens = text.split()
+    try:
+        numbers = [float(token) for token in tokens]
+    except ValueError:
+        numbers = []
+    if not numbers or not all(math.isfinite(x) and (x >= 0 or not nonnegative) for x in numbers):
+        plural = "finite numbers" if len(tokens) > 1 else expected
+        raise EngineModelError(str(path), element, f"{attr}={text!r} must be {plural}")

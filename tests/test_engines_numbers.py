@@ -1,0 +1,77 @@
+"""pitheorem.engines.numbers: the checks of a model file's numbers, on XML written here.
+
+The loaders' use of them (the files of issue 23) is tested in test_engines_mjcf and test_engines_urdf.
+"""
+
+from __future__ import annotations
+
+import pickle
+
+import pytest
+
+from pitheorem.engines import EngineModelError
+from pitheorem.engines.numbers import check_model_file, check_numbers
+
+
+def write(tmp_path, text, name="m.xml"):
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize(("attribute", "value"), [
+    ("damping", "nan"), ("damping", "NaN"), ("stiffness", "inf"), ("stiffness", "-Infinity"), ("pos", "0 0 nan"),
+    ("range", "-1e999 1"), ("data", "1 nan"),
+])
+def test_nan_and_infinities_are_refused_naming_element_and_attribute(tmp_path, attribute, value):
+    path = write(tmp_path, f'<mujoco><worldbody><body name="b"><joint name="h" {attribute}="{value}"/>'
+                           "</body></worldbody></mujoco>")
+    with pytest.raises(EngineModelError) as caught:
+        check_model_file(path)
+    message = str(caught.value)
+    assert message.startswith(f"{path}: <joint name='h'>: {attribute}={value!r} is not a finite number")
+    assert str(pickle.loads(pickle.dumps(caught.value))) == message
+
+
+def test_an_unnamed_element_is_named_by_its_nearest_named_ancestor(tmp_path):
+    path = write(tmp_path, '<robot name="r"><link name="b"><inertial><mass value="nan"/></inertial></link></robot>',
+                 "r.urdf")
+    with pytest.raises(EngineModelError, match=r"<mass> in <link name='b'>: value='nan'"):
+        check_model_file(path)
+
+
+@pytest.mark.parametrize("text", [
+    '<mujoco model="nan"><worldbody><body name="inf"><joint name="nan"/></body></worldbody></mujoco>',
+    '<mujoco><compiler meshdir="inf"/><asset><mesh file="nan"/></asset></mujoco>',
+    '<mujoco><custom><text name="x" data="some nan text"/></custom></mujoco>',  # text data may say anything
+    '<mujoco><option timestep="0.002" gravity="0 0 -9.81"/></mujoco>',
+    "not xml at all",  # the engine's reader names that
+])
+def test_names_text_and_finite_numbers_pass(tmp_path, text):
+    check_model_file(write(tmp_path, text))
+
+
+def test_a_byte_that_is_not_utf8_is_named_with_its_line(tmp_path):
+    path = tmp_path / "bad.xml"
+    path.write_bytes(b'<mujoco>\n<worldbody>\n<body name="b\xff"/>\n</worldbody>\n</mujoco>')
+    with pytest.raises(EngineModelError, match=r"line 3: byte 0xff at offset 34 is not UTF-8"):
+        check_model_file(path)
+
+
+def test_a_missing_file_is_left_to_the_engine(tmp_path):
+    check_model_file(tmp_path / "absent.xml")
+
+
+@pytest.mark.parametrize(("text", "nonnegative"), [
+    ("", False), ("   ", False), ("heavy", False), ("1 two", False), ("nan", False), ("inf", False), ("-inf", False),
+    ("-1", True), ("1 -0.5", True),
+])
+def test_check_numbers_refuses_what_is_no_finite_number(text, nonnegative):
+    with pytest.raises(EngineModelError, match=r"r\.urdf: link 'a' inertial mass: value="):
+        check_numbers("r.urdf", "link 'a' inertial mass", "value", text, nonnegative=nonnegative)
+
+
+@pytest.mark.parametrize(("text", "nonnegative"), [(None, True), ("0", True), ("2.5", True), ("-1 2", False),
+                                                   ("1e-300 3", True)])
+def test_check_numbers_passes_finite_numbers(text, nonnegative):
+    check_numbers("r.urdf", "x", "value", text, nonnegative=nonnegative)
