@@ -250,9 +250,11 @@ def _group_value(group, values):
         return None
     try:
         return group.evaluate(values)
-    except InvalidRequestError:  # a zero to a negative power (evaluate's one refusal of known values)
-        zero = next(n for n, p in group.exponents.items() if p < 0 and values[n] == 0)
-        return f"undefined ({zero} = 0)"
+    except InvalidRequestError:  # a zero to a negative power, or a value beyond floating point
+        zero = [n for n, p in group.exponents.items() if p < 0 and values[n] == 0]
+        if not zero:
+            raise
+        return f"undefined ({zero[0]} = 0)"
 
 
 def _cmd_groups(args) -> int:

@@ -44,8 +44,10 @@ def test_an_answer_keeps_what_it_is_given_and_cannot_be_changed(cls):
 
 
 def test_the_engine_apply_answer_names_no_other_file_by_default():
-    assert answers.EngineApplyAnswer._field_defaults == {"also_written": ()}
-    assert all(not cls._field_defaults for cls in ANSWERS if cls is not answers.EngineApplyAnswer)
+    assert answers.EngineApplyAnswer._field_defaults == {"also_written": (), "details": ()}
+    assert answers.GroupsAnswer._field_defaults == {"passed_over": ()}
+    assert all(not cls._field_defaults for cls in ANSWERS
+               if cls not in (answers.EngineApplyAnswer, answers.GroupsAnswer))
 
 
 def test_answers_print_their_rendered_text_and_pickle():

@@ -125,6 +125,9 @@ SAMPLES = {
                                        engines.RuleQuantity("time", pt.Dimension.parse("T"), Fraction(0)),
                                        engines.RuleQuantity("speed", pt.Dimension.parse("L T^-1"), Fraction(0))))),
     "engine_model": _engine_model,
+    "cause": lambda: engines.Cause("contact", "geom 'foot' / geom 'floor'", "starts at step 3 (t = 0.006) & more"),
+    "audit": lambda: engines.audit(_engine_model(), pt.search(_engine_model().system(), scale={"g": 1}).scalings[0],
+                                   10),
     "engine_similarity_report": lambda: engines.verify_engine_similarity(
         "mujoco", pt.search(pt.models.hinged_rod().system, scale={"g": 1}).scalings[0], s=2, t_final=0.02),
     "groups_answer": lambda: GroupsAnswer("hinged rod", ROD, ROD.pi_groups(repeating=("m", "l", "k_theta")),
@@ -191,6 +194,8 @@ JSON_NUMBERS = {
     "UnitFit": lambda v, doc: (_exact_map(doc["unit_change"]) == dict(v.unit_change)
                                and _value_numbers(v.values, doc["values"]) is None),
     "RangeBound": lambda v, doc: _exact(doc["bound"]) == v.bound,
+    "Cause": lambda v, doc: doc == {"kind": v.kind, "element": v.element, "detail": v.detail},
+    "Audit": lambda v, doc: doc["compared"] == v.compared and len(doc["causes"]) == len(v.causes),
     "HiddenConstant": lambda v, doc: pt.Dimension.parse(doc["dimension"]) == v.dimension,
     "RuleVerdict": lambda v, doc: (doc["unit_change"] is None if v.unit_change is None
                                    else _exact_map(doc["unit_change"]) == v.unit_change),

@@ -74,6 +74,8 @@ VALUE_TYPES = {
     pt.SimilarityReport: (_similarity_report, "passed"),
     engines.EngineSimilarityReport: (_engine_report, "similar"),
     engines.EngineModel: (_engine_model, "parameters"),
+    engines.Cause: (lambda: engines.Cause("solver", "option tolerance", "no pure dimension"), "detail"),
+    engines.Audit: (lambda: engines.Audit((), 3, 4.0), "compared"),
     engines.Parameter: (lambda: _engine_model().parameters[0], "value"),
     engines.HiddenConstant: (lambda: engines.CATALOGUE[0], "dimension"),
     engines.RuleOfThumb: (lambda: engines.BULLET_SCALE_THE_WORLD, "quantities"),

@@ -28,6 +28,7 @@ import numpy as np
 
 from ..errors import InvalidRequestError
 from ..exact import read_scale_factor
+from ..formatting import TextDisplay
 from ..immutable import immutable
 from ..scaling import float_power
 from .causes import Cause, sorted_causes
@@ -57,7 +58,7 @@ DERIVED = 1e-5
 
 @immutable
 @dataclass(frozen=True, slots=True)
-class Audit:
+class Audit(TextDisplay):
     """The answer of :func:`audit`.
 
     Attributes
@@ -86,15 +87,9 @@ class Audit:
     compared: int
     s: float
 
-    def __str__(self) -> str:
-        head = f"audit at s = {self.s:g}: {self.compared} stored numbers compared, "
-        if not self.causes:
-            return head + "every one the original times its factor"
-        return head + f"{len(self.causes)} cause(s):\n" + "\n".join(f"  {c}" for c in self.causes)
-
 
 def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) -> Audit:
-    """Hold every number the engine keeps for a scaled model against the original times its factor.
+    """Hold each number the engine stores for a scaled copy against its expected one.
 
     Parameters
     ----------

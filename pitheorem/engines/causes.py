@@ -28,6 +28,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..errors import InvalidRequestError
+from ..formatting import TextDisplay
 from ..immutable import immutable
 
 __all__ = ["CAUSE_KINDS", "Cause"]
@@ -38,7 +39,7 @@ CAUSE_KINDS = ("unscaled", "setting", "threshold", "solver", "precision", "conta
 
 @immutable
 @dataclass(frozen=True, slots=True)
-class Cause:
+class Cause(TextDisplay):
     """One reason a scaled engine model is not exact or not similar.
 
     Parameters
@@ -72,9 +73,6 @@ class Cause:
         for field in ("element", "detail"):
             if not isinstance(getattr(self, field), str):
                 raise InvalidRequestError(f"a Cause's {field} must be text, got {type(getattr(self, field)).__name__}")
-
-    def __str__(self) -> str:
-        return f"{self.kind}: {self.element}: {self.detail}"
 
     def to_dict(self) -> dict[str, str]:
         """The record as a JSON-ready dictionary.

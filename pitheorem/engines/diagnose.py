@@ -83,9 +83,12 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
         agree, worst = counter({"tolerance": 0.0})
         if agree:
             names = ", ".join(f"option {k} = {v:g}" for k, v in solver.items())
+            setting = next(iter(solver))
             causes.append(Cause("solver", names, "a stopping rule of no pure dimension: the scaled run stops after "
                                 f"other iterations; with it at 0 in both runs they agree (largest deviation {worst:.3g}"
-                                f" instead of {report.max_deviation:.3g}); load with with_values(tolerance=0)"))
+                                f" instead of {report.max_deviation:.3g}); load with with_values({setting}=0)"))
+    if not hasattr(original, "contact_log"):  # PyBullet: no solver to switch, no contact list per step here
+        return sorted_causes(causes)
     if original.solver_name() != "Newton":
         agree, worst = counter({"solver": "Newton"})
         if not agree:  # Newton's own stopping rule may stop it at another iteration too

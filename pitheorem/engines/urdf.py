@@ -568,6 +568,22 @@ class UrdfBackend:
         out.nudge_start = True
         return out
 
+    def solver_settings(self) -> dict[str, float]:
+        """The solver's stopping rule of no pure dimension (the residual threshold), when nonzero."""
+        value = float(self._settings["solverResidualThreshold"])
+        return {"solverResidualThreshold": value} if value else {}
+
+    def variant(self, *, tolerance: float | None = None) -> UrdfBackend:
+        """A copy run with another residual threshold: a counter-run's model."""
+        out = copy.copy(self)
+        if tolerance is not None:
+            out._settings = {**self._settings, "solverResidualThreshold": float(tolerance)}
+        return out
+
+    def run_many(self, n_steps: int, jobs) -> list[np.ndarray]:
+        """The runs of ``(backend, controls, nudge, state)`` jobs, one after the other (PyBullet has no batch)."""
+        return [backend.run(n_steps, controls, nudge) for backend, controls, nudge, _state in jobs]
+
     def control_ranges(self) -> tuple[np.ndarray, np.ndarray]:
         """Unlimited for every movable joint: under torque control PyBullet applies no effort limit."""
         high = np.full(len(self._info["joints"]), np.inf)

@@ -90,7 +90,7 @@ class EngineRunner(Protocol):
 def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None, *, controller=None,
            scaled: EngineModel | None = None, baseline_factor: float = 10.0, ensemble: int = 4,
            seed: int = 0, diagnose: bool = True) -> SimilarityReport:
-    """Run a model and its scaled copy, compare them in original units, and say why they differ.
+    """Run a model and its scaled copy, compare them, and say why they differ.
 
     Parameters
     ----------
@@ -223,7 +223,7 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
 
 
 def smooth_controls(model: EngineModel, amplitude: float = 0.3, period: float = 0.5):
-    """A smooth open-loop input that moves a model: each actuator a sine of its own phase.
+    """A smooth open-loop input that moves a model: a sine per actuator.
 
     The input of actuator ``i`` is ``amplitude * sin(2 pi t / period + i)``,
     times the half-width of its control range where the file limits it

@@ -181,6 +181,18 @@ def _unit_fit(fit) -> str:
 # -- engines ---------------------------------------------------------------------------------
 
 
+@_renders("pitheorem.engines.causes.Cause")
+def _cause(cause) -> str:
+    return f"<span><strong>{escape(cause.kind)}</strong>: {_code(cause.element)}: {escape(cause.detail)}</span>"
+
+
+@_renders("pitheorem.engines.audit.Audit")
+def _audit(audit) -> str:
+    first = render(audit, "text").splitlines()[0]
+    items = "".join(f"<li>{render(c, 'html')}</li>" for c in audit.causes)
+    return _p(escape(first)) + (f"<ul>{items}</ul>" if items else "")
+
+
 @_renders("pitheorem.engines.constants.HiddenConstant")
 def _hidden_constant(constant) -> str:
     return f"<span>{_code(constant.name)} [{_latex(constant.dimension)}] ({default_text(constant.default)})</span>"

@@ -191,6 +191,16 @@ def _unit_fit(fit) -> dict:
 # -- engines ---------------------------------------------------------------------------------
 
 
+@_data("pitheorem.engines.causes.Cause")
+def _cause(cause) -> dict:
+    return {"kind": cause.kind, "element": cause.element, "detail": cause.detail}
+
+
+@_data("pitheorem.engines.audit.Audit")
+def _audit(audit) -> dict:
+    return {"s": audit.s, "compared": audit.compared, "causes": [_cause(c) for c in audit.causes]}
+
+
 @_data("pitheorem.engines.constants.HiddenConstant")
 def _hidden_constant(constant) -> dict:
     return {"engine": constant.engine, "name": constant.name, "dimension": render(constant.dimension, "text"),

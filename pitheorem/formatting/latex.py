@@ -188,6 +188,19 @@ def _unit_fit(fit) -> str:
 # -- engines ---------------------------------------------------------------------------------
 
 
+@_renders("pitheorem.engines.causes.Cause")
+def _cause(cause) -> str:
+    return rf"\textbf{{{cause.kind}}}: \texttt{{{latex_escape(cause.element)}}}: {latex_escape(cause.detail)}"
+
+
+@_renders("pitheorem.engines.audit.Audit")
+def _audit(audit) -> str:
+    first, *rest = render(audit, "text").splitlines()
+    items = "".join(rf"\item {render(c, 'latex')}" + "\n" for c in audit.causes)
+    body = "\\begin{itemize}\n" + items + "\\end{itemize}" if rest else ""
+    return latex_escape(first) + ("\n" + body if body else "")
+
+
 @_renders("pitheorem.engines.constants.HiddenConstant")
 def _hidden_constant(constant) -> str:
     return (rf"\texttt{{{latex_escape(constant.name)}}} [{_math(_dimension(constant.dimension))}] "

@@ -236,8 +236,13 @@ def _similarity_report(report) -> str:
         judged = f"within {report.baseline_factor:g}x the one-ulp sensitivity (largest {worst:.3g}) per state"
     else:
         judged = f"tol {report.tol:g}"
-    return (f"{verdict}: max deviation {report.max_deviation:.3g} ({judged}) at s={report.s:g}, "
-            f"{kind}, method {report.method}; per state {per}")
+    head = "EXACT (bit for bit), " if report.exact and report.sensitivity is not None else ""
+    lines = [f"{head}{verdict}: max deviation {report.max_deviation:.3g} ({judged}) at s={report.s:g}, "
+             f"{kind}, method {report.method}; per state {per}"]
+    if report.excited is False:
+        lines.append("the original run moved nothing beyond its own rounding: this verdict proves nothing")
+    lines.extend(f"cause: {cause}" for cause in report.causes)
+    return "\n".join(lines)
 
 
 @_renders("pitheorem.engines.rod.EngineSimilarityReport")
@@ -300,6 +305,19 @@ def _unit_fit(fit) -> str:
 
 
 # -- engines ---------------------------------------------------------------------------------
+
+
+@_renders("pitheorem.engines.causes.Cause")
+def _cause(cause) -> str:
+    return f"{cause.kind}: {cause.element}: {cause.detail}"
+
+
+@_renders("pitheorem.engines.audit.Audit")
+def _audit(audit) -> str:
+    head = f"audit at s = {audit.s:g}: {audit.compared} stored numbers compared, "
+    if not audit.causes:
+        return head + "every one the original times its factor"
+    return head + f"{len(audit.causes)} cause(s):\n" + "\n".join(f"  {c}" for c in audit.causes)
 
 
 @_renders("pitheorem.engines.constants.HiddenConstant")
