@@ -162,10 +162,9 @@ def urdf_path(name) -> Path:
 def urdf_searched(name: str):
     """The URDF `name` dropped onto a ground plane, and its search, once."""
     # PyBullet's multibody damping (0.04) mixes dimensions and its split-impulse threshold (a length) cannot be
-    # set from Python: both are switched off, in the original and in the scaled run alike
+    # set from Python: both are switched off, in the original and in the scaled run alike; the solver's residual
+    # threshold adds rows in rad/s to rows in m/s (no pure dimension): 0, so that every iteration runs
     model = load_quiet(urdf_path(name), base_position=(0, 0, 1), ground=True, damping=0.0, split_impulse=False)
-    # and the solver's residual threshold, which has no pure dimension (it adds contact rows in m/s to
-    # joint-limit rows in rad/s), is 0 in both: every iteration runs
     model = model.with_values(solverResidualThreshold=0.0)
     return model, pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
 
