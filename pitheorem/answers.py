@@ -108,7 +108,7 @@ class SearchAnswer(NamedTuple):
     >>> from pitheorem.answers import SearchAnswer
     >>> res = pt.search(pt.System({"l": "L", "g": "L T^-2", "t": "T"}), scale={"g": 1})
     >>> print(format(SearchAnswer("drop", res), "text").splitlines()[1])
-    time variable t is held fixed by default; give --fixed with no names to let time change
+    Time variable t is held fixed by default; give --fixed with no names to let time change
     """
 
     model: str
