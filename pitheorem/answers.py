@@ -225,8 +225,8 @@ class EngineApplyAnswer(NamedTuple):
     ...                         (("L", (0.5,), (1.0,)),)))
     arm.xml, s = 2: units of L by s
     1 of 2 parameters change, by dimension:
-      dimension  factor  parameters
-      L          s       1: l
+      dimension  factor  count  parameters
+      L          s       1      l
     <BLANKLINE>
     parameter  factor  value  scaled value
     l          s       0.5    1
