@@ -108,7 +108,7 @@ class SearchAnswer(NamedTuple):
     >>> from pitheorem.answers import SearchAnswer
     >>> res = pt.search(pt.System({"l": "L", "g": "L T^-2", "t": "T"}), scale={"g": 1})
     >>> print(format(SearchAnswer("drop", res), "text").splitlines()[1])
-    time variable t is held fixed by default; give --fixed with no names to let time change
+    Time variable t is held fixed by default; give --fixed with no names to let time change
     """
 
     model: str
@@ -225,8 +225,8 @@ class EngineApplyAnswer(NamedTuple):
     ...                         (("L", (0.5,), (1.0,)),)))
     arm.xml, s = 2: units of L by s
     1 of 2 parameters change, by dimension:
-      dimension  factor  parameters
-      L          s       1: l
+      dimension  factor  count  parameters
+      L          s       1      l
     <BLANKLINE>
     parameter  factor  value  scaled value
     l          s       0.5    1

@@ -69,7 +69,7 @@ class SearchNote(TextDisplay):
     >>> res.notes
     (SearchNote(kind='time_fixed', variables=('t',)),)
     >>> print(res.notes[0])
-    time variable t is held fixed by default; pass fixed=() to let time change
+    Time variable t is held fixed by default; pass fixed=() to let time change
     """
 
     #: every kind of note a search makes
@@ -491,7 +491,7 @@ def search(
     >>> res = pt.search(rod, scale={"g": 1})
     >>> print(res)
     Scaling g by s with t fixed: 3 minimal solutions of a 1-parameter family.
-    time variable t is held fixed by default; pass fixed=() to let time change
+    Time variable t is held fixed by default; pass fixed=() to let time change
     <BLANKLINE>
     variable  role   #1     #2   #3
     m         free   1/s^2  1/s  -

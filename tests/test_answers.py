@@ -43,11 +43,12 @@ def test_an_answer_keeps_what_it_is_given_and_cannot_be_changed(cls):
     assert (changed.model, answer.model) == ("other", given[0])
 
 
-def test_the_engine_apply_answer_names_no_other_file_by_default():
+def test_optional_fields_default_to_nothing():
+    # an engine apply names no other file and no values by default; groups pass over no variable
     assert answers.EngineApplyAnswer._field_defaults == {"also_written": (), "details": ()}
     assert answers.GroupsAnswer._field_defaults == {"passed_over": ()}
-    assert all(not cls._field_defaults for cls in ANSWERS
-               if cls not in (answers.EngineApplyAnswer, answers.GroupsAnswer))
+    others = (answers.EngineApplyAnswer, answers.GroupsAnswer)
+    assert all(not cls._field_defaults for cls in ANSWERS if cls not in others)
 
 
 def test_answers_print_their_rendered_text_and_pickle():

@@ -155,7 +155,7 @@ def test_search_notes_round_trip_through_text_and_json(capsys):
     # JSON: the data of each note rebuilds it, and its text is the command line's phrasing
     assert tuple(pt.SearchNote(n["kind"], n["variables"]) for n in doc["notes"]) == result.notes
     texts = [n["text"] for n in doc["notes"]]
-    assert texts == ["time variable t is held fixed by default; give --fixed with no names to let time change"]
+    assert texts == ["Time variable t is held fixed by default; give --fixed with no names to let time change"]
     # text: the same sentences, in the note's place under the explanation
     for argv in (["search", ROD, "--scale", "g=1"], ["apply", ROD, "--scale", "g=1", "--s", "2"]):
         code, out, _ = run(capsys, *argv)

@@ -634,7 +634,8 @@ def test_answers_of_the_command_line():
     assert lines[1] == f"{len(applied.changed)} of {applied.n_parameters} parameters change, by dimension:"
     # the summary: one row per dimension, whose counts add up to every changed parameter
     summary = lines[3:lines.index("")]
-    assert sum(int(line.split(":")[0].split()[-1]) for line in summary) == len(applied.changed)
+    count_at = lines[2].index("count")  # the summary's columns are aligned under its header
+    assert sum(int(line[count_at:].split()[0]) for line in summary) == len(applied.changed)
     table = lines[lines.index("") + 2:-2]  # then every changed parameter with its factor, value and scaled value
     assert [row.split()[:2] for row in table] == [[name, power_text(p)] for name, p in applied.changed]
     g_row = next(row.split() for row in table if row.split()[0] == "g")

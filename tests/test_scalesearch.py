@@ -229,14 +229,14 @@ def test_notes_are_data_phrased_by_each_front_end(rod):
     res = pt.search(rod, scale={"g": 1})
     (note,) = res.notes
     assert (note.kind, note.variables) == ("time_fixed", ("t",))
-    assert str(note) == "time variable t is held fixed by default; pass fixed=() to let time change"
+    assert str(note) == "Time variable t is held fixed by default; pass fixed=() to let time change"
     assert str(note) in str(res).splitlines()
     with pytest.raises(AttributeError):
         note.kind = "outside_equations"
     with pytest.raises(pt.InvalidRequestError, match="unknown note kind"):
         pt.SearchNote("a sentence", ("t",))
     two = pt.System({"l": "L", "g": "L T^-2", "t": "T", "dt": "T"})
-    assert str(pt.search(two, scale={"g": 1}).notes[0]).startswith("time variables t, dt are held fixed")
+    assert str(pt.search(two, scale={"g": 1}).notes[0]).startswith("Time variables t, dt are held fixed")
 
 
 ROD = {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "theta_r": "1", "t": "T"}

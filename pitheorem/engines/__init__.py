@@ -1,10 +1,19 @@
-"""Physics engines: the paper's rod in PyBullet and MuJoCo, and their hidden constants.
+"""Physics engines: MJCF and URDF models, the paper's rod and robot, hidden constants.
 
 An optional part of pitheorem: ``import pitheorem`` never imports it, and
-nothing here imports an engine until a simulation is asked for.  Install the
-engines with ``pip install "pitheorem[engines]"`` (``pybullet`` and
-``mujoco``).
+nothing here imports an engine until a model is read or a simulation is
+asked for.  Install the engines with ``pip install "pitheorem[engines]"``
+(``pybullet`` and ``mujoco``).
 
+* ``pitheorem.engines.model``, ``mjcf`` and ``urdf``: ``load`` reads an
+  MJCF (MuJoCo) or URDF (PyBullet) file as an ``EngineModel``, every
+  dimensional number a ``Parameter`` with its dimension; its system,
+  a scaled copy and the file the engine loads;
+* ``pitheorem.engines.verify``: runs a model and its scaled copy in the
+  engine and compares them against the model's own one-ulp sensitivity;
+* ``pitheorem.engines.cli``: the command line on MJCF and URDF files;
+* ``pitheorem.engines.superball``: SUPERball, the white paper's robot, as a
+  MuJoCo tensegrity;
 * ``pitheorem.engines.constants``: the catalogue of each engine's
   built-in dimensional constants and searches that hold them fixed;
 * ``pitheorem.engines.rod``: the hinged rod of the white paper built in

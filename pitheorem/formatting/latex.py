@@ -101,10 +101,18 @@ def _pi_set(groups) -> str:
     return rf"\begin{{aligned}} {body} \end{{aligned}}"
 
 
+#: how many variables one line of a scaling's LaTeX shows (a longer scaling takes several lines)
+SCALING_ROW = 5
+
+
 @_renders("pitheorem.scaling.Scaling")
 def _scaling(sc) -> str:
     parts = [rf"{latex_name(n)} \to {power_latex(p)}\,{latex_name(n)}" for n, p in sc.exponents.items() if p]
-    return r",\quad ".join(parts) or r"\text{identity (nothing changes)}"
+    if len(parts) <= SCALING_ROW:
+        return r",\quad ".join(parts) or r"\text{identity (nothing changes)}"
+    # a long scaling on several centred lines, so that it fits a page's column
+    rows = [r",\quad ".join(parts[k:k + SCALING_ROW]) for k in range(0, len(parts), SCALING_ROW)]
+    return r"\begin{gathered} " + r", \\ ".join(rows) + r" \end{gathered}"
 
 
 # -- search ----------------------------------------------------------------------------------

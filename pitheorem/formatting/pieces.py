@@ -556,20 +556,20 @@ def note_text(note, *, time_remedy: str = PYTHON_TIME_REMEDY, code=str) -> str:
     >>> from pitheorem.scalesearch import SearchNote
     >>> note = SearchNote("time_fixed", ("t", "dt"))
     >>> note_text(note)
-    'time variables t, dt are held fixed by default; pass fixed=() to let time change'
+    'Time variables t, dt are held fixed by default; pass fixed=() to let time change'
     >>> note_text(note, time_remedy=COMMAND_LINE_TIME_REMEDY)
-    'time variables t, dt are held fixed by default; give --fixed with no names to let time change'
+    'Time variables t, dt are held fixed by default; give --fixed with no names to let time change'
     >>> note_text(SearchNote("outside_equations", ("m",)))
-    'variable m does not appear in the equations and is held fixed'
+    'Variable m does not appear in the equations and is held fixed'
     """
     names = names_text(note.variables, code=code)
     one = len(note.variables) == 1
     if note.kind == "time_fixed":
-        subject = f"time variable {names} is" if one else f"time variables {names} are"
+        subject = f"Time variable {names} is" if one else f"Time variables {names} are"
         return f"{subject} held fixed by default; {time_remedy}"
     if note.kind == "outside_equations":
         verb = "does not appear in the equations and is" if one else "do not appear in the equations and are"
-        return f"{'variable' if one else 'variables'} {names} {verb} held fixed"
+        return f"{'Variable' if one else 'Variables'} {names} {verb} held fixed"
     raise InvalidRequestError(f"unknown note kind {note.kind!r}; the kinds are time_fixed, outside_equations")
 
 

@@ -443,8 +443,8 @@ def _engine_apply_answer(answer) -> str:
              + (", by dimension:" if answer.changed else "")]
     if answer.changed:
         changed = changed_rows(answer)
-        rows = [["dimension", "factor", "parameters"]]
-        rows += [[dim, power_text(p), f"{len(names)}: {names_text(names, shown=3)}"]
+        rows = [["dimension", "factor", "count", "parameters"]]
+        rows += [[dim, power_text(p), str(len(names)), ", ".join(names[:2]) + (", ..." if len(names) > 2 else "")]
                  for dim, p, names in changed_by_kind((name, p, dim) for name, p, dim, _, _ in changed)]
         lines.append("\n".join("  " + line for line in align(rows).splitlines()))
         rows = [["parameter", "factor", "value", "scaled value"]]
