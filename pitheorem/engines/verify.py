@@ -257,8 +257,10 @@ def smooth_controls(model: EngineModel, amplitude: float = 0.3, period: float = 
     amplitude = positive_float(amplitude, "amplitude")
     period = positive_float(period, "period")
     low, high = model.backend.control_ranges()
-    middle = np.where(np.isfinite(low) & np.isfinite(high), (low + high) / 2, 0.0)
-    half = np.where(np.isfinite(low) & np.isfinite(high), (high - low) / 2, 1.0)
+    limited = np.isfinite(low) & np.isfinite(high)
+    low, high = np.where(limited, low, 0.0), np.where(limited, high, 0.0)
+    middle = np.where(limited, (low + high) / 2, 0.0)
+    half = np.where(limited, (high - low) / 2, 1.0)
     phase = np.arange(middle.size)
 
     def controls(time):
