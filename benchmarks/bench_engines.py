@@ -20,7 +20,6 @@ import argparse
 import warnings
 from pathlib import Path
 
-import numpy as np
 from _timing import best_of
 
 import pitheorem as pt
