@@ -72,7 +72,7 @@ def main(quick: bool = False):
         n_steps = round(1.0 / model.backend.timestep())
         controls = engines.smooth_controls(model)
 
-        def plain(path=path, n=n_steps, controls=controls, options=options):
+        def plain(path=path, n=n_steps, controls=controls, options=options, model=model):
             if path.suffix == ".urdf":  # PyBullet reads the file in the run itself
                 return load_quiet(path, **options).backend.run(n, controls)
             compiled = mujoco.MjModel.from_xml_path(str(path))
