@@ -309,3 +309,17 @@ def test_a_byte_that_is_not_utf8_is_refused_by_line(tmp_path):
                      .replace('name="b"', 'name="b\xe9"').encode("latin-1"))
     with pytest.raises(EngineModelError, match=r"latin1\.xml: line 4: byte 0xe9 .* not UTF-8"):
         engines.load(path)
+
+
+def test_a_composed_scene_saves_with_every_models_meshes_found(tmp_path):
+    """<model> + <attach>: the attached model's meshes live in its own meshdir, not the scene's."""
+    scene = Path(__file__).resolve().parent / "robots" / "mjcf" / "attach" / "scene.xml"
+    model = engines.load(scene)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    for s in (1, 4):
+        again = engines.load(model.scaled(sc, s).save(tmp_path / f"scene_{s}.xml"))
+        assert [p.name for p in again.parameters] == [p.name for p in model.parameters]
+    files = {m.name: Path(m.file) for m in again.backend.spec.meshes}
+    assert files["g_palm"].parent.name == "gripper_parts"  # the gripper's folder, not the arm's
+    assert files["base"].parent.name == "arm_parts"
+    assert all(f.is_absolute() and f.is_file() for f in files.values())

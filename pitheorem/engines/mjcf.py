@@ -631,11 +631,13 @@ class MjcfBackend:
     1
     """
 
-    def __init__(self, spec, path: str, source_dir: Path | None, *, warn: bool = True):
+    def __init__(self, spec, path: str, source_dir: Path | None, *, warn: bool = True, asset_dirs=None):
         mj = _mujoco()
         self.spec = spec
         self.path = path
         self.source_dir = source_dir
+        #: (kind, name) -> the folder an attached model's asset file is relative to
+        self.asset_dirs = dict(asset_dirs or {})
         self._inputs = None  # the actuators' input dimensions, when first asked for
         try:
             with _muted():
@@ -664,7 +666,7 @@ class MjcfBackend:
                 slot.write(factors[slot.name])
         if scaling is not None:
             self._scale_keyframes(spec, scaling, s)
-        return MjcfBackend(spec, "", self.source_dir, warn=False)
+        return MjcfBackend(spec, "", self.source_dir, warn=False, asset_dirs=self.asset_dirs)
 
     def save(self, path: Path) -> None:
         spec = self._portable_spec()
@@ -678,12 +680,25 @@ class MjcfBackend:
         Path(path).write_text(text)
 
     def _portable_spec(self):
-        """A copy of the spec whose mesh, texture and hfield files load from any folder (absolute paths)."""
+        """A copy of the spec whose mesh, texture and hfield files load from any folder (absolute paths).
+
+        Each asset's file is made absolute against the folder it was found in: the file's own
+        ``meshdir`` or ``texturedir``, or, for an asset of a model brought in with ``<model>`` and
+        ``<attach>``, that model's folders (:attr:`asset_dirs`).
+        """
         spec = self.spec.copy()
-        if self.source_dir is not None:
-            for attr in ("meshdir", "texturedir"):
-                current = getattr(spec, attr, "") or ""
-                setattr(spec, attr, str((self.source_dir / current).resolve()))
+        if self.source_dir is None:
+            return spec
+        folders = {"mesh": "meshdir", "hfield": "meshdir", "texture": "texturedir"}
+        for kind, items in (("mesh", spec.meshes), ("hfield", spec.hfields), ("texture", spec.textures)):
+            for item in items:
+                file = getattr(item, "file", "") or ""
+                if not file or Path(file).is_absolute():
+                    continue
+                base = self.asset_dirs.get((kind, item.name))
+                if base is None:
+                    base = self.source_dir / (getattr(self.spec, folders[kind], "") or "")
+                item.file = str((base / file).resolve())
         return spec
 
     def _scale_keyframes(self, spec, scaling, s) -> None:
@@ -1060,5 +1075,35 @@ def load_mjcf(path) -> EngineModel:
         spec = mj.MjSpec.from_file(str(path))
     except ValueError as err:
         raise _rejected(str(path), err) from None
-    backend = MjcfBackend(spec, str(path), path.resolve().parent)
+    backend = MjcfBackend(spec, str(path), path.resolve().parent, asset_dirs=_attached_asset_dirs(mj, path))
     return EngineModel(backend, "mujoco", str(path))
+
+
+def _attached_asset_dirs(mj, path: Path) -> dict:
+    """For the models a file brings in with ``<model>`` and places with ``<attach prefix=...>``: the folder
+    each of their mesh, hfield and texture files is relative to, by (kind, name as composed)."""
+    import xml.etree.ElementTree as ET
+
+    try:
+        root = ET.parse(path).getroot()
+    except (ET.ParseError, OSError):
+        return {}
+    files = {m.get("name"): m.get("file") for m in root.iter("model") if m.get("name") and m.get("file")}
+    out = {}
+    for attach in root.iter("attach"):
+        file = files.get(attach.get("model"))
+        if file is None:
+            continue
+        child_path = (path.resolve().parent / file).resolve()
+        try:
+            child = mj.MjSpec.from_file(str(child_path))
+        except ValueError:
+            continue
+        prefix = attach.get("prefix", "")
+        folders = {"mesh": child.meshdir, "hfield": child.meshdir, "texture": child.texturedir}
+        nested = _attached_asset_dirs(mj, child_path)
+        for kind, items in (("mesh", child.meshes), ("hfield", child.hfields), ("texture", child.textures)):
+            for item in items:
+                base = nested.get((kind, item.name), child_path.parent / (folders[kind] or ""))
+                out[(kind, prefix + item.name)] = base
+    return out
