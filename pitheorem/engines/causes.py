@@ -57,10 +57,12 @@ class Cause(TextDisplay):
     >>> c = Cause("solver", "option tolerance", "a stopping rule of no pure dimension; set it to 0")
     >>> print(c)
     solver: option tolerance: a stopping rule of no pure dimension; set it to 0
-    >>> Cause("luck", "x", "")
-    Traceback (most recent call last):
-    ...
-    pitheorem.errors.InvalidRequestError: unknown cause kind 'luck'; valid: unscaled, setting, threshold, solver, precision, contact
+    >>> import pitheorem as pt
+    >>> try:
+    ...     Cause("luck", "x", "")
+    ... except pt.InvalidRequestError as err:
+    ...     print(err)
+    unknown cause kind 'luck'; valid: unscaled, setting, threshold, solver, precision, contact
     """
 
     kind: str

@@ -57,7 +57,7 @@ __all__ = ["SCENE_OPTIONS", "UrdfBackend", "load_urdf", "scene_option"]
 _ONE, _L, _T, _M = dim("1"), dim("L"), dim("T"), dim("M")
 
 #: PyBullet's defaults and their dimensions: the hidden-constant catalogue is their one home
-_BULLET = {c.name: c for c in hidden_constants("bullet")}
+_BULLET = {c.name: c for c in hidden_constants("pybullet")}
 
 #: PyBullet's engine parameters with a dimension: the ``setPhysicsEngineParameter`` name, the
 #: catalogue's constant (its default and dimension) and what it does
@@ -89,7 +89,7 @@ SCENE_OPTIONS = {
 
 
 def _pybullet():
-    return engine_module("bullet")
+    return engine_module("pybullet")
 
 
 def _floats(text: str | None) -> list[float]:
