@@ -183,7 +183,7 @@ class ParamsAnswer(NamedTuple):
     >>> from pitheorem.answers import ParamsAnswer
     >>> answer = ParamsAnswer("pendulum.xml", engines.load(engines.example_path("pendulum.xml")))
     >>> str(answer).splitlines()[0]
-    'pendulum.xml: mujoco model, 49 parameters'
+    'pendulum.xml: mujoco model, 49 parameters (source: 11 file, 35 default, 3 derived)'
     """
 
     model: str

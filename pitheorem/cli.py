@@ -459,11 +459,11 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("groups", parents=[common], **options, help="Pi groups of the model",
                        description="Print the dimensionless (Pi) groups of the model.")
     p.add_argument("--repeating", nargs="+", metavar="NAME",
-                   help="repeating variables (default: the first valid set without time variables, "
-                   "and without variables whose value is 0 where those would be in it)")
+                   help="repeating variables (default: the first valid set without time variables; if "
+                   "that holds a variable whose value is 0, the first without those either)")
     p.set_defaults(run=_cmd_groups)
 
-    p = sub.add_parser("bases", parents=[common], **options, help="every valid repeating set",
+    p = sub.add_parser("bases", parents=[common], **options, help=f"the number of valid repeating sets, and the first {BASES_SHOWN}",
                        description="List every valid set of repeating variables, with their count.")
     p.add_argument("--exclude", nargs="*", default=[], metavar="NAME", help="never use these as repeaters")
     p.add_argument("--require", nargs="*", default=[], metavar="NAME", help="every set must contain these")

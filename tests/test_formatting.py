@@ -612,8 +612,11 @@ def test_similarity_reports_add_the_sensitivity_column_when_measured():
 
 def test_engine_model_names_its_file_or_says_it_is_unsaved():
     model = _engine_model()
-    head = f"{model.path}: mujoco model, {len(model.parameters)} parameters"
+    sources = [p.source for p in model.parameters]
+    counts = ", ".join(f"{sources.count(s)} {s}" for s in ("file", "default", "derived", "engine") if s in sources)
+    head = f"{model.path}: mujoco model, {len(model.parameters)} parameters (source: {counts})"
     assert str(model).splitlines()[0] == head
+    assert set(sources) <= {"file", "default", "derived", "engine"}  # so the counts above cover every parameter
     assert format(model, "latex").splitlines()[0] == f"% {head}"
     copy = model.with_values(tolerance=0)
     assert str(copy).startswith("(unsaved): mujoco model")

@@ -743,11 +743,16 @@ def parameters_head(name: str, model) -> str:
     >>> from pitheorem.formatting.pieces import parameters_head
     >>> model = engines.load(engines.example_path("pendulum.xml"))
     >>> parameters_head("pendulum.xml", model)
-    'pendulum.xml: mujoco model, 49 parameters'
+    'pendulum.xml: mujoco model, 49 parameters (source: 11 file, 35 default, 3 derived)'
     """
     if not hasattr(model, "parameters"):  # a TOML model file: its variables are its parameters
         return f"{name}: model file, {len(model.system)} variables"
-    return f"{name}: {model.engine} model, {len(model.parameters)} parameters"
+    # a summary above a table that may run to hundreds of rows: how many of each source
+    sources = [p.source for p in model.parameters]
+    order = ("file", "default", "derived", "engine")  # the file's own numbers first
+    kinds = [s for s in order if s in sources] + sorted(set(sources) - set(order))
+    by_source = ", ".join(f"{sources.count(s)} {s}" for s in kinds)
+    return f"{name}: {model.engine} model, {len(model.parameters)} parameters (source: {by_source})"
 
 
 def parameter_rows(model):
