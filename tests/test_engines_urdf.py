@@ -318,3 +318,19 @@ def test_params_on_a_urdf_with_a_word_for_a_mass_is_one_line(tmp_path, capsys):
     assert err.startswith("pitheorem: error: ")
     assert err.count("\n") == 1
     assert "'heavy'" in err
+
+
+def test_the_default_scene_names_every_unscalable_number_at_once_with_one_remedy():
+    """PyBullet's default scene fails in two ways (link damping, split impulses): both in one error."""
+    robot = Path(__file__).resolve().parent / "robots" / "urdf" / "quadruped.urdf"
+    model = engines.load(robot, ground=True, base_position=(0, 0, 0.5))
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    with pytest.raises(engines.UnscalableParameterError) as caught:
+        model.scaled(sc, 4)
+    message = str(caught.value)
+    assert "linearDamping" in message
+    assert "split-impulse" in message
+    assert "damping=0.0, split_impulse=False" in message
+    fixed = engines.load(robot, ground=True, base_position=(0, 0, 0.5), damping=0.0, split_impulse=False)
+    remedied = fixed.scaled(pt.search(fixed.system(), scale={"g": 1}).scalings[0], 4)  # the remedy suffices
+    assert remedied.parameter("g").value == (4 * model.parameter("g").value[0],)

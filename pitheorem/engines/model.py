@@ -505,7 +505,26 @@ class EngineModel(TableDisplay):
         """
         s = read_scale_factor(s)
         check_scaling(scaling)
-        return self._times({p.name: p.factor(scaling, s) for p in self.parameters}, scaling, s)
+        factors, refused = {}, []
+        for p in self.parameters:  # every number the scaling cannot reach, not only the first
+            try:
+                factors[p.name] = p.factor(scaling, s)
+            except UnscalableParameterError as err:
+                refused.append(err)
+        refused.extend(getattr(self._backend, "unscalable", lambda factors: [])(factors))
+        if len(refused) > 1:
+            names = ", ".join(repr(err.name) for err in refused[:6])
+            more = f" and {len(refused) - 6} more" if len(refused) > 6 else ""
+            reasons = {}  # one reason per kind: the damping of every link reads alike but for the link's name
+            for err in refused:
+                reasons.setdefault(err.reason.split(";")[0].split(" acts ", 1)[-1], err.reason.split(";")[0])
+            remedy = getattr(self._backend, "unscalable_remedy", "")
+            raise UnscalableParameterError(
+                refused[0].name, f"{len(refused)} numbers cannot follow the scaling: {names}{more}. "
+                + "; ".join(reasons.values()) + (f". {remedy}" if remedy else ""))
+        if refused:
+            raise refused[0]
+        return self._times(factors, scaling, s)
 
     def with_values(self, **values) -> EngineModel:
         """A copy with some parameters set to new values (each must be one number).

@@ -439,17 +439,28 @@ class UrdfBackend:
         for j, jname, _jtype in self._info["joints"]:
             name = _joint_speed_parameter(jname)
             st["max_joint_velocity"][str(j)] = params[name].value[0] * factors.get(name, 1.0)
-        if "splitImpulsePenetrationThreshold" in params and factors.get("splitImpulsePenetrationThreshold", 1) != 1:
-            threshold = _BULLET["bullet_split_impulse_penetration_threshold"].default
-            raise UnscalableParameterError(
-                "splitImpulsePenetrationThreshold", f"Bullet's split-impulse threshold ({threshold:g}, a length) "
-                "cannot be set from Python; load the model with split_impulse=False (useSplitImpulse=0) in both runs")
+        for err in self.unscalable(factors):
+            raise err
         if self.scene["ground"]:
             st["ground_margin"] *= factors.get("ground_collision_margin", 1.0)
         scene = dict(self.scene)
         if any(scene["base_position"]):
             scene["base_position"] = tuple(v * factors.get("base_position", 1.0) for v in scene["base_position"])
         return UrdfBackend(tree, self.path, self.source_dir, st, scene=scene)
+
+    #: the one line that removes every refusal of PyBullet's default scene at once
+    unscalable_remedy = ("In one go: engines.load(path, damping=0.0, split_impulse=False) (on the command line: "
+                         "--scene damping=0 split_impulse=false), the same in the original and the scaled run")
+
+    def unscalable(self, factors) -> list[UnscalableParameterError]:
+        """The settings the factors would change but no PyBullet call can: the split-impulse threshold."""
+        params = {p.name for p in self.parameters()}
+        if "splitImpulsePenetrationThreshold" in params and factors.get("splitImpulsePenetrationThreshold", 1) != 1:
+            threshold = _BULLET["bullet_split_impulse_penetration_threshold"].default
+            return [UnscalableParameterError(
+                "splitImpulsePenetrationThreshold", f"Bullet's split-impulse threshold ({threshold:g}, a length) "
+                "cannot be set from Python; load the model with split_impulse=False (useSplitImpulse=0) in both runs")]
+        return []
 
     def save(self, path: Path) -> None:
         path = Path(path)
