@@ -644,8 +644,15 @@ class MjcfBackend:
                 self.mjmodel = spec.compile()
         except ValueError as err:
             raise _rejected(path, err, spec) from None
-        # warn once, when the file is read; not again for each scaled copy
-        self._slots = _Walker(mj, spec, self.mjmodel, path, warn=warn).walk()
+        # warn once, when the file is read; not again for each scaled copy, whose table is read only when
+        # asked for (a verification runs a copy without listing its numbers)
+        self._walked = _Walker(mj, spec, self.mjmodel, path, warn=warn).walk() if warn else None
+
+    @property
+    def _slots(self):
+        if self._walked is None:
+            self._walked = _Walker(_mujoco(), self.spec, self.mjmodel, self.path).walk()
+        return self._walked
 
     # -- table --------------------------------------------------------------------------------
 
@@ -737,7 +744,7 @@ class MjcfBackend:
         floating-point fields of ``opt`` and ``stat``; colours are left out (they draw, not move).
         """
         m, out = self.mjmodel, {}
-        for field in _stored_fields(m):
+        for field in self._fields():
             holder, attr = _holder(m, field)
             out[field] = np.array(getattr(holder, attr), copy=True, ndmin=1)
         return out
@@ -753,7 +760,7 @@ class MjcfBackend:
         rng = np.random.default_rng(seed)
         twin = copy.copy(self)
         twin.mjmodel = m = copy.copy(self.mjmodel)
-        for field in _stored_fields(m):
+        for field in self._fields():
             if field == "opt.timestep":
                 continue
             holder, attr = _holder(m, field)
@@ -767,6 +774,12 @@ class MjcfBackend:
             else:
                 getattr(holder, attr)[...] = moved
         return twin
+
+    def _fields(self) -> list[str]:
+        """The stored floating-point fields of this backend's model, found once (a copy has the same)."""
+        if getattr(self, "_field_names", None) is None:
+            self._field_names = _stored_fields(self.mjmodel)
+        return self._field_names
 
     def variant(self, *, tolerance: float | None = None, contacts: bool = True,
                 solver: str | None = None) -> MjcfBackend:

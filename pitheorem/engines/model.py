@@ -391,12 +391,25 @@ class EngineModel(TableDisplay):
     ('mujoco', True)
     """
 
-    __slots__ = ("_backend", "engine", "parameters", "path")
+    __slots__ = ("_backend", "_parameters", "engine", "path")
 
     def __init__(self, backend, engine: str, path: str):
-        for name, value in (("_backend", backend), ("engine", engine), ("path", path),
-                            ("parameters", tuple(backend.parameters()))):
+        for name, value in (("_backend", backend), ("engine", engine), ("path", path), ("_parameters", None)):
             object.__setattr__(self, name, value)
+
+    @property
+    def parameters(self) -> tuple[Parameter, ...]:
+        """Every dimensional number of the file and of the engine settings (read once, when first asked for).
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> engines.load(engines.example_path("pendulum.xml")).parameters[1].name
+        'g'
+        """
+        if self._parameters is None:  # a scaled copy that is only run never lists its numbers
+            object.__setattr__(self, "_parameters", tuple(self._backend.parameters()))
+        return self._parameters
 
     def __copy__(self) -> EngineModel:
         return self  # nothing of it changes, so a copy is the model itself
