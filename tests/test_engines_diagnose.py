@@ -167,20 +167,86 @@ def test_the_robot_corpus_has_its_kinds():
     assert len([n for n in names if n.endswith(".urdf")]) >= 4
 
 
-@pytest.mark.parametrize("name", robot_files())
-def test_every_robot_is_exact_or_has_causes_and_similar_or_has_causes(name):
-    """tests/robots (written for pitheorem): no verdict of "no" without a reason."""
+def robot(name):
     path = ROBOTS / name
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", engines.UnscalableModelWarning)
         if path.suffix == ".urdf":
             model = engines.load(path, damping=0.0, split_impulse=False, **URDF_SCENES[path.stem])
-            model = model.with_values(solverResidualThreshold=0.0)
-        else:
-            model = engines.load(path)
+            return model.with_values(solverResidualThreshold=0.0)
+        return engines.load(path)
+
+
+def mass_that_matters(model, u):
+    """A mass or density of the model that changes its run when doubled (MuJoCo's or PyBullet's own runs)."""
+    for p in model.parameters:
+        if (p.name.endswith(("_mass", "_density")) and not p.mixed and len(p.value) == 1 and p.value[0] > 0
+                and p.source != "derived" and moves_apart(model, model.multiplied(**{p.name: 2.0}), u, n=100)):
+            return p
+    return None
+
+
+@pytest.mark.parametrize("name", robot_files())
+def test_every_robot_is_exact_or_has_causes_and_similar_or_has_causes(name):
+    """tests/robots (written for pitheorem): no verdict of "no" without a reason."""
+    model = robot(name)
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     u = engines.smooth_controls(model, amplitude=0.2)
     proof = engines.verify(model, sc, 4, duration=1.0, controls=u)
     assert proof.exact or proof.causes, proof
     judged = engines.verify(model, sc, 10, duration=1.0, controls=u)
     assert judged.similar or judged.causes, judged
+
+
+@pytest.mark.parametrize("name", robot_files())
+def test_wrong_copies_of_every_robot_are_caught(name):
+    """Gravity put back, or a mass that matters left unscaled: never similar, on every robot it can break."""
+    model = robot(name)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    u = engines.smooth_controls(model, amplitude=0.2)
+    right = model.scaled(sc, 10)
+    honest = engines.verify(model, sc, 10, duration=1.0, controls=u, scaled=right.multiplied(g=0.1), diagnose=False)
+    if not honest.excited:  # the gripper's fingers rest on its palm: a run that moves nothing proves nothing,
+        return              # and the report says so (excited False) instead of a verdict
+    checked = 0
+    if moves_apart(model, model.multiplied(g=2), u):
+        assert not honest.similar
+        checked += 1
+    mass = mass_that_matters(model, u)
+    if mass is not None:
+        wrong = right.multiplied(**{mass.name: 1 / mass.factor(sc, 10)})
+        rep = engines.verify(model, sc, 10, duration=1.0, controls=u, scaled=wrong, diagnose=False)
+        assert not rep.similar, mass.name
+        checked += 1
+    assert checked >= 1  # every robot of the corpus that moves feels gravity or its masses
+
+
+def test_all_but_one_robot_moves_under_the_smooth_input():
+    still = [name for name in robot_files() if not engines.verify(
+        robot(name), pt.search(robot(name).system(), scale={"g": 1}).scalings[0], 4, duration=1.0,
+        controls=engines.smooth_controls(robot(name), amplitude=0.2), diagnose=False).excited]
+    assert still == ["mjcf/attach/gripper/gripper.xml"]
+
+
+PYBULLET_CORPUS = ("cartpole.urdf", "pendulum5.urdf", "sphere2.urdf", "cube.urdf", "lego/lego.urdf",
+                   "kuka_iiwa/model.urdf")
+
+
+@pytest.mark.parametrize("name", PYBULLET_CORPUS)
+def test_wrong_copies_of_pybullet_data_models_are_caught(name):
+    pybullet_data = pytest.importorskip("pybullet_data")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", engines.UnscalableModelWarning)
+        model = engines.load(Path(pybullet_data.getDataPath()) / name, base_position=(0, 0, 1), ground=True,
+                             damping=0.0, split_impulse=False).with_values(solverResidualThreshold=0.0)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    u = engines.smooth_controls(model, amplitude=0.2)
+    right = model.scaled(sc, 10)
+    assert engines.verify(model, sc, 10, duration=1.0, controls=u, scaled=right).similar
+    g_back = engines.verify(model, sc, 10, duration=1.0, controls=u, scaled=right.multiplied(g=0.1), diagnose=False)
+    assert g_back.excited
+    assert not g_back.similar
+    mass = mass_that_matters(model, u)
+    if mass is not None:  # a ball or a cube falls the same whatever its mass
+        wrong = right.multiplied(**{mass.name: 1 / mass.factor(sc, 10)})
+        assert not engines.verify(model, sc, 10, duration=1.0, controls=u, scaled=wrong, diagnose=False).similar
