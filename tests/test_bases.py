@@ -101,14 +101,33 @@ def test_bases_equal_brute_force_in_order(system, data):
     assert system.count_bases(exclude=exclude, require=require) == len(expected)
 
 
-@pytest.mark.parametrize(("exponent", "max_vars"), [
+def brute_force_subsets(rows, size):
+    """Every size-subset of columns, in lex order, whose submatrix sympy finds of full rank."""
+    return [s for s in combinations(range(len(rows[0])), size)
+            if sympy.Matrix([[row[j] for j in s] for row in rows]).rank() == size]
+
+
+@pytest.mark.parametrize(("entry", "max_cols"), [
     (huge, 6),  # entries far beyond 2^53 and int64: the float path must step aside, residues and exact rank decide
-    (reciprocal_primes, 7),
-], ids=["huge", "reciprocal_primes"])
+    (st.integers(-(10**6), 10**6), 8),
+], ids=["huge", "millions"])
 @settings(max_examples=60, deadline=None)
 @given(data=st.data())
-def test_bases_exact_with_extreme_exponents(exponent, max_vars, data):
-    system = data.draw(systems(exponent=exponent, max_vars=max_vars, max_bases=3))
+def test_subsets_exact_with_extreme_entries(entry, max_cols, data):
+    # a System keeps its exponents within 1000 (pitheorem.exact's limits), so entries this large reach the
+    # enumeration only as integer rows: after clearing denominators such as 1/p, or through this function
+    size = data.draw(st.integers(1, 3))
+    n_cols = data.draw(st.integers(size, max_cols))
+    rows = data.draw(st.lists(st.lists(entry, min_size=n_cols, max_size=n_cols), min_size=size, max_size=size))
+    assume(sympy.Matrix(rows).rank() == size)
+    expected = brute_force_subsets(rows, size)
+    assert list(independent_subsets(rows, range(n_cols), [], size)) == expected
+    assert count_independent_subsets(rows, range(n_cols), [], size) == len(expected)
+
+
+@settings(max_examples=60, deadline=None)
+@given(systems(exponent=reciprocal_primes, max_vars=7, max_bases=3))
+def test_bases_exact_with_reciprocal_prime_exponents(system):
     expected = oracle_bases(system)
     assert system.bases() == expected
     assert system.count_bases() == len(expected)
@@ -165,9 +184,11 @@ def test_lex_combinations_are_itertools_combinations(m, k):
 
 
 @settings(max_examples=60, deadline=None)
-@given(systems(exponent=st.integers(-(10**6), 10**6), max_vars=8))
-def test_huge_exponents_take_the_modular_path_and_stay_exact(system):
-    # Hadamard bounds far beyond 2^53: the float path is refused, mod-p + exact fallback decide
+@given(systems(exponent=st.sampled_from([Fraction(s * n, p) for p in (997, 991, 983) for n in (1, 500, 999)
+                                         for s in (1, -1)]), max_vars=8))
+def test_exponents_at_the_limits_take_the_modular_path_and_stay_exact(system):
+    # exponents n/p with primes near 1000: integer rows up to about 10^9, Hadamard bounds far beyond 2^53,
+    # so the float path is refused and mod-p + exact fallback decide
     assert system.bases() == oracle_bases(system)
 
 
