@@ -187,8 +187,8 @@ def test_lex_combinations_are_itertools_combinations(m, k):
 @given(systems(exponent=st.sampled_from([Fraction(s * n, p) for p in (997, 991, 983) for n in (1, 500, 999)
                                          for s in (1, -1)]), max_vars=8))
 def test_exponents_at_the_limits_take_the_modular_path_and_stay_exact(system):
-    # exponents n/p with primes near 1000: integer rows up to about 10^9, Hadamard bounds far beyond 2^53,
-    # so the float path is refused and mod-p + exact fallback decide
+    # exponents n/p with primes near 1000: integer rows up to about 10^9, and with three or four base
+    # dimensions Hadamard bounds beyond 2^53, where the float path steps aside for the residues
     assert system.bases() == oracle_bases(system)
 
 
