@@ -287,3 +287,10 @@ def test_the_exact_fallback_decides_when_every_residue_prime_divides_every_minor
     with mock.patch.object(bases_module, "rank", wraps=bases_module.rank) as exact_rank:
         assert list(independent_subsets(rows, range(4), [], 3)) == expected
     assert exact_rank.call_count >= 4  # every subset went to the exact fallback
+
+
+def test_dependent_required_columns_give_no_subset():
+    # System refuses such a request before; the enumeration itself also yields nothing
+    rows = [[1, 2, 0], [0, 0, 1]]
+    assert list(independent_subsets(rows, [2], [0, 1], 2)) == []
+    assert list(independent_subsets([[1, 2, 0, 1], [0, 0, 1, 1], [1, 2, 0, 0]], [2, 3], [0, 1], 3)) == []

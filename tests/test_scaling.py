@@ -253,3 +253,18 @@ def test_apply_refuses_samples_that_overflow_but_keeps_given_infinities():
 def test_apply_at_the_edge_of_floating_point_is_exact_in_range():
     sc = pt.Scaling.from_unit_change(LT, {"L": 1})
     assert sc.apply({"l": 1.5}, s=1e308) == {"l": 1.5e308}
+
+
+def test_exponent_of_a_base_the_system_lacks_is_named():
+    sc = pt.Scaling.from_unit_change(LT, {"L": 1})
+    with pytest.raises(pt.InvalidRequestError, match="uses base 'M'"):
+        sc.exponent_of("M L")
+
+
+def test_a_scaling_composes_only_with_scalings_and_its_repr_rebuilds_it():
+    sc = pt.Scaling.from_unit_change(LT, {"L": 1, "T": Fraction(1, 2)})
+    with pytest.raises(TypeError):
+        sc * 2
+    rebuilt = eval(repr(sc), {"Scaling": pt.Scaling, "System": pt.System})
+    assert rebuilt == sc
+    assert "'t': '1/2'" in repr(sc)
