@@ -192,3 +192,11 @@ def test_sets_over_other_variables_are_not_equivalent_and_a_set_repr_names_its_p
     assert repr(a).startswith("PiSet([")
     assert "variables=('a', 'b')" in repr(a)
     assert "repeating=('a',)" in repr(a)
+
+
+def test_evaluate_with_a_value_whose_float_is_zero_uses_the_exact_values():
+    # Fraction(1, 10**400) is 0.0 as a float; the float path would divide by zero, the exact one does not
+    group = pt.PiGroup({"x": 1, "y": -1})
+    assert group.evaluate({"x": 1e-300, "y": Fraction(1, 10**400)}) == pytest.approx(1e100, rel=1e-15)
+    with pytest.raises(pt.LimitError, match="value of 'y'"):  # a sympy Float 1e-400 would become 0.0 itself
+        group.evaluate({"x": 1.0, "y": sympy.Float("1e-400")})
