@@ -3,7 +3,7 @@ PYTHON ?= python3
 VENV   ?= .venv
 PY      = $(VENV)/bin/python
 
-.PHONY: test docs notebooks bench lint clean
+.PHONY: test docs notebooks bench lint clean mutation
 
 $(VENV)/.test-stamp: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -18,9 +18,11 @@ $(VENV)/.docs-stamp: pyproject.toml
 	touch $@
 
 # on every core (pytest-xdist), each test file whole on one worker, so that its module-scoped caches
-# (the engine corpus, SUPERball's runs) are built once; `pytest tests/test_x.py` alone runs serially
+# (the engine corpus, SUPERball's runs) are built once; `pytest tests/test_x.py` alone runs serially.
+# Branch coverage of the package (pytest-cov, settings in pyproject.toml): a table of the modules
+# below 100% and the TOTAL line
 test: $(VENV)/.test-stamp
-	$(PY) -m pytest -n auto --dist loadfile
+	$(PY) -m pytest -n auto --dist loadfile --cov --cov-branch --cov-report=term
 
 docs: $(VENV)/.docs-stamp
 	rm -rf docs/reference/generated  # autosummary stubs of renamed or removed names would fail -W
@@ -47,6 +49,21 @@ $(VENV)/.bench-stamp: pyproject.toml $(VENV)/.test-stamp
 # every benchmark script, each timing pitheorem against its baselines in the same run
 bench: $(VENV)/.bench-stamp
 	cd benchmarks && for script in bench_*.py; do echo "== $$script"; ../$(PY) $$script || exit 1; done
+
+$(VENV)/.mutation-stamp: pyproject.toml $(VENV)/.test-stamp
+	$(PY) -m pip install --quiet -e ".[test,engines,mutation]"
+	touch $@
+
+# Mutation testing with mutmut (not part of `make test` or CI): the core modules and the tests listed
+# under [tool.mutmut] in pyproject.toml.  MUTANTS narrows it to a glob of mutant names, e.g.
+# make mutation MUTANTS='pitheorem.linalg.*'; JOBS sets the parallel workers.  Results are kept in
+# mutants/ (a second run retests only what changed); benchmarks/MUTATION.md records the figures.
+MUTANTS ?=
+JOBS ?= 2
+mutation: $(VENV)/.mutation-stamp
+	$(VENV)/bin/mutmut run --max-children $(JOBS) $(MUTANTS)
+	$(VENV)/bin/mutmut export-cicd-stats && cat mutants/mutmut-cicd-stats.json && echo
+	$(VENV)/bin/mutmut results
 
 lint: $(VENV)/.test-stamp
 	$(PY) -m ruff check pitheorem tests matlab_ports benchmarks docs/check_pages.py docs/check_offline.py

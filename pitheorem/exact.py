@@ -137,9 +137,9 @@ def read_number(value, what: str = "the number", *, irrational_ok: bool = False)
         if value.is_Rational:
             return Fraction(int(value.p), int(value.q))
         if isinstance(value, sympy.Float) and value.is_finite:
-            # sympy.Float(0.1) carries a double's 53 bits: read it as that double;
-            # a Float made with more digits is read as the decimal it holds
-            if value._prec <= 53:
+            # sympy.Float(0.1) carries a double's 53 bits: read it as that double; a Float made with
+            # more digits, or beyond the doubles' range (1e-400), is read as the decimal it holds
+            if value._prec <= 53 and (value == 0 or float(value) not in (0.0, math.inf, -math.inf)):
                 return read_number(float(value), what)
             return _from_text(str(value), value, what)
         if irrational_ok and value.is_number and value.is_extended_real and value.is_finite:
@@ -282,11 +282,15 @@ def read_value(value, what: str) -> float | Fraction:
 
 
 def _finite_float(value, exact: Fraction, what: str) -> float:
-    """``float(value)``, or LimitError where it is infinite: a sympy Float such as 1e400 is beyond doubles."""
+    """``float(value)``, or LimitError where it is infinite or a nonzero number became 0.0.
+
+    A sympy Float such as 1e400 or 1e-400 is beyond doubles, and float() of it gives inf or 0.0
+    without a word.
+    """
     number = float(value)
-    if math.isinf(number):
-        raise LimitError(short_text(exact), what, "it is beyond the range of floating point (about 1.8e308)",
-                         "pass it exactly, as an int, a Fraction or a string")
+    if math.isinf(number) or (number == 0 and exact != 0):
+        raise LimitError(short_text(exact), what, "it is beyond the range of floating point (about 1e-308 "
+                         "to 1.8e308)", "pass it exactly, as an int, a Fraction or a string")
     return number
 
 

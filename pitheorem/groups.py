@@ -246,11 +246,11 @@ class PiGroup(MathDisplay):
             return self._product(read, Fraction(1))
         try:
             result = self._product([float(v) for v in read], 1.0)
-        except OverflowError:  # a power beyond floating point (1e-200 ** -2), though the product may not be
+        except (OverflowError, ZeroDivisionError):  # a power beyond floats (1e-200 ** -2, 1e-400 ** -1)
             result = math.inf
         if math.isfinite(result):
             return result
-        # a float overflowed on the way: the exact product of the floats' values, rounded once
+        # beyond floats on the way: the exact product of the floats' values and the exact values, rounded once
         try:
             return float(self._product([Fraction(v) for v in read], Fraction(1)))
         except OverflowError:

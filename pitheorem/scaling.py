@@ -18,7 +18,7 @@ import sympy
 
 from .dimensions import Dimension
 from .errors import InvalidRequestError, LimitError
-from .exact import is_float, numpy_if_loaded, read_exponent, read_number, read_scale_factor, short_text
+from .exact import is_float, numpy_if_loaded, read_exponent, read_number, read_scale_factor, read_value, short_text
 from .formatting import MathDisplay
 from .immutable import immutable
 from .linalg import solve
@@ -408,9 +408,12 @@ class Scaling(MathDisplay):
             number = read_number(value, f"the value of {name!r}", irrational_ok=True)
             if is_float(s):
                 factor = float_power(s, p, f"the factor of {name!r}")
-                out[name] = (float(value) if is_float(value) else float(number)) * factor
-                if math.isinf(out[name]):
-                    raise _beyond_floats(f"the scaled value of {name!r}", f"{float(number)!r} times {factor!r}")
+                if is_float(value):
+                    out[name] = read_value(value, f"the value of {name!r}") * factor
+                    if math.isinf(out[name]):
+                        raise _beyond_floats(f"the scaled value of {name!r}", f"{float(value)!r} times {factor!r}")
+                else:  # an exact value times the float factor, rounded once: 10^400 times 1e-300 is 1e100
+                    out[name] = _rounded(number * Fraction(factor), name)
             elif is_float(value):  # read by the float rule, scaled exactly, rounded once
                 out[name] = _rounded(number * _exact_power(s, p), name)
             else:

@@ -28,7 +28,7 @@ from .errors import (
     UnitError,
     UnknownVariableError,
 )
-from .exact import check_exponent, read_exponent
+from .exact import check_exponent, read_exponent, read_number
 from .groups import PiGroup, PiSet
 from .immutable import immutable
 from .linalg import integer_rref, nullspace, rank
@@ -260,18 +260,22 @@ class System:
                 # pint reads 'm^-1/2' as (m^-1)/2, a length to the -1; Dimension.parse refuses 'L^-1/2'
                 raise UnitError(f"the unit {text!r} of {name!r} is ambiguous: {ambiguous.group(0).strip()!r} is a power "
                                 "divided by a number; write a fractional power in brackets, such as 'm^(-1/2)'")
+            what = f"the unit {text!r} of {name!r}" if len(text) <= 40 else f"the unit of {name!r}"
             try:
                 quantity = registry.parse_expression(text) if text.strip() else registry.Quantity(1)
                 if not isinstance(quantity, pint.Quantity):  # a bare number
                     quantity = registry.Quantity(quantity)
+                for unit, p in quantity.unit_items():  # pint loops forever on the root units of 'kg^nan'
+                    read_number(p, f"the exponent of {unit} in {what}")
                 dimensionality = dict(quantity.dimensionality)
-                root = dict(quantity.to_root_units().unit_items())
+                root = dict(quantity.to_root_units().unit_items()) if angle_as_base else {}
+            except PiTheoremError:
+                raise
             except Exception as err:  # pint's parser can fail with almost anything, even AssertionError
                 if isinstance(err, pint.errors.DefinitionSyntaxError | AssertionError | SyntaxError):
                     err = "malformed unit expression"  # its own message is empty or cryptic
                 raise UnitError(f"cannot read the unit {text!r} of {name!r}: {err}") from None
             exponents = {}
-            what = f"the unit {text!r} of {name!r}" if len(text) <= 40 else f"the unit of {name!r}"
             for key, p in dimensionality.items():
                 if key not in _PINT_BASES:
                     raise UnitError(f"unit {text!r} of {name!r} has dimension {key}, which pitheorem does not know")

@@ -79,9 +79,7 @@ def test_dependent_columns_with_huge_entries_stay_dependent():
     assert list(independent_subsets(rows, [0, 1, 2], [], 2)) == [(0, 2), (1, 2)]
 
 
-# exponents within the limit (magnitude 1000) whose common denominator makes the integer matrix's entries
-# far beyond 2^53 and int64: p/q with q a large number near 2^40
-huge = st.builds(lambda p, q: Fraction(p, q), st.integers(-(2**41), 2**41), st.integers(2**38, 2**39))
+huge = st.integers(-(2**70), 2**70)
 reciprocal_primes = st.sampled_from([Fraction(s, p) for p in PRIMES for s in (1, -1)] + [Fraction(0)])
 
 
@@ -103,14 +101,33 @@ def test_bases_equal_brute_force_in_order(system, data):
     assert system.count_bases(exclude=exclude, require=require) == len(expected)
 
 
-@pytest.mark.parametrize(("exponent", "max_vars"), [
+def brute_force_subsets(rows, size):
+    """Every size-subset of columns, in lex order, whose submatrix sympy finds of full rank."""
+    return [s for s in combinations(range(len(rows[0])), size)
+            if sympy.Matrix([[row[j] for j in s] for row in rows]).rank() == size]
+
+
+@pytest.mark.parametrize(("entry", "max_cols"), [
     (huge, 6),  # entries far beyond 2^53 and int64: the float path must step aside, residues and exact rank decide
-    (reciprocal_primes, 7),
-], ids=["huge", "reciprocal_primes"])
+    (st.integers(-(10**6), 10**6), 8),
+], ids=["huge", "millions"])
 @settings(max_examples=60, deadline=None)
 @given(data=st.data())
-def test_bases_exact_with_extreme_exponents(exponent, max_vars, data):
-    system = data.draw(systems(exponent=exponent, max_vars=max_vars, max_bases=3))
+def test_subsets_exact_with_extreme_entries(entry, max_cols, data):
+    # a System keeps its exponents within 1000 (pitheorem.exact's limits), so entries this large reach the
+    # enumeration only as integer rows: after clearing denominators such as 1/p, or through this function
+    size = data.draw(st.integers(1, 3))
+    n_cols = data.draw(st.integers(size, max_cols))
+    rows = data.draw(st.lists(st.lists(entry, min_size=n_cols, max_size=n_cols), min_size=size, max_size=size))
+    assume(sympy.Matrix(rows).rank() == size)
+    expected = brute_force_subsets(rows, size)
+    assert list(independent_subsets(rows, range(n_cols), [], size)) == expected
+    assert count_independent_subsets(rows, range(n_cols), [], size) == len(expected)
+
+
+@settings(max_examples=60, deadline=None)
+@given(systems(exponent=reciprocal_primes, max_vars=7, max_bases=3))
+def test_bases_exact_with_reciprocal_prime_exponents(system):
     expected = oracle_bases(system)
     assert system.bases() == expected
     assert system.count_bases() == len(expected)
@@ -167,9 +184,11 @@ def test_lex_combinations_are_itertools_combinations(m, k):
 
 
 @settings(max_examples=60, deadline=None)
-@given(systems(exponent=st.integers(-1000, 1000), max_vars=8))
-def test_huge_exponents_take_the_modular_path_and_stay_exact(system):
-    # Hadamard bounds far beyond 2^53: the float path is refused, mod-p + exact fallback decide
+@given(systems(exponent=st.sampled_from([Fraction(s * n, p) for p in (997, 991, 983) for n in (1, 500, 999)
+                                         for s in (1, -1)]), max_vars=8))
+def test_exponents_at_the_limits_take_the_modular_path_and_stay_exact(system):
+    # exponents n/p with primes near 1000: integer rows up to about 10^9, and with three or four base
+    # dimensions Hadamard bounds beyond 2^53, where the float path steps aside for the residues
     assert system.bases() == oracle_bases(system)
 
 
@@ -268,3 +287,10 @@ def test_the_exact_fallback_decides_when_every_residue_prime_divides_every_minor
     with mock.patch.object(bases_module, "rank", wraps=bases_module.rank) as exact_rank:
         assert list(independent_subsets(rows, range(4), [], 3)) == expected
     assert exact_rank.call_count >= 4  # every subset went to the exact fallback
+
+
+def test_dependent_required_columns_give_no_subset():
+    # System refuses such a request before; the enumeration itself also yields nothing
+    rows = [[1, 2, 0], [0, 0, 1]]
+    assert list(independent_subsets(rows, [2], [0, 1], 2)) == []
+    assert list(independent_subsets([[1, 2, 0, 1], [0, 0, 1, 1], [1, 2, 0, 0]], [2, 3], [0, 1], 3)) == []

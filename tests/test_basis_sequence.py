@@ -106,3 +106,8 @@ def test_joined_and_empty_index_arrays_are_read_only():
             sequence.indices[:] = 0
     assert joined.indices.tolist() == [[0, 1], [0, 2], [1, 2]]
     assert list(joined) == [("a", "b"), ("a", "c"), ("b", "c")]
+
+
+def test_bases_are_indexed_by_integers_only():
+    with pytest.raises(TypeError, match="indexed by integers or slices"):
+        pt.System({"l": "L", "t": "T"}).bases()["l"]

@@ -194,3 +194,15 @@ def test_a_dimension_from_pairs_equals_the_one_from_a_mapping():
 def test_parse_takes_a_string_only(bad):
     with pytest.raises(pt.DimensionSyntaxError, match="expected a string"):
         pt.Dimension.parse(bad)
+
+
+def test_base_dimensions_that_are_no_list_are_named():
+    with pytest.raises(pt.InvalidRequestError, match="must be a list of names"):
+        pt.Dimension.parse("L", base_dimensions=3)
+
+
+def test_a_dimension_multiplies_and_divides_only_by_dimensions():
+    length = pt.Dimension.parse("L")
+    for operation in (lambda: length * 2, lambda: length / 2, lambda: 2 * length):
+        with pytest.raises(TypeError):
+            operation()

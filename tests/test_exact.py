@@ -257,3 +257,8 @@ def test_a_sympy_float_beyond_doubles_is_a_limit_error_where_a_float_is_kept():
     for read in (lambda: read_value(big, "the value of 'x'"), lambda: read_scale_factor(big)):
         with pytest.raises(pt.LimitError, match="beyond the range of floating point"):
             read()
+
+
+def test_the_simplest_fraction_of_zero_is_zero():
+    assert simplest_fraction_rounding_to(0.0) == 0
+    assert simplest_fraction_rounding_to(-0.0) == 0

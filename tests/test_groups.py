@@ -177,3 +177,26 @@ def test_evaluate_survives_an_overflow_on_the_way_to_a_finite_value():
     # 1e200**2 overflows a float, yet x^2/y^2 is 1/4 exactly: the floats' exact product, rounded once
     assert pt.PiGroup({"x": 2, "y": -2}).evaluate({"x": 1e200, "y": 2e200}) == 0.25
     assert pt.PiGroup({"x": 1, "y": -2}).evaluate({"x": 1, "y": Fraction(1, 10**200)}) == Fraction(10**400)
+
+
+def test_a_groups_variables_are_names():
+    with pytest.raises(pt.InvalidRequestError, match="variables are names") as caught:
+        pt.PiGroup({1: 2})
+    assert caught.value.culprit == 1
+
+
+def test_sets_over_other_variables_are_not_equivalent_and_a_set_repr_names_its_parts():
+    a = pt.System({"a": "L", "b": "L"}).pi_groups(repeating=("a",))
+    c = pt.System({"a": "L", "c": "L"}).pi_groups(repeating=("a",))
+    assert not a.equivalent(c)
+    assert repr(a).startswith("PiSet([")
+    assert "variables=('a', 'b')" in repr(a)
+    assert "repeating=('a',)" in repr(a)
+
+
+def test_evaluate_with_a_value_whose_float_is_zero_uses_the_exact_values():
+    # Fraction(1, 10**400) is 0.0 as a float; the float path would divide by zero, the exact one does not
+    group = pt.PiGroup({"x": 1, "y": -1})
+    assert group.evaluate({"x": 1e-300, "y": Fraction(1, 10**400)}) == pytest.approx(1e100, rel=1e-15)
+    with pytest.raises(pt.LimitError, match="value of 'y'"):  # a sympy Float 1e-400 would become 0.0 itself
+        group.evaluate({"x": 1.0, "y": sympy.Float("1e-400")})

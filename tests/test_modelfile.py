@@ -247,3 +247,18 @@ def test_the_kind_of_a_model_file_is_told_in_one_place(tmp_path):
 def test_load_model_file_names_a_path_that_is_no_path(bad):
     with pytest.raises(pt.ModelFileError, match="named by a path"):
         pt.load_model_file(bad)
+
+
+@pytest.mark.parametrize(("unit", "exponent"), [("m**0.3333333", Fraction(3333333, 10**7)), ("m**1e-7", Fraction(1, 10**7)),
+                                                ("m**(1/3)", Fraction(1, 3))])
+def test_a_unit_in_a_file_keeps_its_exponent_exactly(tmp_path, unit, exponent):
+    model = load_model_file(write(tmp_path, f'[variables]\nx = {{ unit = "{unit}" }}\n'))
+    assert model.system.dimension("x") == pt.Dimension({"L": exponent})
+
+
+@pytest.mark.parametrize(("unit", "says"), [("m**inf", "finite"), ("m**(1/1000001)", "denominator"),
+                                            ("m^-1/2", "ambiguous")])
+def test_a_unit_exponent_no_fraction_can_hold_is_named_in_a_file(tmp_path, unit, says):
+    with pytest.raises(pt.ModelFileError, match=says) as caught:
+        load_model_file(write(tmp_path, f'[variables]\nx = {{ unit = "{unit}" }}\n'))
+    assert caught.value.variable == "x"

@@ -419,3 +419,15 @@ def test_exact_fallback_with_solution_denominators_beyond_the_systems(variables,
         result = pt.search(system, scale={name: power}, fixed=())
         assert [s.vector for s in result.scalings] == expected
     assert [s.vector for s in pt.search(system, scale={name: power}, fixed=()).scalings] == expected
+
+
+@pytest.mark.parametrize("variables", ["t", ["t", 3]])
+def test_a_notes_variables_are_a_sequence_of_names(variables):
+    with pytest.raises(pt.InvalidRequestError, match="sequence of names"):
+        pt.SearchNote("time_fixed", variables)
+
+
+def test_an_infeasible_search_has_no_scalings_to_count():
+    res = pt.search(pt.System({"l": "L", "t": "T", "g": "L T^-2"}), scale={"g": 1}, fixed=("l", "t"))
+    assert not res.feasible
+    assert res.max_n_scalings == 0

@@ -253,3 +253,35 @@ def test_apply_refuses_samples_that_overflow_but_keeps_given_infinities():
 def test_apply_at_the_edge_of_floating_point_is_exact_in_range():
     sc = pt.Scaling.from_unit_change(LT, {"L": 1})
     assert sc.apply({"l": 1.5}, s=1e308) == {"l": 1.5e308}
+
+
+def test_exponent_of_a_base_the_system_lacks_is_named():
+    sc = pt.Scaling.from_unit_change(LT, {"L": 1})
+    with pytest.raises(pt.InvalidRequestError, match="uses base 'M'"):
+        sc.exponent_of("M L")
+
+
+def test_a_scaling_composes_only_with_scalings_and_its_repr_rebuilds_it():
+    sc = pt.Scaling.from_unit_change(LT, {"L": 1, "T": Fraction(1, 2)})
+    with pytest.raises(TypeError):
+        sc * 2
+    rebuilt = eval(repr(sc), {"Scaling": pt.Scaling, "System": pt.System})
+    assert rebuilt == sc
+    assert "'t': '1/2'" in repr(sc)
+
+
+def test_an_exact_value_beyond_floats_scaled_by_a_float_s_is_rounded_once():
+    sc = pt.Scaling.from_unit_change(LT, {"L": 1})
+    assert sc.apply({"l": 10**400}, s=1e-300) == {"l": pytest.approx(1e100, rel=1e-15)}
+    assert sc.apply({"l": "1e400"}, s=1e-300)["l"] == pytest.approx(1e100, rel=1e-15)
+    with pytest.raises(pt.LimitError, match="scaled value of 'l'"):
+        sc.apply({"l": 10**400}, s=2.0)
+
+
+@pytest.mark.parametrize("value", ["1e400", "1e-400"])
+def test_a_sympy_float_value_beyond_doubles_is_named_with_a_float_s(value):
+    import sympy
+
+    sc = pt.Scaling.from_unit_change(LT, {"L": 1, "T": 1})
+    with pytest.raises(pt.LimitError, match="value of 'v'"):
+        sc.apply({"l": 1.0, "v": sympy.Float(value)}, s=1e-200)

@@ -337,7 +337,8 @@ def test_from_units_refuses_a_power_it_cannot_hold_exactly():
 
 @pytest.mark.parametrize(("unit", "error", "fragment"), [
     ("m**inf", pt.NumberError, "finite"), ("m**-1e400", pt.NumberError, "finite"),
-    ("m**nan", pt.UnitError, "nan"), ("m**100000", pt.LimitError, "1000"), ("m**1e-13", pt.LimitError, "denominator"),
+    ("m**nan", pt.NumberError, "finite"), ("kg^nan/N", pt.NumberError, "finite"),  # pint loops forever on that one
+    ("m**100000", pt.LimitError, "1000"), ("m**1e-13", pt.LimitError, "denominator"),
 ])
 def test_from_units_refuses_exponents_beyond_the_limits_by_name(unit, error, fragment):
     with pytest.raises(error, match=fragment) as info:
