@@ -78,33 +78,66 @@ def _joint_kind(mj, jtype) -> JointKind | None:
 
 @dataclass
 class Slot:
-    """One dimensional attribute of one element: how to read it and scale it."""
+    """One dimensional attribute of one element: how to read it, and how to scale it by address.
+
+    ``where`` is the element's address in a spec (a collection and an index, or ``("option",)``), so a
+    copy of the spec is scaled by looking each element up, with no second walk of the file;
+    ``write_on(element, factor)`` scales the attribute on the element found there.
+    """
 
     name: str
     path: str
     read: Callable[[], tuple]
-    write: Callable[[float], None]
+    write_on: Callable[[object, float], None]
+    where: tuple
     dimension: object
     source: str
     parts: tuple = ()
     note: str = ""
 
 
-def _array_slot(name, path, elem, attr, index, dimension, source, parts=(), note=""):
+def _array_slot(name, path, elem, attr, index, dimension, source, where, parts=(), note=""):
     def read():
         value = np.atleast_1d(np.asarray(getattr(elem, attr), dtype=float))
         return tuple(float(v) for v in value[index])
 
-    def write(factor):
-        value = getattr(elem, attr)
+    def write_on(element, factor):
+        value = getattr(element, attr)
         if np.ndim(value) == 0:
-            setattr(elem, attr, float(value) * factor)
+            setattr(element, attr, float(value) * factor)
             return
         value = np.array(value, dtype=float)
         value[index] = value[index] * factor
-        setattr(elem, attr, value)
+        setattr(element, attr, value)
 
-    return Slot(name, path, read, write, dimension, source, parts, note)
+    return Slot(name, path, read, write_on, where, dimension, source, parts, note)
+
+
+#: the spec's collections of elements a slot's address names (``spec.<name>[index]``)
+_COLLECTIONS = ("meshes", "hfields", "bodies", "geoms", "frames", "sites", "cameras", "lights", "joints", "tendons",
+                "actuators", "equalities", "pairs", "sensors", "numerics")
+#: the spec's single elements, addressed by their kind
+_SINGLES = ("option", "compiler", "stat")
+
+
+class _Elements:
+    """The elements of one spec by address, each collection listed once."""
+
+    def __init__(self, spec):
+        self.spec, self.lists = spec, {}
+
+    def get(self, where: tuple):
+        if len(where) == 1:
+            return getattr(self.spec, where[0])
+        collection, index = where
+        if collection not in self.lists:
+            self.lists[collection] = list(getattr(self.spec, collection))
+        return self.lists[collection][index]
+
+    @staticmethod
+    def addresses(spec, lists: dict) -> dict[int, tuple]:
+        """``id(element) -> address`` for the elements of `lists` (collection name -> the listed elements)."""
+        return {id(item): (collection, i) for collection, items in lists.items() for i, item in enumerate(items)}
 
 
 class _Walker:
@@ -115,6 +148,13 @@ class _Walker:
         self.slots: list[Slot] = []
         self.names: set[str] = set()
         self.defaults = _builtin_defaults(mj)
+        # every element listed once, kept alive, so that an element's id gives its address
+        self.lists = {collection: list(getattr(spec, collection)) for collection in _COLLECTIONS}
+        self.where_of = _Elements.addresses(spec, self.lists)
+
+    def where(self, kind: str, elem) -> tuple:
+        """The address of an element this walk visits (a collection and index, or its kind)."""
+        return (kind,) if kind in _SINGLES else self.where_of[id(elem)]
 
     # -- helpers ------------------------------------------------------------------------------
 
@@ -142,7 +182,7 @@ class _Walker:
             return
         name = self.unique(f"{ident}_{attr}{suffix}" if ident else f"{attr}{suffix}")
         self.slots.append(_array_slot(name, f"{path} {attr}{suffix.replace('_', ' ')}", elem, attr, index,
-                                      dimension, self.source(kind, elem, attr), parts, note))
+                                      dimension, self.source(kind, elem, attr), self.where(kind, elem), parts, note))
 
     def add_solref(self, kind, elem, ident, path, attr):
         ref = np.asarray(getattr(elem, attr), dtype=float)
@@ -194,10 +234,10 @@ class _Walker:
     # -- elements -----------------------------------------------------------------------------
 
     def walk(self):
-        spec = self.spec
+        spec, lists = self.spec, self.lists
         self.option()
         self.compiler()
-        for i, mesh in enumerate(spec.meshes):
+        for i, mesh in enumerate(lists['meshes']):
             ident, path = self.label("mesh", mesh, i)
             # MuJoCo multiplies the vertices by scale, whether they come from a file or from the element:
             # scale one of the two, never both (inline vertices scaled and scale scaled: s^2)
@@ -207,30 +247,31 @@ class _Walker:
                 self.add("mesh", mesh, ident, path, "scale", _L,
                          note="a dimensionless factor times the file's vertex units, a length")
             self.add("mesh", mesh, ident, path, "refpos", _L)
-        for i, hfield in enumerate(spec.hfields):
+        for i, hfield in enumerate(lists['hfields']):
             ident, path = self.label("hfield", hfield, i)
             self.add("hfield", hfield, ident, path, "size", _L)
-        for i, body in enumerate(spec.bodies):
+        for i, body in enumerate(lists['bodies']):
             self.body(body, i)
-        for i, geom in enumerate(spec.geoms):
+        for i, geom in enumerate(lists['geoms']):
             self.geom(geom, i)
         # frames, sites, cameras and lights: positions (and a site's size) are lengths
-        for kind, items, attrs in (("frame", spec.frames, ("pos",)), ("site", spec.sites, ("pos", "size", "fromto")),
-                                   ("camera", spec.cameras, ("pos",)), ("light", spec.lights, ("pos",))):
+        for kind, items, attrs in (("frame", lists["frames"], ("pos",)),
+                                   ("site", lists["sites"], ("pos", "size", "fromto")),
+                                   ("camera", lists["cameras"], ("pos",)), ("light", lists["lights"], ("pos",))):
             for i, item in enumerate(items):
                 ident, path = self.label(kind, item, i)
                 for attr in attrs:
                     if hasattr(item, attr):
                         self.add(kind, item, ident, path, attr, _L)
-        for i, joint in enumerate(spec.joints):
+        for i, joint in enumerate(lists['joints']):
             self.joint(joint, i)
-        for i, tendon in enumerate(spec.tendons):
+        for i, tendon in enumerate(lists['tendons']):
             self.tendon(tendon, i)
-        for i, act in enumerate(spec.actuators):
+        for i, act in enumerate(lists['actuators']):
             self.actuator(act, i)
-        for i, eq in enumerate(spec.equalities):
+        for i, eq in enumerate(lists['equalities']):
             self.equality(eq, i)
-        for i, pair in enumerate(spec.pairs):
+        for i, pair in enumerate(lists['pairs']):
             ident, path = self.label("pair", pair, i)
             self.friction("pair", pair, ident, path, 5)
             for attr in ("margin", "gap"):
@@ -238,7 +279,7 @@ class _Walker:
             self.add_solref("pair", pair, ident, path, "solref")
             self.add_solref("pair", pair, ident, path, "solreffriction")
             self.add_solimp("pair", pair, ident, path, "solimp", _L)
-        for i, sensor in enumerate(spec.sensors):
+        for i, sensor in enumerate(lists['sensors']):
             self.sensor(sensor, i)
         for kind, items in (("flex", spec.flexes), ("skin", spec.skins), ("plugin", spec.plugins)):
             for i, item in enumerate(items):
@@ -262,7 +303,7 @@ class _Walker:
             if name not in names:
                 self.fail(f"text '{DIMENSION_TEXT}{name}'", f"declares the dimension of a custom numeric {name!r} "
                           f"that the file does not have (its numerics: {', '.join(map(repr, sorted(names))) or 'none'})")
-        for i, numeric in enumerate(self.spec.numerics):
+        for i, numeric in enumerate(self.lists["numerics"]):
             ident, path = self.label("numeric", numeric, i)
             dimension = declared.get(numeric.name)
             if dimension is None:
@@ -270,7 +311,8 @@ class _Walker:
                              f'with <text name="{DIMENSION_TEXT}{numeric.name}" data="L T^-1"/>, say)')
                 continue
             self.slots.append(_array_slot(self.unique(ident), f"{path} data", numeric, "data", slice(None),
-                                          dimension, "file", note="dimension declared in the file"))
+                                          dimension, "file", self.where("numeric", numeric),
+                                          note="dimension declared in the file"))
 
     def option(self):
         opt = self.spec.option
@@ -279,11 +321,11 @@ class _Walker:
         def read_g():
             return (float(np.linalg.norm(np.asarray(opt.gravity, dtype=float))),)
 
-        def write_g(factor):
-            opt.gravity = np.asarray(opt.gravity, dtype=float) * factor
+        def write_g(option, factor):
+            option.gravity = np.asarray(option.gravity, dtype=float) * factor
 
         self.names.add("g")
-        self.slots.append(Slot("g", "option gravity (magnitude)", read_g, write_g, dim("L T^-2"),
+        self.slots.append(Slot("g", "option gravity (magnitude)", read_g, write_g, ("option",), dim("L T^-2"),
                                self.source("option", opt, "gravity"), note="the direction is dimensionless"))
         self.add("option", opt, "", "option", "wind", dim("L T^-1"))
         self.add("option", opt, "", "option", "density", dim("M L^-3"))
@@ -336,18 +378,18 @@ class _Walker:
             def read(values=values):
                 return tuple(float(v) for v in values)
 
-            def write(factor, spec_attrs=spec_attrs):
+            def write(element, factor, spec_attrs=spec_attrs):
                 for a, idx in spec_attrs:
-                    arr = getattr(body, a)
+                    arr = getattr(element, a)
                     if np.ndim(arr) == 0:
-                        setattr(body, a, float(arr) * factor)
+                        setattr(element, a, float(arr) * factor)
                     else:
                         arr = np.array(arr, dtype=float)
                         arr[idx] *= factor
-                        setattr(body, a, arr)
+                        setattr(element, a, arr)
 
             name = self.unique(f"{ident}_{attr}")
-            self.slots.append(Slot(name, f"{path} {attr}", read, write, d, source,
+            self.slots.append(Slot(name, f"{path} {attr}", read, write, self.where("body", body), d, source,
                                    note="computed by MuJoCo from the geoms" if derived else ""))
 
     def friction(self, kind, elem, ident, path, n):
@@ -414,13 +456,13 @@ class _Walker:
         """A fixed tendon's coefficient between joints of two types: MjSpec cannot rewrite it."""
         name = self.unique(f"{ident}_coef{k}")
 
-        def write(factor):
+        def write(_element, factor):
             if factor != 1.0:
                 raise UnscalableParameterError(name, f"{path} joins a slide and a hinge joint, so its coefficient "
                                                f"has dimension {dimension}, and MuJoCo's MjSpec cannot rewrite it")
 
-        self.slots.append(Slot(name, f"{path} joint #{k} coef", lambda: (float(wrap.coef),), write, dimension,
-                               "file"))
+        self.slots.append(Slot(name, f"{path} joint #{k} coef", lambda: (float(wrap.coef),), write, ("option",),
+                               dimension, "file"))
 
     def tendon(self, tendon, index):
         mj = self.mj
@@ -442,7 +484,7 @@ class _Walker:
             tid = tendon.id if tendon.id >= 0 else index
             rest = tuple(float(v) for v in self.model.tendon_lengthspring[tid])
             self.slots.append(Slot(self.unique(f"{ident}_springlength"), f"{path} springlength", lambda: rest,
-                                   lambda factor: None, q, "derived",
+                                   lambda _element, _factor: None, ("option",), q, "derived",
                                    note="springlength -1: computed by MuJoCo from the pose, scaled with it"))
         else:
             self.add("tendon", tendon, ident, path, "springlength", q)
@@ -667,13 +709,15 @@ class MjcfBackend:
 
     def scaled(self, factors, scaling, s) -> MjcfBackend:
         spec = self._portable_spec()
-        slots = _Walker(_mujoco(), spec, self.mjmodel, self.path).walk()
-        for slot in slots:
+        elements = _Elements(spec)  # a copy holds the same elements in the same order: scale by address
+        for slot in self._slots:
             if factors.get(slot.name, 1.0) != 1.0:
-                slot.write(factors[slot.name])
+                slot.write_on(elements.get(slot.where), factors[slot.name])
         if scaling is not None:
             self._scale_keyframes(spec, scaling, s)
-        return MjcfBackend(spec, "", self.source_dir, warn=False, asset_dirs=self.asset_dirs)
+        copy = MjcfBackend(spec, "", self.source_dir, warn=False, asset_dirs=self.asset_dirs)
+        copy._inputs = self._actuator_inputs()  # the same actuators: the same input dimensions
+        return copy
 
     def save(self, path: Path) -> None:
         spec = self._portable_spec()
