@@ -716,7 +716,8 @@ class MjcfBackend:
         if scaling is not None:
             self._scale_keyframes(spec, scaling, s)
         copy = MjcfBackend(spec, "", self.source_dir, warn=False, asset_dirs=self.asset_dirs)
-        copy._inputs = self._actuator_inputs()  # the same actuators: the same input dimensions
+        copy._inputs = self._actuator_inputs()  # the same actuators and joints: the same dimensions
+        copy._coordinates = self.coordinate_dimensions()
         return copy
 
     def save(self, path: Path) -> None:
@@ -809,10 +810,8 @@ class MjcfBackend:
                 continue
             holder, attr = _holder(m, field)
             value = np.asarray(getattr(holder, attr))
-            up = rng.integers(0, 2, size=value.shape).astype(bool)
-            moved = np.where(up, np.nextafter(value, value.dtype.type(np.inf)),
-                             np.nextafter(value, value.dtype.type(-np.inf)))
-            moved = np.where(value == 0, value, moved)
+            toward = np.where(rng.random(value.shape) < 0.5, np.inf, -np.inf).astype(value.dtype)
+            moved = np.where(value == 0, value, np.nextafter(value, toward))
             if np.ndim(getattr(holder, attr)) == 0:
                 setattr(holder, attr, moved.item())
             else:
@@ -897,7 +896,12 @@ class MjcfBackend:
     # -- running ------------------------------------------------------------------------------
 
     def coordinate_dimensions(self):
-        """Names and dimensions of qpos and qvel entries, and of the activations."""
+        """Names and dimensions of qpos and qvel entries, and of the activations (found once)."""
+        if getattr(self, "_coordinates", None) is None:
+            self._coordinates = self._find_coordinates()
+        return self._coordinates
+
+    def _find_coordinates(self):
         mj, m = _mujoco(), self.mjmodel
         names, dims = [], []
         for kind_label, rate in (("qpos", 0), ("qvel", 1)):

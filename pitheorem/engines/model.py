@@ -518,8 +518,13 @@ class EngineModel(TableDisplay):
         """
         s = read_scale_factor(s)
         check_scaling(scaling)
-        factors, refused = {}, []
+        factors, refused, of_dimension = {}, [], {}  # hundreds of parameters, a handful of dimensions
         for p in self.parameters:  # every number the scaling cannot reach, not only the first
+            if p.dimension is not None:
+                if p.dimension not in of_dimension:
+                    of_dimension[p.dimension] = dimension_factor(scaling, s, p.dimension)
+                factors[p.name] = of_dimension[p.dimension]
+                continue
             try:
                 factors[p.name] = p.factor(scaling, s)
             except UnscalableParameterError as err:

@@ -88,7 +88,7 @@ class EngineRunner(Protocol):
 
 
 def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None, *, controller=None,
-           scaled: EngineModel | None = None, baseline_factor: float = 10.0, ensemble: int = 4,
+           scaled: EngineModel | None = None, baseline_factor: float = 10.0, ensemble: int = 3,
            seed: int = 0, diagnose: bool = True) -> SimilarityReport:
     """Run a model and its scaled copy, compare them, and say why they differ.
 
@@ -126,7 +126,7 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         The margin: how many times its yardstick a coordinate's deviation
         may reach (default 10).
     ensemble : int
-        How many twins make the yardstick (default 4, at least 1).
+        How many twins make the yardstick (default 3, at least 1).
     seed : int
         The seed of the twins' random signs.
     diagnose : bool
