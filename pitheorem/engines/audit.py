@@ -239,8 +239,9 @@ def _where(backend, field: str, mask: np.ndarray) -> str:
     """Up to :data:`SHOWN` entries of a field, by element name where the engine names them."""
     rows = np.unique(np.nonzero(mask.reshape(mask.shape[0], -1))[0]) if mask.ndim else np.array([0])
     name_of = getattr(backend, "element_name", None)
-    names = [name_of(field, int(r)) if name_of else f"{field}[{int(r)}]" for r in rows[:SHOWN]]
-    more = f" and {len(rows) - SHOWN} more" if len(rows) > SHOWN else ""
+    names = list(dict.fromkeys(name_of(field, int(r)) if name_of else f"{field}[{int(r)}]" for r in rows))
+    more = f" and {len(names) - SHOWN} more" if len(names) > SHOWN else ""
+    names = names[:SHOWN]
     return ", ".join(names) + more
 
 
