@@ -399,7 +399,7 @@ class EngineModel(TableDisplay):
 
     @property
     def parameters(self) -> tuple[Parameter, ...]:
-        """Every dimensional number of the file and of the engine settings, read when asked.
+        """Every dimensional number of the file and the engine settings, read when asked.
 
         Examples
         --------
