@@ -323,3 +323,24 @@ def test_a_composed_scene_saves_with_every_models_meshes_found(tmp_path):
     assert files["g_palm"].parent.name == "gripper_parts"  # the gripper's folder, not the arm's
     assert files["base"].parent.name == "arm_parts"
     assert all(f.is_absolute() and f.is_file() for f in files.values())
+
+
+def test_a_saved_copy_writes_each_scaled_number_as_its_exact_decimal_product(tmp_path):
+    """9.81 x 10 is written 98.1 (the float product is 98.10000000000001); at s = 4 the same doubles as in memory."""
+    from decimal import Decimal, getcontext
+
+    getcontext().prec = 60
+    model = engines.load(engines.example_path("pendulum.xml"))
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    text = model.scaled(sc, 10).save(tmp_path / "p10.xml").read_text()
+    assert 'gravity="0 0 -98.1"' in text
+    again = engines.load(tmp_path / "p10.xml")
+    for p in model.parameters:  # every single-number parameter: the double nearest the decimal product
+        if len(p.value) != 1 or p.mixed or p.value[0] == 0 or p.source == "derived":
+            continue
+        factor = p.factor(sc, 10)
+        exact = float(Decimal(repr(p.value[0])) * Decimal(repr(factor)))
+        assert again.parameter(p.name).value[0] == exact, p.name
+    at_four = model.scaled(sc, 4)
+    reloaded = engines.load(at_four.save(tmp_path / "p4.xml"))
+    assert [p.value for p in reloaded.parameters] == [p.value for p in at_four.parameters]

@@ -47,6 +47,7 @@ from .model import (
     Parameter,
     dim,
     dimension_factor,
+    exact_product,
     identifier,
     unique_name,
     warn_unscalable,
@@ -94,6 +95,8 @@ class Slot:
     source: str
     parts: tuple = ()
     note: str = ""
+    #: the element's attributes (and entries) write_on multiplies, for a saved file's exact decimals
+    attrs: tuple = ()
 
 
 def _array_slot(name, path, elem, attr, index, dimension, source, where, parts=(), note=""):
@@ -110,7 +113,7 @@ def _array_slot(name, path, elem, attr, index, dimension, source, where, parts=(
         value[index] = value[index] * factor
         setattr(element, attr, value)
 
-    return Slot(name, path, read, write_on, where, dimension, source, parts, note)
+    return Slot(name, path, read, write_on, where, dimension, source, parts, note, ((attr, index),))
 
 
 #: the spec's collections of elements a slot's address names (``spec.<name>[index]``)
@@ -326,7 +329,8 @@ class _Walker:
 
         self.names.add("g")
         self.slots.append(Slot("g", "option gravity (magnitude)", read_g, write_g, ("option",), dim("L T^-2"),
-                               self.source("option", opt, "gravity"), note="the direction is dimensionless"))
+                               self.source("option", opt, "gravity"), note="the direction is dimensionless",
+                               attrs=(("gravity", slice(None)),)))
         self.add("option", opt, "", "option", "wind", dim("L T^-1"))
         self.add("option", opt, "", "option", "density", dim("M L^-3"))
         self.add("option", opt, "", "option", "viscosity", dim("M L^-1 T^-1"))
@@ -390,7 +394,7 @@ class _Walker:
 
             name = self.unique(f"{ident}_{attr}")
             self.slots.append(Slot(name, f"{path} {attr}", read, write, self.where("body", body), d, source,
-                                   note="computed by MuJoCo from the geoms" if derived else ""))
+                                   note="computed by MuJoCo from the geoms" if derived else "", attrs=spec_attrs))
 
     def friction(self, kind, elem, ident, path, n):
         # sliding is dimensionless; torsional and rolling are torques per normal force: lengths
@@ -709,19 +713,37 @@ class MjcfBackend:
 
     def scaled(self, factors, scaling, s) -> MjcfBackend:
         spec = self._portable_spec()
-        elements = _Elements(spec)  # a copy holds the same elements in the same order: scale by address
+        elements, mine = _Elements(spec), _Elements(self.spec)  # the same elements in the same order
+        written = []  # (address, attribute, entries, the original's values, factor): for save's exact decimals
         for slot in self._slots:
-            if factors.get(slot.name, 1.0) != 1.0:
-                slot.write_on(elements.get(slot.where), factors[slot.name])
+            factor = factors.get(slot.name, 1.0)
+            if factor != 1.0:
+                slot.write_on(elements.get(slot.where), factor)
+                original = mine.get(slot.where)
+                written.extend((slot.where, attr, index, np.array(getattr(original, attr), dtype=float), factor)
+                               for attr, index in slot.attrs)
         if scaling is not None:
             self._scale_keyframes(spec, scaling, s)
         copy = MjcfBackend(spec, "", self.source_dir, warn=False, asset_dirs=self.asset_dirs)
+        copy.written = written
         copy._inputs = self._actuator_inputs()  # the same actuators and joints: the same dimensions
         copy._coordinates = self.coordinate_dimensions()
         return copy
 
     def save(self, path: Path) -> None:
         spec = self._portable_spec()
+        # each scaled number as the decimal a person would write: the exact product of the original's
+        # decimal and the factor's, rounded once (9.81 times 10 is 98.1, where the float product is
+        # 98.10000000000001); at a power-of-two factor the very same double as in memory
+        elements = _Elements(spec)
+        for where, attr, index, original, factor in getattr(self, "written", ()):
+            element = elements.get(where)
+            if np.ndim(original) == 0:
+                setattr(element, attr, exact_product(float(original), factor))
+                continue
+            value = np.array(getattr(element, attr), dtype=float)
+            value[index] = [exact_product(v, factor) for v in np.atleast_1d(original[index])]
+            setattr(element, attr, value)
         # MuJoCo's canonical, compiled output rounds to 6 digits (and turns fromto and degrees into
         # quaternions and radians); the uncompiled output keeps every value at full precision
         spec.compiler.savecompiled = False

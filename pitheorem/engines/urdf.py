@@ -417,7 +417,7 @@ class UrdfBackend:
         for a in attrs:
             f = factors.get(a.name, 1.0)
             if f != 1.0:
-                a.element.set(a.attr, attribute_text(np.asarray(a.read()) * f))
+                a.element.set(a.attr, attribute_text(a.read(), f))  # the exact decimal product
         st = json.loads(json.dumps(self._settings))
         st["g"] *= factors.get("g", 1.0)
         st["timestep"] *= factors.get("timestep", 1.0)
