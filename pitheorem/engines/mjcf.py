@@ -998,9 +998,13 @@ class MjcfBackend:
 
         spec = mj.mjtState.mjSTATE_FULLPHYSICS
         models, initial, control, firsts = [], [], [], []
+        threads = max(1, min(len(jobs), os.cpu_count() or 1))
+        # the jobs' models have the same sizes: one data per thread serves them all, and the first also
+        # finds each job's initial state (allocating a data costs more than a small model's whole run)
+        datas = [mj.MjData(jobs[0][0].mjmodel) for _ in range(threads)]
         for backend, controls, nudge, state in jobs:
             m = backend.mjmodel
-            data, first = backend._start(nudge, state)
+            data, first = backend._start(nudge, state, datas[0])
             x0 = np.empty(mj.mj_stateSize(m, spec))
             mj.mj_getState(m, data, x0, spec)
             models.append(m)
@@ -1012,8 +1016,7 @@ class MjcfBackend:
         steer = any(c is not None for c in control)
         if steer:
             control = [np.zeros((n_steps, m.nu)) if c is None else c for c, m in zip(control, models, strict=True)]
-        threads = max(1, min(len(jobs), os.cpu_count() or 1))
-        states, _ = rollout.rollout(models, [mj.MjData(models[0]) for _ in range(threads)], np.array(initial),
+        states, _ = rollout.rollout(models, datas, np.array(initial),
                                     np.array(control) if steer else None, nstep=n_steps)
         # the full-physics state is laid out by component: time, then qpos, qvel, act
         out = []
@@ -1022,9 +1025,13 @@ class MjcfBackend:
             out.append(np.concatenate([first[None, :], rows[:, start:start + m.nq + m.nv + m.na]]))
         return out
 
-    def _start(self, nudge: bool, state):
+    def _start(self, nudge: bool, state, data=None):
+        """The initial data (a new one, or `data` reset to this model) and its first row of coordinates."""
         mj, m = _mujoco(), self.mjmodel
-        data = mj.MjData(m)
+        if data is None:
+            data = mj.MjData(m)
+        else:
+            mj.mj_resetData(m, data)
         if state is not None:
             data.qpos[:], data.qvel[:] = state
         if nudge:

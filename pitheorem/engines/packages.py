@@ -92,6 +92,9 @@ def engine_module(engine: str):
     'mujoco'
     """
     package = PACKAGES[check_engine(engine)]
+    loaded = sys.modules.get(package)  # None also where an import is blocked: then import, and fail, below
+    if loaded is not None:  # imported already: nothing to print, nothing to silence
+        return loaded
     try:
         with quiet_stdout():  # pybullet prints a banner on import
             return __import__(package)
