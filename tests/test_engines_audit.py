@@ -110,3 +110,21 @@ def test_the_audit_reads_as_text():
     text = str(engines.audit(model, sc, 10))
     assert text.startswith("audit at s = 10:")
     assert "solver: option tolerance" in text
+
+
+def test_a_probe_the_engine_refuses_is_named_not_raised(tmp_path):
+    """A speck whose inertia sits just above mjMINVAL: the probe at 1/4 of its mass unit does not compile."""
+    speck = tmp_path / "speck.xml"
+    speck.write_text('<mujoco><option timestep="0.002"/><worldbody><geom type="plane" size="1 1 0.1"/>'
+                     '<body pos="0 0 0.1"><freejoint/><geom type="sphere" size="0.01" mass="6e-11"/></body>'
+                     '</worldbody></mujoco>')
+    model = engines.load(speck)
+    unit = pt.Scaling.from_unit_change(model.system(), {"M": 1})
+    with pytest.raises(engines.EngineModelError, match="mjMINVAL"):  # independent of audit: MuJoCo refuses it
+        model.scaled(unit, 0.25)
+    audit = engines.audit(model, unit, 2)
+    assert audit.compared == 0
+    refused = [c for c in audit.causes if c.element == "the probes at s = 4 and 1/4"]
+    assert len(refused) == 1
+    assert refused[0].kind == "threshold"
+    assert "mjMINVAL" in refused[0].detail

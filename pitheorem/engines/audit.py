@@ -26,7 +26,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from ..errors import InvalidRequestError
+from ..errors import InvalidRequestError, PiTheoremError
 from ..exact import read_scale_factor
 from ..formatting import TextDisplay
 from ..immutable import immutable
@@ -133,14 +133,19 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
     elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:
         raise InvalidRequestError("scaled must be an EngineModel of the same engine as model")
     backend = model.backend
-    original = backend.stored_numbers()
-    probe = model.scaled(scaling, PROBE).backend.stored_numbers()
-    # a second probe, the other way: a number that scales by 4**k one way and not by 4**-k the other is
-    # not scale-free even where each probe alone looks clean (a rotation found by an iteration that stops
-    # at an absolute tolerance, say); and at s = 4 itself the first probe is the copy
-    inverse = model.scaled(scaling, Fraction(1, PROBE)).backend.stored_numbers()
-    copy = scaled.backend.stored_numbers()
     causes, compared = [], 0
+    original = backend.stored_numbers()
+    try:
+        probe = model.scaled(scaling, PROBE).backend.stored_numbers()
+        # a second probe, the other way: a number that scales by 4**k one way and not by 4**-k the other
+        # is not scale-free even where each probe alone looks clean (a rotation found by an iteration
+        # that stops at an absolute tolerance, say); and at s = 4 itself the first probe is the copy
+        inverse = model.scaled(scaling, Fraction(1, PROBE)).backend.stored_numbers()
+    except PiTheoremError as err:  # a probe the engine refuses (a mass below its floor): no exponents
+        causes.append(Cause("threshold", "the probes at s = 4 and 1/4", f"the engine refuses one: "
+                            f"{str(err).splitlines()[0]}; the stored numbers were not compared"))
+        original = {}
+    copy = scaled.backend.stored_numbers()
     probed = {}  # field -> (exponents, clean): pass one, for the largest number of each exponent
     scale: dict[float, float] = {}
     for field, before in original.items():
