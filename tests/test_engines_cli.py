@@ -190,3 +190,21 @@ def test_bad_model_files_exit_2_in_every_format(tmp_path, capsys, name, text, el
     assert len(lines) == 1, lines
     assert name in lines[0]
     assert element in lines[0]
+
+
+def test_apply_names_a_parameter_no_scene_option_can_fix(capsys):
+    # a free joint's damping acts on lengths and on angles: no --scene option helps, so no hint is given
+    code = main(["apply", str(DATA / "free_damped.xml"), "--scale", "g=1", "--s", "2"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err.startswith("pitheorem: error: cannot scale ")
+    assert err.count("\n") == 1
+    assert "--scene" not in err
+
+
+def test_apply_without_output_reports_the_changes_and_writes_nothing(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["apply", PENDULUM, "--scale", "g=1", "--s", "2"]) == 0
+    out = capsys.readouterr().out
+    assert "wrote" not in out
+    assert list(tmp_path.iterdir()) == []
