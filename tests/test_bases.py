@@ -244,13 +244,14 @@ def test_a_determinant_float64_cannot_hold_is_decided_exactly():
     # det [[2^30+1, 2^30], [2^30, 2^30-1]] = -1, but in float64 (2^30+1)(2^30-1) rounds to 2^60: a
     # weakened guard ((k/biggest)^2, a bound of 2^159, the smallest norms instead of the largest ones,
     # which the two unit columns make tiny) would take the float path and lose that basis
+    # (a zero column, never in a basis, must not shrink the bound to zero: it takes the k largest norms)
     a = 2**30
-    rows = [[1, 0, a + 1, a], [0, 1, a, a - 1]]
+    rows = [[1, 0, a + 1, a, 0], [0, 1, a, a - 1, 0]]
     assert sympy.Matrix([[a + 1, a], [a, a - 1]]).det() == -1
     assert float(a + 1) * float(a - 1) - float(a) * float(a) == 0  # what float64 would say
     assert not bases_module.float_is_exact(rows, 2)
-    assert list(independent_subsets(rows, range(4), [], 2)) == list(combinations(range(4), 2))
-    assert count_independent_subsets(rows, range(4), [], 2) == 6
+    assert list(independent_subsets(rows, range(5), [], 2)) == list(combinations(range(4), 2))
+    assert count_independent_subsets(rows, range(5), [], 2) == 6
 
 
 def test_a_minor_that_is_a_multiple_of_the_first_residue_prime_is_not_zero():
@@ -266,13 +267,25 @@ def test_a_minor_that_is_a_multiple_of_the_first_residue_prime_is_not_zero():
 def test_minors_that_are_multiples_of_several_residue_primes(primes):
     # every entry a multiple of the first `primes` residue primes: every minor vanishes modulo them,
     # and only the primes after them (as many as the bound asks for) can tell zero from nonzero
+    # (and a zero column, which must not shrink the Hadamard bound to zero)
     factor = prod(bases_module._PRIMES[:primes])
-    small = [[1, 2, 0, 1, 3], [0, 0, 1, 1, -1]]
+    small = [[1, 2, 0, 1, 3, 0], [0, 0, 1, 1, -1, 0]]
     rows = [[x * factor for x in row] for row in small]
     expected = _small_independent(small, 2)
     assert expected != list(combinations(range(5), 2))  # (0, 1) is dependent: the test has both kinds
-    assert list(independent_subsets(rows, range(5), [], 2)) == expected
-    assert count_independent_subsets(rows, range(5), [], 2) == len(expected)
+    assert list(independent_subsets(rows, range(6), [], 2)) == expected
+    assert count_independent_subsets(rows, range(6), [], 2) == len(expected)
+    # with a required column, on the same residue path
+    with_0 = [s for s in expected if 0 in s]
+    assert list(independent_subsets(rows, range(1, 6), [0], 2)) == with_0
+    assert count_independent_subsets(rows, range(1, 6), [0], 2) == len(with_0)
+
+
+def test_column_indices_beyond_255_are_kept():
+    # subsets are stored in the smallest integer type that holds every column index: 256 needs 16 bits
+    rows = [[1] * 257]
+    assert list(independent_subsets(rows, range(257), [], 1))[-3:] == [(254,), (255,), (256,)]
+    assert list(independent_subsets([[1] * 256], range(256), [], 1))[-1] == (255,)
 
 
 def test_the_exact_fallback_decides_when_every_residue_prime_divides_every_minor():

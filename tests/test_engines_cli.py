@@ -326,3 +326,21 @@ def test_search_on_a_large_model_opens_with_a_short_summary(capsys):
     start = lines.index(f"summary (the table below has a row for each of the {len(model.system())} variables):")
     assert [line.split(":")[0].strip() for line in lines[start + 1:start + n + 1]] == [f"#{k}" for k in
                                                                                        range(1, n + 1)]
+
+
+def test_apply_names_a_parameter_no_scene_option_can_fix(capsys):
+    # a free joint's damping acts on lengths and on angles: no --scene option helps, so no hint is given
+    code = main(["apply", str(DATA / "free_damped.xml"), "--scale", "g=1", "--s", "2"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err.startswith("pitheorem: error: cannot scale ")
+    assert err.count("\n") == 1
+    assert "--scene" not in err
+
+
+def test_apply_without_output_reports_the_changes_and_writes_nothing(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["apply", PENDULUM, "--scale", "g=1", "--s", "2"]) == 0
+    out = capsys.readouterr().out
+    assert "wrote" not in out
+    assert list(tmp_path.iterdir()) == []

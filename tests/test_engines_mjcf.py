@@ -344,3 +344,33 @@ def test_a_saved_copy_writes_each_scaled_number_as_its_exact_decimal_product(tmp
     at_four = model.scaled(sc, 4)
     reloaded = engines.load(at_four.save(tmp_path / "p4.xml"))
     assert [p.value for p in reloaded.parameters] == [p.value for p in at_four.parameters]
+
+
+def test_assets_pairs_statistics_compiler_bounds_and_direct_solrefs_have_their_dimensions():
+    # one file with the elements the other models lack; each dimension is the physics of the attribute
+    with pytest.warns(engines.UnscalableModelWarning, match="magnetic field"):
+        model = load("rich_elements.xml")
+    got = {p.name: (p.dimension_text, p.value) for p in model.parameters}
+    expected = {
+        "stat_meanmass": ("M", (2.0,)), "stat_meansize": ("L", (0.5,)), "stat_extent": ("L", (3.0,)),
+        "stat_center": ("L", (0.0, 0.0, 1.0)), "compiler_boundmass": ("M", (0.01,)),
+        "compiler_boundinertia": ("M L^2", (0.001,)), "compiler_settotalmass": ("M", (3.0,)),
+        "hfield_ground_size": ("L", (1.0, 1.0, 0.1, 0.05)),
+        # a negative solref is a stiffness and a damping of the reference acceleration, not a time constant
+        "joint_h_solref_limit_stiffness": ("T^-2", (-100.0,)), "joint_h_solref_limit_damping": ("T^-1", (-10.0,)),
+        "pair0_margin": ("L", (0.01,)), "pair0_gap": ("L", (0.002,)),
+        "pair0_solref_stiffness": ("T^-2", (-200.0,)), "pair0_solref_damping": ("T^-1", (-20.0,)),
+    }
+    assert {name: got[name] for name in expected} == expected
+    # inline vertices are the length scaled; their scale (a factor on them) is not scaled too (s^2)
+    assert "mesh_tet_scale" not in got
+    assert got["mesh_tet_uservert"][0] == "L"
+    assert len(got["mesh_tet_uservert"][1]) == 12
+
+
+def test_a_flex_element_is_refused_by_name(tmp_path):
+    path = tmp_path / "flex.xml"
+    path.write_text('<mujoco><worldbody><flexcomp name="cloth" type="grid" count="2 2 1" spacing="0.1 0.1 0.1" '
+                    'dim="2"/></worldbody></mujoco>')
+    with pytest.raises(EngineModelError, match="flex elements cannot be scaled"):
+        engines.load(path)

@@ -262,3 +262,71 @@ def test_a_sympy_float_beyond_doubles_is_a_limit_error_where_a_float_is_kept():
 def test_the_simplest_fraction_of_zero_is_zero():
     assert simplest_fraction_rounding_to(0.0) == 0
     assert simplest_fraction_rounding_to(-0.0) == 0
+
+
+# -- whole messages and culprits: every refusal names the value, what it was and what is valid
+# (each assertion kills a mutmut survivor that changed one of them)
+
+_FINITE = ("a finite real number (int, float, Fraction, numpy or sympy number, or a string such as '0.1' or "
+           "'1/3')")
+
+
+@pytest.mark.parametrize(("read", "error", "message", "culprit"), [
+    (lambda: read_value(sympy.Float("1e400"), "the value of 'x'"), pt.LimitError,
+     "the value of 'x' is about 10^400: it is beyond the range of floating point (about 1e-308 to 1.8e308); "
+     "pass it exactly, as an int, a Fraction or a string", "about 10^400"),
+    (lambda: read_scale_factor(sympy.Float("1e400")), pt.LimitError,
+     "the scale factor s is about 10^400: it is beyond the range of floating point (about 1e-308 to 1.8e308); "
+     "pass it exactly, as an int, a Fraction or a string", "about 10^400"),
+    (lambda: read_number("abc", "w"), pt.NumberError, f"w must be {_FINITE}, got 'abc'", "abc"),
+    (lambda: read_number("1e99999", "w"), pt.LimitError, "w is 1e99999: its power of ten exceeds the limit 10^10000",
+     "1e99999"),
+    (lambda: read_positive("1e99999", "s"), pt.LimitError, "s is 1e99999: its power of ten exceeds the limit 10^10000",
+     "1e99999"),
+    (lambda: read_number("1/0", "w"), pt.NumberError, f"w must be {_FINITE}, with a nonzero denominator, got '1/0'",
+     "1/0"),
+    (lambda: read_number("1" * 1001, "w"), pt.LimitError,
+     "w is 11111111111111111111...: a number string may have at most 1000 characters", "11111111111111111111..."),
+    (lambda: read_exponent(1001, "w"), pt.LimitError, "w is 1001: its magnitude exceeds the limit 1000", "1001"),
+    (lambda: read_exponent(Fraction(1, 10**13), "w"), pt.LimitError,
+     "w is 1/10000000000000: its denominator 10000000000000 exceeds the limit 1000000000000", "1/10000000000000"),
+    (lambda: read_exponent(np.float32(1e-13), "w"), pt.LimitError,
+     f"w is {np.float32(1e-13)}: its denominator 10000000000000 exceeds the limit 1000000000000; a float is read as the decimal it "
+     "prints as, or as the simplest fraction that rounds to it; pass an exact exponent such as Fraction(1, 3) or "
+     "'1/3'", np.float32(1e-13)),
+    (lambda: read_number(None), pt.NumberError, f"the number must be {_FINITE}, got None", None),
+    (lambda: read_number([1], "w"), pt.NumberError, f"w must be {_FINITE}, got [1]", [1]),
+    (lambda: read_number(True, "w"), pt.NumberError, f"w must be {_FINITE}, not a bool, got True", True),
+    (lambda: read_number(np.bool_(True), "w"), pt.NumberError, f"w must be {_FINITE}, not a bool, got np.True_",
+     np.bool_(True)),
+    (lambda: read_number(sympy.pi, "w"), pt.NumberError, "w must be a rational number such as 1, -2 or '1/2', got pi",
+     sympy.pi),
+    (lambda: read_number(sympy.zoo, "w", irrational_ok=True), pt.NumberError, f"w must be {_FINITE}, got zoo",
+     sympy.zoo),
+    (lambda: read_positive(sympy.pi, "s"), pt.NumberError,
+     "s must be a positive finite number such as 2, 0.5 or '1/3', got pi", sympy.pi),
+])
+def test_each_refusal_names_value_what_and_the_valid_kind(read, error, message, culprit):
+    with pytest.raises(error) as caught:
+        read()
+    assert str(caught.value) == message
+    assert caught.value.culprit == culprit
+
+
+def test_a_limit_error_for_an_exact_value_carries_no_hint():
+    with pytest.raises(pt.LimitError) as caught:
+        read_exponent(Fraction(1, 10**13), "w")
+    assert caught.value.hint == ""
+
+
+@pytest.mark.parametrize("zero", [0.0, -0.0, np.float64(0), sympy.Float(0)])
+def test_zero_as_a_float_is_zero(zero):
+    assert read_value(zero, "x") == 0.0
+    assert read_number(zero) == 0
+
+
+def test_decimals_one_and_negative_magnitudes():
+    assert read_number(Decimal("0.25")) == Fraction(1, 4)
+    assert simplest_fraction_rounding_to(1.0) == 1
+    assert short_text(Fraction(-(10**400))) == "about -10^400"
+    assert short_text(Fraction(-1, 10**50)) == "about -10^-50"
