@@ -263,14 +263,17 @@ class UrdfBackend:
     'UrdfBackend'
     """
 
-    def __init__(self, tree: ET.ElementTree, path: str, source_dir: Path, settings: dict, *, scene: dict):
+    def __init__(self, tree: ET.ElementTree, path: str, source_dir: Path, settings: dict, *, scene: dict,
+                 info: dict | None = None):
         self.tree = tree
         self.path = path
         self.source_dir = source_dir
         self.scene = scene  # base position, fixed base, ground plane
         self._attrs = _attributes(tree, path, source_dir)
         self._settings = settings
-        self._info = self._probe()
+        # PyBullet's reading of the links and joints; a twin (the same file, every number one ulp off)
+        # shares its original's instead of loading the file again
+        self._info = self._probe() if info is None else info
         self.nudge_start = False  # a twin starts one ulp off
 
     # -- reading -------------------------------------------------------------------------------
@@ -411,7 +414,7 @@ class UrdfBackend:
 
     # -- scaling --------------------------------------------------------------------------------
 
-    def scaled(self, factors, scaling, s) -> UrdfBackend:
+    def scaled(self, factors, scaling, s, *, info: dict | None = None) -> UrdfBackend:
         tree = copy.deepcopy(self.tree)
         attrs = _attributes(tree, self.path, self.source_dir)
         for a in attrs:
@@ -446,7 +449,7 @@ class UrdfBackend:
         scene = dict(self.scene)
         if any(scene["base_position"]):
             scene["base_position"] = tuple(v * factors.get("base_position", 1.0) for v in scene["base_position"])
-        return UrdfBackend(tree, self.path, self.source_dir, st, scene=scene)
+        return UrdfBackend(tree, self.path, self.source_dir, st, scene=scene, info=info)
 
     #: the one line that removes every refusal of PyBullet's default scene at once
     unscalable_remedy = ("In one go: engines.load(path, damping=0.0, split_impulse=False) (on the command line: "
@@ -575,7 +578,7 @@ class UrdfBackend:
         rng = np.random.default_rng(seed)
         factors = {p.name: 1.0 + float(rng.choice((-1.0, 1.0))) * 2.0**-52 for p in self.parameters()
                    if p.name != "timestep"}
-        out = self.scaled(factors, None, None)
+        out = self.scaled(factors, None, None, info=self._info)
         out.nudge_start = True
         return out
 
