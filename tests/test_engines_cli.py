@@ -344,3 +344,17 @@ def test_apply_without_output_reports_the_changes_and_writes_nothing(tmp_path, c
     out = capsys.readouterr().out
     assert "wrote" not in out
     assert list(tmp_path.iterdir()) == []
+
+
+def test_verify_says_when_a_run_moved_nothing_and_reads_powers_of_four(capsys):
+    from pitheorem.cli import main
+    from pitheorem.engines.cli import _power_of_four
+
+    hanging = str(Path(__file__).parent / "data" / "engines" / "hanging.xml")
+    assert main(["verify", hanging, "--scale", "g=1", "--s", "10", "--input", "zero"]) == 0
+    out = capsys.readouterr().out
+    assert "this verdict proves nothing" in out
+    from fractions import Fraction
+
+    powers = [s for s in ("4", "16", "1/4", "1/64", "2", "8", "10", "3/4", "1") if _power_of_four(Fraction(s))]
+    assert powers == ["4", "16", "1/4", "1/64", "1"]

@@ -64,3 +64,24 @@ def test_quiet_stdout_silences_both_descriptors_and_restores_them(capfd):
     out, err = capfd.readouterr()
     assert out == "before\nafter\n"
     assert err == "after on stderr\n"
+
+
+def test_quiet_stdout_stands_aside_where_descriptors_cannot_be_copied_or_c_cannot_flush(monkeypatch):
+    import ctypes
+    import os
+
+    from pitheorem.engines.packages import quiet_stdout
+
+    def refuse(*args):
+        raise OSError("no descriptors here")
+
+    with monkeypatch.context() as patch:
+        patch.setattr(os, "dup", refuse)
+        with quiet_stdout():  # nothing silenced, nothing raised
+            ran = True
+    assert ran
+    with monkeypatch.context() as patch:
+        patch.setattr(ctypes, "CDLL", refuse)
+        with quiet_stdout():
+            ran_again = True
+    assert ran_again
