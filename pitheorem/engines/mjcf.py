@@ -82,21 +82,36 @@ class Slot:
     """One dimensional attribute of one element: how to read it, and how to scale it by address.
 
     ``where`` is the element's address in a spec (a collection and an index, or ``("option",)``), so a
-    copy of the spec is scaled by looking each element up, with no second walk of the file;
-    ``write_on(element, factor)`` scales the attribute on the element found there.
+    copy of the spec is scaled by looking each element up, with no second walk of the file.  Scaling
+    multiplies the entries ``attrs`` names, ``(attribute, index)`` pairs (which a saved file also
+    rewrites as exact decimals); a slot that is no such product gives its own ``write``.
     """
 
     name: str
     path: str
     read: Callable[[], tuple]
-    write_on: Callable[[object, float], None]
+    attrs: tuple
     where: tuple
     dimension: object
     source: str
     parts: tuple = ()
     note: str = ""
-    #: the element's attributes (and entries) write_on multiplies, for a saved file's exact decimals
-    attrs: tuple = ()
+    #: ``write(element, factor)``, where scaling is not the product of `attrs` (a refusal, or nothing)
+    write: Callable[[object, float], None] | None = None
+
+    def write_on(self, element, factor: float) -> None:
+        """Scale this slot's number on `element`, the element found at its address in some spec."""
+        if self.write is not None:
+            self.write(element, factor)
+            return
+        for attr, index in self.attrs:
+            value = getattr(element, attr)
+            if np.ndim(value) == 0:
+                setattr(element, attr, float(value) * factor)
+                continue
+            value = np.array(value, dtype=float)
+            value[index] = value[index] * factor
+            setattr(element, attr, value)
 
 
 def _array_slot(name, path, elem, attr, index, dimension, source, where, parts=(), note=""):
@@ -104,16 +119,7 @@ def _array_slot(name, path, elem, attr, index, dimension, source, where, parts=(
         value = np.atleast_1d(np.asarray(getattr(elem, attr), dtype=float))
         return tuple(float(v) for v in value[index])
 
-    def write_on(element, factor):
-        value = getattr(element, attr)
-        if np.ndim(value) == 0:
-            setattr(element, attr, float(value) * factor)
-            return
-        value = np.array(value, dtype=float)
-        value[index] = value[index] * factor
-        setattr(element, attr, value)
-
-    return Slot(name, path, read, write_on, where, dimension, source, parts, note, ((attr, index),))
+    return Slot(name, path, read, ((attr, index),), where, dimension, source, parts, note)
 
 
 #: the spec's collections of elements a slot's address names (``spec.<name>[index]``)
@@ -324,13 +330,10 @@ class _Walker:
         def read_g():
             return (float(np.linalg.norm(np.asarray(opt.gravity, dtype=float))),)
 
-        def write_g(option, factor):
-            option.gravity = np.asarray(option.gravity, dtype=float) * factor
-
         self.names.add("g")
-        self.slots.append(Slot("g", "option gravity (magnitude)", read_g, write_g, ("option",), dim("L T^-2"),
-                               self.source("option", opt, "gravity"), note="the direction is dimensionless",
-                               attrs=(("gravity", slice(None)),)))
+        self.slots.append(Slot("g", "option gravity (magnitude)", read_g, (("gravity", slice(None)),), ("option",),
+                               dim("L T^-2"), self.source("option", opt, "gravity"),
+                               note="the direction is dimensionless"))
         self.add("option", opt, "", "option", "wind", dim("L T^-1"))
         self.add("option", opt, "", "option", "density", dim("M L^-3"))
         self.add("option", opt, "", "option", "viscosity", dim("M L^-1 T^-1"))
@@ -382,19 +385,9 @@ class _Walker:
             def read(values=values):
                 return tuple(float(v) for v in values)
 
-            def write(element, factor, spec_attrs=spec_attrs):
-                for a, idx in spec_attrs:
-                    arr = getattr(element, a)
-                    if np.ndim(arr) == 0:
-                        setattr(element, a, float(arr) * factor)
-                    else:
-                        arr = np.array(arr, dtype=float)
-                        arr[idx] *= factor
-                        setattr(element, a, arr)
-
             name = self.unique(f"{ident}_{attr}")
-            self.slots.append(Slot(name, f"{path} {attr}", read, write, self.where("body", body), d, source,
-                                   note="computed by MuJoCo from the geoms" if derived else "", attrs=spec_attrs))
+            self.slots.append(Slot(name, f"{path} {attr}", read, spec_attrs, self.where("body", body), d, source,
+                                   note="computed by MuJoCo from the geoms" if derived else ""))
 
     def friction(self, kind, elem, ident, path, n):
         # sliding is dimensionless; torsional and rolling are torques per normal force: lengths
@@ -465,8 +458,8 @@ class _Walker:
                 raise UnscalableParameterError(name, f"{path} joins a slide and a hinge joint, so its coefficient "
                                                f"has dimension {dimension}, and MuJoCo's MjSpec cannot rewrite it")
 
-        self.slots.append(Slot(name, f"{path} joint #{k} coef", lambda: (float(wrap.coef),), write, ("option",),
-                               dimension, "file"))
+        self.slots.append(Slot(name, f"{path} joint #{k} coef", lambda: (float(wrap.coef),), (), ("option",),
+                               dimension, "file", write=write))
 
     def tendon(self, tendon, index):
         mj = self.mj
@@ -488,7 +481,7 @@ class _Walker:
             tid = tendon.id if tendon.id >= 0 else index
             rest = tuple(float(v) for v in self.model.tendon_lengthspring[tid])
             self.slots.append(Slot(self.unique(f"{ident}_springlength"), f"{path} springlength", lambda: rest,
-                                   lambda _element, _factor: None, ("option",), q, "derived",
+                                   (), ("option",), q, "derived", write=lambda _element, _factor: None,
                                    note="springlength -1: computed by MuJoCo from the pose, scaled with it"))
         else:
             self.add("tendon", tendon, ident, path, "springlength", q)
@@ -822,11 +815,9 @@ class MjcfBackend:
         Zeros stay zero (a scaled copy keeps them exactly); the time step stays, for it is the grid
         the runs are compared on.  The model is copied, not compiled again.
         """
-        import copy
-
         rng = np.random.default_rng(seed)
-        twin = copy.copy(self)
-        twin.mjmodel = m = copy.copy(self.mjmodel)
+        twin = self._with_model_copy()
+        m = twin.mjmodel
         for field in self._fields():
             if field == "opt.timestep":
                 continue
@@ -840,6 +831,14 @@ class MjcfBackend:
                 getattr(holder, attr)[...] = moved
         return twin
 
+    def _with_model_copy(self) -> MjcfBackend:
+        """This backend over a copy of its compiled model (copied, not compiled again), to change and run."""
+        import copy
+
+        out = copy.copy(self)
+        out.mjmodel = copy.copy(self.mjmodel)
+        return out
+
     def _fields(self) -> list[str]:
         """The stored floating-point fields of this backend's model, found once (a copy has the same)."""
         if getattr(self, "_field_names", None) is None:
@@ -849,11 +848,9 @@ class MjcfBackend:
     def variant(self, *, tolerance: float | None = None, contacts: bool = True,
                 solver: str | None = None) -> MjcfBackend:
         """A copy run with another solver or tolerance, or with contacts switched off: a counter-run's model."""
-        import copy
-
         mj = _mujoco()
-        out = copy.copy(self)
-        out.mjmodel = m = copy.copy(self.mjmodel)
+        out = self._with_model_copy()
+        m = out.mjmodel
         if solver is not None:
             m.opt.solver = int(getattr(mj.mjtSolver, f"mjSOL_{solver.upper()}"))
         if tolerance is not None:
