@@ -1157,24 +1157,28 @@ def load_mjcf(path) -> EngineModel:
     """
     mj = _mujoco()
     path = Path(path)
-    check_model_file(path)  # MuJoCo drops damping="nan" and keeps "inf"; a non-UTF-8 byte breaks its names
+    root = check_model_file(path)  # MuJoCo drops damping="nan" and keeps "inf"; a non-UTF-8 byte breaks its names
     try:
         spec = mj.MjSpec.from_file(str(path))
     except ValueError as err:
         raise _rejected(str(path), err) from None
-    backend = MjcfBackend(spec, str(path), path.resolve().parent, asset_dirs=_attached_asset_dirs(mj, path))
+    backend = MjcfBackend(spec, str(path), path.resolve().parent, asset_dirs=_attached_asset_dirs(mj, path, root))
     return EngineModel(backend, "mujoco", str(path))
 
 
-def _attached_asset_dirs(mj, path: Path) -> dict:
+def _attached_asset_dirs(mj, path: Path, root=None) -> dict:
     """For the models a file brings in with ``<model>`` and places with ``<attach prefix=...>``: the folder
-    each of their mesh, hfield and texture files is relative to, by (kind, name as composed)."""
+    each of their mesh, hfield and texture files is relative to, by (kind, name as composed).
+
+    `root` is the file's parsed root element where the caller has it; an attached file is parsed here.
+    """
     import xml.etree.ElementTree as ET
 
-    try:
-        root = ET.parse(path).getroot()
-    except (ET.ParseError, OSError):
-        return {}
+    if root is None:
+        try:
+            root = ET.parse(path).getroot()
+        except (ET.ParseError, OSError):
+            return {}
     files = {m.get("name"): m.get("file") for m in root.iter("model") if m.get("name") and m.get("file")}
     out = {}
     for attach in root.iter("attach"):

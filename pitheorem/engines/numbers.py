@@ -46,16 +46,22 @@ def _element(element: ET.Element, parents: dict) -> str:
     return f"{label(element)} in {label(ancestor)}"
 
 
-def check_model_file(path) -> None:
+def check_model_file(path) -> ET.Element | None:
     """Refuse a model file that is not UTF-8 text, or whose attributes hold NaN or an infinity.
 
     A file that cannot be read, or is not well-formed XML, passes: the
-    engine's own reader names its fault.
+    engine's own reader names its fault.  The parsed root element is
+    returned (None for such a file), so a loader reads the file once.
 
     Parameters
     ----------
     path : str or Path
         The MJCF or URDF file.
+
+    Returns
+    -------
+    xml.etree.ElementTree.Element or None
+        The file's root element; None where it cannot be read or parsed.
 
     Raises
     ------
@@ -78,7 +84,7 @@ def check_model_file(path) -> None:
     try:
         raw = Path(path).read_bytes()
     except OSError:
-        return
+        return None
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as err:
@@ -88,7 +94,7 @@ def check_model_file(path) -> None:
     try:
         root = ET.fromstring(text)
     except ET.ParseError:
-        return  # the engine's reader names the fault, with its own words
+        return None  # the engine's reader names the fault, with its own words
     parents = {child: parent for parent in root.iter() for child in parent}
     for element in root.iter():
         for attr, value in element.attrib.items():
@@ -102,6 +108,7 @@ def check_model_file(path) -> None:
                 if not math.isfinite(number):
                     raise EngineModelError(str(path), _element(element, parents), f"{attr}={value!r} is not a finite number; "
                                            "a model holds finite numbers only")
+    return root
 
 
 def check_numbers(path, element: str, attr: str, text: str | None, *, nonnegative: bool = False) -> None:

@@ -824,11 +824,14 @@ def scene_option(name: str, value):
 def _scene_backend(path: Path, scene: dict) -> UrdfBackend:
     """The backend of a URDF in a scene: each of :data:`SCENE_OPTIONS` given (``damping`` may be None)."""
     scene = {name: None if value is None else scene_option(name, value) for name, value in scene.items()}
-    check_model_file(path)
-    try:
-        tree = ET.parse(path)
-    except ET.ParseError as err:
-        raise EngineModelError(str(path), f"line {err.position[0]}", f"not well-formed XML ({err})") from None
+    root = check_model_file(path)  # the file parsed once, its numbers checked
+    if root is not None:
+        tree = ET.ElementTree(root)
+    else:  # not well-formed: parse it again for the line of the fault
+        try:
+            tree = ET.parse(path)
+        except ET.ParseError as err:
+            raise EngineModelError(str(path), f"line {err.position[0]}", f"not well-formed XML ({err})") from None
     settings = {
         "g": scene["g"],
         "timestep": _BULLET["bullet_time_step"].default,
