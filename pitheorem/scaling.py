@@ -24,7 +24,7 @@ from .immutable import immutable
 from .linalg import solve
 from .system import System
 
-__all__ = ["Scaling", "float_power"]
+__all__ = ["Scaling", "float_power", "is_power_of_two"]
 
 
 def _rational_as_fraction(x):
@@ -67,6 +67,19 @@ def _finite(x: float) -> float:
     if math.isinf(x):
         raise OverflowError
     return x
+
+
+def is_power_of_two(factor) -> bool:
+    """Whether a float factor is a power of two, so that multiplying by it is exact in binary.
+
+    Examples
+    --------
+    >>> from pitheorem.scaling import is_power_of_two
+    >>> [is_power_of_two(f) for f in (4.0, 0.25, 1.0, 10.0, 0.1, -2.0)]
+    [True, True, True, False, False, False]
+    """
+    factor = float(factor)
+    return factor > 0 and math.frexp(factor)[0] == 0.5
 
 
 def float_power(s, exponent, what: str) -> float:

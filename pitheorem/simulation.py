@@ -980,15 +980,10 @@ def similarity_report(original: Trajectory, mapped: Trajectory, *, s: float, sca
         nudged = twins[0]
         base = np.max([np.abs(twin.y - original.y) for twin in twins], axis=0)
         sensitivity = {n: _max_abs(base[:, j]) for j, n in enumerate(states)}
-        span = np.ptp(original.y, axis=0) if len(original) else np.zeros(len(states))
+        limits = allowed_deviation(original, sensitivity, baseline_factor)
         moved = np.max(np.abs(original.y - original.y[:1]), axis=0) if len(original) else np.zeros(len(states))
-        passed, excited = True, False
-        for j, n in enumerate(states):
-            limit = max(baseline_factor * sensitivity[n], 1e-9 * float(span[j]))
-            if not per_state[n] <= limit:
-                passed = False
-            if moved[j] > limit:
-                excited = True
+        passed = all(per_state[n] <= limits[j] for j, n in enumerate(states))
+        excited = bool(np.any(moved > limits))
         tol = math.nan if tol is None else tol
     else:
         if tol is None:
@@ -1016,6 +1011,24 @@ def similarity_report(original: Trajectory, mapped: Trajectory, *, s: float, sca
         causes=tuple(causes),
         ensemble=len(twins),
     )
+
+
+def allowed_deviation(original: Trajectory, sensitivity, baseline_factor: float) -> np.ndarray:
+    """Each state's largest allowed deviation: `baseline_factor` times its sensitivity, or 1e-9 of its range.
+
+    The floor is for a state the baseline runs do not move at all.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.simulation import allowed_deviation
+    >>> run = pt.Trajectory([0.0, 1.0], [[0.0, 5.0], [2.0, 5.0]], ("x", "v"))
+    >>> [float(v) for v in allowed_deviation(run, {"x": 1e-15, "v": 0.0}, 10.0)]
+    [2e-09, 0.0]
+    """
+    span = np.ptp(original.y, axis=0) if len(original) else np.zeros(len(original.states))
+    return np.array([max(baseline_factor * sensitivity[n], 1e-9 * float(span[j]))
+                     for j, n in enumerate(original.states)])
 
 
 def first_divergence(original: Trajectory, mapped: Trajectory) -> tuple[float, str] | None:

@@ -30,7 +30,7 @@ from ..errors import InvalidRequestError, PiTheoremError
 from ..exact import read_scale_factor
 from ..formatting import TextDisplay
 from ..immutable import immutable
-from ..scaling import float_power
+from ..scaling import float_power, is_power_of_two
 from .causes import Cause, sorted_causes
 from .model import EngineModel, check_scaling
 
@@ -175,8 +175,7 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
             off = ok & (got != expected)
             if off.any():
                 # at s a power of two nothing is rounded by the scaling: what differs was processed
-                exact = math.frexp(float(s))[0] == 0.5
-                causes.append(_reprocessed(backend, field, got, expected, off) if exact
+                causes.append(_reprocessed(backend, field, got, expected, off) if is_power_of_two(s)
                               else _rounded(backend, field, before, got, expected, off))
             continue
         # rounding: relative to the number, or to the largest number of its dimension (a residue of 1e-16

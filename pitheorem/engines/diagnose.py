@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..simulation import allowed_deviation
 from .audit import audit
 from .causes import Cause, sorted_causes
 
@@ -63,7 +64,7 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
     """
     original, copy = model.backend, scaled.backend
     causes = [c for c in audit(model, scaling, s, scaled=scaled).causes if c.kind != "solver"]
-    limits = _limits(report)
+    limits = allowed_deviation(report.original, report.sensitivity, report.baseline_factor)
 
     def counter(variant_options) -> tuple[bool, float]:
         """Both runs again with other options: (agree, largest deviation)."""
@@ -106,14 +107,6 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
         causes.append(Cause("contact", pairs, f"{detail}; with contacts off in both runs they {verdict} (largest "
                             f"deviation {worst:.3g} instead of {report.max_deviation:.3g})"))
     return sorted_causes(causes)
-
-
-def _limits(report) -> np.ndarray:
-    """Each coordinate's allowed deviation, as the report judged it."""
-    states = report.original.states
-    span = np.ptp(report.original.y, axis=0)
-    return np.array([max(report.baseline_factor * report.sensitivity[n], 1e-9 * float(span[j]))
-                     for j, n in enumerate(states)])
 
 
 def _largest(diff: np.ndarray) -> float:

@@ -49,7 +49,7 @@ import numpy as np
 
 from ..errors import InvalidRequestError
 from ..exact import read_scale_factor
-from ..scaling import float_power
+from ..scaling import float_power, is_power_of_two
 from ..simulation import SimilarityReport, Trajectory, positive_float, similarity_report
 from .model import EngineModel, check_scaling, dim
 
@@ -212,7 +212,7 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         exponents={n: exponent_of[d] for n, d in zip(names, dims, strict=True)},
         twins=[trajectory(rows) for rows in twin_runs], baseline_factor=baseline_factor, method=model.engine,
     )
-    exact_expected = all(_power_of_two(f) for f in factors) and _power_of_two(f_time)
+    exact_expected = all(is_power_of_two(f) for f in factors) and is_power_of_two(f_time)
     if not diagnose or controller is not None or (report.similar and (report.exact or not exact_expected)):
         return report
     from .diagnose import find_causes
@@ -273,10 +273,6 @@ def _count(value, what: str, least: int = 1) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
         raise InvalidRequestError(f"{what} must be a whole number of at least {least}, got {value!r}")
     return int(value)
-
-
-def _power_of_two(f: float) -> bool:
-    return f > 0 and math.frexp(f)[0] == 0.5
 
 
 def _factor_cache(scaling, s):
