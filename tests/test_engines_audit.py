@@ -128,3 +128,16 @@ def test_a_probe_the_engine_refuses_is_named_not_raised(tmp_path):
     assert len(refused) == 1
     assert refused[0].kind == "threshold"
     assert "mjMINVAL" in refused[0].detail
+
+
+def test_the_solver_cause_names_the_engines_own_setting_and_its_remedy():
+    pybullet_data = pytest.importorskip("pybullet_data")
+    cube = engines.load(Path(pybullet_data.getDataPath()) / "cube.urdf", ground=True, base_position=(0, 0, 1),
+                        damping=0.0, split_impulse=False)
+    sc = pt.search(cube.system(), scale={"g": 1}).scalings[0]
+    solver = [c for c in engines.audit(cube, sc, 10).causes if c.kind == "solver"]
+    assert [c.element for c in solver] == ["option solverResidualThreshold"]
+    assert "with_values(solverResidualThreshold=0)" in solver[0].detail
+    cube.with_values(solverResidualThreshold=0)  # the remedy it names is a call that works
+    model, sc = searched(engines.example_path("pendulum.xml"))
+    assert "with_values(tolerance=0)" in engines.audit(model, sc, 10).causes[0].detail

@@ -196,9 +196,11 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
     else:
         causes.extend(_mismatch(backend, field, got, expected, off) for field, _, off, got, expected in derived)
     for name, value in getattr(backend, "solver_settings", dict)().items():
-        causes.append(Cause("solver", f"option {name}", f"{value:g}: a stopping rule of no pure dimension (MuJoCo "
-                            "compares it with a cost normalised by the mean inertia), so the scaled run may stop "
-                            "after another number of iterations; with_values(tolerance=0) runs every iteration"))
+        causes.append(Cause("solver", f"option {name}", f"{value:g}: a stopping rule of no pure dimension (it "
+                            "compares numbers of different dimensions: MuJoCo's cost is normalised by a mean of "
+                            "masses and moments of inertia, Bullet's residual adds rows in m/s and rad/s), so the "
+                            f"scaled run may stop after another number of iterations; with_values({name}=0) runs "
+                            "every iteration"))
     causes.extend(getattr(scaled.backend, "ignored_settings", tuple)())
     # the engine's floors and clamps (mjMINVAL, mjMINMU, ...) that a number of either model is beyond:
     # the engine runs with the threshold, not with the number, so the copy is not the original scaled
