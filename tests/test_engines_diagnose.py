@@ -250,3 +250,22 @@ def test_wrong_copies_of_pybullet_data_models_are_caught(name):
     if mass is not None:  # a ball or a cube falls the same whatever its mass
         wrong = right.multiplied(**{mass.name: 1 / mass.factor(sc, 10)})
         assert not engines.verify(model, sc, 10, duration=1.0, controls=u, scaled=wrong, diagnose=False).similar
+
+
+def test_an_equality_constraint_that_is_not_scale_free_is_named_by_its_counter_run():
+    hand = robot("mjcf/hand.xml")
+    sc = pt.search(hand.system(), scale={"g": 1}).scalings[0]
+    rep = engines.verify(hand, sc, 4, duration=1.0, controls=engines.smooth_controls(hand, amplitude=0.2))
+    assert not rep.exact
+    named = [c for c in rep.causes if c.element == "equality 'badge_weld'"]
+    assert len(named) == 1
+    assert named[0].kind == "solver"
+    assert "agree (largest deviation 0 instead of" in named[0].detail
+    # independent of verify: the weld inactive in both MuJoCo models, and the runs are the same bits
+    copy = hand.scaled(sc, 4)
+    weld = hand.backend.equality_names().index("equality 'badge_weld'")
+    _, dims = hand.backend.coordinate_dimensions()
+    exponents = np.array([sc.exponent_of(d) for d in dims], dtype=float)
+    a, b = hand.backend.variant(inactive_equalities=(weld,)), copy.backend.variant(inactive_equalities=(weld,))
+    first, second = a.run(200), b.run(200)
+    assert np.array_equal(first, second / 4.0 ** exponents)

@@ -11,6 +11,9 @@ Each cause is established, not presumed:
   solver's tolerance at 0 (every iteration done); it is a cause when
   the pair then agrees (bit for bit at a power of four, or within the
   yardstick) where it did not;
+* ``solver`` too: an equality constraint the solver does not treat
+  scale-free (a weld with an offset), found by running both with the
+  equality constraints inactive, then each one alone inactive;
 * ``contact``: the geom pairs in contact after each step, in the original
   and in the scaled run; the first step where they differ is named, and a
   counter-run with contacts switched off says whether the difference goes
@@ -99,6 +102,15 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
                                 f"not scale-free; with Newton's in both runs they agree (largest "
                                 f"deviation {worst:.3g} instead of {report.max_deviation:.3g}): load the file with "
                                 '<option solver="Newton"/> to scale it'))
+    equalities = original.equality_names()
+    if equalities:
+        agree, worst = counter({"inactive_equalities": tuple(range(len(equalities)))})
+        if agree:  # which of them: each one off alone
+            alone = [name for i, name in enumerate(equalities) if counter({"inactive_equalities": (i,)})[0]]
+            named = ", ".join(alone) or "the equality constraints together"
+            causes.append(Cause("solver", named, "an equality constraint the solver does not treat scale-free (a weld "
+                                "with an offset is one): with it inactive in both runs they agree (largest deviation "
+                                f"{worst:.3g} instead of {report.max_deviation:.3g})"))
     contact = _contact_difference(original, copy, n_steps, u_original, u_scaled, report.original.t)
     agree, worst = counter({"contacts": False})
     if contact is not None or agree:

@@ -845,12 +845,15 @@ class MjcfBackend:
             self._field_names = _stored_fields(self.mjmodel)
         return self._field_names
 
-    def variant(self, *, tolerance: float | None = None, contacts: bool = True,
-                solver: str | None = None) -> MjcfBackend:
-        """A copy run with another solver or tolerance, or with contacts switched off: a counter-run's model."""
+    def variant(self, *, tolerance: float | None = None, contacts: bool = True, solver: str | None = None,
+                inactive_equalities: tuple[int, ...] = ()) -> MjcfBackend:
+        """A copy run with another solver or tolerance, with contacts switched off, or with some equality
+        constraints inactive: a counter-run's model."""
         mj = _mujoco()
         out = self._with_model_copy()
         m = out.mjmodel
+        for i in inactive_equalities:
+            m.eq_active0[i] = 0
         if solver is not None:
             m.opt.solver = int(getattr(mj.mjtSolver, f"mjSOL_{solver.upper()}"))
         if tolerance is not None:
@@ -873,6 +876,10 @@ class MjcfBackend:
         opt = self.mjmodel.opt
         return {name: float(getattr(opt, name)) for name in ("tolerance", "noslip_tolerance")
                 if getattr(opt, name) != 0 and (name == "tolerance" or opt.noslip_iterations > 0)}
+
+    def equality_names(self) -> list[str]:
+        """Each equality constraint, named as the reports name it."""
+        return [self.element_name("eq_data", i) for i in range(self.mjmodel.neq)]
 
     def solver_name(self) -> str:
         """The constraint solver: ``"PGS"``, ``"CG"`` or ``"Newton"``."""
