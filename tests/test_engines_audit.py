@@ -151,3 +151,15 @@ def test_a_vertex_that_is_the_rounding_residue_of_zero_is_held_to_nothing():
     tiny = (vertices != 0) & (abs(vertices) < 1e-6)
     assert tiny.any()  # the case: nonzero residues of the compiler's centring, independent of the audit
     assert engines.audit(model, sc, 4).causes == ()
+
+
+def test_a_threshold_that_moves_with_the_time_step_is_no_cause(tmp_path):
+    """A solref time constant below two time steps is clamped in the model and its copy alike."""
+    stiff = tmp_path / "stiff.xml"
+    stiff.write_text('<mujoco><option timestep="0.004"/><worldbody><geom type="plane" size="1 1 0.1"/>'
+                     '<body pos="0 0 0.1"><freejoint/><geom type="sphere" size="0.05" solref="0.005 1"/></body>'
+                     '</worldbody></mujoco>')
+    model = engines.load(stiff)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    assert any("refsafe" in c.detail for c in engines.check(model))  # the clamp is there, check names it
+    assert not any("refsafe" in c.detail for c in engines.audit(model, sc, 10).causes)

@@ -204,11 +204,12 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
                             "every iteration"))
     causes.extend(getattr(scaled.backend, "ignored_settings", tuple)())
     # the engine's floors and clamps (mjMINVAL, mjMINMU, ...) that a number of either model is beyond:
-    # the engine runs with the threshold, not with the number, so the copy is not the original scaled
+    # the engine runs with the fixed threshold, not with the number, so the copy is not the original scaled
+    # (a threshold that is a multiple of the time step moves with it, and clamps both alike)
     from .thresholds import crossed
 
     for which in (scaled, model):
-        causes.extend(crossed(model.engine, which.parameters, near=1.0))
+        causes.extend(crossed(model.engine, which.parameters, near=1.0, fixed_only=True))
     return Audit(sorted_causes(causes), compared, float(s))
 
 

@@ -227,7 +227,7 @@ def _read_factors(factors, names) -> dict[str, float]:
 
 
 def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None, *,
-            near: float = 2.0) -> tuple[Cause, ...]:
+            near: float = 2.0, fixed_only: bool = False) -> tuple[Cause, ...]:
     """The parameters beyond or near a threshold of the engine, as causes of kind ``"threshold"``.
 
     Each parameter of a kind a threshold applies to (:data:`KINDS`) is
@@ -252,6 +252,11 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
         MuJoCo's own defaults sit a factor 5 and 10 from their floors,
         the solref time constant 0.02 from two steps of 0.002 and rolling
         friction 1e-4 from ``mjMINMU``).
+    fixed_only : bool
+        Only the thresholds that are fixed constants.  A threshold that is
+        a multiple of another of the model's numbers of the same dimension
+        (two time steps) moves with it under every change of units, so it
+        clamps a model and its scaled copy alike and breaks no similarity.
 
     Returns
     -------
@@ -291,6 +296,8 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
             continue
         for t in thresholds(engine):
             if t.bound not in ("below", "above") or not any(KINDS[k][1](p) for k in t.applies):
+                continue
+            if fixed_only and t.relative_to:
                 continue
             limit = t.limit(scalars)
             if limit is None:
