@@ -155,3 +155,18 @@ def test_runs_in_one_batch_equal_the_runs_one_by_one():
         batch = b.run_many(n, jobs)
         assert all(np.array_equal(a, c) for a, c in zip(one_by_one, batch, strict=True))
     assert np.abs(one_by_one[0] - one_by_one[2] / 10).max() > 0  # different models: not a vacuous equality
+
+
+def test_smooth_controls_and_controls_refuse_what_they_cannot_use():
+    model = engines.load(engines.example_path("pendulum.xml"))
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    with pytest.raises(pt.InvalidRequestError, match="smooth_controls needs an EngineModel, got int"):
+        engines.smooth_controls(3)
+    with pytest.raises(pt.PiTheoremError, match="amplitude"):
+        engines.smooth_controls(model, amplitude=-1)
+    with pytest.raises(pt.PiTheoremError, match="period"):
+        engines.smooth_controls(model, period=0)
+    with pytest.raises(pt.InvalidRequestError, match="controls must be a callable t -> inputs, got list"):
+        engines.verify(model, sc, 2, duration=0.1, controls=[0.1])
+    u = engines.smooth_controls(model, amplitude=0.5, period=2.0)
+    assert float(u(0.5)[0]) == pytest.approx(0.5 * np.sin(np.pi / 2))  # the sine at a quarter period
