@@ -541,16 +541,24 @@ class EngineUnavailableError(PiTheoremError, ImportError):
         The engine asked for (the culprit), e.g. ``"pybullet"``.
     package : str
         The Python package it needs, e.g. ``"pybullet"``.
+    extra : str
+        The extra of ``pip install "pitheorem[extra]"`` that installs it.
+    installed : tuple of str
+        The engines installed here, named in the message when given.
 
     Examples
     --------
     >>> from pitheorem.errors import EngineUnavailableError
     >>> print(EngineUnavailableError("pybullet", "pybullet"))
     engine 'pybullet' needs the Python package 'pybullet': pip install "pitheorem[engines]"
+    >>> print(EngineUnavailableError("mjx", "jax", "mjx", ("mujoco",)))
+    engine 'mjx' needs the Python package 'jax': pip install "pitheorem[mjx]"; installed here: 'mujoco'
     """
 
-    def __init__(self, engine: str, package: str):
-        self._keep(engine, package, culprit=engine)
+    def __init__(self, engine: str, package: str, extra: str = "engines", installed: tuple = ()):
+        self._keep(engine, package, extra, tuple(installed), culprit=engine)
 
     def __str__(self) -> str:
-        return f'engine {self.engine!r} needs the Python package {self.package!r}: pip install "pitheorem[engines]"'
+        here = f"; installed here: {', '.join(map(repr, self.installed))}" if self.installed else ""
+        return (f'engine {self.engine!r} needs the Python package {self.package!r}: '
+                f'pip install "pitheorem[{self.extra}]"{here}')

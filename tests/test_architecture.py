@@ -105,15 +105,110 @@ def test_the_page_lists_every_module_in_its_layer():
     assert engine_modules == rows[6]
 
 
-def test_only_engines_packages_imports_an_engine():
-    # engines.packages.engine_module imports mujoco or pybullet by name and names a missing
-    # package; no module writes an import statement of an engine, save one submodule
-    allowed = {"engines.mjcf": "mujoco.rollout, imported only where engine_module has loaded mujoco"}
-    importers = set()
-    for path in sorted(PACKAGE.rglob("*.py")):
-        for node in ast.walk(ast.parse(path.read_text())):
-            names = ([a.name for a in node.names] if isinstance(node, ast.Import)
-                     else [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
-            if any(name.split(".")[0] in ("mujoco", "pybullet", "pybullet_data") for name in names):
-                importers.add(_module(path))
-    assert importers == set(allowed)
+#: the Python packages of the engines: only a backend module (and engines.packages, which imports them by
+#: name for the backends) may import one or ask engine_module for one
+ENGINE_PACKAGES = ("mujoco", "pybullet", "pybullet_data", "jax", "jaxlib")
+
+#: modules that run an engine without being a registered backend, each with its reason
+RUNNERS = {
+    "engines.rod": "the white paper's hinged rod, built in code in each engine (issue 21: to become shipped files)",
+    "engines.superball": "SUPERball's hand-built runner beside its shipped MJCF file (issue 21: to go)",
+}
+
+
+def _graph() -> dict[str, set[str]]:
+    """Each module's imports of package modules; the loader imports each registered backend by name."""
+    from pitheorem.engines.registry import REGISTRY
+
+    graph = {_module(p): _imports(p) - {_module(p)} for p in sorted(PACKAGE.rglob("*.py"))}
+    graph["engines.loading"] |= {f"engines.{e.module}" for e in REGISTRY}
+    return graph
+
+
+def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected components of more than one module (Tarjan), each sorted."""
+    index, low, stack, on, found = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on.add(v)
+        for w in graph.get(v, ()):
+            if w not in graph:
+                continue
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                found.append(sorted(component))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def test_no_import_circle_anywhere():
+    assert _cycles(_graph()) == []
+    # the check finds one: the circle that load's if-chain in engines.model once closed with the backends
+    graph = _graph()
+    graph["engines.model"] = graph["engines.model"] | {"engines.mjcf"}
+    assert ["engines.mjcf", "engines.model"] in [[m for m in c if m in ("engines.mjcf", "engines.model")]
+                                                  for c in _cycles(graph)]
+
+
+def test_no_backend_imports_another_engines_backend():
+    # a backend may build on the one engine its registry line names as its base (MJX on MuJoCo's reading)
+    from pitheorem.engines.registry import REGISTRY
+
+    module_of = {e.name: f"engines.{e.module}" for e in REGISTRY}
+    graph = _graph()
+    for e in REGISTRY:
+        others = set(module_of.values()) - {module_of[e.name], module_of.get(e.base)}
+        assert not graph[module_of[e.name]] & others, e.name
+    assert graph["engines.mjx"] & set(module_of.values()) == {"engines.mjcf"}
+
+
+def _engine_users(path: Path) -> bool:
+    """Whether a module imports an engine's package or asks engine_module for one."""
+    for node in ast.walk(ast.parse(path.read_text())):
+        names = ([a.name for a in node.names] if isinstance(node, ast.Import)
+                 else [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level else [])
+        if any(name.split(".")[0] in ENGINE_PACKAGES for name in names):
+            return True
+        if isinstance(node, ast.Call) and getattr(node.func, "id", "") == "engine_module":
+            return True
+    return False
+
+
+def test_only_backends_import_an_engine():
+    from pitheorem.engines.registry import REGISTRY
+
+    backends = {f"engines.{e.module}" for e in REGISTRY}
+    users = {_module(p) for p in sorted(PACKAGE.rglob("*.py")) if _engine_users(p)}
+    assert users <= backends | {"engines.packages"} | set(RUNNERS), users - backends
+    assert backends <= users  # each backend runs its engine
+    # the model, the registry, the loader, verify, audit and diagnose run engines only through backends
+    for module in ("engines.model", "engines.registry", "engines.loading", "engines.verify", "engines.audit",
+                   "engines.diagnose", "engines.backend"):
+        assert module not in users
+
+
+def test_the_engine_check_sees_a_statement_and_a_call(tmp_path):
+    sample = tmp_path / "sample.py"
+    sample.write_text("import jax.numpy as jnp\n")
+    assert _engine_users(sample)
+    sample.write_text("def f():\n    return engine_module('mujoco')\n")
+    assert _engine_users(sample)
+    sample.write_text("from .packages import quiet_stdout\n")
+    assert not _engine_users(sample)

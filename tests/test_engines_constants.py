@@ -34,7 +34,7 @@ def test_catalogue_entries_are_complete():
         assert c.engine in ENGINES
         assert c.name.isidentifier()
         # PyBullet's constants are the Bullet library's, and keep its name: bullet_time_step
-        assert c.name.startswith({"pybullet": "bullet_", "mujoco": "mujoco_"}[c.engine])
+        assert c.name.startswith({"pybullet": "bullet_", "mujoco": "mujoco_", "mjx": "mjx_"}[c.engine])
         assert isinstance(c.dimension, pt.Dimension)
         assert c.source
         assert c.where
@@ -71,11 +71,13 @@ def test_catalogue_values(name, dimension, default):
 
 def test_catalogue_is_read_whole_and_exactly_from_its_data_file():
     # the values a float literal cannot show at a glance, compared exactly (not approx)
-    assert ENGINES == ("pybullet", "mujoco")
+    assert ENGINES == ("pybullet", "mujoco", "mjx")
     # the file's order: engine by engine
     assert [c.engine for c in CATALOGUE] == [e for e in ENGINES for c in CATALOGUE if c.engine == e]
     assert len(hidden_constants("pybullet")) == 23
     assert len(hidden_constants("mujoco")) == 18
+    assert len(hidden_constants("mjx")) == 5
+    assert hidden_constants(names=["mjx_segment_regularizer"])[0].dimension == pt.Dimension.parse("L^2")
     assert hidden_constants(names=["bullet_time_step"])[0].default == 1 / 240
     assert hidden_constants(names=["mujoco_angle_unit"])[0].default == math.pi / 180
     assert math.isnan(hidden_constants(names=["bullet_default_motor_impulse"])[0].default)

@@ -20,13 +20,13 @@ from tests.conftest import REPO
 
 def test_each_engine_names_its_package_in_one_place(monkeypatch):
     # the catalogue's engines are the engines with a package, and every reader of an engine name agrees
-    assert tuple(PACKAGES) == ENGINES == ("pybullet", "mujoco")
+    assert tuple(PACKAGES) == ENGINES == ("pybullet", "mujoco", "mjx")
     assert PACKAGES["pybullet"] == "pybullet"
     for call in (lambda: check_engine("ode"), lambda: engine_module("ode"), lambda: hidden_constants("ode"),
                  lambda: simulate_rod("ode")):
         with pytest.raises(pt.InvalidRequestError) as caught:
             call()
-        assert str(caught.value) == "unknown engine 'ode'; use 'pybullet' or 'mujoco'"
+        assert str(caught.value) == "unknown engine 'ode'; use 'pybullet', 'mujoco' or 'mjx'"
         assert caught.value.culprit == "ode"
     with pytest.raises(pt.InvalidRequestError, match="unknown engine 3"):
         check_engine(3)

@@ -47,6 +47,7 @@ from .constants import (
     hidden_constants,
     with_hidden_constants,
 )
+from .loading import load
 from .model import (
     EngineModel,
     EngineModelError,
@@ -54,8 +55,8 @@ from .model import (
     UnscalableModelWarning,
     UnscalableParameterError,
     example_path,
-    load,
 )
+from .registry import backends
 from .rod import EngineSimilarityReport, simulate_rod, verify_engine_similarity
 from .rules import (
     BULLET_SCALE_THE_WORLD,
@@ -89,6 +90,7 @@ __all__ = [
     "UnscalableModelWarning",
     "UnscalableParameterError",
     "audit",
+    "backends",
     "broken_constants",
     "check",
     "check_rule",

@@ -31,6 +31,7 @@ from ..exact import read_scale_factor
 from ..formatting import TextDisplay
 from ..immutable import immutable
 from ..scaling import float_power, is_power_of_two
+from .backend import CounterRuns, IgnoredSettings, NamesElements
 from .causes import Cause, sorted_causes
 from .model import EngineModel, check_scaling
 
@@ -196,13 +197,14 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
                             f"from the rounded float32 numbers, off by up to {worst:.2g} relative"))
     else:
         causes.extend(_mismatch(backend, field, got, expected, off) for field, _, off, got, expected in derived)
-    for name, value in getattr(backend, "solver_settings", dict)().items():
+    for name, value in (backend.solver_settings() if isinstance(backend, CounterRuns) else {}).items():
         causes.append(Cause("solver", f"option {name}", f"{value:g}: a stopping rule of no pure dimension (it "
                             "compares numbers of different dimensions: MuJoCo's cost is normalised by a mean of "
                             "masses and moments of inertia, Bullet's residual adds rows in m/s and rad/s), so the "
                             f"scaled run may stop after another number of iterations; with_values({name}=0) runs "
                             "every iteration"))
-    causes.extend(getattr(scaled.backend, "ignored_settings", tuple)())
+    if isinstance(scaled.backend, IgnoredSettings):
+        causes.extend(scaled.backend.ignored_settings())
     # the engine's floors and clamps (mjMINVAL, mjMINMU, ...) that a number of either model is beyond:
     # the engine runs with the fixed threshold, not with the number, so the copy is not the original scaled
     # (a threshold that is a multiple of the time step moves with it, and clamps both alike)
@@ -248,7 +250,7 @@ def _factors(s, k: np.ndarray, clean: np.ndarray) -> np.ndarray:
 def _where(backend, field: str, mask: np.ndarray) -> str:
     """Up to :data:`SHOWN` entries of a field, by element name where the engine names them."""
     rows = np.unique(np.nonzero(mask.reshape(mask.shape[0], -1))[0]) if mask.ndim else np.array([0])
-    name_of = getattr(backend, "element_name", None)
+    name_of = backend.element_name if isinstance(backend, NamesElements) else None
     names = list(dict.fromkeys(name_of(field, int(r)) if name_of else f"{field}[{int(r)}]" for r in rows))
     more = f" and {len(names) - SHOWN} more" if len(names) > SHOWN else ""
     names = names[:SHOWN]

@@ -16,7 +16,8 @@ from pathlib import Path
 from ..answers import EngineApplyAnswer, ParamsAnswer
 from ..errors import InvalidRequestError
 from ..modelfile import ModelFile
-from .model import EngineModel, UnscalableParameterError, load
+from .loading import load
+from .model import EngineModel, UnscalableParameterError
 from .urdf import SCENE_OPTIONS, scene_option
 
 __all__ = ["apply_engine", "engine_model_file", "params_answer", "parse_scene", "scene_help", "verify_engine"]

@@ -114,7 +114,7 @@ def hidden_constants(engine: str | None = None, *, names: Iterable[str] | None =
 
     Parameters
     ----------
-    engine : {"pybullet", "mujoco"}, optional
+    engine : {"pybullet", "mujoco", "mjx"}, optional
         Default: every engine.
     names : iterable of str, optional
         Only these entries, in the order given.
@@ -161,7 +161,7 @@ def with_hidden_constants(system: System, engine: str, *, names: Iterable[str] |
     Parameters
     ----------
     system : System
-    engine : {"pybullet", "mujoco"}
+    engine : {"pybullet", "mujoco", "mjx"}
     names : iterable of str, optional
         Only these constants (default: all of the engine's).
     include_dimensionless : bool
@@ -211,7 +211,7 @@ def engine_search(system: System, engine: str, scale: Mapping[str, object], fixe
     Parameters
     ----------
     system : System
-    engine : {"pybullet", "mujoco"}
+    engine : {"pybullet", "mujoco", "mjx"}
     scale : mapping of str to number
         As in :func:`pitheorem.search`.
     fixed : iterable of str, optional
@@ -257,7 +257,7 @@ def broken_constants(scaling, engine: str, *, names: Iterable[str] | None = None
     scaling : Scaling
         A change-of-units scaling (from :func:`pitheorem.search` or
         :meth:`pitheorem.Scaling.from_unit_change`).
-    engine : {"pybullet", "mujoco"}
+    engine : {"pybullet", "mujoco", "mjx"}
     names : iterable of str, optional
         Check only these constants.
 

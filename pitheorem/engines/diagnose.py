@@ -26,6 +26,7 @@ import numpy as np
 
 from ..simulation import allowed_deviation
 from .audit import audit
+from .backend import CounterRuns, SolverDiagnosis
 from .causes import Cause, sorted_causes
 
 __all__ = ["find_causes"]
@@ -80,7 +81,7 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
             agree = bool(np.all(np.abs(back - run).max(axis=0) <= limits))
         return agree, _largest(back - run)
 
-    if not hasattr(original, "variant"):
+    if not isinstance(original, CounterRuns):
         return sorted_causes(causes)
     solver = original.solver_settings()
     if solver:
@@ -91,7 +92,7 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
             causes.append(Cause("solver", names, "a stopping rule of no pure dimension: the scaled run stops after "
                                 f"other iterations; with it at 0 in both runs they agree (largest deviation {worst:.3g}"
                                 f" instead of {report.max_deviation:.3g}); load with with_values({setting}=0)"))
-    if not hasattr(original, "contact_log"):  # PyBullet: no solver to switch, no contact list per step here
+    if not isinstance(original, SolverDiagnosis):  # PyBullet: no solver to switch, no contact list per step here
         return sorted_causes(causes)
     if original.solver_name() != "Newton":
         agree, worst = counter({"solver": "Newton"})

@@ -1,7 +1,7 @@
 """A user's own engine model: its parameters with dimensions, scaled copies, saved files.
 
-:func:`load` reads an MJCF file through MuJoCo or a URDF file through
-PyBullet and returns an :class:`EngineModel`.  Its :attr:`~EngineModel.parameters`
+:func:`pitheorem.engines.load` reads an MJCF file (in MuJoCo or MJX) or a
+URDF file (in PyBullet) and returns an :class:`EngineModel`.  Its :attr:`~EngineModel.parameters`
 table lists every number of the model that has a dimension (one
 :class:`Parameter` each), next to the engine's hidden constants;
 :meth:`~EngineModel.system` turns the table into a :class:`pitheorem.System`
@@ -9,9 +9,11 @@ for :func:`pitheorem.search`; :meth:`~EngineModel.scaled` applies a
 similarity scaling to every number at once; :meth:`~EngineModel.save`
 writes a file the engine loads as it is.
 
-The engine-specific work (reading, writing, running) lives in
-``pitheorem.engines.mjcf`` and ``pitheorem.engines.urdf``; this module
-only holds what both share: besides the model and its parameters, the
+The engine-specific work (reading, writing, running) lives in the backend
+modules (``pitheorem.engines.mjcf``, ``urdf``, ``mjx``), each an
+implementation of :class:`pitheorem.engines.backend.EngineBackend`
+registered in :mod:`pitheorem.engines.registry`; this module imports none
+of them and only holds what they share: besides the model and its parameters, the
 dimensions of a joint's coordinate and force (``JointKind``), how a
 parameter is named (``identifier``, ``unique_name``), which scalings a
 model takes (``check_scaling``), the factor of a dimension under a scaling
@@ -34,10 +36,11 @@ from ..errors import EngineModelError, InvalidRequestError, UnscalableParameterE
 from ..exact import read_number, read_scale_factor, read_value
 from ..formatting import TableDisplay
 from ..immutable import immutable
-from ..modelfile import example_path, model_kind
+from ..modelfile import example_path
 from ..scaling import Scaling, float_power
 from ..simulation import positive_float
 from ..system import System
+from .backend import HasSceneSettings, RefusesScalings
 
 __all__ = [
     "EngineModel",
@@ -46,7 +49,6 @@ __all__ = [
     "UnscalableModelWarning",
     "UnscalableParameterError",
     "example_path",
-    "load",
 ]
 
 #: where a parameter's value comes from
@@ -369,15 +371,15 @@ class EngineModel(TableDisplay):
     Every dimensional number of the file and of the engine's settings is a
     :class:`Parameter`.
 
-    Build one with :func:`load`; :meth:`scaled` returns another.  The
-    engine-specific part is a backend object (see
-    ``pitheorem.engines.mjcf`` and ``pitheorem.engines.urdf``).  A model
+    Build one with :func:`pitheorem.engines.load`; :meth:`scaled` returns
+    another.  The engine-specific part is a backend object (an
+    :class:`~pitheorem.engines.backend.EngineBackend`).  A model
     is not changed after it is made: :meth:`scaled`, :meth:`with_values`,
     :meth:`multiplied` and :meth:`with_settings` return new models.
 
     Attributes
     ----------
-    engine : {"mujoco", "pybullet"}
+    engine : {"mujoco", "mjx", "pybullet"}
     path : str
         The file it was read from ("" for a scaled copy not yet saved).
     parameters : tuple of Parameter
@@ -529,14 +531,16 @@ class EngineModel(TableDisplay):
                 factors[p.name] = p.factor(scaling, s)
             except UnscalableParameterError as err:
                 refused.append(err)
-        refused.extend(getattr(self._backend, "unscalable", lambda factors: [])(factors))
+        refuses = isinstance(self._backend, RefusesScalings)
+        if refuses:
+            refused.extend(self._backend.unscalable(factors))
         if len(refused) > 1:
             names = ", ".join(repr(err.name) for err in refused[:6])
             more = f" and {len(refused) - 6} more" if len(refused) > 6 else ""
             reasons = {}  # one reason per kind: the damping of every link reads alike but for the link's name
             for err in refused:
                 reasons.setdefault(err.reason.split(";")[0].split(" acts ", 1)[-1], err.reason.split(";")[0])
-            remedy = getattr(self._backend, "unscalable_remedy", "")
+            remedy = self._backend.unscalable_remedy if refuses else ""
             raise UnscalableParameterError(
                 refused[0].name, f"{len(refused)} numbers cannot follow the scaling: {names}{more}. "
                 + "; ".join(reasons.values()) + (f". {remedy}" if remedy else ""))
@@ -687,7 +691,7 @@ class EngineModel(TableDisplay):
         ...     print(err)
         an MJCF model keeps its settings in the file; use with_values(...)
         """
-        if not hasattr(self._backend, "with_settings"):
+        if not isinstance(self._backend, HasSceneSettings):
             raise InvalidRequestError("an MJCF model keeps its settings in the file; use with_values(...)")
         return EngineModel(self._backend.with_settings(**changes), self.engine, self.path)
 
@@ -772,51 +776,3 @@ def warn_unscalable(path: str, element: str, reason: str) -> None:
     """
     warnings.warn(f"{path}: {element}: {reason}", UnscalableModelWarning, stacklevel=3)
 
-
-def load(path, **options) -> EngineModel:
-    """Read an MJCF file (through MuJoCo) or a URDF file (through PyBullet).
-
-    Parameters
-    ----------
-    path : str or Path
-        ``.xml``/``.mjcf`` for MuJoCo, ``.urdf`` for PyBullet.  An ``.xml``
-        file whose root is ``<robot>`` is read as URDF.
-    **options
-        URDF only: the options of ``pitheorem.engines.urdf.load_urdf``
-        (``settings``, and the scene: ``base_position``, ``fixed_base``,
-        ``ground``, ``split_impulse``, ``g``, ``damping``).  A URDF saved by
-        :meth:`EngineModel.save` is read with the settings saved beside it.
-
-    Returns
-    -------
-    EngineModel
-        Of engine ``"mujoco"`` for MJCF, ``"pybullet"`` for URDF.
-
-    Raises
-    ------
-    EngineModelError
-        For a missing or unreadable file, an element the engine rejects, or
-        one the package cannot scale faithfully (named in the message).
-    InvalidRequestError
-        For URDF options given with an MJCF file.
-
-    Examples
-    --------
-    >>> from pitheorem import engines
-    >>> model = engines.load(engines.example_path("pendulum.xml"))
-    >>> [p.name for p in model.parameters][:2]
-    ['timestep', 'g']
-    """
-    path = Path(path)
-    if not path.is_file():
-        raise EngineModelError(str(path), "", "no such file; give an MJCF (.xml) or URDF (.urdf) model file")
-    kind = model_kind(path)
-    if kind == "urdf":
-        from .urdf import load_urdf
-
-        return load_urdf(path, **options)
-    if options:
-        raise InvalidRequestError(f"options {sorted(options)} are for URDF files; an MJCF file holds its settings")
-    from .mjcf import load_mjcf
-
-    return load_mjcf(path)

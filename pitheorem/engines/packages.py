@@ -11,22 +11,20 @@ connecting; :func:`quiet_stdout` silences such C-level output.
 from __future__ import annotations
 
 import contextlib
+import importlib
 import os
 import sys
 from collections.abc import Iterator
 from types import MappingProxyType
 
-from ..errors import EngineUnavailableError, InvalidRequestError
+from ..errors import EngineUnavailableError
+from .registry import ALIASES, REGISTRY, registered
 
 __all__ = ["ALIASES", "PACKAGES", "check_engine", "engine_module", "quiet_stdout"]
 
-#: the Python package each engine needs (installed by ``pip install "pitheorem[engines]"``); an
-#: engine is named as :attr:`pitheorem.engines.EngineModel.engine` names it, everywhere
-PACKAGES = MappingProxyType({"pybullet": "pybullet", "mujoco": "mujoco"})
-
-#: older spellings still read: "bullet" was PyBullet's name here before the engines layer named each
-#: engine as its model does (kept so that code written then keeps working; never answered back)
-ALIASES = MappingProxyType({"bullet": "pybullet"})
+#: the Python module of each engine (the last of its registry line's packages), imported by
+#: :func:`engine_module`; an engine is named as :attr:`pitheorem.engines.EngineModel.engine` names it, everywhere
+PACKAGES = MappingProxyType({e.name: e.packages[-1] for e in REGISTRY})
 
 
 def check_engine(engine) -> str:
@@ -35,7 +33,8 @@ def check_engine(engine) -> str:
     Parameters
     ----------
     engine : str
-        ``"pybullet"`` or ``"mujoco"`` (``"bullet"`` is read as ``"pybullet"``).
+        A name of :data:`pitheorem.engines.registry.REGISTRY` (``"bullet"``
+        is read as ``"pybullet"``).
 
     Returns
     -------
@@ -56,13 +55,9 @@ def check_engine(engine) -> str:
     ...     check_engine("ode")
     ... except ValueError as err:
     ...     print(err)
-    unknown engine 'ode'; use 'pybullet' or 'mujoco'
+    unknown engine 'ode'; use 'pybullet', 'mujoco' or 'mjx'
     """
-    engine = ALIASES.get(engine, engine) if isinstance(engine, str) else engine
-    if not isinstance(engine, str) or engine not in PACKAGES:
-        raise InvalidRequestError(f"unknown engine {engine!r}; use {' or '.join(map(repr, PACKAGES))}",
-                                  culprit=engine)
-    return engine
+    return registered(engine).name
 
 
 def engine_module(engine: str):
@@ -91,15 +86,18 @@ def engine_module(engine: str):
     >>> engine_module("mujoco").__name__
     'mujoco'
     """
-    package = PACKAGES[check_engine(engine)]
+    line = registered(engine)
+    package = PACKAGES[line.name]
     loaded = sys.modules.get(package)  # None also where an import is blocked: then import, and fail, below
     if loaded is not None:  # imported already: nothing to print, nothing to silence
         return loaded
-    try:
-        with quiet_stdout():  # pybullet prints a banner on import
-            return __import__(package)
-    except ImportError:
-        raise EngineUnavailableError(check_engine(engine), package) from None
+    for needed in line.packages:
+        try:
+            with quiet_stdout():  # pybullet prints a banner on import, mujoco.mjx a note on a missing warp
+                module = importlib.import_module(needed)
+        except ImportError:
+            raise EngineUnavailableError(line.name, needed, line.extra) from None
+    return module
 
 
 @contextlib.contextmanager

@@ -68,6 +68,15 @@ _MUJOCO_INTEGRATORS = ("Euler", "RK4", "implicit", "implicitfast")
 # -- the rod in each engine --------------------------------------------------------------------
 
 
+def _rod_engine(engine) -> str:
+    """The engine's one name, if the rod is built in it (PyBullet and MuJoCo; not MJX: load an MJCF file)."""
+    engine = check_engine(engine)
+    if engine not in DEFAULT_TIME_STEP:
+        raise InvalidRequestError(f"the rod is built in 'pybullet' and 'mujoco', not {engine!r}; run an MJCF file "
+                                  f"in {engine!r} with engines.load(path, engine={engine!r})", culprit=engine)
+    return engine
+
+
 def _run_bullet(p, y0, dt, n_steps, engine_defaults):
     pb = engine_module("pybullet")
     with quiet_stdout():
@@ -219,7 +228,7 @@ def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt:
     >>> len(tr)
     6
     """
-    engine = check_engine(engine)
+    engine = _rod_engine(engine)
     if engine == "pybullet" and integrator is not None:
         raise InvalidRequestError("integrator is a MuJoCo option; Bullet always uses semi-implicit Euler")
     if engine == "mujoco" and engine_defaults:
@@ -323,7 +332,7 @@ def verify_engine_similarity(engine: str, scaling, s, params=None, y0=None, t_fi
     >>> rep.passed
     True
     """
-    engine = check_engine(engine)
+    engine = _rod_engine(engine)
     model = _rod_model()
     scaled = ModelScaling.of(model, scaling, s, check=check)
     tol = positive_float(tol, "tol")

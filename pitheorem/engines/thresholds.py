@@ -39,6 +39,7 @@ from ..simulation import positive_float
 from .causes import Cause, sorted_causes
 from .model import EngineModel, Parameter
 from .packages import check_engine
+from .registry import registered
 
 __all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "thresholds"]
 
@@ -70,7 +71,7 @@ class Threshold:
 
     Parameters
     ----------
-    engine : {"pybullet", "mujoco"}
+    engine : {"pybullet", "mujoco", "mjx"}
     name : str
         Identifier, prefixed as the engine's constants are (``mujoco_minmu``).
     value : float
@@ -167,7 +168,7 @@ def thresholds(engine: str | None = None, *, names: Iterable[str] | None = None)
 
     Parameters
     ----------
-    engine : {"pybullet", "mujoco"}, optional
+    engine : {"pybullet", "mujoco", "mjx"}, optional
         Default: every engine.
     names : iterable of str, optional
         Only these, in the order given.
@@ -186,9 +187,13 @@ def thresholds(engine: str | None = None, *, names: Iterable[str] | None = None)
     >>> from pitheorem.engines.thresholds import thresholds
     >>> [t.name for t in thresholds("mujoco")][:3]
     ['mujoco_minval_mass', 'mujoco_minval_softness', 'mujoco_minmu']
+    >>> thresholds("mjx") == thresholds("mujoco")  # MJX compiles with MuJoCo's compiler
+    True
     """
     engine = None if engine is None else check_engine(engine)
-    pool = [t for t in THRESHOLDS if engine is None or t.engine == engine]
+    # an engine built on another (MJX on MuJoCo, whose compiler it uses) has that engine's thresholds too
+    lineage = {engine, registered(engine).base} if engine is not None else set()
+    pool = [t for t in THRESHOLDS if engine is None or t.engine in lineage]
     if names is None:
         return tuple(pool)
     by_name = {t.name: t for t in pool}
@@ -241,7 +246,7 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
 
     Parameters
     ----------
-    engine : {"pybullet", "mujoco"}
+    engine : {"pybullet", "mujoco", "mjx"}
     parameters : iterable of Parameter
         A model's table (:attr:`pitheorem.engines.EngineModel.parameters`).
     factors : mapping of str to float, optional

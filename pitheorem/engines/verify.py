@@ -30,20 +30,17 @@ model (an MJCF custom numeric with a declared dimension, say), so a scaled
 file carries a scaled controller, and a gain the scaling leaves alone
 shows up as a broken similarity (Section 6 of the white paper).
 
-A backend (see ``pitheorem.engines.mjcf``, ``pitheorem.engines.urdf``)
-provides ``timestep()``, ``coordinate_dimensions()``,
-``control_dimensions()``, ``run(n_steps, controls, nudge, policy)`` and
-``twin(seed)``; one that also has ``run_many(n_steps, jobs)`` (MuJoCo's)
-gets the open-loop runs in one batch, which its engine spreads over the
-cores.
+A backend provides what :class:`~pitheorem.engines.backend.EngineRunner`
+names (``timestep()``, ``coordinate_dimensions()``, ``control_dimensions()``,
+``run``, ``run_many`` and ``twin``): the open-loop runs of a verification
+go to ``run_many`` in one batch, which MuJoCo spreads over the cores and
+MJX runs as one vectorised call.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable
-from typing import Protocol, runtime_checkable
 
 import numpy as np
 
@@ -51,40 +48,10 @@ from ..errors import InvalidRequestError
 from ..exact import read_scale_factor
 from ..scaling import float_power, is_power_of_two
 from ..simulation import SimilarityReport, Trajectory, positive_float, similarity_report
+from .backend import EngineRunner
 from .model import EngineModel, check_scaling, dim
 
 __all__ = ["EngineRunner", "smooth_controls", "verify"]
-
-
-@runtime_checkable
-class EngineRunner(Protocol):
-    """What :func:`verify` needs of an engine: the simulator protocol of MuJoCo's and PyBullet's backends.
-
-    Examples
-    --------
-    >>> from pitheorem import engines
-    >>> from pitheorem.engines.verify import EngineRunner
-    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).backend, EngineRunner)
-    True
-    """
-
-    def timestep(self) -> float:
-        """The fixed step of the engine, in the model's units."""
-
-    def coordinate_dimensions(self) -> tuple[list[str], list]:
-        """Names and dimensions of the recorded coordinates, in column order."""
-
-    def control_dimensions(self) -> list:
-        """The dimension of each control input."""
-
-    def run(self, n_steps: int, controls: Callable | None = None, nudge: bool = False,
-            policy: Callable | None = None) -> np.ndarray:
-        """Rows of coordinates after 0..n_steps steps; ``nudge`` moves the start by one ulp.
-
-        ``controls(t)`` gives the inputs at time ``t``; ``policy`` is a
-        closed-loop law called with the engine's live state (see
-        :func:`verify`).
-        """
 
 
 def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None, *, controller=None,
@@ -194,8 +161,8 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
 
     twins = [original.twin(seed + k) for k in range(ensemble)]
     t = np.arange(n_steps + 1) * dt
-    if controller is None and hasattr(original, "run_many") and type(copy) is type(original):
-        # one batch: the engine runs them at once (MuJoCo's rollout spreads them over the cores)
+    if controller is None and type(copy) is type(original):
+        # one batch: the engine runs them at once (MuJoCo's rollout spreads them over the cores, MJX vmaps them)
         jobs = [(original, u_original, False, None), (copy, u_scaled, False, None),
                 *((twin, u_original, False, None) for twin in twins)]
         run, scaled_run, *twin_runs = original.run_many(n_steps, jobs)

@@ -1,0 +1,247 @@
+"""What an engine backend provides: the one protocol every engine module implements.
+
+An engine is a backend module (``pitheorem.engines.mjcf`` for MuJoCo,
+``urdf`` for PyBullet, ``mjx`` for MJX) with one line in
+:mod:`pitheorem.engines.registry`.  Its loader reads a file into an
+:class:`~pitheorem.engines.EngineModel`, which holds a backend object.
+Everything the rest of the package asks of that object is named here:
+
+* :class:`EngineRunner`: what :func:`~pitheorem.engines.verify` needs
+  to run a model and its scaled copy (a time step, the recorded
+  coordinates and inputs with their dimensions, open-loop and closed-loop
+  runs, a batch of runs, the yardstick's twins);
+* :class:`EngineBackend`: all of that, and the parameter table, scaled
+  copies, saved files, the numbers the engine stores (for
+  :func:`~pitheorem.engines.audit`) and the engine settings a file cannot
+  hold;
+* optional capabilities, each its own small protocol, checked with
+  ``isinstance`` where they are used: :class:`RefusesScalings` (numbers a
+  scaling cannot reach, named before a copy is made),
+  :class:`HasSceneSettings` (settings outside the file, changed by
+  ``with_settings``), :class:`CounterRuns` (copies run with another
+  solver tolerance, for the diagnosis), :class:`SolverDiagnosis`
+  (solver, equality constraints and contacts, named),
+  :class:`NamesElements` (a stored number's element) and
+  :class:`IgnoredSettings` (settings the engine does not apply).
+
+``controls`` is ``None`` (zero input), an array of inputs with one row
+per step, or a callable of the step's start time; ``policy`` is a
+closed-loop law the engine calls with its live state.
+
+Examples
+--------
+>>> from pitheorem import engines
+>>> from pitheorem.engines.backend import CounterRuns, EngineBackend, HasSceneSettings
+>>> backend = engines.load(engines.example_path("pendulum.xml")).backend
+>>> isinstance(backend, EngineBackend), isinstance(backend, CounterRuns)
+(True, True)
+>>> isinstance(backend, HasSceneSettings)
+False
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
+
+__all__ = [
+    "OPTIONAL",
+    "REQUIRED",
+    "Controls",
+    "CounterRuns",
+    "EngineBackend",
+    "EngineRunner",
+    "HasSceneSettings",
+    "IgnoredSettings",
+    "NamesElements",
+    "RefusesScalings",
+    "SolverDiagnosis",
+]
+
+#: open-loop inputs: None (zero input), rows of inputs (one per step) or ``t -> inputs``
+Controls = np.ndarray | Callable[[float], Sequence[float]] | None
+
+#: a run of a batch: (backend, controls, nudge, initial state or None)
+Job = tuple[Any, Controls, bool, Any]
+
+
+@runtime_checkable
+class EngineRunner(Protocol):
+    """What :func:`~pitheorem.engines.verify` needs of an engine to run a model.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.backend import EngineRunner
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).backend, EngineRunner)
+    True
+    """
+
+    def timestep(self) -> float:
+        """The fixed step of the engine, in the model's units."""
+
+    def coordinate_dimensions(self) -> tuple[list[str], list]:
+        """Names and dimensions of the recorded coordinates, in column order."""
+
+    def control_dimensions(self) -> list:
+        """The dimension of each control input."""
+
+    def control_ranges(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each input's lower and upper limit; -inf and inf where it has none."""
+
+    def run(self, n_steps: int, controls: Controls = None, nudge: bool = False,
+            policy: Callable | None = None) -> np.ndarray:
+        """Rows of coordinates after 0..n_steps steps; ``nudge`` moves the start by one ulp."""
+
+    def run_many(self, n_steps: int, jobs: Sequence[Job]) -> list[np.ndarray]:
+        """Several open-loop runs of models of the same sizes at once: the rows of each."""
+
+    def twin(self, seed: int) -> EngineRunner:
+        """A copy whose every stored number is one unit in its own last place off (signs from `seed`)."""
+
+
+@runtime_checkable
+class EngineBackend(EngineRunner, Protocol):
+    """Everything an engine backend provides that the rest of the package calls.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.backend import EngineBackend
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).backend, EngineBackend)
+    True
+    """
+
+    def parameters(self) -> list:
+        """Every dimensional number of the file and the engine settings, as Parameters."""
+
+    def settings(self) -> dict:
+        """The engine settings the file cannot hold, as data (empty where the file holds them all)."""
+
+    def scaled(self, factors: dict[str, float], scaling, s) -> EngineBackend:
+        """A copy with each parameter multiplied by its factor (`scaling` and `s` None for a plain product)."""
+
+    def save(self, path: Path) -> None:
+        """Write the model as a file the engine loads as it is."""
+
+    def stored_numbers(self) -> dict[str, np.ndarray]:
+        """Every floating-point number the engine holds for the model, by field, in its own precision."""
+
+
+@runtime_checkable
+class RefusesScalings(Protocol):
+    """Optional: numbers a scaling cannot reach, named before a copy is made (PyBullet's).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.backend import RefusesScalings
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).backend, RefusesScalings)
+    False
+    """
+
+    unscalable_remedy: str
+
+    def unscalable(self, factors: dict[str, float]) -> list:
+        """An UnscalableParameterError for each number the factors would need changed and no call can."""
+
+
+@runtime_checkable
+class HasSceneSettings(Protocol):
+    """Optional: settings outside the file, changed by ``EngineModel.with_settings`` (PyBullet's).
+
+    Examples
+    --------
+    >>> from pitheorem.engines.backend import HasSceneSettings
+    >>> HasSceneSettings.__name__
+    'HasSceneSettings'
+    """
+
+    def with_settings(self, **changes) -> HasSceneSettings:
+        """A copy with other scene settings."""
+
+
+@runtime_checkable
+class CounterRuns(Protocol):
+    """Optional: copies run with other solver options, and the solver's scale-free-less stopping rules.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.backend import CounterRuns
+    >>> CounterRuns.__name__
+    'CounterRuns'
+    """
+
+    def variant(self, *, tolerance: float | None = None) -> CounterRuns:
+        """A copy run with another tolerance (MuJoCo's also take contacts, solver, inactive_equalities)."""
+
+    def solver_settings(self) -> dict[str, float]:
+        """The solver's stopping rules that have no pure dimension, nonzero ones only."""
+
+
+@runtime_checkable
+class SolverDiagnosis(Protocol):
+    """Optional: the solver, the equality constraints and the contacts of each step, named (MuJoCo's).
+
+    Examples
+    --------
+    >>> from pitheorem.engines.backend import SolverDiagnosis
+    >>> SolverDiagnosis.__name__
+    'SolverDiagnosis'
+    """
+
+    def solver_name(self) -> str:
+        """The constraint solver's name (``"Newton"``, ...)."""
+
+    def equality_names(self) -> list[str]:
+        """Each equality constraint, named as the reports name it."""
+
+    def contact_log(self, n_steps: int, controls: Controls = None) -> list[frozenset]:
+        """The pairs in contact after each step of an open-loop run."""
+
+
+@runtime_checkable
+class NamesElements(Protocol):
+    """Optional: the element a row of a stored field belongs to.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.backend import NamesElements
+    >>> NamesElements.__name__
+    'NamesElements'
+    """
+
+    def element_name(self, field: str, row: int) -> str:
+        """A row of a field of ``stored_numbers()``, named by its element."""
+
+
+@runtime_checkable
+class IgnoredSettings(Protocol):
+    """Optional: settings the engine keeps but does not apply, as causes (PyBullet's).
+
+    Examples
+    --------
+    >>> from pitheorem.engines.backend import IgnoredSettings
+    >>> IgnoredSettings.__name__
+    'IgnoredSettings'
+    """
+
+    def ignored_settings(self) -> tuple:
+        """A Cause for each setting the engine ignores."""
+
+
+def _members(protocol) -> tuple[str, ...]:
+    own = [name for name in vars(protocol) if not name.startswith("_")]
+    own.extend(vars(protocol).get("__annotations__", {}))
+    return tuple(sorted(set(own)))
+
+
+#: the methods every backend has
+REQUIRED = tuple(sorted({*_members(EngineRunner), *_members(EngineBackend)}))
+
+#: the optional capabilities: protocol -> its members
+OPTIONAL = {p.__name__: _members(p) for p in (RefusesScalings, HasSceneSettings, CounterRuns, SolverDiagnosis,
+                                               NamesElements, IgnoredSettings)}

@@ -1,0 +1,98 @@
+"""Read a model file in an engine: the file's kind and the registry pick the backend module.
+
+:func:`load` is ``pitheorem.engines.load``.  It finds the engine from the
+file's kind (:func:`pitheorem.modelfile.model_kind`) unless ``engine=``
+names another (an MJCF file runs in ``"mujoco"`` or ``"mjx"``), checks
+that the engine is installed and takes the options given, imports the
+engine's backend module (named by its line of
+:data:`pitheorem.engines.registry.REGISTRY`) and calls its loader.  This
+is the one module that imports the backends by name: nothing a backend
+imports leads back here.
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+from pathlib import Path
+
+from ..errors import EngineModelError, EngineUnavailableError, InvalidRequestError
+from ..modelfile import model_kind
+from .registry import REGISTRY, Engine, backends, registered
+
+__all__ = ["load"]
+
+
+def load(path, engine=None, **options):
+    """Read an MJCF or URDF model file in an engine.
+
+    Parameters
+    ----------
+    path : str or Path
+        ``.xml``/``.mjcf`` (MJCF), ``.urdf`` (URDF); an ``.xml`` file
+        whose root is ``<robot>`` is read as URDF.
+    engine : str, optional
+        The engine to run it in: by default the file's own (MJCF in
+        ``"mujoco"``, URDF in ``"pybullet"``); an MJCF file also runs in
+        ``"mjx"``.
+    **options
+        The engine loader's options: for PyBullet those of
+        ``pitheorem.engines.urdf.load_urdf`` (``settings`` and the scene);
+        for MJX ``precision`` (``"float32"``, the default, or
+        ``"float64"``); MuJoCo takes none (the file holds its settings).
+
+    Returns
+    -------
+    EngineModel
+        Of the engine asked for.
+
+    Raises
+    ------
+    EngineModelError
+        For a missing or unreadable file, an element the engine rejects
+        or does not support, or one the package cannot scale faithfully
+        (named in the message).
+    InvalidRequestError
+        For an unknown engine, one that does not read this kind of file,
+        or options the engine does not take.
+    EngineUnavailableError
+        For an engine whose Python package is not installed; the message
+        names the extra to install and the engines installed here.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> model.engine, [p.name for p in model.parameters][:2]
+    ('mujoco', ['timestep', 'g'])
+    >>> import pitheorem as pt
+    >>> try:
+    ...     engines.load(engines.example_path("pendulum.xml"), engine="pybullet")
+    ... except pt.InvalidRequestError as err:
+    ...     print(err)
+    engine 'pybullet' does not read MJCF files; an MJCF file runs in 'mujoco' or 'mjx'
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise EngineModelError(str(path), "", "no such file; give an MJCF (.xml) or URDF (.urdf) model file")
+    kind = model_kind(path)
+    readers = [e for e in REGISTRY if kind in e.kinds]
+    if not readers:  # model_kind calls every other file a TOML model file
+        raise EngineModelError(str(path), "", "no engine reads this kind of file; give an MJCF (.xml) or URDF "
+                               "(.urdf) model file")
+    chosen = next(e for e in readers if e.default) if engine is None else registered(engine)
+    if chosen not in readers:
+        names = " or ".join(repr(e.name) for e in readers)
+        raise InvalidRequestError(f"engine {chosen.name!r} does not read {kind.upper()} files; an {kind.upper()} "
+                                  f"file runs in {names}", culprit=chosen.name)
+    if not chosen.installed():
+        missing = next(p for p in chosen.packages if not Engine("", "", "", (), (p,)).installed())
+        raise EngineUnavailableError(chosen.name, missing, chosen.extra, backends())
+    loader = getattr(importlib.import_module(f"{__package__}.{chosen.module}"), chosen.loader)
+    taken = inspect.signature(loader).parameters
+    wrong = sorted(set(options) - set(taken) - {"path"})
+    if wrong:
+        valid = sorted(set(taken) - {"path"}) or ["none, the file holds its settings"]
+        raise InvalidRequestError(f"engine {chosen.name!r} takes no option {wrong[0]!r}; its options: "
+                                  f"{', '.join(valid)}", culprit=wrong[0])
+    return loader(path, **options)

@@ -1,0 +1,336 @@
+"""MJCF models in MJX, MuJoCo's engine written in JAX: float32 by default, runs batched.
+
+An MJCF file is read as for MuJoCo (:mod:`pitheorem.engines.mjcf` reads
+it: the same parameters, scaled copies and saved files) and put on JAX's
+device with ``mujoco.mjx.put_model``.  MJX computes in float32 unless
+asked for float64 (``precision="float64"``, JAX's x64 mode, switched on
+only while this backend computes).  What MJX does not support (the PGS
+solver, some geom pairs, flex objects, some sensors and actuators) is
+refused by name when the file is loaded.
+
+The runs of a verification (the original, its scaled copy, the
+yardstick's twins) go to :meth:`MjxBackend.run_many`, which stacks the
+models and runs them as one ``jax.vmap`` of a ``jax.lax.scan`` over the
+steps.  Models whose static parts differ (MJX keeps some numbers, such as
+mesh vertices and site sizes, outside the arrays it traces) cannot share
+a batch: each group of equal static parts is one call.  A twin moves
+every number MJX holds in its arrays by one unit in the last place of
+*its own* precision (float32 by default).
+
+MJX runs open loop only here: a closed-loop controller runs in
+``"mujoco"``.  Its own constants (a ``1e-6`` added to a squared length
+when it finds the closest point on a capsule's segment, say) are in the
+catalogue (``engines.hidden_constants("mjx")``).
+
+Examples
+--------
+>>> from pitheorem import engines
+>>> model = engines.load(engines.example_path("pendulum.xml"), engine="mjx")  # doctest: +SKIP
+>>> model.engine, model.backend.precision  # doctest: +SKIP
+('mjx', 'float32')
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import EngineModelError, InvalidRequestError
+from .mjcf import MjcfBackend, load_mjcf
+from .model import EngineModel
+from .packages import engine_module
+
+__all__ = ["PRECISIONS", "MjxBackend", "load_mjx"]
+
+#: the precisions MJX computes in: JAX's float32 (its default) or float64 (its x64 mode)
+PRECISIONS = ("float32", "float64")
+
+#: the jitted batch runner, one per precision (JAX traces it again for each new shape or static part)
+_RUNNERS: dict = {}
+
+
+def _jax():
+    engine_module("mjx")  # names the missing package (jax, mujoco.mjx) before it is imported here
+    import jax
+
+    return jax
+
+
+class MjxBackend:
+    """An MJCF model in MJX: MuJoCo's reading of the file, and its ``mjx.Model`` on JAX's device.
+
+    Parameters
+    ----------
+    mjcf : MjcfBackend
+        The file as MuJoCo reads it.
+    precision : {"float32", "float64"}
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> model = engines.load(engines.example_path("pendulum.xml"), engine="mjx")  # doctest: +SKIP
+    >>> model.backend.device_model().opt.timestep.dtype  # doctest: +SKIP
+    dtype('float32')
+    """
+
+    def __init__(self, mjcf: MjcfBackend, precision: str = "float32", device_model=None):
+        self.mjcf = mjcf
+        self.precision = precision
+        self._device = device_model if device_model is not None else _put(mjcf, precision)
+
+    def device_model(self):
+        """The ``mjx.Model`` this backend runs."""
+        return self._device
+
+    # -- the table, scaled copies and files: MuJoCo's reading of the file ------------------------
+
+    def parameters(self):
+        return self.mjcf.parameters()
+
+    def settings(self) -> dict:
+        return {"precision": self.precision}
+
+    def scaled(self, factors, scaling, s) -> MjxBackend:
+        return MjxBackend(self.mjcf.scaled(factors, scaling, s), self.precision)
+
+    def save(self, path: Path) -> None:
+        self.mjcf.save(path)  # an MJCF file: MuJoCo and MJX load it alike
+
+    # -- what MJX holds ------------------------------------------------------------------------
+
+    def stored_numbers(self) -> dict[str, np.ndarray]:
+        """Every floating-point array MJX traces for the model, by field, in its own precision."""
+        return {field: np.array(value, copy=True, ndmin=1) for field, value in _float_arrays(self._device)}
+
+    def element_name(self, field: str, row: int) -> str:
+        return self.mjcf.element_name(field, row)
+
+    def twin(self, seed: int) -> MjxBackend:
+        """A copy whose every number in MJX's arrays is one unit in its own last place off (signs from `seed`).
+
+        Zeros stay zero and the time step stays; the static parts are the original's.
+        """
+        jax = _jax()
+        rng = np.random.default_rng(seed)
+        moved = {}
+        for field, value in _float_arrays(self._device):
+            if field == "opt.timestep":
+                continue
+            value = np.asarray(value)
+            toward = np.where(rng.random(value.shape) < 0.5, np.inf, -np.inf).astype(value.dtype)
+            moved[field] = np.where(value == 0, value, np.nextafter(value, toward))
+        with jax.enable_x64(self.precision == "float64"):
+            device = _replaced(jax, self._device, moved)
+        return MjxBackend(self.mjcf, self.precision, device)
+
+    def variant(self, *, tolerance: float | None = None) -> MjxBackend:
+        """A copy run with another solver tolerance: a counter-run's model."""
+        return MjxBackend(self.mjcf.variant(tolerance=tolerance), self.precision)
+
+    def solver_settings(self) -> dict[str, float]:
+        return {k: v for k, v in self.mjcf.solver_settings().items() if k == "tolerance"}
+
+    # -- running ------------------------------------------------------------------------------
+
+    def timestep(self) -> float:
+        return self.mjcf.timestep()
+
+    def coordinate_dimensions(self):
+        return self.mjcf.coordinate_dimensions()
+
+    def control_dimensions(self):
+        return self.mjcf.control_dimensions()
+
+    def control_ranges(self):
+        return self.mjcf.control_ranges()
+
+    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None) -> np.ndarray:
+        """Rows of (qpos, qvel, act) after 0..n_steps steps from the initial state, open loop.
+
+        Raises
+        ------
+        InvalidRequestError
+            For a closed-loop `policy` (run it in ``"mujoco"``).
+        """
+        if policy is not None:
+            raise InvalidRequestError("MJX runs open loop here; run a closed-loop controller in 'mujoco' "
+                                      "(engines.load(path))")
+        return self.run_many(n_steps, [(self, controls, nudge, None)])[0]
+
+    def run_many(self, n_steps: int, jobs) -> list[np.ndarray]:
+        """The runs of ``(backend, controls, nudge, state)`` jobs, vmapped: one call per static part.
+
+        The models must have the same sizes (a model, its scaled copies and
+        its twins do).  ``controls`` is None, rows of inputs (one per step)
+        or ``t -> inputs``; ``state`` is None or an initial (qpos, qvel).
+        """
+        jax = _jax()
+        import jax.numpy as jnp
+
+        dtype = np.dtype(self.precision)
+        nu = self.mjcf.mjmodel.nu
+        groups: dict = {}
+        devices = [_aligned(backend, jobs[0][0]) for backend, *_ in jobs]
+        for i, device in enumerate(devices):
+            groups.setdefault(jax.tree_util.tree_structure(device), []).append(i)
+        out: list = [None] * len(jobs)
+        with jax.enable_x64(self.precision == "float64"):
+            runner = _runner(jax, self.precision)
+            for members in groups.values():
+                models = [devices[i] for i in members]
+                batch = jax.tree_util.tree_map(lambda *xs: jnp.stack(xs), *models)
+                starts = [_initial(jobs[i][0], jobs[i][2], jobs[i][3], dtype) for i in members]
+                rows = np.stack([_control_rows(jobs[i][1], n_steps, nu, jobs[i][0].timestep(), dtype)
+                                 for i in members])
+                qpos = jnp.asarray(np.stack([q for q, _ in starts]))
+                qvel = jnp.asarray(np.stack([v for _, v in starts]))
+                runs = np.asarray(runner(batch, qpos, qvel, jnp.asarray(rows)))
+                for k, i in enumerate(members):
+                    model = jobs[i][0].mjcf.mjmodel
+                    first = np.concatenate([starts[k][0], starts[k][1], np.zeros(model.na, dtype)])
+                    out[i] = np.concatenate([first[None, :], runs[k]]).astype(float)
+        return out
+
+
+def _aligned(backend: MjxBackend, reference: MjxBackend):
+    """`backend`'s device model, batchable with `reference`'s where nothing MJX reads tells them apart.
+
+    MJX keeps ``geom_rbound_hfield``, a copy of the geoms' bounding radii,
+    outside its traced arrays, and reads it only to size the collision
+    patch of a heightfield (``collision_driver``): in a model without
+    heightfield geoms the copy's own values are never read, and it takes
+    the reference's, so that a model and its scaled copy run in one call.
+    """
+    device, other = backend._device, reference._device
+    hfield = int(engine_module("mujoco").mjtGeom.mjGEOM_HFIELD)
+    mine, theirs = device._impl.geom_rbound_hfield, other._impl.geom_rbound_hfield
+    if mine.shape != theirs.shape or np.any(backend.mjcf.mjmodel.geom_type == hfield):
+        return device
+    return device.replace(_impl=device._impl.replace(geom_rbound_hfield=theirs))
+
+
+def _put(mjcf: MjcfBackend, precision: str):
+    """The ``mjx.Model`` of a MuJoCo model, in `precision`; what MJX does not support, refused by name."""
+    jax = _jax()
+    mjx = engine_module("mjx")
+    m = mjcf.mjmodel
+    if int(m.opt.solver) == 0:  # MJX has CG and Newton; the file's PGS would be put as nothing it runs
+        raise EngineModelError(mjcf.path, "option solver", "MJX does not support the PGS solver; use "
+                               '<option solver="Newton"/> or "CG", or run the file in \'mujoco\'')
+    with jax.enable_x64(precision == "float64"):
+        try:
+            return mjx.put_model(m, impl="jax")
+        except NotImplementedError as err:
+            reason = str(err).strip() or type(err).__name__
+            raise EngineModelError(mjcf.path, _unsupported(reason), f"MJX does not support {reason}; run the "
+                                   "file in 'mujoco'") from None
+
+
+def _unsupported(reason: str) -> str:
+    """The element MJX's refusal is about, as a culprit."""
+    if "collisions" in reason or "margin" in reason:
+        return "geom pair"
+    for word in ("Flex", "Contact sensor", "mjtIntegrator", "mjtCone", "mjtJacobian", "mjtEnableBit"):
+        if word in reason:
+            return {"Flex": "flex", "Contact sensor": "sensor"}.get(word, "option")
+    return "model"
+
+
+def _float_arrays(device):
+    """(field, array) for each floating-point array MJX traces: ``opt.x`` and ``stat.x`` for structs."""
+    for name, holder in (("", device), ("opt.", device.opt), ("stat.", device.stat)):
+        for f in dataclasses.fields(holder):
+            value = getattr(holder, f.name)
+            if f.name.startswith("_") or isinstance(value, np.ndarray) or not hasattr(value, "dtype"):
+                continue
+            if np.dtype(value.dtype).kind == "f" and value.size and not f.name.endswith("rgba"):
+                yield name + f.name, value
+
+
+def _replaced(jax, device, values: dict):
+    """`device` with the named arrays replaced (on the device, in their dtype)."""
+    import jax.numpy as jnp
+
+    top = {k: jnp.asarray(v) for k, v in values.items() if "." not in k}
+    opt = {k.split(".")[1]: jnp.asarray(v) for k, v in values.items() if k.startswith("opt.")}
+    stat = {k.split(".")[1]: jnp.asarray(v) for k, v in values.items() if k.startswith("stat.")}
+    return device.replace(**top, opt=device.opt.replace(**opt), stat=device.stat.replace(**stat))
+
+
+def _initial(backend: MjxBackend, nudge: bool, state, dtype) -> tuple[np.ndarray, np.ndarray]:
+    """The initial (qpos, qvel): the model's reference pose at rest, or `state`; nudged by one ulp of `dtype`."""
+    m = backend.mjcf.mjmodel
+    if state is None:
+        qpos = np.asarray(backend._device.qpos0, dtype=dtype)
+        qvel = np.zeros(m.nv, dtype)
+    else:
+        qpos, qvel = (np.asarray(x, dtype=dtype) for x in state)
+    if nudge:
+        qpos = np.nextafter(qpos, np.inf * np.sign(qpos)).astype(dtype)
+        qvel = np.nextafter(qvel, np.inf * np.sign(qvel)).astype(dtype)
+    return qpos, qvel
+
+
+def _control_rows(controls, n_steps: int, nu: int, dt: float, dtype) -> np.ndarray:
+    if controls is None or not nu:
+        return np.zeros((n_steps, nu), dtype)
+    if callable(controls):
+        controls = [controls(i * dt) for i in range(n_steps)]
+    return np.asarray(controls, dtype=float).reshape(n_steps, nu).astype(dtype)
+
+
+def _runner(jax, precision: str):
+    """``run(models, qpos, qvel, controls)``: the batch's rows after each step, jitted once per precision."""
+    if precision not in _RUNNERS:
+        mjx = engine_module("mjx")
+        import jax.numpy as jnp
+
+        def one(m, qpos, qvel, rows):
+            data = mjx.make_data(m).replace(qpos=qpos, qvel=qvel)
+
+            def step(d, u):
+                d = mjx.step(m, d.replace(ctrl=u))
+                return d, jnp.concatenate([d.qpos, d.qvel, d.act])
+
+            return jax.lax.scan(step, data, rows)[1]
+
+        _RUNNERS[precision] = jax.jit(jax.vmap(one))
+    return _RUNNERS[precision]
+
+
+def load_mjx(path, *, precision: str = "float32") -> EngineModel:
+    """Read an MJCF file through MuJoCo's parser and put it in MJX.
+
+    Parameters
+    ----------
+    path : str or Path
+    precision : {"float32", "float64"}
+        MJX's own float32 (the default) or float64 (JAX's x64 mode, on
+        only while this model computes).
+
+    Returns
+    -------
+    EngineModel
+        Of engine ``"mjx"``.
+
+    Raises
+    ------
+    EngineModelError
+        When MuJoCo rejects the file, or MJX does not support a part of
+        it (the message names it: the PGS solver, a geom pair, ...).
+    InvalidRequestError
+        For another precision.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.mjx import load_mjx
+    >>> load_mjx(engines.example_path("pendulum.xml")).engine  # doctest: +SKIP
+    'mjx'
+    """
+    if precision not in PRECISIONS:
+        raise InvalidRequestError(f"precision must be 'float32' or 'float64', got {precision!r}", culprit=precision)
+    mujoco_model = load_mjcf(path)
+    return EngineModel(MjxBackend(mujoco_model.backend, precision), "mjx", str(path))

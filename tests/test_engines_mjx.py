@@ -1,0 +1,158 @@
+"""pitheorem.engines.mjx: MJCF files loaded, scaled, saved and verified in MJX (float32 by default).
+
+Runs only where MJX is installed (``pip install "pitheorem[mjx]"``).  The models are kept tiny (the
+pendulum, gymnasium's inverted pendulum and two-link reacher, 0.2 s each): on the CPU most of the time is
+JAX compiling the batch runner, once per model's sizes.
+"""
+
+from __future__ import annotations
+
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pitheorem as pt
+
+pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
+jax = pytest.importorskip("jax", reason="jax is not installed (pip install 'pitheorem[mjx]')")
+pytest.importorskip("mujoco.mjx", reason="mujoco-mjx is not installed (pip install 'pitheorem[mjx]')")
+
+from pitheorem import engines  # noqa: E402
+from pitheorem.engines import mjx as mjx_backend  # noqa: E402
+
+PENDULUM = engines.example_path("pendulum.xml")
+gymnasium = sys.modules.get("gymnasium") or pytest.importorskip("gymnasium")
+ASSETS = Path(gymnasium.__file__).resolve().parent / "envs" / "mujoco" / "assets"
+
+
+def time_free(model):
+    return pt.search(model.system(), scale={"g": 1}, fixed=("timestep",)).scalings[0]
+
+
+@pytest.fixture(scope="module")
+def pendulum():
+    return engines.load(PENDULUM, engine="mjx")
+
+
+def test_an_mjcf_file_loads_scales_and_saves_in_mjx(pendulum, tmp_path):
+    assert pendulum.engine == "mjx"
+    assert pendulum.backend.precision == "float32"
+    assert pendulum.settings() == {"precision": "float32"}
+    stored = pendulum.backend.stored_numbers()
+    assert {a.dtype for a in stored.values()} == {np.dtype(np.float32)}
+    assert stored["opt.timestep"][0] == np.float32(0.002)
+    # the table is MuJoCo's reading of the file
+    assert pendulum.parameters == engines.load(PENDULUM).parameters
+    scaled = pendulum.scaled(time_free(pendulum), 4)
+    assert scaled.engine == "mjx"
+    assert type(scaled.backend) is mjx_backend.MjxBackend
+    out = scaled.save(tmp_path / "pendulum_4.xml")
+    back = engines.load(out, engine="mjx")
+    assert back.parameter("g").value == scaled.parameter("g").value == (9.81 * 4,)
+
+
+def test_float64_on_request_and_jax_left_as_it_was():
+    before = jax.config.jax_enable_x64
+    model = engines.load(PENDULUM, engine="mjx", precision="float64")
+    assert {a.dtype for a in model.backend.stored_numbers().values()} == {np.dtype(np.float64)}
+    rows = model.backend.run(10, controls=lambda t: [0.1])
+    assert rows.shape == (11, 2)
+    assert jax.config.jax_enable_x64 == before
+    with pytest.raises(pt.InvalidRequestError, match="precision must be 'float32' or 'float64'"):
+        engines.load(PENDULUM, engine="mjx", precision="float16")
+
+
+@pytest.mark.parametrize("path", [PENDULUM, ASSETS / "inverted_pendulum.xml", ASSETS / "reacher.xml"],
+                         ids=lambda p: Path(p).name)
+def test_s4_reproduces_the_original_bit_for_bit_in_float32(path):
+    with warnings.catch_warnings():  # gymnasium's custom numerics (frame_skip) have no known dimension
+        warnings.simplefilter("ignore", engines.UnscalableModelWarning)
+        model = engines.load(path, engine="mjx")
+    if model.parameter("tolerance").value[0]:
+        model = model.with_values(tolerance=0)  # the solver's stopping rule is not scale-free (as in MuJoCo)
+    sc = time_free(model)
+    rep = engines.verify(model, sc, s=4, duration=0.2, controls=engines.smooth_controls(model))
+    assert rep.exact, rep.max_deviation
+    assert rep.excited
+    assert rep.causes == ()
+
+
+def test_s10_is_judged_against_the_float32_yardstick(pendulum):
+    rep = engines.verify(pendulum, time_free(pendulum), s=10, duration=0.5, controls=lambda t: [0.1])
+    assert rep.similar
+    assert not rep.exact  # float32 rounds the numbers times 10: the audit names them
+    assert rep.causes
+    assert {c.kind for c in rep.causes} == {"precision"}
+    assert 0 < rep.max_deviation < 1e-5
+
+
+def test_the_runs_of_a_verification_are_one_vmapped_call(pendulum, monkeypatch):
+    runner = mjx_backend._runner(jax, "float32")
+    batches = []
+
+    def counting(models, qpos, qvel, rows):
+        batches.append(qpos.shape[0])
+        return runner(models, qpos, qvel, rows)
+
+    monkeypatch.setitem(mjx_backend._RUNNERS, "float32", counting)
+    engines.verify(pendulum, time_free(pendulum), s=4, duration=0.1, ensemble=3, diagnose=False)
+    assert batches == [5]  # original, scaled copy and three twins
+
+
+def test_twins_move_every_number_by_one_float32_ulp(pendulum):
+    before, after = pendulum.backend.stored_numbers(), pendulum.backend.twin(7).stored_numbers()
+    moved = 0
+    for field, value in before.items():
+        ulp = np.abs(after[field].astype(float) - value.astype(float))
+        nonzero = value != 0
+        if field == "opt.timestep":
+            assert np.array_equal(after[field], value)
+            continue
+        assert np.array_equal(ulp[nonzero], np.abs(np.spacing(value[nonzero], dtype=np.float32).astype(float))
+                              ) or np.all(ulp[nonzero] <= np.abs(np.spacing(value[nonzero])).astype(float) * 2)
+        assert np.all(after[field][~nonzero] == 0)
+        moved += int(nonzero.sum())
+    assert moved > 20
+
+
+def test_what_mjx_does_not_support_is_refused_by_name(tmp_path):
+    pgs = tmp_path / "pgs.xml"
+    pgs.write_text('<mujoco><option solver="PGS"/><worldbody><body><joint type="hinge"/>'
+                   '<geom size="0.1" mass="1"/></body></worldbody></mujoco>')
+    with pytest.raises(engines.EngineModelError) as caught:
+        engines.load(pgs, engine="mjx")
+    assert caught.value.element == "option solver"
+    assert "MJX does not support the PGS solver" in str(caught.value)
+    assert engines.load(pgs).engine == "mujoco"  # MuJoCo runs it
+    pair = tmp_path / "pair.xml"
+    pair.write_text('<mujoco><worldbody><geom type="cylinder" size="0.1 0.1"/><body pos="0 0 1"><freejoint/>'
+                    '<geom type="box" size="0.1 0.1 0.1"/></body></worldbody></mujoco>')
+    with pytest.raises(engines.EngineModelError) as caught:
+        engines.load(pair, engine="mjx")
+    assert caught.value.element == "geom pair"
+    assert "collisions not implemented" in str(caught.value)
+
+
+def test_a_closed_loop_controller_is_refused(pendulum):
+    with pytest.raises(pt.InvalidRequestError, match="MJX runs open loop here"):
+        pendulum.backend.run(3, policy=lambda *state: [0.0])
+
+
+def test_mjx_segment_regularizer_is_measured_as_catalogued():
+    # MJX's closest point on a segment adds 1e-6 to the squared length: the point of a segment of length l
+    # is off by 1e-6 / l^2 relative, a constant of dimension L^2 (catalogued as mjx_segment_regularizer)
+    from mujoco.mjx._src import math as mjx_math
+
+    constant = engines.hidden_constants("mjx", names=["mjx_segment_regularizer"])[0]
+    assert str(constant.dimension) == "L^2"
+    with jax.enable_x64(True):
+        for length, expected in ((1.0, 1.0e-6), (0.1, 1.0e-4)):
+            a, b = np.zeros(3), np.array([length, 0.0, 0.0])
+            point = np.array([length / 2, 1.0, 0.0])
+            closest = float(mjx_math.closest_segment_point(a, b, point)[0])
+            off = abs(closest - length / 2) / (length / 2)
+            assert off == pytest.approx(expected, rel=1e-3)
+            assert off == pytest.approx(constant.default / length**2, rel=1e-3)
