@@ -30,8 +30,8 @@ def test_the_file_kind_picks_the_engine_unless_engine_names_another():
 def test_options_an_engine_does_not_take_are_refused_by_name():
     with pytest.raises(pt.InvalidRequestError) as caught:
         engines.load(PENDULUM, fixed_base=True)
-    assert str(caught.value) == "engine 'mujoco' takes no option 'fixed_base'; its options: none, the file holds " \
-                                "its settings"
+    assert str(caught.value) == ("engine 'mujoco' takes no option 'fixed_base' (its options: none, an MJCF file "
+                                 "holds its settings); 'fixed_base' is for URDF files in 'pybullet'")
     assert caught.value.culprit == "fixed_base"
 
 

@@ -88,11 +88,23 @@ def load(path, engine=None, **options):
     if not chosen.installed():
         missing = next(p for p in chosen.packages if not Engine("", "", "", (), (p,)).installed())
         raise EngineUnavailableError(chosen.name, missing, chosen.extra, backends())
-    loader = getattr(importlib.import_module(f"{__package__}.{chosen.module}"), chosen.loader)
-    taken = inspect.signature(loader).parameters
-    wrong = sorted(set(options) - set(taken) - {"path"})
+    loader = _loader(chosen)
+    taken = _options(chosen)
+    wrong = sorted(set(options) - set(taken))
     if wrong:
-        valid = sorted(set(taken) - {"path"}) or ["none, the file holds its settings"]
-        raise InvalidRequestError(f"engine {chosen.name!r} takes no option {wrong[0]!r}; its options: "
-                                  f"{', '.join(valid)}", culprit=wrong[0])
+        valid = ", ".join(sorted(taken)) or f"none, an {kind.upper()} file holds its settings"
+        elsewhere = [e for e in REGISTRY if e is not chosen and wrong[0] in _options(e)]
+        where = "".join(f"; {wrong[0]!r} is for {'/'.join(e.kinds).upper()} files in {e.name!r}" for e in elsewhere)
+        raise InvalidRequestError(f"engine {chosen.name!r} takes no option {wrong[0]!r} (its options: {valid}){where}",
+                                  culprit=wrong[0])
     return loader(path, **options)
+
+
+def _loader(line: Engine):
+    """The engine's loader, its backend module imported now (which imports no engine package yet)."""
+    return getattr(importlib.import_module(f"{__package__}.{line.module}"), line.loader)
+
+
+def _options(line: Engine) -> tuple[str, ...]:
+    """The options the engine's loader takes (its keyword parameters)."""
+    return tuple(name for name in inspect.signature(_loader(line)).parameters if name != "path")

@@ -24,10 +24,15 @@ catalogue (``engines.hidden_constants("mjx")``).
 
 Examples
 --------
->>> from pitheorem import engines
->>> model = engines.load(engines.example_path("pendulum.xml"), engine="mjx")  # doctest: +SKIP
->>> model.engine, model.backend.precision  # doctest: +SKIP
-('mjx', 'float32')
+>>> from pitheorem.engines.mjx import PRECISIONS
+>>> from pitheorem.engines.registry import registered
+>>> PRECISIONS, registered("mjx").packages
+(('float32', 'float64'), ('mujoco', 'jax', 'mujoco.mjx'))
+
+With MJX installed (``pip install "pitheorem[mjx]"``)::
+
+    model = engines.load("pendulum.xml", engine="mjx")      # float32
+    rep = engines.verify(model, scaling, s=4, duration=0.5)  # rep.exact: bit for bit
 """
 
 from __future__ import annotations
@@ -69,10 +74,10 @@ class MjxBackend:
 
     Examples
     --------
-    >>> from pitheorem import engines
-    >>> model = engines.load(engines.example_path("pendulum.xml"), engine="mjx")  # doctest: +SKIP
-    >>> model.backend.device_model().opt.timestep.dtype  # doctest: +SKIP
-    dtype('float32')
+    >>> from pitheorem.engines.backend import EngineBackend
+    >>> from pitheorem.engines.mjx import MjxBackend
+    >>> all(hasattr(MjxBackend, name) for name in EngineBackend.__dict__ if not name.startswith("_"))
+    True
     """
 
     def __init__(self, mjcf: MjcfBackend, precision: str = "float32", device_model=None):
@@ -325,10 +330,14 @@ def load_mjx(path, *, precision: str = "float32") -> EngineModel:
 
     Examples
     --------
+    >>> import pitheorem as pt
     >>> from pitheorem import engines
     >>> from pitheorem.engines.mjx import load_mjx
-    >>> load_mjx(engines.example_path("pendulum.xml")).engine  # doctest: +SKIP
-    'mjx'
+    >>> try:
+    ...     load_mjx(engines.example_path("pendulum.xml"), precision="float16")
+    ... except pt.InvalidRequestError as err:
+    ...     print(err)
+    precision must be 'float32' or 'float64', got 'float16'
     """
     if precision not in PRECISIONS:
         raise InvalidRequestError(f"precision must be 'float32' or 'float64', got {precision!r}", culprit=precision)
