@@ -24,6 +24,9 @@ from pitheorem import engines  # noqa: E402
 from pitheorem.engines import mjx as mjx_backend  # noqa: E402
 
 PENDULUM = engines.example_path("pendulum.xml")
+#: every verification of a model runs this long: the same number of steps and batch, so that JAX compiles
+#: the batch runner once per model, not once per test
+DURATION = 0.2
 gymnasium = sys.modules.get("gymnasium") or pytest.importorskip("gymnasium")
 ASSETS = Path(gymnasium.__file__).resolve().parent / "envs" / "mujoco" / "assets"
 
@@ -74,14 +77,14 @@ def test_s4_reproduces_the_original_bit_for_bit_in_float32(path):
     if model.parameter("tolerance").value[0]:
         model = model.with_values(tolerance=0)  # the solver's stopping rule is not scale-free (as in MuJoCo)
     sc = time_free(model)
-    rep = engines.verify(model, sc, s=4, duration=0.2, controls=engines.smooth_controls(model))
+    rep = engines.verify(model, sc, s=4, duration=DURATION, controls=engines.smooth_controls(model))
     assert rep.exact, rep.max_deviation
     assert rep.excited
     assert rep.causes == ()
 
 
 def test_s10_is_judged_against_the_float32_yardstick(pendulum):
-    rep = engines.verify(pendulum, time_free(pendulum), s=10, duration=0.5, controls=lambda t: [0.1])
+    rep = engines.verify(pendulum, time_free(pendulum), s=10, duration=DURATION, controls=lambda t: [0.1])
     assert rep.similar
     assert not rep.exact  # float32 rounds the numbers times 10: the audit names them
     assert rep.causes
@@ -98,7 +101,7 @@ def test_the_runs_of_a_verification_are_one_vmapped_call(pendulum, monkeypatch):
         return runner(models, qpos, qvel, rows)
 
     monkeypatch.setitem(mjx_backend._RUNNERS, "float32", counting)
-    engines.verify(pendulum, time_free(pendulum), s=4, duration=0.1, ensemble=3, diagnose=False)
+    engines.verify(pendulum, time_free(pendulum), s=4, duration=DURATION, ensemble=3, diagnose=False)
     assert batches == [5]  # original, scaled copy and three twins
 
 
@@ -118,22 +121,26 @@ def test_twins_move_every_number_by_one_float32_ulp(pendulum):
     assert moved > 20
 
 
-def test_what_mjx_does_not_support_is_refused_by_name(tmp_path):
-    pgs = tmp_path / "pgs.xml"
-    pgs.write_text('<mujoco><option solver="PGS"/><worldbody><body><joint type="hinge"/>'
-                   '<geom size="0.1" mass="1"/></body></worldbody></mujoco>')
+UNSUPPORTED = {
+    "pgs": ('<mujoco><option solver="PGS"/><worldbody><body><joint type="hinge"/><geom size="0.1" mass="1"/>'
+            "</body></worldbody></mujoco>", "option solver", "MJX does not support the PGS solver"),
+    "box_cylinder": ('<mujoco><worldbody><geom type="cylinder" size="0.1 0.1"/><body pos="0 0 1"><freejoint/>'
+                     '<geom type="box" size="0.1 0.1 0.1"/></body></worldbody></mujoco>', "geom pair",
+                     "collisions not implemented"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(UNSUPPORTED))
+def test_what_mjx_does_not_support_is_refused_by_name(case, tmp_path):
+    text, element, reason = UNSUPPORTED[case]
+    path = tmp_path / f"{case}.xml"
+    path.write_text(text)
     with pytest.raises(engines.EngineModelError) as caught:
-        engines.load(pgs, engine="mjx")
-    assert caught.value.element == "option solver"
-    assert "MJX does not support the PGS solver" in str(caught.value)
-    assert engines.load(pgs).engine == "mujoco"  # MuJoCo runs it
-    pair = tmp_path / "pair.xml"
-    pair.write_text('<mujoco><worldbody><geom type="cylinder" size="0.1 0.1"/><body pos="0 0 1"><freejoint/>'
-                    '<geom type="box" size="0.1 0.1 0.1"/></body></worldbody></mujoco>')
-    with pytest.raises(engines.EngineModelError) as caught:
-        engines.load(pair, engine="mjx")
-    assert caught.value.element == "geom pair"
-    assert "collisions not implemented" in str(caught.value)
+        engines.load(path, engine="mjx")
+    assert caught.value.element == element
+    assert reason in str(caught.value)
+    assert "run the file in 'mujoco'" in str(caught.value)
+    assert engines.load(path).engine == "mujoco"  # MuJoCo runs it
 
 
 def test_a_closed_loop_controller_is_refused(pendulum):
