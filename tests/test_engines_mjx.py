@@ -143,6 +143,15 @@ def test_what_mjx_does_not_support_is_refused_by_name(case, tmp_path):
     assert engines.load(path).engine == "mujoco"  # MuJoCo runs it
 
 
+def test_audit_and_check_read_mjxs_own_float32_numbers(pendulum):
+    sc = time_free(pendulum)
+    audit = engines.audit(pendulum, sc, s=4)
+    stored = pendulum.backend.stored_numbers()
+    assert 0.9 * sum(a.size for a in stored.values()) < audit.compared <= sum(a.size for a in stored.values())
+    assert [c.kind for c in audit.causes] == ["solver"]  # the file's tolerance: no scale-free stopping rule
+    assert engines.check(pendulum) == engines.check(engines.load(PENDULUM))
+
+
 def test_a_closed_loop_controller_is_refused(pendulum):
     with pytest.raises(pt.InvalidRequestError, match="MJX runs open loop here"):
         pendulum.backend.run(3, policy=lambda *state: [0.0])
