@@ -11,7 +11,7 @@ writes a file the engine loads as it is.
 
 The engine-specific work (reading, writing, running) lives in the backend
 modules (``pitheorem.engines.mjcf``, ``urdf``, ``mjx``), each an
-implementation of :class:`pitheorem.engines.backend.EngineBackend`
+implementation of ``pitheorem.engines.backend.EngineBackend``
 registered in :mod:`pitheorem.engines.registry`; this module imports none
 of them and only holds what they share: besides the model and its parameters, the
 dimensions of a joint's coordinate and force (``JointKind``), how a
@@ -373,7 +373,7 @@ class EngineModel(TableDisplay):
 
     Build one with :func:`pitheorem.engines.load`; :meth:`scaled` returns
     another.  The engine-specific part is a backend object (an
-    :class:`~pitheorem.engines.backend.EngineBackend`).  A model
+    ``pitheorem.engines.backend.EngineBackend``).  A model
     is not changed after it is made: :meth:`scaled`, :meth:`with_values`,
     :meth:`multiplied` and :meth:`with_settings` return new models.
 
