@@ -223,7 +223,9 @@ def _read_factors(factors, names) -> dict[str, float]:
     for name in factors:
         if name not in names:
             raise InvalidRequestError(f"factors names {name!r}, which is no parameter of the table", culprit=name)
-    return {name: positive_float(f, f"the factor of {name!r}") for name, f in factors.items()}
+    # a scaling's own factors are positive finite floats already; anything else is read and checked
+    return {name: f if type(f) is float and 0 < f < math.inf else positive_float(f, f"the factor of {name!r}")
+            for name, f in factors.items()}
 
 
 def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None, *,
@@ -288,14 +290,16 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
     factors = _read_factors(factors, {p.name for p in table})
     scalars = {p.name: p.value[0] * factors.get(p.name, 1.0) for p in table if len(p.value) == 1}
     causes = []
+    compared = [t for t in thresholds(engine) if t.bound in ("below", "above")]
     for p in table:
         if p.path.startswith("option o_"):
             continue
         values = [abs(v) * factors.get(p.name, 1.0) for v in p.value if math.isfinite(v) and v != 0]
         if not values:
             continue
-        for t in thresholds(engine):
-            if t.bound not in ("below", "above") or not any(KINDS[k][1](p) for k in t.applies):
+        kinds = {k for k, (_, is_kind) in KINDS.items() if is_kind(p)}  # each kind asked once per number
+        for t in compared:
+            if kinds.isdisjoint(t.applies):
                 continue
             if fixed_only and t.relative_to:
                 continue
