@@ -17,7 +17,8 @@ Each cause is established, not presumed:
 * ``contact``: the geom pairs in contact after each step, in the original
   and in the scaled run; the first step where they differ is named, and a
   counter-run with contacts switched off says whether the difference goes
-  with them.
+  with them.  When the same pairs touch throughout and a solver cause is
+  shown, the contacts are only where that solver iterates: no cause.
 """
 
 from __future__ import annotations
@@ -128,7 +129,10 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
                             f"runs they agree (largest deviation {results['equalities'][1]:.3g} {instead()})"))
     agree, worst = results["contacts"]
     contact = _contact_difference(original, copy, n_steps, u_original, u_scaled, report.original.t)
-    if contact is not None or agree:
+    # the same pairs touching throughout, and a solver cause shown: the contacts are only where that solver's
+    # iterations act (without contacts there is nothing to iterate on), no cause of their own
+    explained = contact is None and any(c.kind == "solver" for c in causes)
+    if (contact is not None or agree) and not explained:
         pairs, detail = contact if contact is not None else ("every contact", "the same pairs touch at every step")
         verdict = "agree" if agree else "still differ"
         causes.append(Cause("contact", pairs, f"{detail}; with contacts off in both runs they {verdict} (largest "
