@@ -225,7 +225,9 @@ def test_verify_exits_0_when_similar_1_when_not_and_2_on_bad_input(capsys, tmp_p
     assert "--s" in capsys.readouterr().err
     assert main(["verify", str(pgs), "--scale", "g=1", "--s", "4", "--format", "latex"]) == 1
     latex = capsys.readouterr().out  # every format, as every other command prints
-    assert latex.startswith("% ") and "\\begin{itemize}" in latex and "\\textbf{solver}" in latex
+    assert latex.startswith("% ")
+    assert "\\begin{itemize}" in latex
+    assert "\\textbf{solver}" in latex
     assert main(["verify", "example:hinged_rod", "--scale", "g=1", "--s", "4"]) == 2
 
 

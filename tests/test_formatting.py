@@ -31,8 +31,15 @@ from hypothesis import strategies as st
 
 import pitheorem as pt
 from pitheorem import formatting
-from pitheorem.answers import (ApplyAnswer, BasesAnswer, EngineApplyAnswer, EngineVerifyAnswer, GroupsAnswer, ParamsAnswer,
-                               SearchAnswer)
+from pitheorem.answers import (
+    ApplyAnswer,
+    BasesAnswer,
+    EngineApplyAnswer,
+    EngineVerifyAnswer,
+    GroupsAnswer,
+    ParamsAnswer,
+    SearchAnswer,
+)
 from pitheorem.formatting import FORMATS, MathDisplay, TableDisplay, TextDisplay
 from pitheorem.formatting.pieces import power_latex, power_text
 
