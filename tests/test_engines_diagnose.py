@@ -6,6 +6,7 @@ and the runs agree.  And the verdict is honest both ways: wrong copies are caugh
 
 from __future__ import annotations
 
+import json
 import warnings
 from pathlib import Path
 
@@ -159,9 +160,8 @@ def test_an_ensemble_of_one_is_the_least_and_the_seed_is_checked():
 
 ROBOTS = Path(__file__).resolve().parent / "robots"
 #: each URDF robot's scene: on the ground or on a fixed base, damping and split impulses off (see the corpus)
-URDF_SCENES = {"quadruped": {"ground": True, "base_position": (0, 0, 0.5)},
-               "wheeled": {"ground": True, "base_position": (0, 0, 0.081)},
-               "arm": {"fixed_base": True}, "gripper": {"fixed_base": True, "base_position": (0, 0, 0.5)}}
+URDF_SCENES = {name: {key: tuple(v) if isinstance(v, list) else v for key, v in scene.items()}
+               for name, scene in json.loads((ROBOTS / "scenes.json").read_text()).items() if name != "_comment"}
 
 
 def robot_files():
