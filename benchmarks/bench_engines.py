@@ -31,7 +31,6 @@ from _timing import best_of
 import pitheorem as pt
 from pitheorem import engines
 
-
 ROBOTS = Path(__file__).resolve().parent.parent / "tests" / "robots"
 
 
