@@ -527,26 +527,33 @@ class UrdfBackend:
 
     # -- what the engine holds: the audit's numbers, the yardstick's twins ------------------------
 
+    def _held(self) -> tuple[list, list]:
+        """What PyBullet holds once the robot is loaded and set: each link's dynamics, each movable joint's
+        info.  Loaded once (the audit asks for the numbers and for the margins)."""
+        if getattr(self, "_held_info", None) is None:
+            pb, client = self._connect()
+            try:
+                body = self._setup(pb, client)
+                dynamics = [pb.getDynamicsInfo(body, i, physicsClientId=client) for i, _ in self._info["links"]]
+                joints = [pb.getJointInfo(body, j, physicsClientId=client) for j, _n, _t in self._info["joints"]]
+            finally:
+                pb.disconnect(physicsClientId=client)
+            self._held_info = dynamics, joints
+        return self._held_info
+
     def stored_numbers(self) -> dict[str, np.ndarray]:
         """What PyBullet holds once the robot is loaded and set: each link's dynamics, each joint's info.
 
         Fields are ``link.<quantity>`` (one row per link, the base first) and ``joint.<quantity>`` (one
         row per movable joint); the collision margins are left to :meth:`ignored_settings`.
         """
-        pb, client = self._connect()
-        try:
-            body = self._setup(pb, client)
-            links = [index for index, _ in self._info["links"]]
-            dyn = [pb.getDynamicsInfo(body, i, physicsClientId=client) for i in links]
-            out = {f"link.{name}": np.array([np.atleast_1d(d[k]) for d in dyn], dtype=float)
-                   for k, name in _DYNAMICS_FIELDS}
-            joints = [pb.getJointInfo(body, j, physicsClientId=client) for j, _n, _t in self._info["joints"]]
-            if joints:
-                out.update({f"joint.{name}": np.array([np.atleast_1d(info[k]) for info in joints], dtype=float)
-                            for k, name in _JOINT_FIELDS})
-            return out
-        finally:
-            pb.disconnect(physicsClientId=client)
+        dyn, joints = self._held()
+        out = {f"link.{name}": np.array([np.atleast_1d(d[k]) for d in dyn], dtype=float)
+               for k, name in _DYNAMICS_FIELDS}
+        if joints:
+            out.update({f"joint.{name}": np.array([np.atleast_1d(info[k]) for info in joints], dtype=float)
+                        for k, name in _JOINT_FIELDS})
+        return out
 
     def element_name(self, field: str, row: int) -> str:
         """A row of a stored field, named by its link or joint."""
@@ -558,26 +565,21 @@ class UrdfBackend:
         """The ``changeDynamics`` settings PyBullet does not take: each as a ``setting`` Cause."""
         from .causes import Cause
 
-        pb, client = self._connect()
-        try:
-            body = self._setup(pb, client)
-            missed = []
-            for index, lname in self._info["links"]:
-                wanted = self._link_dynamics(index).get("collisionMargin")
-                held = pb.getDynamicsInfo(body, index, physicsClientId=client)[11]
-                if wanted is not None and held != wanted:
-                    missed.append((lname, wanted, held))
-            if not missed:
-                return ()
-            lname, wanted, held = missed[0]
-            names = ", ".join(repr(n) for n, *_ in missed[:3]) + (f" and {len(missed) - 3} more" if len(missed) > 3
-                                                                   else "")
-            return (Cause("setting", "changeDynamics(collisionMargin)", f"{len(missed)} link(s) ({names}) keep "
-                          f"another margin than the one set (link {lname!r}: set {wanted:.17g}, PyBullet keeps "
-                          f"{held:.17g}): the call does not reach these links' shapes, so their margins are not "
-                          "scaled"),)
-        finally:
-            pb.disconnect(physicsClientId=client)
+        dynamics, _ = self._held()
+        missed = []
+        for (index, lname), held in zip(self._info["links"], dynamics, strict=True):
+            wanted = self._link_dynamics(index).get("collisionMargin")
+            if wanted is not None and held[11] != wanted:
+                missed.append((lname, wanted, held[11]))
+        if not missed:
+            return ()
+        lname, wanted, held = missed[0]
+        names = ", ".join(repr(n) for n, *_ in missed[:3]) + (f" and {len(missed) - 3} more" if len(missed) > 3
+                                                               else "")
+        return (Cause("setting", "changeDynamics(collisionMargin)", f"{len(missed)} link(s) ({names}) keep "
+                      f"another margin than the one set (link {lname!r}: set {wanted:.17g}, PyBullet keeps "
+                      f"{held:.17g}): the call does not reach these links' shapes, so their margins are not "
+                      "scaled"),)
 
     def twin(self, seed: int) -> UrdfBackend:
         """A copy with every parameter moved by about one ulp (random signs from `seed`) and its start nudged."""
