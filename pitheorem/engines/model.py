@@ -393,13 +393,13 @@ class EngineModel(TableDisplay):
     ('mujoco', True)
     """
 
-    __slots__ = ("_backend", "_groups", "_origin", "_parameters", "engine", "path")
+    __slots__ = ("_backend", "_groups", "_origin", "_parameters", "_system", "engine", "path")
 
     def __init__(self, backend, engine: str, path: str, origin: tuple | None = None):
         # origin: (the model this one is a copy of, the factor of each of its parameters), for a copy made
         # by scaled(), with_values() or multiplied(); its table is then known without reading the copy
         for name, value in (("_backend", backend), ("engine", engine), ("path", path), ("_parameters", None),
-                            ("_groups", None), ("_origin", origin)):
+                            ("_groups", None), ("_origin", origin), ("_system", None)):
             object.__setattr__(self, name, value)
 
     @property
@@ -485,11 +485,13 @@ class EngineModel(TableDisplay):
         >>> res.feasible
         True
         """
-        dims: dict[str, Dimension] = {}
-        for p in self.parameters:
-            dims.update(p.variables())
-        dims["t"] = _TIME
-        return System(dims)
+        if self._system is None:  # built once: a System never changes, and neither does this model
+            dims: dict[str, Dimension] = {}
+            for p in self.parameters:
+                dims.update(p.variables())
+            dims["t"] = _TIME
+            object.__setattr__(self, "_system", System(dims))
+        return self._system
 
     def table(self) -> str:
         """The parameters as aligned plain text: name, dimension, value, source, path.
