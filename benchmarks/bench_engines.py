@@ -1,4 +1,4 @@
-"""Time pitheorem.engines on gymnasium's MuJoCo models and pybullet_data URDFs, against the engines' own work.
+"""Time pitheorem.engines on gymnasium's, pybullet_data's and tests/robots' models against the engines' own work.
 
 Two ratios, each against a baseline timed in the same run:
 
@@ -10,7 +10,11 @@ Two ratios, each against a baseline timed in the same run:
   file and step it once with the same input (goal: within 4x for MJCF, 5x for URDF).  Two plain
   runs are timed for MuJoCo: the user's loop (``mj_step`` from Python, the input set before each
   step), and, stricter, the same steps in MuJoCo's ``rollout`` (the loop in C, which verify itself
-  uses).  For PyBullet: one client loading the file and stepping in a Python loop.
+  uses).  For PyBullet: one client loading the file and stepping in a Python loop.  Where the
+  runs are not similar, verify also finds the causes (an audit and counter-runs, paid only
+  then); the ``verdict`` column times the verdict alone (``diagnose=False``).  The verify table
+  covers gymnasium's models, four pybullet_data URDFs and the robots of tests/robots (not with
+  ``--quick``).
 
 Run: python benchmarks/bench_engines.py [--quick]
 """
@@ -18,6 +22,7 @@ Run: python benchmarks/bench_engines.py [--quick]
 from __future__ import annotations
 
 import argparse
+import json
 import warnings
 from pathlib import Path
 
@@ -25,6 +30,8 @@ from _timing import best_of
 
 import pitheorem as pt
 from pitheorem import engines
+
+ROBOTS = Path(__file__).resolve().parent.parent / "tests" / "robots"
 
 
 def corpus():
@@ -35,6 +42,23 @@ def corpus():
     data = Path(pybullet_data.getDataPath())
     urdf = [data / n for n in ("cartpole.urdf", "pendulum5.urdf", "sphere2.urdf", "kuka_iiwa/model.urdf")]
     return mjcf, urdf
+
+
+def robots():
+    """tests/robots: its MJCF files, and its URDF files each with its scene (ground or fixed base)."""
+    scenes = json.loads((ROBOTS / "scenes.json").read_text())
+    mjcf = [(p, {}) for p in sorted(ROBOTS.glob("mjcf/**/*.xml"))]
+    urdf = [(p, {**scenes[p.stem], "damping": 0.0, "split_impulse": False}) for p in sorted(ROBOTS.glob("urdf/*.urdf"))]
+    return mjcf + urdf
+
+
+def label(path: Path) -> str:
+    """A model's name in the tables: its file name, or its place in tests/robots."""
+    return f"robots/{path.relative_to(ROBOTS).as_posix()}" if ROBOTS in path.parents else path.name
+
+
+def ratio(time, baseline) -> str:
+    return "-" if time == "-" else f"{time / baseline:.2f}"
 
 
 def load_quiet(path, **options):
@@ -64,10 +88,14 @@ def main(quick: bool = False):
           f"(goal: under 1 s)")
     print()
     print(f"{'model':34s} {'verify 1 s':>11s} {'user loop':>10s} {'ratio':>6s} {'rollout':>9s} {'ratio':>6s}"
-          "  (goal: within 4x, URDF 5x)")
+          f" {'verdict':>7s}  (goal: within 4x, URDF 5x)")
+    print("  verdict: where the runs are not similar verify also finds the causes (the audit, counter-runs);")
+    print("  this column is the verdict alone (diagnose=False) over the user loop, the ratios beside it are")
+    print("  verify's with its causes")
     cases = [(p, {}) for p in (mjcf[:3] if quick else mjcf)]
     cases += [(p, {"base_position": (0, 0, 1), "ground": True, "damping": 0.0, "split_impulse": False})
               for p in (urdf[:1] if quick else urdf)]
+    cases += [] if quick else robots()
     for path, options in cases:
         model = load_quiet(path, **options)
         sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
@@ -75,10 +103,17 @@ def main(quick: bool = False):
         controls = engines.smooth_controls(model)
         t_verify = best_of(lambda model=model, sc=sc, controls=controls: engines.verify(
             model, sc, 10, duration=1.0, controls=controls), repeat)
+        diagnosed = engines.verify(model, sc, 10, duration=1.0, controls=controls).similar is False
+        verdict = "-"
+        if diagnosed:
+            t_verdict = best_of(lambda model=model, sc=sc, controls=controls: engines.verify(
+                model, sc, 10, duration=1.0, controls=controls, diagnose=False), repeat)
+            verdict = t_verdict
         if path.suffix == ".urdf":  # PyBullet reads the file in the run itself, stepping from Python
             t_loop = best_of(lambda path=path, n=n_steps, controls=controls, options=options:
                              load_quiet(path, **options).backend.run(n, controls), repeat)
-            print(f"{path.name:34s} {t_verify:9.3f} s {t_loop:8.3f} s {t_verify / t_loop:6.2f}")
+            print(f"{label(path):34s} {t_verify:9.3f} s {t_loop:8.3f} s {t_verify / t_loop:6.2f} {'':9s} {'':6s} "
+                  f"{ratio(verdict, t_loop):>7s}")
             continue
 
         def user_loop(path=path, n=n_steps, controls=controls):
@@ -94,8 +129,8 @@ def main(quick: bool = False):
             return model.backend.run(n, controls)
 
         t_loop, t_rollout = best_of(user_loop, repeat), best_of(in_rollout, repeat)
-        print(f"{path.name:34s} {t_verify:9.3f} s {t_loop:8.3f} s {t_verify / t_loop:6.2f} "
-              f"{t_rollout:7.3f} s {t_verify / t_rollout:6.2f}")
+        print(f"{label(path):34s} {t_verify:9.3f} s {t_loop:8.3f} s {t_verify / t_loop:6.2f} "
+              f"{t_rollout:7.3f} s {t_verify / t_rollout:6.2f} {ratio(verdict, t_loop):>7s}")
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 """The command line's answers: what each subcommand found about one model file, as values.
 
-``pitheorem groups``, ``bases``, ``search``, ``apply`` and ``params``
+``pitheorem groups``, ``bases``, ``search``, ``apply``, ``params`` and ``verify``
 compute one of these and print ``format(answer, FORMAT)``: its text, LaTeX,
 HTML or JSON comes from :mod:`pitheorem.formatting`, like every other
 display.  Each answer joins what one output shows: the model file's name
@@ -16,7 +16,8 @@ from typing import NamedTuple
 
 from .formatting import TextDisplay
 
-__all__ = ["ApplyAnswer", "BasesAnswer", "EngineApplyAnswer", "GroupsAnswer", "ParamsAnswer", "SearchAnswer"]
+__all__ = ["ApplyAnswer", "BasesAnswer", "EngineApplyAnswer", "EngineVerifyAnswer", "GroupsAnswer", "ParamsAnswer",
+           "SearchAnswer"]
 
 
 class GroupsAnswer(NamedTuple):
@@ -240,6 +241,50 @@ class EngineApplyAnswer(NamedTuple):
     output: str | None
     also_written: tuple[str, ...] = ()
     details: tuple[tuple[str, tuple, tuple], ...] = ()
+
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__
+
+
+class EngineVerifyAnswer(NamedTuple):
+    """``pitheorem verify``: a model file and its scaled copy run in their engine, and the verdict.
+
+    Parameters
+    ----------
+    model : str
+        The file's path.
+    engine : str
+    s : Fraction
+    duration : float
+        Simulated time of the original run.
+    input : str
+        ``"smooth"`` or ``"zero"``.
+    exact_expected : bool
+        Whether every factor is exact in binary (``s`` a power of four), so
+        that the scaled run should equal the original bit for bit.
+    report : SimilarityReport
+        What :func:`pitheorem.engines.verify` found.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from fractions import Fraction
+    >>> from pitheorem import engines
+    >>> from pitheorem.answers import EngineVerifyAnswer
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    >>> rep = engines.verify(model, sc, 4, duration=0.5, controls=lambda t: [0.1])
+    >>> print(EngineVerifyAnswer("pendulum.xml", "mujoco", Fraction(4), 0.5, "smooth", True, rep))
+    exact: the scaled copy, mapped back, equals the original bit for bit at every step (s = 4, 250 steps)
+    """
+
+    model: str
+    engine: str
+    s: Fraction
+    duration: float
+    input: str
+    exact_expected: bool
+    report: object
 
     __str__ = TextDisplay.__str__
     __format__ = TextDisplay.__format__

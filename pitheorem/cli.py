@@ -344,8 +344,6 @@ def _cmd_apply(args) -> int:
 def _cmd_verify(args) -> int:
     if _engine_path(args.file) is None:
         raise _CommandError(f"{args.file}: verify runs MJCF (.xml) or URDF (.urdf) model files in their engine")
-    if args.format not in ("text", "json"):
-        raise _CommandError(f"--format {args.format}: verify prints text or json")
     model, engine_model = _load_with_engine(args.file, args.scene)
     from .exact import read_positive
 
@@ -357,10 +355,9 @@ def _cmd_verify(args) -> int:
         return EXIT_ERROR
     from .engines.cli import verify_engine
 
-    text, similar = verify_engine(engine_model, _chosen_scaling(result, args.solution), s, float(duration),
-                                  args.input, args.format)
-    print(text)
-    return EXIT_OK if similar else EXIT_INFEASIBLE
+    answer = verify_engine(engine_model, _chosen_scaling(result, args.solution), s, float(duration), args.input)
+    _print(answer, args)
+    return EXIT_OK if answer.report.similar else EXIT_INFEASIBLE
 
 
 def _cmd_params(args) -> int:

@@ -163,3 +163,15 @@ def test_a_threshold_that_moves_with_the_time_step_is_no_cause(tmp_path):
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     assert any("refsafe" in c.detail for c in engines.check(model))  # the clamp is there, check names it
     assert not any("refsafe" in c.detail for c in engines.audit(model, sc, 10).causes)
+
+
+def test_the_copys_thresholds_are_the_same_whether_it_is_made_here_or_read_from_its_file(tmp_path):
+    """The audit knows a copy made by model.scaled without reading it; a saved file is read: same causes."""
+    model = engines.load(engines.example_path("superball.xml"))
+    unit = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    copy = model.scaled(unit, 1e-3)  # SUPERball at 1 mm: its rolling friction falls below mjMINMU
+    reread = engines.load(copy.save(tmp_path / "small.xml"))
+    made, read = engines.audit(model, unit, 1e-3, scaled=copy), engines.audit(model, unit, 1e-3, scaled=reread)
+    threshold = [c for c in made.causes if c.kind == "threshold"]
+    assert any("mujoco_minmu" in c.detail for c in threshold)
+    assert threshold == [c for c in read.causes if c.kind == "threshold"]

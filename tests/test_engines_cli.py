@@ -223,7 +223,11 @@ def test_verify_exits_0_when_similar_1_when_not_and_2_on_bad_input(capsys, tmp_p
     assert "causes:\n  solver: option tolerance" in out
     assert main(["verify", pendulum, "--scale", "g=1", "--s", "-1"]) == 2
     assert "--s" in capsys.readouterr().err
-    assert main(["verify", pendulum, "--scale", "g=1", "--s", "4", "--format", "latex"]) == 2
+    assert main(["verify", str(pgs), "--scale", "g=1", "--s", "4", "--format", "latex"]) == 1
+    latex = capsys.readouterr().out  # every format, as every other command prints
+    assert latex.startswith("% ")
+    assert "\\begin{itemize}" in latex
+    assert "\\textbf{solver}" in latex
     assert main(["verify", "example:hinged_rod", "--scale", "g=1", "--s", "4"]) == 2
 
 

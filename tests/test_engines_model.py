@@ -161,3 +161,13 @@ def test_attribute_text_writes_98_1_for_9_81_times_10():
     assert 9.81 * 10 != 98.1  # the float product rounds twice
     assert attribute_text([0, 0, -9.81], 10) == "0.0 0.0 -98.1"
     assert attribute_text([math.inf], 2) == "inf"
+
+
+def test_a_models_system_is_built_once_and_holds_every_parameter():
+    model = engines.load(engines.example_path("pendulum.xml"))
+    system = model.system()
+    assert model.system() is system  # the model never changes, so neither does its system
+    expected = {name for p in model.parameters for name in p.variables()} | {"t"}
+    assert set(system.variables) == expected
+    scaled = model.scaled(pt.Scaling.from_unit_change(system, {"L": 1}), 2)
+    assert scaled.system() is not system  # a copy is another model, with its own

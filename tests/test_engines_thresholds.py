@@ -478,3 +478,24 @@ def test_bad_requests_name_their_culprit():
         crossed("mujoco", table, [2.0])
     with pytest.raises(pt.InvalidRequestError, match="check needs an EngineModel"):
         engines.check("hopper.xml")
+
+
+def test_grouped_causes_name_every_number_once_and_detail_the_worst():
+    from pitheorem.engines import Parameter
+
+    def mass(name, value):
+        return Parameter(f"body_{name}_mass", f"body {name!r} mass", (value,), pt.Dimension.parse("M"), "file",
+                         "file")
+
+    table = [mass(n, v) for n, v in (("e", 5e-16), ("a", 4e-16), ("d", 2e-16), ("c", 3e-16), ("b", 8e-16))]
+    inertia = Parameter("body_a_inertia", "body 'a' inertia", (1e-17, 2e-17, 3e-17), pt.Dimension.parse("M L^2"),
+                        "file", "file")
+    one_each = crossed("mujoco", [*table, inertia], near=1.0)
+    assert len(one_each) == 6
+    grouped = crossed("mujoco", [*table, inertia], near=1.0, grouped=True)
+    assert len(grouped) == 2  # masses and inertias: one threshold, two dimensions, two remedies
+    masses = next(c for c in grouped if "mass" in c.element)
+    assert masses.element == "body_a_mass, body_b_mass, body_c_mass and 2 more"
+    assert masses.detail.startswith("5 numbers; the worst: body 'd' mass = 2e-16 is below")
+    alone = next(c for c in grouped if "inertia" in c.element)
+    assert alone == next(c for c in one_each if c.element == "body_a_inertia")  # a group of one reads as before

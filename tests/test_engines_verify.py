@@ -155,6 +155,9 @@ def test_runs_in_one_batch_equal_the_runs_one_by_one():
         batch = b.run_many(n, jobs)
         assert all(np.array_equal(a, c) for a, c in zip(one_by_one, batch, strict=True))
     assert np.abs(one_by_one[0] - one_by_one[2] / 10).max() > 0  # different models: not a vacuous equality
+    # the datas kept from those batches fit this model's sizes only: a batch of another model gets its own
+    other = engines.load(engines.example_path("pendulum.xml")).backend
+    assert np.array_equal(b.run_many(5, [(other, None, False, None)])[0], other.run(5))
 
 
 def test_smooth_controls_and_controls_refuse_what_they_cannot_use():
@@ -170,3 +173,38 @@ def test_smooth_controls_and_controls_refuse_what_they_cannot_use():
         engines.verify(model, sc, 2, duration=0.1, controls=[0.1])
     u = engines.smooth_controls(model, amplitude=0.5, period=2.0)
     assert float(u(0.5)[0]) == pytest.approx(0.5 * np.sin(np.pi / 2))  # the sine at a quarter period
+
+
+def test_a_batch_while_the_kept_thread_pool_is_busy_runs_on_a_pool_of_its_own():
+    from pitheorem.engines import mjcf
+
+    b = engines.load(DATA / "contact.xml").backend
+    jobs = [(b, None, False, None), (b, None, True, None)]
+    alone = b.run_many(50, jobs)
+    with mjcf._thread_pool(2):  # the kept two-thread pool is taken, as by a batch on another Python thread
+        busy = b.run_many(50, jobs)
+    assert all(np.array_equal(x, y) for x, y in zip(alone, busy, strict=True))
+    assert not np.array_equal(alone[0], alone[1])  # the nudged run differs: not a vacuous equality
+
+
+def test_a_batch_run_inherits_nothing_from_the_run_before_it_on_its_thread(tmp_path):
+    """Rollout sets only the physics state between runs: inputs and active constraints must not carry over."""
+    chain = tmp_path / "chain.xml"
+    chain.write_text(
+        '<mujoco><worldbody><body name="a" pos="0 0 1"><joint name="ja" axis="0 1 0"/>'
+        '<geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>'
+        '<body name="b" pos="0.3 0 0"><joint name="jb" axis="0 1 0"/>'
+        '<geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/></body></body></worldbody>'
+        '<equality><joint joint1="ja" joint2="jb"/></equality>'
+        '<actuator><motor joint="ja" gear="1"/></actuator></mujoco>')
+    b = engines.load(chain).backend
+    free = b.variant(inactive_equalities=(0,))
+    u = np.full((80, 1), 0.5)
+    # more jobs than threads: each thread runs a constrained and a free run, driven and undriven, in turn
+    jobs = [(b, u, False, None), (free, None, False, None), (free, u, False, None), (b, None, False, None),
+            (b, u, False, None)]
+    together = b.run_many(80, jobs)
+    one_by_one = [backend.run(80, controls) for backend, controls, _, _ in jobs]
+    assert all(np.array_equal(x, y) for x, y in zip(one_by_one, together, strict=True))
+    assert not np.array_equal(one_by_one[0], one_by_one[2])  # the constraint matters: not a vacuous equality
+    assert not np.array_equal(one_by_one[1], one_by_one[2])  # and so does the input

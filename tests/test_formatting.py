@@ -22,6 +22,7 @@ import sys
 from fractions import Fraction
 from functools import cache
 from html.parser import HTMLParser
+from pathlib import Path
 
 import pytest
 import sympy
@@ -30,7 +31,15 @@ from hypothesis import strategies as st
 
 import pitheorem as pt
 from pitheorem import formatting
-from pitheorem.answers import ApplyAnswer, BasesAnswer, EngineApplyAnswer, GroupsAnswer, ParamsAnswer, SearchAnswer
+from pitheorem.answers import (
+    ApplyAnswer,
+    BasesAnswer,
+    EngineApplyAnswer,
+    EngineVerifyAnswer,
+    GroupsAnswer,
+    ParamsAnswer,
+    SearchAnswer,
+)
 from pitheorem.formatting import FORMATS, MathDisplay, TableDisplay, TextDisplay
 from pitheorem.formatting.pieces import power_latex, power_text
 
@@ -83,6 +92,20 @@ def _engine_apply_answer():
     details = tuple((p.dimension_text, p.value, scaled.parameter(p.name).value) for p in kept)
     return EngineApplyAnswer("pendulum.xml", Fraction(10), sc, changed, len(model.parameters), "p.xml",
                              ("p.xml.settings.json",), details)
+
+
+@cache
+def _engine_verify_answer():
+    import tempfile
+
+    text = (Path(__file__).parent / "data" / "engines" / "contact.xml").read_text()
+    with tempfile.TemporaryDirectory() as folder:  # PGS and its default stopping rule: not exact, causes named
+        pgs = Path(folder) / "pgs.xml"
+        pgs.write_text(text.replace('tolerance="0"', 'solver="PGS"'))
+        model = engines.load(pgs)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    rep = engines.verify(model, sc, 4, duration=0.4)
+    return EngineVerifyAnswer("pgs.xml", "mujoco", Fraction(4), 0.4, "zero", True, rep)
 
 
 SAMPLES = {
@@ -139,6 +162,7 @@ SAMPLES = {
     "apply_answer": _apply_answer,
     "params_answer": lambda: ParamsAnswer("pendulum.xml", _engine_model()),
     "engine_apply_answer": _engine_apply_answer,
+    "engine_verify_answer": _engine_verify_answer,
 }
 
 
@@ -208,6 +232,10 @@ JSON_NUMBERS = {
                                    and _value_numbers(v.scaled, doc["scaled"]) is None),
     "ParamsAnswer": lambda v, doc: len(doc["parameters"]) == len(v.engine_model.parameters),
     "EngineApplyAnswer": lambda v, doc: [_exact(c["exponent"]) for c in doc["changed"]] == [p for _, p in v.changed],
+    "EngineVerifyAnswer": lambda v, doc: (_exact(doc["s"]) == v.s and doc["exact"] is v.report.exact
+                                          and doc["max_deviation"] == v.report.max_deviation
+                                          and [c["kind"] for c in doc["causes"]] == [c.kind for c in v.report.causes]
+                                          and doc["report"]["causes"] == doc["causes"]),
 }
 
 

@@ -210,8 +210,13 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
     # (a threshold that is a multiple of the time step moves with it, and clamps both alike)
     from .thresholds import crossed
 
-    for which in (scaled, model):
-        causes.extend(crossed(model.engine, which.parameters, near=1.0, fixed_only=True))
+    origin = scaled._origin
+    if origin is not None and origin[0] is model and all(0 < f < math.inf for f in origin[1].values()):
+        # a copy made by model.scaled: its table is the model's, each number times its factor
+        causes.extend(crossed(model.engine, model.parameters, origin[1], near=1.0, fixed_only=True, grouped=True))
+    else:  # a file the user made: read it
+        causes.extend(crossed(model.engine, scaled.parameters, near=1.0, fixed_only=True, grouped=True))
+    causes.extend(crossed(model.engine, model.parameters, near=1.0, fixed_only=True, grouped=True))
     return Audit(sorted_causes(causes), compared, float(s))
 
 

@@ -199,8 +199,8 @@ class SolverDiagnosis(Protocol):
     def equality_names(self) -> list[str]:
         """Each equality constraint, named as the reports name it."""
 
-    def contact_log(self, n_steps: int, controls: Controls = None) -> list[frozenset]:
-        """The pairs in contact after each step of an open-loop run."""
+    def first_contact_difference(self, other, n_steps: int, controls: Controls = None, other_controls: Controls = None):
+        """The first step after which other pairs touch in `other`'s run: (step, pairs only there, only here)."""
 
 
 @runtime_checkable

@@ -11,9 +11,10 @@ line prints in the format asked for.
 
 from __future__ import annotations
 
+from fractions import Fraction
 from pathlib import Path
 
-from ..answers import EngineApplyAnswer, ParamsAnswer
+from ..answers import EngineApplyAnswer, EngineVerifyAnswer, ParamsAnswer
 from ..errors import InvalidRequestError
 from ..modelfile import ModelFile
 from .loading import load
@@ -209,9 +210,8 @@ def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None)
 
 
 
-def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str = "smooth",
-                  fmt: str = "text") -> tuple[str, bool]:
-    """The command line's ``verify``: the verdict as text or JSON, and whether the copy is similar.
+def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str = "smooth") -> EngineVerifyAnswer:
+    """The command line's ``verify``: the model and its scaled copy run, and the verdict.
 
     Parameters
     ----------
@@ -221,11 +221,11 @@ def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str =
     duration : float
     inputs : {"smooth", "zero"}
         :func:`pitheorem.engines.smooth_controls`, or no input.
-    fmt : {"text", "json"}
 
     Returns
     -------
-    (str, bool)
+    EngineVerifyAnswer
+        Printed in any format; ``answer.report.similar`` is the verdict.
 
     Examples
     --------
@@ -234,50 +234,19 @@ def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str =
     >>> from pitheorem.engines.cli import verify_engine
     >>> model = engines.load(engines.example_path("pendulum.xml"))
     >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    >>> text, similar = verify_engine(model, sc, 4, 0.5)
-    >>> print(text.splitlines()[0]); similar
+    >>> answer = verify_engine(model, sc, 4, 0.5)
+    >>> print(answer); answer.report.similar
     exact: the scaled copy, mapped back, equals the original bit for bit at every step (s = 4, 250 steps)
     True
     """
-    import json
-
     from .verify import smooth_controls, verify
 
     controls = smooth_controls(model) if inputs == "smooth" and len(model.backend.control_dimensions()) else None
     rep = verify(model, scaling, s, duration=duration, controls=controls)
-    steps = len(rep.original) - 1
-    if fmt == "json":
-        data = {"file": model.path, "engine": model.engine, "s": float(s), "duration": duration,
-                "input": inputs, "exact": rep.exact, "similar": rep.similar, "excited": rep.excited,
-                "max_deviation": rep.max_deviation, "first_divergence": rep.first_divergence,
-                "causes": [c.to_dict() for c in rep.causes]}
-        return json.dumps(data, indent=2), rep.similar
-    if rep.exact:
-        lines = [f"exact: the scaled copy, mapped back, equals the original bit for bit at every step "
-                 f"(s = {s}, {steps} steps)"]
-    else:
-        verdict = "similar" if rep.similar else "NOT similar"
-        worst = max(rep.sensitivity.values(), default=0.0)
-        lines = [f"{verdict}: largest deviation {rep.max_deviation:.3g} in original units, against {rep.baseline_factor:g}x "
-                 f"the spread of {rep.ensemble} one-ulp twins of the original (largest {worst:.3g}); s = {s}, "
-                 f"{steps} steps"]
-        if rep.first_divergence is not None:
-            t, name = rep.first_divergence
-            lines.append(f"first difference at t = {t:.6g}, in {name}")
-    if not rep.excited:
-        lines.append("the original run moved nothing beyond its own rounding: this verdict proves nothing "
-                     "(use --input smooth or another initial pose)")
-    if rep.causes:
-        lines.append("causes:")
-        lines.extend(f"  {c}" for c in rep.causes)
-    elif not rep.similar or (not rep.exact and _power_of_four(s)):
-        lines.append("no cause found by the audit and the counter-runs (solver, contacts)")
-    return "\n".join(lines), rep.similar
+    return EngineVerifyAnswer(model.path, model.engine, Fraction(s), duration, inputs, _power_of_four(s), rep)
 
 
 def _power_of_four(s) -> bool:
-    from fractions import Fraction
-
     s = Fraction(s)
     for part in (s.numerator, s.denominator):
         if part & (part - 1) or (part.bit_length() - 1) % 2:

@@ -17,7 +17,8 @@ Each cause is established, not presumed:
 * ``contact``: the geom pairs in contact after each step, in the original
   and in the scaled run; the first step where they differ is named, and a
   counter-run with contacts switched off says whether the difference goes
-  with them.
+  with them.  When the same pairs touch throughout and a solver cause is
+  shown, the contacts are only where that solver iterates: no cause.
 """
 
 from __future__ import annotations
@@ -70,55 +71,73 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
     causes = [c for c in audit(model, scaling, s, scaled=scaled).causes if c.kind != "solver"]
     limits = allowed_deviation(report.original, report.sensitivity, report.baseline_factor)
 
-    def counter(variant_options) -> tuple[bool, float]:
-        """Both runs again with other options: (agree, largest deviation)."""
-        a, b = original.variant(**variant_options), copy.variant(**variant_options)
-        run, other = a.run_many(n_steps, [(a, u_original, False, None), (b, u_scaled, False, None)])
-        back = other / factors
-        if exact_expected:
-            agree = bool(np.array_equal(run, back))
-        else:
-            agree = bool(np.all(np.abs(back - run).max(axis=0) <= limits))
-        return agree, _largest(back - run)
+    def counters(*variants) -> list[tuple[bool, float]]:
+        """Both runs again under each variant's options, all in one batch: (agree, largest deviation) each."""
+        jobs = []
+        for options in variants:
+            jobs += [(original.variant(**options), u_original, False, None),
+                     (copy.variant(**options), u_scaled, False, None)]
+        runs = jobs[0][0].run_many(n_steps, jobs)
+        out = []
+        for run, other in zip(runs[::2], runs[1::2], strict=True):
+            back = other / factors
+            if exact_expected:
+                agree = bool(np.array_equal(run, back))
+            else:
+                agree = bool(np.all(np.abs(back - run).max(axis=0) <= limits))
+            out.append((agree, _largest(back - run)))
+        return out
+
+    def instead() -> str:
+        return f"instead of {report.max_deviation:.3g}"
 
     if not isinstance(original, CounterRuns):
         return sorted_causes(causes)
     solver = original.solver_settings()
+    mujoco_like = isinstance(original, SolverDiagnosis)  # PyBullet: no solver to switch, no contact list
+    # every counter-run a cause may need, in one batch (MuJoCo's rollout spreads them over the cores)
+    variants = {}
     if solver:
-        agree, worst = counter({"tolerance": 0.0})
-        if agree:
-            names = ", ".join(f"option {k} = {v:g}" for k, v in solver.items())
-            setting = next(iter(solver))
-            causes.append(Cause("solver", names, "a stopping rule of no pure dimension: the scaled run stops after "
-                                f"other iterations; with it at 0 in both runs they agree (largest deviation {worst:.3g}"
-                                f" instead of {report.max_deviation:.3g}); load with with_values({setting}=0)"))
-    if not isinstance(original, SolverDiagnosis):  # PyBullet: no solver to switch, no contact list per step here
+        variants["tolerance"] = {"tolerance": 0.0}
+    equalities = original.equality_names() if mujoco_like else ()
+    if mujoco_like:
+        if original.solver_name() != "Newton":
+            variants["newton"] = {"solver": "Newton"}
+        if equalities:
+            variants["equalities"] = {"inactive_equalities": tuple(range(len(equalities)))}
+        variants["contacts"] = {"contacts": False}
+    results = dict(zip(variants, counters(*variants.values()), strict=True)) if variants else {}
+
+    if "tolerance" in results and results["tolerance"][0]:
+        names = ", ".join(f"option {k} = {v:g}" for k, v in solver.items())
+        causes.append(Cause("solver", names, "a stopping rule of no pure dimension: the scaled run stops after "
+                            "other iterations; with it at 0 in both runs they agree (largest deviation "
+                            f"{results['tolerance'][1]:.3g} {instead()}); load with with_values({next(iter(solver))}=0)"))
+    if not mujoco_like:
         return sorted_causes(causes)
-    if original.solver_name() != "Newton":
-        agree, worst = counter({"solver": "Newton"})
-        if not agree:  # Newton's own stopping rule may stop it at another iteration too
-            agree, worst = counter({"solver": "Newton", "tolerance": 0.0})
-        if agree:
-            causes.append(Cause("solver", f"option solver = {original.solver_name()}", "this solver's iterations are "
-                                f"not scale-free; with Newton's in both runs they agree (largest "
-                                f"deviation {worst:.3g} instead of {report.max_deviation:.3g}): load the file with "
-                                '<option solver="Newton"/> to scale it'))
-    equalities = original.equality_names()
-    if equalities:
-        agree, worst = counter({"inactive_equalities": tuple(range(len(equalities)))})
-        if agree:  # which of them: each one off alone
-            alone = [name for i, name in enumerate(equalities) if counter({"inactive_equalities": (i,)})[0]]
-            named = ", ".join(alone) or "the equality constraints together"
-            causes.append(Cause("solver", named, "an equality constraint the solver does not treat scale-free (a weld "
-                                "with an offset is one): with it inactive in both runs they agree (largest deviation "
-                                f"{worst:.3g} instead of {report.max_deviation:.3g})"))
+    newton = results.get("newton")
+    if newton is not None and not newton[0]:  # Newton's own stopping rule may stop it at another iteration too
+        newton = counters({"solver": "Newton", "tolerance": 0.0})[0]
+    if newton is not None and newton[0]:
+        causes.append(Cause("solver", f"option solver = {original.solver_name()}", "this solver's iterations are "
+                            f"not scale-free; with Newton's in both runs they agree (largest deviation {newton[1]:.3g} "
+                            f'{instead()}): load the file with <option solver="Newton"/> to scale it'))
+    if "equalities" in results and results["equalities"][0]:  # which of them: each one off alone
+        alone = counters(*({"inactive_equalities": (i,)} for i in range(len(equalities))))
+        named = ", ".join(name for name, (agree, _) in zip(equalities, alone, strict=True) if agree)
+        causes.append(Cause("solver", named or "the equality constraints together", "an equality constraint the "
+                            "solver does not treat scale-free (a weld with an offset is one): with it inactive in both "
+                            f"runs they agree (largest deviation {results['equalities'][1]:.3g} {instead()})"))
+    agree, worst = results["contacts"]
     contact = _contact_difference(original, copy, n_steps, u_original, u_scaled, report.original.t)
-    agree, worst = counter({"contacts": False})
-    if contact is not None or agree:
+    # the same pairs touching throughout, and a solver cause shown: the contacts are only where that solver's
+    # iterations act (without contacts there is nothing to iterate on), no cause of their own
+    explained = contact is None and any(c.kind == "solver" for c in causes)
+    if (contact is not None or agree) and not explained:
         pairs, detail = contact if contact is not None else ("every contact", "the same pairs touch at every step")
         verdict = "agree" if agree else "still differ"
         causes.append(Cause("contact", pairs, f"{detail}; with contacts off in both runs they {verdict} (largest "
-                            f"deviation {worst:.3g} instead of {report.max_deviation:.3g})"))
+                            f"deviation {worst:.3g} {instead()})"))
     return sorted_causes(causes)
 
 
@@ -129,15 +148,13 @@ def _largest(diff: np.ndarray) -> float:
 
 def _contact_difference(original, copy, n_steps, u_original, u_scaled, t):
     """The first step at which other geom pairs touch in the scaled run: (pairs, detail), or None."""
-    before = original.contact_log(n_steps, u_original)
-    after = copy.contact_log(n_steps, u_scaled)
-    for i, (a, b) in enumerate(zip(before, after, strict=True)):
-        if a != b:
-            only_scaled, only_original = sorted(b - a), sorted(a - b)
-            pair = (only_scaled or only_original)[0]
-            where = "the scaled run only" if only_scaled else "the original only"
-            extra = len(only_scaled) + len(only_original) - 1
-            more = f" (and {extra} other pair{'s' if extra > 1 else ''})" if extra else ""
-            return " / ".join(pair), (f"in contact in {where} after step {i + 1} (t = {float(t[i + 1]):.6g}){more}: a "
-                                      "contact that starts or ends at another step")
-    return None
+    found = original.first_contact_difference(copy, n_steps, u_original, u_scaled)
+    if found is None:
+        return None
+    step, only_scaled, only_original = found
+    pair = (only_scaled or only_original)[0]
+    where = "the scaled run only" if only_scaled else "the original only"
+    extra = len(only_scaled) + len(only_original) - 1
+    more = f" (and {extra} other pair{'s' if extra > 1 else ''})" if extra else ""
+    return " / ".join(pair), (f"in contact in {where} after step {step} (t = {float(t[step]):.6g}){more}: a "
+                              "contact that starts or ends at another step")

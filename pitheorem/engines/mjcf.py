@@ -28,6 +28,7 @@ precision.
 
 from __future__ import annotations
 
+import atexit
 import math
 import warnings
 from collections.abc import Callable
@@ -706,19 +707,16 @@ class MjcfBackend:
 
     def scaled(self, factors, scaling, s) -> MjcfBackend:
         spec = self._portable_spec()
-        elements, mine = _Elements(spec), _Elements(self.spec)  # the same elements in the same order
-        written = []  # (address, attribute, entries, the original's values, factor): for save's exact decimals
+        elements = _Elements(spec)
         for slot in self._slots:
             factor = factors.get(slot.name, 1.0)
             if factor != 1.0:
                 slot.write_on(elements.get(slot.where), factor)
-                original = mine.get(slot.where)
-                written.extend((slot.where, attr, index, np.array(getattr(original, attr), dtype=float), factor)
-                               for attr, index in slot.attrs)
         if scaling is not None:
             self._scale_keyframes(spec, scaling, s)
         copy = MjcfBackend(spec, "", self.source_dir, warn=False, asset_dirs=self.asset_dirs)
-        copy.written = written
+        copy._scaled_from = (self, factors)  # for save's exact decimals, read only if the copy is saved
+        copy._field_names = self._fields()  # the same elements: the same stored fields
         copy._inputs = self._actuator_inputs()  # the same actuators and joints: the same dimensions
         copy._coordinates = self.coordinate_dimensions()
         return copy
@@ -729,7 +727,7 @@ class MjcfBackend:
         # decimal and the factor's, rounded once (9.81 times 10 is 98.1, where the float product is
         # 98.10000000000001); at a power-of-two factor the very same double as in memory
         elements = _Elements(spec)
-        for where, attr, index, original, factor in getattr(self, "written", ()):
+        for where, attr, index, original, factor in self._written():
             element = elements.get(where)
             if np.ndim(original) == 0:
                 setattr(element, attr, exact_product(float(original), factor))
@@ -745,6 +743,26 @@ class MjcfBackend:
             spec.compile()
             text = spec.to_xml()
         Path(path).write_text(text)
+
+    def _written(self) -> list:
+        """What :meth:`scaled` multiplied: (address, attribute, entries, the original's values, factor) each.
+
+        Empty for a model read from a file.  The original's numbers are read from its spec, which no
+        one changes, when the copy is saved (a copy that is only run never needs them).
+        """
+        source = getattr(self, "_scaled_from", None)
+        if source is None:
+            return []
+        original, factors = source
+        mine = _Elements(original.spec)  # the same elements in the same order as the copy's
+        written = []
+        for slot in original._slots:
+            factor = factors.get(slot.name, 1.0)
+            if factor != 1.0:
+                element = mine.get(slot.where)
+                written.extend((slot.where, attr, index, np.array(getattr(element, attr), dtype=float), factor)
+                               for attr, index in slot.attrs)
+        return written
 
     def _portable_spec(self):
         """A copy of the spec whose mesh, texture and hfield files load from any folder (absolute paths).
@@ -774,8 +792,12 @@ class MjcfBackend:
             return
         model = self.mjmodel  # the copy has the same coordinates and actuators as this model
 
+        of_dimension = {}  # dozens of coordinates, a handful of dimensions
+
         def factors(dims):
-            return np.array([dimension_factor(scaling, s, d) for d in dims])
+            for d in set(dims) - of_dimension.keys():
+                of_dimension[d] = dimension_factor(scaling, s, d)
+            return np.array([of_dimension[d] for d in dims])
 
         _, dims = self.coordinate_dimensions()  # qpos, qvel, then the activations
         nq, nv = model.nq, model.nv
@@ -815,21 +837,41 @@ class MjcfBackend:
         Zeros stay zero (a scaled copy keeps them exactly); the time step stays, for it is the grid
         the runs are compared on.  The model is copied, not compiled again.
         """
-        rng = np.random.default_rng(seed)
+        fields, up, down = self._neighbours()
+        chosen = np.where(np.random.default_rng(seed).random(up.size) < 0.5, up, down)
         twin = self._with_model_copy()
         m = twin.mjmodel
-        for field in self._fields():
-            if field == "opt.timestep":
-                continue
+        for field, start, stop, shape, dtype in fields:  # one draw, then each field written in place
             holder, attr = _holder(m, field)
-            value = np.asarray(getattr(holder, attr))
-            toward = np.where(rng.random(value.shape) < 0.5, np.inf, -np.inf).astype(value.dtype)
-            moved = np.where(value == 0, value, np.nextafter(value, toward))
-            if np.ndim(getattr(holder, attr)) == 0:
+            moved = chosen[start:stop].astype(dtype).reshape(shape)
+            if shape == ():
                 setattr(holder, attr, moved.item())
             else:
                 getattr(holder, attr)[...] = moved
         return twin
+
+    def _neighbours(self):
+        """Every stored number's neighbours one ulp up and one down (zeros kept), found once per model.
+
+        Returns the fields as ``(name, start, stop, shape, dtype)`` and the two neighbour arrays, all
+        fields end to end, each number stepped in its own precision (float32 where MuJoCo keeps it so)
+        and then held as a double, which represents it exactly.
+        """
+        if getattr(self, "_neighbour_table", None) is None:
+            fields, ups, downs, start = [], [], [], 0
+            for field in self._fields():
+                if field == "opt.timestep":
+                    continue
+                holder, attr = _holder(self.mjmodel, field)
+                value = np.asarray(getattr(holder, attr))
+                flat = value.reshape(-1)
+                zero = flat == 0
+                ups.append(np.where(zero, flat, np.nextafter(flat, np.array(np.inf, flat.dtype))).astype(float))
+                downs.append(np.where(zero, flat, np.nextafter(flat, np.array(-np.inf, flat.dtype))).astype(float))
+                fields.append((field, start, start + flat.size, value.shape, value.dtype))
+                start += flat.size
+            self._neighbour_table = (tuple(fields), np.concatenate(ups), np.concatenate(downs))
+        return self._neighbour_table
 
     def _with_model_copy(self) -> MjcfBackend:
         """This backend over a copy of its compiled model (copied, not compiled again), to change and run."""
@@ -885,19 +927,30 @@ class MjcfBackend:
         """The constraint solver: ``"PGS"``, ``"CG"`` or ``"Newton"``."""
         return {0: "PGS", 1: "CG", 2: "Newton"}.get(int(self.mjmodel.opt.solver), str(self.mjmodel.opt.solver))
 
-    def contact_log(self, n_steps: int, controls=None) -> list[frozenset]:
-        """The geom pairs in contact after each step of an open-loop run (stepped in Python to read them)."""
-        mj, m = _mujoco(), self.mjmodel
-        data, _ = self._start(False, None)
-        rows = self._control_rows(controls, n_steps)
-        log = []
+    def first_contact_difference(self, other: MjcfBackend, n_steps: int, controls=None, other_controls=None):
+        """The first step after which other geom pairs touch in `other`'s run than in this one's.
+
+        Both run open loop, step by step side by side, and stop at the first difference: returns
+        ``(step, pairs only in other's run, pairs only in this one's)``, pairs named and sorted, or
+        None when the same pairs touch after every step.  `other` has the same geoms (a scaled copy).
+        """
+        mj = _mujoco()
+        runs = [(self, self._start(False, None)[0], self._control_rows(controls, n_steps)),
+                (other, other._start(False, None)[0], other._control_rows(other_controls, n_steps))]
         for i in range(n_steps):
-            if rows is not None:
-                data.ctrl[:] = rows[i]
-            mj.mj_step(m, data)
-            log.append(frozenset((self._geom_name(c.geom1), self._geom_name(c.geom2))
-                                 for c in data.contact[:data.ncon]))
-        return log
+            touching = []
+            for backend, data, rows in runs:
+                if rows is not None:
+                    data.ctrl[:] = rows[i]
+                mj.mj_step(backend.mjmodel, data)
+                touching.append(_touching(data))
+            mine, theirs = touching
+            if mine != theirs:
+                def named(pairs):
+                    return sorted((self._geom_name(a), self._geom_name(b)) for a, b in pairs)
+
+                return i + 1, named(theirs - mine), named(mine - theirs)
+        return None
 
     def element_name(self, field: str, row: int) -> str:
         """A row of a stored field, named by its element where the field has one row per element."""
@@ -998,30 +1051,34 @@ class MjcfBackend:
         import os
 
         mj = _mujoco()  # names a missing MuJoCo before its submodule is imported
-        from mujoco import rollout
-
-        spec = mj.mjtState.mjSTATE_FULLPHYSICS
-        models, initial, control, firsts = [], [], [], []
+        physics, user = mj.mjtState.mjSTATE_FULLPHYSICS, mj.mjtState.mjSTATE_USER
+        models, initial, inputs, firsts = [], [], [], []
         threads = max(1, min(len(jobs), os.cpu_count() or 1))
-        # the jobs' models have the same sizes: one data per thread serves them all, and the first also
-        # finds each job's initial state (allocating a data costs more than a small model's whole run)
+        # The jobs' models have the same sizes: one data per thread serves them all, and the first also
+        # finds each job's initial state.  A thread's data runs several jobs, and rollout sets only the
+        # full-physics state between them: each job therefore also gets, at every step, every input a
+        # reset leaves in a data (the controls, applied forces, which equality constraints are active,
+        # mocap poses, user data), and a zero warm start, so that no run inherits another's.
         datas = [mj.MjData(jobs[0][0].mjmodel) for _ in range(threads)]
         for backend, controls, nudge, state in jobs:
             m = backend.mjmodel
             data, first = backend._start(nudge, state, datas[0])
-            x0 = np.empty(mj.mj_stateSize(m, spec))
-            mj.mj_getState(m, data, x0, spec)
+            x0, u0 = np.empty(mj.mj_stateSize(m, physics)), np.empty(mj.mj_stateSize(m, user))
+            mj.mj_getState(m, data, x0, physics)
+            mj.mj_getState(m, data, u0, user)
+            rows = np.tile(u0, (n_steps, 1))
+            ctrl = backend._control_rows(controls, n_steps)
+            if ctrl is not None:  # the user state starts with the controls
+                rows[:, :m.nu] = ctrl
             models.append(m)
             initial.append(x0)
+            inputs.append(rows)
             firsts.append(first)
-            control.append(backend._control_rows(controls, n_steps))
         if n_steps == 0:
             return [first[None, :] for first in firsts]
-        steer = any(c is not None for c in control)
-        if steer:
-            control = [np.zeros((n_steps, m.nu)) if c is None else c for c, m in zip(control, models, strict=True)]
-        states, _ = rollout.rollout(models, datas, np.array(initial),
-                                    np.array(control) if steer else None, nstep=n_steps)
+        with _thread_pool(threads) as pool:
+            states, _ = pool.rollout(models, datas, np.array(initial), np.array(inputs), control_spec=user,
+                                     initial_warmstart=np.zeros((len(jobs), models[0].nv)), nstep=n_steps)
         # the full-physics state is laid out by component: time, then qpos, qvel, act
         out = []
         for m, first, rows in zip(models, firsts, states, strict=True):
@@ -1094,6 +1151,53 @@ def _stored_fields(m) -> list[str]:
         holder = getattr(m, struct)
         fields.extend(f"{struct}.{a}" for a in attrs if hasattr(holder, a))
     return fields
+
+
+#: the rollout thread pools kept between batches: (process id, thread count) -> (pool, lock)
+_POOLS: dict = {}
+
+
+@contextmanager
+def _thread_pool(threads: int):
+    """A MuJoCo rollout pool of `threads` threads, kept for the next batch.
+
+    Starting and stopping the threads costs about as much as a small model's whole batch, so the
+    pool is kept.  A batch from a second Python thread while the pool is busy gets a pool of its
+    own; a process forked after the pool started (whose copy of it has no threads) keeps its own.
+    """
+    import os
+    import threading
+
+    from mujoco import rollout
+
+    key = (os.getpid(), threads)
+    if key not in _POOLS:
+        _POOLS[key] = rollout.Rollout(nthread=threads), threading.Lock()
+    pool, lock = _POOLS[key]
+    if not lock.acquire(blocking=False):
+        with rollout.Rollout(nthread=threads) as own:
+            yield own
+        return
+    try:
+        yield pool
+    finally:
+        lock.release()
+
+
+@atexit.register
+def _close_pools() -> None:
+    """Stop the kept pools' threads before the interpreter stops."""
+    import os
+
+    for (pid, _threads), (pool, _lock) in list(_POOLS.items()):
+        if pid == os.getpid():
+            pool.close()
+    _POOLS.clear()
+
+
+def _touching(data) -> frozenset:
+    """The geom pairs (ids) of a data's contacts."""
+    return frozenset(map(tuple, data.contact.geom[:data.ncon].tolist()))
 
 
 def _holder(m, field: str):

@@ -24,6 +24,7 @@ model takes (``check_scaling``), the factor of a dimension under a scaling
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from dataclasses import dataclass
@@ -283,8 +284,9 @@ def exact_product(value, factor) -> float:
         return value * factor
 
 
+@functools.lru_cache(maxsize=256)
 def dim(text: str) -> Dimension:
-    """Shorthand: parse a dimension formula.
+    """Shorthand: parse a dimension formula (each formula parsed once: a Dimension never changes).
 
     Examples
     --------
@@ -393,10 +395,13 @@ class EngineModel(TableDisplay):
     ('mujoco', True)
     """
 
-    __slots__ = ("_backend", "_parameters", "engine", "path")
+    __slots__ = ("_backend", "_groups", "_origin", "_parameters", "_system", "engine", "path")
 
-    def __init__(self, backend, engine: str, path: str):
-        for name, value in (("_backend", backend), ("engine", engine), ("path", path), ("_parameters", None)):
+    def __init__(self, backend, engine: str, path: str, origin: tuple | None = None):
+        # origin: (the model this one is a copy of, the factor of each of its parameters), for a copy made
+        # by scaled(), with_values() or multiplied(); its table is then known without reading the copy
+        for name, value in (("_backend", backend), ("engine", engine), ("path", path), ("_parameters", None),
+                            ("_groups", None), ("_origin", origin), ("_system", None)):
             object.__setattr__(self, name, value)
 
     @property
@@ -412,6 +417,20 @@ class EngineModel(TableDisplay):
         if self._parameters is None:  # a scaled copy that is only run never lists its numbers
             object.__setattr__(self, "_parameters", tuple(self._backend.parameters()))
         return self._parameters
+
+    def _by_dimension(self) -> tuple[tuple, tuple[Parameter, ...]]:
+        """The parameters' names grouped by dimension, and the mixed parameters; found once.
+
+        Hundreds of parameters share a handful of dimensions: a scaling computes each factor once.
+        """
+        if self._groups is None:
+            groups: dict = {}
+            for p in self.parameters:
+                if p.dimension is not None:
+                    groups.setdefault(p.dimension, []).append(p.name)
+            mixed = tuple(p for p in self.parameters if p.dimension is None)
+            object.__setattr__(self, "_groups", (tuple((d, tuple(n)) for d, n in groups.items()), mixed))
+        return self._groups
 
     def __copy__(self) -> EngineModel:
         return self  # nothing of it changes, so a copy is the model itself
@@ -468,11 +487,13 @@ class EngineModel(TableDisplay):
         >>> res.feasible
         True
         """
-        dims: dict[str, Dimension] = {}
-        for p in self.parameters:
-            dims.update(p.variables())
-        dims["t"] = _TIME
-        return System(dims)
+        if self._system is None:  # built once: a System never changes, and neither does this model
+            dims: dict[str, Dimension] = {}
+            for p in self.parameters:
+                dims.update(p.variables())
+            dims["t"] = _TIME
+            object.__setattr__(self, "_system", System(dims))
+        return self._system
 
     def table(self) -> str:
         """The parameters as aligned plain text: name, dimension, value, source, path.
@@ -520,13 +541,12 @@ class EngineModel(TableDisplay):
         """
         s = read_scale_factor(s)
         check_scaling(scaling)
-        factors, refused, of_dimension = {}, [], {}  # hundreds of parameters, a handful of dimensions
-        for p in self.parameters:  # every number the scaling cannot reach, not only the first
-            if p.dimension is not None:
-                if p.dimension not in of_dimension:
-                    of_dimension[p.dimension] = dimension_factor(scaling, s, p.dimension)
-                factors[p.name] = of_dimension[p.dimension]
-                continue
+        factors, refused = {}, []
+        by_dimension, mixed = self._by_dimension()
+        for dimension, names in by_dimension:
+            factor = dimension_factor(scaling, s, dimension)
+            factors.update(dict.fromkeys(names, factor))
+        for p in mixed:  # every number the scaling cannot reach, not only the first
             try:
                 factors[p.name] = p.factor(scaling, s)
             except UnscalableParameterError as err:
@@ -624,7 +644,7 @@ class EngineModel(TableDisplay):
 
     def _times(self, factors: dict[str, float], scaling=None, s=None) -> EngineModel:
         """The copy of :meth:`scaled`, :meth:`with_values` and :meth:`multiplied`: checked factors applied."""
-        return EngineModel(self._backend.scaled(factors, scaling, s), self.engine, "")
+        return EngineModel(self._backend.scaled(factors, scaling, s), self.engine, "", origin=(self, dict(factors)))
 
     def save(self, path) -> Path:
         """Write the model as a file the engine loads as is.

@@ -228,11 +228,13 @@ def _read_factors(factors, names) -> dict[str, float]:
     for name in factors:
         if name not in names:
             raise InvalidRequestError(f"factors names {name!r}, which is no parameter of the table", culprit=name)
-    return {name: positive_float(f, f"the factor of {name!r}") for name, f in factors.items()}
+    # a scaling's own factors are positive finite floats already; anything else is read and checked
+    return {name: f if type(f) is float and 0 < f < math.inf else positive_float(f, f"the factor of {name!r}")
+            for name, f in factors.items()}
 
 
 def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None, *,
-            near: float = 2.0, fixed_only: bool = False) -> tuple[Cause, ...]:
+            near: float = 2.0, fixed_only: bool = False, grouped: bool = False) -> tuple[Cause, ...]:
     """The parameters beyond or near a threshold of the engine, as causes of kind ``"threshold"``.
 
     Each parameter of a kind a threshold applies to (:data:`KINDS`) is
@@ -262,6 +264,11 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
         a multiple of another of the model's numbers of the same dimension
         (two time steps) moves with it under every change of units, so it
         clamps a model and its scaled copy alike and breaks no similarity.
+    grouped : bool
+        One cause per threshold and dimension instead of one per parameter:
+        the parameters named (the first three and how many more), the
+        detail that of the worst of them (a verdict's causes stay short on
+        a robot whose hundred geoms all sit below one floor).
 
     Returns
     -------
@@ -292,15 +299,17 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
     near = _read_near(near)
     factors = _read_factors(factors, {p.name for p in table})
     scalars = {p.name: p.value[0] * factors.get(p.name, 1.0) for p in table if len(p.value) == 1}
-    causes = []
+    causes, found = [], []
+    compared = [t for t in thresholds(engine) if t.bound in ("below", "above")]
     for p in table:
         if p.path.startswith("option o_"):
             continue
         values = [abs(v) * factors.get(p.name, 1.0) for v in p.value if math.isfinite(v) and v != 0]
         if not values:
             continue
-        for t in thresholds(engine):
-            if t.bound not in ("below", "above") or not any(KINDS[k][1](p) for k in t.applies):
+        kinds = {k for k, (_, is_kind) in KINDS.items() if is_kind(p)}  # each kind asked once per number
+        for t in compared:
+            if kinds.isdisjoint(t.applies):
                 continue
             if fixed_only and t.relative_to:
                 continue
@@ -312,7 +321,23 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
             close = worst < limit * near if t.bound == "below" else worst > limit / near
             if beyond or close:
                 causes.append(Cause("threshold", p.name, _detail(p, t, worst, limit, near, beyond)))
-    return sorted_causes(causes)
+                found.append((t, p, worst, beyond))
+    if not grouped:
+        return sorted_causes(causes)
+    groups: dict = {}
+    for t, p, worst, beyond in found:
+        groups.setdefault((t.name, p.dimension_text, beyond), []).append((p.name, worst, t, p))
+    out = []
+    for (_name, _dimension, beyond), members in groups.items():
+        members.sort(key=lambda m: m[0])  # by parameter name
+        _, worst, t, p = (min if t.bound == "below" else max)(members, key=lambda m: m[1])
+        detail = _detail(p, t, worst, t.limit(scalars), near, beyond)
+        names = ", ".join(name for name, *_ in members[:3])
+        if len(members) > 3:
+            names += f" and {len(members) - 3} more"
+        out.append(Cause("threshold", names, f"{len(members)} numbers; the worst: {detail}" if len(members) > 1
+                         else detail))
+    return sorted_causes(out)
 
 
 def _detail(p, t: Threshold, worst: float, limit: float, near: float, beyond: bool) -> str:

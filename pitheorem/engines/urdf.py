@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import copy
 import json
+import math
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -414,13 +415,13 @@ class UrdfBackend:
 
     # -- scaling --------------------------------------------------------------------------------
 
-    def scaled(self, factors, scaling, s, *, info: dict | None = None) -> UrdfBackend:
+    def scaled(self, factors, scaling, s, *, info: dict | None = None, text=attribute_text) -> UrdfBackend:
         tree = copy.deepcopy(self.tree)
         attrs = _attributes(tree, self.path, self.source_dir)
         for a in attrs:
             f = factors.get(a.name, 1.0)
             if f != 1.0:
-                a.element.set(a.attr, attribute_text(a.read(), f))  # the exact decimal product
+                a.element.set(a.attr, text(a.read(), f))  # by default the exact decimal product
         st = json.loads(json.dumps(self._settings))
         st["g"] *= factors.get("g", 1.0)
         st["timestep"] *= factors.get("timestep", 1.0)
@@ -449,6 +450,11 @@ class UrdfBackend:
         scene = dict(self.scene)
         if any(scene["base_position"]):
             scene["base_position"] = tuple(v * factors.get("base_position", 1.0) for v in scene["base_position"])
+        if info is None and all(0 < f < math.inf for f in factors.values()):
+            # the same links, joints and shapes, none of them massless that was not: PyBullet's reading of
+            # this file serves the copy (every dynamics value the copy runs with is set above, none falls
+            # back to the load's), and the copy is not loaded once more just to be read
+            info = self._info
         return UrdfBackend(tree, self.path, self.source_dir, st, scene=scene, info=info)
 
     #: the one line that removes every refusal of PyBullet's default scene at once
@@ -521,26 +527,33 @@ class UrdfBackend:
 
     # -- what the engine holds: the audit's numbers, the yardstick's twins ------------------------
 
+    def _held(self) -> tuple[list, list]:
+        """What PyBullet holds once the robot is loaded and set: each link's dynamics, each movable joint's
+        info.  Loaded once (the audit asks for the numbers and for the margins)."""
+        if getattr(self, "_held_info", None) is None:
+            pb, client = self._connect()
+            try:
+                body = self._setup(pb, client)
+                dynamics = [pb.getDynamicsInfo(body, i, physicsClientId=client) for i, _ in self._info["links"]]
+                joints = [pb.getJointInfo(body, j, physicsClientId=client) for j, _n, _t in self._info["joints"]]
+            finally:
+                pb.disconnect(physicsClientId=client)
+            self._held_info = dynamics, joints
+        return self._held_info
+
     def stored_numbers(self) -> dict[str, np.ndarray]:
         """What PyBullet holds once the robot is loaded and set: each link's dynamics, each joint's info.
 
         Fields are ``link.<quantity>`` (one row per link, the base first) and ``joint.<quantity>`` (one
         row per movable joint); the collision margins are left to :meth:`ignored_settings`.
         """
-        pb, client = self._connect()
-        try:
-            body = self._setup(pb, client)
-            links = [index for index, _ in self._info["links"]]
-            dyn = [pb.getDynamicsInfo(body, i, physicsClientId=client) for i in links]
-            out = {f"link.{name}": np.array([np.atleast_1d(d[k]) for d in dyn], dtype=float)
-                   for k, name in _DYNAMICS_FIELDS}
-            joints = [pb.getJointInfo(body, j, physicsClientId=client) for j, _n, _t in self._info["joints"]]
-            if joints:
-                out.update({f"joint.{name}": np.array([np.atleast_1d(info[k]) for info in joints], dtype=float)
-                            for k, name in _JOINT_FIELDS})
-            return out
-        finally:
-            pb.disconnect(physicsClientId=client)
+        dyn, joints = self._held()
+        out = {f"link.{name}": np.array([np.atleast_1d(d[k]) for d in dyn], dtype=float)
+               for k, name in _DYNAMICS_FIELDS}
+        if joints:
+            out.update({f"joint.{name}": np.array([np.atleast_1d(info[k]) for info in joints], dtype=float)
+                        for k, name in _JOINT_FIELDS})
+        return out
 
     def element_name(self, field: str, row: int) -> str:
         """A row of a stored field, named by its link or joint."""
@@ -552,33 +565,29 @@ class UrdfBackend:
         """The ``changeDynamics`` settings PyBullet does not take: each as a ``setting`` Cause."""
         from .causes import Cause
 
-        pb, client = self._connect()
-        try:
-            body = self._setup(pb, client)
-            missed = []
-            for index, lname in self._info["links"]:
-                wanted = self._link_dynamics(index).get("collisionMargin")
-                held = pb.getDynamicsInfo(body, index, physicsClientId=client)[11]
-                if wanted is not None and held != wanted:
-                    missed.append((lname, wanted, held))
-            if not missed:
-                return ()
-            lname, wanted, held = missed[0]
-            names = ", ".join(repr(n) for n, *_ in missed[:3]) + (f" and {len(missed) - 3} more" if len(missed) > 3
-                                                                   else "")
-            return (Cause("setting", "changeDynamics(collisionMargin)", f"{len(missed)} link(s) ({names}) keep "
-                          f"another margin than the one set (link {lname!r}: set {wanted:.17g}, PyBullet keeps "
-                          f"{held:.17g}): the call does not reach these links' shapes, so their margins are not "
-                          "scaled"),)
-        finally:
-            pb.disconnect(physicsClientId=client)
+        dynamics, _ = self._held()
+        missed = []
+        for (index, lname), held in zip(self._info["links"], dynamics, strict=True):
+            wanted = self._link_dynamics(index).get("collisionMargin")
+            if wanted is not None and held[11] != wanted:
+                missed.append((lname, wanted, held[11]))
+        if not missed:
+            return ()
+        lname, wanted, held = missed[0]
+        names = ", ".join(repr(n) for n, *_ in missed[:3]) + (f" and {len(missed) - 3} more" if len(missed) > 3
+                                                               else "")
+        return (Cause("setting", "changeDynamics(collisionMargin)", f"{len(missed)} link(s) ({names}) keep "
+                      f"another margin than the one set (link {lname!r}: set {wanted:.17g}, PyBullet keeps "
+                      f"{held:.17g}): the call does not reach these links' shapes, so their margins are not "
+                      "scaled"),)
 
     def twin(self, seed: int) -> UrdfBackend:
         """A copy with every parameter moved by about one ulp (random signs from `seed`) and its start nudged."""
         rng = np.random.default_rng(seed)
         factors = {p.name: 1.0 + float(rng.choice((-1.0, 1.0))) * 2.0**-52 for p in self.parameters()
                    if p.name != "timestep"}
-        out = self.scaled(factors, None, None, info=self._info)
+        # the float products, not their exact decimals: a twin is never saved
+        out = self.scaled(factors, None, None, info=self._info, text=_float_products)
         out.nudge_start = True
         return out
 
@@ -595,8 +604,20 @@ class UrdfBackend:
         return out
 
     def run_many(self, n_steps: int, jobs) -> list[np.ndarray]:
-        """The runs of ``(backend, controls, nudge, state)`` jobs, one after the other (PyBullet has no batch)."""
-        return [backend.run(n_steps, controls, nudge) for backend, controls, nudge, _state in jobs]
+        """The runs of ``(backend, controls, nudge, state)`` jobs, one after the other, in one PyBullet client.
+
+        PyBullet has no batch; connecting costs more than a small robot's whole run, so the client is
+        connected once and its world reset between the runs (each run sets every setting again).
+        """
+        pb, client = self._connect()
+        try:
+            out = []
+            for backend, controls, nudge, _state in jobs:
+                pb.resetSimulation(physicsClientId=client)
+                out.append(backend._run_in(pb, client, n_steps, controls, nudge))
+            return out
+        finally:
+            pb.disconnect(physicsClientId=client)
 
     def control_ranges(self) -> tuple[np.ndarray, np.ndarray]:
         """Unlimited for every movable joint: under torque control PyBullet applies no effort limit."""
@@ -604,42 +625,46 @@ class UrdfBackend:
         return -high, high
 
     def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None):
-        nudge = nudge or self.nudge_start
         pb, client = self._connect()
         try:
-            st = self._settings
-            body = self._setup(pb, client)
-            joints = [j for j, _n, _t in self._info["joints"]]
-            if nudge:
-                pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=client)
-                pb.resetBasePositionAndOrientation(body, nudged(pos).tolist(), orn, physicsClientId=client)
-                for j in joints:
-                    q = pb.getJointState(body, j, physicsClientId=client)[0]
-                    pb.resetJointState(body, j, float(nudged([q])[0]), 0.0, physicsClientId=client)
-            out = np.empty((n_steps + 1, 13 + 2 * len(joints)))
-
-            def record(i):
-                pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=client)
-                lin, ang = pb.getBaseVelocity(body, physicsClientId=client)
-                states = pb.getJointStates(body, joints, physicsClientId=client) if joints else []
-                out[i] = [*pos, *orn, *lin, *ang, *(x[0] for x in states), *(x[1] for x in states)]
-
-            record(0)
-            dt = st["timestep"]
-            for i in range(1, n_steps + 1):
-                if (controls is not None or policy is not None) and joints:
-                    t = (i - 1) * dt
-                    if controls is None:
-                        u = policy(client, body, t)
-                    else:  # an array of rows, one per step, or a function of time
-                        u = controls(t) if callable(controls) else controls[i - 1]
-                    pb.setJointMotorControlArray(body, joints, pb.TORQUE_CONTROL, forces=list(map(float, u)),
-                                                 physicsClientId=client)
-                pb.stepSimulation(physicsClientId=client)
-                record(i)
-            return out
+            return self._run_in(pb, client, n_steps, controls, nudge, policy)
         finally:
             pb.disconnect(physicsClientId=client)
+
+    def _run_in(self, pb, client, n_steps: int, controls=None, nudge: bool = False, policy=None):
+        """One run in a connected client whose world is empty."""
+        nudge = nudge or self.nudge_start
+        st = self._settings
+        body = self._setup(pb, client)
+        joints = [j for j, _n, _t in self._info["joints"]]
+        if nudge:
+            pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=client)
+            pb.resetBasePositionAndOrientation(body, nudged(pos).tolist(), orn, physicsClientId=client)
+            for j in joints:
+                q = pb.getJointState(body, j, physicsClientId=client)[0]
+                pb.resetJointState(body, j, float(nudged([q])[0]), 0.0, physicsClientId=client)
+        out = np.empty((n_steps + 1, 13 + 2 * len(joints)))
+
+        def record(i):
+            pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=client)
+            lin, ang = pb.getBaseVelocity(body, physicsClientId=client)
+            states = pb.getJointStates(body, joints, physicsClientId=client) if joints else []
+            out[i] = [*pos, *orn, *lin, *ang, *(x[0] for x in states), *(x[1] for x in states)]
+
+        record(0)
+        dt = st["timestep"]
+        for i in range(1, n_steps + 1):
+            if (controls is not None or policy is not None) and joints:
+                t = (i - 1) * dt
+                if controls is None:
+                    u = policy(client, body, t)
+                else:  # an array of rows, one per step, or a function of time
+                    u = controls(t) if callable(controls) else controls[i - 1]
+                pb.setJointMotorControlArray(body, joints, pb.TORQUE_CONTROL, forces=list(map(float, u)),
+                                             physicsClientId=client)
+            pb.stepSimulation(physicsClientId=client)
+            record(i)
+        return out
 
     def with_settings(self, **changes) -> UrdfBackend:
         st = json.loads(json.dumps(self._settings))
@@ -661,6 +686,11 @@ _DYNAMICS_FIELDS = ((0, "mass"), (1, "lateralFriction"), (2, "localInertiaDiagon
                     (9, "contactStiffness"))
 _JOINT_FIELDS = ((6, "damping"), (7, "friction"), (8, "lowerLimit"), (9, "upperLimit"), (10, "maxForce"),
                  (11, "maxVelocity"), (14, "parentFramePos"))
+
+
+def _float_products(values, factor: float) -> str:
+    """Numbers times a factor as the text of an XML attribute: each float product at full precision."""
+    return " ".join(repr(float(v) * factor) for v in values)
 
 
 def _snippet(name: str, settings: dict) -> str:

@@ -270,3 +270,10 @@ def _engine_apply_answer(answer) -> str:
             for name, p, _, old, new in changed_rows(answer)]
     wrote = _p(f"wrote {_code(answer.output)}") if answer.output else ""
     return head + _table(["parameter", "factor", "value", "scaled value"], rows) + wrote
+
+
+@_renders("pitheorem.answers.EngineVerifyAnswer")
+def _engine_verify_answer(answer) -> str:
+    lines = [line for line in render(answer, "text").splitlines() if not line.startswith(("causes:", "  "))]
+    items = "".join(f"<li>{render(c, 'html')}</li>" for c in answer.report.causes)
+    return "".join(_p(escape(line)) for line in lines) + (f"<ul>{items}</ul>" if items else "")

@@ -157,7 +157,10 @@ def _similarity_report(report) -> dict:
             "s": json_number(report.s), "is_similarity": report.is_similarity, "method": report.method,
             "scaled_dt": report.scaled_dt, "deviation": dict(report.deviation),
             "sensitivity": None if report.sensitivity is None else dict(report.sensitivity),
-            "baseline_factor": report.baseline_factor, "exponents": _rationals(report.exponents)}
+            "baseline_factor": report.baseline_factor, "exponents": _rationals(report.exponents),
+            "exact": report.exact, "excited": report.excited, "ensemble": report.ensemble,
+            "first_divergence": None if report.first_divergence is None else list(report.first_divergence),
+            "causes": [_cause(c) for c in report.causes]}
 
 
 @_data("pitheorem.engines.rod.EngineSimilarityReport")
@@ -296,6 +299,16 @@ def _engine_apply_answer(answer) -> dict:
             "changed": [{"name": name, "exponent": rational_text(p), "dimension": dim, "value": list(old),
                          "scaled_value": list(new)} for name, p, dim, old, new in changed_rows(answer)],
             "output": answer.output, "also_written": list(answer.also_written)}
+
+
+@_data("pitheorem.answers.EngineVerifyAnswer")
+def _engine_verify_answer(answer) -> dict:
+    rep = answer.report
+    return {"file": answer.model, "engine": answer.engine, "s": json_number(answer.s), "duration": answer.duration,
+            "input": answer.input, "exact_expected": answer.exact_expected, "exact": rep.exact,
+            "similar": rep.similar, "excited": rep.excited, "max_deviation": rep.max_deviation,
+            "first_divergence": None if rep.first_divergence is None else list(rep.first_divergence),
+            "causes": [_cause(c) for c in rep.causes], "report": _similarity_report(rep)}
 
 
 #: renderer of each value type, by qualified type name: its data, dumped

@@ -277,3 +277,11 @@ def _engine_apply_answer(answer) -> str:
     head = (f"% {answer.model}, s = {answer.s}: {len(answer.changed)} of {answer.n_parameters} parameters change"
             + (f"; wrote {answer.output}" if answer.output else ""))
     return f"{head}\n{_tabular('lcll', rows, ['parameter', 'factor', 'value', 'scaled value'])}"
+
+
+@_renders("pitheorem.answers.EngineVerifyAnswer")
+def _engine_verify_answer(answer) -> str:
+    lines = [line for line in render(answer, "text").splitlines() if not line.startswith(("causes:", "  "))]
+    items = "".join(rf"\item {render(c, 'latex')}" + "\n" for c in answer.report.causes)
+    head = f"% {answer.model} in {answer.engine}, s = {answer.s}\n" + "\n\n".join(map(latex_escape, lines))
+    return head + ("\n\\begin{itemize}\n" + items + "\\end{itemize}" if items else "")

@@ -455,3 +455,30 @@ def _engine_apply_answer(answer) -> str:
         also = f" (and {', '.join(answer.also_written)})" if answer.also_written else ""
         lines += ["", f"wrote {answer.output}{also}"]
     return "\n".join(lines)
+
+
+@_renders("pitheorem.answers.EngineVerifyAnswer")
+def _engine_verify_answer(answer) -> str:
+    rep, s = answer.report, answer.s
+    steps = len(rep.original) - 1
+    if rep.exact:
+        lines = [f"exact: the scaled copy, mapped back, equals the original bit for bit at every step "
+                 f"(s = {s}, {steps} steps)"]
+    else:
+        verdict = "similar" if rep.similar else "NOT similar"
+        worst = max(rep.sensitivity.values(), default=0.0)
+        lines = [f"{verdict}: largest deviation {rep.max_deviation:.3g} in original units, against "
+                 f"{rep.baseline_factor:g}x the spread of {rep.ensemble} one-ulp twins of the original (largest "
+                 f"{worst:.3g}); s = {s}, {steps} steps"]
+        if rep.first_divergence is not None:
+            t, name = rep.first_divergence
+            lines.append(f"first difference at t = {t:.6g}, in {name}")
+    if not rep.excited:
+        lines.append("the original run moved nothing beyond its own rounding: this verdict proves nothing "
+                     "(use --input smooth or another initial pose)")
+    if rep.causes:
+        lines.append("causes:")
+        lines.extend(f"  {c}" for c in rep.causes)
+    elif not rep.similar or (not rep.exact and answer.exact_expected):
+        lines.append("no cause found by the audit and the counter-runs (solver, contacts)")
+    return "\n".join(lines)
