@@ -27,6 +27,15 @@ def test_the_file_kind_picks_the_engine_unless_engine_names_another():
     assert caught.value.culprit == "genesis"
 
 
+def test_a_urdf_file_does_not_run_in_an_mjcf_engine(tmp_path):
+    urdf = tmp_path / "box.urdf"
+    urdf.write_text('<robot name="box"><link name="base"/></robot>')
+    for engine in ("mujoco", "mjx"):
+        with pytest.raises(pt.InvalidRequestError) as caught:
+            engines.load(urdf, engine=engine)
+        assert str(caught.value) == f"engine {engine!r} does not read URDF files; a URDF file runs in 'pybullet'"
+
+
 def test_options_an_engine_does_not_take_are_refused_by_name():
     with pytest.raises(pt.InvalidRequestError) as caught:
         engines.load(PENDULUM, fixed_base=True)

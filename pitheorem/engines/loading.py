@@ -83,8 +83,9 @@ def load(path, engine=None, **options):
     chosen = next(e for e in readers if e.default) if engine is None else registered(engine)
     if chosen not in readers:
         names = " or ".join(repr(e.name) for e in readers)
-        raise InvalidRequestError(f"engine {chosen.name!r} does not read {kind.upper()} files; an {kind.upper()} "
-                                  f"file runs in {names}", culprit=chosen.name)
+        article = "an" if kind.upper()[0] in "AEFHILMNORSX" else "a"  # as the letters are spoken: an MJCF, a URDF
+        raise InvalidRequestError(f"engine {chosen.name!r} does not read {kind.upper()} files; {article} "
+                                  f"{kind.upper()} file runs in {names}", culprit=chosen.name)
     if not chosen.installed():
         missing = next(p for p in chosen.packages if not Engine("", "", "", (), (p,)).installed())
         raise EngineUnavailableError(chosen.name, missing, chosen.extra, backends())
