@@ -220,7 +220,8 @@ def test_verify_exits_0_when_similar_1_when_not_and_2_on_bad_input(capsys, tmp_p
     out = capsys.readouterr().out
     assert code == 1, out
     assert out.startswith("NOT similar")
-    assert "causes:\n  solver: option tolerance" in out
+    assert "causes:\n  solver: option solver = PGS" in out
+    assert "\n  solver: option tolerance" in out
     assert main(["verify", pendulum, "--scale", "g=1", "--s", "-1"]) == 2
     assert "--s" in capsys.readouterr().err
     assert main(["verify", str(pgs), "--scale", "g=1", "--s", "4", "--format", "latex"]) == 1
@@ -350,15 +351,23 @@ def test_apply_without_output_reports_the_changes_and_writes_nothing(tmp_path, c
     assert list(tmp_path.iterdir()) == []
 
 
-def test_verify_says_when_a_run_moved_nothing_and_reads_powers_of_four(capsys):
+def test_verify_says_when_a_run_moved_nothing_and_expects_bits_where_every_factor_is_a_power_of_two(capsys):
+    from fractions import Fraction
+
+    import pitheorem as pt
     from pitheorem.cli import main
-    from pitheorem.engines.cli import _power_of_four
+    from pitheorem.engines.verify import exact_in_binary
 
     hanging = str(Path(__file__).parent / "data" / "engines" / "hanging.xml")
     assert main(["verify", hanging, "--scale", "g=1", "--s", "10", "--input", "zero"]) == 0
     out = capsys.readouterr().out
     assert "this verdict proves nothing" in out
-    from fractions import Fraction
-
-    powers = [s for s in ("4", "16", "1/4", "1/64", "2", "8", "10", "3/4", "1") if _power_of_four(Fraction(s))]
+    model = engines.load(PENDULUM)
+    half = pt.Scaling.from_unit_change(model.system(), {"L": Fraction(1, 2)})  # lengths times s^(1/2)
+    powers = [s for s in ("4", "16", "1/4", "1/64", "2", "8", "10", "3/4", "1")
+              if exact_in_binary(model, half, Fraction(s))]
     assert powers == ["4", "16", "1/4", "1/64", "1"]
+    whole = pt.Scaling.from_unit_change(model.system(), {"L": 1})  # whole exponents: every power of two
+    assert [s for s in ("2", "8", "1/2", "3") if exact_in_binary(model, whole, Fraction(s))] == ["2", "8", "1/2"]
+    angles = pt.Scaling.from_unit_change(model.system(), {"M": 1})  # masses only: the coordinates keep factor 1
+    assert not exact_in_binary(model, angles, 10)

@@ -238,16 +238,9 @@ def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str =
     exact: the scaled copy, mapped back, equals the original bit for bit at every step (s = 4, 250 steps)
     True
     """
-    from .verify import smooth_controls, verify
+    from .verify import exact_in_binary, smooth_controls, verify
 
     controls = smooth_controls(model) if inputs == "smooth" and len(model.backend.control_dimensions()) else None
     rep = verify(model, scaling, s, duration=duration, controls=controls)
-    return EngineVerifyAnswer(model.path, model.engine, Fraction(s), duration, inputs, _power_of_four(s), rep)
-
-
-def _power_of_four(s) -> bool:
-    s = Fraction(s)
-    for part in (s.numerator, s.denominator):
-        if part & (part - 1) or (part.bit_length() - 1) % 2:
-            return False
-    return True
+    return EngineVerifyAnswer(model.path, model.engine, Fraction(s), duration, inputs,
+                              exact_in_binary(model, scaling, s), rep)
