@@ -418,7 +418,10 @@ class _Walker:
         ident, path = self.label("joint", joint, index)
         kind = _joint_kind(mj, joint.type)
         self.add("joint", joint, ident, path, "pos", _L)
-        self.refuse(joint, path, ("springdamper", "springyield"))
+        self.refuse(joint, path, ("springyield",))
+        if np.any(np.asarray(joint.springdamper) != 0):  # a time constant and a damping ratio (dimensionless)
+            self.add("joint", joint, ident, path, "springdamper", _T, slice(0, 1), "_time",
+                     note="the compiler turns it and the damping ratio into stiffness and damping")
         if kind is None:  # free joint: translation and rotation share each number
             for attr, lin, rot in (("damping", "M T^-1", "M L^2 T^-1"), ("armature", "M", "M L^2"),
                                    ("frictionloss", "M L T^-2", "M L^2 T^-2")):
