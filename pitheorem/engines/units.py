@@ -260,7 +260,7 @@ def refuse_urdf(model, units: Mapping[str, str]) -> None:
 
     Examples
     --------
-    >>> import pitheorem as pt
+    >>> from pitheorem import engines
     >>> from pitheorem.engines.units import refuse_urdf
     >>> class Urdf:
     ...     path = "arm.urdf"
