@@ -54,11 +54,74 @@ _LAZY = {
     "verify_similarity": "simulation",
     "RangeBound": "unitfit",
     "UnitFit": "unitfit",
-    "fit_units": "unitfit",
     "formatting": None,
     "models": None,
     "plotting": None,
 }
+
+
+def fit_units(system, values=None, *, ranges=None, dimension_ranges=None, fixed=(), fixed_units=(), nice=None,
+              engine=None):
+    """Find the change of base units that brings values into ranges.
+
+    The ranges are given, or those an engine's thresholds leave (`engine`).
+
+    Without `engine`, :func:`pitheorem.unitfit.fit_units` (its notes say
+    how the fit works).  With ``engine="mujoco"`` (or ``"pybullet"``;
+    ``"mjx"`` computes in float32), or given an engine model itself, the
+    ranges are those the engine's thresholds leave each number, a factor
+    10 clear of them, and the fit is the smallest unit change that meets
+    them (:func:`pitheorem.engines.fitting.engine_fit`).
+
+    Parameters
+    ----------
+    system : System or EngineModel
+        The variables; an :class:`~pitheorem.engines.EngineModel` brings
+        its own values and engine.
+    values : mapping of str to number, optional
+        The values in the current units (not needed with a model).
+    ranges : mapping of str to (low, high) or None, optional
+        Range per variable.
+    dimension_ranges : mapping of str to (low, high), optional
+        Range for every variable of a dimension (not with an engine).
+    fixed : iterable of str, optional
+        Variables whose value must not change.
+    fixed_units : iterable of str, optional
+        Base dimensions whose unit must not change.
+    nice : int, optional
+        Factors restricted to integer powers of `nice` (with an engine:
+        10 unless given).
+    engine : str, optional
+        Fit the numbers clear of this engine's thresholds.  The kind of
+        each variable of a System is read from its name, as
+        :meth:`~pitheorem.engines.EngineModel.system` names them.
+
+    Returns
+    -------
+    UnitFit
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> ball = pt.System({"r": "L", "m": "M", "t": "T"})
+    >>> pt.fit_units(ball, {"r": 0.02, "m": 0.17, "t": 1}, dimension_ranges={"L": (0.05, 10)}, nice=10).factors["L"]
+    Fraction(100, 1)
+    >>> from pitheorem import engines
+    >>> worm = engines.load(engines.example_path("pendulum.xml")).converted(L=100, M=1e6)
+    >>> pt.fit_units(worm, engine="mujoco").factors
+    {'M': Fraction(1, 1), 'L': Fraction(100, 1), 'T': Fraction(1, 1)}
+    """
+    if engine is None and not hasattr(system, "parameters"):  # a System (unitfit refuses anything else)
+        from .unitfit import fit_units as fit
+
+        return fit(system, values, ranges=ranges, dimension_ranges=dimension_ranges, fixed=fixed,
+                   fixed_units=fixed_units, nice=nice)
+    if dimension_ranges:
+        raise InvalidRequestError("dimension_ranges is not for an engine fit; give ranges per parameter")
+    from .engines.fitting import engine_fit
+
+    return engine_fit(system, values, engine=engine, ranges=ranges, fixed=fixed, fixed_units=fixed_units,
+                      nice=10 if nice is None else nice)
 
 
 def __getattr__(name: str):

@@ -524,10 +524,9 @@ def _snap(problem: _Problem, v: np.ndarray, t_star: float) -> list[Fraction]:
     return decades([Fraction(float(z)) for z in v])
 
 
-def fit_units(system: System, values: Mapping[str, object] | None = None, *, ranges: Mapping[str, object] | None = None,
+def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[str, object] | None = None,
               dimension_ranges: Mapping[str, object] | None = None, fixed: Iterable[str] = (),
-              fixed_units: Iterable[str] = (), nice: int | None = None, engine: str | None = None,
-              centre: bool = True) -> UnitFit:
+              fixed_units: Iterable[str] = (), nice: int | None = None, centre: bool = True) -> UnitFit:
     """Find the change of base units that brings values into ranges.
 
     Parameters
@@ -549,20 +548,11 @@ def fit_units(system: System, values: Mapping[str, object] | None = None, *, ran
     nice : int, optional
         Restrict every factor to an integer power of `nice` (10, 2, ...) and
         check the ranges again in exact arithmetic.
-    engine : str, optional
-        An engine (``"mujoco"``, ``"pybullet"``; ``"mjx"`` computes in
-        float32): add the ranges its thresholds leave each number, a
-        factor 10 clear of them (:mod:`pitheorem.engines.fitting`), and
-        find the smallest unit change that meets them.  The variables'
-        kinds are read from their names as
-        :meth:`pitheorem.engines.EngineModel.system` gives them
-        (``body_torso_mass``, ``..._friction_torsional_rolling``); give the
-        model itself as `system` for the whole picture (then `values`
-        may be left out), and ``nice`` defaults to 10.
     centre : bool
         Pull each value towards the middle of its range (default);
         False: the smallest unit change that puts every value in range
-        (the engine fit's choice).
+        (the choice of ``pt.fit_units(..., engine=...)``, which calls
+        this function from :mod:`pitheorem.engines.fitting`).
 
     Returns
     -------
@@ -603,11 +593,6 @@ def fit_units(system: System, values: Mapping[str, object] | None = None, *, ran
     >>> [str(b) for b in bad.conflict]
     ['r >= 1/20', 'g <= 10']
     """
-    if engine is not None or not isinstance(system, System) and hasattr(system, "parameters"):
-        from .engines.fitting import engine_fit
-
-        return engine_fit(system, values, engine=engine, ranges=ranges, fixed=fixed, fixed_units=fixed_units,
-                          nice=10 if nice is None else nice)
     if not isinstance(system, System):
         raise InvalidRequestError(f"fit_units needs a System, got {type(system).__name__}")
     if not isinstance(values, Mapping):

@@ -127,7 +127,7 @@ def test_a_urdf_is_si_by_its_specification_and_other_units_are_refused_by_name()
         quiet(arm, units={"L": "cm"}, fixed_base=True)
     model = quiet(arm, fixed_base=True)
     assert model.units == {"M": "kg", "L": "m", "T": "s"}
-    with pytest.raises(engines.EngineModelError, match="arm.urdf: units"):
+    with pytest.raises(engines.EngineModelError, match=r"arm\.urdf: units"):
         model.converted(L="mm")
 
 
@@ -154,11 +154,14 @@ def test_there_and_back_is_exact_at_powers_of_two_and_within_one_ulp_otherwise(p
 def test_a_conversion_is_one_similarity_scaling_when_the_factors_share_a_base():
     system = engines.load(PENDULUM).system()
     ((scaling, s),) = conversion(system, read_units({"L": "cm", "M": "g"}), read_units({"L": "mm", "M": "g"}))
-    assert s == 10 and dict(scaling.unit_change) == {"M": 0, "L": 1, "T": 0}
+    assert s == 10
+    assert dict(scaling.unit_change) == {"M": 0, "L": 1, "T": 0}
     ((scaling, s),) = conversion(system, read_units({"L": "cm", "M": "g"}), read_units({"L": "mm"}))
-    assert s == 10 and dict(scaling.unit_change) == {"M": -3, "L": 1, "T": 0}
+    assert s == 10
+    assert dict(scaling.unit_change) == {"M": -3, "L": 1, "T": 0}
     ((scaling, s),) = conversion(system, read_units({}), read_units({"L": 0.25, "M": 8, "T": 0.5}))
-    assert s == 2 and dict(scaling.unit_change) == {"M": -3, "L": 2, "T": 1}
+    assert s == 2
+    assert dict(scaling.unit_change) == {"M": -3, "L": 2, "T": 1}
     assert len(conversion(system, read_units({}), read_units({"L": "inch", "M": "g"}))) == 2
     assert conversion(system, read_units({}), read_units({"L": "m"})) == ()
 
@@ -177,7 +180,9 @@ def test_the_converted_copy_verifies_as_similar_under_the_conversions_scaling():
     for units in ({"L": 0.25, "M": 1 / 16}, {"L": "cm", "M": "g"}):
         ((scaling, s),) = conversion(model.system(), model.units, read_units(units))
         report = engines.verify(model, scaling, s, duration=0.2, controls=engines.smooth_controls(model))
-        assert report.similar and report.excited and report.max_deviation < 1e-12, units
+        assert report.similar, units
+        assert report.excited, units
+        assert report.max_deviation < 1e-12, units
 
 
 def test_a_run_of_the_converted_copy_maps_back_onto_the_original(tmp_path):
@@ -187,7 +192,8 @@ def test_a_run_of_the_converted_copy_maps_back_onto_the_original(tmp_path):
     ms = model.converted(T="ms", L="mm")
     assert ms.parameter("timestep").value == (1.0,)
     key = ms.backend.mjmodel
-    assert key.key_time[0] == 500.0 and key.key_qvel[0][0] == pytest.approx(2e-3)
+    assert key.key_time[0] == 500.0
+    assert key.key_qvel[0][0] == pytest.approx(2e-3)
     rows = ms.backend.run(100)
     back = in_units(ms, rows, model.units)
     assert ulps(back, model.backend.run(100)) <= 64
@@ -214,10 +220,12 @@ def test_a_springdamper_is_read_as_a_time_constant_and_scaled_with_time(tmp_path
     path.write_text(SPRING)
     model = engines.load(path)
     p = model.parameter("joint_j_springdamper_time")
-    assert p.value == (0.2,) and str(p.dimension) == "T"
+    assert p.value == (0.2,)
+    assert str(p.dimension) == "T"
     ms = model.converted(T="ms", M="g", L="mm")
     assert ms.parameter("joint_j_springdamper_time").value == (200.0,)
     # the compiler's stiffness and damping (M L^2 T^-2 and M L^2 T^-1) follow from it
     k0, k1 = model.backend.mjmodel.jnt_stiffness[0], ms.backend.mjmodel.jnt_stiffness[0]
     d0, d1 = model.backend.mjmodel.dof_damping[0], ms.backend.mjmodel.dof_damping[0]
-    assert k1 == pytest.approx(k0 * 1e3 * 1e6 * 1e-6) and d1 == pytest.approx(d0 * 1e3 * 1e6 * 1e-3)
+    assert k1 == pytest.approx(k0 * 1e3 * 1e6 * 1e-6)
+    assert d1 == pytest.approx(d0 * 1e3 * 1e6 * 1e-3)

@@ -163,9 +163,12 @@ def engine_fit(source, values=None, *, engine: str | None = None, clearance: flo
         if values is None:
             raise InvalidRequestError("fit_units on a System needs its values")
         parameters = _pseudo_parameters(source, values)
-    else:
+    elif hasattr(source, "parameters") and hasattr(source, "engine"):
         parameters = list(source.parameters)
         engine = source.engine if engine is None else engine
+    else:
+        raise InvalidRequestError(f"fit_units with an engine needs an EngineModel or a System, got "
+                                  f"{type(source).__name__}")
     wanted = engine_ranges(engine, parameters, clearance=clearance)
     dims, vals, rng = {}, {}, {}
     for p in parameters:

@@ -456,7 +456,10 @@ class EngineModel(TableDisplay):
         return convert(self, units)
 
     def in_units(self, units) -> EngineModel:
-        """This model's numbers declared to be in other units, unchanged (as ``load(..., units=)`` does).
+        """This model's numbers, unchanged, declared to be in other units.
+
+        What ``load(..., units=...)`` does; :meth:`converted` changes the
+        numbers instead.
 
         Parameters
         ----------
