@@ -11,6 +11,9 @@ an MJCF (MuJoCo) or a URDF (PyBullet) file, or a shipped example
     pitheorem bases  FILE [--exclude t] [--require m] [--count | --all]
     pitheorem search FILE --scale g=1 [l=-1 ...] [--fixed [t m ...]] [--allow ...] [--no-default-fixed]
     pitheorem apply  FILE --scale g=1 [--fixed ...] --s 2 [--solution K] [--output OUT]
+    pitheorem verify FILE --scale g=1 --s 4 [--duration 1]          (MJCF and URDF)
+    pitheorem check  FILE [--from L=cm M=g] [--engine mujoco]        (MJCF and URDF)
+    pitheorem convert FILE [--from L=cm M=g] --units L=mm | --fit mujoco [--output OUT]
 
 ``groups`` without ``--repeating`` takes the first valid set of repeating
 variables without time variables; if one of them has the value 0 (which
@@ -45,7 +48,10 @@ Exit codes
 1
     The request is valid but no similarity scaling meets it: ``search``
     prints the certificate of impossibility, ``apply`` writes nothing.
-    (Like ``grep``, which exits 1 when nothing matches.)
+    (Like ``grep``, which exits 1 when nothing matches.)  ``verify``: the
+    copy is not similar; ``check``: a number is beyond or near one of the
+    engine's thresholds; ``convert --fit``: no units clear every
+    threshold (the closest are used).
 2
     Bad input: an unreadable or malformed model file, an unknown variable,
     a bad exponent, a contradictory request, or a usage error.  The
