@@ -25,7 +25,7 @@ mujoco = pytest.importorskip("mujoco")
 gymnasium = pytest.importorskip("gymnasium")
 
 from pitheorem import engines  # noqa: E402
-from pitheorem.engines.units import conversion, in_units, read_units, unit_size  # noqa: E402
+from pitheorem.engines.units import conversion, read_units, run_in_units, unit_size  # noqa: E402
 
 ROBOTS = Path(__file__).resolve().parent / "robots"
 ASSETS = Path(gymnasium.__file__).resolve().parent / "envs" / "mujoco" / "assets"
@@ -195,10 +195,10 @@ def test_a_run_of_the_converted_copy_maps_back_onto_the_original(tmp_path):
     assert key.key_time[0] == 500.0
     assert key.key_qvel[0][0] == pytest.approx(2e-3)
     rows = ms.backend.run(100)
-    back = in_units(ms, rows, model.units)
+    back = run_in_units(ms, rows, model.units)
     assert ulps(back, model.backend.run(100)) <= 64
     with pytest.raises(pt.InvalidRequestError, match="columns"):
-        in_units(ms, rows[:, :1], model.units)
+        run_in_units(ms, rows[:, :1], model.units)
 
 
 SPRING = """<mujoco>

@@ -35,8 +35,8 @@ from ..errors import EngineModelError, InvalidRequestError, UnitError
 from ..exact import read_number, short_text
 from ..scaling import Scaling, float_power
 
-__all__ = ["SI", "UNITS_TEXT", "conversion", "convert", "declared_units", "factor_of", "in_units", "read_units", "record", "recorded",
-           "refuse_urdf", "unit_size"]
+__all__ = ["SI", "UNITS_TEXT", "conversion", "convert", "declared_units", "factor_of", "read_units", "record",
+           "recorded", "refuse_urdf", "run_in_units", "unit_size"]
 
 #: the units of a file that declares none: SI (MuJoCo's and PyBullet's defaults are given in it)
 SI = {"M": "kg", "L": "m", "T": "s"}
@@ -276,7 +276,17 @@ def refuse_urdf(model, units: Mapping[str, str]) -> None:
 
 
 def record(spec, units: Mapping[str, str]) -> None:
-    """Write the units into an MJCF spec as its ``pitheorem:units`` custom text (replacing an older one)."""
+    """Write the units into an MJCF spec as its ``pitheorem:units`` custom text (replacing an older one).
+
+    Examples
+    --------
+    >>> import mujoco
+    >>> from pitheorem.engines.units import record, recorded
+    >>> spec = mujoco.MjSpec()
+    >>> record(spec, {"M": "g", "L": "mm", "T": "s"})
+    >>> [(t.name, t.data) for t in spec.texts]
+    [('pitheorem:units', 'M=g; L=mm; T=s')]
+    """
     data = "; ".join(f"{b}={u}" for b, u in units.items())
     for text in spec.texts:
         if text.name == UNITS_TEXT:
@@ -286,7 +296,24 @@ def record(spec, units: Mapping[str, str]) -> None:
 
 
 def recorded(spec, path: str) -> dict[str, str] | None:
-    """The units an MJCF spec records (a file pitheorem wrote), or None."""
+    """The units an MJCF spec records (a file pitheorem wrote), or None.
+
+    Raises
+    ------
+    EngineModelError
+        For a record that is no list of ``BASE=UNIT`` items.
+
+    Examples
+    --------
+    >>> import mujoco
+    >>> from pitheorem.engines.units import recorded
+    >>> spec = mujoco.MjSpec()
+    >>> recorded(spec, "a.xml") is None
+    True
+    >>> _ = spec.add_text(name="pitheorem:units", data="L=cm; M=g")
+    >>> recorded(spec, "a.xml")
+    {'M': 'g', 'L': 'cm', 'T': 's'}
+    """
     for text in spec.texts:
         if text.name == UNITS_TEXT:
             units = {}
@@ -324,11 +351,11 @@ def declared_units(model, units) -> dict[str, str]:
     return given or found or dict(SI)
 
 
-def in_units(model, rows, units: Mapping[str, object]) -> np.ndarray:
+def run_in_units(model, rows, units: Mapping[str, object]) -> np.ndarray:
     """A run of a model, mapped into other units: rows of (qpos, qvel, act).
 
     The map back of a converted model's trajectories: run ``mm``, a copy
-    converted to millimetres, and ``in_units(mm, rows, fly.units)`` gives
+    converted to millimetres, and ``run_in_units(mm, rows, fly.units)`` gives
     the rows in the original's units.
 
     Parameters
@@ -349,9 +376,9 @@ def in_units(model, rows, units: Mapping[str, object]) -> np.ndarray:
     --------
     >>> import numpy as np
     >>> from pitheorem import engines
-    >>> from pitheorem.engines.units import in_units
+    >>> from pitheorem.engines.units import run_in_units
     >>> mm = engines.load(engines.example_path("pendulum.xml")).converted(T="ms")
-    >>> in_units(mm, np.array([[0.5, 0.002]]), {"T": "s"})
+    >>> run_in_units(mm, np.array([[0.5, 0.002]]), {"T": "s"})
     array([[0.5, 2. ]])
     """
     names, dims = model.backend.coordinate_dimensions()
