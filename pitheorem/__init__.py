@@ -66,12 +66,19 @@ def fit_units(system, values=None, *, ranges=None, dimension_ranges=None, fixed=
 
     The ranges are given, or those an engine's thresholds leave (`engine`).
 
-    Without `engine`, :func:`pitheorem.unitfit.fit_units` (its notes say
-    how the fit works).  With ``engine="mujoco"`` (or ``"pybullet"``;
-    ``"mjx"`` computes in float32), or given an engine model itself, the
-    ranges are those the engine's thresholds leave each number, a factor
-    10 clear of them, and the fit is the smallest unit change that meets
-    them (:func:`pitheorem.engines.fitting.engine_fit`).
+    A change of base units moves every value at once: a value of
+    dimension ``prod_b b^(d_b)`` reads ``x * prod_b f_b^(d_b)`` in the new
+    units, ``f_b`` the factor of base ``b`` (``f_L = 100``: lengths read
+    100 times larger, metres to centimetres).  Without `engine` the fit
+    (``pitheorem.unitfit.fit_units``) first minimises the worst distance,
+    in decades, of a value outside its range, then pulls each value
+    towards the middle of its range, then keeps the unit change smallest;
+    when nothing fits, ``conflict`` names a minimal set of bounds that
+    fight.  With ``engine="mujoco"`` (or ``"pybullet"``; ``"mjx"``
+    computes in float32), or given an engine model itself, the ranges are
+    those the engine's thresholds leave each number, a factor 10 clear of
+    them, and the fit is the smallest unit change that meets them, keeping
+    the time unit where that suffices (``pitheorem.engines.fitting``).
 
     Parameters
     ----------
@@ -99,6 +106,16 @@ def fit_units(system, values=None, *, ranges=None, dimension_ranges=None, fixed=
     Returns
     -------
     UnitFit
+
+    Raises
+    ------
+    UnknownVariableError
+        For a name in `values`, `ranges` or `fixed` the system lacks.
+    InvalidRequestError
+        For a bad range (``low >= high``, a bound not positive, no value),
+        an unknown base in `fixed_units`, a fixed variable outside its own
+        range, a bad `nice`, an unknown engine, or `dimension_ranges` with
+        an engine.
 
     Examples
     --------

@@ -419,7 +419,7 @@ class EngineModel(TableDisplay):
 
         A change of units is a similarity scaling, so this is
         :meth:`scaled` with :meth:`pitheorem.Scaling.from_unit_change`
-        (see :mod:`pitheorem.engines.units`): gravity, densities,
+        (see ``pitheorem.engines.units``): gravity, densities,
         viscosity, stiffness, damping, gains, margins and solref time
         constants, the time step and the keyframes all follow.
 
@@ -464,7 +464,7 @@ class EngineModel(TableDisplay):
         Parameters
         ----------
         units : mapping of str to str
-            The units of M, L and T (:func:`pitheorem.engines.units.read_units`).
+            The units of M, L and T (``pitheorem.engines.units.read_units``).
 
         Returns
         -------
