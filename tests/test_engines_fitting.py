@@ -114,3 +114,16 @@ def test_unit_names_follow_si_prefixes():
     assert unit_name("M", Fraction(1, 10**6)) == "mg"
     assert unit_name("T", Fraction(1, 1000)) == "ms"
     assert unit_name("L", Fraction(10)) == Fraction(10)  # no prefix for ten: its size
+
+
+def test_superball_a_thousand_times_larger_at_the_same_density_is_fitted_and_verifies():
+    model = engines.load(engines.example_path("superball.xml"))
+    big = model.scaled(pt.Scaling.from_unit_change(model.system(), {"L": 1, "M": 3}), 1e3)
+    crossed = {c.detail.split(": ")[0].split(" is ")[1].split(" (")[0] for c in engines.check(big)}
+    assert crossed == {"above mujoco_maxval", "within a factor 2 of mujoco_minval_softness"}
+    units = fitted_units(big, pt.fit_units(big))
+    fitted = big.converted(**units)
+    assert engines.check(fitted) == ()
+    assert np.isfinite(fitted.backend.run(200)).all()
+    ((scaling, factor),) = conversion(big.system(), big.units, read_units(units))
+    assert engines.verify(big, scaling, factor, duration=0.2).similar
