@@ -113,7 +113,12 @@ def test_unit_names_follow_si_prefixes():
     assert unit_name("M", Fraction(1)) == "kg"
     assert unit_name("M", Fraction(1, 10**6)) == "mg"
     assert unit_name("T", Fraction(1, 1000)) == "ms"
-    assert unit_name("L", Fraction(10)) == Fraction(10)  # no prefix for ten: its size
+    assert unit_name("L", Fraction(10)) == "10 m"  # no prefix for ten
+    assert unit_name("M", Fraction(10**4)) == "10 Mg"
+    assert unit_name("T", Fraction(60)) == Fraction(60)  # a minute is no power of ten: its size
+    assert unit_name("L", Fraction(1, 10**15)) == Fraction(1, 10**15)  # below the smallest prefix
+    for base, size in (("L", Fraction(10**4)), ("M", Fraction(1, 10)), ("T", Fraction(1, 100))):
+        assert engines.units.unit_size(base, unit_name(base, size)) == size
 
 
 def test_superball_a_thousand_times_larger_at_the_same_density_is_fitted_and_verifies():

@@ -203,21 +203,27 @@ _PREFIXES = {-12: "p", -9: "n", -6: "u", -3: "m", -2: "c", -1: "d", 0: "", 3: "k
 
 
 def unit_name(base: str, size: Fraction) -> str | object:
-    """A unit's name from its size in SI units: ``mm`` for 1/1000 m, ``g`` for 1/1000 kg; else the size.
+    """A unit's name from its size in SI units: ``mm`` for 1/1000 m, ``10 km``; else the size.
+
+    A power of ten gets the largest SI prefix not above it, times 1, 10
+    or 100 (``100 g`` for 1/10 kg); pint reads every such name back.
 
     Examples
     --------
     >>> from fractions import Fraction
     >>> from pitheorem.engines.fitting import unit_name
-    >>> unit_name("L", Fraction(1, 1000)), unit_name("M", Fraction(1, 1000)), unit_name("T", Fraction(60))
-    ('mm', 'g', Fraction(60, 1))
+    >>> unit_name("L", Fraction(1, 1000)), unit_name("M", Fraction(1, 10)), unit_name("L", Fraction(10**4))
+    ('mm', '100 g', '10 km')
+    >>> unit_name("T", Fraction(60))
+    Fraction(60, 1)
     """
     unit = {"M": "g", "L": "m", "T": "s"}[base]
     in_unit = size * (1000 if base == "M" else 1)
     k = round(math.log10(in_unit)) if in_unit > 0 else 0
-    if k in _PREFIXES and Fraction(10) ** k == in_unit:
-        return _PREFIXES[k] + unit
-    return size
+    if Fraction(10) ** k != in_unit or k < min(_PREFIXES):
+        return size
+    prefix = max(p for p in _PREFIXES if p <= k)
+    return (f"{10 ** (k - prefix)} " if k > prefix else "") + _PREFIXES[prefix] + unit
 
 
 def fitted_units(model, fit) -> dict[str, object]:
