@@ -229,3 +229,32 @@ def test_a_springdamper_is_read_as_a_time_constant_and_scaled_with_time(tmp_path
     d0, d1 = model.backend.mjmodel.dof_damping[0], ms.backend.mjmodel.dof_damping[0]
     assert k1 == pytest.approx(k0 * 1e3 * 1e6 * 1e-6)
     assert d1 == pytest.approx(d0 * 1e3 * 1e6 * 1e-3)
+
+
+#: FlyGym issue #289: the factors derived by hand for its fruit fly moved from cm to mm (grams kept)
+FLYGYM = {"torque": 100, "rotational inertia": 100, "gravity": 10, "density": 1e-3, "viscosity": 1e-1}
+
+
+def test_the_cgs_insect_in_millimetres_takes_the_factors_flygym_derived_by_hand():
+    fly = engines.load(Path(__file__).resolve().parent / "data" / "engines" / "cgs_insect.xml",
+                       units={"L": "cm", "M": "g"})
+    mm = fly.converted(L="mm")
+    assert mm.units == {"M": "g", "L": "mm", "T": "s"}
+
+    def factor(name):
+        before, after = fly.parameter(name).value, mm.parameter(name).value
+        return next(b / a for a, b in zip(before, after, strict=True) if a)
+
+    kinds = {"torque": "actuator_stroke_l_ctrlrange", "rotational inertia": "body_thorax_inertia",
+             "gravity": "g", "density": "density", "viscosity": "viscosity"}
+    for kind, name in kinds.items():
+        # the dimension the package gives the number, and FlyGym's published factor, agree with the conversion
+        dimension = fly.parameter(name).dimension
+        assert factor(name) == pytest.approx(pint_factor(dimension, fly.units, mm.units), rel=1e-15), kind
+        assert factor(name) == pytest.approx(FLYGYM[kind], rel=1e-15), kind
+    # and what the hand-derived list leaves out: each by its own dimension
+    for name, expected in (("joint_hip_l_stiffness", 100), ("joint_hip_l_damping", 100),
+                           ("actuator_hip_l_gainprm_gain", 100), ("actuator_stick_l_ctrlrange", 10),
+                           ("geom_thorax_margin", 10), ("geom_thorax_friction_torsional_rolling", 10),
+                           ("geom_thorax_solref_timeconst", 1), ("timestep", 1)):
+        assert factor(name) == pytest.approx(expected, rel=1e-15), name
