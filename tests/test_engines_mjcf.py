@@ -405,7 +405,9 @@ def test_a_file_refused_for_a_threshold_loads_as_a_table_and_converts_into_units
     radius, length = 5e-5, 2e-4
     volume = np.pi * radius**2 * length + 4 / 3 * np.pi * radius**3
     assert worm.parameter("body_s1_mass").value[0] == pytest.approx(1050 * volume, rel=1e-12)
-    causes = {c.element: c.detail for c in engines.check(worm)}
+    found = engines.check(worm)
+    assert "mujoco refuses the file: Error: mass and inertia" in found[0].detail  # the refusal first
+    causes = {c.element: c.detail for c in found}
     assert "mujoco_minval_mass" in causes["body_s1_inertia"]
     with pytest.raises(engines.EngineModelError, match="MuJoCo does not run it"):
         worm.backend.run(10)
