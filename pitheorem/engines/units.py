@@ -172,7 +172,10 @@ def _root(x: Fraction) -> tuple[Fraction, int]:
 
 
 def _integer_root(n: int, k: int) -> int | None:
-    r = round(n ** (1.0 / k))
+    try:
+        r = round(n ** (1.0 / k))
+    except OverflowError:  # beyond a float: no unit is that far from another
+        return None
     for c in (r - 1, r, r + 1):
         if c >= 0 and c**k == n:
             return c
