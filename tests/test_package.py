@@ -192,7 +192,7 @@ def test_every_module_has_its_test_file_and_every_test_file_a_module_or_a_reason
     assert {file for file in wanted.values() if file.startswith("test_engines_")} == {
         f"test_engines_{m}.py" for m in ("audit", "causes", "cli", "constants", "diagnose", "mjcf", "model",
                                          "numbers", "packages", "rod", "rules", "superball", "thresholds", "urdf",
-                                         "verify")}
+                                         "verify", "units", "fitting")}
 
 
 def test_the_layout_check_finds_a_missing_file_and_a_stray_one(tmp_path):

@@ -56,7 +56,7 @@ from .model import (
 from .numbers import check_model_file
 from .packages import engine_module
 
-__all__ = ["MjcfBackend", "load_mjcf"]
+__all__ = ["MjcfBackend", "RefusedMjcfBackend", "load_mjcf"]
 
 #: a custom ``<text>`` element named this prefix plus a numeric's name declares that numeric's dimension
 DIMENSION_TEXT = "dimension:"
@@ -419,7 +419,10 @@ class _Walker:
         ident, path = self.label("joint", joint, index)
         kind = _joint_kind(mj, joint.type)
         self.add("joint", joint, ident, path, "pos", _L)
-        self.refuse(joint, path, ("springdamper", "springyield"))
+        self.refuse(joint, path, ("springyield",))
+        if np.any(np.asarray(joint.springdamper) != 0):  # a time constant and a damping ratio (dimensionless)
+            self.add("joint", joint, ident, path, "springdamper", _T, slice(0, 1), "_time",
+                     note="the compiler turns it and the damping ratio into stiffness and damping")
         if kind is None:  # free joint: translation and rotation share each number
             for attr, lin, rot in (("damping", "M T^-1", "M L^2 T^-1"), ("armature", "M", "M L^2"),
                                    ("frictionloss", "M L T^-2", "M L^2 T^-2")):
@@ -1273,8 +1276,83 @@ def load_mjcf(path) -> EngineModel:
         spec = mj.MjSpec.from_file(str(path))
     except ValueError as err:
         raise _rejected(str(path), err) from None
-    backend = MjcfBackend(spec, str(path), path.resolve().parent, asset_dirs=_attached_asset_dirs(mj, path, root))
+    asset_dirs = _attached_asset_dirs(mj, path, root)
+    try:
+        backend = MjcfBackend(spec, str(path), path.resolve().parent, asset_dirs=asset_dirs)
+    except EngineModelError as err:
+        if "mjMINVAL" not in err.reason:
+            raise
+        # refused for a threshold that units decide: still a table, so check, fit and convert can repair it
+        backend = RefusedMjcfBackend(spec, str(path), path.resolve().parent, err, asset_dirs=asset_dirs)
     return EngineModel(backend, "mujoco", str(path))
+
+
+#: the mass attributes of a spec that decide the masses and inertias MuJoCo's compiler checks
+_MASS_ATTRIBUTES = {"bodies": ("mass", "inertia", "fullinertia"), "geoms": ("mass", "density")}
+
+
+class _Unprobed:
+    """A compiled probe seen as the refused model would be: its masses and inertias divided by the probe's factor."""
+
+    def __init__(self, probe, factor: float):
+        self._probe, self.body_mass, self.body_inertia = probe, probe.body_mass / factor, probe.body_inertia / factor
+
+    def __getattr__(self, name):
+        return getattr(self._probe, name)
+
+
+class RefusedMjcfBackend(MjcfBackend):
+    """An MJCF model MuJoCo refuses for a threshold (masses below ``mjMINVAL``), held as its parameter table.
+
+    The table is read from a probe: a copy of the spec whose masses and
+    densities are multiplied by a power of two (a change of the mass unit,
+    exact), compiled, and its computed masses and inertias divided back.
+    The model converts, fits and checks like any other; it does not run,
+    and its converted copy runs once the new units clear the threshold.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from pitheorem import engines
+    >>> speck = pathlib.Path(tempfile.mkdtemp()) / "speck.xml"
+    >>> _ = speck.write_text('<mujoco><worldbody><body><freejoint/><geom size="1e-6" density="1000"/>'
+    ...                      '</body></worldbody></mujoco>')
+    >>> model = engines.load(speck)
+    >>> type(model.backend).__name__, model.parameter("body1_mass").value
+    ('RefusedMjcfBackend', (4.18879020478639e-15,))
+    """
+
+    def __init__(self, spec, path: str, source_dir, refusal: EngineModelError, *, asset_dirs=None):
+        mj = _mujoco()
+        self.spec, self.path, self.source_dir = spec, path, source_dir
+        self.asset_dirs, self._inputs, self.refusal = dict(asset_dirs or {}), None, refusal
+        for power in (50, 100, 200):
+            probe = spec.copy()
+            for collection, attrs in _MASS_ATTRIBUTES.items():
+                for element in getattr(probe, collection):
+                    for attr in attrs:
+                        setattr(element, attr, np.asarray(getattr(element, attr), dtype=float) * 2.0**power
+                                if np.ndim(getattr(element, attr)) else getattr(element, attr) * 2.0**power)
+            try:
+                with _muted():
+                    self.mjmodel = probe.compile()
+                break
+            except ValueError:
+                continue
+        else:
+            raise refusal
+        self._walked = _Walker(mj, spec, _Unprobed(self.mjmodel, 2.0**power), path, warn=True).walk()
+
+    def run_many(self, n_steps: int, jobs):
+        raise EngineModelError(self.path, self.refusal.element, f"{self.refusal.reason}; MuJoCo does not run it. "
+                               "Convert it to units clear of the threshold (pitheorem.fit_units(model), "
+                               "model.converted(...), or pitheorem convert FILE --fit mujoco)")
+
+    def run(self, n_steps: int, controls=None, nudge: bool = False, state=None, policy=None):
+        return self.run_many(n_steps, [])
+
+    def twin(self, seed: int):
+        return self.run_many(0, [])
 
 
 def _attached_asset_dirs(mj, path: Path, root=None) -> dict:
