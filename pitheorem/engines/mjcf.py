@@ -533,12 +533,18 @@ class _Walker:
                 ctrl = length / _T  # a velocity servo: a target velocity
         elif gain == mj.mjtGain.mjGAIN_AFFINE:
             ctrl = _ONE  # a damper-like gain: the input is a dimensionless fraction
+        elif gain == mj.mjtGain.mjGAIN_MUSCLE:
+            ctrl = _ONE  # a muscle's excitation, between 0 and 1
         else:
-            self.fail(path, f"gain type {gain.name} (muscle or user) is not supported by pitheorem's scaling")
-        if bias not in (mj.mjtBias.mjBIAS_NONE, mj.mjtBias.mjBIAS_AFFINE):
+            self.fail(path, f"gain type {gain.name} (user) is not supported by pitheorem's scaling")
+        muscle = gain == mj.mjtGain.mjGAIN_MUSCLE
+        if bias not in (mj.mjtBias.mjBIAS_NONE, mj.mjtBias.mjBIAS_AFFINE) and not (
+                muscle and bias == mj.mjtBias.mjBIAS_MUSCLE):
             self.fail(path, f"bias type {bias.name} is not supported by pitheorem's scaling")
         dyn = act.dyntype
-        if dyn == mj.mjtDyn.mjDYN_INTEGRATOR:
+        if dyn == mj.mjtDyn.mjDYN_MUSCLE:
+            act_dim = _ONE  # the activation, between 0 and 1
+        elif dyn == mj.mjtDyn.mjDYN_INTEGRATOR:
             act_dim = ctrl * _T
             if gain == mj.mjtGain.mjGAIN_FIXED and bias == mj.mjtBias.mjBIAS_AFFINE and biasprm[1] != 0:
                 # intvelocity: the activation is the target length, so ctrl is a velocity
@@ -562,10 +568,12 @@ class _Walker:
         self.add("actuator", act, ident, path, "ctrlrange", ctrl)
         self.add("actuator", act, ident, path, "forcerange", force)
         self.add("actuator", act, ident, path, "actrange", act_dim)
-        self.add("actuator", act, ident, path, "lengthrange", length)
+        self.lengthrange(act, index, ident, path, length)
         if act.dyntype in (mj.mjtDyn.mjDYN_FILTER, mj.mjtDyn.mjDYN_FILTEREXACT):
             self.add("actuator", act, ident, path, "dynprm", _T, slice(0, 1), "_timeconst")
-        if act.gaintype == mj.mjtGain.mjGAIN_FIXED:
+        if act.gaintype == mj.mjtGain.mjGAIN_MUSCLE:
+            self.muscle(act, ident, path, force)
+        elif act.gaintype == mj.mjtGain.mjGAIN_FIXED:
             self.add("actuator", act, ident, path, "gainprm", force / driven, slice(0, 1), "_gain")
         else:
             self.add("actuator", act, ident, path, "gainprm", force, slice(0, 1), "_gain")
@@ -576,6 +584,50 @@ class _Walker:
             self.add("actuator", act, ident, path, "biasprm", force / length, slice(1, 2), "_length")
             self.add("actuator", act, ident, path, "biasprm", force * _T / length, slice(2, 3), "_velocity")
         self.refuse(act, path, ("damping", "armature", "delay", "ffrange", "velrange"))
+
+    def lengthrange(self, act, index, ident, path, length) -> None:
+        """The actuator's length range: as the file gives it, or as MuJoCo's compiler found it.
+
+        A range the file leaves out (0 0) is found by the compiler, for a muscle, by simulating the
+        model with accelerations and times of its own (``<compiler><lengthrange>``), which no change
+        of units reaches; a scaled copy is given the original's range times its factor instead, as
+        the file could have said.
+        """
+        given = np.asarray(act.lengthrange, dtype=float)
+        aid = act.id if act.id >= 0 else index
+        found = np.array(self.model.actuator_lengthrange[aid], dtype=float)
+        if np.any(given != 0) or not np.any(found != 0):
+            self.add("actuator", act, ident, path, "lengthrange", length)
+            return
+        name = self.unique(f"{ident}_lengthrange")
+
+        def write(element, factor, found=found):
+            element.lengthrange = found * factor
+
+        self.slots.append(Slot(name, f"{path} lengthrange", lambda: tuple(float(v) for v in found),
+                               (), self.where("actuator", act), length, "derived",
+                               write=write, note="found by MuJoCo's compiler; a scaled copy states it"))
+
+    def muscle(self, act, ident, path, force) -> None:
+        """A muscle (MuJoCo's model): its peak force, its speed limit and its time constants.
+
+        Its lengths are in units of the optimal length L0 and its forces in units of the peak force:
+        the range, lmin, lmax, fpmax and fvmax are dimensionless.  A peak force left to MuJoCo
+        (``force`` negative: ``scale`` over the actuator's ``acc0``) is refused, for ``acc0`` mixes
+        the dimensions of the joints the muscle spans.
+        """
+        mj = self.mj
+        for attr in ("gainprm", "biasprm"):  # MuJoCo's muscle reads both; the <muscle> element sets them alike
+            prm = np.asarray(getattr(act, attr), dtype=float)
+            if prm[2] < 0:
+                self.fail(path, f"a muscle whose peak force MuJoCo derives from scale and acc0 ({attr}[2] = "
+                          f"{prm[2]:g}) cannot be scaled: give its force explicitly (force=\"...\")")
+            self.add("actuator", act, ident, path, attr, force, slice(2, 3), "_peak_force")
+            self.add("actuator", act, ident, path, attr, _T ** -1, slice(6, 7), "_vmax",
+                     note="optimal lengths per unit time")
+        if act.dyntype == mj.mjtDyn.mjDYN_MUSCLE:
+            self.add("actuator", act, ident, path, "dynprm", _T, slice(0, 3), "_timeconst",
+                     note="activation, deactivation, smoothing width")
 
     def equality(self, eq, index):
         mj = self.mj
