@@ -361,3 +361,30 @@ def test_a_scaled_copy_reads_as_its_saved_file_does(tmp_path):
     reread = engines.load(copy.save(tmp_path / "r2d2_10.urdf"))
     assert [(p.name, p.value) for p in copy.parameters] == [(p.name, p.value) for p in reread.parameters]
     assert copy.parameter("g").value[0] == 10 * model.parameter("g").value[0]  # scaled: not a vacuous equality
+
+
+def test_no_file_is_written_into_the_users_folder_and_meshes_still_load(tmp_path, monkeypatch):
+    """The robot's meshes are named by absolute paths in a copy in the system's temporary folder."""
+    import shutil
+    import tempfile
+
+    robot = tmp_path / "robot"
+    shutil.copytree(Path(__file__).resolve().parent / "robots" / "urdf", robot)
+    written = []
+    real = tempfile.mkstemp
+
+    def recording(*args, **kwargs):
+        fd, name = real(*args, **kwargs)
+        written.append(Path(name).parent)
+        return fd, name
+
+    monkeypatch.setattr(tempfile, "mkstemp", recording)
+    before = sorted(p.name for p in robot.rglob("*"))
+    model = engines.load(robot / "arm.urdf", fixed_base=True, damping=0.0, split_impulse=False)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    assert engines.verify(model, sc, 4, duration=0.2, controls=engines.smooth_controls(model)).exact
+    assert written  # PyBullet read copies ...
+    assert all(folder != robot for folder in written)  # ... none of them in the user's folder
+    assert sorted(p.name for p in robot.rglob("*")) == before
+    assert any(shape[4].endswith(b".obj") or shape[4].endswith(b".stl")
+               for shapes in model.backend._info["shapes"].values() for shape in shapes)  # meshes were loaded

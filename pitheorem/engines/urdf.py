@@ -244,14 +244,37 @@ def _xml_text(tree: ET.ElementTree) -> str:
 
 
 def _mesh_path(filename: str, source_dir: Path) -> Path | None:
+    """The file a URDF's mesh or texture names, searched as PyBullet does; None if there is none.
+
+    A relative name is relative to the URDF's folder; ``package://NAME/REST`` is looked for as
+    ``NAME/REST`` in that folder and the folders above it (a ROS package's meshes sit beside its
+    ``urdf`` folder).
+    """
     name = filename
     if name.startswith("package://"):
         name = name[len("package://"):]
     candidates = [source_dir / name, Path(name)]
+    if filename.startswith("package://"):
+        candidates += [folder / name for folder in list(source_dir.parents)[:4]]
     for c in candidates:
         if c.is_file():
             return c
     return None
+
+
+def _portable_text(tree: ET.ElementTree, source_dir: Path) -> str | None:
+    """The URDF's text with every mesh and texture file named by its absolute path, to load from any folder.
+
+    None when one of them cannot be found (PyBullet may still find it from the file's own folder).
+    """
+    tree = copy.deepcopy(tree)
+    for element in tree.getroot().iter():
+        if element.tag in ("mesh", "texture") and element.get("filename"):
+            found = _mesh_path(element.get("filename"), source_dir)
+            if found is None:
+                return None
+            element.set("filename", str(found.resolve()))
+    return _xml_text(tree)
 
 
 class UrdfBackend:
@@ -286,14 +309,21 @@ class UrdfBackend:
         return pb, client
 
     def _load(self, pb, client):
-        """Load the URDF (from a temporary copy beside the original, so relative mesh paths resolve)."""
+        """Load the URDF from a temporary copy, its mesh files named by their absolute paths.
+
+        The copy goes to the system's temporary folder, never the user's; only a file whose meshes
+        cannot be found from here is copied beside the original, where PyBullet's own search starts.
+        """
         import os
         import tempfile
 
-        fd, tmp = tempfile.mkstemp(suffix=".urdf", dir=self.source_dir)
+        if "_portable" not in self.__dict__:  # the tree never changes: its text is made once
+            self._portable = _portable_text(self.tree, self.source_dir)
+        text = self._portable if self._portable is not None else _xml_text(self.tree)
+        fd, tmp = tempfile.mkstemp(suffix=".urdf", dir=None if self._portable is not None else self.source_dir)
         try:
             with os.fdopen(fd, "w") as fh:
-                fh.write(_xml_text(self.tree))
+                fh.write(text)
             with quiet_stdout():
                 body = pb.loadURDF(tmp, basePosition=list(self.scene["base_position"]),
                                    useFixedBase=self.scene["fixed_base"], physicsClientId=client)
