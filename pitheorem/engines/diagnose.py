@@ -152,7 +152,10 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
                             "solver does not treat scale-free (a weld with an offset is one): with it inactive in both "
                             f"runs {shown(results['equalities'])}"))
     contacts = results["contacts"]
-    contact = _contact_difference(original, copy, n_steps, u_original, u_scaled, t)
+    # a contact can explain the runs' parting only if it differs before they part: after that, other contacts
+    # are what parted runs do (and stepping in Python past that point would cost a whole run)
+    until = n_steps if verdict_parts is None else min(n_steps, verdict_parts + 1)
+    contact = _contact_difference(original, copy, until, u_original, u_scaled, t)
     # the same pairs touching throughout, and a solver cause shown: the contacts are only where that solver's
     # iterations act (without contacts there is nothing to iterate on), no cause of their own
     explained = contact is None and any(c.kind == "solver" for c in causes)
@@ -183,7 +186,10 @@ def _largest(diff: np.ndarray) -> float:
 
 def _contact_difference(original, copy, n_steps, u_original, u_scaled, t):
     """The first step at which other geom pairs touch in the scaled run: (pairs, detail), or None."""
-    found = original.first_contact_difference(copy, n_steps, u_original, u_scaled)
+    def first(rows):
+        return None if rows is None else rows[:n_steps]
+
+    found = original.first_contact_difference(copy, n_steps, first(u_original), first(u_scaled))
     if found is None:
         return None
     step, only_scaled, only_original = found
