@@ -388,3 +388,22 @@ def test_no_file_is_written_into_the_users_folder_and_meshes_still_load(tmp_path
     assert sorted(p.name for p in robot.rglob("*")) == before
     assert any(shape[4].endswith(b".obj") or shape[4].endswith(b".stl")
                for shapes in model.backend._info["shapes"].values() for shape in shapes)  # meshes were loaded
+
+
+def test_a_compound_collision_mesh_is_named_as_a_setting_cause_and_matters_only_in_contact():
+    """pybullet_data's duck: five convex parts whose margins no changeDynamics reaches."""
+    pybullet_data = pytest.importorskip("pybullet_data")
+    duck = Path(pybullet_data.getDataPath()) / "duck_vhacd.urdf"
+
+    def judged(ground):
+        with pytest.warns(engines.UnscalableModelWarning, match="convex parts"):
+            model = engines.load(duck, base_position=(0, 0, 0.2), ground=ground, damping=0.0, split_impulse=False)
+        model = model.with_values(solverResidualThreshold=0.0)
+        sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+        return engines.verify(model, sc, 4, duration=0.5)
+
+    on_the_ground = judged(True)
+    assert not on_the_ground.exact
+    assert [c.element for c in on_the_ground.causes] == ["link 'baseLink' collision mesh 'duck_vhacd.obj'"]
+    assert on_the_ground.causes[0].kind == "setting"
+    assert judged(False).exact  # the counter-run: with nothing to touch, the margins play no part

@@ -205,15 +205,16 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
     return out
 
 
-def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> None:
-    """Warn about OBJ collision meshes of several objects (convex decompositions such as V-HACD's).
+def _compound_meshes(tree: ET.ElementTree, source_dir: Path) -> list[tuple[str, str, int]]:
+    """The OBJ collision meshes of several objects (convex decompositions such as V-HACD's).
 
     PyBullet loads such a mesh as a compound of convex hulls, and
     ``changeDynamics(collisionMargin=...)`` does not reach the parts: a margin
     of 0.05 moves pybullet_data's duck at rest by 8e-5 m, not 0.05 m.  The
     parts keep their default margin, a length no scaling can change, so the
-    contacts of a scaled copy are off by it.
+    contacts of a scaled copy are off by it.  Returns (link, file, parts) each.
     """
+    found = []
     for link in tree.getroot().iter("link"):
         for collision in link.findall("collision"):
             for mesh in collision.iter("mesh"):
@@ -224,9 +225,16 @@ def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> 
                 with open(resolved, encoding="utf-8", errors="replace") as lines:
                     parts = sum(1 for line in lines if line.startswith("o "))
                 if parts > 1:
-                    warn_unscalable(path, f"link {link.get('name')!r} collision mesh {filename!r}",
-                                    f"its {parts} convex parts load as a compound whose collision margins "
-                                    "changeDynamics cannot reach; contacts of a scaled copy are off by that margin")
+                    found.append((link.get("name"), filename, parts))
+    return found
+
+
+def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> None:
+    """Warn about each collision mesh of :func:`_compound_meshes`."""
+    for link, filename, parts in _compound_meshes(tree, source_dir):
+        warn_unscalable(path, f"link {link!r} collision mesh {filename!r}",
+                        f"its {parts} convex parts load as a compound whose collision margins "
+                        "changeDynamics cannot reach; contacts of a scaled copy are off by that margin")
 
 
 def _link_parameter(link: str, setting: str) -> str:
@@ -593,6 +601,17 @@ class UrdfBackend:
 
     def ignored_settings(self) -> tuple:
         """The ``changeDynamics`` settings PyBullet does not take: each as a ``setting`` Cause."""
+        from .causes import Cause
+
+        compound = [Cause("setting", f"link {link!r} collision mesh {filename!r}", f"its {parts} convex parts "
+                          "load as a compound whose collision margins changeDynamics cannot reach: they keep "
+                          "PyBullet's default margin, a length no scaling changes, so the copy's contacts are off "
+                          "by it")
+                    for link, filename, parts in _compound_meshes(self.tree, self.source_dir)]
+        return tuple(compound) + self._ignored_margins()
+
+    def _ignored_margins(self) -> tuple:
+        """The links whose margin PyBullet keeps other than the one set."""
         from .causes import Cause
 
         dynamics, _ = self._held()
