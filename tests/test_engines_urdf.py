@@ -407,3 +407,21 @@ def test_a_compound_collision_mesh_is_named_as_a_setting_cause_and_matters_only_
     assert [c.element for c in on_the_ground.causes] == ["link 'baseLink' collision mesh 'duck_vhacd.obj'"]
     assert on_the_ground.causes[0].kind == "setting"
     assert judged(False).exact  # the counter-run: with nothing to touch, the margins play no part
+
+
+def test_a_file_pybullet_reads_despite_blank_lines_a_nul_or_a_material_inside_a_visual_geometry(tmp_path):
+    """pybullet_data's biped, humanoid and racecar files have each of these; PyBullet's reader shrugs them off."""
+    text = ARM.read_text()
+    body = text[text.index("<robot"):]
+    odd = tmp_path / "odd.urdf"
+    odd.write_text("\n\n" + '<?xml version="1.0"?>\n' + body.replace(
+        "</robot>", '<link name="decor"><visual><geometry><box size="0.1 0.1 0.1"/><material name="grey"/>'
+        '</geometry></visual></link><joint name="decor_fixed" type="fixed"><parent link="base"/>'
+        '<child link="decor"/></joint></robot>') + "\x00")
+    model = engines.load(odd)
+    assert model.parameter("link_decor_visual0_size").value == (0.1, 0.1, 0.1)
+    bad = tmp_path / "bad.urdf"  # the same in a collision: refused, for it would change the dynamics
+    bad.write_text(body.replace("</robot>", '<link name="decor"><collision><geometry><material name="grey"/>'
+                                '</geometry></collision></link></robot>'))
+    with pytest.raises(EngineModelError, match="unknown geometry"):
+        engines.load(bad)

@@ -169,6 +169,8 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
                             note="a factor times the mesh file's units, a length")
                     elif g.tag == "plane":
                         pass  # an infinite plane: nothing to scale
+                    elif kind == "visual":
+                        pass  # something PyBullet draws nothing from (a <material> put inside <geometry>)
                     else:
                         raise EngineModelError(path, f"{swhere} <{g.tag}>", "unknown geometry; use box, cylinder, "
                                                "capsule, sphere, mesh or plane")
