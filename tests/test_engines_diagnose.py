@@ -323,3 +323,24 @@ def test_of_two_causes_the_one_that_parts_the_runs_first_is_named():
     assert len(weld) == 1
     assert "they part later" in weld[0].detail
     assert "precision" in {c.kind for c in judged.causes}
+
+
+def test_the_solver_remedy_names_every_stopping_rule_and_it_works(tmp_path):
+    """A leg with the noslip solver on: its tolerance is a second stopping rule of no pure dimension."""
+    leg = tmp_path / "leg.xml"
+    leg.write_text(
+        '<mujoco><option timestep="0.002" cone="elliptic" noslip_iterations="3"/><worldbody>'
+        '<geom type="plane" size="2 2 0.1"/><body pos="0 0 0.4"><freejoint/>'
+        '<geom type="box" size="0.1 0.05 0.03" mass="2"/><body pos="0.1 0 0"><joint name="hip" axis="0 1 0" '
+        'range="-1 1" damping="0.5"/><geom type="capsule" fromto="0 0 0 0 0 -0.45" size="0.02"/></body></body>'
+        '</worldbody><actuator><position joint="hip" kp="20" kv="1" ctrlrange="-1 1"/></actuator></mujoco>')
+    model, sc = searched(leg)
+    u = engines.smooth_controls(model)
+    rep = engines.verify(model, sc, 4, duration=1.0, controls=u)
+    assert not rep.exact
+    solver = [c for c in rep.causes if c.kind == "solver"]
+    assert len(solver) == 1
+    assert "with_values(tolerance=0, noslip_tolerance=0)" in solver[0].detail
+    fixed = engines.verify(model.with_values(tolerance=0, noslip_tolerance=0), sc, 4, duration=1.0, controls=u)
+    assert not [c for c in fixed.causes if c.kind == "solver"]  # the remedy, applied: the rule is gone ...
+    assert fixed.max_deviation < 1e-6 * rep.max_deviation  # ... and so is nearly all of the difference

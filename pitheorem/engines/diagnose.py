@@ -132,7 +132,7 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
         names = ", ".join(f"option {k} = {v:g}" for k, v in solver.items())
         causes.append(Cause("solver", names, "a stopping rule of no pure dimension: the scaled run stops after "
                             f"other iterations; with it at 0 in both runs {shown(results['tolerance'])}; load with "
-                            f"with_values({next(iter(solver))}=0)"))
+                            f"with_values({', '.join(f'{k}=0' for k in solver)})"))
     if not mujoco_like:
         return sorted_causes(causes)
     newton, remedy = results.get("newton"), '<option solver="Newton"/>'
