@@ -11,6 +11,9 @@ an MJCF (MuJoCo) or a URDF (PyBullet) file, or a shipped example
     pitheorem bases  FILE [--exclude t] [--require m] [--count | --all]
     pitheorem search FILE --scale g=1 [l=-1 ...] [--fixed [t m ...]] [--allow ...] [--no-default-fixed]
     pitheorem apply  FILE --scale g=1 [--fixed ...] --s 2 [--solution K] [--output OUT]
+    pitheorem verify FILE --scale g=1 --s 4 [--duration 1]          (MJCF and URDF)
+    pitheorem check  FILE [--from L=cm M=g] [--engine mujoco]        (MJCF and URDF)
+    pitheorem convert FILE [--from L=cm M=g] --units L=mm | --fit mujoco [--output OUT]
 
 ``groups`` without ``--repeating`` takes the first valid set of repeating
 variables without time variables; if one of them has the value 0 (which
@@ -45,7 +48,10 @@ Exit codes
 1
     The request is valid but no similarity scaling meets it: ``search``
     prints the certificate of impossibility, ``apply`` writes nothing.
-    (Like ``grep``, which exits 1 when nothing matches.)
+    (Like ``grep``, which exits 1 when nothing matches.)  ``verify``: the
+    copy is not similar; ``check``: a number is beyond or near one of the
+    engine's thresholds; ``convert --fit``: no units clear every
+    threshold (the closest are used).
 2
     Bad input: an unreadable or malformed model file, an unknown variable,
     a bad exponent, a contradictory request, or a usage error.  The
@@ -360,6 +366,37 @@ def _cmd_verify(args) -> int:
     return EXIT_OK if answer.report.similar else EXIT_INFEASIBLE
 
 
+def _engine_file(args, command: str) -> str:
+    """The MJCF or URDF file of ``check`` and ``convert`` (a shipped one by its path), or a one-line error."""
+    path = _engine_path(args.file)
+    if path is None:
+        raise _CommandError(f"{args.file}: {command} reads MJCF (.xml) or URDF (.urdf) model files")
+    if args.format not in ("text", "json"):
+        raise _CommandError(f"--format {args.format}: {command} prints text or json")
+    return path
+
+
+def _cmd_check(args) -> int:
+    path = _engine_file(args, "check")
+    from .engines.cli import check_engine_model, parse_units
+
+    text, clean = check_engine_model(path, from_units=parse_units(args.from_units, "--from"), engine=args.engine,
+                                     fmt=args.format)
+    print(text)
+    return EXIT_OK if clean else EXIT_INFEASIBLE
+
+
+def _cmd_convert(args) -> int:
+    path = _engine_file(args, "convert")
+    from .engines.cli import convert_engine, parse_units
+
+    text = convert_engine(path, from_units=parse_units(args.from_units, "--from"),
+                          units=parse_units(args.units, "--units"), fit=args.fit, output=args.output,
+                          fmt=args.format)
+    print(text)
+    return EXIT_INFEASIBLE if "no units keep every number clear" in text or '"feasible": false' in text else EXIT_OK
+
+
 def _cmd_params(args) -> int:
     engine_path = _engine_path(args.file)
     if engine_path is None:  # a TOML or JSON model file: its variables, dimensions and values
@@ -499,6 +536,34 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--solution", type=int, default=1, metavar="K",
                    help="use the K-th minimal scaling (default 1)")
     p.set_defaults(run=_cmd_verify)
+
+    units = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
+    units.add_argument("file", metavar="FILE", help=f"MJCF (.xml) or URDF (.urdf) model file, or {_EXAMPLES_TEXT}")
+    units.add_argument("--format", choices=("text", "json"), default="text", help="output format (default: text)")
+    units.add_argument("--from", dest="from_units", nargs="+", metavar="BASE=UNIT",
+                       help="the units the file is written in, e.g. L=cm M=g (default: SI, or those the file records)")
+
+    p = sub.add_parser("check", parents=[units], **options,
+                       help="the engine thresholds an MJCF or URDF model sits beyond or near",
+                       description="Hold every number of the model against the catalogued thresholds of its engine "
+                       "(MuJoCo: mjMINVAL, mjMINMU, mjMAXVAL; PyBullet: its minimum object sizes), each with a unit "
+                       "change that clears it. Exit codes: 0 clean, 1 some number beyond or near a threshold, "
+                       "2 bad input.")
+    p.add_argument("--engine", metavar="ENGINE", help="hold the numbers against this engine's thresholds "
+                   "(default: the file's engine)")
+    p.set_defaults(run=_cmd_check)
+
+    p = sub.add_parser("convert", parents=[units], **options,
+                       help="the same MJCF model in other units (--units L=mm, or --fit ENGINE)",
+                       description="Write the same model in other units: every number by its dimension (gravity, "
+                       "densities, stiffness, damping, gains, time constants, the time step and keyframes), the "
+                       "units recorded in the file. --fit ENGINE chooses units clear of that engine's thresholds. "
+                       "Exit codes: 0 converted, 1 no units clear every threshold (the closest are used), "
+                       "2 bad input.")
+    p.add_argument("--units", nargs="+", metavar="BASE=UNIT", help="the new units, e.g. L=mm M=g T=ms")
+    p.add_argument("--fit", metavar="ENGINE", help="choose units clear of this engine's thresholds (mujoco, ...)")
+    p.add_argument("--output", metavar="OUT", help="write the converted file")
+    p.set_defaults(run=_cmd_convert)
     return parser
 
 

@@ -248,7 +248,7 @@ class System:
         """
         import pint
 
-        registry = _unit_registry()
+        registry = unit_registry()
         if not isinstance(units, Mapping):
             raise UnitError(f"units must map each variable to a unit string, such as {{'l': 'm'}}, got {units!r}")
         dims = {}
@@ -780,8 +780,15 @@ def _rebuild_system(pairs, allowed) -> System:
     return System(pairs, base_dimensions=allowed)
 
 
-def _unit_registry():
-    # one registry per process: building pint's registry takes a noticeable moment
+def unit_registry():
+    """pint's unit registry, one per process (building it takes a noticeable moment).
+
+    Examples
+    --------
+    >>> from pitheorem.system import unit_registry
+    >>> str(unit_registry()("cm").to_base_units())
+    '0.01 meter'
+    """
     global _REGISTRY
     if _REGISTRY is None:
         import pint

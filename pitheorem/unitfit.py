@@ -162,8 +162,8 @@ class _Problem:
     of `nice`); ``y = P v`` gives the decades of every base dimension.
     """
 
-    def __init__(self, system, values, ranges, fixed, fixed_units, nice):
-        self.system = system
+    def __init__(self, system, values, ranges, fixed, fixed_units, nice, centre=True):
+        self.system, self.centre_values = system, centre
         self.values = values
         bases = system.base_dimensions
         self.bases = bases
@@ -303,7 +303,8 @@ class _Problem:
         A = np.array(rows).reshape(len(rows), n)
         b_ub = np.array(rhs)
         c2 = np.zeros(n)
-        c2[nv + 1: nv + 1 + n_e] = 1.0
+        if self.centre_values:  # else stage 3 alone: the smallest unit change within the worst violation
+            c2[nv + 1: nv + 1 + n_e] = 1.0
         x2 = self._solve(c2, A, b_ub, lb, ub, nv)
         if x2 is None:
             return t_star, v1
@@ -525,7 +526,7 @@ def _snap(problem: _Problem, v: np.ndarray, t_star: float) -> list[Fraction]:
 
 def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[str, object] | None = None,
               dimension_ranges: Mapping[str, object] | None = None, fixed: Iterable[str] = (),
-              fixed_units: Iterable[str] = (), nice: int | None = None) -> UnitFit:
+              fixed_units: Iterable[str] = (), nice: int | None = None, centre: bool = True) -> UnitFit:
     """Find the change of base units that brings values into ranges.
 
     Parameters
@@ -547,6 +548,11 @@ def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[s
     nice : int, optional
         Restrict every factor to an integer power of `nice` (10, 2, ...) and
         check the ranges again in exact arithmetic.
+    centre : bool
+        Pull each value towards the middle of its range (default);
+        False: the smallest unit change that puts every value in range
+        (the choice of ``pt.fit_units(..., engine=...)``, which calls
+        this function from :mod:`pitheorem.engines.fitting`).
 
     Returns
     -------
@@ -619,7 +625,7 @@ def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[s
                 "fixing it contradicts its range; drop it from fixed or widen the range"
             )
 
-    problem = _Problem(system, exact_values, rng, fixed, fixed_units, None if nice is None else int(nice))
+    problem = _Problem(system, exact_values, rng, fixed, fixed_units, None if nice is None else int(nice), centre)
     t_star, v = problem.fit()
     if nice is None:
         s = 10.0

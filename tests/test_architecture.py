@@ -29,6 +29,8 @@ LAYERS = {
 
 #: the upward imports allowed, (importer, imported) -> why
 UPWARD = {
+    ("", "engines.fitting"): "pt.fit_units(engine=...) reads that engine's thresholds, imported inside the "
+                             "function only when an engine or an engine model is given",
     ("cli", "engines.cli"): "the command line reads MJCF and URDF files through the optional engines, "
                             "imported inside the function that handles such a file",
 }

@@ -220,7 +220,8 @@ def test_verify_exits_0_when_similar_1_when_not_and_2_on_bad_input(capsys, tmp_p
     out = capsys.readouterr().out
     assert code == 1, out
     assert out.startswith("NOT similar")
-    assert "causes:\n  solver: option tolerance" in out
+    assert "causes:\n  solver: option solver = PGS" in out
+    assert "\n  solver: option tolerance" in out
     assert main(["verify", pendulum, "--scale", "g=1", "--s", "-1"]) == 2
     assert "--s" in capsys.readouterr().err
     assert main(["verify", str(pgs), "--scale", "g=1", "--s", "4", "--format", "latex"]) == 1
@@ -350,15 +351,73 @@ def test_apply_without_output_reports_the_changes_and_writes_nothing(tmp_path, c
     assert list(tmp_path.iterdir()) == []
 
 
-def test_verify_says_when_a_run_moved_nothing_and_reads_powers_of_four(capsys):
+def test_verify_says_when_a_run_moved_nothing_and_expects_bits_where_every_factor_is_a_power_of_two(capsys):
+    from fractions import Fraction
+
+    import pitheorem as pt
     from pitheorem.cli import main
-    from pitheorem.engines.cli import _power_of_four
+    from pitheorem.engines.verify import exact_in_binary
 
     hanging = str(Path(__file__).parent / "data" / "engines" / "hanging.xml")
     assert main(["verify", hanging, "--scale", "g=1", "--s", "10", "--input", "zero"]) == 0
     out = capsys.readouterr().out
     assert "this verdict proves nothing" in out
-    from fractions import Fraction
-
-    powers = [s for s in ("4", "16", "1/4", "1/64", "2", "8", "10", "3/4", "1") if _power_of_four(Fraction(s))]
+    model = engines.load(PENDULUM)
+    half = pt.Scaling.from_unit_change(model.system(), {"L": Fraction(1, 2)})  # lengths times s^(1/2)
+    powers = [s for s in ("4", "16", "1/4", "1/64", "2", "8", "10", "3/4", "1")
+              if exact_in_binary(model, half, Fraction(s))]
     assert powers == ["4", "16", "1/4", "1/64", "1"]
+    whole = pt.Scaling.from_unit_change(model.system(), {"L": 1})  # whole exponents: every power of two
+    assert [s for s in ("2", "8", "1/2", "3") if exact_in_binary(model, whole, Fraction(s))] == ["2", "8", "1/2"]
+    angles = pt.Scaling.from_unit_change(model.system(), {"M": 1})  # masses only: the coordinates keep factor 1
+    assert not exact_in_binary(model, angles, 10)
+
+
+def test_convert_writes_the_same_model_in_other_units_and_check_reads_it(tmp_path, capsys):
+    out = tmp_path / "um.xml"
+    assert main(["convert", PENDULUM, "--units", "L=um", "M=ug", "--output", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "M=kg L=m T=s -> M=ug L=um T=s" in text
+    assert f"wrote {out}" in text
+    model = engines.load(out)
+    assert model.units == {"M": "ug", "L": "um", "T": "s"}
+    assert model.parameter("g").value == (9810000.0,)
+    assert main(["check", str(out)]) == 1
+    text = capsys.readouterr().out
+    assert "mujoco_maxval" in text
+    assert "--fit mujoco" in text
+    fitted = tmp_path / "fit.xml"
+    assert main(["convert", str(out), "--fit", "mujoco", "--output", str(fitted), "--format", "json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["feasible"] is True
+    assert doc["thresholds"] == []
+    assert doc["written"] == str(fitted)
+    assert main(["check", str(fitted), "--format", "json"]) == 0
+    assert json.loads(capsys.readouterr().out)["causes"] == []
+
+
+def test_check_exits_0_on_a_clean_model_and_reads_the_units_given(capsys):
+    assert main(["check", "example:pendulum.xml"]) == 0
+    assert "clear of every catalogued threshold of mujoco" in capsys.readouterr().out
+    # declared in micrometres and micrograms, the same numbers are fine: the units only label them
+    assert main(["check", PENDULUM, "--from", "L=um", "M=ug"]) == 0
+    capsys.readouterr()
+
+
+@pytest.mark.parametrize(("argv", "says"), [
+    (["convert", PENDULUM], "--units BASE=UNIT ... or --fit ENGINE"),
+    (["convert", PENDULUM, "--units", "L=mm", "--fit", "mujoco"], "one of the two"),
+    (["convert", PENDULUM, "--units", "L=furlongz"], "'furlongz' is no unit of length"),
+    (["convert", PENDULUM, "--units", "X=mm"], "BASE one of M, L, T"),
+    (["convert", PENDULUM, "--units", "L=mm", "L=cm"], "sets L twice"),
+    (["convert", PENDULUM, "--units", "L=mm", "--output", PENDULUM], "is the input file"),
+    (["convert", "example:hinged_rod", "--units", "L=mm"], "reads MJCF (.xml) or URDF"),
+    (["check", PENDULUM, "--engine", "ode"], "ode"),
+    (["check", PENDULUM, "--format", "latex"], "invalid choice"),
+])
+def test_bad_convert_and_check_requests_exit_2_with_one_line(argv, says, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1
+    assert err[0].startswith("pitheorem: error:")
+    assert says in err[0]

@@ -374,3 +374,87 @@ def test_a_flex_element_is_refused_by_name(tmp_path):
                     'dim="2"/></worldbody></mujoco>')
     with pytest.raises(EngineModelError, match="flex elements cannot be scaled"):
         engines.load(path)
+
+
+WORM = """<mujoco model="worm">
+  <option timestep="0.0005"/>
+  <worldbody>
+    <geom name="floor" type="plane" size="0.01 0.01 0.001" friction="1 5e-6 1e-7" condim="6"/>
+    <body name="s0" pos="0 0 0.0001">
+      <freejoint/>
+      <geom type="capsule" fromto="0 0 0 0.0002 0 0" size="0.00005" density="1050"/>
+      <body name="s1" pos="0.0002 0 0">
+        <joint name="bend1" type="hinge" axis="0 0 1" stiffness="1e-9" damping="1e-11"/>
+        <geom type="capsule" fromto="0 0 0 0.0002 0 0" size="0.00005" density="1050"/>
+      </body>
+    </body>
+  </worldbody>
+  <actuator><motor name="m1" joint="bend1" ctrlrange="-1e-9 1e-9"/></actuator>
+</mujoco>
+"""
+
+
+def test_a_file_refused_for_a_threshold_loads_as_a_table_and_converts_into_units_that_run(tmp_path):
+    path = tmp_path / "worm.xml"
+    path.write_text(WORM)
+    with pytest.raises(ValueError, match="mjMINVAL"):  # independent of pitheorem: MuJoCo refuses the file
+        mujoco.MjModel.from_xml_path(str(path))
+    worm = engines.load(path)
+    assert type(worm.backend).__name__ == "RefusedMjcfBackend"
+    # the table's masses are the file's own: density times volume, not the probe's
+    radius, length = 5e-5, 2e-4
+    volume = np.pi * radius**2 * length + 4 / 3 * np.pi * radius**3
+    assert worm.parameter("body_s1_mass").value[0] == pytest.approx(1050 * volume, rel=1e-12)
+    found = engines.check(worm)
+    assert "mujoco refuses the file: Error: mass and inertia" in found[0].detail  # the refusal first
+    causes = {c.element: c.detail for c in found}
+    assert "mujoco_minval_mass" in causes["body_s1_inertia"]
+    with pytest.raises(engines.EngineModelError, match="MuJoCo does not run it"):
+        worm.backend.run(10)
+    from pitheorem.engines.fitting import fitted_units
+
+    units = fitted_units(worm, pt.fit_units(worm))
+    fitted = worm.converted(**units)
+    assert engines.check(fitted) == ()
+    assert np.isfinite(fitted.backend.run(200)).all()
+    mm = worm.converted(L="mm", M="mg")  # by hand: also clear
+    assert mm.parameter("body_s1_mass").value[0] == pytest.approx(1050 * volume * 1e6, rel=1e-12)
+
+
+MUSCLE = ('<mujoco><option timestep="0.002"/><worldbody><site name="a"/><body pos="0 0 -0.3">'
+          '<joint name="j" type="slide" axis="0 0 1" limited="true" range="-0.1 0.1"/>'
+          '<geom size="0.05" mass="1"/><site name="b"/></body></worldbody>'
+          '<tendon><spatial name="t"><site site="a"/><site site="b"/></spatial></tendon>'
+          '<actuator><muscle name="m" tendon="t" FORCE/></actuator></mujoco>')
+
+
+def test_a_muscle_is_read_with_its_dimensions_and_its_found_length_range_is_stated_in_a_copy(tmp_path):
+    path = tmp_path / "muscle.xml"
+    path.write_text(MUSCLE.replace("FORCE", 'force="50"'))
+    model = engines.load(path)
+    dims = {p.name: p.dimension_text for p in model.parameters if p.name.startswith("actuator_m_")}
+    assert dims["actuator_m_gainprm_peak_force"] == "M L T^-2"
+    assert dims["actuator_m_gainprm_vmax"] == "T^-1"
+    assert dims["actuator_m_dynprm_timeconst"] == "T"
+    assert dims["actuator_m_ctrlrange"] == "1"
+    found = model.parameter("actuator_m_lengthrange")
+    assert found.source == "derived"  # the file leaves it out; MuJoCo's compiler simulated to find it
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    saved = engines.load(model.scaled(sc, 4).save(tmp_path / "muscle_4.xml"))
+    import mujoco
+
+    lengths = saved.backend.mjmodel.actuator_lengthrange[0]
+    assert list(lengths) == [4 * v for v in found.value]  # stated, not found again by a simulation
+    excite = engines.verify(model, sc, 4, duration=1.0, scaled=saved, controls=lambda t: [0.5 + 0.4 * np.sin(6 * t)])
+    assert excite.exact
+    assert excite.excited
+    again = mujoco.MjModel.from_xml_string(MUSCLE.replace("FORCE", 'force="200"').replace("0.3", "1.2").replace(
+        "0.05", "0.2").replace("-0.1 0.1", "-0.4 0.4"))  # the copy without the stated range: found again, not x4
+    assert list(again.actuator_lengthrange[0]) != [4 * v for v in found.value]
+
+
+def test_a_muscle_whose_peak_force_mujoco_derives_is_refused_by_name(tmp_path):
+    path = tmp_path / "muscle.xml"
+    path.write_text(MUSCLE.replace("FORCE", ""))
+    with pytest.raises(engines.EngineModelError, match="give its force explicitly"):
+        engines.load(path)

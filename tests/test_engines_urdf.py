@@ -361,3 +361,67 @@ def test_a_scaled_copy_reads_as_its_saved_file_does(tmp_path):
     reread = engines.load(copy.save(tmp_path / "r2d2_10.urdf"))
     assert [(p.name, p.value) for p in copy.parameters] == [(p.name, p.value) for p in reread.parameters]
     assert copy.parameter("g").value[0] == 10 * model.parameter("g").value[0]  # scaled: not a vacuous equality
+
+
+def test_no_file_is_written_into_the_users_folder_and_meshes_still_load(tmp_path, monkeypatch):
+    """The robot's meshes are named by absolute paths in a copy in the system's temporary folder."""
+    import shutil
+    import tempfile
+
+    robot = tmp_path / "robot"
+    shutil.copytree(Path(__file__).resolve().parent / "robots" / "urdf", robot)
+    written = []
+    real = tempfile.mkstemp
+
+    def recording(*args, **kwargs):
+        fd, name = real(*args, **kwargs)
+        written.append(Path(name).parent)
+        return fd, name
+
+    monkeypatch.setattr(tempfile, "mkstemp", recording)
+    before = sorted(p.name for p in robot.rglob("*"))
+    model = engines.load(robot / "arm.urdf", fixed_base=True, damping=0.0, split_impulse=False)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    assert engines.verify(model, sc, 4, duration=0.2, controls=engines.smooth_controls(model)).exact
+    assert written  # PyBullet read copies ...
+    assert all(folder != robot for folder in written)  # ... none of them in the user's folder
+    assert sorted(p.name for p in robot.rglob("*")) == before
+    assert any(shape[4].endswith(b".obj") or shape[4].endswith(b".stl")
+               for shapes in model.backend._info["shapes"].values() for shape in shapes)  # meshes were loaded
+
+
+def test_a_compound_collision_mesh_is_named_as_a_setting_cause_and_matters_only_in_contact():
+    """pybullet_data's duck: five convex parts whose margins no changeDynamics reaches."""
+    pybullet_data = pytest.importorskip("pybullet_data")
+    duck = Path(pybullet_data.getDataPath()) / "duck_vhacd.urdf"
+
+    def judged(ground):
+        with pytest.warns(engines.UnscalableModelWarning, match="convex parts"):
+            model = engines.load(duck, base_position=(0, 0, 0.2), ground=ground, damping=0.0, split_impulse=False)
+        model = model.with_values(solverResidualThreshold=0.0)
+        sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+        return engines.verify(model, sc, 4, duration=0.5)
+
+    on_the_ground = judged(True)
+    assert not on_the_ground.exact
+    assert [c.element for c in on_the_ground.causes] == ["link 'baseLink' collision mesh 'duck_vhacd.obj'"]
+    assert on_the_ground.causes[0].kind == "setting"
+    assert judged(False).exact  # the counter-run: with nothing to touch, the margins play no part
+
+
+def test_a_file_pybullet_reads_despite_blank_lines_a_nul_or_a_material_inside_a_visual_geometry(tmp_path):
+    """pybullet_data's biped, humanoid and racecar files have each of these; PyBullet's reader shrugs them off."""
+    text = ARM.read_text()
+    body = text[text.index("<robot"):]
+    odd = tmp_path / "odd.urdf"
+    odd.write_text("\n\n" + '<?xml version="1.0"?>\n' + body.replace(
+        "</robot>", '<link name="decor"><visual><geometry><box size="0.1 0.1 0.1"/><material name="grey"/>'
+        '</geometry></visual></link><joint name="decor_fixed" type="fixed"><parent link="base"/>'
+        '<child link="decor"/></joint></robot>') + "\x00")
+    model = engines.load(odd)
+    assert model.parameter("link_decor_visual0_size").value == (0.1, 0.1, 0.1)
+    bad = tmp_path / "bad.urdf"  # the same in a collision: refused, for it would change the dynamics
+    bad.write_text(body.replace("</robot>", '<link name="decor"><collision><geometry><material name="grey"/>'
+                                '</geometry></collision></link></robot>'))
+    with pytest.raises(EngineModelError, match="unknown geometry"):
+        engines.load(bad)

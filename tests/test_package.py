@@ -190,9 +190,9 @@ def test_every_module_has_its_test_file_and_every_test_file_a_module_or_a_reason
                                  "modelfile", "models", "plotting", "scalesearch", "scaling", "simulation",
                                  "system", "unitfit")}
     assert {file for file in wanted.values() if file.startswith("test_engines_")} == {
-        f"test_engines_{m}.py" for m in ("audit", "backend", "causes", "cli", "constants", "diagnose", "mjcf",
-                                         "loading", "mjx", "model", "numbers", "packages", "registry", "rod", "rules",
-                                         "superball", "thresholds", "urdf", "verify")}
+        f"test_engines_{m}.py" for m in ("audit", "backend", "causes", "cli", "constants", "diagnose", "fitting",
+                                         "loading", "mjcf", "mjx", "model", "numbers", "packages", "registry", "rod",
+                                         "rules", "superball", "thresholds", "units", "urdf", "verify")}
 
 
 def test_the_layout_check_finds_a_missing_file_and_a_stray_one(tmp_path):

@@ -185,7 +185,7 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
         allowed = ROUNDING * np.abs(expected) + RESIDUE * np.spacing(np.vectorize(scale.get)(k, 0.0)) * factor
         off = ok & (np.abs(got - expected) > allowed)
         if off.any():
-            rel = np.abs(got[off] - expected[off]) / np.abs(expected[off])
+            rel = _relative(got[off], expected[off])
             if rel.max() <= DERIVED:
                 derived.append((field, float(rel.max()), off, got, expected))
             else:
@@ -269,15 +269,22 @@ def _not_a_power(backend, field, before, probe, mask) -> Cause:
                  "sentinel or derives this number in a way no change of units carries")
 
 
+def _relative(got: np.ndarray, expected: np.ndarray) -> np.ndarray:
+    """How far each value is off, relative to what was expected; where zero was expected, the value itself."""
+    gap = np.abs(got - expected)
+    size = np.abs(expected)
+    return np.where(size > 0, gap / np.where(size > 0, size, 1.0), gap)
+
+
 def _rounded(backend, field, before, got, expected, mask) -> Cause:
-    rel = np.abs(got[mask] - expected[mask]) / np.abs(expected[mask])
+    rel = _relative(got[mask], expected[mask])
     return Cause("precision", field, f"{int(mask.sum())} of {before.size} values ({_where(backend, field, mask)}) "
                  f"rounded to float32, by up to {float(rel.max()):.2g} relative: the engine keeps them in float32, "
                  "where only a power-of-4 s scales them exactly")
 
 
 def _reprocessed(backend, field, got, expected, mask) -> Cause:
-    rel = np.abs(got[mask] - expected[mask]) / np.abs(expected[mask])
+    rel = _relative(got[mask], expected[mask])
     return Cause("unscaled", field, f"{int(mask.sum())} float32 values ({_where(backend, field, mask)}) differ from "
                  f"the original times an exact factor, by up to {float(rel.max()):.2g} relative: the engine "
                  "computes them from the file in a way that is not scale-free")

@@ -21,7 +21,8 @@ from .loading import load
 from .model import EngineModel, UnscalableParameterError
 from .urdf import SCENE_OPTIONS, scene_option
 
-__all__ = ["apply_engine", "engine_model_file", "params_answer", "parse_scene", "scene_help", "verify_engine"]
+__all__ = ["apply_engine", "check_engine_model", "convert_engine", "engine_model_file", "params_answer", "parse_scene",
+           "parse_units", "scene_help", "verify_engine"]
 
 
 _TRUTH = {"true": True, "yes": True, "1": True, "false": False, "no": False, "0": False}
@@ -239,16 +240,184 @@ def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str =
     exact: the scaled copy, mapped back, equals the original bit for bit at every step (s = 4, 250 steps)
     True
     """
-    from .verify import smooth_controls, verify
+    from .verify import exact_in_binary, smooth_controls, verify
 
     controls = smooth_controls(model) if inputs == "smooth" and len(model.backend.control_dimensions()) else None
     rep = verify(model, scaling, s, duration=duration, controls=controls)
-    return EngineVerifyAnswer(model.path, model.engine, Fraction(s), duration, inputs, _power_of_four(s), rep)
+    return EngineVerifyAnswer(model.path, model.engine, Fraction(s), duration, inputs,
+                              exact_in_binary(model, scaling, s), rep)
 
 
-def _power_of_four(s) -> bool:
-    s = Fraction(s)
-    for part in (s.numerator, s.denominator):
-        if part & (part - 1) or (part.bit_length() - 1) % 2:
-            return False
-    return True
+def parse_units(items: list[str] | None, option: str) -> dict[str, str]:
+    """``--units L=mm M=g`` (or ``--from``) as a mapping of base dimension to unit name.
+
+    Parameters
+    ----------
+    items : list of str or None
+        ``BASE=UNIT`` items, BASE one of M, L, T.
+    option : str
+        The option's name, for the message (``"--units"``).
+
+    Returns
+    -------
+    dict of str to str
+
+    Raises
+    ------
+    InvalidRequestError
+        For an item that is not ``BASE=UNIT``, or a base given twice.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.cli import parse_units
+    >>> parse_units(["L=mm", "M=g"], "--units")
+    {'L': 'mm', 'M': 'g'}
+    """
+    out = {}
+    for item in items or ():
+        base, sep, unit = (part.strip() for part in item.partition("="))
+        if not sep or base not in ("M", "L", "T") or not unit:
+            raise InvalidRequestError(f"{option} {item!r}: write BASE=UNIT with BASE one of M, L, T (L=mm, M=g)",
+                                      culprit=item)
+        if base in out:
+            raise InvalidRequestError(f"{option} sets {base} twice", culprit=item)
+        out[base] = unit
+    return out
+
+
+def convert_engine(path: str, *, from_units=None, units=None, fit: str | None = None,
+                   output: str | None = None, fmt: str = "text") -> str:
+    """The command line's ``convert``: the same model in other units, written with ``--output``.
+
+    Parameters
+    ----------
+    path : str
+        An MJCF file.
+    from_units : mapping of str to str, optional
+        The units the file is written in (``--from``).
+    units : mapping of str to str, optional
+        The new units (``--units``).
+    fit : str, optional
+        An engine: choose the units with :func:`pitheorem.fit_units` for it
+        (``--fit mujoco``); `units` may then be left out.
+    output : str, optional
+        Where to write the converted file.
+    fmt : {"text", "json"}
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    InvalidRequestError
+        Without `units` or `fit`, with both, or with `output` the input file.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.cli import convert_engine
+    >>> print(convert_engine(str(engines.example_path("pendulum.xml")), units={"L": "mm"}).splitlines()[0])
+    pendulum.xml: M=kg L=m T=s -> M=kg L=mm T=s (factors M 1, L 1000, T 1)
+    """
+    import json
+
+    from .units import conversion, read_units
+
+    if bool(units) == bool(fit):
+        raise InvalidRequestError("convert needs --units BASE=UNIT ... or --fit ENGINE (one of the two)")
+    model = load(path, units=from_units or None)
+    fitted = None
+    if fit:
+        from .fitting import engine_fit, fitted_units
+
+        fitted = engine_fit(model, engine=fit)
+        units = fitted_units(model, fitted)
+    new = read_units({**model.units, **units})
+    converted = model.converted(**new)
+    factors = _factors_text(model.units, new)
+    written = None
+    if output:
+        out = Path(output)
+        if out.exists() and out.resolve() == Path(path).resolve():
+            raise InvalidRequestError(f"--output {output!r} is the input file; choose another name")
+        converted.save(out)
+        written = str(out)
+    steps = len(conversion(model.system(), model.units, new))
+    crossings = tuple(str(c) for c in _check(converted))
+    if fmt == "json":
+        return json.dumps({"file": path, "from": model.units, "to": new, "factors": factors, "scalings": steps,
+                           "fit": fit, "feasible": None if fitted is None else fitted.feasible,
+                           "written": written, "thresholds": list(crossings)}, indent=2)
+    name = Path(path).name
+    lines = [f"{name}: {_units_text(model.units)} -> {_units_text(new)} (factors "
+             + ", ".join(f"{b} {f}" for b, f in factors.items()) + ")"]
+    if fitted is not None and not fitted.feasible:
+        lines.append(f"no units keep every number clear of {fit}'s thresholds; these are the closest")
+    lines.extend(f"  {c}" for c in crossings)
+    lines.append(f"wrote {written}" if written else "nothing written (give --output OUT)")
+    return "\n".join(lines)
+
+
+def _units_text(units) -> str:
+    return " ".join(f"{b}={u}" for b, u in units.items())
+
+
+def _factors_text(old, new) -> dict[str, str]:
+    from ..exact import short_text
+    from .units import unit_size
+
+    return {b: short_text(unit_size(b, old[b]) / unit_size(b, new[b])) for b in old}
+
+
+def _check(model, engine: str | None = None):
+    from .thresholds import check, crossed
+
+    return check(model) if engine is None or engine == model.engine else crossed(engine, model.parameters)
+
+
+def check_engine_model(path: str, *, from_units=None, engine: str | None = None,
+                       fmt: str = "text") -> tuple[str, bool]:
+    """The command line's ``check``: the thresholds a model sits beyond or near, and whether it is clean.
+
+    Parameters
+    ----------
+    path : str
+        An MJCF or URDF file.
+    from_units : mapping of str to str, optional
+        The units the file is written in.
+    engine : str, optional
+        Hold the numbers against this engine's thresholds (default: the
+        model's own engine).
+    fmt : {"text", "json"}
+
+    Returns
+    -------
+    (str, bool)
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.cli import check_engine_model
+    >>> text, clean = check_engine_model(str(engines.example_path("pendulum.xml")))
+    >>> print(text); clean
+    pendulum.xml: clear of every catalogued threshold of mujoco
+    True
+    """
+    import json
+
+    from .packages import check_engine
+
+    model = load(path, units=from_units or None)
+    engine = model.engine if engine is None else check_engine(engine)
+    causes = _check(model, engine)
+    if fmt == "json":
+        return json.dumps({"file": path, "engine": engine, "units": model.units,
+                           "causes": [c.to_dict() for c in causes]}, indent=2), not causes
+    name = Path(path).name
+    if not causes:
+        return f"{name}: clear of every catalogued threshold of {engine}", True
+    lines = [f"{name}: {len(causes)} number(s) beyond or near a threshold of {engine}"]
+    lines.extend(f"  {c}" for c in causes)
+    lines.append(f"units clear of them: pitheorem convert {name} --fit {engine} --output OUT")
+    return "\n".join(lines), False

@@ -23,6 +23,8 @@ Each cause is established, not presumed:
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from ..simulation import allowed_deviation
@@ -71,8 +73,23 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
     causes = [c for c in audit(model, scaling, s, scaled=scaled).causes if c.kind != "solver"]
     limits = allowed_deviation(report.original, report.sensitivity, report.baseline_factor)
 
-    def counters(*variants) -> list[tuple[bool, float]]:
-        """Both runs again under each variant's options, all in one batch: (agree, largest deviation) each."""
+    # Where the runs first part: the first step at which they differ in a bit, when every factor is exact
+    # and the verdict was similar (a difference in any bit is then the thing to explain), else the first
+    # step at which a coordinate leaves the yardstick.  A counter-run shows a cause when, with the
+    # candidate removed from both runs, they never part, or part later than the verdict's runs do: a
+    # model with two causes is not repaired by removing one, but its first difference moves.
+    bits = exact_expected and report.similar
+
+    def parting(run: np.ndarray, back: np.ndarray) -> int | None:
+        with np.errstate(invalid="ignore"):
+            off = (run != back) if bits else ~(np.abs(back - run) <= limits)  # a NaN parts
+        rows = np.nonzero(off.any(axis=1))[0]
+        return int(rows[0]) if rows.size else None
+
+    verdict_parts = parting(report.original.y, report.mapped.y)
+
+    def counters(*variants) -> list[Counter]:
+        """Both runs again under each variant's options, all in one batch: what each shows."""
         jobs = []
         for options in variants:
             jobs += [(original.variant(**options), u_original, False, None),
@@ -81,15 +98,19 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
         out = []
         for run, other in zip(runs[::2], runs[1::2], strict=True):
             back = other / factors
-            if exact_expected:
-                agree = bool(np.array_equal(run, back))
-            else:
-                agree = bool(np.all(np.abs(back - run).max(axis=0) <= limits))
-            out.append((agree, _largest(back - run)))
+            parts = parting(run, back)
+            later = parts is None or (verdict_parts is not None and parts > verdict_parts)
+            out.append(Counter(later, parts is None, _largest(back - run), parts, bool(np.array_equal(run, back))))
         return out
 
-    def instead() -> str:
-        return f"instead of {report.max_deviation:.3g}"
+    t = report.original.t
+
+    def shown(counter: Counter) -> str:
+        """What a counter-run that shows a cause showed, in words."""
+        if counter.agree:
+            return f"they agree (largest deviation {counter.worst:.3g} instead of {report.max_deviation:.3g})"
+        return (f"they part later: first at t = {float(t[counter.parts]):.6g} instead of t = "
+                f"{float(t[verdict_parts]):.6g}, where another cause takes over")
 
     if not isinstance(original, CounterRuns):
         return sorted_causes(causes)
@@ -108,37 +129,55 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
         variants["contacts"] = {"contacts": False}
     results = dict(zip(variants, counters(*variants.values()), strict=True)) if variants else {}
 
-    if "tolerance" in results and results["tolerance"][0]:
+    if "tolerance" in results and results["tolerance"].shows:
         names = ", ".join(f"option {k} = {v:g}" for k, v in solver.items())
         causes.append(Cause("solver", names, "a stopping rule of no pure dimension: the scaled run stops after "
-                            "other iterations; with it at 0 in both runs they agree (largest deviation "
-                            f"{results['tolerance'][1]:.3g} {instead()}); load with with_values({next(iter(solver))}=0)"))
+                            f"other iterations; with it at 0 in both runs {shown(results['tolerance'])}; load with "
+                            f"with_values({', '.join(f'{k}=0' for k in solver)})"))
     if not mujoco_like:
         return sorted_causes(causes)
-    newton = results.get("newton")
-    if newton is not None and not newton[0]:  # Newton's own stopping rule may stop it at another iteration too
-        newton = counters({"solver": "Newton", "tolerance": 0.0})[0]
-    if newton is not None and newton[0]:
+    newton, remedy = results.get("newton"), '<option solver="Newton"/>'
+    if newton is not None and not (newton.exact or (newton.shows and not exact_expected)):
+        # Newton's own stopping rule may stop it at another iteration too: with it at 0, bit for bit at s = 4
+        stopped = counters({"solver": "Newton", "tolerance": 0.0})[0]
+        if stopped.exact or (stopped.shows and not newton.shows):
+            newton, remedy = stopped, '<option solver="Newton" tolerance="0"/>'
+    if newton is not None and newton.shows:
         causes.append(Cause("solver", f"option solver = {original.solver_name()}", "this solver's iterations are "
-                            f"not scale-free; with Newton's in both runs they agree (largest deviation {newton[1]:.3g} "
-                            f'{instead()}): load the file with <option solver="Newton"/> to scale it'))
-    if "equalities" in results and results["equalities"][0]:  # which of them: each one off alone
+                            f"not scale-free; with Newton's in both runs {shown(newton)}: load the file with "
+                            f"{remedy} to scale it"))
+    if "equalities" in results and results["equalities"].shows:  # which of them: each one off alone
         alone = counters(*({"inactive_equalities": (i,)} for i in range(len(equalities))))
-        named = ", ".join(name for name, (agree, _) in zip(equalities, alone, strict=True) if agree)
+        named = ", ".join(name for name, counter in zip(equalities, alone, strict=True) if counter.shows)
         causes.append(Cause("solver", named or "the equality constraints together", "an equality constraint the "
                             "solver does not treat scale-free (a weld with an offset is one): with it inactive in both "
-                            f"runs they agree (largest deviation {results['equalities'][1]:.3g} {instead()})"))
-    agree, worst = results["contacts"]
-    contact = _contact_difference(original, copy, n_steps, u_original, u_scaled, report.original.t)
+                            f"runs {shown(results['equalities'])}"))
+    contacts = results["contacts"]
+    # a contact can explain the runs' parting only if it differs before they part: after that, other contacts
+    # are what parted runs do (and stepping in Python past that point would cost a whole run)
+    until = n_steps if verdict_parts is None else min(n_steps, verdict_parts + 1)
+    contact = _contact_difference(original, copy, until, u_original, u_scaled, t)
     # the same pairs touching throughout, and a solver cause shown: the contacts are only where that solver's
     # iterations act (without contacts there is nothing to iterate on), no cause of their own
     explained = contact is None and any(c.kind == "solver" for c in causes)
-    if (contact is not None or agree) and not explained:
+    if (contact is not None or contacts.shows) and not explained:
         pairs, detail = contact if contact is not None else ("every contact", "the same pairs touch at every step")
-        verdict = "agree" if agree else "still differ"
-        causes.append(Cause("contact", pairs, f"{detail}; with contacts off in both runs they {verdict} (largest "
-                            f"deviation {worst:.3g} {instead()})"))
+        verdict = shown(contacts) if contacts.shows else (f"they still differ (largest deviation {contacts.worst:.3g} "
+                                                          f"instead of {report.max_deviation:.3g})")
+        causes.append(Cause("contact", pairs, f"{detail}; with contacts off in both runs {verdict}"))
     return sorted_causes(causes)
+
+
+class Counter(NamedTuple):
+    """What one counter-run showed: whether its runs part later than the verdict's (or never), whether they
+    never part, the largest deviation, the step at which they first part (None: never), and whether they
+    are equal bit for bit."""
+
+    shows: bool
+    agree: bool
+    worst: float
+    parts: int | None
+    exact: bool
 
 
 def _largest(diff: np.ndarray) -> float:
@@ -148,7 +187,10 @@ def _largest(diff: np.ndarray) -> float:
 
 def _contact_difference(original, copy, n_steps, u_original, u_scaled, t):
     """The first step at which other geom pairs touch in the scaled run: (pairs, detail), or None."""
-    found = original.first_contact_difference(copy, n_steps, u_original, u_scaled)
+    def first(rows):
+        return None if rows is None else rows[:n_steps]
+
+    found = original.first_contact_difference(copy, n_steps, first(u_original), first(u_scaled))
     if found is None:
         return None
     step, only_scaled, only_original = found

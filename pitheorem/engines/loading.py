@@ -19,11 +19,12 @@ from pathlib import Path
 from ..errors import EngineModelError, EngineUnavailableError, InvalidRequestError
 from ..modelfile import model_kind
 from .registry import REGISTRY, Engine, backends, registered
+from .units import declared_units
 
 __all__ = ["load"]
 
 
-def load(path, engine=None, **options):
+def load(path, engine=None, units=None, **options):
     """Read an MJCF or URDF model file in an engine.
 
     Parameters
@@ -35,6 +36,10 @@ def load(path, engine=None, **options):
         The engine to run it in: by default the file's own (MJCF in
         ``"mujoco"``, URDF in ``"pybullet"``); an MJCF file also runs in
         ``"mjx"``.
+    units : mapping of str to str, optional
+        The units the file is written in, for some of ``M``, ``L`` and
+        ``T`` (``{"L": "cm", "M": "g"}``); the others are SI.  Default: SI,
+        or the units a file written by pitheorem records.
     **options
         The engine loader's options: for PyBullet those of
         ``pitheorem.engines.urdf.load_urdf`` (``settings`` and the scene);
@@ -98,7 +103,8 @@ def load(path, engine=None, **options):
         where = "".join(f"; {wrong[0]!r} is for {'/'.join(e.kinds).upper()} files in {e.name!r}" for e in elsewhere)
         raise InvalidRequestError(f"engine {chosen.name!r} takes no option {wrong[0]!r} (its options: {valid}){where}",
                                   culprit=wrong[0])
-    return loader(path, **options)
+    model = loader(path, **options)
+    return model.in_units(declared_units(model, units))
 
 
 def _loader(line: Engine):

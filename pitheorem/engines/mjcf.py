@@ -56,7 +56,7 @@ from .model import (
 from .numbers import check_model_file
 from .packages import engine_module
 
-__all__ = ["MjcfBackend", "load_mjcf"]
+__all__ = ["MjcfBackend", "RefusedMjcfBackend", "load_mjcf"]
 
 #: a custom ``<text>`` element named this prefix plus a numeric's name declares that numeric's dimension
 DIMENSION_TEXT = "dimension:"
@@ -419,7 +419,10 @@ class _Walker:
         ident, path = self.label("joint", joint, index)
         kind = _joint_kind(mj, joint.type)
         self.add("joint", joint, ident, path, "pos", _L)
-        self.refuse(joint, path, ("springdamper", "springyield"))
+        self.refuse(joint, path, ("springyield",))
+        if np.any(np.asarray(joint.springdamper) != 0):  # a time constant and a damping ratio (dimensionless)
+            self.add("joint", joint, ident, path, "springdamper", _T, slice(0, 1), "_time",
+                     note="the compiler turns it and the damping ratio into stiffness and damping")
         if kind is None:  # free joint: translation and rotation share each number
             for attr, lin, rot in (("damping", "M T^-1", "M L^2 T^-1"), ("armature", "M", "M L^2"),
                                    ("frictionloss", "M L T^-2", "M L^2 T^-2")):
@@ -530,12 +533,18 @@ class _Walker:
                 ctrl = length / _T  # a velocity servo: a target velocity
         elif gain == mj.mjtGain.mjGAIN_AFFINE:
             ctrl = _ONE  # a damper-like gain: the input is a dimensionless fraction
+        elif gain == mj.mjtGain.mjGAIN_MUSCLE:
+            ctrl = _ONE  # a muscle's excitation, between 0 and 1
         else:
-            self.fail(path, f"gain type {gain.name} (muscle or user) is not supported by pitheorem's scaling")
-        if bias not in (mj.mjtBias.mjBIAS_NONE, mj.mjtBias.mjBIAS_AFFINE):
+            self.fail(path, f"gain type {gain.name} (user) is not supported by pitheorem's scaling")
+        muscle = gain == mj.mjtGain.mjGAIN_MUSCLE
+        if bias not in (mj.mjtBias.mjBIAS_NONE, mj.mjtBias.mjBIAS_AFFINE) and not (
+                muscle and bias == mj.mjtBias.mjBIAS_MUSCLE):
             self.fail(path, f"bias type {bias.name} is not supported by pitheorem's scaling")
         dyn = act.dyntype
-        if dyn == mj.mjtDyn.mjDYN_INTEGRATOR:
+        if dyn == mj.mjtDyn.mjDYN_MUSCLE:
+            act_dim = _ONE  # the activation, between 0 and 1
+        elif dyn == mj.mjtDyn.mjDYN_INTEGRATOR:
             act_dim = ctrl * _T
             if gain == mj.mjtGain.mjGAIN_FIXED and bias == mj.mjtBias.mjBIAS_AFFINE and biasprm[1] != 0:
                 # intvelocity: the activation is the target length, so ctrl is a velocity
@@ -559,10 +568,12 @@ class _Walker:
         self.add("actuator", act, ident, path, "ctrlrange", ctrl)
         self.add("actuator", act, ident, path, "forcerange", force)
         self.add("actuator", act, ident, path, "actrange", act_dim)
-        self.add("actuator", act, ident, path, "lengthrange", length)
+        self.lengthrange(act, index, ident, path, length)
         if act.dyntype in (mj.mjtDyn.mjDYN_FILTER, mj.mjtDyn.mjDYN_FILTEREXACT):
             self.add("actuator", act, ident, path, "dynprm", _T, slice(0, 1), "_timeconst")
-        if act.gaintype == mj.mjtGain.mjGAIN_FIXED:
+        if act.gaintype == mj.mjtGain.mjGAIN_MUSCLE:
+            self.muscle(act, ident, path, force)
+        elif act.gaintype == mj.mjtGain.mjGAIN_FIXED:
             self.add("actuator", act, ident, path, "gainprm", force / driven, slice(0, 1), "_gain")
         else:
             self.add("actuator", act, ident, path, "gainprm", force, slice(0, 1), "_gain")
@@ -573,6 +584,50 @@ class _Walker:
             self.add("actuator", act, ident, path, "biasprm", force / length, slice(1, 2), "_length")
             self.add("actuator", act, ident, path, "biasprm", force * _T / length, slice(2, 3), "_velocity")
         self.refuse(act, path, ("damping", "armature", "delay", "ffrange", "velrange"))
+
+    def lengthrange(self, act, index, ident, path, length) -> None:
+        """The actuator's length range: as the file gives it, or as MuJoCo's compiler found it.
+
+        A range the file leaves out (0 0) is found by the compiler, for a muscle, by simulating the
+        model with accelerations and times of its own (``<compiler><lengthrange>``), which no change
+        of units reaches; a scaled copy is given the original's range times its factor instead, as
+        the file could have said.
+        """
+        given = np.asarray(act.lengthrange, dtype=float)
+        aid = act.id if act.id >= 0 else index
+        found = np.array(self.model.actuator_lengthrange[aid], dtype=float)
+        if np.any(given != 0) or not np.any(found != 0):
+            self.add("actuator", act, ident, path, "lengthrange", length)
+            return
+        name = self.unique(f"{ident}_lengthrange")
+
+        def write(element, factor, found=found):
+            element.lengthrange = found * factor
+
+        self.slots.append(Slot(name, f"{path} lengthrange", lambda: tuple(float(v) for v in found),
+                               (), self.where("actuator", act), length, "derived",
+                               write=write, note="found by MuJoCo's compiler; a scaled copy states it"))
+
+    def muscle(self, act, ident, path, force) -> None:
+        """A muscle (MuJoCo's model): its peak force, its speed limit and its time constants.
+
+        Its lengths are in units of the optimal length L0 and its forces in units of the peak force:
+        the range, lmin, lmax, fpmax and fvmax are dimensionless.  A peak force left to MuJoCo
+        (``force`` negative: ``scale`` over the actuator's ``acc0``) is refused, for ``acc0`` mixes
+        the dimensions of the joints the muscle spans.
+        """
+        mj = self.mj
+        for attr in ("gainprm", "biasprm"):  # MuJoCo's muscle reads both; the <muscle> element sets them alike
+            prm = np.asarray(getattr(act, attr), dtype=float)
+            if prm[2] < 0:
+                self.fail(path, f"a muscle whose peak force MuJoCo derives from scale and acc0 ({attr}[2] = "
+                          f"{prm[2]:g}) cannot be scaled: give its force explicitly (force=\"...\")")
+            self.add("actuator", act, ident, path, attr, force, slice(2, 3), "_peak_force")
+            self.add("actuator", act, ident, path, attr, _T ** -1, slice(6, 7), "_vmax",
+                     note="optimal lengths per unit time")
+        if act.dyntype == mj.mjtDyn.mjDYN_MUSCLE:
+            self.add("actuator", act, ident, path, "dynprm", _T, slice(0, 3), "_timeconst",
+                     note="activation, deactivation, smoothing width")
 
     def equality(self, eq, index):
         mj = self.mj
@@ -1273,8 +1328,83 @@ def load_mjcf(path) -> EngineModel:
         spec = mj.MjSpec.from_file(str(path))
     except ValueError as err:
         raise _rejected(str(path), err) from None
-    backend = MjcfBackend(spec, str(path), path.resolve().parent, asset_dirs=_attached_asset_dirs(mj, path, root))
+    asset_dirs = _attached_asset_dirs(mj, path, root)
+    try:
+        backend = MjcfBackend(spec, str(path), path.resolve().parent, asset_dirs=asset_dirs)
+    except EngineModelError as err:
+        if "mjMINVAL" not in err.reason:
+            raise
+        # refused for a threshold that units decide: still a table, so check, fit and convert can repair it
+        backend = RefusedMjcfBackend(spec, str(path), path.resolve().parent, err, asset_dirs=asset_dirs)
     return EngineModel(backend, "mujoco", str(path))
+
+
+#: the mass attributes of a spec that decide the masses and inertias MuJoCo's compiler checks
+_MASS_ATTRIBUTES = {"bodies": ("mass", "inertia", "fullinertia"), "geoms": ("mass", "density")}
+
+
+class _Unprobed:
+    """A compiled probe seen as the refused model would be: its masses and inertias divided by the probe's factor."""
+
+    def __init__(self, probe, factor: float):
+        self._probe, self.body_mass, self.body_inertia = probe, probe.body_mass / factor, probe.body_inertia / factor
+
+    def __getattr__(self, name):
+        return getattr(self._probe, name)
+
+
+class RefusedMjcfBackend(MjcfBackend):
+    """An MJCF model MuJoCo refuses for a threshold (masses below ``mjMINVAL``), held as its parameter table.
+
+    The table is read from a probe: a copy of the spec whose masses and
+    densities are multiplied by a power of two (a change of the mass unit,
+    exact), compiled, and its computed masses and inertias divided back.
+    The model converts, fits and checks like any other; it does not run,
+    and its converted copy runs once the new units clear the threshold.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from pitheorem import engines
+    >>> speck = pathlib.Path(tempfile.mkdtemp()) / "speck.xml"
+    >>> _ = speck.write_text('<mujoco><worldbody><body><freejoint/><geom size="1e-6" density="1000"/>'
+    ...                      '</body></worldbody></mujoco>')
+    >>> model = engines.load(speck)
+    >>> type(model.backend).__name__, model.parameter("body1_mass").value
+    ('RefusedMjcfBackend', (4.18879020478639e-15,))
+    """
+
+    def __init__(self, spec, path: str, source_dir, refusal: EngineModelError, *, asset_dirs=None):
+        mj = _mujoco()
+        self.spec, self.path, self.source_dir = spec, path, source_dir
+        self.asset_dirs, self._inputs, self.refusal = dict(asset_dirs or {}), None, refusal
+        for power in (50, 100, 200):
+            probe = spec.copy()
+            for collection, attrs in _MASS_ATTRIBUTES.items():
+                for element in getattr(probe, collection):
+                    for attr in attrs:
+                        setattr(element, attr, np.asarray(getattr(element, attr), dtype=float) * 2.0**power
+                                if np.ndim(getattr(element, attr)) else getattr(element, attr) * 2.0**power)
+            try:
+                with _muted():
+                    self.mjmodel = probe.compile()
+                break
+            except ValueError:
+                continue
+        else:
+            raise refusal
+        self._walked = _Walker(mj, spec, _Unprobed(self.mjmodel, 2.0**power), path, warn=True).walk()
+
+    def run_many(self, n_steps: int, jobs):
+        raise EngineModelError(self.path, self.refusal.element, f"{self.refusal.reason}; MuJoCo does not run it. "
+                               "Convert it to units clear of the threshold (pitheorem.fit_units(model), "
+                               "model.converted(...), or pitheorem convert FILE --fit mujoco)")
+
+    def run(self, n_steps: int, controls=None, nudge: bool = False, state=None, policy=None):
+        return self.run_many(n_steps, [])
+
+    def twin(self, seed: int):
+        return self.run_many(0, [])
 
 
 def _attached_asset_dirs(mj, path: Path, root=None) -> dict:

@@ -43,7 +43,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import EngineModelError, InvalidRequestError
-from .mjcf import MjcfBackend, load_mjcf
+from .mjcf import MjcfBackend, RefusedMjcfBackend, load_mjcf
 from .model import EngineModel
 from .packages import engine_module
 
@@ -341,5 +341,7 @@ def load_mjx(path, *, precision: str = "float32") -> EngineModel:
     """
     if precision not in PRECISIONS:
         raise InvalidRequestError(f"precision must be 'float32' or 'float64', got {precision!r}", culprit=precision)
-    mujoco_model = load_mjcf(path)
-    return EngineModel(MjxBackend(mujoco_model.backend, precision), "mjx", str(path))
+    reading = load_mjcf(path).backend
+    if isinstance(reading, RefusedMjcfBackend):  # MuJoCo's compiler refused it: there is no model to put in MJX
+        raise reading.refusal
+    return EngineModel(MjxBackend(reading, precision), "mjx", str(path))

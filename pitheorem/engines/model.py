@@ -395,14 +395,107 @@ class EngineModel(TableDisplay):
     ('mujoco', True)
     """
 
-    __slots__ = ("_backend", "_groups", "_origin", "_parameters", "_system", "engine", "path")
+    __slots__ = ("_backend", "_groups", "_origin", "_parameters", "_system", "_units", "engine", "path")
 
-    def __init__(self, backend, engine: str, path: str, origin: tuple | None = None):
+    def __init__(self, backend, engine: str, path: str, units=None, origin: tuple | None = None):
+        units = tuple((units or {"M": "kg", "L": "m", "T": "s"}).items())
         # origin: (the model this one is a copy of, the factor of each of its parameters), for a copy made
         # by scaled(), with_values() or multiplied(); its table is then known without reading the copy
         for name, value in (("_backend", backend), ("engine", engine), ("path", path), ("_parameters", None),
-                            ("_groups", None), ("_origin", origin), ("_system", None)):
+                            ("_units", units), ("_groups", None), ("_origin", origin), ("_system", None)):
             object.__setattr__(self, name, value)
+
+    @property
+    def units(self) -> dict[str, str]:
+        """The units the model's numbers are in: a unit name for each of M, L and T.
+
+        SI (``kg``, ``m``, ``s``) unless :func:`load` was told otherwise, or
+        the file records its own (a file :meth:`converted` wrote).
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> engines.load(engines.example_path("pendulum.xml")).units
+        {'M': 'kg', 'L': 'm', 'T': 's'}
+        """
+        return dict(self._units)
+
+    def converted(self, **units) -> EngineModel:
+        """The same model in other units: every number by its dimension.
+
+        A change of units is a similarity scaling, so this is
+        :meth:`scaled` with :meth:`pitheorem.Scaling.from_unit_change`
+        (see ``pitheorem.engines.units``): gravity, densities,
+        viscosity, stiffness, damping, gains, margins and solref time
+        constants, the time step and the keyframes all follow.
+
+        Parameters
+        ----------
+        **units : str or number
+            New units for some of ``M``, ``L`` and ``T``: a name pint
+            reads (``L="mm"``), or the unit's size in SI units
+            (``L=0.001``).  The others keep the model's.
+
+        Returns
+        -------
+        EngineModel
+            Unsaved; :meth:`save` writes a file that records its units.
+
+        Raises
+        ------
+        UnitError
+            For a unit name pint does not read as that dimension.
+        EngineModelError
+            For a URDF model and units other than SI (URDF is SI by its
+            specification).
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> model = engines.load(engines.example_path("pendulum.xml"))
+        >>> cm = model.converted(L="cm", M="g")
+        >>> cm.units, cm.parameter("g").value
+        ({'M': 'g', 'L': 'cm', 'T': 's'}, (981.0,))
+        """
+        from .units import convert
+
+        return convert(self, units)
+
+    def in_units(self, units) -> EngineModel:
+        """This model's numbers, unchanged, declared to be in other units.
+
+        What ``load(..., units=...)`` does; :meth:`converted` changes the
+        numbers instead.
+
+        Parameters
+        ----------
+        units : mapping of str to str
+            The units of M, L and T (``pitheorem.engines.units.read_units``).
+
+        Returns
+        -------
+        EngineModel
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> model = engines.load(engines.example_path("pendulum.xml")).in_units({"L": "cm"})
+        >>> model.units, model.parameter("g").value
+        ({'M': 'kg', 'L': 'cm', 'T': 's'}, (9.81,))
+        """
+        import copy
+
+        from .units import SI, read_units, record, refuse_urdf
+
+        units = read_units(units)
+        if self.engine == "pybullet" and units != SI:
+            refuse_urdf(self, units)
+        if units == self.units:
+            return self
+        backend = copy.copy(self._backend)  # an MJCF model records its units in its spec, so a save keeps them
+        backend.spec = self._backend.spec.copy()
+        record(backend.spec, units)
+        return EngineModel(backend, self.engine, self.path, units)
 
     @property
     def parameters(self) -> tuple[Parameter, ...]:
@@ -644,7 +737,8 @@ class EngineModel(TableDisplay):
 
     def _times(self, factors: dict[str, float], scaling=None, s=None) -> EngineModel:
         """The copy of :meth:`scaled`, :meth:`with_values` and :meth:`multiplied`: checked factors applied."""
-        return EngineModel(self._backend.scaled(factors, scaling, s), self.engine, "", origin=(self, dict(factors)))
+        return EngineModel(self._backend.scaled(factors, scaling, s), self.engine, "", self.units,
+                           origin=(self, dict(factors)))
 
     def save(self, path) -> Path:
         """Write the model as a file the engine loads as is.
@@ -713,7 +807,7 @@ class EngineModel(TableDisplay):
         """
         if not isinstance(self._backend, HasSceneSettings):
             raise InvalidRequestError("an MJCF model keeps its settings in the file; use with_values(...)")
-        return EngineModel(self._backend.with_settings(**changes), self.engine, self.path)
+        return EngineModel(self._backend.with_settings(**changes), self.engine, self.path, self.units)
 
     def settings(self) -> dict:
         """Engine settings the file cannot hold, as data (empty for MuJoCo).

@@ -91,8 +91,8 @@ def check_model_file(path) -> ET.Element | None:
         line = raw[: err.start].count(b"\n") + 1
         raise EngineModelError(str(path), f"line {line}", f"byte {raw[err.start]:#04x} at offset {err.start} is "
                                "not UTF-8; save the file as UTF-8 text") from None
-    try:
-        root = ET.fromstring(text)
+    try:  # as the engines' own XML readers do: blank lines before the declaration, NUL bytes after the end
+        root = ET.fromstring(text.strip().rstrip("\x00").strip())
     except ET.ParseError:
         return None  # the engine's reader names the fault, with its own words
     parents = {child: parent for parent in root.iter() for child in parent}

@@ -367,7 +367,8 @@ def check(model) -> tuple[Cause, ...]:
     -------
     tuple of Cause
         Of kind ``"threshold"``; ``()`` when the model is clear of every
-        catalogued threshold.
+        catalogued threshold.  A file the engine refused to compile (read
+        as a parameter table) has the refusal first.
 
     Raises
     ------
@@ -388,4 +389,9 @@ def check(model) -> tuple[Cause, ...]:
     """
     if not isinstance(model, EngineModel):
         raise InvalidRequestError(f"check needs an EngineModel (from engines.load), got {type(model).__name__}")
-    return crossed(model.engine, model.parameters)
+    causes = crossed(model.engine, model.parameters)
+    refusal = getattr(model.backend, "refusal", None)  # a file the engine refused to compile (read as a table)
+    if refusal is not None:
+        causes = (Cause("threshold", refusal.element or Path(refusal.path).name,
+                        f"{model.engine} refuses the file: {refusal.reason}"), *causes)
+    return causes

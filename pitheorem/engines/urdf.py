@@ -169,6 +169,8 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
                             note="a factor times the mesh file's units, a length")
                     elif g.tag == "plane":
                         pass  # an infinite plane: nothing to scale
+                    elif kind == "visual":
+                        pass  # something PyBullet draws nothing from (a <material> put inside <geometry>)
                     else:
                         raise EngineModelError(path, f"{swhere} <{g.tag}>", "unknown geometry; use box, cylinder, "
                                                "capsule, sphere, mesh or plane")
@@ -205,15 +207,16 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
     return out
 
 
-def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> None:
-    """Warn about OBJ collision meshes of several objects (convex decompositions such as V-HACD's).
+def _compound_meshes(tree: ET.ElementTree, source_dir: Path) -> list[tuple[str, str, int]]:
+    """The OBJ collision meshes of several objects (convex decompositions such as V-HACD's).
 
     PyBullet loads such a mesh as a compound of convex hulls, and
     ``changeDynamics(collisionMargin=...)`` does not reach the parts: a margin
     of 0.05 moves pybullet_data's duck at rest by 8e-5 m, not 0.05 m.  The
     parts keep their default margin, a length no scaling can change, so the
-    contacts of a scaled copy are off by it.
+    contacts of a scaled copy are off by it.  Returns (link, file, parts) each.
     """
+    found = []
     for link in tree.getroot().iter("link"):
         for collision in link.findall("collision"):
             for mesh in collision.iter("mesh"):
@@ -224,9 +227,16 @@ def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> 
                 with open(resolved, encoding="utf-8", errors="replace") as lines:
                     parts = sum(1 for line in lines if line.startswith("o "))
                 if parts > 1:
-                    warn_unscalable(path, f"link {link.get('name')!r} collision mesh {filename!r}",
-                                    f"its {parts} convex parts load as a compound whose collision margins "
-                                    "changeDynamics cannot reach; contacts of a scaled copy are off by that margin")
+                    found.append((link.get("name"), filename, parts))
+    return found
+
+
+def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> None:
+    """Warn about each collision mesh of :func:`_compound_meshes`."""
+    for link, filename, parts in _compound_meshes(tree, source_dir):
+        warn_unscalable(path, f"link {link!r} collision mesh {filename!r}",
+                        f"its {parts} convex parts load as a compound whose collision margins "
+                        "changeDynamics cannot reach; contacts of a scaled copy are off by that margin")
 
 
 def _link_parameter(link: str, setting: str) -> str:
@@ -244,14 +254,37 @@ def _xml_text(tree: ET.ElementTree) -> str:
 
 
 def _mesh_path(filename: str, source_dir: Path) -> Path | None:
+    """The file a URDF's mesh or texture names, searched as PyBullet does; None if there is none.
+
+    A relative name is relative to the URDF's folder; ``package://NAME/REST`` is looked for as
+    ``NAME/REST`` in that folder and the folders above it (a ROS package's meshes sit beside its
+    ``urdf`` folder).
+    """
     name = filename
     if name.startswith("package://"):
         name = name[len("package://"):]
     candidates = [source_dir / name, Path(name)]
+    if filename.startswith("package://"):
+        candidates += [folder / name for folder in list(source_dir.parents)[:4]]
     for c in candidates:
         if c.is_file():
             return c
     return None
+
+
+def _portable_text(tree: ET.ElementTree, source_dir: Path) -> str | None:
+    """The URDF's text with every mesh and texture file named by its absolute path, to load from any folder.
+
+    None when one of them cannot be found (PyBullet may still find it from the file's own folder).
+    """
+    tree = copy.deepcopy(tree)
+    for element in tree.getroot().iter():
+        if element.tag in ("mesh", "texture") and element.get("filename"):
+            found = _mesh_path(element.get("filename"), source_dir)
+            if found is None:
+                return None
+            element.set("filename", str(found.resolve()))
+    return _xml_text(tree)
 
 
 class UrdfBackend:
@@ -286,14 +319,21 @@ class UrdfBackend:
         return pb, client
 
     def _load(self, pb, client):
-        """Load the URDF (from a temporary copy beside the original, so relative mesh paths resolve)."""
+        """Load the URDF from a temporary copy, its mesh files named by their absolute paths.
+
+        The copy goes to the system's temporary folder, never the user's; only a file whose meshes
+        cannot be found from here is copied beside the original, where PyBullet's own search starts.
+        """
         import os
         import tempfile
 
-        fd, tmp = tempfile.mkstemp(suffix=".urdf", dir=self.source_dir)
+        if "_portable" not in self.__dict__:  # the tree never changes: its text is made once
+            self._portable = _portable_text(self.tree, self.source_dir)
+        text = self._portable if self._portable is not None else _xml_text(self.tree)
+        fd, tmp = tempfile.mkstemp(suffix=".urdf", dir=None if self._portable is not None else self.source_dir)
         try:
             with os.fdopen(fd, "w") as fh:
-                fh.write(_xml_text(self.tree))
+                fh.write(text)
             with quiet_stdout():
                 body = pb.loadURDF(tmp, basePosition=list(self.scene["base_position"]),
                                    useFixedBase=self.scene["fixed_base"], physicsClientId=client)
@@ -563,6 +603,17 @@ class UrdfBackend:
 
     def ignored_settings(self) -> tuple:
         """The ``changeDynamics`` settings PyBullet does not take: each as a ``setting`` Cause."""
+        from .causes import Cause
+
+        compound = [Cause("setting", f"link {link!r} collision mesh {filename!r}", f"its {parts} convex parts "
+                          "load as a compound whose collision margins changeDynamics cannot reach: they keep "
+                          "PyBullet's default margin, a length no scaling changes, so the copy's contacts are off "
+                          "by it")
+                    for link, filename, parts in _compound_meshes(self.tree, self.source_dir)]
+        return tuple(compound) + self._ignored_margins()
+
+    def _ignored_margins(self) -> tuple:
+        """The links whose margin PyBullet keeps other than the one set."""
         from .causes import Cause
 
         dynamics, _ = self._held()

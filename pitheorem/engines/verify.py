@@ -179,7 +179,7 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         exponents={n: exponent_of[d] for n, d in zip(names, dims, strict=True)},
         twins=[trajectory(rows) for rows in twin_runs], baseline_factor=baseline_factor, method=model.engine,
     )
-    exact_expected = all(is_power_of_two(f) for f in factors) and is_power_of_two(f_time)
+    exact_expected = exact_in_binary(model, scaling, s)
     if not diagnose or controller is not None or (report.similar and (report.exact or not exact_expected)):
         return report
     from .diagnose import find_causes
@@ -187,6 +187,40 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     causes = find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factors, report,
                          exact_expected)
     return dataclasses.replace(report, causes=causes)
+
+
+def exact_in_binary(model: EngineModel, scaling, s) -> bool:
+    """Whether a scaling multiplies every number of a model by a power of two (and the runs must agree bit for bit).
+
+    Every number, not only every recorded coordinate: a humanoid's coordinates are angles, of
+    factor 1 under any scaling that keeps time, while its lengths and masses are not exact at
+    ``s = 10``.  At ``s`` a power of four every factor ``s**e`` (``e`` a multiple of 1/2) is one.
+
+    Parameters
+    ----------
+    model : EngineModel
+    scaling : Scaling
+    s : float or Fraction
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.verify import exact_in_binary
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    >>> exact_in_binary(model, sc, 4), exact_in_binary(model, sc, 10), exact_in_binary(model, sc, 3)
+    (True, False, False)
+    """
+    factor, _ = _factor_cache(scaling, read_scale_factor(s))
+    by_dimension, mixed = model._by_dimension()
+    dimensions = [d for d, _names in by_dimension] + [d for p in mixed for _part, d in p.parts]
+    _names, coordinates = model.backend.coordinate_dimensions()
+    return all(is_power_of_two(factor(d)) for d in (*dimensions, *coordinates, dim("T")))
 
 
 def smooth_controls(model: EngineModel, amplitude: float = 0.3, period: float = 0.5):
