@@ -37,6 +37,7 @@ With MJX installed (``pip install "pitheorem[mjx]"``)::
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 from pathlib import Path
 
@@ -88,6 +89,17 @@ class MjxBackend:
     def device_model(self):
         """The ``mjx.Model`` this backend runs."""
         return self._device
+
+    @property
+    def spec(self):
+        """MuJoCo's ``MjSpec`` of the file (where a file written by pitheorem records its units)."""
+        return self.mjcf.spec
+
+    @spec.setter
+    def spec(self, value) -> None:
+        # EngineModel.in_units gives a copy of this backend another spec: the reading is copied, not changed
+        self.mjcf = copy.copy(self.mjcf)
+        self.mjcf.spec = value
 
     # -- the table, scaled copies and files: MuJoCo's reading of the file ------------------------
 
