@@ -47,7 +47,7 @@ from scipy.optimize import Bounds, LinearConstraint, linprog, milp
 
 from .dimensions import Dimension
 from .errors import DimensionSyntaxError, DuplicateVariableError, InvalidRequestError, LimitError
-from .exact import read_number, read_value, short_text
+from .exact import MAX_DENOMINATOR, read_number, read_value, short_text
 from .formatting import MathDisplay, TableDisplay
 from .immutable import immutable
 from .linalg import nullspace
@@ -517,11 +517,20 @@ def _snap(problem: _Problem, v: np.ndarray, t_star: float) -> list[Fraction]:
         viol = problem.W @ np.array([float(z) for z in zq]) - problem.r
         return max(0.0, float(viol.max()))
 
+    def within_limits(exponents) -> bool:  # a unit's exponent is held to the package's size limits
+        return all(e.denominator <= MAX_DENOMINATOR and abs(e.numerator) <= MAX_DENOMINATOR for e in exponents)
+
+    finest = None
     for digits in (3, 6, 9, 12):
         zq = [Fraction(round(float(z) * 10**digits), 10**digits) for z in v]
+        exact = decades(zq)
+        if not within_limits(exact):  # a grid so fine that the decades leave the limits: the last one stands
+            break
+        finest = exact
         if worst(zq) <= max(t_star, 0.0) + TOL:
-            return decades(zq)
-    return decades([Fraction(float(z)) for z in v])
+            return exact
+    # no grid loses nothing: the finest one within the limits, off by less than its step (1e-9 decades or less)
+    return finest if finest is not None else decades([Fraction(round(float(z) * 1000), 1000) for z in v])
 
 
 def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[str, object] | None = None,
