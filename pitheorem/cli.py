@@ -121,13 +121,15 @@ def _load(path: str, scene: list[str] | None = None) -> ModelFile:
     return _load_with_engine(path, scene)[0]
 
 
-def _load_with_engine(path: str, scene: list[str] | None = None) -> tuple[ModelFile, object]:
+def _load_with_engine(path: str, scene: list[str] | None = None, engine: str | None = None
+                      ) -> tuple[ModelFile, object]:
     """The model file and, for MJCF or URDF, the engine's model it was read from (else None)."""
     engine_path = _engine_path(path)
     if engine_path is not None:  # MJCF or URDF: its system and scalar values, through the engine
         from .engines.cli import engine_model_file, parse_scene
 
-        return engine_model_file(engine_path, **parse_scene(scene))
+        options = {} if engine is None else {"engine": engine}  # the file's own engine unless one is named
+        return engine_model_file(engine_path, **parse_scene(scene), **options)
     if scene:
         raise _CommandError(f"--scene sets up URDF models; {path} is no URDF file")
     try:
@@ -350,7 +352,7 @@ def _cmd_apply(args) -> int:
 def _cmd_verify(args) -> int:
     if _engine_path(args.file) is None:
         raise _CommandError(f"{args.file}: verify runs MJCF (.xml) or URDF (.urdf) model files in their engine")
-    model, engine_model = _load_with_engine(args.file, args.scene)
+    model, engine_model = _load_with_engine(args.file, args.scene, args.engine)
     from .exact import read_positive
 
     s = read_positive(args.s, "--s")
@@ -535,6 +537,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="actuator inputs: a smooth sine per actuator (default), or none")
     p.add_argument("--solution", type=int, default=1, metavar="K",
                    help="use the K-th minimal scaling (default 1)")
+    p.add_argument("--engine", metavar="ENGINE", help="run the file in this engine instead of its own "
+                   "(an MJCF file in mjx, say)")
     p.set_defaults(run=_cmd_verify)
 
     units = argparse.ArgumentParser(add_help=False, allow_abbrev=False)

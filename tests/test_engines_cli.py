@@ -421,3 +421,16 @@ def test_bad_convert_and_check_requests_exit_2_with_one_line(argv, says, capsys)
     assert len(err) == 1
     assert err[0].startswith("pitheorem: error:")
     assert says in err[0]
+
+
+def test_verify_runs_a_file_in_the_engine_named(capsys):
+    assert main(["verify", PENDULUM, "--scale", "g=1", "--s", "4", "--engine", "ode"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1
+    assert "unknown engine 'ode'" in err[0]
+    pytest.importorskip("mujoco.mjx", reason="MJX is not installed (pip install 'pitheorem[mjx]')")
+    capsys.readouterr()  # what importing MJX here printed (a note on a missing warp): the command silences it
+    assert main(["verify", PENDULUM, "--scale", "g=1", "--s", "4", "--engine", "mjx", "--duration", "0.2",
+                 "--format", "json"]) == 0
+    doc = json.loads(capsys.readouterr().out)  # nothing but the answer: not MJX's note on a missing warp
+    assert (doc["engine"], doc["exact"]) == ("mjx", True)

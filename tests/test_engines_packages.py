@@ -85,3 +85,20 @@ def test_quiet_stdout_stands_aside_where_descriptors_cannot_be_copied_or_c_canno
         with quiet_stdout():
             ran_again = True
     assert ran_again
+
+
+def test_quiet_stdout_silences_pythons_streams_too_where_they_are_not_the_descriptors():
+    """A notebook's or pytest's sys.stdout is no file descriptor: what Python prints there is silenced too
+    (mujoco.mjx prints a note on a missing warp on import)."""
+    import contextlib
+    import io
+
+    from pitheorem.engines.packages import quiet_stdout
+
+    seen = io.StringIO()
+    with contextlib.redirect_stdout(seen), contextlib.redirect_stderr(seen):
+        with quiet_stdout():
+            print("not shown")
+            print("nor this", file=sys.stderr)
+        print("shown")
+    assert seen.getvalue() == "shown\n"
