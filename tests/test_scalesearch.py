@@ -500,3 +500,24 @@ def test_the_certificate_is_written_with_the_scaled_variable_on_top():
     res = pt.search(tl, scale={"v": 1}, fixed=("t", "l"))
     assert list(res.certificate.exponents.items()) == [("t", 1), ("l", -1), ("v", 1)]
     assert res.certificate_power == 1
+
+
+def test_the_particular_solution_and_directions_are_changes_of_units():
+    rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T", "k": "M L^2 T^-2"})
+    res = pt.search(rod, scale={"g": 1}, fixed=("t",))
+    dims = {"m": {"M": 1}, "l": {"L": 1}, "g": {"L": 1, "T": -2}, "t": {"T": 1}, "k": {"M": 1, "L": 2, "T": -2}}
+
+    def from_units(units):  # the exponent of each variable under a change of units, by hand
+        return {n: sum(Fraction(p) * units[b] for b, p in d.items()) for n, d in dims.items()}
+
+    assert isinstance(res.particular, pt.Scaling)
+    assert res.particular.is_unit_change
+    assert res.particular.exponents["g"] == 1
+    assert res.particular.exponents["t"] == 0
+    assert res.particular.exponents == from_units(res.particular.unit_change)
+    assert len(res.directions) == 1
+    for direction in res.directions:
+        assert direction.is_unit_change
+        assert (direction.exponents["g"], direction.exponents["t"]) == (0, 0)
+        assert direction.exponents == from_units(direction.unit_change)
+        assert direction.changed
