@@ -521,3 +521,22 @@ def test_the_particular_solution_and_directions_are_changes_of_units():
         assert (direction.exponents["g"], direction.exponents["t"]) == (0, 0)
         assert direction.exponents == from_units(direction.unit_change)
         assert direction.changed
+
+
+def test_search_refusals_in_full():
+    lt = pt.System({"l": "L", "t": "T", "v": "L/T"})
+    cases = [
+        (lambda: pt.search(3, scale={"l": 1}), "search needs a System, got int"),
+        (lambda: pt.search(lt, scale={"q": 1}), "unknown variable 'q' in scale; the system has l, t, v"),
+        (lambda: pt.search(lt, scale={"l": 1}, fixed=("q",)), "unknown variable 'q' in fixed; the system has l, t, v"),
+        (lambda: pt.search(lt, scale={"l": 1}, allow=("q",)), "unknown variable 'q' in allow; the system has l, t, v"),
+        (lambda: pt.search(lt, scale={}),
+         "empty request: scale must prescribe at least one variable, e.g. scale={'g': 1}"),
+    ]
+    for call, message in cases:
+        with pytest.raises(pt.PiTheoremError) as caught:
+            call()
+        assert str(caught.value) == message
+    with pytest.raises(pt.NumberError) as caught:
+        pt.search(lt, scale={"l": "x"})
+    assert str(caught.value).startswith("exponent of 'l' must be a finite real number")
