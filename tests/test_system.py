@@ -365,3 +365,52 @@ def test_from_units_still_reads_a_power_divided_by_a_unit():
 def test_from_units_takes_a_mapping(bad):
     with pytest.raises(pt.UnitError, match="must map each variable"):
         pt.System.from_units(bad)
+
+
+def test_from_units_messages_in_full():
+    with pytest.raises(pt.UnitError) as caught:
+        pt.System.from_units({"x": "m^-1/2"})
+    assert str(caught.value) == ("the unit 'm^-1/2' of 'x' is ambiguous: '^-1/2' is a power divided by a number; "
+                                 "write a fractional power in brackets, such as 'm^(-1/2)'")
+    # a unit text of up to 40 characters is quoted in the message, a longer one is not
+    forty = "m**inf" + "*s" * 17
+    longer = "m**inf" + "*s" * 16 + "*kg"
+    assert (len(forty), len(longer)) == (40, 41)
+    with pytest.raises(pt.NumberError) as caught:
+        pt.System.from_units({"x": forty})
+    assert str(caught.value).startswith(f"the exponent of meter in the unit {forty!r} of 'x' must be a finite")
+    with pytest.raises(pt.NumberError) as caught:
+        pt.System.from_units({"x": longer})
+    assert str(caught.value).startswith("the exponent of meter in the unit of 'x' must be a finite")
+
+
+def test_from_units_reads_a_bare_number_or_nothing_as_dimensionless():
+    system = pt.System.from_units({"x": "3", "y": "", "z": "2 m", "w": "0.5"})
+    assert system.dimension("x") == system.dimension("y") == system.dimension("w") == pt.Dimension.parse("1")
+    assert system.dimension("z") == pt.Dimension.parse("L")
+
+
+def test_systems_differ_by_dimensions_as_well_as_names():
+    assert pt.System({"x": "L"}) != pt.System({"x": "T"})
+    assert pt.System({"x": "L"}) != pt.System({"y": "L"})
+    assert pt.System({"x": "L", "t": "T"}) == pt.System({"x": "L", "t": "T"})
+    systems = [pt.System({"x": d}) for d in ("L", "T", "M", "L/T", "M L")] + [pt.System({n: "L"}) for n in "abc"]
+    assert len({hash(s) for s in systems}) > 1
+    assert hash(pt.System({"x": "L", "t": "T"})) == hash(pt.System({"x": "L", "t": "T"}))
+
+
+def test_dimensionless_products_span_the_null_space():
+    for dims in ({"l": "L", "t": "T", "v": "L/T"}, {"m": "M", "l": "L", "g": "L T^-2", "t": "T", "k": "M L^2 T^-2"},
+                 {"x": "1", "y": "1"}, {"a": "L", "b": "L^2"}):
+        system = pt.System(dims)
+        # the dimension matrix by hand, from the formulas' exponents
+        bases = ["M", "L", "T"]
+        matrix = sympy.Matrix([[pt.Dimension.parse(d).exponent_of(b) for d in dims.values()] for b in bases])
+        products = system.dimensionless_products()
+        assert len(products) == len(dims) - matrix.rank()
+        for vector in products:
+            assert len(vector) == len(dims)
+            assert all(isinstance(x, Fraction) for x in vector)
+            assert matrix * sympy.Matrix([sympy.Rational(x.numerator, x.denominator) for x in vector]) == sympy.zeros(3, 1)
+        if products:
+            assert sympy.Matrix([[sympy.Rational(str(x)) for x in v] for v in products]).rank() == len(products)
