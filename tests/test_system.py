@@ -414,3 +414,27 @@ def test_dimensionless_products_span_the_null_space():
             assert matrix * sympy.Matrix([sympy.Rational(x.numerator, x.denominator) for x in vector]) == sympy.zeros(3, 1)
         if products:
             assert sympy.Matrix([[sympy.Rational(str(x)) for x in v] for v in products]).rank() == len(products)
+
+
+def test_from_units_angles_malformed_and_unknown_dimensions():
+    assert pt.System.from_units({"w": "rad/s"}, angle_as_base=True).dimension("w") == pt.Dimension({"A": 1, "T": -1})
+    assert pt.System.from_units({"w": "rad/s"}).dimension("w") == pt.Dimension.parse("1/T")
+    assert pt.System.from_units({"x": "m"}, angle_as_base=True).dimension("x") == pt.Dimension.parse("L")
+    with pytest.raises(pt.LimitError) as caught:
+        pt.System.from_units({"x": "rad**1001"}, angle_as_base=True)
+    assert str(caught.value) == ("the exponent of radian in the unit 'rad**1001' of 'x' is 1001: its magnitude "
+                                 "exceeds the limit 1000")
+    for text in ("m**", "m/", "*m"):
+        with pytest.raises(pt.UnitError) as caught:
+            pt.System.from_units({"x": text})
+        assert str(caught.value) == f"cannot read the unit {text!r} of 'x': malformed unit expression"
+    with pytest.raises(pt.UnitError) as caught:
+        pt.System.from_units({"x": "pixel"})
+    assert str(caught.value) == "unit 'pixel' of 'x' has dimension [printing_unit], which pitheorem does not know"
+
+
+def test_a_base_outside_the_declared_ones_is_refused_even_in_a_simple_formula():
+    for formula in ("M", "M L", "L T^-2 M^2"):
+        with pytest.raises(pt.DimensionSyntaxError, match="unknown base dimension 'M'"):
+            pt.System({"x": formula}, base_dimensions=("L", "T"))
+    assert pt.System({"x": "L T^-2"}, base_dimensions=("L", "T")).dimension("x") == pt.Dimension({"L": 1, "T": -2})
