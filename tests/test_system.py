@@ -438,3 +438,12 @@ def test_a_base_outside_the_declared_ones_is_refused_even_in_a_simple_formula():
         with pytest.raises(pt.DimensionSyntaxError, match="unknown base dimension 'M'"):
             pt.System({"x": formula}, base_dimensions=("L", "T"))
     assert pt.System({"x": "L T^-2"}, base_dimensions=("L", "T")).dimension("x") == pt.Dimension({"L": 1, "T": -2})
+
+
+def test_unknown_names_in_bases_and_pi_groups_are_named_with_the_argument():
+    lt = pt.System({"l": "L", "t": "T", "v": "L/T"})
+    for call, argument in ((lambda: lt.bases(require=("q",)), "require"), (lambda: lt.bases(exclude=("q",)), "exclude"),
+                           (lambda: lt.pi_groups(["q", "l"]), "repeating")):
+        with pytest.raises(pt.UnknownVariableError) as caught:
+            call()
+        assert str(caught.value) == f"unknown variable 'q' in {argument}; the system has l, t, v"
