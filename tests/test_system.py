@@ -447,3 +447,29 @@ def test_unknown_names_in_bases_and_pi_groups_are_named_with_the_argument():
         with pytest.raises(pt.UnknownVariableError) as caught:
             call()
         assert str(caught.value) == f"unknown variable 'q' in {argument}; the system has l, t, v"
+
+
+def test_basis_and_dimension_refusals_in_full():
+    lt = pt.System({"l": "L", "t": "T", "v": "L/T"})
+    cases = [
+        (lambda: lt.bases(require=("l", "t", "v")),
+         "repeating set ('l', 't', 'v') has 3 variables, but the dimension matrix has rank 2: choose exactly 2 "
+         "variables with independent dimensions (System.bases() lists every valid choice)", ("l", "t", "v")),
+        (lambda: pt.System({"a": "L", "b": "T", "c": "L/T", "d": "M"}).bases(require=("a", "b", "c")),
+         "repeating set ('a', 'b', 'c') is dependent: a/(b*c) is dimensionless, so these variables cannot serve as "
+         "a basis; System.bases() lists every valid choice", ("a", "b", "c")),
+        (lambda: lt.check_names(("l", "l"), "fixed"), "variable 'l' is named twice in fixed; name each variable once",
+         "l"),
+        (lambda: lt.index("q"), "unknown variable 'q'; the system has l, t, v", "q"),
+        (lambda: pt.System({"x": {3: 1}}), "dimension of 'x' must map base names to numbers, got the key 3", 3),
+        (lambda: pt.System({"x": {"Q": 1}}), "dimension of 'x' uses base 'Q'; allowed bases are M, L, T, Theta, I",
+         "Q"),
+        (lambda: pt.System({"x": {"N": 1}}),
+         "dimension of 'x' uses base 'N'; allowed bases are M, L, T, Theta, I; 'N' is opt-in because it is also "
+         "an SI unit symbol: declare it with base_dimensions=(..., 'N')", "N"),
+    ]
+    for call, message, culprit in cases:
+        with pytest.raises(pt.PiTheoremError) as caught:
+            call()
+        assert str(caught.value) == message
+        assert caught.value.culprit == culprit
