@@ -473,3 +473,15 @@ def test_basis_and_dimension_refusals_in_full():
             call()
         assert str(caught.value) == message
         assert caught.value.culprit == culprit
+
+
+def test_a_name_given_twice_is_named_with_where():
+    cases = [(lambda: pt.System({"x": "L"}, base_dimensions=("T", "L", "L")),
+              "variable 'L' is named twice in base_dimensions; name each variable once", "L"),
+             (lambda: pt.System([("x", "L"), ("x", "T")]),
+              "variable 'x' is named twice in the system; name each variable once", "x")]
+    for call, message, culprit in cases:
+        with pytest.raises(pt.DuplicateVariableError) as caught:
+            call()
+        assert str(caught.value) == message
+        assert caught.value.culprit == culprit
