@@ -7,7 +7,7 @@ equality, membership, printing), against lists built by brute force.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from itertools import combinations
+from itertools import combinations, pairwise
 
 import numpy as np
 import pytest
@@ -109,5 +109,55 @@ def test_joined_and_empty_index_arrays_are_read_only():
 
 
 def test_bases_are_indexed_by_integers_only():
-    with pytest.raises(TypeError, match="indexed by integers or slices"):
+    with pytest.raises(TypeError, match=r"indexed by integers or slices, not str$"):
         pt.System({"l": "L", "t": "T"}).bases()["l"]
+
+
+@pytest.mark.parametrize(("n", "dtype"), [(256, np.uint8), (257, np.uint16)])
+def test_the_index_type_is_the_smallest_that_holds_the_last_position(n, dtype):
+    # positions 0 .. n - 1: 255 is the largest a byte holds, 256 needs two
+    names = [f"x{j}" for j in range(n)]
+    bases = pt.System(dict.fromkeys(names, "L")).bases()
+    assert bases.indices.dtype == dtype
+    assert bases[-1] == (names[-1],)
+    assert list(bases) == [(name,) for name in names]
+
+
+def test_blocks_are_read_in_place_without_a_copy():
+    chunk = np.array([[0, 1], [0, 2]], dtype=np.uint8)
+    sequence = BasisSequence(["a", "b", "c"], [chunk])
+    assert np.shares_memory(sequence.indices, chunk)
+
+
+def test_items_are_found_across_blocks_before_they_are_joined():
+    names = ["a", "b", "c", "d"]
+    rows = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]]
+    for sizes in ([1, 5], [2, 1, 3], [3, 3], [1, 1, 1, 1, 1, 1]):
+        cuts = np.cumsum([0, *sizes])
+        chunks = [np.array(rows[a:b]) for a, b in pairwise(cuts)]
+        expected = [(names[i], names[j]) for i, j in rows]
+        assert [BasisSequence(names, chunks)[i] for i in range(-6, 6)] == expected + expected
+
+
+def test_empty_slices_and_sequences_keep_the_width():
+    bases = pt.System({"l": "L", "t": "T", "x": "L"}).bases()
+    assert bases[5:2].indices.shape == (0, 2)
+    assert bases[5:2] == []
+    rank_zero = pt.System({"x": "1", "y": "1"}).bases()
+    assert rank_zero == [()]
+    assert rank_zero[1:].indices.shape == (0, 0)
+    assert BasisSequence(["a"], []).indices.shape == (0, 0)
+
+
+def test_rank_zero_blocks_each_hold_empty_sets():
+    sequence = BasisSequence(["a", "b"], [np.zeros((1, 0), dtype=int), np.zeros((2, 0), dtype=int)])
+    assert list(sequence) == [(), (), ()]
+    assert len(sequence) == 3
+
+
+def test_sequences_over_different_names_differ_even_with_the_same_positions():
+    one = pt.System({"l": "L", "t": "T"}).bases()
+    other = pt.System({"a": "L", "b": "T"}).bases()
+    assert one.indices.tolist() == other.indices.tolist() == [[0, 1]]
+    assert one != other
+    assert not (one == other)

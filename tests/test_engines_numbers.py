@@ -75,3 +75,46 @@ def test_check_numbers_refuses_what_is_no_finite_number(text, nonnegative):
                                                    ("1e-300 3", True)])
 def test_check_numbers_passes_finite_numbers(text, nonnegative):
     check_numbers("r.urdf", "x", "value", text, nonnegative=nonnegative)
+
+
+def test_the_whole_messages(tmp_path):
+    path = write(tmp_path, '<mujoco><option timestep="nan"/></mujoco>')
+    with pytest.raises(EngineModelError) as caught:
+        check_model_file(path)
+    assert str(caught.value) == f"{path}: <option>: timestep='nan' is not a finite number; a model holds finite numbers only"
+    bad = tmp_path / "bad.xml"
+    bad.write_bytes(b"<mujoco>\n<x a='\xc3'/></mujoco>")
+    with pytest.raises(EngineModelError) as caught:
+        check_model_file(bad)
+    assert str(caught.value) == f"{bad}: line 2: byte 0xc3 at offset 15 is not UTF-8; save the file as UTF-8 text"
+    cases = [  # (text, nonnegative, what the message says it must be)
+        ("heavy", False, "a finite number, such as 1.5"),
+        ("heavy", True, "a finite number, such as 1.5, and not negative"),
+        ("", True, "a finite number, such as 1.5, and not negative"),
+        ("-1", True, "a finite number, such as 1.5, and not negative"),
+        ("1 nan", False, "finite numbers"),
+        ("1 -2 3", True, "finite numbers"),
+    ]
+    for text, nonnegative, must in cases:
+        with pytest.raises(EngineModelError) as caught:
+            check_numbers("r.urdf", "link 'a' inertial mass", "value", text, nonnegative=nonnegative)
+        assert str(caught.value) == f"r.urdf: link 'a' inertial mass: value={text!r} must be {must}"
+
+
+def test_negative_numbers_pass_unless_asked_to_refuse_them():
+    check_numbers("r.urdf", "joint 'j' dynamics", "damping", "-0.5")  # the default lets a sign through
+    with pytest.raises(EngineModelError, match="not negative"):
+        check_numbers("r.urdf", "joint 'j' dynamics", "damping", "-0.5", nonnegative=True)
+
+
+def test_text_attributes_do_not_end_the_scan(tmp_path):
+    # a text attribute (not numbers) is skipped; elements and attributes after it are still read
+    path = write(tmp_path, '<mujoco><custom><text name="x" data="some text"/></custom>'
+                           '<option timestep="0.002"/><worldbody><geom size="1 inf"/></worldbody></mujoco>')
+    with pytest.raises(EngineModelError, match=r"<geom>: size='1 inf' is not a finite number"):
+        check_model_file(path)
+    fine = write(tmp_path, '<mujoco><custom><text name="x" data="some text"/></custom><option timestep="0.002"/>'
+                           "</mujoco>", "fine.xml")
+    root = check_model_file(fine)
+    assert root is not None
+    assert [e.tag for e in root.iter()] == ["mujoco", "custom", "text", "option"]

@@ -5,6 +5,7 @@ from __future__ import annotations
 from fractions import Fraction
 from itertools import combinations
 
+import numpy as np
 import sympy
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -63,3 +64,69 @@ def test_minimal_points_of_directions_dependent_on_the_free_variables():
     keys, weights = family_module.minimal_points([1, 1, 0, 0], [[0, 1, 0, 0], [0, 2, 0, 0]], [1, 2, 3], [0])
     assert keys.shape == (0, 5)
     assert weights.shape == (0, 3)
+
+
+def test_no_minimal_point_keeps_integer_arrays():
+    # no two free positions with an independent minor, and no free position at all: no point either way
+    for a0, dirs, free, constrained in (([1, 1, 0, 0], [[0, 1, 0, 0], [0, 2, 0, 0]], [1, 2, 3], [0]),
+                                        ([1, 1], [[1, -1]], [], [])):
+        keys, weights = family_module.minimal_points(a0, dirs, free, constrained)
+        assert keys.shape == (0, len(a0) + 1)
+        assert weights.shape == (0, len(dirs) + 1)
+        assert keys.dtype == weights.dtype == np.int64
+
+
+def test_a_batch_without_independent_subsets_does_not_end_the_search():
+    # 50 free positions: the descent takes its prefixes in chunks of 2048 // 50 = 40, so the pairs
+    # starting at positions 0 to 39 come in a batch of their own.  The directions vanish there, so
+    # none of those pairs is independent; the points come from the pairs among positions 40 to 49
+    n = 50
+    v1 = [0] * 40 + [1] * 10
+    v2 = [0] * 40 + list(range(1, 11))
+    a0 = [1] * 40 + [(-1) ** j * (j + 2) for j in range(10)]
+    keys, _weights = family_module.minimal_points(a0, [v1, v2], list(range(n)), [])
+    got = [tuple(Fraction(p, key[0]) for p in key[1:]) for key in keys.tolist()]
+    expected = brute_force_minimal_points(a0, [v1, v2], list(range(40, n)))
+    assert len(expected) > 1
+    assert got == expected
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(3, 6), st.integers(1, 2), st.data())
+def test_merging_repeats_along_the_way_keeps_the_answer(n, d, data):
+    # with the merge threshold lowered from 65,536 points to 2, the repeats are merged after nearly
+    # every batch: the answer is still brute force's
+    a0 = data.draw(st.lists(st.integers(-3, 3), min_size=n, max_size=n))
+    dirs = data.draw(st.lists(st.lists(st.integers(-3, 3), min_size=n, max_size=n), min_size=d, max_size=d))
+    free = list(range(n))
+    saved = family_module._MERGE_EVERY
+    family_module._MERGE_EVERY = 2
+    try:
+        keys, _weights = family_module.minimal_points(a0, dirs, free, [])
+    finally:
+        family_module._MERGE_EVERY = saved
+    got = [tuple(Fraction(p, key[0]) for p in key[1:]) for key in keys.tolist()]
+    assert got == brute_force_minimal_points(a0, dirs, free)
+
+
+def test_a_point_reached_from_two_batches_is_listed_once():
+    # 50 free positions, prefixes in chunks of 40 (as above): a0 itself vanishes on positions 5, 41
+    # and 45, so the pairs (5, 41) and (5, 45) of the first batch and (41, 45) of the second all give it
+    n = 50
+    v1 = [(7 * j) % 11 - 5 for j in range(n)]
+    v2 = [(j * j) % 13 - 6 for j in range(n)]
+    a0 = [0 if j in (5, 41, 45) else (j % 5) - 2 or 3 for j in range(n)]
+    keys, _weights = family_module.minimal_points(a0, [v1, v2], list(range(n)), [])
+    got = [tuple(Fraction(p, key[0]) for p in key[1:]) for key in keys.tolist()]
+    expected = brute_force_minimal_points(a0, [v1, v2], list(range(n)))
+    assert tuple(Fraction(x) for x in a0) in expected
+    assert got == expected
+
+
+def test_a_direction_that_moves_a_constrained_position_fails_the_confirmation():
+    # the integer confirmation checks that every point keeps a0 on the constrained positions; a
+    # direction moving position 2 breaks that, and the answer is left to the exact code (None)
+    assert family_module.minimal_points([1, 1, 1], [[1, -1, 1]], [0, 1], [2]) is None
+    keys, _weights = family_module.minimal_points([1, 1, 1], [[1, -1, 0]], [0, 1], [2])
+    # a0 + v (support 0, 2) before a0 - v (support 1, 2), by hand
+    assert keys.tolist() == [[1, 2, 0, 1], [1, 0, 2, 1]]

@@ -200,3 +200,65 @@ def test_evaluate_with_a_value_whose_float_is_zero_uses_the_exact_values():
     assert group.evaluate({"x": 1e-300, "y": Fraction(1, 10**400)}) == pytest.approx(1e100, rel=1e-15)
     with pytest.raises(pt.LimitError, match="value of 'y'"):  # a sympy Float 1e-400 would become 0.0 itself
         group.evaluate({"x": 1.0, "y": sympy.Float("1e-400")})
+
+
+def test_reciprocal_negates_every_exponent_and_keeps_the_variable():
+    group = pt.PiGroup({"a": 1, "b": -2, "c": 3}, variable="c")
+    inverse = group.reciprocal()
+    assert inverse.exponents == {"a": -1, "b": 2, "c": -3}
+    assert inverse.variable == "c"
+    assert inverse.evaluate({"a": 2, "b": 3, "c": 5}) == Fraction(9, 2 * 125)
+    assert pt.PiGroup({"x": 1}).reciprocal().variable is None
+
+
+def test_from_exponents_makes_the_named_variable_positive():
+    # the variable's exponent is made positive even where the first variable's then is negative
+    assert pt.PiGroup.from_exponents({"a": 1, "b": -1}, variable="b").exponents == {"a": -1, "b": 1}
+    assert pt.PiGroup.from_exponents({"a": Fraction(-1, 2), "b": 1}, variable="b").exponents == {"a": -1, "b": 2}
+    # without one (or with one the group does not use), the first variable used is made positive
+    assert pt.PiGroup.from_exponents({"a": 0, "b": -2, "c": 4}, variable="a").exponents == {"b": 1, "c": -2}
+    assert pt.PiGroup.from_exponents({"a": 0, "b": -2, "c": 4}).exponents == {"b": 1, "c": -2}
+
+
+def test_from_exponents_of_zeros_is_the_trivial_group():
+    group = pt.PiGroup.from_exponents({"a": 0, "b": Fraction(0)}, variable="a")
+    assert group.is_trivial
+    assert group.exponents == {}
+
+
+def test_group_messages_in_full():
+    with pytest.raises(pt.InvalidRequestError) as caught:
+        pt.PiGroup({"x": Fraction(1, 2)})
+    assert str(caught.value) == ("the exponent of 'x' in a Pi group is 1/2: PiGroup takes integer exponents; "
+                                 "PiGroup.from_exponents normalises rational ones")
+    with pytest.raises(pt.PiTheoremError) as caught:
+        pt.PiGroup({"x": "abc"})
+    assert str(caught.value).startswith("the exponent of 'x' in a Pi group must be a finite real number")
+    group = pt.PiGroup({"x": 1, "y": -2})
+    with pytest.raises(pt.InvalidRequestError) as caught:
+        group.evaluate({})
+    assert str(caught.value) == "evaluate needs a value for 'x', 'y' of Pi = x/y**2"
+    with pytest.raises(pt.LimitError) as caught:
+        group.evaluate({"x": 1e300, "y": 1e-300})  # 1e900
+    assert str(caught.value) == ("the value of the group is Pi = x/y**2: it is beyond the range of floating point "
+                                 "(about 1.8e308)")
+    assert caught.value.culprit == "Pi = x/y**2"
+    groups = pt.System({"m": "M", "l": "L", "g": "L/T^2", "t": "T", "v": "L/T"}).pi_groups(["m", "l", "g"])
+    with pytest.raises(pt.InvalidRequestError) as caught:
+        groups["q"]
+    assert str(caught.value) == "no group for 'q'; groups exist for t, v"
+
+
+def test_repr_names_the_variable_only_when_there_is_one():
+    assert repr(pt.PiGroup({"a": 1, "b": -1})) == "PiGroup.from_exponents({'a': 1, 'b': -1})"
+    assert repr(pt.PiGroup({"a": 1, "b": -1}, variable="b")) == "PiGroup.from_exponents({'a': 1, 'b': -1}, variable='b')"
+
+
+def test_different_pi_sets_hash_apart():
+    system = pt.System({"m": "M", "l": "L", "g": "L/T^2", "t": "T", "v": "L/T", "c": "M/T"})
+    sets = [system.pi_groups(basis) for basis in system.bases()]
+    distinct = set(sets)
+    assert len(distinct) > 1
+    assert len({hash(s) for s in distinct}) == len(distinct)  # equal sets hash alike; these differ
+    for s in sets:
+        assert hash(s) == hash(system.pi_groups(s.repeating))

@@ -431,3 +431,112 @@ def test_an_infeasible_search_has_no_scalings_to_count():
     res = pt.search(pt.System({"l": "L", "t": "T", "g": "L T^-2"}), scale={"g": 1}, fixed=("l", "t"))
     assert not res.feasible
     assert res.max_n_scalings == 0
+
+
+def test_a_search_within_symmetries_of_equations():
+    import sympy
+
+    # the projectile's horizontal motion (x' = vx, vx' = 0) is free of g: stretching x and vx alone
+    # keeps every equation; m appears in none of them
+    proj = pt.models.projectile()
+    sym = pt.scaling_symmetries(proj.equations, proj.system)
+    res = pt.search(proj.system, scale={"x": 1}, fixed=("t", "g"), within=sym)
+    assert res.notes == (pt.SearchNote("outside_equations", ("m",)),)
+    assert [exps(sc) for sc in res.scalings] == [{"x": 1, "vx": 1}]
+    assert [sc.is_unit_change for sc in res.scalings] == [False]
+    assert [sc.unit_change_vector for sc in res.iter_scalings()] == [None]
+    x, q = sympy.symbols("x q")
+    three = pt.System({"x": "L", "t": "T", "u": "T"})
+    with pytest.raises(pt.InvalidRequestError) as caught:
+        pt.search(three, scale={"t": 1}, within=pt.scaling_symmetries([sympy.Eq(x, 0)], three, time=None))
+    assert str(caught.value) == "'t' does not appear in the equations, so their symmetries say nothing about scaling it"
+    other = pt.System({"x": "L", "q": "T"})
+    with pytest.raises(pt.UnknownVariableError) as caught:
+        pt.search(pt.System({"x": "L", "t": "T"}), scale={"x": 1},
+                  within=pt.scaling_symmetries([sympy.Eq(x, q)], other, time=None))
+    assert str(caught.value) == "unknown variable 'q' in within (the equations' symbols); the system has x, t"
+
+
+def test_search_plot_draws_into_the_given_axes():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    res = pt.search(pt.System({"l": "L", "t": "T", "g": "L T^-2"}), scale={"g": 1})
+    fig, ax = plt.subplots()
+    try:
+        assert res.plot(ax=ax) is fig
+        assert ax.get_title() == f"g by s: {len(res.scalings)} minimal scaling(s)"
+        own = res.plot()
+        assert own is not fig
+        assert own.axes[0].get_title() == ax.get_title()
+    finally:
+        plt.close("all")
+
+
+def test_an_unknown_note_kind_names_the_kinds():
+    with pytest.raises(pt.InvalidRequestError) as caught:
+        pt.SearchNote("a sentence", ("t",))
+    assert str(caught.value) == "unknown note kind 'a sentence'; the kinds are time_fixed, outside_equations"
+
+
+def test_the_certificate_is_written_with_the_scaled_variable_on_top():
+    # v cannot scale with l and t fixed: v t / l (by hand) is a dimensionless product the request
+    # changes; its exponents follow the system's order, with a positive one on the scaled variable
+    lt = pt.System({"l": "L", "t": "T", "v": "L/T"})
+    for s_power in (1, -1, Fraction(1, 2)):
+        res = pt.search(lt, scale={"v": s_power}, fixed=("l", "t"))
+        assert not res.feasible
+        assert list(res.certificate.exponents.items()) == [("l", -1), ("t", 1), ("v", 1)]
+        assert res.certificate_power == s_power
+    # a scaled variable the certificate does not use (a, scaled freely by the mass unit) is passed over
+    mlt = pt.System({"a": "M", "l": "L", "t": "T", "v": "L/T"})
+    res = pt.search(mlt, scale={"a": 1, "v": 1}, fixed=("l", "t"))
+    assert list(res.certificate.exponents.items()) == [("l", -1), ("t", 1), ("v", 1)]
+    assert res.certificate_power == 1
+    # with the fixed variable first in the request and in the system, the scaled one still decides
+    tl = pt.System({"t": "T", "l": "L", "v": "L/T"})
+    res = pt.search(tl, scale={"v": 1}, fixed=("t", "l"))
+    assert list(res.certificate.exponents.items()) == [("t", 1), ("l", -1), ("v", 1)]
+    assert res.certificate_power == 1
+
+
+def test_the_particular_solution_and_directions_are_changes_of_units():
+    rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T", "k": "M L^2 T^-2"})
+    res = pt.search(rod, scale={"g": 1}, fixed=("t",))
+    dims = {"m": {"M": 1}, "l": {"L": 1}, "g": {"L": 1, "T": -2}, "t": {"T": 1}, "k": {"M": 1, "L": 2, "T": -2}}
+
+    def from_units(units):  # the exponent of each variable under a change of units, by hand
+        return {n: sum(Fraction(p) * units[b] for b, p in d.items()) for n, d in dims.items()}
+
+    assert isinstance(res.particular, pt.Scaling)
+    assert res.particular.is_unit_change
+    assert res.particular.exponents["g"] == 1
+    assert res.particular.exponents["t"] == 0
+    assert res.particular.exponents == from_units(res.particular.unit_change)
+    assert len(res.directions) == 1
+    for direction in res.directions:
+        assert direction.is_unit_change
+        assert (direction.exponents["g"], direction.exponents["t"]) == (0, 0)
+        assert direction.exponents == from_units(direction.unit_change)
+        assert direction.changed
+
+
+def test_search_refusals_in_full():
+    lt = pt.System({"l": "L", "t": "T", "v": "L/T"})
+    cases = [
+        (lambda: pt.search(3, scale={"l": 1}), "search needs a System, got int"),
+        (lambda: pt.search(lt, scale={"q": 1}), "unknown variable 'q' in scale; the system has l, t, v"),
+        (lambda: pt.search(lt, scale={"l": 1}, fixed=("q",)), "unknown variable 'q' in fixed; the system has l, t, v"),
+        (lambda: pt.search(lt, scale={"l": 1}, allow=("q",)), "unknown variable 'q' in allow; the system has l, t, v"),
+        (lambda: pt.search(lt, scale={}),
+         "empty request: scale must prescribe at least one variable, e.g. scale={'g': 1}"),
+    ]
+    for call, message in cases:
+        with pytest.raises(pt.PiTheoremError) as caught:
+            call()
+        assert str(caught.value) == message
+    with pytest.raises(pt.NumberError) as caught:
+        pt.search(lt, scale={"l": "x"})
+    assert str(caught.value).startswith("exponent of 'l' must be a finite real number")

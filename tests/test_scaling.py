@@ -10,6 +10,7 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+import sympy
 
 import pitheorem as pt
 
@@ -285,3 +286,159 @@ def test_a_sympy_float_value_beyond_doubles_is_named_with_a_float_s(value):
     sc = pt.Scaling.from_unit_change(LT, {"L": 1, "T": 1})
     with pytest.raises(pt.LimitError, match="value of 'v'"):
         sc.apply({"l": 1.0, "v": sympy.Float(value)}, s=1e-200)
+
+
+ROD = pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"})
+
+
+def raised(call):
+    """The PiTheoremError that `call` raises, for its message and culprit."""
+    with pytest.raises(pt.PiTheoremError) as caught:
+        call()
+    return caught.value
+
+
+def test_is_power_of_two_against_the_exact_fraction():
+    def oracle(x):  # a positive dyadic number with numerator or denominator 1, both powers of two
+        f = Fraction(x)
+        return f > 0 and f.numerator & (f.numerator - 1) == 0 and f.denominator & (f.denominator - 1) == 0
+
+    cases = [1.0, 2.0, 0.5, 1024.0, 2.0**-1074, 2.0**1023, 3.0, 0.75, 6.0, 0.0, -2.0, -0.5, 0.1, 1.5, 5e-324 * 3]
+    for x in cases:
+        assert pt.scaling.is_power_of_two(x) is oracle(x), x
+    assert pt.scaling.is_power_of_two(Fraction(1, 4))
+    assert pt.scaling.is_power_of_two(8)
+    assert not pt.scaling.is_power_of_two(Fraction(1, 3))
+
+
+def test_a_float_s_is_raised_in_floating_point():
+    # float in, float out: Python's own power of the double, which can differ from the exact power
+    # rounded once in the last place (73.66518562805436^-4 does)
+    from pitheorem.scaling import float_power
+
+    for x, p in ((73.66518562805436, -4), (99.50051472973581, -2), (88.63593255097763, -9), (0.1, 3)):
+        assert float_power(x, p, "x") == x ** float(p)
+
+
+def test_scaling_messages_in_full():
+    sc = pt.Scaling.from_unit_change(ROD, {"L": 1})
+    squared = pt.Scaling.from_unit_change(ROD, {"L": 2, "T": 2})
+    beyond = "it is beyond the range of floating point"
+    exact_hint = "use an exact s (an int, a Fraction or a string such as '1/2'), or an s nearer to 1"
+    cases = [  # (call, message, culprit)
+        (lambda: sc.apply({"l": 1e300}, s=10**10),
+         f"the scaled value of 'l' is about 10^310: {beyond} (about 1e308); use an exact value (int or Fraction), "
+         "or an s nearer to 1", "about 10^310"),
+        (lambda: sc.apply({"l": Fraction(10**300)}, s=1e10),
+         f"the scaled value of 'l' is about 10^310: {beyond} (about 1e308); use an exact value (int or Fraction), "
+         "or an s nearer to 1", "about 10^310"),
+        (lambda: sc.apply({"l": 1e300}, s=1e10),
+         f"the scaled value of 'l' is 1e+300 times 10000000000.0: {beyond} (about 1.8e308); {exact_hint}",
+         "1e+300 times 10000000000.0"),
+        (lambda: sc.apply({"l": np.array([1e300, 1.0])}, s=1e10),
+         f"the scaled samples of 'l' is a sample times 10000000000.0: {beyond} (about 1.8e308); {exact_hint}",
+         "a sample times 10000000000.0"),
+        (lambda: squared.apply({"l": 1.0}, s=1e300),
+         f"the factor of 'l' is s^2 with s = about 10^300: {beyond}; choose an s nearer to 1",
+         "s^2 with s = about 10^300"),
+        (lambda: squared.factors(1e300),
+         f"the factor of 'l' is s^2 with s = about 10^300: {beyond}; choose an s nearer to 1",
+         "s^2 with s = about 10^300"),
+        (lambda: squared.map_back([0.0, 1.0], [[1.0], [2.0]], 1e300, time="t", states=["m"]),
+         f"the factor of 't' is s^2 with s = about 10^300: {beyond}; choose an s nearer to 1",
+         "s^2 with s = about 10^300"),
+        (lambda: pt.scaling.float_power(sympy.sqrt(2), 5000, "the factor of 'x'"),
+         f"the factor of 'x' is s^5000 with s = sqrt(2): {beyond}; choose an s nearer to 1",
+         "s^5000 with s = sqrt(2)"),
+        (lambda: pt.Scaling.from_unit_change(3, {"L": 1}), "a Scaling needs a System, got int", 3),
+        (lambda: pt.Scaling.from_exponents(3, {"l": 1}), "a Scaling needs a System, got int", 3),
+        (lambda: pt.Scaling.from_unit_change(ROD, 5), "unit_change must be a mapping such as {'L': 1}, got 5", 5),
+        (lambda: pt.Scaling.from_exponents(ROD, 5), "exponents must be a mapping such as {'l': 1}, got 5", 5),
+        (lambda: pt.Scaling.from_unit_change(ROD, {"Q": 1}),
+         "unknown base dimension 'Q' in unit_change; the system's base dimensions are M, L, T", None),
+        (lambda: pt.Scaling.from_exponents(ROD, {"q": 1}),
+         "unknown variable 'q' in exponents; the system has m, l, g, t", "q"),
+        (lambda: pt.Scaling.from_exponents(ROD, {"l": 1}),
+         "exponents {'l': 1} are not a similarity scaling: they change a Pi group (only changes of base units keep "
+         "every group invariant)", None),
+        (lambda: sc.apply(3, s=2),
+         "values must be a mapping of variable names to numbers, such as {'l': 2}, got int", 3),
+        (lambda: sc.apply({"q": 1}, s=2), "unknown variable 'q' in values; the system has m, l, g, t", "q"),
+        (lambda: sc.map_back([0, 1], [[1], [2]], 2.0, time="q", states=["l"]),
+         "unknown variable 'q' in time; the system has m, l, g, t", "q"),
+    ]
+    for call, message, culprit in cases:
+        err = raised(call)
+        assert str(err) == message
+        assert err.culprit == culprit
+    # an irrational exact result beyond floats is shown as sympy writes it
+    huge = sympy.Integer(10) ** 310 * sympy.sqrt(10)  # 1e300 times s = sqrt(10)^21
+    err = raised(lambda: sc.apply({"l": 1e300}, s=sympy.sqrt(10) ** 21))
+    assert err.culprit == str(huge)
+    assert str(err).startswith(f"the scaled value of 'l' is {huge}: {beyond} (about 1e308)")
+    # the start of a number's refusal names what it was meant to be
+    for call, what in ((lambda: pt.Scaling.from_unit_change(ROD, {"L": "x"}), "exponent of base unit 'L'"),
+                       (lambda: pt.Scaling.from_exponents(ROD, {"l": "x"}), "exponent of 'l'"),
+                       (lambda: sc.apply({"l": "abc"}, s=2), "the value of 'l'"),
+                       (lambda: sc**"abc", "the power of a scaling")):
+        assert str(raised(call)).startswith(f"{what} must be a finite real number")
+    bare = pt.Scaling(ROD, (Fraction(0), Fraction(1), Fraction(0), Fraction(0)), None)
+    assert str(raised(lambda: bare.unit_change)) == (
+        f"{bare} is a symmetry of particular equations, not a change of units: it has no unit change, and "
+        "quantities outside the system have no defined exponent")
+
+
+def test_exponents_are_fractions_even_without_base_dimensions():
+    system = pt.System({"x": "1", "y": "1"})
+    sc = pt.Scaling.from_unit_change(system, {})
+    assert all(type(p) is Fraction for p in sc.exponents.values())
+    assert type(sc.exponent_of("1")) is Fraction
+    assert type(pt.Scaling.from_unit_change(LT, {"L": 1}).exponent_of("1")) is Fraction
+
+
+def test_exponent_of_any_dimension_is_its_exponents_times_the_unit_change():
+    sc = pt.Scaling.from_unit_change(ROD, {"M": 2, "L": Fraction(1, 3), "T": -1})
+    # M^a L^b T^c moves by s^(2a + b/3 - c), by hand
+    for text, want in (("M", 2), ("L", Fraction(1, 3)), ("T", -1), ("1", 0), ("M L^2 T^-2", Fraction(14, 3)),
+                       ("L^3/M", -1)):
+        assert sc.exponent_of(text) == want
+        assert sc.exponent_of(pt.Dimension.parse(text)) == want
+
+
+def test_an_exact_value_given_as_a_string_is_read_as_a_number():
+    sc = pt.Scaling.from_unit_change(ROD, {"L": 1})
+    assert sc.apply({"l": "1/2", "m": "3"}, s=2) == {"l": Fraction(1), "m": Fraction(3)}
+
+
+def test_map_back_reads_exact_times_and_states_as_floats():
+    sc = pt.Scaling.from_unit_change(LT, {"T": 1})  # t -> s t, v -> v/s
+    t, y = sc.map_back([Fraction(0), Fraction(1, 2)], [[Fraction(1)], [Fraction(3, 2)]], 2, time="t", states=["v"])
+    assert t.dtype == y.dtype == np.float64
+    assert t.tolist() == [0.0, 0.25]
+    assert y.tolist() == [[2.0], [3.0]]
+
+
+def test_samples_whose_factor_underflows_are_scaled_without_a_warning():
+    sc = pt.Scaling.from_unit_change(LT, {"L": 2})  # l -> s^2 l; s = 1e-200 makes the factor 0.0
+    out = sc.apply({"l": np.array([np.inf, 1.0])}, s=1e-200)
+    assert out["l"][1] == 0.0
+
+
+def test_a_power_of_a_scaling_without_units_has_none():
+    bare = pt.Scaling(LT, (Fraction(0), Fraction(0), Fraction(1)), None)
+    squared = bare**2
+    assert squared.unit_change_vector is None
+    assert squared.exponents == {"l": 0, "t": 0, "v": 2}
+
+
+def test_scalings_hash_by_system_and_exponents():
+    scalings = [pt.Scaling.from_unit_change(ROD, {"L": k, "T": j}) for k in range(-2, 3) for j in range(-2, 3)]
+    assert len({hash(sc) for sc in scalings}) > len(scalings) // 2  # (Python's hash(-1) is hash(-2))
+    assert hash(pt.Scaling.from_unit_change(ROD, {"L": 1})) == hash(pt.Scaling.from_exponents(ROD, {"l": 1, "g": 1}))
+
+
+def test_repr_writes_integer_exponents_as_integers():
+    rod = repr(ROD)
+    assert repr(pt.Scaling.from_unit_change(ROD, {"L": 1})) == f"Scaling.from_exponents({rod}, {{'l': 1, 'g': 1}})"
+    assert (repr(pt.Scaling.from_unit_change(ROD, {"T": Fraction(1, 2)}))
+            == f"Scaling.from_exponents({rod}, {{'g': '-1', 't': '1/2'}})".replace("'-1'", "-1"))

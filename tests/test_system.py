@@ -365,3 +365,123 @@ def test_from_units_still_reads_a_power_divided_by_a_unit():
 def test_from_units_takes_a_mapping(bad):
     with pytest.raises(pt.UnitError, match="must map each variable"):
         pt.System.from_units(bad)
+
+
+def test_from_units_messages_in_full():
+    with pytest.raises(pt.UnitError) as caught:
+        pt.System.from_units({"x": "m^-1/2"})
+    assert str(caught.value) == ("the unit 'm^-1/2' of 'x' is ambiguous: '^-1/2' is a power divided by a number; "
+                                 "write a fractional power in brackets, such as 'm^(-1/2)'")
+    # a unit text of up to 40 characters is quoted in the message, a longer one is not
+    forty = "m**inf" + "*s" * 17
+    longer = "m**inf" + "*s" * 16 + "*kg"
+    assert (len(forty), len(longer)) == (40, 41)
+    with pytest.raises(pt.NumberError) as caught:
+        pt.System.from_units({"x": forty})
+    assert str(caught.value).startswith(f"the exponent of meter in the unit {forty!r} of 'x' must be a finite")
+    with pytest.raises(pt.NumberError) as caught:
+        pt.System.from_units({"x": longer})
+    assert str(caught.value).startswith("the exponent of meter in the unit of 'x' must be a finite")
+
+
+def test_from_units_reads_a_bare_number_or_nothing_as_dimensionless():
+    system = pt.System.from_units({"x": "3", "y": "", "z": "2 m", "w": "0.5"})
+    assert system.dimension("x") == system.dimension("y") == system.dimension("w") == pt.Dimension.parse("1")
+    assert system.dimension("z") == pt.Dimension.parse("L")
+
+
+def test_systems_differ_by_dimensions_as_well_as_names():
+    assert pt.System({"x": "L"}) != pt.System({"x": "T"})
+    assert pt.System({"x": "L"}) != pt.System({"y": "L"})
+    assert pt.System({"x": "L", "t": "T"}) == pt.System({"x": "L", "t": "T"})
+    systems = [pt.System({"x": d}) for d in ("L", "T", "M", "L/T", "M L")] + [pt.System({n: "L"}) for n in "abc"]
+    assert len({hash(s) for s in systems}) > 1
+    assert hash(pt.System({"x": "L", "t": "T"})) == hash(pt.System({"x": "L", "t": "T"}))
+
+
+def test_dimensionless_products_span_the_null_space():
+    for dims in ({"l": "L", "t": "T", "v": "L/T"}, {"m": "M", "l": "L", "g": "L T^-2", "t": "T", "k": "M L^2 T^-2"},
+                 {"x": "1", "y": "1"}, {"a": "L", "b": "L^2"}):
+        system = pt.System(dims)
+        # the dimension matrix by hand, from the formulas' exponents
+        bases = ["M", "L", "T"]
+        matrix = sympy.Matrix([[pt.Dimension.parse(d).exponent_of(b) for d in dims.values()] for b in bases])
+        products = system.dimensionless_products()
+        assert len(products) == len(dims) - matrix.rank()
+        for vector in products:
+            assert len(vector) == len(dims)
+            assert all(isinstance(x, Fraction) for x in vector)
+            assert matrix * sympy.Matrix([sympy.Rational(x.numerator, x.denominator) for x in vector]) == sympy.zeros(3, 1)
+        if products:
+            assert sympy.Matrix([[sympy.Rational(str(x)) for x in v] for v in products]).rank() == len(products)
+
+
+def test_from_units_angles_malformed_and_unknown_dimensions():
+    assert pt.System.from_units({"w": "rad/s"}, angle_as_base=True).dimension("w") == pt.Dimension({"A": 1, "T": -1})
+    assert pt.System.from_units({"w": "rad/s"}).dimension("w") == pt.Dimension.parse("1/T")
+    assert pt.System.from_units({"x": "m"}, angle_as_base=True).dimension("x") == pt.Dimension.parse("L")
+    with pytest.raises(pt.LimitError) as caught:
+        pt.System.from_units({"x": "rad**1001"}, angle_as_base=True)
+    assert str(caught.value) == ("the exponent of radian in the unit 'rad**1001' of 'x' is 1001: its magnitude "
+                                 "exceeds the limit 1000")
+    for text in ("m**", "m/", "*m"):
+        with pytest.raises(pt.UnitError) as caught:
+            pt.System.from_units({"x": text})
+        assert str(caught.value) == f"cannot read the unit {text!r} of 'x': malformed unit expression"
+    with pytest.raises(pt.UnitError) as caught:
+        pt.System.from_units({"x": "pixel"})
+    assert str(caught.value) == "unit 'pixel' of 'x' has dimension [printing_unit], which pitheorem does not know"
+
+
+def test_a_base_outside_the_declared_ones_is_refused_even_in_a_simple_formula():
+    for formula in ("M", "M L", "L T^-2 M^2"):
+        with pytest.raises(pt.DimensionSyntaxError, match="unknown base dimension 'M'"):
+            pt.System({"x": formula}, base_dimensions=("L", "T"))
+    assert pt.System({"x": "L T^-2"}, base_dimensions=("L", "T")).dimension("x") == pt.Dimension({"L": 1, "T": -2})
+
+
+def test_unknown_names_in_bases_and_pi_groups_are_named_with_the_argument():
+    lt = pt.System({"l": "L", "t": "T", "v": "L/T"})
+    for call, argument in ((lambda: lt.bases(require=("q",)), "require"), (lambda: lt.bases(exclude=("q",)), "exclude"),
+                           (lambda: lt.pi_groups(["q", "l"]), "repeating")):
+        with pytest.raises(pt.UnknownVariableError) as caught:
+            call()
+        assert str(caught.value) == f"unknown variable 'q' in {argument}; the system has l, t, v"
+
+
+def test_basis_and_dimension_refusals_in_full():
+    lt = pt.System({"l": "L", "t": "T", "v": "L/T"})
+    cases = [
+        (lambda: lt.bases(require=("l", "t", "v")),
+         "repeating set ('l', 't', 'v') has 3 variables, but the dimension matrix has rank 2: choose exactly 2 "
+         "variables with independent dimensions (System.bases() lists every valid choice)", ("l", "t", "v")),
+        (lambda: pt.System({"a": "L", "b": "T", "c": "L/T", "d": "M"}).bases(require=("a", "b", "c")),
+         "repeating set ('a', 'b', 'c') is dependent: a/(b*c) is dimensionless, so these variables cannot serve as "
+         "a basis; System.bases() lists every valid choice", ("a", "b", "c")),
+        (lambda: lt.check_names(("l", "l"), "fixed"), "variable 'l' is named twice in fixed; name each variable once",
+         "l"),
+        (lambda: lt.index("q"), "unknown variable 'q'; the system has l, t, v", "q"),
+        (lambda: pt.System({"x": {3: 1}}), "dimension of 'x' must map base names to numbers, got the key 3", 3),
+        (lambda: pt.System({"x": {"Q": 1}}), "dimension of 'x' uses base 'Q'; allowed bases are M, L, T, Theta, I",
+         "Q"),
+        (lambda: pt.System({"x": {"N": 1}}),
+         "dimension of 'x' uses base 'N'; allowed bases are M, L, T, Theta, I; 'N' is opt-in because it is also "
+         "an SI unit symbol: declare it with base_dimensions=(..., 'N')", "N"),
+    ]
+    for call, message, culprit in cases:
+        with pytest.raises(pt.PiTheoremError) as caught:
+            call()
+        assert str(caught.value) == message
+        assert caught.value.culprit == culprit
+
+
+def test_a_name_given_twice_is_named_with_where():
+    cases = [(lambda: pt.System({"x": "L"}, base_dimensions=("T", "L", "L")),
+              "variable 'L' is named twice in base_dimensions; name each variable once", "L"),
+             (lambda: pt.System([("x", "L"), ("x", "T")]),
+              "variable 'x' is named twice in the system; name each variable once", "x")]
+    for call, message, culprit in cases:
+        with pytest.raises(pt.DuplicateVariableError) as caught:
+            call()
+        assert str(caught.value) == message
+        assert caught.value.culprit == culprit
