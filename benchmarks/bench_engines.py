@@ -57,6 +57,27 @@ def label(path: Path) -> str:
     return f"robots/{path.relative_to(ROBOTS).as_posix()}" if ROBOTS in path.parents else path.name
 
 
+def load_scale_save(repeat: int) -> str:
+    """Load, scale by 10 and save SUPERball (693 parameters, the largest shipped model) against MuJoCo's compile.
+
+    Measured 2026-11-25 before issue 21's work on this machine: 64.5 ms for the same steps.
+    """
+    import tempfile
+
+    import mujoco
+
+    path = engines.example_path("superball.xml")
+    with tempfile.TemporaryDirectory() as folder:
+        def ours():
+            model = engines.load(path)
+            model.scaled(pt.Scaling.from_unit_change(model.system(), {"L": 1}), 10).save(Path(folder) / "sb.xml")
+
+        t_ours = best_of(ours, repeat)
+    t_engine = best_of(lambda: mujoco.MjModel.from_xml_path(str(path)), repeat)
+    return (f"superball.xml: load + scale + save {t_ours * 1e3:.1f} ms, MuJoCo's compile {t_engine * 1e3:.2f} ms "
+            f"(ratio {t_ours / t_engine:.0f}); 64.5 ms before issue 21's work")
+
+
 def ratio(time, baseline) -> str:
     return "-" if time == "-" else f"{time / baseline:.2f}"
 
@@ -84,6 +105,7 @@ def main(quick: bool = False):
         n = len(load_quiet(path).parameters)
         largest = max(largest, (n, path.name, t_ours))
         print(f"{path.name:34s} {n:6d} {t_ours:17.3f} s {t_engine:10.4f} s {t_ours / t_engine:7.1f}")
+    print(load_scale_save(repeat))
     print(f"largest model {largest[1]} ({largest[0]} parameters): load + system + search {largest[2]:.3f} s "
           f"(goal: under 1 s)")
     print()

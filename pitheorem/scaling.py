@@ -194,8 +194,15 @@ class Scaling(MathDisplay):
                     f"unknown base dimension {b!r} in unit_change; the system's base dimensions are {', '.join(bases)}"
                 )
         u = tuple(read_exponent(unit_change.get(b, 0), f"exponent of base unit {b!r}") for b in bases)
-        vector = tuple(sum((c * x for c, x in zip(system.column(v), u, strict=True)), Fraction(0))
-                       for v in system.variables)
+        of_column: dict = {}  # a model's hundreds of variables share a handful of dimensions
+
+        def exponent(column) -> Fraction:
+            key = tuple((c.numerator, c.denominator) for c in column)  # integers hash fast, Fractions do not
+            if key not in of_column:
+                of_column[key] = sum((c * x for c, x in zip(column, u, strict=True)), Fraction(0))
+            return of_column[key]
+
+        vector = tuple(exponent(system.column(v)) for v in system.variables)
         return cls(system, vector, u)
 
     @classmethod

@@ -102,6 +102,18 @@ def _pairs(variables) -> list[tuple[str, object]]:
         ) from None
 
 
+@lru_cache(maxsize=1024)
+def _within_limits(dimension: Dimension) -> bool:
+    """Whether every exponent of a dimension is within the package's limits (a model's hundreds of
+    parameters share a handful of dimensions: each is checked once)."""
+    try:
+        for power in dimension.exponents.values():
+            check_exponent(power, "an exponent")
+    except PiTheoremError:
+        return False
+    return True
+
+
 @immutable
 class System:
     """Variables with dimensions: the input of every dimensional analysis.
@@ -191,8 +203,9 @@ class System:
     def _read_dimension(name: str, spec, allowed) -> Dimension:
         if isinstance(spec, Dimension):
             dim = spec
-            for base, power in dim.exponents.items():  # a product or power of dimensions may pass the limits
-                check_exponent(power, f"the exponent of {base!r} in the dimension of {name!r}")
+            if not _within_limits(dim):  # a product or power of dimensions may pass the limits: name it
+                for base, power in dim.exponents.items():
+                    check_exponent(power, f"the exponent of {base!r} in the dimension of {name!r}")
         elif isinstance(spec, str):
             try:
                 dim = _parse(spec, allowed)

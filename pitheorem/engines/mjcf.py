@@ -207,13 +207,13 @@ class _Walker:
 
     def spring_and_drive(self, kind, elem, ident, path, joint_kind: JointKind):
         """A joint's or a tendon's spring and damper polynomials, armature, friction loss and force range."""
-        q, force = joint_kind.q, joint_kind.force
+        force = joint_kind.force
         for i in range(3):  # a polynomial shorter than three terms stops early (add skips what is absent)
             suffix = "" if i == 0 else f"_poly{i}"
             self.add(kind, elem, ident, path, "stiffness", joint_kind.per(force, i + 1), slice(i, i + 1), suffix)
             self.add(kind, elem, ident, path, "damping", joint_kind.per(force, i + 1, rate=1), slice(i, i + 1),
                      suffix)
-        self.add(kind, elem, ident, path, "armature", force / (q * _T ** -2))
+        self.add(kind, elem, ident, path, "armature", joint_kind.per(force, 1, rate=2))
         self.add(kind, elem, ident, path, "frictionloss", force)
         self.add(kind, elem, ident, path, "actfrcrange", force)
 
@@ -440,11 +440,15 @@ class _Walker:
         self.limit_and_friction_softness("joint", joint, ident, path, kind.q)
 
     def tendon_kind(self, tendon, path) -> JointKind:
-        """A spatial tendon measures a length; a fixed one the first joint's coordinate."""
-        mj = self.mj
-        wraps = list(tendon.path)
-        joints = [w for w in wraps if w.type == mj.mjtWrap.mjWRAP_JOINT]
-        return self.wrapped_joint_kind(joints[0], path) if joints else JointKind.SLIDE
+        """A spatial tendon measures a length; a fixed one the first joint's coordinate (found once per tendon:
+        reading a tendon's path from the spec is slow, and actuators and equalities ask again)."""
+        known = self.__dict__.setdefault("_tendon_kinds", {})
+        key = tendon.name or id(tendon)  # the spec hands out a new wrapper each time; a name is the same
+        if key not in known:
+            mj = self.mj
+            joints = [w for w in tendon.path if w.type == mj.mjtWrap.mjWRAP_JOINT]
+            known[key] = (tendon, self.wrapped_joint_kind(joints[0], path) if joints else JointKind.SLIDE)
+        return known[key][1]
 
     def wrapped_joint_kind(self, wrap, path) -> JointKind:
         """The kind of a joint a fixed tendon runs over; a free joint would mix dimensions."""

@@ -277,11 +277,21 @@ def exact_product(value, factor) -> float:
     if not (math.isfinite(value) and math.isfinite(factor)):
         return value * factor
     # read as the decimal each prints as (its shortest repr): the number as the file wrote it
-    exact = read_number(value, "a file's number") * read_number(factor, "a scale factor")
+    exact = _as_written(value) * _as_written(factor)
     try:
         return float(exact)
     except OverflowError:  # beyond the largest double: the float product is infinite too
         return value * factor
+
+
+@functools.lru_cache(maxsize=4096)
+def _as_written(value: float) -> Fraction:
+    """A finite float read by the package's rule (:func:`pitheorem.exact.read_number`), remembered.
+
+    A model repeats its numbers (a robot's six equal struts, one factor for every length), and the
+    rule's search for the simplest fraction of a long float is the slow part of writing a scaled file.
+    """
+    return read_number(value, "a file's number")
 
 
 @functools.lru_cache(maxsize=256)
@@ -328,7 +338,13 @@ class JointKind:
         >>> str(JointKind.SLIDE.per(JointKind.SLIDE.force, 2))
         'M L^-1 T^-2'
         """
-        return numerator * (self.q * _TIME ** (-rate)) ** (-power)
+        return _per(self.q, numerator, power, rate)
+
+
+@functools.lru_cache(maxsize=256)
+def _per(q: Dimension, numerator: Dimension, power: int, rate: int) -> Dimension:
+    """:meth:`JointKind.per`, remembered: a model's joints and tendons ask the same few questions."""
+    return numerator * (q * _TIME ** (-rate)) ** (-power)
 
 
 _TIME = dim("T")
