@@ -47,7 +47,7 @@ from .model import (
     JointKind,
     Parameter,
     dim,
-    dimension_factor,
+    dimension_factors,
     exact_product,
     identifier,
     unique_name,
@@ -157,6 +157,7 @@ class _Walker:
         self.mj, self.spec, self.model, self.path, self.warn = mj, spec, model, path, warn
         self.slots: list[Slot] = []
         self.names: set[str] = set()
+        self.tendon_kinds: dict = {}  # tendon (name or id) -> (tendon, its kind), found once
         self.defaults = _builtin_defaults(mj)
         # every element listed once, kept alive, so that an element's id gives its address
         self.lists = {collection: list(getattr(spec, collection)) for collection in _COLLECTIONS}
@@ -442,13 +443,11 @@ class _Walker:
     def tendon_kind(self, tendon, path) -> JointKind:
         """A spatial tendon measures a length; a fixed one the first joint's coordinate (found once per tendon:
         reading a tendon's path from the spec is slow, and actuators and equalities ask again)."""
-        known = self.__dict__.setdefault("_tendon_kinds", {})
         key = tendon.name or id(tendon)  # the spec hands out a new wrapper each time; a name is the same
-        if key not in known:
-            mj = self.mj
-            joints = [w for w in tendon.path if w.type == mj.mjtWrap.mjWRAP_JOINT]
-            known[key] = (tendon, self.wrapped_joint_kind(joints[0], path) if joints else JointKind.SLIDE)
-        return known[key][1]
+        if key not in self.tendon_kinds:  # the tendon kept beside its kind: an id stays its own while it lives
+            joints = [w for w in tendon.path if w.type == self.mj.mjtWrap.mjWRAP_JOINT]
+            self.tendon_kinds[key] = (tendon, self.wrapped_joint_kind(joints[0], path) if joints else JointKind.SLIDE)
+        return self.tendon_kinds[key][1]
 
     def wrapped_joint_kind(self, wrap, path) -> JointKind:
         """The kind of a joint a fixed tendon runs over; a free joint would mix dimensions."""
@@ -851,17 +850,15 @@ class MjcfBackend:
             return
         model = self.mjmodel  # the copy has the same coordinates and actuators as this model
 
-        of_dimension = {}  # dozens of coordinates, a handful of dimensions
+        factor, _ = dimension_factors(scaling, s)
 
         def factors(dims):
-            for d in set(dims) - of_dimension.keys():
-                of_dimension[d] = dimension_factor(scaling, s, d)
-            return np.array([of_dimension[d] for d in dims])
+            return np.array([factor(d) for d in dims])
 
         _, dims = self.coordinate_dimensions()  # qpos, qvel, then the activations
         nq, nv = model.nq, model.nv
         fq, fv, fa = factors(dims[:nq]), factors(dims[nq:nq + nv]), factors(dims[nq + nv:])
-        ft, fl = dimension_factor(scaling, s, _T), dimension_factor(scaling, s, _L)
+        ft, fl = factor(_T), factor(_L)
         fctrl = factors(self.control_dimensions())
         for key in spec.keys:
             if len(key.qpos) == model.nq:

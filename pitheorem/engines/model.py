@@ -228,6 +228,42 @@ def dimension_factor(scaling, s, dimension) -> float:
     return float_power(s, scaling.exponent_of(dimension), f"the factor of {dimension}")
 
 
+def dimension_factors(scaling, s):
+    """``factor(d)``, :func:`dimension_factor` of each dimension computed once, and the exponents found.
+
+    A model has hundreds of numbers and coordinates but a handful of dimensions.
+
+    Parameters
+    ----------
+    scaling : Scaling
+    s : float or Fraction
+        The scale factor, as :func:`pitheorem.exact.read_scale_factor` reads it.
+
+    Returns
+    -------
+    (callable, dict)
+        ``factor(dimension) -> float``, and the exponent of each dimension asked about so far.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.engines.model import dim, dimension_factors
+    >>> sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1, "T": 1})
+    >>> factor, exponents = dimension_factors(sc, 10)
+    >>> factor(dim("L T^-2")), exponents
+    (0.1, {Dimension.parse('L T^-2'): Fraction(-1, 1)})
+    """
+    factor_of, exponent_of = {}, {}
+
+    def factor(d):
+        if d not in factor_of:
+            exponent_of[d] = scaling.exponent_of(d)
+            factor_of[d] = float_power(s, exponent_of[d], f"the factor of {d}")
+        return factor_of[d]
+
+    return factor, exponent_of
+
+
 def attribute_text(values, factor=None) -> str:
     """Numbers as the text of an XML attribute, each at full precision (its shortest exact repr).
 

@@ -299,7 +299,7 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
     near = _read_near(near)
     factors = _read_factors(factors, {p.name for p in table})
     scalars = {p.name: p.value[0] * factors.get(p.name, 1.0) for p in table if len(p.value) == 1}
-    causes, found = [], []
+    found = []  # (threshold, parameter, its worst number, the limit, whether beyond it)
     compared = [t for t in thresholds(engine) if t.bound in ("below", "above")]
     for p in table:
         if p.path.startswith("option o_"):
@@ -320,18 +320,18 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
             beyond = worst < limit if t.bound == "below" else worst > limit
             close = worst < limit * near if t.bound == "below" else worst > limit / near
             if beyond or close:
-                causes.append(Cause("threshold", p.name, _detail(p, t, worst, limit, near, beyond)))
-                found.append((t, p, worst, beyond))
+                found.append((t, p, worst, limit, beyond))
     if not grouped:
-        return sorted_causes(causes)
+        return sorted_causes(Cause("threshold", p.name, _detail(p, t, worst, limit, near, beyond))
+                             for t, p, worst, limit, beyond in found)
     groups: dict = {}
-    for t, p, worst, beyond in found:
-        groups.setdefault((t.name, p.dimension_text, beyond), []).append((p.name, worst, t, p))
+    for t, p, worst, limit, beyond in found:
+        groups.setdefault((t.name, p.dimension_text, beyond), []).append((p.name, worst, t, p, limit))
     out = []
     for (_name, _dimension, beyond), members in groups.items():
         members.sort(key=lambda m: m[0])  # by parameter name
-        _, worst, t, p = (min if t.bound == "below" else max)(members, key=lambda m: m[1])
-        detail = _detail(p, t, worst, t.limit(scalars), near, beyond)
+        _, worst, t, p, limit = (min if t.bound == "below" else max)(members, key=lambda m: m[1])
+        detail = _detail(p, t, worst, limit, near, beyond)
         names = ", ".join(name for name, *_ in members[:3])
         if len(members) > 3:
             names += f" and {len(members) - 3} more"

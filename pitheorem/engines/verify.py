@@ -46,10 +46,10 @@ import numpy as np
 
 from ..errors import InvalidRequestError
 from ..exact import read_scale_factor
-from ..scaling import float_power, is_power_of_two
+from ..scaling import is_power_of_two
 from ..simulation import SimilarityReport, Trajectory, positive_float, similarity_report
 from .backend import EngineRunner
-from .model import EngineModel, check_scaling, dim
+from .model import EngineModel, check_scaling, dim, dimension_factors
 
 __all__ = ["EngineRunner", "smooth_controls", "verify"]
 
@@ -142,7 +142,7 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     if controller is not None and not callable(controller):
         raise InvalidRequestError(f"controller must be callable (run_model -> policy), got {type(controller).__name__}")
     original, copy = model.backend, scaled.backend
-    factor, exponent_of = _factor_cache(scaling, s)
+    factor, exponent_of = dimension_factors(scaling, s)
 
     f_time = factor(dim("T"))
     dt = original.timestep()
@@ -179,7 +179,7 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         exponents={n: exponent_of[d] for n, d in zip(names, dims, strict=True)},
         twins=[trajectory(rows) for rows in twin_runs], baseline_factor=baseline_factor, method=model.engine,
     )
-    exact_expected = exact_in_binary(model, scaling, s)
+    exact_expected = _every_factor_a_power_of_two(model, factor)
     if not diagnose or controller is not None or (report.similar and (report.exact or not exact_expected)):
         return report
     from .diagnose import find_causes
@@ -216,7 +216,11 @@ def exact_in_binary(model: EngineModel, scaling, s) -> bool:
     >>> exact_in_binary(model, sc, 4), exact_in_binary(model, sc, 10), exact_in_binary(model, sc, 3)
     (True, False, False)
     """
-    factor, _ = _factor_cache(scaling, read_scale_factor(s))
+    return _every_factor_a_power_of_two(model, dimension_factors(scaling, read_scale_factor(s))[0])
+
+
+def _every_factor_a_power_of_two(model: EngineModel, factor) -> bool:
+    """:func:`exact_in_binary` with the factors of a scaling already at hand (``factor(dimension)``)."""
     by_dimension, mixed = model._by_dimension()
     dimensions = [d for d, _names in by_dimension] + [d for p in mixed for _part, d in p.parts]
     _names, coordinates = model.backend.coordinate_dimensions()
@@ -274,19 +278,6 @@ def _count(value, what: str, least: int = 1) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
         raise InvalidRequestError(f"{what} must be a whole number of at least {least}, got {value!r}")
     return int(value)
-
-
-def _factor_cache(scaling, s):
-    """``factor(d)``: ``s`` to the exponent of dimension ``d``, each computed once, and the exponents."""
-    factor_of, exponent_of = {}, {}  # a model has hundreds of coordinates but a handful of dimensions
-
-    def factor(d):
-        if d not in factor_of:
-            exponent_of[d] = scaling.exponent_of(d)
-            factor_of[d] = float_power(s, exponent_of[d], f"the factor of {d}")
-        return factor_of[d]
-
-    return factor, exponent_of
 
 
 def _open_loop_rows(controls, n_steps: int, dt: float, size: int):
