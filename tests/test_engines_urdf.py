@@ -437,6 +437,8 @@ _EVERY_NUMBER = """<robot name="r">
     <collision><geometry><cylinder radius="0.1" length="0.4"/></geometry></collision>
     <collision><geometry><mesh filename="part.stl"/></geometry></collision>
     <collision><geometry><plane normal="0 0 1"/></geometry></collision>
+    <collision><origin xyz="0 0 9"/></collision>
+    <collision><origin xyz="0 0 8"/><geometry><sphere radius="0.3"/></geometry></collision>
     <visual><geometry><sphere radius="0.2"/></geometry></visual>
     <visual><geometry><material name="red"/></geometry></visual>
     <visual><geometry><mesh filename="part.stl" scale="2 2 2"/></geometry></visual>
@@ -479,6 +481,10 @@ def test_the_reader_finds_every_number_with_its_name_place_dimension_and_note(tm
         # a mesh without a scale is read at scale 1, and the file gets the attribute a scaled copy changes
         ("link_base_collision2_scale", "link 'base' collision #2 mesh scale", "scale", "L", (1.0, 1.0, 1.0),
          mesh_note),
+        # a shape without geometry keeps its origin, and the shapes after it are read
+        ("link_base_collision4_xyz", "link 'base' collision #4 origin xyz", "xyz", "L", (0.0, 0.0, 9.0), ""),
+        ("link_base_collision5_xyz", "link 'base' collision #5 origin xyz", "xyz", "L", (0.0, 0.0, 8.0), ""),
+        ("link_base_collision5_radius", "link 'base' collision #5 sphere radius", "radius", "L", (0.3,), ""),
         ("link_base_visual0_radius", "link 'base' visual #0 sphere radius", "radius", "L", (0.2,), ""),
         ("link_base_visual2_scale", "link 'base' visual #2 mesh scale", "scale", "L", (2.0, 2.0, 2.0), mesh_note),
         ("link_base_rolling_friction", "link 'base' contact rolling_friction", "value", "L", (0.01,), ""),
@@ -509,6 +515,8 @@ def test_the_reader_finds_every_number_with_its_name_place_dimension_and_note(tm
     ("<mujoco/>", "<mujoco>", "a URDF file's root element must be <robot>"),
     ('<robot><link name="a"><visual><geometry><mesh filename="gone.stl"/></geometry></visual></link></robot>',
      "link 'a' visual #0 mesh 'gone.stl'", "mesh file not found (relative to the URDF's folder)"),
+    ('<robot><link name="a"><collision><geometry><mesh/></geometry></collision></link></robot>',
+     "link 'a' collision #0 mesh ''", "mesh file not found (relative to the URDF's folder)"),
     ('<robot><link name="a"><collision><geometry><torus/></geometry></collision></link></robot>',
      "link 'a' collision #0 <torus>", "unknown geometry; use box, cylinder, capsule, sphere, mesh or plane"),
     ('<robot><link name="a"><contact><stickiness value="1"/></contact></link></robot>',
