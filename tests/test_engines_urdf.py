@@ -443,7 +443,8 @@ _EVERY_NUMBER = """<robot name="r">
     <visual><geometry><material name="red"/></geometry></visual>
     <visual><geometry><mesh filename="part.stl" scale="2 2 2"/></geometry></visual>
     <contact><lateral_friction value="0.9"/><rolling_friction value="0.01"/><spinning_friction value="0.02"/>
-      <stiffness value="3000"/><damping value="40"/><restitution value="0.5"/></contact>
+      <stiffness value="3000"/><damping value="40"/><restitution value="0.5"/><contact_cfm value="0"/>
+      <contact_erp value="0.2"/><inertia_scaling value="1"/><friction_anchor/></contact>
   </link>
   <link><collision><geometry><capsule radius="0.05" length="0.3"/></geometry></collision></link>
   <link name="tip"/>
