@@ -8,6 +8,7 @@ printed with ``capsys``, except two that run the real programs in a subprocess:
 from __future__ import annotations
 
 import json
+import math
 import shutil
 import subprocess
 import sys
@@ -248,6 +249,37 @@ def test_apply_is_exact_for_exact_values(capsys, tmp_path):
     assert r"$\frac{2}{3}$" in out
 
 
+def test_apply_rounds_an_irrational_scaled_value_once_to_the_nearest_float(capsys, tmp_path):
+    model = tmp_path / "exact.toml"
+    model.write_text('[variables]\nl = { dimension = "L", value = 2 }\ng = { dimension = "L T^-2", value = 10 }\n'
+                     't = { dimension = "T", value = "1/2", role = "time" }\n')
+    # g times s with l fixed: t times s^(-1/2), and 1/2 / sqrt(2) is irrational
+    code, doc = run_json(capsys, "apply", model, "--scale", "g=1", "--fixed", "l", "--s", "2")
+    assert code == EXIT_OK
+    assert doc["scaled"]["t"] == math.sqrt(2) / 4  # exact division of the correctly rounded sqrt(2) by 4
+    assert doc["scaled"]["g"] == 20
+
+
+def test_bases_all_lists_every_set(capsys):
+    system = pt.models.rod_system()
+    code, doc = run_json(capsys, "bases", ROD, "--all")
+    assert code == EXIT_OK
+    assert doc["count"] == len(doc["bases"]) == system.count_bases()
+    assert [tuple(b) for b in doc["bases"]] == system.bases()
+
+
+def test_verify_of_an_impossible_request_runs_nothing_and_says_why(capsys):
+    pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
+    # g times s with the time step and a length fixed: g dt^2 / length cannot change
+    code, out, err = run(capsys, "verify", "example:pendulum.xml", "--scale", "g=1", "--fixed", "timestep",
+                         "ccd_tolerance", "--s", "2")
+    assert code == EXIT_ERROR
+    assert out == ""
+    assert err.startswith("pitheorem: Impossible: g*timestep**2/ccd_tolerance is dimensionless")
+    assert err.endswith(" Nothing verified.\n")
+    assert err.count("\n") == 1
+
+
 def test_apply_only_scaling_is_named(capsys):
     code, out, _ = run(capsys, "apply", ROD, "--scale", "g=1", "--allow", "l", "m", "F", "--s", "2")
     assert code == EXIT_OK
@@ -290,6 +322,11 @@ BAD_REQUESTS = {
     "solution_out_of_range": (["apply", ROD, "--scale", "g=1", "--s", "2", "--solution", "4"], "--solution 4"),
     "bad_output_suffix": (["apply", ROD, "--scale", "g=1", "--s", "2", "--output", "out.yaml"], "out.yaml"),
     "overwrite_input": (["apply", ROD, "--scale", "g=1", "--s", "2", "--output", ROD], "input file"),
+    "count_and_all": (["bases", ROD, "--count", "--all"], "--count prints only the number of sets and --all lists"),
+    "verify_a_toml_file": (["verify", ROD, "--scale", "g=1", "--s", "2"], "verify runs MJCF (.xml) or URDF (.urdf) model files"),
+    "check_a_toml_file": (["check", ROD], "check reads MJCF (.xml) or URDF (.urdf) model files"),
+    "check_in_latex": (["check", "example:pendulum.xml", "--format", "latex"], "'latex'"),
+    "convert_a_toml_file": (["convert", ROD, "--units", "L=cm"], "convert reads MJCF (.xml) or URDF (.urdf) model files"),
 }
 
 
