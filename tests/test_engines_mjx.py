@@ -7,6 +7,7 @@ batch runner, once per model's sizes (``benchmarks/mjx_corpus.py`` runs the rest
 
 from __future__ import annotations
 
+import re
 import sys
 import warnings
 from pathlib import Path
@@ -184,3 +185,110 @@ def test_mjx_segment_regularizer_is_measured_as_catalogued():
             off = abs(closest - length / 2) / (length / 2)
             assert off == pytest.approx(expected, rel=1e-3)
             assert off == pytest.approx(constant.default / length**2, rel=1e-3)
+
+
+# -- MJX's own thresholds, measured (pitheorem.engines.thresholds: the [thresholds.mjx] tables) ----------
+
+
+def test_capsule_regularizer_passes_float32s_resolution_below_its_threshold():
+    # MJX's closest point on a capsule's segment, in float32, against the point without the 1e-6 (numpy, float64
+    # from the same float32 inputs): off by about 1e-6 / (2 h^2) of h, above float32's rounding below h = 2
+    from mujoco.mjx._src import math as mjx_math
+
+    (t,) = engines.thresholds.thresholds("mjx", names=["mjx_segment_regularizer_float32"])
+    ulp = 2.0**-23
+    assert t.value == pytest.approx((1e-6 / (2 * ulp)) ** 0.5, rel=0.05)  # where 1e-6 / (2 h^2) is one ulp
+    closest = jax.jit(mjx_math.closest_segment_point)
+    rng = np.random.default_rng(0)
+
+    def worst(h):
+        a, b = np.array([0, 0, -h], np.float32), np.array([0, 0, h], np.float32)
+        out = 0.0
+        for _ in range(100):
+            p = np.array([rng.uniform(0.5, 2) * h, 0, rng.uniform(-h, h)], np.float32)
+            ab, ap = b.astype(float) - a, p.astype(float) - a
+            exact = a[2] + np.clip(ap @ ab / (ab @ ab), 0, 1) * ab[2]
+            out = max(out, abs(float(closest(a, b, p)[2]) - exact) / h)
+        return out
+
+    for h in (0.01, 0.1, 1.0):  # below: the regularizer's shift, far above float32's rounding
+        assert worst(h) > 2.5 * ulp
+        assert worst(h) == pytest.approx(1e-6 / (2 * h * h), rel=0.6)
+    for h in (3.0, 5.0):  # above: float32's rounding alone
+        assert worst(h) <= 2 * ulp
+
+
+def test_mjx_takes_cylinders_shorter_than_2_mm_as_lying_on_a_plane():
+    from types import SimpleNamespace
+
+    from mujoco.mjx._src.collision_primitive import plane_cylinder
+
+    (t,) = engines.thresholds.thresholds("mjx", names=["mjx_cylinder_plane_parallel"])
+
+    def contacts(h):  # a cylinder of radius 0.01 standing on the plane z = 0
+        m = SimpleNamespace(geom_size=np.array([[0, 0, 0], [0.01, h, 0]], np.float32))
+        d = SimpleNamespace(geom_xpos=np.array([[0, 0, 0], [0, 0, h]], np.float32),
+                            geom_xmat=np.array([np.eye(3)] * 2, np.float32))
+        dist, _, _ = plane_cylinder(m, d, None, jax.numpy.array([[0, 1]]))
+        return np.asarray(dist, float)
+
+    assert np.allclose(contacts(1.1 * t.value), 0, atol=1e-7)  # three points on the lower disk
+    for h in (0.9 * t.value, 0.1 * t.value):  # one point on the upper disk, 2 h from the plane
+        assert sorted(contacts(h)) == pytest.approx([0, 0, 2 * h], abs=1e-9)
+
+
+def test_numbers_beyond_float32s_range_are_flushed_or_infinite_and_checked(tmp_path):
+    (low, high) = engines.thresholds.thresholds("mjx", names=["mjx_float32_min_normal", "mjx_float32_max"])
+    assert low.value == float(np.finfo(np.float32).tiny) and high.value == float(np.finfo(np.float32).max)
+    product = jax.jit(lambda x, y: x * y)
+    assert float(product(np.float32(1e-40), np.float32(1))) == 0  # XLA flushes subnormal results to 0
+    assert float(product(np.float32(2e-38), np.float32(0.5))) == 0
+    assert float(product(np.float32(2e38), np.float32(2))) == np.inf
+    path = tmp_path / "extreme.xml"
+    path.write_text('<mujoco><worldbody><body><joint name="a" type="hinge" damping="1e-40"/><geom size="0.1"/>'
+                    '</body><body pos="1 0 0"><joint name="b" type="hinge" damping="1e39"/><geom size="0.1"/>'
+                    "</body></worldbody></mujoco>")
+    with pytest.warns(RuntimeWarning, match="overflow encountered in cast"):  # JAX, putting 1e39 in float32
+        model = engines.load(path, engine="mjx")
+    damping = model.backend.stored_numbers()["dof_damping"]
+    assert 0 < abs(damping[0]) < np.finfo(np.float32).tiny and damping[1] == np.inf
+    said = {c.element: c.detail for c in engines.check(model)}
+    assert "below mjx_float32_min_normal" in said["joint_a_damping"]
+    assert "above mjx_float32_max" in said["joint_b_damping"]
+    # in float64, and in MuJoCo, float32's range is no threshold
+    for other in (engines.load(path, engine="mjx", precision="float64"), engines.load(path)):
+        assert not any("float32" in c.detail for c in engines.check(other))
+
+
+def test_a_shrunk_hopper_is_flagged_for_mjx_and_fitted_units_clear_it(tmp_path):
+    from pitheorem.engines.cli import check_engine_model
+    from pitheorem.engines.fitting import fitted_units
+
+    model = engines.load(ASSETS / "hopper.xml", engine="mjx")
+    lengths = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    shrunk = model.scaled(lengths, 1 / 16)
+    in_mjx = {c.element: c.detail for c in engines.check(shrunk)}
+    in_mujoco = {c.element: c.detail for c in engines.check(shrunk, "mujoco")}
+    own = {e for e, d in in_mjx.items() if "mjx_" in d}
+    # the four capsules that meet another capsule (torso, thigh, leg, foot): MJX's regularizer, not MuJoCo's
+    assert own == {f"geom_{g}_geom_half_length" for g in ("torso", "thigh", "leg", "foot")}
+    assert set(in_mujoco) == set(in_mjx) - own
+    foot = in_mjx["geom_foot_geom_half_length"]
+    need = float(re.search(r"dimension L by (\S+) clears it", foot).group(1))
+    assert need == pytest.approx(2 * 2.0 / (0.195 / 16), rel=1e-3)  # a factor 2 clear of h = 2 (said in 3 digits)
+    # the command line says the same
+    saved = shrunk.save(tmp_path / "hopper_16.xml")
+    text, clean = check_engine_model(str(saved), engine="mjx")
+    assert not clean and "mjx_segment_regularizer_float32" in text
+    assert check_engine_model(str(saved))[1] is False  # MuJoCo: the rolling friction below mjMINMU
+    # fit_units(engine="mjx") chooses units clear of every threshold of MJX and of float32's comfortable range
+    fit = pt.fit_units(shrunk, engine="mjx")
+    assert fit.feasible
+    units = fitted_units(shrunk, fit)
+    fitted = shrunk.converted(**units)
+    assert engines.check(fitted) == () and engines.check(fitted, "mujoco") == ()
+    # the original hopper is clear of MuJoCo's thresholds, not of MJX's: in millimetres it is
+    original = engines.load(ASSETS / "hopper.xml")
+    assert engines.check(original) == ()
+    assert {c.element for c in engines.check(original, "mjx")} == own
+    assert fitted_units(original, pt.fit_units(original, engine="mjx"))["L"] == "mm"

@@ -49,11 +49,14 @@ def compile_xml(xml: str):
 def test_every_threshold_is_complete_and_of_a_catalogued_engine():
     names = [t.name for t in THRESHOLDS]
     assert len(names) == len(set(names))
-    # MJX has MuJoCo's (it compiles with MuJoCo's compiler); none of its own are catalogued yet
-    assert {t.engine for t in THRESHOLDS} == set(engines.ENGINES) - {"mjx"}
-    assert thresholds("mjx") == thresholds("mujoco")
+    assert {t.engine for t in THRESHOLDS} == set(engines.ENGINES)
+    # MJX has MuJoCo's (it compiles with MuJoCo's compiler), then its own
+    own = [t for t in THRESHOLDS if t.engine == "mjx"]
+    assert thresholds("mjx") == (*thresholds("mujoco"), *own)
+    assert own and not set(own) & set(thresholds("mujoco")) and not set(own) & set(thresholds("pybullet"))
     for t in THRESHOLDS:
-        assert t.name.startswith({"pybullet": "bullet_", "mujoco": "mujoco_"}[t.engine])
+        assert t.name.startswith({"pybullet": "bullet_", "mujoco": "mujoco_", "mjx": "mjx_"}[t.engine])
+        assert t.precision in ("", "float32")
         assert t.bound in BOUNDS
         assert set(t.applies) <= set(KINDS)
         assert t.dimension is None or isinstance(t.dimension, pt.Dimension)

@@ -38,10 +38,10 @@ from ..immutable import immutable
 from ..simulation import positive_float
 from .causes import Cause, sorted_causes
 from .model import EngineModel, Parameter
-from .packages import check_engine
+from .packages import check_engine, engine_module
 from .registry import registered
 
-__all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "thresholds"]
+__all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "segment_parameters", "thresholds"]
 
 #: how a threshold acts: on numbers below it, above it, on numbers the engine computes as it runs (a solver's
 #: residual, a contact's separation: nothing in a model's table), or as a setting the engine does not apply
@@ -61,7 +61,23 @@ KINDS: Mapping[str, tuple[str, Callable]] = {
     "collision_size": ("a URDF collision geometry's size, radius or length",
                        lambda p: p.dimension == _L and " collision #" in p.path
                        and p.name.endswith(("_size", "_radius", "_length"))),
+    "capsule_segment": ("the half-length of a capsule (the compiled geom size's second number, or half its "
+                        "fromto's length) that collides with a sphere, capsule, box, mesh or height field: "
+                        "the collisions MJX computes with the closest point on its segment "
+                        "(segment_parameters)",
+                        lambda p: p.dimension == _L and p.path.endswith(" capsule half-length")),
+    "cylinder_on_plane": ("the half-length of a cylinder (the compiled geom size's second number) that "
+                          "collides with a plane (segment_parameters)",
+                          lambda p: p.dimension == _L and p.path.endswith(" cylinder half-length")),
+    "number": ("every number of the model, of any dimension (an engine that stores them in float32)",
+               lambda p: True),
 }
+
+#: MuJoCo's geom types (mjtGeom) that segment_parameters reads
+_PLANE, _HFIELD, _SPHERE, _CAPSULE, _CYLINDER, _BOX, _MESH = 0, 1, 2, 3, 5, 6, 7
+#: the geom types a capsule collides with through the closest point on its segment in MJX
+#: (collision_primitive sphere_capsule and capsule_capsule, collision_convex capsule_convex and hfield_capsule)
+_SEGMENT_PARTNERS = frozenset({_HFIELD, _SPHERE, _CAPSULE, _BOX, _MESH})
 
 
 @immutable
@@ -94,6 +110,9 @@ class Threshold:
         The engine's source, and the measurement that shows the clamp.
     relative_to : str
         The parameter whose value multiplies `value` (``"timestep"``), or "".
+    precision : str
+        ``"float32"``: held only against a model the engine computes in
+        float32 (float32's range); "" for every model.
 
     Examples
     --------
@@ -113,6 +132,7 @@ class Threshold:
     effect: str
     source: str
     relative_to: str = ""
+    precision: str = ""
 
     def __post_init__(self) -> None:
         if isinstance(self.dimension, str):
@@ -187,8 +207,12 @@ def thresholds(engine: str | None = None, *, names: Iterable[str] | None = None)
     >>> from pitheorem.engines.thresholds import thresholds
     >>> [t.name for t in thresholds("mujoco")][:3]
     ['mujoco_minval_mass', 'mujoco_minval_softness', 'mujoco_minmu']
-    >>> thresholds("mjx") == thresholds("mujoco")  # MJX compiles with MuJoCo's compiler
+    >>> mjx = thresholds("mjx")  # MJX compiles with MuJoCo's compiler: MuJoCo's, then its own
+    >>> mjx[:len(thresholds("mujoco"))] == thresholds("mujoco")
     True
+    >>> [t.name for t in mjx[len(thresholds("mujoco")):]]  # doctest: +NORMALIZE_WHITESPACE
+    ['mjx_segment_regularizer_float32', 'mjx_cylinder_plane_parallel', 'mjx_float32_min_normal',
+     'mjx_float32_max']
     """
     engine = None if engine is None else check_engine(engine)
     # an engine built on another (MJX on MuJoCo, whose compiler it uses) has that engine's thresholds too
@@ -234,7 +258,8 @@ def _read_factors(factors, names) -> dict[str, float]:
 
 
 def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None, *,
-            near: float = 2.0, fixed_only: bool = False, grouped: bool = False) -> tuple[Cause, ...]:
+            near: float = 2.0, fixed_only: bool = False, grouped: bool = False,
+            precision: str = "float32") -> tuple[Cause, ...]:
     """The parameters beyond or near a threshold of the engine, as causes of kind ``"threshold"``.
 
     Each parameter of a kind a threshold applies to (:data:`KINDS`) is
@@ -269,6 +294,11 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
         the parameters named (the first three and how many more), the
         detail that of the worst of them (a verdict's causes stay short on
         a robot whose hundred geoms all sit below one floor).
+    precision : {"float32", "float64"}
+        The precision the engine computes the model in: with
+        ``"float64"`` the thresholds of float32's range (MJX's
+        ``mjx_float32_*``) are left out.  Engines that compute in float64
+        have none.
 
     Returns
     -------
@@ -300,7 +330,10 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
     factors = _read_factors(factors, {p.name for p in table})
     scalars = {p.name: p.value[0] * factors.get(p.name, 1.0) for p in table if len(p.value) == 1}
     found = []  # (threshold, parameter, its worst number, the limit, whether beyond it)
-    compared = [t for t in thresholds(engine) if t.bound in ("below", "above")]
+    if precision not in ("float32", "float64"):
+        raise InvalidRequestError(f"precision must be 'float32' or 'float64', got {precision!r}", culprit=precision)
+    compared = [t for t in thresholds(engine) if t.bound in ("below", "above")
+                and (not t.precision or t.precision == precision)]
     for p in table:
         if p.path.startswith("option o_"):
             continue
@@ -353,15 +386,94 @@ def _detail(p, t: Threshold, worst: float, limit: float, near: float, beyond: bo
     return f"{p.path} = {worst!r} {where} {t.name} ({limit!r}{of}): {t.effect}; {remedy}"
 
 
-def check(model) -> tuple[Cause, ...]:
-    """The engine thresholds a model sits beyond or near: a tuple of Cause.
+def _compiled(model):
+    """The model's compiled MjModel (MuJoCo's or MJX's reading of an MJCF file), or None."""
+    backend = model.backend
+    return getattr(backend, "mjmodel", None) or getattr(getattr(backend, "mjcf", None), "mjmodel", None)
 
-    ``pitheorem.engines.thresholds.crossed`` on the model's own parameters, against the thresholds
-    of the model's engine.
+
+def _collision_pairs(mjmodel) -> list[tuple[int, int]]:
+    """The geom pairs MJX collides (its own list when MJX is installed, else every pair of geoms)."""
+    try:
+        engine_module("mjx")  # imported quietly (MJX prints what optional packages it lacks)
+        from mujoco.mjx._src.collision_driver import geom_pairs
+    except ImportError:  # without MJX (EngineUnavailableError is one): every pair, so that no half-length is missed
+        return [(a, b) for a in range(mjmodel.ngeom) for b in range(a + 1, mjmodel.ngeom)]
+    return [(int(a), int(b)) for a, b, _ in geom_pairs(mjmodel)]
+
+
+def segment_parameters(model) -> tuple[Parameter, ...]:
+    """The half-lengths of a model's capsules and cylinders that meet a threshold of MJX's collisions.
+
+    MJX finds the closest point on a capsule's segment with a constant
+    of its own added to the segment's squared length (the threshold
+    ``mjx_segment_regularizer_float32``), and takes a cylinder whose
+    axis, times its half-length, leans less than 1 mm from a plane as
+    lying on it (``mjx_cylinder_plane_parallel``).  These half-lengths
+    are no number of the file's table (a capsule's ``fromto`` holds its
+    ends): they are read from the compiled model, for the geoms in a pair
+    MJX collides through such a function, as parameters of kind
+    ``capsule_segment`` and ``cylinder_on_plane`` (:data:`KINDS`).
 
     Parameters
     ----------
     model : EngineModel
+        An MJCF model (in MuJoCo or MJX).
+
+    Returns
+    -------
+    tuple of Parameter
+        Of dimension L, source ``"derived"``, by geom; ``()`` for a model
+        with no such geom or no compiled model (a URDF, a refused file).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.thresholds import segment_parameters
+    >>> segment_parameters(engines.load(engines.example_path("pendulum.xml")))  # its rod touches nothing
+    ()
+    """
+    mjmodel = _compiled(model)
+    if mjmodel is None:
+        return ()
+    partners: dict[int, set[int]] = {}
+    for a, b in _collision_pairs(mjmodel):
+        partners.setdefault(a, set()).add(int(mjmodel.geom_type[b]))
+        partners.setdefault(b, set()).add(int(mjmodel.geom_type[a]))
+    out, names = [], set()
+    for g in sorted(partners):
+        kind = int(mjmodel.geom_type[g])
+        if kind == _CAPSULE and partners[g] & _SEGMENT_PARTNERS:
+            shape = "capsule"
+        elif kind == _CYLINDER and _PLANE in partners[g]:
+            shape = "cylinder"
+        else:
+            continue
+        label = mjmodel.geom(g).name
+        ident = f"geom_{label}_half_length" if label else f"geom{g}_half_length"
+        if ident in names or not ident.isidentifier():
+            ident = f"geom{g}_half_length"
+        names.add(ident)
+        path = f"geom {label!r} {shape} half-length" if label else f"geom #{g} {shape} half-length"
+        out.append(Parameter(ident, path, (float(mjmodel.geom_size[g][1]),), _L, "derived", "file",
+                             note="read from the compiled model"))
+    return tuple(out)
+
+
+def check(model, engine: str | None = None) -> tuple[Cause, ...]:
+    """The engine thresholds a model sits beyond or near: a tuple of Cause.
+
+    ``pitheorem.engines.thresholds.crossed`` on the model's own parameters, against the thresholds
+    of the model's engine (or of `engine`).  For MJX, the half-lengths of
+    the capsules and cylinders its collisions hold against its own
+    constants join them (:func:`segment_parameters`), and every number is
+    held to float32's range unless the model runs in float64.
+
+    Parameters
+    ----------
+    model : EngineModel
+    engine : {"pybullet", "mujoco", "mjx"}, optional
+        Default: the model's engine.
 
     Returns
     -------
@@ -389,7 +501,12 @@ def check(model) -> tuple[Cause, ...]:
     """
     if not isinstance(model, EngineModel):
         raise InvalidRequestError(f"check needs an EngineModel (from engines.load), got {type(model).__name__}")
-    causes = crossed(model.engine, model.parameters)
+    engine = model.engine if engine is None else check_engine(engine)
+    table = model.parameters
+    if engine == "mjx":  # MJX's own thresholds: its capsules' and cylinders' half-lengths too
+        table = (*table, *segment_parameters(model))
+    # an MJX model says its precision; a MuJoCo model held against MJX's thresholds gets MJX's default
+    causes = crossed(engine, table, precision=model.settings().get("precision", "float32"))
     refusal = getattr(model.backend, "refusal", None)  # a file the engine refused to compile (read as a table)
     if refusal is not None:
         causes = (Cause("threshold", refusal.element or Path(refusal.path).name,
