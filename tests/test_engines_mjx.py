@@ -287,6 +287,20 @@ def test_a_shrunk_hopper_is_flagged_for_mjx_and_fitted_units_clear_it(tmp_path):
     units = fitted_units(shrunk, fit)
     fitted = shrunk.converted(**units)
     assert engines.check(fitted) == () and engines.check(fitted, "mujoco") == ()
+    # shrunk ten times, the capsules need lengths by 1026 (h = 20), and float32's comfortable range (1e-6 to
+    # 1e6) bounds the densities (M L^-3) from below and the armatures (M L^2) from above: with factors that are
+    # powers of ten only lengths by 1e4 and masses by exactly 1 fit, and rounding puts the foot just outside;
+    # powers of two fit
+    tenth = model.scaled(lengths, 0.1)
+    assert {c.element for c in engines.check(tenth) if "mjx_" in c.detail} == own
+    stuck = pt.fit_units(tenth, engine="mjx")
+    assert not stuck.feasible
+    assert {b.name for b in stuck.conflict} == {"geom_foot_geom_density", "joint_foot_joint_armature",
+                                                "geom_foot_geom_half_length"}
+    fit = pt.fit_units(tenth, engine="mjx", nice=2)
+    assert fit.feasible and fit.factors["L"] == 2048
+    fitted = tenth.converted(**fitted_units(tenth, fit))
+    assert engines.check(fitted) == () and engines.check(fitted, "mujoco") == ()
     # the original hopper is clear of MuJoCo's thresholds, not of MJX's: in millimetres it is
     original = engines.load(ASSETS / "hopper.xml")
     assert engines.check(original) == ()
