@@ -239,7 +239,8 @@ def test_mjx_takes_cylinders_shorter_than_2_mm_as_lying_on_a_plane():
 
 def test_numbers_beyond_float32s_range_are_flushed_or_infinite_and_checked(tmp_path):
     (low, high) = engines.thresholds.thresholds("mjx", names=["mjx_float32_min_normal", "mjx_float32_max"])
-    assert low.value == float(np.finfo(np.float32).tiny) and high.value == float(np.finfo(np.float32).max)
+    assert low.value == float(np.finfo(np.float32).tiny)
+    assert high.value == float(np.finfo(np.float32).max)
     product = jax.jit(lambda x, y: x * y)
     assert float(product(np.float32(1e-40), np.float32(1))) == 0  # XLA flushes subnormal results to 0
     assert float(product(np.float32(2e-38), np.float32(0.5))) == 0
@@ -251,7 +252,8 @@ def test_numbers_beyond_float32s_range_are_flushed_or_infinite_and_checked(tmp_p
     with pytest.warns(RuntimeWarning, match="overflow encountered in cast"):  # JAX, putting 1e39 in float32
         model = engines.load(path, engine="mjx")
     damping = model.backend.stored_numbers()["dof_damping"]
-    assert 0 < abs(damping[0]) < np.finfo(np.float32).tiny and damping[1] == np.inf
+    assert 0 < abs(damping[0]) < np.finfo(np.float32).tiny
+    assert damping[1] == np.inf
     said = {c.element: c.detail for c in engines.check(model)}
     assert "below mjx_float32_min_normal" in said["joint_a_damping"]
     assert "above mjx_float32_max" in said["joint_b_damping"]
@@ -279,14 +281,16 @@ def test_a_shrunk_hopper_is_flagged_for_mjx_and_fitted_units_clear_it(tmp_path):
     # the command line says the same
     saved = shrunk.save(tmp_path / "hopper_16.xml")
     text, clean = check_engine_model(str(saved), engine="mjx")
-    assert not clean and "mjx_segment_regularizer_float32" in text
+    assert not clean
+    assert "mjx_segment_regularizer_float32" in text
     assert check_engine_model(str(saved))[1] is False  # MuJoCo: the rolling friction below mjMINMU
     # fit_units(engine="mjx") chooses units clear of every threshold of MJX and of float32's comfortable range
     fit = pt.fit_units(shrunk, engine="mjx")
     assert fit.feasible
     units = fitted_units(shrunk, fit)
     fitted = shrunk.converted(**units)
-    assert engines.check(fitted) == () and engines.check(fitted, "mujoco") == ()
+    assert engines.check(fitted) == ()
+    assert engines.check(fitted, "mujoco") == ()
     # shrunk ten times, the capsules need lengths by 1026 (h = 20), and float32's comfortable range (1e-6 to
     # 1e6) bounds the densities (M L^-3) from below and the armatures (M L^2) from above: with factors that are
     # powers of ten only lengths by 1e4 and masses by exactly 1 fit, and rounding puts the foot just outside;
@@ -298,9 +302,11 @@ def test_a_shrunk_hopper_is_flagged_for_mjx_and_fitted_units_clear_it(tmp_path):
     assert {b.name for b in stuck.conflict} == {"geom_foot_geom_density", "joint_foot_joint_armature",
                                                 "geom_foot_geom_half_length"}
     fit = pt.fit_units(tenth, engine="mjx", nice=2)
-    assert fit.feasible and fit.factors["L"] == 2048
+    assert fit.feasible
+    assert fit.factors["L"] == 2048
     fitted = tenth.converted(**fitted_units(tenth, fit))
-    assert engines.check(fitted) == () and engines.check(fitted, "mujoco") == ()
+    assert engines.check(fitted) == ()
+    assert engines.check(fitted, "mujoco") == ()
     # the original hopper is clear of MuJoCo's thresholds, not of MJX's: in millimetres it is
     original = engines.load(ASSETS / "hopper.xml")
     assert engines.check(original) == ()

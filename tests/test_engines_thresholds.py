@@ -53,7 +53,9 @@ def test_every_threshold_is_complete_and_of_a_catalogued_engine():
     # MJX has MuJoCo's (it compiles with MuJoCo's compiler), then its own
     own = [t for t in THRESHOLDS if t.engine == "mjx"]
     assert thresholds("mjx") == (*thresholds("mujoco"), *own)
-    assert own and not set(own) & set(thresholds("mujoco")) and not set(own) & set(thresholds("pybullet"))
+    assert own
+    assert not set(own) & set(thresholds("mujoco"))
+    assert not set(own) & set(thresholds("pybullet"))
     for t in THRESHOLDS:
         assert t.name.startswith({"pybullet": "bullet_", "mujoco": "mujoco_", "mjx": "mjx_"}[t.engine])
         assert t.precision in ("", "float32")
@@ -519,7 +521,8 @@ def test_segment_parameters_are_the_half_lengths_mjxs_collisions_hold_against_it
     assert sorted(found) == ["geom3_half_length", "geom_arm_half_length"]
     arm, disk = found["geom_arm_half_length"], found["geom3_half_length"]
     assert arm.value == pytest.approx((0.5 / 2,), rel=1e-12)  # half of the fromto's length, 0.5
-    assert arm.path == "geom 'arm' capsule half-length" and disk.path == "geom #3 cylinder half-length"
+    assert arm.path == "geom 'arm' capsule half-length"
+    assert disk.path == "geom #3 cylinder half-length"
     assert {p.dimension for p in found.values()} == {pt.Dimension.parse("L")}
     assert {p.source for p in found.values()} == {"derived"}
     assert {k for k, (_, is_kind) in KINDS.items() if is_kind(arm)} == {"capsule_segment", "number"}
