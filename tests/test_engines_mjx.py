@@ -312,3 +312,42 @@ def test_a_shrunk_hopper_is_flagged_for_mjx_and_fitted_units_clear_it(tmp_path):
     assert engines.check(original) == ()
     assert {c.element for c in engines.check(original, "mjx")} == own
     assert fitted_units(original, pt.fit_units(original, engine="mjx"))["L"] == "mm"
+
+
+def test_mjx_floors_the_fluid_models_masses_and_moments_at_1e_12(tmp_path):
+    # a free body moving in a fluid: MJX's fluid forces (qfrc_passive, nothing else acts) against MuJoCo's
+    # (qfrc_fluid, which floors the moments at 1e-15 and not the mass)
+    import mujoco
+    from mujoco import mjx
+
+    floors = engines.thresholds.thresholds("mjx", names=["mjx_fluid_moments_floor", "mjx_fluid_mass_floor"])
+    assert [t.value for t in floors] == [1e-12, 1e-12]
+    forward = jax.jit(mjx.forward)
+
+    def text(mass, moment):
+        return ('<mujoco><option viscosity="1" density="1" gravity="0 0 0"/><worldbody><body name="speck">'
+                f'<freejoint/><inertial pos="0 0 0" mass="{mass}" diaginertia="{moment} {moment} {moment}"/>'
+                '<geom size="0.001" contype="0" conaffinity="0" mass="0"/></body></worldbody></mujoco>')
+
+    def ratio(mass, moment):  # MJX's force and torque over MuJoCo's
+        m = mujoco.MjModel.from_xml_string(text(mass, moment))
+        d = mujoco.MjData(m)
+        d.qvel[:] = [1, 0, 0, 0, 0, 1]
+        mujoco.mj_forward(m, d)
+        dx = forward(mjx.put_model(m), mjx.put_data(m, d))
+        return np.asarray(dx.qfrc_passive, float)[[0, 5]] / d.qfrc_fluid[[0, 5]]
+
+    assert ratio(1e-9, 1e-12) == pytest.approx([1, 1], rel=1e-6)  # at the floor: the same forces
+    assert ratio(1e-9, 1e-14) == pytest.approx([10, 1000], rel=0.01)  # a box 10 times larger
+    assert ratio(1e-12, 1e-11) == pytest.approx([1, 1], rel=1e-6)
+    assert ratio(1e-13, 1e-11) == pytest.approx([0.194, 0.0072], rel=0.01)
+    # check names them in MJX (float32 and float64 alike) and not in MuJoCo; without a fluid, nothing
+    path = tmp_path / "speck.xml"
+    path.write_text(text(1e-13, 1e-14))
+    for model in (engines.load(path, engine="mjx"), engines.load(path, engine="mjx", precision="float64")):
+        said = {c.element: c.detail for c in engines.check(model)}
+        assert "below mjx_fluid_mass_floor" in said["body_speck_mass_in_fluid"]
+        assert "below mjx_fluid_moments_floor" in said["body_speck_fluid_box_moments"]
+    assert not any("mjx_" in c.detail for c in engines.check(engines.load(path)))
+    path.write_text(text(1e-13, 1e-14).replace('viscosity="1" density="1" ', ""))
+    assert not any("fluid" in c.element for c in engines.check(engines.load(path, engine="mjx")))

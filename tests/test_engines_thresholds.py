@@ -21,7 +21,7 @@ import pytest
 import pitheorem as pt
 from pitheorem import engines
 from pitheorem.engines.packages import quiet_stdout
-from pitheorem.engines.thresholds import BOUNDS, KINDS, THRESHOLDS, Threshold, crossed, segment_parameters, thresholds
+from pitheorem.engines.thresholds import BOUNDS, KINDS, THRESHOLDS, Threshold, crossed, mjx_parameters, thresholds
 from tests.conftest import REPO
 
 mujoco = pytest.importorskip("mujoco")
@@ -506,7 +506,7 @@ def test_grouped_causes_name_every_number_once_and_detail_the_worst():
     assert alone == next(c for c in one_each if c.element == "body_a_inertia")  # a group of one reads as before
 
 
-def test_segment_parameters_are_the_half_lengths_mjxs_collisions_hold_against_its_constants(tmp_path):
+def test_mjx_parameters_are_the_half_lengths_mjxs_collisions_hold_against_its_constants(tmp_path):
     path = tmp_path / "segments.xml"
     path.write_text(textwrap.dedent("""\
         <mujoco><worldbody>
@@ -517,7 +517,7 @@ def test_segment_parameters_are_the_half_lengths_mjxs_collisions_hold_against_it
           <body name="c" pos="0 0 3"><freejoint/><geom type="cylinder" size="0.02 0.0004"/></body>
         </worldbody></mujoco>"""))
     model = engines.load(path)
-    found = {p.name: p for p in segment_parameters(model)}
+    found = {p.name: p for p in mjx_parameters(model)}
     assert sorted(found) == ["geom3_half_length", "geom_arm_half_length"]
     arm, disk = found["geom_arm_half_length"], found["geom3_half_length"]
     assert arm.value == pytest.approx((0.5 / 2,), rel=1e-12)  # half of the fromto's length, 0.5

@@ -41,7 +41,7 @@ from .model import EngineModel, Parameter
 from .packages import check_engine, engine_module
 from .registry import registered
 
-__all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "segment_parameters", "thresholds"]
+__all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "mjx_parameters", "thresholds"]
 
 #: how a threshold acts: on numbers below it, above it, on numbers the engine computes as it runs (a solver's
 #: residual, a contact's separation: nothing in a model's table), or as a setting the engine does not apply
@@ -64,16 +64,21 @@ KINDS: Mapping[str, tuple[str, Callable]] = {
     "capsule_segment": ("the half-length of a capsule (the compiled geom size's second number, or half its "
                         "fromto's length) that collides with a sphere, capsule, box, mesh or height field: "
                         "the collisions MJX computes with the closest point on its segment "
-                        "(segment_parameters)",
+                        "(mjx_parameters)",
                         lambda p: p.dimension == _L and p.path.endswith(" capsule half-length")),
     "cylinder_on_plane": ("the half-length of a cylinder (the compiled geom size's second number) that "
-                          "collides with a plane (segment_parameters)",
+                          "collides with a plane (mjx_parameters)",
                           lambda p: p.dimension == _L and p.path.endswith(" cylinder half-length")),
+    "fluid_mass": ("a body's mass, with the fluid model on (mjx_parameters)",
+                   lambda p: p.dimension == _M and p.path.endswith(" mass in the fluid model")),
+    "fluid_box_moments": ("the sums I1 + I2 - I0, I0 + I2 - I1 and I0 + I1 - I2 of a body's principal moments "
+                          "of inertia, which give its equivalent box in the fluid model (mjx_parameters)",
+                          lambda p: p.dimension == _ML2 and p.path.endswith(" fluid box moments")),
     "number": ("every number of the model, of any dimension (an engine that stores them in float32)",
                lambda p: True),
 }
 
-#: MuJoCo's geom types (mjtGeom) that segment_parameters reads
+#: MuJoCo's geom types (mjtGeom) that mjx_parameters reads
 _PLANE, _HFIELD, _SPHERE, _CAPSULE, _CYLINDER, _BOX, _MESH = 0, 1, 2, 3, 5, 6, 7
 #: the geom types a capsule collides with through the closest point on its segment in MJX
 #: (collision_primitive sphere_capsule and capsule_capsule, collision_convex capsule_convex and hfield_capsule)
@@ -211,8 +216,8 @@ def thresholds(engine: str | None = None, *, names: Iterable[str] | None = None)
     >>> mjx[:len(thresholds("mujoco"))] == thresholds("mujoco")
     True
     >>> [t.name for t in mjx[len(thresholds("mujoco")):]]  # doctest: +NORMALIZE_WHITESPACE
-    ['mjx_segment_regularizer_float32', 'mjx_cylinder_plane_parallel', 'mjx_float32_min_normal',
-     'mjx_float32_max']
+    ['mjx_segment_regularizer_float32', 'mjx_cylinder_plane_parallel', 'mjx_fluid_moments_floor',
+     'mjx_fluid_mass_floor', 'mjx_float32_min_normal', 'mjx_float32_max']
     """
     engine = None if engine is None else check_engine(engine)
     # an engine built on another (MJX on MuJoCo, whose compiler it uses) has that engine's thresholds too
@@ -402,18 +407,32 @@ def _collision_pairs(mjmodel) -> list[tuple[int, int]]:
     return [(int(a), int(b)) for a, b, _ in geom_pairs(mjmodel)]
 
 
-def segment_parameters(model) -> tuple[Parameter, ...]:
-    """The half-lengths of a model's capsules and cylinders that meet a threshold of MJX's collisions.
+def _label(mjmodel, kind: str, index: int, names: set[str], suffix: str) -> tuple[str, str]:
+    """A derived parameter's name and the start of its path, for a geom or a body of the compiled model."""
+    label = getattr(mjmodel, kind)(index).name
+    ident = f"{kind}_{label}_{suffix}" if label else f"{kind}{index}_{suffix}"
+    if ident in names or not ident.isidentifier():
+        ident = f"{kind}{index}_{suffix}"
+    names.add(ident)
+    return ident, f"{kind} {label!r}" if label else f"{kind} #{index}"
+
+
+def mjx_parameters(model) -> tuple[Parameter, ...]:
+    """The numbers of a model that MJX's own constants are held against, read from the compiled model.
 
     MJX finds the closest point on a capsule's segment with a constant
     of its own added to the segment's squared length (the threshold
     ``mjx_segment_regularizer_float32``), and takes a cylinder whose
     axis, times its half-length, leans less than 1 mm from a plane as
-    lying on it (``mjx_cylinder_plane_parallel``).  These half-lengths
-    are no number of the file's table (a capsule's ``fromto`` holds its
-    ends): they are read from the compiled model, for the geoms in a pair
-    MJX collides through such a function, as parameters of kind
-    ``capsule_segment`` and ``cylinder_on_plane`` (:data:`KINDS`).
+    lying on it (``mjx_cylinder_plane_parallel``): the half-lengths of
+    the geoms in a pair MJX collides through such a function (kinds
+    ``capsule_segment`` and ``cylinder_on_plane``).  With the fluid
+    model on (the option's density, viscosity or wind), MJX floors each
+    body's mass and the sums of its principal moments that give the
+    body's equivalent box (``I1 + I2 - I0`` and its turns) at 1e-12
+    (``mjx_fluid_*``): those masses and sums (kinds ``fluid_mass`` and
+    ``fluid_box_moments``).  None of these numbers is in the file's table
+    as such (a capsule's ``fromto`` holds its ends).
 
     Parameters
     ----------
@@ -423,14 +442,14 @@ def segment_parameters(model) -> tuple[Parameter, ...]:
     Returns
     -------
     tuple of Parameter
-        Of dimension L, source ``"derived"``, by geom; ``()`` for a model
-        with no such geom or no compiled model (a URDF, a refused file).
+        Source ``"derived"``, geoms then bodies; ``()`` for a model with no
+        such number or no compiled model (a URDF, a refused file).
 
     Examples
     --------
     >>> from pitheorem import engines
-    >>> from pitheorem.engines.thresholds import segment_parameters
-    >>> segment_parameters(engines.load(engines.example_path("pendulum.xml")))  # its rod touches nothing
+    >>> from pitheorem.engines.thresholds import mjx_parameters
+    >>> mjx_parameters(engines.load(engines.example_path("pendulum.xml")))  # its rod touches nothing
     ()
     """
     mjmodel = _compiled(model)
@@ -449,14 +468,22 @@ def segment_parameters(model) -> tuple[Parameter, ...]:
             shape = "cylinder"
         else:
             continue
-        label = mjmodel.geom(g).name
-        ident = f"geom_{label}_half_length" if label else f"geom{g}_half_length"
-        if ident in names or not ident.isidentifier():
-            ident = f"geom{g}_half_length"
-        names.add(ident)
-        path = f"geom {label!r} {shape} half-length" if label else f"geom #{g} {shape} half-length"
-        out.append(Parameter(ident, path, (float(mjmodel.geom_size[g][1]),), _L, "derived", "file",
-                             note="read from the compiled model"))
+        ident, path = _label(mjmodel, "geom", g, names, "half_length")
+        out.append(Parameter(ident, f"{path} {shape} half-length", (float(mjmodel.geom_size[g][1]),), _L,
+                             "derived", "file", note="read from the compiled model"))
+    opt = mjmodel.opt
+    if opt.density > 0 or opt.viscosity > 0 or any(opt.wind):  # MJX's inertia-box fluid model, every body
+        for b in range(1, mjmodel.nbody):
+            mass, moments = float(mjmodel.body_mass[b]), [float(i) for i in mjmodel.body_inertia[b]]
+            if mass <= 0:
+                continue
+            ident, path = _label(mjmodel, "body", b, names, "mass_in_fluid")
+            out.append(Parameter(ident, f"{path} mass in the fluid model", (mass,), _M, "derived", "file",
+                                 note="read from the compiled model"))
+            sums = tuple(sum(moments) - 2 * moments[i] for i in range(3))  # I1 + I2 - I0, I0 + I2 - I1, ...
+            ident, path = _label(mjmodel, "body", b, names, "fluid_box_moments")
+            out.append(Parameter(ident, f"{path} fluid box moments", sums, _ML2, "derived", "file",
+                                 note="sums of the body's principal moments, read from the compiled model"))
     return tuple(out)
 
 
@@ -464,10 +491,11 @@ def check(model, engine: str | None = None) -> tuple[Cause, ...]:
     """The engine thresholds a model sits beyond or near: a tuple of Cause.
 
     ``pitheorem.engines.thresholds.crossed`` on the model's own parameters, against the thresholds
-    of the model's engine (or of `engine`).  For MJX, the half-lengths of
-    the capsules and cylinders its collisions hold against its own
-    constants join them (:func:`segment_parameters`), and every number is
-    held to float32's range unless the model runs in float64.
+    of the model's engine (or of `engine`).  For MJX, the numbers its own
+    constants are held against join them (:func:`mjx_parameters`: the
+    half-lengths of capsules and cylinders, the fluid model's masses and
+    moments), and every number is held to float32's range unless the
+    model runs in float64.
 
     Parameters
     ----------
@@ -503,8 +531,8 @@ def check(model, engine: str | None = None) -> tuple[Cause, ...]:
         raise InvalidRequestError(f"check needs an EngineModel (from engines.load), got {type(model).__name__}")
     engine = model.engine if engine is None else check_engine(engine)
     table = model.parameters
-    if engine == "mjx":  # MJX's own thresholds: its capsules' and cylinders' half-lengths too
-        table = (*table, *segment_parameters(model))
+    if engine == "mjx":  # MJX's own thresholds: its capsules' and cylinders' half-lengths, its fluid model
+        table = (*table, *mjx_parameters(model))
     # an MJX model says its precision; a MuJoCo model held against MJX's thresholds gets MJX's default
     causes = crossed(engine, table, precision=model.settings().get("precision", "float32"))
     refusal = getattr(model.backend, "refusal", None)  # a file the engine refused to compile (read as a table)
