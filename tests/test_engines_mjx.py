@@ -351,3 +351,46 @@ def test_mjx_floors_the_fluid_models_masses_and_moments_at_1e_12(tmp_path):
     assert not any("mjx_" in c.detail for c in engines.check(engines.load(path)))
     path.write_text(text(1e-13, 1e-14).replace('viscosity="1" density="1" ', ""))
     assert not any("fluid" in c.element for c in engines.check(engines.load(path, engine="mjx")))
+
+
+WORM = """<mujoco model="worm">
+  <option timestep="0.0001"/>
+  <default><geom type="capsule" size="0.00004" density="1050" friction="0.8 5e-6 1e-7" condim="6"/>
+    <joint type="hinge" axis="0 0 1" stiffness="2e-10" damping="1e-12"/></default>
+  <worldbody>
+    <geom name="floor" type="plane" size="0.01 0.01 0.001"/>
+    <body name="s0" pos="0 0 0.00004"><freejoint/><geom fromto="0 0 0 0.0002 0 0"/>
+      <body name="s1" pos="0.0002 0 0"><joint name="bend1"/><geom fromto="0 0 0 0.0002 0 0"/>
+        <body name="s2" pos="0.0002 0 0"><joint name="bend2"/><geom fromto="0 0 0 0.0002 0 0"/></body>
+      </body>
+    </body>
+  </worldbody>
+  <actuator><motor joint="bend1" ctrlrange="-2e-11 2e-11"/><motor joint="bend2" ctrlrange="-2e-11 2e-11"/>
+  </actuator>
+</mujoco>
+"""
+
+
+def test_a_worm_fitted_for_mjx_is_clear_of_its_thresholds_and_runs(tmp_path):
+    from pitheorem.engines.fitting import fitted_units
+
+    path = tmp_path / "worm.xml"
+    path.write_text(WORM)
+    worm = engines.load(path)  # MuJoCo refuses it (inertias below mjMINVAL): a table to repair
+    # in millimetres MuJoCo takes it; MJX's capsules (half-length 0.1 mm) do not: the first and last segments
+    # meet (the others are parent and child)
+    in_mm = worm.converted(L="mm")
+    assert engines.check(in_mm) == ()
+    assert {c.element for c in engines.check(in_mm, "mjx")} == {"geom1_half_length", "geom3_half_length"}
+    fit = pt.fit_units(worm, engine="mjx")
+    assert fit.feasible
+    units = fitted_units(worm, fit)
+    assert units["L"] == "um"
+    saved = worm.converted(**units).save(tmp_path / "worm_mjx.xml")
+    in_mjx = engines.load(saved, engine="mjx")
+    assert engines.check(in_mjx) == ()
+    assert engines.check(in_mjx, "mujoco") == ()
+    high = in_mjx.backend.control_ranges()[1]
+    rows = in_mjx.backend.run(200, controls=lambda t: high * np.sin(60e-3 * t - np.arange(2)))
+    assert np.isfinite(rows).all()
+    assert np.abs(rows[-1] - rows[0]).max() > 0  # it moved
