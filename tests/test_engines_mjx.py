@@ -257,9 +257,14 @@ def test_numbers_beyond_float32s_range_are_flushed_or_infinite_and_checked(tmp_p
     said = {c.element: c.detail for c in engines.check(model)}
     assert "below mjx_float32_min_normal" in said["joint_a_damping"]
     assert "above mjx_float32_max" in said["joint_b_damping"]
-    # in float64, and in MuJoCo, float32's range is no threshold
+    # in float64, and in MuJoCo, float32's range is no threshold: nor in an audit
+    lengths = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    with warnings.catch_warnings():  # the scaled copy's 1e39 overflows float32 again
+        warnings.simplefilter("ignore", RuntimeWarning)
+        assert "mjx_float32_max" in " ".join(c.detail for c in engines.audit(model, lengths, 4).causes)
     for other in (engines.load(path, engine="mjx", precision="float64"), engines.load(path)):
         assert not any("float32" in c.detail for c in engines.check(other))
+        assert not any("mjx_float32" in c.detail for c in engines.audit(other, lengths, 4).causes)
 
 
 def test_a_shrunk_hopper_is_flagged_for_mjx_and_fitted_units_clear_it(tmp_path):

@@ -211,12 +211,14 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
     from .thresholds import crossed
 
     origin = scaled._origin
+    # float32's range binds only a model the engine computes in float32 (MJX's default)
+    how = {"near": 1.0, "fixed_only": True, "grouped": True, "precision": model.settings().get("precision", "float32")}
     if origin is not None and origin[0] is model and all(0 < f < math.inf for f in origin[1].values()):
         # a copy made by model.scaled: its table is the model's, each number times its factor
-        causes.extend(crossed(model.engine, model.parameters, origin[1], near=1.0, fixed_only=True, grouped=True))
+        causes.extend(crossed(model.engine, model.parameters, origin[1], **how))
     else:  # a file the user made: read it
-        causes.extend(crossed(model.engine, scaled.parameters, near=1.0, fixed_only=True, grouped=True))
-    causes.extend(crossed(model.engine, model.parameters, near=1.0, fixed_only=True, grouped=True))
+        causes.extend(crossed(model.engine, scaled.parameters, **how))
+    causes.extend(crossed(model.engine, model.parameters, **how))
     return Audit(sorted_causes(causes), compared, float(s))
 
 
