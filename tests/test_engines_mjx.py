@@ -399,3 +399,34 @@ def test_a_worm_fitted_for_mjx_is_clear_of_its_thresholds_and_runs(tmp_path):
     rows = in_mjx.backend.run(200, controls=lambda t: high * np.sin(60e-3 * t - np.arange(2)))
     assert np.isfinite(rows).all()
     assert np.abs(rows[-1] - rows[0]).max() > 0  # it moved
+
+
+FILTERED = """<mujoco><worldbody><geom name="ground" type="plane" size="1 1 0.1"/>
+  <body name="a"><freejoint/><geom name="a" type="capsule" size="0.1 0.2"/>
+    <body name="b" pos="0 0 1"><joint/><geom name="b" type="capsule" size="0.1 0.2"/>
+      <geom name="b2" type="sphere" size="0.1" contype="2" conaffinity="2"/>
+      <body name="c" pos="0 0 1"><joint/><geom name="c" type="capsule" size="0.1 0.2"/></body></body></body>
+  <body name="d" pos="2 0 0"><freejoint/><geom name="d" type="sphere" size="0.1" contype="0" conaffinity="0"/>
+  </body></worldbody>
+  <contact><exclude body1="c" body2="a"/><pair geom1="d" geom2="a"/></contact></mujoco>"""
+
+
+@pytest.mark.parametrize("name", ["hopper.xml", "walker2d.xml", "ant.xml", "humanoid.xml", "reacher.xml",
+                                  "filtered"])
+def test_the_pairs_thresholds_reads_are_mjxs_own(name):
+    import mujoco
+    from mujoco.mjx._src.collision_driver import geom_pairs
+
+    from pitheorem.engines.thresholds import _FILTERPARENT, _collision_pairs
+
+    assert mujoco.mjtDisableBit.mjDSBL_FILTERPARENT == _FILTERPARENT
+    m = (mujoco.MjModel.from_xml_string(FILTERED) if name == "filtered"
+         else mujoco.MjModel.from_xml_path(str(ASSETS / name)))
+    theirs = {tuple(sorted((int(a), int(b)))) for a, b, _ in geom_pairs(m)}
+    plane = int(mujoco.mjtGeom.mjGEOM_PLANE)
+    ours = {(a, b) for a, b in _collision_pairs(m) if not m.geom_type[a] == m.geom_type[b] == plane}
+    assert ours == theirs
+    # with the parent filter off, a body's geoms meet its parent's too
+    m.opt.disableflags |= _FILTERPARENT
+    assert {tuple(sorted((int(a), int(b)))) for a, b, _ in geom_pairs(m)} == {
+        (a, b) for a, b in _collision_pairs(m) if not m.geom_type[a] == m.geom_type[b] == plane}

@@ -32,13 +32,15 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from ..dimensions import Dimension
 from ..errors import InvalidRequestError
 from ..immutable import immutable
 from ..simulation import positive_float
 from .causes import Cause, sorted_causes
 from .model import EngineModel, Parameter
-from .packages import check_engine, engine_module
+from .packages import check_engine
 from .registry import registered
 
 __all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "mjx_parameters", "thresholds"]
@@ -80,6 +82,8 @@ KINDS: Mapping[str, tuple[str, Callable]] = {
 
 #: MuJoCo's geom types (mjtGeom) that mjx_parameters reads
 _PLANE, _HFIELD, _SPHERE, _CAPSULE, _CYLINDER, _BOX, _MESH = 0, 1, 2, 3, 5, 6, 7
+#: MuJoCo's flag that keeps a body's geoms colliding with its parent's (mjtDisableBit.mjDSBL_FILTERPARENT)
+_FILTERPARENT = 1024
 #: the geom types a capsule collides with through the closest point on its segment in MJX
 #: (collision_primitive sphere_capsule and capsule_capsule, collision_convex capsule_convex and hfield_capsule)
 _SEGMENT_PARTNERS = frozenset({_HFIELD, _SPHERE, _CAPSULE, _BOX, _MESH})
@@ -397,14 +401,33 @@ def _compiled(model):
     return getattr(backend, "mjmodel", None) or getattr(getattr(backend, "mjcf", None), "mjmodel", None)
 
 
-def _collision_pairs(mjmodel) -> list[tuple[int, int]]:
-    """The geom pairs MJX collides (its own list when MJX is installed, else every pair of geoms)."""
-    try:
-        engine_module("mjx")  # imported quietly (MJX prints what optional packages it lacks)
-        from mujoco.mjx._src.collision_driver import geom_pairs
-    except ImportError:  # without MJX (EngineUnavailableError is one): every pair, so that no half-length is missed
-        return [(a, b) for a in range(mjmodel.ngeom) for b in range(a + 1, mjmodel.ngeom)]
-    return [(int(a), int(b)) for a, b, _ in geom_pairs(mjmodel)]
+def _collision_pairs(m) -> list[tuple[int, int]]:
+    """The geom pairs a compiled MjModel collides, by MuJoCo's filter (MJX's too), read from its arrays.
+
+    The explicit ``<pair>`` elements, and every two geoms whose contype
+    and conaffinity share a bit, except geoms of bodies welded together,
+    of a body and its parent (both other than the world, unless the
+    filterparent flag is disabled) and of excluded body pairs.  (Read from
+    the model's arrays: no engine is imported here.)
+    """
+    out = {(int(min(a, b)), int(max(a, b))) for a, b in zip(m.pair_geom1, m.pair_geom2, strict=True)}
+    n = m.ngeom
+    if n < 2:
+        return sorted(out)
+    contype, conaffinity = np.asarray(m.geom_contype), np.asarray(m.geom_conaffinity)
+    weld = np.asarray(m.body_weldid)[np.asarray(m.geom_bodyid)]  # each geom's weld body
+    parent = np.asarray(m.body_weldid)[np.asarray(m.body_parentid)][weld]  # the weld body of its parent
+    body = np.asarray(m.geom_bodyid)
+    ok = ((contype[:, None] & conaffinity[None, :]) | (contype[None, :] & conaffinity[:, None])) != 0
+    ok &= weld[:, None] != weld[None, :]
+    if not m.opt.disableflags & _FILTERPARENT:
+        family = (weld[:, None] == parent[None, :]) | (parent[:, None] == weld[None, :])
+        ok &= ~(family & (weld[:, None] != 0) & (weld[None, :] != 0))
+    lo, hi = np.minimum(body[:, None], body[None, :]), np.maximum(body[:, None], body[None, :])
+    ok &= ~np.isin((lo.astype(np.int64) << 16) + hi, np.asarray(m.exclude_signature, dtype=np.int64))
+    first, second = np.nonzero(np.triu(ok, 1))
+    out.update(zip(first.tolist(), second.tolist(), strict=True))
+    return sorted(out)
 
 
 def _label(mjmodel, kind: str, index: int, names: set[str], suffix: str) -> tuple[str, str]:
