@@ -76,8 +76,9 @@ def test_float64_on_request_and_jax_left_as_it_was():
         engines.load(PENDULUM, engine="mjx", precision="float16")
 
 
-# the shipped pendulum and gymnasium's two-link arm; the rest of gymnasium's files run in benchmarks/mjx_corpus.py
-@pytest.mark.parametrize("path", [PENDULUM, ASSETS / "reacher.xml"],
+# the shipped pendulum, gymnasium's two-link arm and its hopper (margins on its geoms: the copy's static
+# body_margin differs); the rest of gymnasium's files run in benchmarks/mjx_corpus.py
+@pytest.mark.parametrize("path", [PENDULUM, ASSETS / "reacher.xml", ASSETS / "hopper.xml"],
                          ids=lambda p: Path(p).name)
 def test_s4_reproduces_the_original_bit_for_bit_in_float32(path):
     with warnings.catch_warnings():  # gymnasium's custom numerics (frame_skip) have no known dimension
@@ -184,3 +185,32 @@ def test_mjx_segment_regularizer_is_measured_as_catalogued():
             off = abs(closest - length / 2) / (length / 2)
             assert off == pytest.approx(expected, rel=1e-3)
             assert off == pytest.approx(constant.default / length**2, rel=1e-3)
+
+
+@pytest.mark.parametrize("name", ["hopper.xml", "ant.xml"])
+def test_a_scaled_copy_is_one_program_with_its_original(name):
+    # a copy whose static arrays differ from its original's runs in a call of its own, a program XLA compiles
+    # apart, which may round differently: the hopper's copy then parted from its original after one step
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", engines.UnscalableModelWarning)
+        model = engines.load(ASSETS / name, engine="mjx")
+    copy = model.scaled(time_free(model), 4)
+    assert not np.array_equal(copy.backend._device.body_margin, model.backend._device.body_margin)
+    aligned = mjx_backend._aligned(copy.backend, model.backend)
+    structure = jax.tree_util.tree_structure
+    assert structure(aligned) == structure(model.backend._device)
+    # the arrays MJX traces are the copy's own
+    assert np.array_equal(aligned.geom_size, copy.backend._device.geom_size)
+    assert not np.array_equal(aligned.geom_size, model.backend._device.geom_size)
+
+
+def test_the_static_arrays_taken_from_the_original_are_never_read_by_mjx():
+    # what _UNREAD_STATIC claims, read from the installed MJX's source: the field is named only where the
+    # model's type declares it (and, for a heightfield's radii, where the heightfield collision reads it)
+    import mujoco.mjx
+
+    sources = [p for p in Path(mujoco.mjx.__file__).parent.rglob("*.py") if not p.name.endswith("_test.py")]
+    for _owner, field, geom_type in mjx_backend._UNREAD_STATIC:
+        readers = sorted(p.name for p in sources if field in p.read_text(encoding="utf-8"))
+        allowed = {"types.py", "io.py"} | ({"collision_driver.py"} if geom_type else set())
+        assert set(readers) <= allowed, (field, readers)

@@ -312,6 +312,12 @@ def exact_product(value, factor) -> float:
     value, factor = float(value), float(factor)
     if not (math.isfinite(value) and math.isfinite(factor)):
         return value * factor
+    return _exact_product(value, factor)
+
+
+@functools.lru_cache(maxsize=8192)
+def _exact_product(value: float, factor: float) -> float:
+    """:func:`exact_product` of two finite floats, remembered: a model repeats its numbers and factors."""
     # read as the decimal each prints as (its shortest repr): the number as the file wrote it
     exact = _as_written(value) * _as_written(factor)
     try:
