@@ -42,16 +42,16 @@ def pendulum():
 
 def test_an_mjcf_file_loads_scales_and_saves_in_mjx(pendulum, tmp_path):
     assert pendulum.engine == "mjx"
-    assert pendulum.backend.precision == "float32"
+    assert pendulum._backend.precision == "float32"
     assert pendulum.settings() == {"precision": "float32"}
-    stored = pendulum.backend.stored_numbers()
+    stored = pendulum._backend.stored_numbers()
     assert {a.dtype for a in stored.values()} == {np.dtype(np.float32)}
     assert stored["opt.timestep"][0] == np.float32(0.002)
     # the table is MuJoCo's reading of the file
     assert pendulum.parameters == engines.load(PENDULUM).parameters
     scaled = pendulum.scaled(time_free(pendulum), 4)
     assert scaled.engine == "mjx"
-    assert type(scaled.backend) is mjx_backend.MjxBackend
+    assert type(scaled._backend) is mjx_backend.MjxBackend
     out = scaled.save(tmp_path / "pendulum_4.xml")
     back = engines.load(out, engine="mjx")
     assert back.parameter("g").value == scaled.parameter("g").value == (9.81 * 4,)
@@ -68,8 +68,8 @@ def test_an_mjcf_file_loads_scales_and_saves_in_mjx(pendulum, tmp_path):
 def test_float64_on_request_and_jax_left_as_it_was():
     before = jax.config.jax_enable_x64
     model = engines.load(PENDULUM, engine="mjx", precision="float64")
-    assert {a.dtype for a in model.backend.stored_numbers().values()} == {np.dtype(np.float64)}
-    rows = model.backend.run(10, controls=lambda t: [0.1])
+    assert {a.dtype for a in model._backend.stored_numbers().values()} == {np.dtype(np.float64)}
+    rows = model._backend.run(10, controls=lambda t: [0.1])
     assert rows.shape == (11, 2)
     assert jax.config.jax_enable_x64 == before
     with pytest.raises(pt.InvalidRequestError, match="precision must be 'float32' or 'float64'"):
@@ -119,7 +119,7 @@ def test_the_runs_of_a_verification_are_one_vmapped_call(pendulum, monkeypatch):
 
 
 def test_twins_move_every_number_by_one_float32_ulp(pendulum):
-    before, after = pendulum.backend.stored_numbers(), pendulum.backend.twin(7).stored_numbers()
+    before, after = pendulum._backend.stored_numbers(), pendulum._backend.twin(7).stored_numbers()
     moved = 0
     for field, value in before.items():
         ulp = np.abs(after[field].astype(float) - value.astype(float))
@@ -159,7 +159,7 @@ def test_what_mjx_does_not_support_is_refused_by_name(case, tmp_path):
 def test_audit_and_check_read_mjxs_own_float32_numbers(pendulum):
     sc = time_free(pendulum)
     audit = engines.audit(pendulum, sc, s=4)
-    stored = pendulum.backend.stored_numbers()
+    stored = pendulum._backend.stored_numbers()
     assert 0.9 * sum(a.size for a in stored.values()) < audit.compared <= sum(a.size for a in stored.values())
     assert [c.kind for c in audit.causes] == ["solver"]  # the file's tolerance: no scale-free stopping rule
     assert engines.check(pendulum) == engines.check(engines.load(PENDULUM))
@@ -167,7 +167,7 @@ def test_audit_and_check_read_mjxs_own_float32_numbers(pendulum):
 
 def test_a_closed_loop_controller_is_refused(pendulum):
     with pytest.raises(pt.InvalidRequestError, match="MJX runs open loop here"):
-        pendulum.backend.run(3, policy=lambda *state: [0.0])
+        pendulum._backend.run(3, policy=lambda *state: [0.0])
 
 
 def test_mjx_segment_regularizer_is_measured_as_catalogued():
@@ -195,13 +195,13 @@ def test_a_scaled_copy_is_one_program_with_its_original(name):
         warnings.simplefilter("ignore", engines.UnscalableModelWarning)
         model = engines.load(ASSETS / name, engine="mjx")
     copy = model.scaled(time_free(model), 4)
-    assert not np.array_equal(copy.backend._device.body_margin, model.backend._device.body_margin)
-    aligned = mjx_backend._aligned(copy.backend, model.backend)
+    assert not np.array_equal(copy._backend._device.body_margin, model._backend._device.body_margin)
+    aligned = mjx_backend._aligned(copy._backend, model._backend)
     structure = jax.tree_util.tree_structure
-    assert structure(aligned) == structure(model.backend._device)
+    assert structure(aligned) == structure(model._backend._device)
     # the arrays MJX traces are the copy's own
-    assert np.array_equal(aligned.geom_size, copy.backend._device.geom_size)
-    assert not np.array_equal(aligned.geom_size, model.backend._device.geom_size)
+    assert np.array_equal(aligned.geom_size, copy._backend._device.geom_size)
+    assert not np.array_equal(aligned.geom_size, model._backend._device.geom_size)
 
 
 def test_the_static_arrays_taken_from_the_original_are_never_read_by_mjx():

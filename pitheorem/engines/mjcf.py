@@ -762,7 +762,7 @@ class MjcfBackend:
     --------
     >>> from pitheorem import engines
     >>> model = engines.load(engines.example_path("pendulum.xml"))
-    >>> model.backend.mjmodel.nq
+    >>> model._backend.mjmodel.nq
     1
     """
 
@@ -1415,7 +1415,7 @@ class RefusedMjcfBackend(MjcfBackend):
     >>> _ = speck.write_text('<mujoco><worldbody><body><freejoint/><geom size="1e-6" density="1000"/>'
     ...                      '</body></worldbody></mujoco>')
     >>> model = engines.load(speck)
-    >>> type(model.backend).__name__, model.parameter("body1_mass").value
+    >>> type(model._backend).__name__, model.parameter("body1_mass").value
     ('RefusedMjcfBackend', (4.18879020478639e-15,))
     """
 

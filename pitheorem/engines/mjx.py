@@ -370,7 +370,7 @@ def load_mjx(path, *, precision: str = "float32") -> EngineModel:
     """
     if precision not in PRECISIONS:
         raise InvalidRequestError(f"precision must be 'float32' or 'float64', got {precision!r}", culprit=precision)
-    reading = load_mjcf(path).backend
+    reading = load_mjcf(path)._backend
     if isinstance(reading, RefusedMjcfBackend):  # MuJoCo's compiler refused it: there is no model to put in MJX
         raise reading.refusal
     return EngineModel(MjxBackend(reading, precision), "mjx", str(path))

@@ -390,7 +390,7 @@ def check(model) -> tuple[Cause, ...]:
     if not isinstance(model, EngineModel):
         raise InvalidRequestError(f"check needs an EngineModel (from engines.load), got {type(model).__name__}")
     causes = crossed(model.engine, model.parameters)
-    refusal = getattr(model.backend, "refusal", None)  # a file the engine refused to compile (read as a table)
+    refusal = getattr(model._backend, "refusal", None)  # a file the engine refused to compile (read as a table)
     if refusal is not None:
         causes = (Cause("threshold", refusal.element or Path(refusal.path).name,
                         f"{model.engine} refuses the file: {refusal.reason}"), *causes)
