@@ -43,16 +43,16 @@ def pendulum():
 
 def test_an_mjcf_file_loads_scales_and_saves_in_mjx(pendulum, tmp_path):
     assert pendulum.engine == "mjx"
-    assert pendulum.backend.precision == "float32"
+    assert pendulum._backend.precision == "float32"
     assert pendulum.settings() == {"precision": "float32"}
-    stored = pendulum.backend.stored_numbers()
+    stored = pendulum._backend.stored_numbers()
     assert {a.dtype for a in stored.values()} == {np.dtype(np.float32)}
     assert stored["opt.timestep"][0] == np.float32(0.002)
     # the table is MuJoCo's reading of the file
     assert pendulum.parameters == engines.load(PENDULUM).parameters
     scaled = pendulum.scaled(time_free(pendulum), 4)
     assert scaled.engine == "mjx"
-    assert type(scaled.backend) is mjx_backend.MjxBackend
+    assert type(scaled._backend) is mjx_backend.MjxBackend
     out = scaled.save(tmp_path / "pendulum_4.xml")
     back = engines.load(out, engine="mjx")
     assert back.parameter("g").value == scaled.parameter("g").value == (9.81 * 4,)
@@ -69,16 +69,17 @@ def test_an_mjcf_file_loads_scales_and_saves_in_mjx(pendulum, tmp_path):
 def test_float64_on_request_and_jax_left_as_it_was():
     before = jax.config.jax_enable_x64
     model = engines.load(PENDULUM, engine="mjx", precision="float64")
-    assert {a.dtype for a in model.backend.stored_numbers().values()} == {np.dtype(np.float64)}
-    rows = model.backend.run(10, controls=lambda t: [0.1])
+    assert {a.dtype for a in model._backend.stored_numbers().values()} == {np.dtype(np.float64)}
+    rows = model._backend.run(10, controls=lambda t: [0.1])
     assert rows.shape == (11, 2)
     assert jax.config.jax_enable_x64 == before
     with pytest.raises(pt.InvalidRequestError, match="precision must be 'float32' or 'float64'"):
         engines.load(PENDULUM, engine="mjx", precision="float16")
 
 
-# the shipped pendulum and gymnasium's two-link arm; the rest of gymnasium's files run in benchmarks/mjx_corpus.py
-@pytest.mark.parametrize("path", [PENDULUM, ASSETS / "reacher.xml"],
+# the shipped pendulum, gymnasium's two-link arm and its hopper (margins on its geoms: the copy's static
+# body_margin differs); the rest of gymnasium's files run in benchmarks/mjx_corpus.py
+@pytest.mark.parametrize("path", [PENDULUM, ASSETS / "reacher.xml", ASSETS / "hopper.xml"],
                          ids=lambda p: Path(p).name)
 def test_s4_reproduces_the_original_bit_for_bit_in_float32(path):
     with warnings.catch_warnings():  # gymnasium's custom numerics (frame_skip) have no known dimension
@@ -119,7 +120,7 @@ def test_the_runs_of_a_verification_are_one_vmapped_call(pendulum, monkeypatch):
 
 
 def test_twins_move_every_number_by_one_float32_ulp(pendulum):
-    before, after = pendulum.backend.stored_numbers(), pendulum.backend.twin(7).stored_numbers()
+    before, after = pendulum._backend.stored_numbers(), pendulum._backend.twin(7).stored_numbers()
     moved = 0
     for field, value in before.items():
         ulp = np.abs(after[field].astype(float) - value.astype(float))
@@ -159,7 +160,7 @@ def test_what_mjx_does_not_support_is_refused_by_name(case, tmp_path):
 def test_audit_and_check_read_mjxs_own_float32_numbers(pendulum):
     sc = time_free(pendulum)
     audit = engines.audit(pendulum, sc, s=4)
-    stored = pendulum.backend.stored_numbers()
+    stored = pendulum._backend.stored_numbers()
     assert 0.9 * sum(a.size for a in stored.values()) < audit.compared <= sum(a.size for a in stored.values())
     assert [c.kind for c in audit.causes] == ["solver"]  # the file's tolerance: no scale-free stopping rule
     assert engines.check(pendulum) == engines.check(engines.load(PENDULUM))
@@ -167,7 +168,7 @@ def test_audit_and_check_read_mjxs_own_float32_numbers(pendulum):
 
 def test_a_closed_loop_controller_is_refused(pendulum):
     with pytest.raises(pt.InvalidRequestError, match="MJX runs open loop here"):
-        pendulum.backend.run(3, policy=lambda *state: [0.0])
+        pendulum._backend.run(3, policy=lambda *state: [0.0])
 
 
 def test_mjx_segment_regularizer_is_measured_as_catalogued():
@@ -251,7 +252,7 @@ def test_numbers_beyond_float32s_range_are_flushed_or_infinite_and_checked(tmp_p
                     "</body></worldbody></mujoco>")
     with pytest.warns(RuntimeWarning, match="overflow encountered in cast"):  # JAX, putting 1e39 in float32
         model = engines.load(path, engine="mjx")
-    damping = model.backend.stored_numbers()["dof_damping"]
+    damping = model._backend.stored_numbers()["dof_damping"]
     assert 0 < abs(damping[0]) < np.finfo(np.float32).tiny
     assert damping[1] == np.inf
     said = {c.element: c.detail for c in engines.check(model)}
@@ -395,8 +396,8 @@ def test_a_worm_fitted_for_mjx_is_clear_of_its_thresholds_and_runs(tmp_path):
     in_mjx = engines.load(saved, engine="mjx")
     assert engines.check(in_mjx) == ()
     assert engines.check(in_mjx, "mujoco") == ()
-    high = in_mjx.backend.control_ranges()[1]
-    rows = in_mjx.backend.run(200, controls=lambda t: high * np.sin(60e-3 * t - np.arange(2)))
+    high = in_mjx.inputs()[2]
+    rows = in_mjx.run(200, controls=lambda t: high * np.sin(60e-3 * t - np.arange(2)))
     assert np.isfinite(rows).all()
     assert np.abs(rows[-1] - rows[0]).max() > 0  # it moved
 
@@ -430,3 +431,32 @@ def test_the_pairs_thresholds_reads_are_mjxs_own(name):
     m.opt.disableflags |= _FILTERPARENT
     assert {tuple(sorted((int(a), int(b)))) for a, b, _ in geom_pairs(m)} == {
         (a, b) for a, b in _collision_pairs(m) if not m.geom_type[a] == m.geom_type[b] == plane}
+
+
+@pytest.mark.parametrize("name", ["hopper.xml", "ant.xml"])
+def test_a_scaled_copy_is_one_program_with_its_original(name):
+    # a copy whose static arrays differ from its original's runs in a call of its own, a program XLA compiles
+    # apart, which may round differently: the hopper's copy then parted from its original after one step
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", engines.UnscalableModelWarning)
+        model = engines.load(ASSETS / name, engine="mjx")
+    copy = model.scaled(time_free(model), 4)
+    assert not np.array_equal(copy._backend._device.body_margin, model._backend._device.body_margin)
+    aligned = mjx_backend._aligned(copy._backend, model._backend)
+    structure = jax.tree_util.tree_structure
+    assert structure(aligned) == structure(model._backend._device)
+    # the arrays MJX traces are the copy's own
+    assert np.array_equal(aligned.geom_size, copy._backend._device.geom_size)
+    assert not np.array_equal(aligned.geom_size, model._backend._device.geom_size)
+
+
+def test_the_static_arrays_taken_from_the_original_are_never_read_by_mjx():
+    # what _UNREAD_STATIC claims, read from the installed MJX's source: the field is named only where the
+    # model's type declares it (and, for a heightfield's radii, where the heightfield collision reads it)
+    import mujoco.mjx
+
+    sources = [p for p in Path(mujoco.mjx.__file__).parent.rglob("*.py") if not p.name.endswith("_test.py")]
+    for _owner, field, geom_type in mjx_backend._UNREAD_STATIC:
+        readers = sorted(p.name for p in sources if field in p.read_text(encoding="utf-8"))
+        allowed = {"types.py", "io.py"} | ({"collision_driver.py"} if geom_type else set())
+        assert set(readers) <= allowed, (field, readers)

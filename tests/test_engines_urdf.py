@@ -38,7 +38,7 @@ def test_dimensions_follow_the_joint_type():
     assert d["contactSlop"] == "L"
     assert d["solverResidualThreshold"] == "1"  # no pure dimension: no change of units scales it
     assert d["link_cart_linearDamping"] == "T^-1 (rate) | L^-1 (per_length)"
-    assert [str(x) for x in model.backend.control_dimensions()] == ["M L T^-2", "M L^2 T^-2"]
+    assert [str(x) for x in model._backend.control_dimensions()] == ["M L T^-2", "M L^2 T^-2"]
 
 
 def test_engine_defaults_are_pybullets_own():
@@ -342,7 +342,7 @@ def test_runs_in_one_client_equal_the_runs_each_in_its_own():
     model = engines.load(Path(pybullet_data.getDataPath()) / "r2d2.urdf", base_position=(0, 0, 1), ground=True,
                          damping=0.0, split_impulse=False)  # wheels on the ground: contacts from the first steps
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    b, copy = model.backend, model.scaled(sc, 10).backend
+    b, copy = model._backend, model.scaled(sc, 10)._backend
     u = engines.smooth_controls(model)
     jobs = [(b, u, False, None), (copy, None, False, None), (b.twin(0), u, False, None), (b, u, True, None)]
     one_by_one = [backend.run(120, controls, nudge) for backend, controls, nudge, _ in jobs]
@@ -387,7 +387,7 @@ def test_no_file_is_written_into_the_users_folder_and_meshes_still_load(tmp_path
     assert all(folder != robot for folder in written)  # ... none of them in the user's folder
     assert sorted(p.name for p in robot.rglob("*")) == before
     assert any(shape[4].endswith(b".obj") or shape[4].endswith(b".stl")
-               for shapes in model.backend._info["shapes"].values() for shape in shapes)  # meshes were loaded
+               for shapes in model._backend._info["shapes"].values() for shape in shapes)  # meshes were loaded
 
 
 def test_a_compound_collision_mesh_is_named_as_a_setting_cause_and_matters_only_in_contact():

@@ -242,7 +242,7 @@ def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str =
     """
     from .verify import exact_in_binary, smooth_controls, verify
 
-    controls = smooth_controls(model) if inputs == "smooth" and len(model.backend.control_dimensions()) else None
+    controls = smooth_controls(model) if inputs == "smooth" and len(model.inputs()[0]) else None
     rep = verify(model, scaling, s, duration=duration, controls=controls)
     return EngineVerifyAnswer(model.path, model.engine, Fraction(s), duration, inputs,
                               exact_in_binary(model, scaling, s), rep)

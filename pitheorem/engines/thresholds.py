@@ -397,7 +397,7 @@ def _detail(p, t: Threshold, worst: float, limit: float, near: float, beyond: bo
 
 def _compiled(model):
     """The model's compiled MjModel (MuJoCo's or MJX's reading of an MJCF file), or None."""
-    backend = model.backend
+    backend = model._backend
     return getattr(backend, "mjmodel", None) or getattr(getattr(backend, "mjcf", None), "mjmodel", None)
 
 
@@ -558,7 +558,7 @@ def check(model, engine: str | None = None) -> tuple[Cause, ...]:
         table = (*table, *mjx_parameters(model))
     # an MJX model says its precision; a MuJoCo model held against MJX's thresholds gets MJX's default
     causes = crossed(engine, table, precision=model.settings().get("precision", "float32"))
-    refusal = getattr(model.backend, "refusal", None)  # a file the engine refused to compile (read as a table)
+    refusal = getattr(model._backend, "refusal", None)  # a file the engine refused to compile (read as a table)
     if refusal is not None:
         causes = (Cause("threshold", refusal.element or Path(refusal.path).name,
                         f"{model.engine} refuses the file: {refusal.reason}"), *causes)
