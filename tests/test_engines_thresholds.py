@@ -21,7 +21,15 @@ import pytest
 import pitheorem as pt
 from pitheorem import engines
 from pitheorem.engines.packages import quiet_stdout
-from pitheorem.engines.thresholds import BOUNDS, KINDS, THRESHOLDS, Threshold, crossed, mjx_parameters, thresholds
+from pitheorem.engines.thresholds import (
+    BOUNDS,
+    KINDS,
+    THRESHOLDS,
+    Threshold,
+    crossed,
+    mjx_parameters,
+    thresholds,
+)
 from tests.conftest import REPO
 
 mujoco = pytest.importorskip("mujoco")
@@ -550,3 +558,22 @@ def test_float32s_range_is_held_only_against_float32():
     with pytest.raises(pt.InvalidRequestError) as caught:
         crossed("mjx", table, precision="float16")
     assert caught.value.culprit == "float16"
+
+
+def test_the_fluid_models_numbers_join_only_with_a_fluid_and_a_compiled_mass(tmp_path):
+    def speck(radius, fluid):
+        path = tmp_path / f"speck{radius}{fluid}.xml"
+        path.write_text(f'<mujoco><option {fluid}/><worldbody><body name="s"><freejoint/>'
+                        f'<geom size="{radius}" density="1000"/></body></worldbody></mujoco>')
+        return engines.load(path)
+
+    model = speck(0.01, 'viscosity="1e-3"')
+    found = {p.name: p for p in mjx_parameters(model)}
+    assert sorted(found) == ["body_s_fluid_box_moments", "body_s_mass_in_fluid"]
+    assert found["body_s_mass_in_fluid"].value == model.parameter("body_s_mass").value
+    moment = model.parameter("body_s_inertia").value[0]  # a sphere: I1 + I2 - I0 = I
+    assert found["body_s_fluid_box_moments"].value == pytest.approx((moment,) * 3, rel=1e-12)
+    assert mjx_parameters(speck(0.01, 'density="0"')) == ()  # no fluid
+    refused = speck(1e-6, 'density="1.2"')  # MuJoCo refuses it; its compiled masses are a probe's
+    assert type(refused._backend).__name__ == "RefusedMjcfBackend"
+    assert mjx_parameters(refused) == ()

@@ -396,13 +396,13 @@ def _detail(p, t: Threshold, worst: float, limit: float, near: float, beyond: bo
 
 
 def _compiled(model):
-    """The model's compiled MjModel (MuJoCo's or MJX's reading of an MJCF file), or None."""
+    """The model's compiled MjModel (MuJoCo's or MJX's reading of the file), or None."""
     backend = model._backend
     return getattr(backend, "mjmodel", None) or getattr(getattr(backend, "mjcf", None), "mjmodel", None)
 
 
 def _collision_pairs(m) -> list[tuple[int, int]]:
-    """The geom pairs a compiled MjModel collides, by MuJoCo's filter (MJX's too), read from its arrays.
+    """The geom pairs a compiled MjModel collides (MuJoCo's filter, MJX's too).
 
     The explicit ``<pair>`` elements, and every two geoms whose contype
     and conaffinity share a bit, except geoms of bodies welded together,
@@ -431,7 +431,7 @@ def _collision_pairs(m) -> list[tuple[int, int]]:
 
 
 def _label(mjmodel, kind: str, index: int, names: set[str], suffix: str) -> tuple[str, str]:
-    """A derived parameter's name and the start of its path, for a geom or a body of the compiled model."""
+    """A derived parameter's name and the start of its path, for a geom or a body."""
     label = getattr(mjmodel, kind)(index).name
     ident = f"{kind}_{label}_{suffix}" if label else f"{kind}{index}_{suffix}"
     if ident in names or not ident.isidentifier():
@@ -441,7 +441,7 @@ def _label(mjmodel, kind: str, index: int, names: set[str], suffix: str) -> tupl
 
 
 def mjx_parameters(model) -> tuple[Parameter, ...]:
-    """The numbers of a model that MJX's own constants are held against, read from the compiled model.
+    """The numbers MJX's own constants are held against, from the compiled model.
 
     MJX finds the closest point on a capsule's segment with a constant
     of its own added to the segment's squared length (the threshold
@@ -466,7 +466,8 @@ def mjx_parameters(model) -> tuple[Parameter, ...]:
     -------
     tuple of Parameter
         Source ``"derived"``, geoms then bodies; ``()`` for a model with no
-        such number or no compiled model (a URDF, a refused file).
+        such number or no compiled model (a URDF).  A file MuJoCo refuses
+        (read from a probe in another mass unit) has its half-lengths only.
 
     Examples
     --------
@@ -495,7 +496,9 @@ def mjx_parameters(model) -> tuple[Parameter, ...]:
         out.append(Parameter(ident, f"{path} {shape} half-length", (float(mjmodel.geom_size[g][1]),), _L,
                              "derived", "file", note="read from the compiled model"))
     opt = mjmodel.opt
-    if opt.density > 0 or opt.viscosity > 0 or any(opt.wind):  # MJX's inertia-box fluid model, every body
+    # MJX's inertia-box fluid model, on every body; a refused file's compiled masses are a probe's: left out
+    fluid = opt.density > 0 or opt.viscosity > 0 or any(opt.wind)
+    if fluid and getattr(model._backend, "refusal", None) is None:
         for b in range(1, mjmodel.nbody):
             mass, moments = float(mjmodel.body_mass[b]), [float(i) for i in mjmodel.body_inertia[b]]
             if mass <= 0:
