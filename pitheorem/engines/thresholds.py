@@ -518,7 +518,7 @@ def check(model, engine: str | None = None) -> tuple[Cause, ...]:
 
     ``pitheorem.engines.thresholds.crossed`` on the model's own parameters, against the thresholds
     of the model's engine (or of `engine`).  For MJX, the numbers its own
-    constants are held against join them (:func:`mjx_parameters`: the
+    constants are held against join them (``thresholds.mjx_parameters``: the
     half-lengths of capsules and cylinders, the fluid model's masses and
     moments), and every number is held to float32's range unless the
     model runs in float64.
