@@ -58,6 +58,24 @@ def test_control_dimensions_follow_the_actuator_kind():
     assert controls == ["M L T^-2", "1", "L T^-1", "T^-1", "1", "M L T^-2"]
 
 
+def test_an_adhesion_gain_is_a_force_and_its_input_a_fraction(tmp_path):
+    # MuJoCo's reference: the adhesion force is the input times the gain, "in units of force"; the input is
+    # a nonnegative fraction. The oracle is MuJoCo's own actuator force, which must be the gain times ctrl.
+    path = tmp_path / "gecko.xml"
+    path.write_text("""<mujoco><worldbody><geom type="plane" size="1 1 .1"/>
+      <body name="pad" pos="0 0 .05"><freejoint/><geom type="box" size=".05 .05 .05"/></body></worldbody>
+      <actuator><adhesion name="grip" body="pad" gain="3" ctrlrange="0 1"/></actuator></mujoco>""")
+    model = load(path)
+    d = dims(model)
+    assert d["actuator_grip_gainprm_gain"] == "M L T^-2"
+    assert d["actuator_grip_ctrlrange"] == "1"
+    compiled = mujoco.MjModel.from_xml_path(str(path))
+    data = mujoco.MjData(compiled)
+    data.ctrl[:] = 0.5
+    mujoco.mj_forward(compiled, data)
+    assert data.actuator_force[0] == model.parameter("actuator_grip_gainprm_gain").value[0] * 0.5
+
+
 def test_values_are_the_engines_own():
     model = load("tendon_actuators.xml")
     compiled = model._backend.mjmodel

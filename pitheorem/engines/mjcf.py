@@ -545,7 +545,9 @@ class _Walker:
         gain, bias = act.gaintype, act.biastype
         biasprm = np.asarray(act.biasprm, dtype=float)
         if gain == mj.mjtGain.mjGAIN_FIXED:
-            if bias == mj.mjtBias.mjBIAS_NONE or (biasprm[1] == 0 and biasprm[2] == 0):
+            if act.trntype == mj.mjtTrn.mjTRN_BODY and bias == mj.mjtBias.mjBIAS_NONE:
+                ctrl = _ONE  # adhesion: MuJoCo's gain is the force, the input a nonnegative fraction of it
+            elif bias == mj.mjtBias.mjBIAS_NONE or (biasprm[1] == 0 and biasprm[2] == 0):
                 ctrl = force  # a motor: the input is the force
             elif biasprm[1] != 0:
                 ctrl = length  # a position servo: the input is a target length
