@@ -58,6 +58,44 @@ def test_control_dimensions_follow_the_actuator_kind():
     assert controls == ["M L T^-2", "1", "L T^-1", "T^-1", "1", "M L T^-2"]
 
 
+def test_an_adhesion_gain_is_a_force_and_its_input_a_fraction(tmp_path):
+    # MuJoCo's reference: the adhesion force is the input times the gain, "in units of force"; the input is
+    # a nonnegative fraction. The oracle is MuJoCo's own actuator force, which must be the gain times ctrl.
+    path = tmp_path / "gecko.xml"
+    path.write_text("""<mujoco><worldbody><geom type="plane" size="1 1 .1"/>
+      <body name="pad" pos="0 0 .05"><freejoint/><geom type="box" size=".05 .05 .05"/></body></worldbody>
+      <actuator><adhesion name="grip" body="pad" gain="3" ctrlrange="0 1"/></actuator></mujoco>""")
+    model = load(path)
+    d = dims(model)
+    assert d["actuator_grip_gainprm_gain"] == "M L T^-2"
+    assert d["actuator_grip_ctrlrange"] == "1"
+    compiled = mujoco.MjModel.from_xml_path(str(path))
+    data = mujoco.MjData(compiled)
+    data.ctrl[:] = 0.5
+    mujoco.mj_forward(compiled, data)
+    assert data.actuator_force[0] == model.parameter("actuator_grip_gainprm_gain").value[0] * 0.5
+
+
+def test_a_servos_damping_ratio_is_dimensionless_and_its_compiled_kv_follows_the_units(tmp_path):
+    # <position dampratio>: MuJoCo keeps the ratio in biasprm[2] (positive) and its compiler replaces it by
+    # -kv = -2 ratio sqrt(kp m); read as a kv, a change of mass units multiplied the ratio itself
+    path = tmp_path / "servo.xml"
+    path.write_text("""<mujoco><worldbody><body><joint name="j" type="hinge" axis="0 1 0"/>
+      <geom type="capsule" fromto="0 0 0 0 0 -1" size=".1"/></body></worldbody>
+      <actuator><position name="p" joint="j" kp="30" dampratio="0.7"/>
+      <position name="q" joint="j" kp="30" kv="2"/></actuator></mujoco>""")
+    model = load(path)
+    d = dims(model)
+    assert d["actuator_p_biasprm_dampratio"] == "1"
+    assert d["actuator_q_biasprm_velocity"] == "M L^2 T^-1"  # an explicit kv is a torque per angular speed
+    heavier = model.scaled(pt.Scaling.from_unit_change(model.system(), {"M": 1}), 4)
+    assert heavier.parameter("actuator_p_biasprm_dampratio").value == (0.7,)
+    original = mujoco.MjModel.from_xml_path(str(path)).actuator_biasprm[:, 2]
+    assert original[0] < 0  # compiled into -kv
+    copy = heavier.save(tmp_path / "heavier.xml")
+    assert mujoco.MjModel.from_xml_path(str(copy)).actuator_biasprm[:, 2].tolist() == (4 * original).tolist()
+
+
 def test_values_are_the_engines_own():
     model = load("tendon_actuators.xml")
     compiled = model._backend.mjmodel

@@ -254,7 +254,10 @@ def test_the_cgs_insect_in_millimetres_takes_the_factors_flygym_derived_by_hand(
         assert factor(name) == pytest.approx(FLYGYM[kind], rel=1e-15), kind
     # and what the hand-derived list leaves out: each by its own dimension
     for name, expected in (("joint_hip_l_stiffness", 100), ("joint_hip_l_damping", 100),
-                           ("actuator_hip_l_gainprm_gain", 100), ("actuator_stick_l_ctrlrange", 10),
+                           ("actuator_hip_l_gainprm_gain", 100),
+                           # adhesion: the gain is the force (MuJoCo's reference), the input a fraction of it
+                           ("actuator_stick_l_gainprm_gain", 10),
                            ("geom_thorax_margin", 10), ("geom_thorax_friction_torsional_rolling", 10),
                            ("geom_thorax_solref_timeconst", 1), ("timestep", 1)):
         assert factor(name) == pytest.approx(expected, rel=1e-15), name
+    assert mm.parameter("actuator_stick_l_ctrlrange").value == fly.parameter("actuator_stick_l_ctrlrange").value

@@ -425,3 +425,35 @@ def test_a_file_pybullet_reads_despite_blank_lines_a_nul_or_a_material_inside_a_
                                 '</geometry></collision></link></robot>'))
     with pytest.raises(EngineModelError, match="unknown geometry"):
         engines.load(bad)
+
+
+def test_reading_changes_nothing_and_a_copy_is_written_by_address(tmp_path, monkeypatch):
+    """The parsed file stays as written (no mesh scale added); a scaled copy is not walked again."""
+    import xml.etree.ElementTree as ET
+
+    from pitheorem.engines import urdf
+
+    path = Path(__file__).resolve().parent / "robots" / "urdf" / "arm.urdf"
+    model = engines.load(path, fixed_base=True, damping=0.0, split_impulse=False)
+    tree = model._backend.tree
+    assert ET.tostring(tree.getroot()) == ET.tostring(ET.parse(path).getroot())  # read, not changed
+    scales = [p for p in model.parameters if p.name.endswith("_scale")]
+    assert scales
+    assert all(p.value == (1.0, 1.0, 1.0) for p in scales)  # PyBullet's default, read as such
+    walks = []
+    real = urdf._attributes
+    monkeypatch.setattr(urdf, "_attributes", lambda *args: walks.append(args) or real(*args))
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    copy = model.scaled(sc, 4)
+    assert walks == []  # by address: the copy's numbers are the original's, moved to the copy's elements
+    assert ET.tostring(tree.getroot()) == ET.tostring(ET.parse(path).getroot())  # the original untouched
+    pure = [p for p in model.parameters if p.dimension is not None]  # (a mixed number has parts instead)
+    assert len(pure) > 40
+    for p in pure:  # the oracle: each number times s to its dimension's exponent (a power of two: exact)
+        factor = 4.0 ** float(sc.exponent_of(p.dimension))
+        assert copy.parameter(p.name).value == tuple(v * factor for v in p.value), p.name
+    # the saved copy states the scale it was given, and reads back as the copy
+    reread = engines.load(copy.save(tmp_path / "arm_4.urdf"))  # its scene from the settings saved beside it
+    assert [(p.name, p.value) for p in reread.parameters] == [(p.name, p.value) for p in copy.parameters]
+    assert {p.name: p.value for p in reread.parameters if p.name.endswith("_scale")} == {
+        p.name: (4.0, 4.0, 4.0) for p in scales}

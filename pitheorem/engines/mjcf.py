@@ -545,7 +545,9 @@ class _Walker:
         gain, bias = act.gaintype, act.biastype
         biasprm = np.asarray(act.biasprm, dtype=float)
         if gain == mj.mjtGain.mjGAIN_FIXED:
-            if bias == mj.mjtBias.mjBIAS_NONE or (biasprm[1] == 0 and biasprm[2] == 0):
+            if act.trntype == mj.mjtTrn.mjTRN_BODY and bias == mj.mjtBias.mjBIAS_NONE:
+                ctrl = _ONE  # adhesion: MuJoCo's gain is the force, the input a nonnegative fraction of it
+            elif bias == mj.mjtBias.mjBIAS_NONE or (biasprm[1] == 0 and biasprm[2] == 0):
                 ctrl = force  # a motor: the input is the force
             elif biasprm[1] != 0:
                 ctrl = length  # a position servo: the input is a target length
@@ -603,7 +605,11 @@ class _Walker:
         if act.biastype == mj.mjtBias.mjBIAS_AFFINE:
             self.add("actuator", act, ident, path, "biasprm", force, slice(0, 1), "_offset")
             self.add("actuator", act, ident, path, "biasprm", force / length, slice(1, 2), "_length")
-            self.add("actuator", act, ident, path, "biasprm", force * _T / length, slice(2, 3), "_velocity")
+            if _damping_ratio(mj, act):
+                self.add("actuator", act, ident, path, "biasprm", _ONE, slice(2, 3), "_dampratio",
+                         note="a damping ratio: the compiler turns it into kv from kp and the joint's inertia")
+            else:
+                self.add("actuator", act, ident, path, "biasprm", force * _T / length, slice(2, 3), "_velocity")
         self.refuse(act, path, ("damping", "armature", "delay", "ffrange", "velrange"))
 
     def lengthrange(self, act, index, ident, path, length) -> None:
@@ -718,6 +724,19 @@ class _Walker:
 
 _DEFAULT_FLOATS: dict = {}  # (kind, attr) -> the default as a tuple of floats, and whether it has a NaN
 _DEFAULTS_CACHE: dict = {}
+
+
+def _damping_ratio(mj, act) -> bool:
+    """Whether a position servo's ``biasprm[2]`` is a damping ratio (``dampratio``), not ``-kv``.
+
+    MuJoCo's compiler (``set0`` in ``engine_setconst.c``) reads a positive
+    ``biasprm[2]`` of a position-like actuator (fixed gain, affine bias,
+    ``biasprm[1] == -gainprm[0]``) as a damping ratio, and replaces it by
+    ``-2 dampratio sqrt(kp m)``, ``m`` the inertia the actuator moves: a
+    dimensionless number, which a change of units leaves alone.
+    """
+    gain, bias = np.asarray(act.gainprm, dtype=float), np.asarray(act.biasprm, dtype=float)
+    return bool(act.gaintype == mj.mjtGain.mjGAIN_FIXED and bias[2] > 0 and bias[1] == -gain[0])
 
 
 def _floats(value) -> tuple:
