@@ -1,7 +1,7 @@
 """pitheorem.engines.mjx: MJCF files loaded, scaled, saved and verified in MJX (float32 by default).
 
-Runs only where MJX is installed (``pip install "pitheorem[mjx]"``).  The models are kept tiny (the
-pendulum and gymnasium's two-link reacher, 0.2 s each): on the CPU most of the time is JAX compiling the
+Runs only where MJX is installed (``pip install "pitheorem[mjx]"``).  The runs are kept short (the
+pendulum and gymnasium's hopper, 0.2 s each): on the CPU most of the time is JAX compiling the
 batch runner, once per model's sizes (``benchmarks/mjx_corpus.py`` runs the rest of gymnasium's files).
 """
 
@@ -77,9 +77,9 @@ def test_float64_on_request_and_jax_left_as_it_was():
         engines.load(PENDULUM, engine="mjx", precision="float16")
 
 
-# the shipped pendulum, gymnasium's two-link arm and its hopper (margins on its geoms: the copy's static
-# body_margin differs); the rest of gymnasium's files run in benchmarks/mjx_corpus.py
-@pytest.mark.parametrize("path", [PENDULUM, ASSETS / "reacher.xml", ASSETS / "hopper.xml"],
+# the shipped pendulum and gymnasium's hopper (contacts, and margins on its geoms: the copy's static body_margin
+# differs); the rest of gymnasium's files run in benchmarks/mjx_corpus.py
+@pytest.mark.parametrize("path", [PENDULUM, ASSETS / "hopper.xml"],
                          ids=lambda p: Path(p).name)
 def test_s4_reproduces_the_original_bit_for_bit_in_float32(path):
     with warnings.catch_warnings():  # gymnasium's custom numerics (frame_skip) have no known dimension
@@ -141,6 +141,15 @@ UNSUPPORTED = {
     "box_cylinder": ('<mujoco><worldbody><geom type="cylinder" size="0.1 0.1"/><body pos="0 0 1"><freejoint/>'
                      '<geom type="box" size="0.1 0.1 0.1"/></body></worldbody></mujoco>', "geom pair",
                      "collisions not implemented"),
+    # MJX's own wording after "MJX does not support": the culprit is the element it names, or "model"
+    "implicit": ('<mujoco><option integrator="implicit"/><worldbody><body><joint type="hinge"/>'
+                 '<geom size="0.1" mass="1"/></body></worldbody></mujoco>', "option", "mjINT_IMPLICIT"),
+    "contact_sensor": ('<mujoco><worldbody><body name="b"><joint type="hinge"/><geom size="0.1" mass="1"/>'
+                       '</body></worldbody><sensor><contact body1="b"/></sensor></mujoco>', "sensor",
+                       "Contact sensor with body matching"),
+    "fluid_implicitfast": ('<mujoco><option integrator="implicitfast" density="1.2"/><worldbody><body>'
+                           '<joint type="hinge"/><geom size="0.1" mass="1"/></body></worldbody></mujoco>', "model",
+                           "fluid drag"),
 }
 
 
@@ -460,3 +469,66 @@ def test_the_static_arrays_taken_from_the_original_are_never_read_by_mjx():
         readers = sorted(p.name for p in sources if field in p.read_text(encoding="utf-8"))
         allowed = {"types.py", "io.py"} | ({"collision_driver.py"} if geom_type else set())
         assert set(readers) <= allowed, (field, readers)
+
+
+def test_a_file_mujoco_refuses_is_refused_with_mujocos_reason(tmp_path):
+    speck = tmp_path / "speck.xml"  # a mass below MuJoCo's threshold: its compiler refuses the file
+    speck.write_text('<mujoco><worldbody><body><freejoint/><geom size="1e-6" density="1000"/>'
+                     "</body></worldbody></mujoco>")
+    with pytest.raises(engines.EngineModelError, match="mass and inertia of moving bodies") as caught:
+        engines.load(speck, engine="mjx")
+    assert str(caught.value) == str(engines.load(speck)._backend.refusal)  # as MuJoCo's loader has it
+
+
+def test_a_scaled_copy_shares_the_batch_unless_a_heightfield_reads_its_bounds(pendulum, tmp_path):
+    # the pendulum's copy runs with the original's geom_rbound_hfield (never read without a heightfield)
+    copy = pendulum.scaled(time_free(pendulum), 4)._backend
+    mine, theirs = copy.device_model()._impl.geom_rbound_hfield, pendulum._backend.device_model()._impl.geom_rbound_hfield
+    assert not np.array_equal(mine, theirs)
+    aligned = mjx_backend._aligned(copy, pendulum._backend)
+    assert np.array_equal(aligned._impl.geom_rbound_hfield, theirs)
+    assert np.array_equal(aligned.opt.gravity, copy.device_model().opt.gravity)  # the rest is the copy's own
+    # with a heightfield the bounds size its collision patch: the copy keeps its own
+    terrain = tmp_path / "terrain.xml"
+    terrain.write_text('<mujoco><asset><hfield name="h" nrow="3" ncol="3" size="1 1 0.1 0.1" '
+                       'elevation="0 0 0 0 1 0 0 0 0"/></asset><worldbody><geom type="hfield" hfield="h"/>'
+                       '<body pos="0 0 1"><freejoint/><geom type="sphere" size="0.1"/></body></worldbody></mujoco>')
+    ground = engines.load(terrain, engine="mjx")
+    scaled_ground = ground.scaled(time_free(ground), 4)._backend
+    assert mjx_backend._aligned(scaled_ground, ground._backend) is scaled_ground.device_model()
+    # and a model of other sizes is not aligned with the pendulum
+    assert mjx_backend._aligned(ground._backend, pendulum._backend) is ground._backend.device_model()
+
+
+def test_a_batch_starts_from_given_states_nudged_by_one_float32_ulp(pendulum):
+    b = pendulum._backend
+    n = round(DURATION / b.timestep())  # the batch size and length of the verifications above: compiled once
+    given = (np.array([0.5]), np.array([-0.25]))
+    inputs = np.full((n, 1), 0.1)
+    runs = b.run_many(n, [(b, None, False, None), (b, None, True, given), (b, None, False, given),
+                          (b, inputs, False, None), (b, lambda t: [0.1], False, None)])
+    swinging = runs[2]
+    k = n // 2
+    state = (swinging[k, :1], swinging[k, 1:])
+    assert state[0][0] != 0
+    assert state[1][0] != 0  # swinging: a state no rest pose has
+    from_state = b.run_many(n, [(b, None, False, state)] * 5)
+    assert all(np.array_equal(run, from_state[0]) for run in from_state)
+    # a run from the state at step k goes on as the run it was taken from
+    np.testing.assert_allclose(from_state[0][: n - k + 1], swinging[k:], rtol=1e-5, atol=1e-6)
+    # a nudge moves each start coordinate one float32 ulp away from zero, and the run parts from the unnudged
+    assert runs[2][0].tolist() == [0.5, -0.25]
+    assert runs[1][0].tolist() == [float(np.nextafter(np.float32(0.5), np.float32(1))),
+                                   float(np.nextafter(np.float32(-0.25), np.float32(-1)))]
+    assert not np.array_equal(runs[1], runs[2])
+    # inputs as rows and as a function of time give the same run, and the inputs act
+    assert np.array_equal(runs[3], runs[4])
+    assert not np.array_equal(runs[3], runs[0])
+
+
+def test_a_variant_changes_the_solver_tolerance_only(pendulum):
+    variant = pendulum._backend.variant(tolerance=1e-3)
+    assert variant.solver_settings() == {"tolerance": 1e-3}
+    assert pendulum._backend.solver_settings() == {"tolerance": pendulum.parameter("tolerance").value[0]}
+    assert float(variant.device_model().opt.tolerance) == pytest.approx(1e-3)
+    assert variant.precision == pendulum._backend.precision

@@ -102,3 +102,47 @@ def test_quiet_stdout_silences_pythons_streams_too_where_they_are_not_the_descri
             print("nor this", file=sys.stderr)
         print("shown")
     assert seen.getvalue() == "shown\n"
+
+
+def test_quiet_stdout_closes_the_copy_it_made_when_the_second_cannot_be_made(monkeypatch):
+    import os
+
+    from pitheorem.engines.packages import quiet_stdout
+
+    made = []
+    real_dup = os.dup
+
+    def dup_once(fd):
+        if made:
+            raise OSError("out of descriptors")
+        made.append(real_dup(fd))
+        return made[-1]
+
+    with monkeypatch.context() as patch:
+        patch.setattr(os, "dup", dup_once)
+        with quiet_stdout():
+            ran = True
+    assert ran
+    assert len(made) == 1
+    with pytest.raises(OSError, match=r"\[Errno 9\]"):  # EBADF: the copy of stdout was closed, not leaked
+        os.fstat(made[0])
+
+
+def test_an_engine_not_imported_yet_is_imported_quietly_package_by_package(monkeypatch, capfd):
+    """engine_module imports each of the engine's packages in turn and returns the last (mjx: mujoco.mjx)."""
+    from pitheorem.engines.registry import registered
+
+    if not registered("mjx").installed():
+        pytest.skip("mujoco-mjx is not installed (pip install 'pitheorem[mjx]')")
+    import mujoco
+
+    # as if never imported (where it was, the module and mujoco's attribute are put back after the test)
+    monkeypatch.delitem(sys.modules, "mujoco.mjx", raising=False)
+    monkeypatch.delattr(mujoco, "mjx", raising=False)
+    module = engine_module("mjx")
+    assert module.__name__ == "mujoco.mjx"
+    assert sys.modules["mujoco.mjx"] is module
+    assert callable(module.put_model)
+    out, err = capfd.readouterr()
+    assert (out, err) == ("", "")  # mujoco.mjx's note on a missing warp is not shown
+    assert engine_module("mjx") is module  # imported now: the same module, nothing imported again

@@ -457,3 +457,127 @@ def test_reading_changes_nothing_and_a_copy_is_written_by_address(tmp_path, monk
     assert [(p.name, p.value) for p in reread.parameters] == [(p.name, p.value) for p in copy.parameters]
     assert {p.name: p.value for p in reread.parameters if p.name.endswith("_scale")} == {
         p.name: (4.0, 4.0, 4.0) for p in scales}
+
+
+# -- the reader: every dimensional number of a URDF, by element and attribute -------------------------
+
+_EVERY_NUMBER = """<robot name="r">
+  <link name="base">
+    <inertial><origin xyz="0 0 0.1"/><mass value="2"/>
+      <inertia ixx="1" ixy="0.5" ixz="0.25" iyy="2" iyz="0.125" izz="3"/></inertial>
+    <collision><origin xyz="0.5 0 0"/><geometry><box size="1 2 3"/></geometry></collision>
+    <collision><geometry><cylinder radius="0.1" length="0.4"/></geometry></collision>
+    <collision><geometry><mesh filename="part.stl"/></geometry></collision>
+    <collision><geometry><plane normal="0 0 1"/></geometry></collision>
+    <collision><origin xyz="0 0 9"/></collision>
+    <collision><origin xyz="0 0 8"/><geometry><sphere radius="0.3"/></geometry></collision>
+    <visual><geometry><sphere radius="0.2"/></geometry></visual>
+    <visual><geometry><material name="red"/></geometry></visual>
+    <visual><geometry><mesh filename="part.stl" scale="2 2 2"/></geometry></visual>
+    <contact><lateral_friction value="0.9"/><rolling_friction value="0.01"/><spinning_friction value="0.02"/>
+      <stiffness value="3000"/><damping value="40"/><restitution value="0.5"/></contact>
+  </link>
+  <link><collision><geometry><capsule radius="0.05" length="0.3"/></geometry></collision></link>
+  <link name="tip"/>
+  <joint name="weld" type="fixed"><origin xyz="1 0 0"/></joint>
+  <joint name="slide" type="prismatic"><origin xyz="0 1 0"/>
+    <limit lower="-0.5" upper="0.5" effort="10" velocity="2"/><dynamics damping="0.3" friction="0.4"/></joint>
+  <joint name="swing" type="revolute"><limit lower="-1" upper="1" effort="5" velocity="3"/></joint>
+  <joint name="spin" type="continuous"><dynamics damping="0.7"/></joint>
+</robot>
+"""
+
+_INERTIA_NOTE = "PyBullet recomputes the inertia from the collision shapes unless URDF_USE_INERTIA_FROM_FILE is given"
+
+
+def test_the_reader_finds_every_number_with_its_name_place_dimension_and_note(tmp_path):
+    import xml.etree.ElementTree as ET
+
+    from pitheorem.engines.urdf import _attributes
+
+    (tmp_path / "part.stl").write_text("solid part\nendsolid part\n")
+    tree = ET.ElementTree(ET.fromstring(_EVERY_NUMBER))
+    read = [(a.name, a.path, a.attr, str(a.dimension), a.read(), a.note)
+            for a in _attributes(tree, "r.urdf", tmp_path)]
+    inertia = [(f"link_base_{i}", f"link 'base' inertia {i}", i, "M L^2", (v,), _INERTIA_NOTE)
+               for i, v in (("ixx", 1.0), ("ixy", 0.5), ("ixz", 0.25), ("iyy", 2.0), ("iyz", 0.125), ("izz", 3.0))]
+    mesh_note = "a factor times the mesh file's units, a length"
+    assert read == [
+        ("link_base_com", "link 'base' inertial origin xyz", "xyz", "L", (0.0, 0.0, 0.1), ""),
+        ("link_base_mass", "link 'base' inertial mass", "value", "M", (2.0,), ""),
+        *inertia,
+        ("link_base_collision0_xyz", "link 'base' collision #0 origin xyz", "xyz", "L", (0.5, 0.0, 0.0), ""),
+        ("link_base_collision0_size", "link 'base' collision #0 box size", "size", "L", (1.0, 2.0, 3.0), ""),
+        ("link_base_collision1_radius", "link 'base' collision #1 cylinder radius", "radius", "L", (0.1,), ""),
+        ("link_base_collision1_length", "link 'base' collision #1 cylinder length", "length", "L", (0.4,), ""),
+        # a mesh without a scale is read at scale 1, and the file gets the attribute a scaled copy changes
+        ("link_base_collision2_scale", "link 'base' collision #2 mesh scale", "scale", "L", (1.0, 1.0, 1.0),
+         mesh_note),
+        # a shape without geometry keeps its origin, and the shapes after it are read
+        ("link_base_collision4_xyz", "link 'base' collision #4 origin xyz", "xyz", "L", (0.0, 0.0, 9.0), ""),
+        ("link_base_collision5_xyz", "link 'base' collision #5 origin xyz", "xyz", "L", (0.0, 0.0, 8.0), ""),
+        ("link_base_collision5_radius", "link 'base' collision #5 sphere radius", "radius", "L", (0.3,), ""),
+        ("link_base_visual0_radius", "link 'base' visual #0 sphere radius", "radius", "L", (0.2,), ""),
+        ("link_base_visual2_scale", "link 'base' visual #2 mesh scale", "scale", "L", (2.0, 2.0, 2.0), mesh_note),
+        ("link_base_rolling_friction", "link 'base' contact rolling_friction", "value", "L", (0.01,), ""),
+        ("link_base_spinning_friction", "link 'base' contact spinning_friction", "value", "L", (0.02,), ""),
+        ("link_base_stiffness", "link 'base' contact stiffness", "value", "M T^-2", (3000.0,), ""),
+        ("link_base_damping", "link 'base' contact damping", "value", "M T^-1", (40.0,), ""),
+        # a link without a name is read as the name ""
+        ("link__collision0_radius", "link '' collision #0 capsule radius", "radius", "L", (0.05,), ""),
+        ("link__collision0_length", "link '' collision #0 capsule length", "length", "L", (0.3,), ""),
+        ("joint_weld_xyz", "joint 'weld' origin xyz", "xyz", "L", (1.0, 0.0, 0.0), ""),
+        ("joint_slide_xyz", "joint 'slide' origin xyz", "xyz", "L", (0.0, 1.0, 0.0), ""),
+        ("joint_slide_lower", "joint 'slide' limit lower", "lower", "L", (-0.5,), ""),
+        ("joint_slide_upper", "joint 'slide' limit upper", "upper", "L", (0.5,), ""),
+        ("joint_slide_effort", "joint 'slide' limit effort", "effort", "M L T^-2", (10.0,), ""),
+        ("joint_slide_velocity", "joint 'slide' limit velocity", "velocity", "L T^-1", (2.0,), ""),
+        ("joint_slide_damping", "joint 'slide' dynamics damping", "damping", "M T^-1", (0.3,), ""),
+        ("joint_slide_friction", "joint 'slide' dynamics friction", "friction", "M L T^-2", (0.4,), ""),
+        ("joint_swing_lower", "joint 'swing' limit lower", "lower", "1", (-1.0,), ""),
+        ("joint_swing_upper", "joint 'swing' limit upper", "upper", "1", (1.0,), ""),
+        ("joint_swing_effort", "joint 'swing' limit effort", "effort", "M L^2 T^-2", (5.0,), ""),
+        ("joint_swing_velocity", "joint 'swing' limit velocity", "velocity", "T^-1", (3.0,), ""),
+        ("joint_spin_damping", "joint 'spin' dynamics damping", "damping", "M L^2 T^-1", (0.7,), ""),
+    ]
+    # the absent mesh scale is read as PyBullet's default, and nothing is written into the parsed file
+    assert tree.getroot().find("link/collision[3]/geometry/mesh").get("scale") is None
+
+
+@pytest.mark.parametrize(("text", "element", "reason"), [
+    ("<mujoco/>", "<mujoco>", "a URDF file's root element must be <robot>"),
+    ('<robot><link name="a"><visual><geometry><mesh filename="gone.stl"/></geometry></visual></link></robot>',
+     "link 'a' visual #0 mesh 'gone.stl'", "mesh file not found (relative to the URDF's folder)"),
+    ('<robot><link name="a"><collision><geometry><mesh/></geometry></collision></link></robot>',
+     "link 'a' collision #0 mesh ''", "mesh file not found (relative to the URDF's folder)"),
+    ('<robot><link name="a"><collision><geometry><torus/></geometry></collision></link></robot>',
+     "link 'a' collision #0 <torus>", "unknown geometry; use box, cylinder, capsule, sphere, mesh or plane"),
+    ('<robot><link name="a"><contact><stickiness value="1"/></contact></link></robot>',
+     "link 'a' contact <stickiness>", "unknown contact parameter"),
+    ('<robot><joint name="j" type="floating"/></robot>', "joint 'j' (type 'floating')",
+     "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic or fixed"),
+    ('<robot><joint name="j"/></robot>', "joint 'j' (type '')",
+     "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic or fixed"),
+])
+def test_the_reader_refuses_what_it_cannot_read_in_full_words(tmp_path, text, element, reason):
+    import xml.etree.ElementTree as ET
+
+    from pitheorem.engines.urdf import _attributes
+
+    with pytest.raises(EngineModelError) as caught:
+        _attributes(ET.ElementTree(ET.fromstring(text)), "bad.urdf", tmp_path)
+    assert (caught.value.path, caught.value.element, caught.value.reason) == ("bad.urdf", element, reason)
+
+
+def test_the_reader_reads_a_nameless_joint_and_every_joint_type(tmp_path):
+    import xml.etree.ElementTree as ET
+
+    from pitheorem.engines.model import JointKind
+    from pitheorem.engines.urdf import _attributes, _joint_kind
+
+    assert [_joint_kind(t) for t in ("prismatic", "revolute", "continuous", "fixed", "planar", "Revolute", "")] == [
+        JointKind.SLIDE, JointKind.HINGE, JointKind.HINGE, None, None, None, None]
+    text = '<robot><joint type="revolute"><limit effort="2"/></joint></robot>'
+    (read,) = _attributes(ET.ElementTree(ET.fromstring(text)), "j.urdf", tmp_path)
+    assert (read.name, read.path, str(read.dimension), read.read()) == (
+        "joint__effort", "joint '' limit effort", "M L^2 T^-2", (2.0,))

@@ -208,3 +208,48 @@ def test_a_batch_run_inherits_nothing_from_the_run_before_it_on_its_thread(tmp_p
     assert all(np.array_equal(x, y) for x, y in zip(one_by_one, together, strict=True))
     assert not np.array_equal(one_by_one[0], one_by_one[2])  # the constraint matters: not a vacuous equality
     assert not np.array_equal(one_by_one[1], one_by_one[2])  # and so does the input
+
+
+def test_what_verify_cannot_compare_is_refused_by_name():
+    model = engines.load(DATA / "hanging.xml")
+    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    with pytest.raises(pt.InvalidRequestError, match=r"verify needs an EngineModel .*, got str"):
+        engines.verify(str(DATA / "hanging.xml"), sc, 2, duration=0.01)
+    for scaled in ("copy.xml", model._backend):
+        with pytest.raises(pt.InvalidRequestError, match="scaled must be an EngineModel of the same engine"):
+            engines.verify(model, sc, 2, duration=0.01, scaled=scaled)
+    # the same engine and time step, other coordinates (a ball and a box against one hinge)
+    other = engines.load(DATA / "contact.xml")
+    assert other._backend.timestep() == model._backend.timestep()
+    with pytest.raises(pt.InvalidRequestError, match="other coordinates than the original"):
+        engines.verify(model, sc, 2, duration=0.01, scaled=other)
+    assert engines.verify(model, sc, 2, duration=0.01).similar  # its own scaled copy: no refusal
+    # ensemble and seed: whole numbers, at least 1 and at least 0
+    for what, bad, least in (("ensemble", 0, 1), ("ensemble", 2.0, 1), ("ensemble", True, 1), ("seed", -1, 0),
+                             ("seed", "1", 0)):
+        with pytest.raises(pt.InvalidRequestError) as caught:
+            engines.verify(model, sc, 2, duration=0.01, **{what: bad})
+        assert str(caught.value) == f"{what} must be a whole number of at least {least}, got {bad!r}"
+    assert engines.verify(model, sc, 2, duration=0.01, ensemble=np.int64(1), seed=0).similar
+
+
+def test_a_model_or_copy_mujoco_refuses_is_verified_into_mujocos_refusal(tmp_path):
+    """MuJoCo refuses masses below its threshold: verify raises that refusal, for the original or the copy."""
+    def body(size):
+        path = tmp_path / f"ball_{size}.xml"
+        path.write_text(f'<mujoco><worldbody><body><freejoint/><geom size="{size}" density="1000"/>'
+                        '</body></worldbody></mujoco>')
+        return engines.load(path)
+
+    speck, ball = body("1e-6"), body("0.01")
+    assert type(speck._backend).__name__ == "RefusedMjcfBackend"
+    sc = pt.Scaling.from_unit_change(speck.system(), {"M": 1})
+    s = 2**60  # a heavier mass unit: the copy's mass clears MuJoCo's threshold, the original's does not
+    assert speck.scaled(sc, s)._backend.run(3).shape == (4, 13)
+    with pytest.raises(engines.EngineModelError, match="mass and inertia of moving bodies") as caught:
+        engines.verify(speck, sc, s, duration=0.01)
+    assert "MuJoCo does not run it" in str(caught.value)
+    # a copy of another backend type (given by hand): the original runs, then the copy raises its refusal
+    with pytest.raises(engines.EngineModelError, match="mass and inertia of moving bodies") as caught:
+        engines.verify(ball, sc, 1, duration=0.01, scaled=speck)
+    assert caught.value.path == speck._backend.path

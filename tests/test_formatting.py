@@ -748,3 +748,17 @@ def test_table_of_symmetries_beyond_units_says_they_have_no_unit_change():
     assert all(r[2:] == ["n/a"] for r in base)
     assert "n/a: that scaling is a symmetry of the equations, not a change of units" in res.table()
     assert res._repr_html_().count(">n/a</td>") == len(proj.system.base_dimensions)
+
+
+def test_html_without_symmetries_beyond_units_or_groups_has_no_table():
+    smd = pt.models.spring_mass_damper()
+    sym = pt.scaling_symmetries(smd.equations, smd.system)
+    assert sym.beyond_units == ()
+    html = _plain(format(sym, "html"))
+    assert "<table" not in html
+    assert html.endswith("<p>no symmetries beyond changes of units</p>")
+    lone = pt.System({"l": "L"})
+    answer = GroupsAnswer("a rod's length", lone, lone.pi_groups(), ())
+    html = _plain(format(answer, "html"))
+    assert "<table" not in html
+    assert html.endswith("<p>repeating variables: $l$</p>")
