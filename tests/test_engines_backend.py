@@ -36,7 +36,7 @@ def test_the_required_methods_are_the_runner_and_the_model_file():
 
 
 def test_mujocos_backend_has_every_part_but_the_scene_and_the_refusals():
-    backend = engines.load(engines.example_path("pendulum.xml")).backend
+    backend = engines.load(engines.example_path("pendulum.xml"))._backend
     for protocol in (EngineRunner, EngineBackend, CounterRuns, SolverDiagnosis, NamesElements):
         assert isinstance(backend, protocol), protocol
     for protocol in (HasSceneSettings, RefusesScalings, IgnoredSettings):
@@ -48,7 +48,7 @@ def test_pybullets_backend_has_the_scene_the_refusals_and_no_solver_diagnosis(tm
     urdf = tmp_path / "box.urdf"
     urdf.write_text('<robot name="box"><link name="base"><inertial><mass value="1"/>'
                     '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>')
-    backend = engines.load(urdf).backend
+    backend = engines.load(urdf)._backend
     for protocol in (EngineBackend, HasSceneSettings, RefusesScalings, IgnoredSettings, CounterRuns, NamesElements):
         assert isinstance(backend, protocol), protocol
     assert not isinstance(backend, SolverDiagnosis)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 from decimal import Decimal, localcontext
 
+import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -87,6 +88,32 @@ def test_an_engine_model_cannot_be_changed_by_assignment():
     assert (model.engine, model.path.endswith("pendulum.xml"), len(model.parameters)) == ("mujoco", True, 49)
     assert copy.copy(model) is model
     assert copy.deepcopy(model) is model
+
+
+def test_a_model_runs_in_its_engine_without_handing_out_the_engine_object():
+    mujoco = pytest.importorskip("mujoco")
+    path = engines.example_path("pendulum.xml")
+    model = engines.load(path)
+    assert not hasattr(model, "backend")  # the engine's mutable object stays inside
+    native = mujoco.MjModel.from_xml_path(str(path))
+    assert model.timestep() == native.opt.timestep
+    names, dims = model.coordinates()
+    assert len(names) == len(dims) == native.nq + native.nv + native.na
+    assert [str(d) for d in dims] == ["1", "T^-1"]  # a hinge's angle and its rate
+    dims, low, high = model.inputs()
+    assert [str(d) for d in dims] == ["M L^2 T^-2"]  # the motor drives the hinge with a torque
+    assert (low.tolist(), high.tolist()) == (native.actuator_ctrlrange[:, 0].tolist(),
+                                             native.actuator_ctrlrange[:, 1].tolist())
+    # the run is MuJoCo's own stepping: the oracle steps mj_step in Python
+    rows = model.run(20, controls=lambda t: [0.3])
+    data = mujoco.MjData(native)
+    for step in range(20):
+        data.ctrl[:] = 0.3
+        mujoco.mj_step(native, data)
+        assert rows[step + 1].tolist() == [*data.qpos, *data.qvel, *data.act], step
+    assert rows[0].tolist() == [*native.qpos0, 0.0]
+    # a closed-loop controller gives the same run as the open-loop rows it would give
+    assert np.array_equal(model.run(20, policy=lambda m, d: [0.3]), rows)
 
 
 def test_an_unknown_example_names_the_shipped_ones():

@@ -196,7 +196,7 @@ def engine_scaling(engine_model):
 
 
 def test_engines_load_reads_six_bars_twenty_four_cables_and_the_controller(engine_model):
-    m = engine_model.backend.mjmodel
+    m = engine_model._backend.mjmodel
     assert (m.nbody - 1, m.ntendon, m.nu) == (6, 24, 24)
     names = {p.name for p in engine_model.parameters}
     assert {f"tendon_cable{i}_springlength" for i in range(24)} <= names

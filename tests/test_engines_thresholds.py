@@ -21,7 +21,15 @@ import pytest
 import pitheorem as pt
 from pitheorem import engines
 from pitheorem.engines.packages import quiet_stdout
-from pitheorem.engines.thresholds import BOUNDS, KINDS, THRESHOLDS, Threshold, crossed, thresholds
+from pitheorem.engines.thresholds import (
+    BOUNDS,
+    KINDS,
+    THRESHOLDS,
+    Threshold,
+    crossed,
+    mjx_parameters,
+    thresholds,
+)
 from tests.conftest import REPO
 
 mujoco = pytest.importorskip("mujoco")
@@ -49,11 +57,16 @@ def compile_xml(xml: str):
 def test_every_threshold_is_complete_and_of_a_catalogued_engine():
     names = [t.name for t in THRESHOLDS]
     assert len(names) == len(set(names))
-    # MJX has MuJoCo's (it compiles with MuJoCo's compiler); none of its own are catalogued yet
-    assert {t.engine for t in THRESHOLDS} == set(engines.ENGINES) - {"mjx"}
-    assert thresholds("mjx") == thresholds("mujoco")
+    assert {t.engine for t in THRESHOLDS} == set(engines.ENGINES)
+    # MJX has MuJoCo's (it compiles with MuJoCo's compiler), then its own
+    own = [t for t in THRESHOLDS if t.engine == "mjx"]
+    assert thresholds("mjx") == (*thresholds("mujoco"), *own)
+    assert own
+    assert not set(own) & set(thresholds("mujoco"))
+    assert not set(own) & set(thresholds("pybullet"))
     for t in THRESHOLDS:
-        assert t.name.startswith({"pybullet": "bullet_", "mujoco": "mujoco_"}[t.engine])
+        assert t.name.startswith({"pybullet": "bullet_", "mujoco": "mujoco_", "mjx": "mjx_"}[t.engine])
+        assert t.precision in ("", "float32")
         assert t.bound in BOUNDS
         assert set(t.applies) <= set(KINDS)
         assert t.dimension is None or isinstance(t.dimension, pt.Dimension)
@@ -499,3 +512,68 @@ def test_grouped_causes_name_every_number_once_and_detail_the_worst():
     assert masses.detail.startswith("5 numbers; the worst: body 'd' mass = 2e-16 is below")
     alone = next(c for c in grouped if "inertia" in c.element)
     assert alone == next(c for c in one_each if c.element == "body_a_inertia")  # a group of one reads as before
+
+
+def test_mjx_parameters_are_the_half_lengths_mjxs_collisions_hold_against_its_constants(tmp_path):
+    path = tmp_path / "segments.xml"
+    path.write_text(textwrap.dedent("""\
+        <mujoco><worldbody>
+          <geom name="ground" type="plane" size="1 1 0.1"/>
+          <body name="a" pos="0 0 1"><freejoint/>
+            <geom name="arm" type="capsule" fromto="0 0 0 0.3 0.4 0" size="0.01"/></body>
+          <body name="b" pos="0 0 2"><freejoint/><geom name="ball" type="sphere" size="0.05"/></body>
+          <body name="c" pos="0 0 3"><freejoint/><geom type="cylinder" size="0.02 0.0004"/></body>
+        </worldbody></mujoco>"""))
+    model = engines.load(path)
+    found = {p.name: p for p in mjx_parameters(model)}
+    assert sorted(found) == ["geom3_half_length", "geom_arm_half_length"]
+    arm, disk = found["geom_arm_half_length"], found["geom3_half_length"]
+    assert arm.value == pytest.approx((0.5 / 2,), rel=1e-12)  # half of the fromto's length, 0.5
+    assert arm.path == "geom 'arm' capsule half-length"
+    assert disk.path == "geom #3 cylinder half-length"
+    assert {p.dimension for p in found.values()} == {pt.Dimension.parse("L")}
+    assert {p.source for p in found.values()} == {"derived"}
+    assert {k for k, (_, is_kind) in KINDS.items() if is_kind(arm)} == {"capsule_segment", "number"}
+    assert {k for k, (_, is_kind) in KINDS.items() if is_kind(disk)} == {"cylinder_on_plane", "number"}
+    # MuJoCo holds nothing against them; MJX holds both, with the unit change that clears each
+    assert engines.check(model) == ()
+    said = {c.element: c.detail for c in engines.check(model, "mjx")}
+    assert set(said) == {"geom_arm_half_length", "geom3_half_length"}
+    assert "below mjx_segment_regularizer_float32 (2.0)" in said["geom_arm_half_length"]
+    assert "by 16 clears it" in said["geom_arm_half_length"]  # to twice 2.0: 4 / 0.25
+    assert "below mjx_cylinder_plane_parallel (0.001)" in said["geom3_half_length"]
+    assert "by 5 clears it" in said["geom3_half_length"]  # to twice 1e-3: 2e-3 / 4e-4
+    assert engines.check(model.converted(L="mm"), "mjx") == ()  # 250 and 0.4 mm
+
+
+def test_float32s_range_is_held_only_against_float32():
+    table = [parameter("joint_a_damping", "joint 'a' damping", [1e-40], "M L^2 T^-1"),
+             parameter("joint_b_damping", "joint 'b' damping", [-1e39], "M L^2 T^-1"),
+             parameter("joint_c_damping", "joint 'c' damping", [2e-38], "M L^2 T^-1")]
+    said = {c.element: c.detail.split(" is ")[1].split(" (")[0] for c in crossed("mjx", table)}
+    assert said == {"joint_a_damping": "below mjx_float32_min_normal",
+                    "joint_b_damping": "above mjx_float32_max",
+                    "joint_c_damping": "within a factor 2 of mjx_float32_min_normal"}
+    assert crossed("mjx", table, precision="float64") == crossed("mujoco", table) == ()
+    with pytest.raises(pt.InvalidRequestError) as caught:
+        crossed("mjx", table, precision="float16")
+    assert caught.value.culprit == "float16"
+
+
+def test_the_fluid_models_numbers_join_only_with_a_fluid_and_a_compiled_mass(tmp_path):
+    def speck(radius, fluid):
+        path = tmp_path / f"speck{radius}{fluid}.xml"
+        path.write_text(f'<mujoco><option {fluid}/><worldbody><body name="s"><freejoint/>'
+                        f'<geom size="{radius}" density="1000"/></body></worldbody></mujoco>')
+        return engines.load(path)
+
+    model = speck(0.01, 'viscosity="1e-3"')
+    found = {p.name: p for p in mjx_parameters(model)}
+    assert sorted(found) == ["body_s_fluid_box_moments", "body_s_mass_in_fluid"]
+    assert found["body_s_mass_in_fluid"].value == model.parameter("body_s_mass").value
+    moment = model.parameter("body_s_inertia").value[0]  # a sphere: I1 + I2 - I0 = I
+    assert found["body_s_fluid_box_moments"].value == pytest.approx((moment,) * 3, rel=1e-12)
+    assert mjx_parameters(speck(0.01, 'density="0"')) == ()  # no fluid
+    refused = speck(1e-6, 'density="1.2"')  # MuJoCo refuses it; its compiled masses are a probe's
+    assert type(refused._backend).__name__ == "RefusedMjcfBackend"
+    assert mjx_parameters(refused) == ()

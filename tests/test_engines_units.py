@@ -191,12 +191,12 @@ def test_a_run_of_the_converted_copy_maps_back_onto_the_original(tmp_path):
     model = engines.load(path)
     ms = model.converted(T="ms", L="mm")
     assert ms.parameter("timestep").value == (1.0,)
-    key = ms.backend.mjmodel
+    key = ms._backend.mjmodel
     assert key.key_time[0] == 500.0
     assert key.key_qvel[0][0] == pytest.approx(2e-3)
-    rows = ms.backend.run(100)
+    rows = ms._backend.run(100)
     back = run_in_units(ms, rows, model.units)
-    assert ulps(back, model.backend.run(100)) <= 64
+    assert ulps(back, model._backend.run(100)) <= 64
     with pytest.raises(pt.InvalidRequestError, match="columns"):
         run_in_units(ms, rows[:, :1], model.units)
 
@@ -225,8 +225,8 @@ def test_a_springdamper_is_read_as_a_time_constant_and_scaled_with_time(tmp_path
     ms = model.converted(T="ms", M="g", L="mm")
     assert ms.parameter("joint_j_springdamper_time").value == (200.0,)
     # the compiler's stiffness and damping (M L^2 T^-2 and M L^2 T^-1) follow from it
-    k0, k1 = model.backend.mjmodel.jnt_stiffness[0], ms.backend.mjmodel.jnt_stiffness[0]
-    d0, d1 = model.backend.mjmodel.dof_damping[0], ms.backend.mjmodel.dof_damping[0]
+    k0, k1 = model._backend.mjmodel.jnt_stiffness[0], ms._backend.mjmodel.jnt_stiffness[0]
+    d0, d1 = model._backend.mjmodel.dof_damping[0], ms._backend.mjmodel.dof_damping[0]
     assert k1 == pytest.approx(k0 * 1e3 * 1e6 * 1e-6)
     assert d1 == pytest.approx(d0 * 1e3 * 1e6 * 1e-3)
 
@@ -254,7 +254,10 @@ def test_the_cgs_insect_in_millimetres_takes_the_factors_flygym_derived_by_hand(
         assert factor(name) == pytest.approx(FLYGYM[kind], rel=1e-15), kind
     # and what the hand-derived list leaves out: each by its own dimension
     for name, expected in (("joint_hip_l_stiffness", 100), ("joint_hip_l_damping", 100),
-                           ("actuator_hip_l_gainprm_gain", 100), ("actuator_stick_l_ctrlrange", 10),
+                           ("actuator_hip_l_gainprm_gain", 100),
+                           # adhesion: the gain is the force (MuJoCo's reference), the input a fraction of it
+                           ("actuator_stick_l_gainprm_gain", 10),
                            ("geom_thorax_margin", 10), ("geom_thorax_friction_torsional_rolling", 10),
                            ("geom_thorax_solref_timeconst", 1), ("timestep", 1)):
         assert factor(name) == pytest.approx(expected, rel=1e-15), name
+    assert mm.parameter("actuator_stick_l_ctrlrange").value == fly.parameter("actuator_stick_l_ctrlrange").value

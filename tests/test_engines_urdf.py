@@ -38,7 +38,7 @@ def test_dimensions_follow_the_joint_type():
     assert d["contactSlop"] == "L"
     assert d["solverResidualThreshold"] == "1"  # no pure dimension: no change of units scales it
     assert d["link_cart_linearDamping"] == "T^-1 (rate) | L^-1 (per_length)"
-    assert [str(x) for x in model.backend.control_dimensions()] == ["M L T^-2", "M L^2 T^-2"]
+    assert [str(x) for x in model._backend.control_dimensions()] == ["M L T^-2", "M L^2 T^-2"]
 
 
 def test_engine_defaults_are_pybullets_own():
@@ -342,7 +342,7 @@ def test_runs_in_one_client_equal_the_runs_each_in_its_own():
     model = engines.load(Path(pybullet_data.getDataPath()) / "r2d2.urdf", base_position=(0, 0, 1), ground=True,
                          damping=0.0, split_impulse=False)  # wheels on the ground: contacts from the first steps
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    b, copy = model.backend, model.scaled(sc, 10).backend
+    b, copy = model._backend, model.scaled(sc, 10)._backend
     u = engines.smooth_controls(model)
     jobs = [(b, u, False, None), (copy, None, False, None), (b.twin(0), u, False, None), (b, u, True, None)]
     one_by_one = [backend.run(120, controls, nudge) for backend, controls, nudge, _ in jobs]
@@ -387,7 +387,7 @@ def test_no_file_is_written_into_the_users_folder_and_meshes_still_load(tmp_path
     assert all(folder != robot for folder in written)  # ... none of them in the user's folder
     assert sorted(p.name for p in robot.rglob("*")) == before
     assert any(shape[4].endswith(b".obj") or shape[4].endswith(b".stl")
-               for shapes in model.backend._info["shapes"].values() for shape in shapes)  # meshes were loaded
+               for shapes in model._backend._info["shapes"].values() for shape in shapes)  # meshes were loaded
 
 
 def test_a_compound_collision_mesh_is_named_as_a_setting_cause_and_matters_only_in_contact():
@@ -425,6 +425,38 @@ def test_a_file_pybullet_reads_despite_blank_lines_a_nul_or_a_material_inside_a_
                                 '</geometry></collision></link></robot>'))
     with pytest.raises(EngineModelError, match="unknown geometry"):
         engines.load(bad)
+
+
+def test_reading_changes_nothing_and_a_copy_is_written_by_address(tmp_path, monkeypatch):
+    """The parsed file stays as written (no mesh scale added); a scaled copy is not walked again."""
+    import xml.etree.ElementTree as ET
+
+    from pitheorem.engines import urdf
+
+    path = Path(__file__).resolve().parent / "robots" / "urdf" / "arm.urdf"
+    model = engines.load(path, fixed_base=True, damping=0.0, split_impulse=False)
+    tree = model._backend.tree
+    assert ET.tostring(tree.getroot()) == ET.tostring(ET.parse(path).getroot())  # read, not changed
+    scales = [p for p in model.parameters if p.name.endswith("_scale")]
+    assert scales
+    assert all(p.value == (1.0, 1.0, 1.0) for p in scales)  # PyBullet's default, read as such
+    walks = []
+    real = urdf._attributes
+    monkeypatch.setattr(urdf, "_attributes", lambda *args: walks.append(args) or real(*args))
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    copy = model.scaled(sc, 4)
+    assert walks == []  # by address: the copy's numbers are the original's, moved to the copy's elements
+    assert ET.tostring(tree.getroot()) == ET.tostring(ET.parse(path).getroot())  # the original untouched
+    pure = [p for p in model.parameters if p.dimension is not None]  # (a mixed number has parts instead)
+    assert len(pure) > 40
+    for p in pure:  # the oracle: each number times s to its dimension's exponent (a power of two: exact)
+        factor = 4.0 ** float(sc.exponent_of(p.dimension))
+        assert copy.parameter(p.name).value == tuple(v * factor for v in p.value), p.name
+    # the saved copy states the scale it was given, and reads back as the copy
+    reread = engines.load(copy.save(tmp_path / "arm_4.urdf"))  # its scene from the settings saved beside it
+    assert [(p.name, p.value) for p in reread.parameters] == [(p.name, p.value) for p in copy.parameters]
+    assert {p.name: p.value for p in reread.parameters if p.name.endswith("_scale")} == {
+        p.name: (4.0, 4.0, 4.0) for p in scales}
 
 
 # -- the reader: every dimensional number of a URDF, by element and attribute -------------------------
@@ -509,7 +541,8 @@ def test_the_reader_finds_every_number_with_its_name_place_dimension_and_note(tm
         ("joint_swing_velocity", "joint 'swing' limit velocity", "velocity", "T^-1", (3.0,), ""),
         ("joint_spin_damping", "joint 'spin' dynamics damping", "damping", "M L^2 T^-1", (0.7,), ""),
     ]
-    assert tree.getroot().find("link/collision[3]/geometry/mesh").get("scale") == "1 1 1"
+    # the absent mesh scale is read as PyBullet's default, and nothing is written into the parsed file
+    assert tree.getroot().find("link/collision[3]/geometry/mesh").get("scale") is None
 
 
 @pytest.mark.parametrize(("text", "element", "reason"), [

@@ -133,20 +133,20 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
         scaled = model.scaled(scaling, s)
     elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:
         raise InvalidRequestError("scaled must be an EngineModel of the same engine as model")
-    backend = model.backend
+    backend = model._backend
     causes, compared = [], 0
     original = backend.stored_numbers()
     try:
-        probe = model.scaled(scaling, PROBE).backend.stored_numbers()
+        probe = model.scaled(scaling, PROBE)._backend.stored_numbers()
         # a second probe, the other way: a number that scales by 4**k one way and not by 4**-k the other
         # is not scale-free even where each probe alone looks clean (a rotation found by an iteration
         # that stops at an absolute tolerance, say); and at s = 4 itself the first probe is the copy
-        inverse = model.scaled(scaling, Fraction(1, PROBE)).backend.stored_numbers()
+        inverse = model.scaled(scaling, Fraction(1, PROBE))._backend.stored_numbers()
     except PiTheoremError as err:  # a probe the engine refuses (a mass below its floor): no exponents
         causes.append(Cause("threshold", "the probes at s = 4 and 1/4", f"the engine refuses one: "
                             f"{str(err).splitlines()[0]}; the stored numbers were not compared"))
         original = {}
-    copy = scaled.backend.stored_numbers()
+    copy = scaled._backend.stored_numbers()
     probed = {}  # field -> (exponents, clean): pass one, for the largest number of each exponent
     scale: dict[float, float] = {}
     for field, before in original.items():
@@ -203,20 +203,22 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
                             "masses and moments of inertia, Bullet's residual adds rows in m/s and rad/s), so the "
                             f"scaled run may stop after another number of iterations; with_values({name}=0) runs "
                             "every iteration"))
-    if isinstance(scaled.backend, IgnoredSettings):
-        causes.extend(scaled.backend.ignored_settings())
+    if isinstance(scaled._backend, IgnoredSettings):
+        causes.extend(scaled._backend.ignored_settings())
     # the engine's floors and clamps (mjMINVAL, mjMINMU, ...) that a number of either model is beyond:
     # the engine runs with the fixed threshold, not with the number, so the copy is not the original scaled
     # (a threshold that is a multiple of the time step moves with it, and clamps both alike)
     from .thresholds import crossed
 
     origin = scaled._origin
+    # float32's range binds only a model the engine computes in float32 (MJX's default)
+    how = {"near": 1.0, "fixed_only": True, "grouped": True, "precision": model.settings().get("precision", "float32")}
     if origin is not None and origin[0] is model and all(0 < f < math.inf for f in origin[1].values()):
         # a copy made by model.scaled: its table is the model's, each number times its factor
-        causes.extend(crossed(model.engine, model.parameters, origin[1], near=1.0, fixed_only=True, grouped=True))
+        causes.extend(crossed(model.engine, model.parameters, origin[1], **how))
     else:  # a file the user made: read it
-        causes.extend(crossed(model.engine, scaled.parameters, near=1.0, fixed_only=True, grouped=True))
-    causes.extend(crossed(model.engine, model.parameters, near=1.0, fixed_only=True, grouped=True))
+        causes.extend(crossed(model.engine, scaled.parameters, **how))
+    causes.extend(crossed(model.engine, model.parameters, **how))
     return Audit(sorted_causes(causes), compared, float(s))
 
 

@@ -32,7 +32,7 @@ Examples
 --------
 >>> from pitheorem import engines
 >>> from pitheorem.engines.backend import CounterRuns, EngineBackend, HasSceneSettings
->>> backend = engines.load(engines.example_path("pendulum.xml")).backend
+>>> backend = engines.load(engines.example_path("pendulum.xml"))._backend
 >>> isinstance(backend, EngineBackend), isinstance(backend, CounterRuns)
 (True, True)
 >>> isinstance(backend, HasSceneSettings)
@@ -76,7 +76,7 @@ class EngineRunner(Protocol):
     --------
     >>> from pitheorem import engines
     >>> from pitheorem.engines.backend import EngineRunner
-    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).backend, EngineRunner)
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml"))._backend, EngineRunner)
     True
     """
 
@@ -111,7 +111,7 @@ class EngineBackend(EngineRunner, Protocol):
     --------
     >>> from pitheorem import engines
     >>> from pitheorem.engines.backend import EngineBackend
-    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).backend, EngineBackend)
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml"))._backend, EngineBackend)
     True
     """
 
@@ -139,7 +139,7 @@ class RefusesScalings(Protocol):
     --------
     >>> from pitheorem import engines
     >>> from pitheorem.engines.backend import RefusesScalings
-    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).backend, RefusesScalings)
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml"))._backend, RefusesScalings)
     False
     """
 

@@ -242,7 +242,7 @@ def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str =
     """
     from .verify import exact_in_binary, smooth_controls, verify
 
-    controls = smooth_controls(model) if inputs == "smooth" and len(model.backend.control_dimensions()) else None
+    controls = smooth_controls(model) if inputs == "smooth" and len(model.inputs()[0]) else None
     rep = verify(model, scaling, s, duration=duration, controls=controls)
     return EngineVerifyAnswer(model.path, model.engine, Fraction(s), duration, inputs,
                               exact_in_binary(model, scaling, s), rep)
@@ -344,7 +344,7 @@ def convert_engine(path: str, *, from_units=None, units=None, fit: str | None = 
         converted.save(out)
         written = str(out)
     steps = len(conversion(model.system(), model.units, new))
-    crossings = tuple(str(c) for c in _check(converted))
+    crossings = tuple(str(c) for c in _check(converted, fit or None))
     if fmt == "json":
         return json.dumps({"file": path, "from": model.units, "to": new, "factors": factors, "scalings": steps,
                            "fit": fit, "feasible": None if fitted is None else fitted.feasible,
@@ -371,9 +371,9 @@ def _factors_text(old, new) -> dict[str, str]:
 
 
 def _check(model, engine: str | None = None):
-    from .thresholds import check, crossed
+    from .thresholds import check
 
-    return check(model) if engine is None or engine == model.engine else crossed(engine, model.parameters)
+    return check(model, engine)
 
 
 def check_engine_model(path: str, *, from_units=None, engine: str | None = None,

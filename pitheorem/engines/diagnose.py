@@ -69,7 +69,7 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
     >>> rep.exact, [c.kind for c in rep.causes]
     (True, [])
     """
-    original, copy = model.backend, scaled.backend
+    original, copy = model._backend, scaled._backend
     causes = [c for c in audit(model, scaling, s, scaled=scaled).causes if c.kind != "solver"]
     limits = allowed_deviation(report.original, report.sensitivity, report.baseline_factor)
 

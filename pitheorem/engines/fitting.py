@@ -30,7 +30,7 @@ from ..system import System
 from ..unitfit import fit_units
 from .model import Parameter, exact_product
 from .packages import check_engine
-from .thresholds import KINDS, thresholds
+from .thresholds import KINDS, mjx_parameters, thresholds
 from .units import SI, unit_size
 
 __all__ = ["FLOAT32_ENGINES", "FLOAT32_RANGE", "OPEN", "engine_fit", "engine_ranges", "fitted_units", "unit_name"]
@@ -89,8 +89,7 @@ def engine_ranges(engine: str, parameters, *, clearance: float = 10.0) -> dict[s
     clearance = positive_float(clearance, "clearance")
     if clearance < 1:
         raise InvalidRequestError(f"clearance must be a factor of at least 1, got {clearance!r}", culprit=clearance)
-    pool = [t for t in thresholds(engine if not float32 else "mujoco")
-            if t.bound in ("below", "above") and not t.relative_to]
+    pool = [t for t in thresholds(engine) if t.bound in ("below", "above") and not t.relative_to]
     out = {}
     for p in parameters:
         if p.mixed or p.path.startswith("option o_") or _ends(p) is None:
@@ -166,6 +165,8 @@ def engine_fit(source, values=None, *, engine: str | None = None, clearance: flo
     elif hasattr(source, "parameters") and hasattr(source, "engine"):
         parameters = list(source.parameters)
         engine = source.engine if engine is None else engine
+        if str(engine).lower() == "mjx":  # the half-lengths MJX's own constants are held against
+            parameters += mjx_parameters(source)
     else:
         raise InvalidRequestError(f"fit_units with an engine needs an EngineModel or a System, got "
                                   f"{type(source).__name__}")

@@ -117,8 +117,7 @@ class Slot:
 
 def _array_slot(name, path, elem, attr, index, dimension, source, where, parts=(), note=""):
     def read():
-        value = np.atleast_1d(np.asarray(getattr(elem, attr), dtype=float))
-        return tuple(float(v) for v in value[index])
+        return _floats(getattr(elem, attr))[index]
 
     return Slot(name, path, read, ((attr, index),), where, dimension, source, parts, note)
 
@@ -158,6 +157,7 @@ class _Walker:
         self.slots: list[Slot] = []
         self.names: set[str] = set()
         self.tendon_kinds: dict = {}  # tendon (name or id) -> (tendon, its kind), found once
+        self.inputs: list = []  # per actuator walked: its control's and its activation's dimensions
         self.defaults = _builtin_defaults(mj)
         # every element listed once, kept alive, so that an element's id gives its address
         self.lists = {collection: list(getattr(spec, collection)) for collection in _COLLECTIONS}
@@ -178,22 +178,33 @@ class _Walker:
     def unique(self, ident: str) -> str:
         return unique_name(ident, self.names)
 
-    def source(self, kind, elem, attr) -> str:
-        default = self.defaults.get(kind)
-        if default is None or not hasattr(default, attr):
+    def source(self, kind, elem, attr, values: tuple | None = None) -> str:
+        """``"default"`` when the attribute holds MuJoCo's built-in default, else ``"file"``.
+
+        `values` is the attribute already read as floats (:func:`_floats`), if it was.
+        """
+        default, default_has_nan = _default_floats(self.mj, kind, attr)
+        if default is None:
             return "file"
-        a = np.asarray(getattr(elem, attr), dtype=float)
-        b = np.asarray(getattr(default, attr), dtype=float)
-        same = a.shape == b.shape and np.array_equal(a, b, equal_nan=True)
+        if values is None:
+            values = _floats(getattr(elem, attr))
+        if values == default:
+            return "default"
+        if not default_has_nan or len(values) != len(default):
+            return "file"
+        # NaN equals itself here (an unset value is NaN in both): tuples of distinct NaN objects compare unequal
+        same = all(a == b or (a != a and b != b) for a, b in zip(values, default, strict=True))
         return "default" if same else "file"
 
     def add(self, kind, elem, ident, path, attr, dimension, index=slice(None), suffix="", parts=(), note=""):
-        value = np.atleast_1d(np.asarray(getattr(elem, attr), dtype=float))[index]
-        if value.size == 0 or np.all(np.isnan(value)):
+        values = _floats(getattr(elem, attr))
+        chosen = values[index]
+        if not chosen or (chosen[0] != chosen[0] and all(v != v for v in chosen)):  # absent, or NaN: "not set"
             return
         name = self.unique(f"{ident}_{attr}{suffix}" if ident else f"{attr}{suffix}")
         self.slots.append(_array_slot(name, f"{path} {attr}{suffix.replace('_', ' ')}", elem, attr, index,
-                                      dimension, self.source(kind, elem, attr), self.where(kind, elem), parts, note))
+                                      dimension, self.source(kind, elem, attr, values), self.where(kind, elem),
+                                      parts, note))
 
     def add_solref(self, kind, elem, ident, path, attr):
         ref = np.asarray(getattr(elem, attr), dtype=float)
@@ -440,12 +451,14 @@ class _Walker:
         self.spring_and_drive("joint", joint, ident, path, kind)
         self.limit_and_friction_softness("joint", joint, ident, path, kind.q)
 
-    def tendon_kind(self, tendon, path) -> JointKind:
+    def tendon_kind(self, tendon, path, wraps=None) -> JointKind:
         """A spatial tendon measures a length; a fixed one the first joint's coordinate (found once per tendon:
-        reading a tendon's path from the spec is slow, and actuators and equalities ask again)."""
+        reading a tendon's path from the spec is slow, and actuators and equalities ask again).  `wraps` is
+        the tendon's path, if it was already read."""
         key = tendon.name or id(tendon)  # the spec hands out a new wrapper each time; a name is the same
         if key not in self.tendon_kinds:  # the tendon kept beside its kind: an id stays its own while it lives
-            joints = [w for w in tendon.path if w.type == self.mj.mjtWrap.mjWRAP_JOINT]
+            joint = self.mj.mjtWrap.mjWRAP_JOINT
+            joints = [w for w in (tendon.path if wraps is None else wraps) if w.type == joint]
             self.tendon_kinds[key] = (tendon, self.wrapped_joint_kind(joints[0], path) if joints else JointKind.SLIDE)
         return self.tendon_kinds[key][1]
 
@@ -471,15 +484,19 @@ class _Walker:
     def tendon(self, tendon, index):
         mj = self.mj
         ident, path = self.label("tendon", tendon, index)
-        kind = self.tendon_kind(tendon, path)
+        # the spec's path is slow to read: read it only for a tendon over joints (the compiled model tells)
+        tid = tendon.id if tendon.id >= 0 else index
+        first = self.model.tendon_adr[tid]
+        over_joints = np.any(self.model.wrap_type[first:first + self.model.tendon_num[tid]] == mj.mjtWrap.mjWRAP_JOINT)
+        wraps = list(tendon.path) if over_joints else []
+        kind = self.tendon_kind(tendon, path, wraps)
         q = kind.q
-        for k, wrap in enumerate(tendon.path):
-            if wrap.type == mj.mjtWrap.mjWRAP_JOINT:
+        joint = mj.mjtWrap.mjWRAP_JOINT  # a pulley's divisor is a dimensionless ratio, a site or geom no number
+        for k, wrap in enumerate(wraps):
+            if wrap.type == joint:
                 jk = self.wrapped_joint_kind(wrap, path)
                 if jk.q != q:  # coefficient converts this joint's coordinate into the tendon's length
                     self.fixed_coefficient(wrap, ident, path, k, q / jk.q)
-            elif wrap.type == mj.mjtWrap.mjWRAP_PULLEY and wrap.divisor != 1:
-                pass  # a divisor is a dimensionless ratio
         self.add("tendon", tendon, ident, path, "range", q)
         self.add("tendon", tendon, ident, path, "margin", q)
         if np.all(np.asarray(tendon.springlength, dtype=float) == -1):
@@ -528,7 +545,9 @@ class _Walker:
         gain, bias = act.gaintype, act.biastype
         biasprm = np.asarray(act.biasprm, dtype=float)
         if gain == mj.mjtGain.mjGAIN_FIXED:
-            if bias == mj.mjtBias.mjBIAS_NONE or (biasprm[1] == 0 and biasprm[2] == 0):
+            if act.trntype == mj.mjtTrn.mjTRN_BODY and bias == mj.mjtBias.mjBIAS_NONE:
+                ctrl = _ONE  # adhesion: MuJoCo's gain is the force, the input a nonnegative fraction of it
+            elif bias == mj.mjtBias.mjBIAS_NONE or (biasprm[1] == 0 and biasprm[2] == 0):
                 ctrl = force  # a motor: the input is the force
             elif biasprm[1] != 0:
                 ctrl = length  # a position servo: the input is a target length
@@ -564,6 +583,7 @@ class _Walker:
         length, force, ctrl, act_dim = self.control_dimension(act, path)
         # the input of the force: the activation when there are dynamics, else ctrl
         driven = act_dim if act.dyntype != mj.mjtDyn.mjDYN_NONE else ctrl
+        self.inputs.append((ctrl, act_dim if act.dyntype != mj.mjtDyn.mjDYN_NONE else None))
         if act.trntype == mj.mjtTrn.mjTRN_SITE:
             self.add("actuator", act, ident, path, "gear", _L, slice(3, 6), "_torque")
         if act.trntype == mj.mjtTrn.mjTRN_SLIDERCRANK:
@@ -585,7 +605,11 @@ class _Walker:
         if act.biastype == mj.mjtBias.mjBIAS_AFFINE:
             self.add("actuator", act, ident, path, "biasprm", force, slice(0, 1), "_offset")
             self.add("actuator", act, ident, path, "biasprm", force / length, slice(1, 2), "_length")
-            self.add("actuator", act, ident, path, "biasprm", force * _T / length, slice(2, 3), "_velocity")
+            if _damping_ratio(mj, act):
+                self.add("actuator", act, ident, path, "biasprm", _ONE, slice(2, 3), "_dampratio",
+                         note="a damping ratio: the compiler turns it into kv from kp and the joint's inertia")
+            else:
+                self.add("actuator", act, ident, path, "biasprm", force * _T / length, slice(2, 3), "_velocity")
         self.refuse(act, path, ("damping", "armature", "delay", "ffrange", "velrange"))
 
     def lengthrange(self, act, index, ident, path, length) -> None:
@@ -698,7 +722,39 @@ class _Walker:
         self.add("sensor", sensor, ident, path, "noise", d)
 
 
+_DEFAULT_FLOATS: dict = {}  # (kind, attr) -> the default as a tuple of floats, and whether it has a NaN
 _DEFAULTS_CACHE: dict = {}
+
+
+def _damping_ratio(mj, act) -> bool:
+    """Whether a position servo's ``biasprm[2]`` is a damping ratio (``dampratio``), not ``-kv``.
+
+    MuJoCo's compiler (``set0`` in ``engine_setconst.c``) reads a positive
+    ``biasprm[2]`` of a position-like actuator (fixed gain, affine bias,
+    ``biasprm[1] == -gainprm[0]``) as a damping ratio, and replaces it by
+    ``-2 dampratio sqrt(kp m)``, ``m`` the inertia the actuator moves: a
+    dimensionless number, which a change of units leaves alone.
+    """
+    gain, bias = np.asarray(act.gainprm, dtype=float), np.asarray(act.biasprm, dtype=float)
+    return bool(act.gaintype == mj.mjtGain.mjGAIN_FIXED and bias[2] > 0 and bias[1] == -gain[0])
+
+
+def _floats(value) -> tuple:
+    """A spec attribute's numbers as a tuple of Python floats (a scalar as one)."""
+    if isinstance(value, float):  # most of a file's attributes: no array to build
+        return (value,)
+    return tuple(np.asarray(value, dtype=float).ravel().tolist())
+
+
+def _default_floats(mj, kind: str, attr: str) -> tuple:
+    """MuJoCo's built-in default of an attribute as :func:`_floats` (None where the kind has no such default),
+    and whether it holds a NaN."""
+    key = (kind, attr)
+    if key not in _DEFAULT_FLOATS:
+        default = _builtin_defaults(mj).get(kind)
+        floats = _floats(getattr(default, attr)) if hasattr(default, attr) else None
+        _DEFAULT_FLOATS[key] = (floats, floats is not None and any(v != v for v in floats))
+    return _DEFAULT_FLOATS[key]
 
 
 def _builtin_defaults(mj) -> dict:
@@ -725,12 +781,11 @@ class MjcfBackend:
     --------
     >>> from pitheorem import engines
     >>> model = engines.load(engines.example_path("pendulum.xml"))
-    >>> model.backend.mjmodel.nq
+    >>> model._backend.mjmodel.nq
     1
     """
 
     def __init__(self, spec, path: str, source_dir: Path | None, *, warn: bool = True, asset_dirs=None):
-        mj = _mujoco()
         self.spec = spec
         self.path = path
         self.source_dir = source_dir
@@ -744,12 +799,20 @@ class MjcfBackend:
             raise _rejected(path, err, spec) from None
         # warn once, when the file is read; not again for each scaled copy, whose table is read only when
         # asked for (a verification runs a copy without listing its numbers)
-        self._walked = _Walker(mj, spec, self.mjmodel, path, warn=warn).walk() if warn else None
+        self._walked = self._walk(warn=True) if warn else None
+
+    def _walk(self, warn: bool = False) -> list[Slot]:
+        """The slots of the file, walked once; the actuators' input dimensions found on the way."""
+        walker = _Walker(_mujoco(), self.spec, self.mjmodel, self.path, warn=warn)
+        slots = walker.walk()
+        if self._inputs is None:
+            self._inputs = walker.inputs
+        return slots
 
     @property
     def _slots(self):
         if self._walked is None:
-            self._walked = _Walker(_mujoco(), self.spec, self.mjmodel, self.path).walk()
+            self._walked = self._walk()
         return self._walked
 
     # -- table --------------------------------------------------------------------------------
@@ -1371,7 +1434,7 @@ class RefusedMjcfBackend(MjcfBackend):
     >>> _ = speck.write_text('<mujoco><worldbody><body><freejoint/><geom size="1e-6" density="1000"/>'
     ...                      '</body></worldbody></mujoco>')
     >>> model = engines.load(speck)
-    >>> type(model.backend).__name__, model.parameter("body1_mass").value
+    >>> type(model._backend).__name__, model.parameter("body1_mass").value
     ('RefusedMjcfBackend', (4.18879020478639e-15,))
     """
 

@@ -211,21 +211,38 @@ class MjxBackend:
         return out
 
 
+#: static arrays of an ``mjx.Model`` (NumPy, outside the traced arrays, so part of the compiled program's
+#: identity) that MJX's JAX code never reads, or reads only for a kind of geom: (owner, field, geom type or None)
+_UNREAD_STATIC = (
+    ("", "body_margin", None),  # the compiler's copy of the largest geom margin; MJX reads geom_margin only
+    ("_impl", "geom_rbound_hfield", "mjGEOM_HFIELD"),  # sizes a heightfield's collision patch, nothing else
+)
+
+
 def _aligned(backend: MjxBackend, reference: MjxBackend):
     """`backend`'s device model, batchable with `reference`'s where nothing MJX reads tells them apart.
 
-    MJX keeps ``geom_rbound_hfield``, a copy of the geoms' bounding radii,
-    outside its traced arrays, and reads it only to size the collision
-    patch of a heightfield (``collision_driver``): in a model without
-    heightfield geoms the copy's own values are never read, and it takes
-    the reference's, so that a model and its scaled copy run in one call.
+    MJX keeps some arrays static, outside the arrays it traces: two models
+    whose static arrays differ are two programs to XLA, compiled apart,
+    and two programs may round differently.  A scaled copy changes two
+    static arrays MJX's JAX code does not read for its model
+    (:data:`_UNREAD_STATIC`: ``body_margin``, and ``geom_rbound_hfield``
+    in a model without heightfields).  The copy takes the reference's,
+    so that a model and its scaled copy run as one program: with its own
+    ``body_margin``, the hopper's copy ran in a call of its own and parted
+    from the original after one step, by one float32 ulp.
     """
     device, other = backend._device, reference._device
-    hfield = int(engine_module("mujoco").mjtGeom.mjGEOM_HFIELD)
-    mine, theirs = device._impl.geom_rbound_hfield, other._impl.geom_rbound_hfield
-    if mine.shape != theirs.shape or np.any(backend.mjcf.mjmodel.geom_type == hfield):
-        return device
-    return device.replace(_impl=device._impl.replace(geom_rbound_hfield=theirs))
+    mujoco = engine_module("mujoco")
+    for owner, field, geom_type in _UNREAD_STATIC:
+        mine, theirs = (getattr(d._impl, field) if owner else getattr(d, field) for d in (device, other))
+        if mine.shape != theirs.shape or np.array_equal(mine, theirs):
+            continue
+        if geom_type is not None and np.any(backend.mjcf.mjmodel.geom_type == int(getattr(mujoco.mjtGeom, geom_type))):
+            continue
+        device = (device.replace(_impl=device._impl.replace(**{field: theirs})) if owner
+                  else device.replace(**{field: theirs}))
+    return device
 
 
 def _put(mjcf: MjcfBackend, precision: str):
@@ -353,7 +370,7 @@ def load_mjx(path, *, precision: str = "float32") -> EngineModel:
     """
     if precision not in PRECISIONS:
         raise InvalidRequestError(f"precision must be 'float32' or 'float64', got {precision!r}", culprit=precision)
-    reading = load_mjcf(path).backend
+    reading = load_mjcf(path)._backend
     if isinstance(reading, RefusedMjcfBackend):  # MuJoCo's compiler refused it: there is no model to put in MJX
         raise reading.refusal
     return EngineModel(MjxBackend(reading, precision), "mjx", str(path))

@@ -30,7 +30,7 @@ import warnings
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 from ..dimensions import Dimension
 from ..errors import EngineModelError, InvalidRequestError, UnscalableParameterError
@@ -42,6 +42,9 @@ from ..scaling import Scaling, float_power
 from ..simulation import positive_float
 from ..system import System
 from .backend import HasSceneSettings, RefusesScalings
+
+if TYPE_CHECKING:  # numpy only for the annotations: loading a model's table needs none of it
+    import numpy as np
 
 __all__ = [
     "EngineModel",
@@ -312,6 +315,12 @@ def exact_product(value, factor) -> float:
     value, factor = float(value), float(factor)
     if not (math.isfinite(value) and math.isfinite(factor)):
         return value * factor
+    return _exact_product(value, factor)
+
+
+@functools.lru_cache(maxsize=8192)
+def _exact_product(value: float, factor: float) -> float:
+    """:func:`exact_product` of two finite floats, remembered: a model repeats its numbers and factors."""
     # read as the decimal each prints as (its shortest repr): the number as the file wrote it
     exact = _as_written(value) * _as_written(factor)
     try:
@@ -872,18 +881,75 @@ class EngineModel(TableDisplay):
         """
         return self._backend.settings()
 
-    @property
-    def backend(self):
-        """The engine-specific object that reads, writes and runs the model.
+    # -- running it: what a user needs of the engine, without handing out the engine's object ----------
+
+    def timestep(self) -> float:
+        """The engine's time step, in the model's time unit.
 
         Examples
         --------
         >>> from pitheorem import engines
-        >>> type(engines.load(engines.example_path("pendulum.xml")).backend).__name__
-        'MjcfBackend'
+        >>> engines.load(engines.example_path("pendulum.xml")).timestep()
+        0.002
         """
-        return self._backend
+        return self._backend.timestep()
 
+    def run(self, n_steps: int, controls=None, *, policy=None) -> np.ndarray:
+        """Step the model ``n_steps`` times from its initial state, in its engine.
+
+        Parameters
+        ----------
+        n_steps : int
+        controls : array_like or callable, optional
+            The actuators' inputs: rows (one per step), or a function of
+            the step's start time giving one row.  None: no input.
+        policy : callable, optional
+            A closed-loop controller giving the inputs of each step
+            (MuJoCo's ``policy(mjmodel, mjdata)``; MJX runs open loop).
+
+        Returns
+        -------
+        numpy.ndarray
+            One row per state, ``n_steps + 1`` of them: the coordinates,
+            their rates, and the actuators' activations (MuJoCo, MJX) as
+            :meth:`coordinates` names them.
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> model = engines.load(engines.example_path("pendulum.xml"))
+        >>> model.run(10, controls=lambda t: [0.1]).shape
+        (11, 2)
+        """
+        return self._backend.run(n_steps, controls, policy=policy)
+
+    def coordinates(self) -> tuple[list[str], list[Dimension]]:
+        """The names and dimensions of the columns :meth:`run` returns.
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> names, dims = engines.load(engines.example_path("pendulum.xml")).coordinates()
+        >>> names, [str(d) for d in dims]
+        (['qpos[hinge]', 'qvel[hinge]'], ['1', 'T^-1'])
+        """
+        return self._backend.coordinate_dimensions()
+
+    def inputs(self) -> tuple[list[Dimension], np.ndarray, np.ndarray]:
+        """The actuators' inputs: each one's dimension, and their lower and upper limits.
+
+        A limit is infinite where the engine sets none (a URDF's joint
+        torques are unlimited as PyBullet runs them).
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> dims, low, high = engines.load(engines.example_path("pendulum.xml")).inputs()
+        >>> [str(d) for d in dims], low, high
+        (['M L^2 T^-2'], array([-1.]), array([1.]))
+        """
+        low, high = self._backend.control_ranges()
+        return list(self._backend.control_dimensions()), low, high
 
 def check_scaling(scaling) -> Scaling:
     """A scaling an engine model can take: a change of units over M, L and T.

@@ -359,7 +359,7 @@ def _dimension(name: str) -> str:
 
 def _compiled(model):
     """The compiled MuJoCo model: an EngineModel's, or `model` itself (a ``mujoco.MjModel``)."""
-    return model.backend.mjmodel if isinstance(model, EngineModel) else model
+    return model._backend.mjmodel if isinstance(model, EngineModel) else model
 
 
 class CableController:

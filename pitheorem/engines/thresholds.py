@@ -32,6 +32,8 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from ..dimensions import Dimension
 from ..errors import InvalidRequestError
 from ..immutable import immutable
@@ -41,7 +43,7 @@ from .model import EngineModel, Parameter
 from .packages import check_engine
 from .registry import registered
 
-__all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "thresholds"]
+__all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "mjx_parameters", "thresholds"]
 
 #: how a threshold acts: on numbers below it, above it, on numbers the engine computes as it runs (a solver's
 #: residual, a contact's separation: nothing in a model's table), or as a setting the engine does not apply
@@ -61,7 +63,30 @@ KINDS: Mapping[str, tuple[str, Callable]] = {
     "collision_size": ("a URDF collision geometry's size, radius or length",
                        lambda p: p.dimension == _L and " collision #" in p.path
                        and p.name.endswith(("_size", "_radius", "_length"))),
+    "capsule_segment": ("the half-length of a capsule (the compiled geom size's second number, or half its "
+                        "fromto's length) that collides with a sphere, capsule, box, mesh or height field: "
+                        "the collisions MJX computes with the closest point on its segment "
+                        "(mjx_parameters)",
+                        lambda p: p.dimension == _L and p.path.endswith(" capsule half-length")),
+    "cylinder_on_plane": ("the half-length of a cylinder (the compiled geom size's second number) that "
+                          "collides with a plane (mjx_parameters)",
+                          lambda p: p.dimension == _L and p.path.endswith(" cylinder half-length")),
+    "fluid_mass": ("a body's mass, with the fluid model on (mjx_parameters)",
+                   lambda p: p.dimension == _M and p.path.endswith(" mass in the fluid model")),
+    "fluid_box_moments": ("the sums I1 + I2 - I0, I0 + I2 - I1 and I0 + I1 - I2 of a body's principal moments "
+                          "of inertia, which give its equivalent box in the fluid model (mjx_parameters)",
+                          lambda p: p.dimension == _ML2 and p.path.endswith(" fluid box moments")),
+    "number": ("every number of the model, of any dimension (an engine that stores them in float32)",
+               lambda p: True),
 }
+
+#: MuJoCo's geom types (mjtGeom) that mjx_parameters reads
+_PLANE, _HFIELD, _SPHERE, _CAPSULE, _CYLINDER, _BOX, _MESH = 0, 1, 2, 3, 5, 6, 7
+#: MuJoCo's flag that keeps a body's geoms colliding with its parent's (mjtDisableBit.mjDSBL_FILTERPARENT)
+_FILTERPARENT = 1024
+#: the geom types a capsule collides with through the closest point on its segment in MJX
+#: (collision_primitive sphere_capsule and capsule_capsule, collision_convex capsule_convex and hfield_capsule)
+_SEGMENT_PARTNERS = frozenset({_HFIELD, _SPHERE, _CAPSULE, _BOX, _MESH})
 
 
 @immutable
@@ -94,6 +119,9 @@ class Threshold:
         The engine's source, and the measurement that shows the clamp.
     relative_to : str
         The parameter whose value multiplies `value` (``"timestep"``), or "".
+    precision : str
+        ``"float32"``: held only against a model the engine computes in
+        float32 (float32's range); "" for every model.
 
     Examples
     --------
@@ -113,6 +141,7 @@ class Threshold:
     effect: str
     source: str
     relative_to: str = ""
+    precision: str = ""
 
     def __post_init__(self) -> None:
         if isinstance(self.dimension, str):
@@ -187,8 +216,12 @@ def thresholds(engine: str | None = None, *, names: Iterable[str] | None = None)
     >>> from pitheorem.engines.thresholds import thresholds
     >>> [t.name for t in thresholds("mujoco")][:3]
     ['mujoco_minval_mass', 'mujoco_minval_softness', 'mujoco_minmu']
-    >>> thresholds("mjx") == thresholds("mujoco")  # MJX compiles with MuJoCo's compiler
+    >>> mjx = thresholds("mjx")  # MJX compiles with MuJoCo's compiler: MuJoCo's, then its own
+    >>> mjx[:len(thresholds("mujoco"))] == thresholds("mujoco")
     True
+    >>> [t.name for t in mjx[len(thresholds("mujoco")):]]  # doctest: +NORMALIZE_WHITESPACE
+    ['mjx_segment_regularizer_float32', 'mjx_cylinder_plane_parallel', 'mjx_fluid_moments_floor',
+     'mjx_fluid_mass_floor', 'mjx_float32_min_normal', 'mjx_float32_max']
     """
     engine = None if engine is None else check_engine(engine)
     # an engine built on another (MJX on MuJoCo, whose compiler it uses) has that engine's thresholds too
@@ -234,7 +267,8 @@ def _read_factors(factors, names) -> dict[str, float]:
 
 
 def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None, *,
-            near: float = 2.0, fixed_only: bool = False, grouped: bool = False) -> tuple[Cause, ...]:
+            near: float = 2.0, fixed_only: bool = False, grouped: bool = False,
+            precision: str = "float32") -> tuple[Cause, ...]:
     """The parameters beyond or near a threshold of the engine, as causes of kind ``"threshold"``.
 
     Each parameter of a kind a threshold applies to (:data:`KINDS`) is
@@ -269,6 +303,11 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
         the parameters named (the first three and how many more), the
         detail that of the worst of them (a verdict's causes stay short on
         a robot whose hundred geoms all sit below one floor).
+    precision : {"float32", "float64"}
+        The precision the engine computes the model in: with
+        ``"float64"`` the thresholds of float32's range (MJX's
+        ``mjx_float32_*``) are left out.  Engines that compute in float64
+        have none.
 
     Returns
     -------
@@ -300,7 +339,10 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
     factors = _read_factors(factors, {p.name for p in table})
     scalars = {p.name: p.value[0] * factors.get(p.name, 1.0) for p in table if len(p.value) == 1}
     found = []  # (threshold, parameter, its worst number, the limit, whether beyond it)
-    compared = [t for t in thresholds(engine) if t.bound in ("below", "above")]
+    if precision not in ("float32", "float64"):
+        raise InvalidRequestError(f"precision must be 'float32' or 'float64', got {precision!r}", culprit=precision)
+    compared = [t for t in thresholds(engine) if t.bound in ("below", "above")
+                and (not t.precision or t.precision == precision)]
     for p in table:
         if p.path.startswith("option o_"):
             continue
@@ -353,15 +395,139 @@ def _detail(p, t: Threshold, worst: float, limit: float, near: float, beyond: bo
     return f"{p.path} = {worst!r} {where} {t.name} ({limit!r}{of}): {t.effect}; {remedy}"
 
 
-def check(model) -> tuple[Cause, ...]:
-    """The engine thresholds a model sits beyond or near: a tuple of Cause.
+def _compiled(model):
+    """The model's compiled MjModel (MuJoCo's or MJX's reading of the file), or None."""
+    backend = model._backend
+    return getattr(backend, "mjmodel", None) or getattr(getattr(backend, "mjcf", None), "mjmodel", None)
 
-    ``pitheorem.engines.thresholds.crossed`` on the model's own parameters, against the thresholds
-    of the model's engine.
+
+def _collision_pairs(m) -> list[tuple[int, int]]:
+    """The geom pairs a compiled MjModel collides (MuJoCo's filter, MJX's too).
+
+    The explicit ``<pair>`` elements, and every two geoms whose contype
+    and conaffinity share a bit, except geoms of bodies welded together,
+    of a body and its parent (both other than the world, unless the
+    filterparent flag is disabled) and of excluded body pairs.  (Read from
+    the model's arrays: no engine is imported here.)
+    """
+    out = {(int(min(a, b)), int(max(a, b))) for a, b in zip(m.pair_geom1, m.pair_geom2, strict=True)}
+    n = m.ngeom
+    if n < 2:
+        return sorted(out)
+    contype, conaffinity = np.asarray(m.geom_contype), np.asarray(m.geom_conaffinity)
+    weld = np.asarray(m.body_weldid)[np.asarray(m.geom_bodyid)]  # each geom's weld body
+    parent = np.asarray(m.body_weldid)[np.asarray(m.body_parentid)][weld]  # the weld body of its parent
+    body = np.asarray(m.geom_bodyid)
+    ok = ((contype[:, None] & conaffinity[None, :]) | (contype[None, :] & conaffinity[:, None])) != 0
+    ok &= weld[:, None] != weld[None, :]
+    if not m.opt.disableflags & _FILTERPARENT:
+        family = (weld[:, None] == parent[None, :]) | (parent[:, None] == weld[None, :])
+        ok &= ~(family & (weld[:, None] != 0) & (weld[None, :] != 0))
+    lo, hi = np.minimum(body[:, None], body[None, :]), np.maximum(body[:, None], body[None, :])
+    ok &= ~np.isin((lo.astype(np.int64) << 16) + hi, np.asarray(m.exclude_signature, dtype=np.int64))
+    first, second = np.nonzero(np.triu(ok, 1))
+    out.update(zip(first.tolist(), second.tolist(), strict=True))
+    return sorted(out)
+
+
+def _label(mjmodel, kind: str, index: int, names: set[str], suffix: str) -> tuple[str, str]:
+    """A derived parameter's name and the start of its path, for a geom or a body."""
+    label = getattr(mjmodel, kind)(index).name
+    ident = f"{kind}_{label}_{suffix}" if label else f"{kind}{index}_{suffix}"
+    if ident in names or not ident.isidentifier():
+        ident = f"{kind}{index}_{suffix}"
+    names.add(ident)
+    return ident, f"{kind} {label!r}" if label else f"{kind} #{index}"
+
+
+def mjx_parameters(model) -> tuple[Parameter, ...]:
+    """The numbers MJX's own constants are held against, from the compiled model.
+
+    MJX finds the closest point on a capsule's segment with a constant
+    of its own added to the segment's squared length (the threshold
+    ``mjx_segment_regularizer_float32``), and takes a cylinder whose
+    axis, times its half-length, leans less than 1 mm from a plane as
+    lying on it (``mjx_cylinder_plane_parallel``): the half-lengths of
+    the geoms in a pair MJX collides through such a function (kinds
+    ``capsule_segment`` and ``cylinder_on_plane``).  With the fluid
+    model on (the option's density, viscosity or wind), MJX floors each
+    body's mass and the sums of its principal moments that give the
+    body's equivalent box (``I1 + I2 - I0`` and its turns) at 1e-12
+    (``mjx_fluid_*``): those masses and sums (kinds ``fluid_mass`` and
+    ``fluid_box_moments``).  None of these numbers is in the file's table
+    as such (a capsule's ``fromto`` holds its ends).
 
     Parameters
     ----------
     model : EngineModel
+        An MJCF model (in MuJoCo or MJX).
+
+    Returns
+    -------
+    tuple of Parameter
+        Source ``"derived"``, geoms then bodies; ``()`` for a model with no
+        such number or no compiled model (a URDF).  A file MuJoCo refuses
+        (read from a probe in another mass unit) has its half-lengths only.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.thresholds import mjx_parameters
+    >>> mjx_parameters(engines.load(engines.example_path("pendulum.xml")))  # its rod touches nothing
+    ()
+    """
+    mjmodel = _compiled(model)
+    if mjmodel is None:
+        return ()
+    partners: dict[int, set[int]] = {}
+    for a, b in _collision_pairs(mjmodel):
+        partners.setdefault(a, set()).add(int(mjmodel.geom_type[b]))
+        partners.setdefault(b, set()).add(int(mjmodel.geom_type[a]))
+    out, names = [], set()
+    for g in sorted(partners):
+        kind = int(mjmodel.geom_type[g])
+        if kind == _CAPSULE and partners[g] & _SEGMENT_PARTNERS:
+            shape = "capsule"
+        elif kind == _CYLINDER and _PLANE in partners[g]:
+            shape = "cylinder"
+        else:
+            continue
+        ident, path = _label(mjmodel, "geom", g, names, "half_length")
+        out.append(Parameter(ident, f"{path} {shape} half-length", (float(mjmodel.geom_size[g][1]),), _L,
+                             "derived", "file", note="read from the compiled model"))
+    opt = mjmodel.opt
+    # MJX's inertia-box fluid model, on every body; a refused file's compiled masses are a probe's: left out
+    fluid = opt.density > 0 or opt.viscosity > 0 or any(opt.wind)
+    if fluid and getattr(model._backend, "refusal", None) is None:
+        for b in range(1, mjmodel.nbody):
+            mass, moments = float(mjmodel.body_mass[b]), [float(i) for i in mjmodel.body_inertia[b]]
+            if mass <= 0:
+                continue
+            ident, path = _label(mjmodel, "body", b, names, "mass_in_fluid")
+            out.append(Parameter(ident, f"{path} mass in the fluid model", (mass,), _M, "derived", "file",
+                                 note="read from the compiled model"))
+            sums = tuple(sum(moments) - 2 * moments[i] for i in range(3))  # I1 + I2 - I0, I0 + I2 - I1, ...
+            ident, path = _label(mjmodel, "body", b, names, "fluid_box_moments")
+            out.append(Parameter(ident, f"{path} fluid box moments", sums, _ML2, "derived", "file",
+                                 note="sums of the body's principal moments, read from the compiled model"))
+    return tuple(out)
+
+
+def check(model, engine: str | None = None) -> tuple[Cause, ...]:
+    """The engine thresholds a model sits beyond or near: a tuple of Cause.
+
+    ``pitheorem.engines.thresholds.crossed`` on the model's own parameters, against the thresholds
+    of the model's engine (or of `engine`).  For MJX, the numbers its own
+    constants are held against join them (``thresholds.mjx_parameters``: the
+    half-lengths of capsules and cylinders, the fluid model's masses and
+    moments), and every number is held to float32's range unless the
+    model runs in float64.
+
+    Parameters
+    ----------
+    model : EngineModel
+    engine : {"pybullet", "mujoco", "mjx"}, optional
+        Default: the model's engine.
 
     Returns
     -------
@@ -389,8 +555,13 @@ def check(model) -> tuple[Cause, ...]:
     """
     if not isinstance(model, EngineModel):
         raise InvalidRequestError(f"check needs an EngineModel (from engines.load), got {type(model).__name__}")
-    causes = crossed(model.engine, model.parameters)
-    refusal = getattr(model.backend, "refusal", None)  # a file the engine refused to compile (read as a table)
+    engine = model.engine if engine is None else check_engine(engine)
+    table = model.parameters
+    if engine == "mjx":  # MJX's own thresholds: its capsules' and cylinders' half-lengths, its fluid model
+        table = (*table, *mjx_parameters(model))
+    # an MJX model says its precision; a MuJoCo model held against MJX's thresholds gets MJX's default
+    causes = crossed(engine, table, precision=model.settings().get("precision", "float32"))
+    refusal = getattr(model._backend, "refusal", None)  # a file the engine refused to compile (read as a table)
     if refusal is not None:
         causes = (Cause("threshold", refusal.element or Path(refusal.path).name,
                         f"{model.engine} refuses the file: {refusal.reason}"), *causes)

@@ -345,7 +345,7 @@ def declared_units(model, units) -> dict[str, str]:
     >>> declared_units(engines.load(engines.example_path("pendulum.xml")), {"L": "cm"})
     {'M': 'kg', 'L': 'cm', 'T': 's'}
     """
-    spec = getattr(model.backend, "spec", None)
+    spec = getattr(model._backend, "spec", None)
     found = recorded(spec, model.path) if spec is not None else None
     given = None if units is None else read_units(units)
     if found is not None and given is not None and found != given:
@@ -384,7 +384,7 @@ def run_in_units(model, rows, units: Mapping[str, object]) -> np.ndarray:
     >>> run_in_units(mm, np.array([[0.5, 0.002]]), {"T": "s"})
     array([[0.5, 2. ]])
     """
-    names, dims = model.backend.coordinate_dimensions()
+    names, dims = model.coordinates()
     rows = np.asarray(rows, dtype=float)
     if rows.ndim != 2 or rows.shape[1] != len(dims):
         raise InvalidRequestError(f"rows must have {len(dims)} columns ({', '.join(names[:4])}, ...), "

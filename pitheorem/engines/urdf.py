@@ -106,14 +106,26 @@ def _joint_kind(jtype: str) -> JointKind | None:
 
 
 class _Attr:
-    """One dimensional attribute of one URDF element (its ``value`` attribute or another one)."""
+    """One dimensional attribute of one URDF element (its ``value`` attribute or another one).
 
-    def __init__(self, name, path, element, attr, dimension, note=""):
+    ``index`` is the element's address: its place in the document's order
+    (``root.iter()``), the same in every copy of the parsed file.
+    ``default`` is the text the engine reads when the attribute is absent
+    (a mesh's scale), so that reading a file never adds anything to it.
+    """
+
+    def __init__(self, name, path, element, attr, dimension, note="", index=-1, default=None):
         self.name, self.path, self.element, self.attr, self.dimension, self.note = (
             name, path, element, attr, dimension, note)
+        self.index, self.default = index, default
 
     def read(self):
-        return tuple(_floats(self.element.get(self.attr)))
+        return tuple(_floats(self.element.get(self.attr, self.default)))
+
+    def in_copy(self, elements: list) -> _Attr:
+        """The same attribute in a copy of the file, whose elements in document order are `elements`."""
+        return _Attr(self.name, self.path, elements[self.index], self.attr, self.dimension, self.note,
+                     self.index, self.default)
 
 
 def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr]:
@@ -123,12 +135,15 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
         raise EngineModelError(path, f"<{root.tag}>", "a URDF file's root element must be <robot>")
     out: list[_Attr] = []
     names: set[str] = set()
+    address = {id(element): i for i, element in enumerate(root.iter())}
 
-    def add(ident, where, element, attr, dimension, note=""):
-        if element is None or element.get(attr) is None:
+    def add(ident, where, element, attr, dimension, note="", default=None):
+        if element is None or element.get(attr, default) is None:
             return
-        check_numbers(path, where, attr, element.get(attr), nonnegative=dimension == _M)  # a mass cannot be < 0
-        out.append(_Attr(unique_name(ident, names), where, element, attr, dimension, note))
+        text = element.get(attr, default)
+        check_numbers(path, where, attr, text, nonnegative=dimension == _M)  # a mass cannot be < 0
+        out.append(_Attr(unique_name(ident, names), where, element, attr, dimension, note, address[id(element)],
+                         default))
 
     for link in root.findall("link"):
         lname = link.get("name", "")
@@ -163,10 +178,8 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
                         if resolved is None:
                             raise EngineModelError(path, f"{swhere} mesh {filename!r}",
                                                    "mesh file not found (relative to the URDF's folder)")
-                        if g.get("scale") is None:
-                            g.set("scale", "1 1 1")
                         add(f"{sid}_scale", f"{swhere} mesh scale", g, "scale", _L,
-                            note="a factor times the mesh file's units, a length")
+                            note="a factor times the mesh file's units, a length", default="1 1 1")
                     elif g.tag == "plane":
                         pass  # an infinite plane: nothing to scale
                     elif kind == "visual":
@@ -298,12 +311,13 @@ class UrdfBackend:
     """
 
     def __init__(self, tree: ET.ElementTree, path: str, source_dir: Path, settings: dict, *, scene: dict,
-                 info: dict | None = None):
-        self.tree = tree
+                 info: dict | None = None, attrs: list[_Attr] | None = None):
+        self.tree = tree  # never changed once read: a copy is a new tree
         self.path = path
         self.source_dir = source_dir
         self.scene = scene  # base position, fixed base, ground plane
-        self._attrs = _attributes(tree, path, source_dir)
+        # a copy gets its attributes by address from its original's: the file is not walked again
+        self._attrs = _attributes(tree, path, source_dir) if attrs is None else attrs
         self._settings = settings
         # PyBullet's reading of the links and joints; a twin (the same file, every number one ulp off)
         # shares its original's instead of loading the file again
@@ -457,7 +471,8 @@ class UrdfBackend:
 
     def scaled(self, factors, scaling, s, *, info: dict | None = None, text=attribute_text) -> UrdfBackend:
         tree = copy.deepcopy(self.tree)
-        attrs = _attributes(tree, self.path, self.source_dir)
+        elements = list(tree.getroot().iter())
+        attrs = [a.in_copy(elements) for a in self._attrs]
         for a in attrs:
             f = factors.get(a.name, 1.0)
             if f != 1.0:
@@ -495,7 +510,7 @@ class UrdfBackend:
             # this file serves the copy (every dynamics value the copy runs with is set above, none falls
             # back to the load's), and the copy is not loaded once more just to be read
             info = self._info
-        return UrdfBackend(tree, self.path, self.source_dir, st, scene=scene, info=info)
+        return UrdfBackend(tree, self.path, self.source_dir, st, scene=scene, info=info, attrs=attrs)
 
     #: the one line that removes every refusal of PyBullet's default scene at once
     unscalable_remedy = ("In one go: engines.load(path, damping=0.0, split_impulse=False) (on the command line: "
@@ -728,7 +743,8 @@ class UrdfBackend:
                 st["useSplitImpulse"] = int(scene_option(key, value))
             else:
                 scene[key] = scene_option(key, value)
-        return UrdfBackend(copy.deepcopy(self.tree), self.path, self.source_dir, st, scene=scene)
+        # the same file (a tree is never changed once read), other settings
+        return UrdfBackend(self.tree, self.path, self.source_dir, st, scene=scene, attrs=self._attrs)
 
 
 #: getDynamicsInfo's numbers (index, name), the margin (11) aside; getJointInfo's for a movable joint

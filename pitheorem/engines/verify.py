@@ -141,7 +141,7 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         raise InvalidRequestError("give controls (open loop, a function of time) or controller (closed loop), not both")
     if controller is not None and not callable(controller):
         raise InvalidRequestError(f"controller must be callable (run_model -> policy), got {type(controller).__name__}")
-    original, copy = model.backend, scaled.backend
+    original, copy = model._backend, scaled._backend
     factor, exponent_of = dimension_factors(scaling, s)
 
     f_time = factor(dim("T"))
@@ -223,7 +223,7 @@ def _every_factor_a_power_of_two(model: EngineModel, factor) -> bool:
     """:func:`exact_in_binary` with the factors of a scaling already at hand (``factor(dimension)``)."""
     by_dimension, mixed = model._by_dimension()
     dimensions = [d for d, _names in by_dimension] + [d for p in mixed for _part, d in p.parts]
-    _names, coordinates = model.backend.coordinate_dimensions()
+    _names, coordinates = model.coordinates()
     return all(is_power_of_two(factor(d)) for d in (*dimensions, *coordinates, dim("T")))
 
 
@@ -261,7 +261,7 @@ def smooth_controls(model: EngineModel, amplitude: float = 0.3, period: float = 
         raise InvalidRequestError(f"smooth_controls needs an EngineModel, got {type(model).__name__}")
     amplitude = positive_float(amplitude, "amplitude")
     period = positive_float(period, "period")
-    low, high = model.backend.control_ranges()
+    _dims, low, high = model.inputs()
     limited = np.isfinite(low) & np.isfinite(high)
     low, high = np.where(limited, low, 0.0), np.where(limited, high, 0.0)
     middle = np.where(limited, (low + high) / 2, 0.0)

@@ -92,7 +92,7 @@ def smooth_controls(model):
     """The small sinusoidal input of the module docstring, for `model`'s inputs; None for a model without any."""
     if model.engine == "pybullet":
         efforts = []
-        for _j, jname, _jtype in model.backend._info["joints"]:
+        for _j, jname, _jtype in model._backend._info["joints"]:
             name = f"{engines.model.identifier(f'joint_{jname}')}_effort"
             try:
                 efforts.append(model.parameter(name).value[0])
@@ -101,7 +101,7 @@ def smooth_controls(model):
         amplitude = 0.05 * np.array(efforts)
         centre = np.zeros_like(amplitude)
     else:
-        m = model.backend.mjmodel
+        m = model._backend.mjmodel
         if not m.nu:
             return None
         lo, hi = m.actuator_ctrlrange[:, 0], m.actuator_ctrlrange[:, 1]
@@ -155,9 +155,9 @@ def survey(path: Path, options: dict, name: str, provenance: str = "written for 
         return row
     controls = smooth_controls(model)
     try:
-        n = max(1, round(DURATION / model.backend.timestep()))
-        u = None if controls is None else np.array([controls(i * model.backend.timestep()) for i in range(n)])
-        run = model.backend.run(n, u)
+        n = max(1, round(DURATION / model._backend.timestep()))
+        u = None if controls is None else np.array([controls(i * model._backend.timestep()) for i in range(n)])
+        run = model._backend.run(n, u)
         row.moved = float(np.max(np.abs(run - run[0])))
     except Exception as err:
         row.moved = None
@@ -259,7 +259,7 @@ def mesh_twin_deviation(path: Path) -> float | None:
     their size; this twin shows what a rounding of that size does to the run, with no scaling at all.
     """
     model = mjcf_variant(path, lambda spec: None)
-    if not model.backend.mjmodel.nmesh:
+    if not model._backend.mjmodel.nmesh:
         return None
 
     def larger(spec):
@@ -268,10 +268,10 @@ def mesh_twin_deviation(path: Path) -> float | None:
 
     twin = mjcf_variant(path, larger)
     controls = smooth_controls(model)
-    dt = model.backend.timestep()
+    dt = model._backend.timestep()
     n = max(1, round(DURATION / dt))
     u = None if controls is None else np.array([controls(i * dt) for i in range(n)])
-    return float(np.max(np.abs(model.backend.run(n, u) - twin.backend.run(n, u))))
+    return float(np.max(np.abs(model._backend.run(n, u) - twin._backend.run(n, u))))
 
 
 def no_equalities(spec):
