@@ -511,7 +511,7 @@ def test_the_reader_finds_every_number_with_its_name_place_dimension_and_note(tm
         ("link_base_collision0_size", "link 'base' collision #0 box size", "size", "L", (1.0, 2.0, 3.0), ""),
         ("link_base_collision1_radius", "link 'base' collision #1 cylinder radius", "radius", "L", (0.1,), ""),
         ("link_base_collision1_length", "link 'base' collision #1 cylinder length", "length", "L", (0.4,), ""),
-        # a mesh without a scale is read at scale 1, and the file gets the attribute a scaled copy changes
+        # a mesh without a scale is read at scale 1, PyBullet's default (reading adds nothing to the file)
         ("link_base_collision2_scale", "link 'base' collision #2 mesh scale", "scale", "L", (1.0, 1.0, 1.0),
          mesh_note),
         # a shape without geometry keeps its origin, and the shapes after it are read
@@ -582,3 +582,15 @@ def test_the_reader_reads_a_nameless_joint_and_every_joint_type(tmp_path):
     (read,) = _attributes(ET.ElementTree(ET.fromstring(text)), "j.urdf", tmp_path)
     assert (read.name, read.path, str(read.dimension), read.read()) == (
         "joint__effort", "joint '' limit effort", "M L^2 T^-2", (2.0,))
+
+
+def test_a_scaled_copy_keeps_each_file_numbers_name_place_dimension_and_note():
+    model = engines.load(ARM, fixed_base=True, damping=0.0, split_impulse=False)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    copy = model.scaled(sc, 10)
+
+    def described(m):
+        return [(p.name, p.path, p.dimension_text, p.note) for p in m.parameters if p.source == "file"]
+
+    assert described(copy) == described(model)
+    assert any(note for *_, note in described(model))  # the inertia's note among them: not only empty notes
