@@ -516,11 +516,16 @@ def test_a_batch_starts_from_given_states_nudged_by_one_float32_ulp(pendulum):
     assert all(np.array_equal(run, from_state[0]) for run in from_state)
     # a run from the state at step k goes on as the run it was taken from
     np.testing.assert_allclose(from_state[0][: n - k + 1], swinging[k:], rtol=1e-5, atol=1e-6)
-    # a nudge moves each start coordinate one float32 ulp away from zero, and the run parts from the unnudged
+    # a nudge moves each start coordinate up by the float32 ulp of 1 below magnitude 1 (as MuJoCo's nudge does
+    # in float64), and the run parts from the unnudged
+    eps = 2.0 ** -23
     assert runs[2][0].tolist() == [0.5, -0.25]
-    assert runs[1][0].tolist() == [float(np.nextafter(np.float32(0.5), np.float32(1))),
-                                   float(np.nextafter(np.float32(-0.25), np.float32(-1)))]
+    assert runs[1][0].tolist() == [0.5 + eps, -0.25 + eps]
     assert not np.array_equal(runs[1], runs[2])
+    # at rest, a coordinate at exactly zero moves to the ulp of 1, not to NaN; from 1 and up, to the next float32
+    _qpos, qvel = mjx_backend._initial(b, True, None, np.float32)
+    assert qvel.tolist() == [eps]
+    assert mjx_backend._nudged(np.array([2.0, -1.0]), np.float32).tolist() == [2.0 + 2 * eps, -1.0 + eps / 2]
     # inputs as rows and as a function of time give the same run, and the inputs act
     assert np.array_equal(runs[3], runs[4])
     assert not np.array_equal(runs[3], runs[0])

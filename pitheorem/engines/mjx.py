@@ -302,9 +302,15 @@ def _initial(backend: MjxBackend, nudge: bool, state, dtype) -> tuple[np.ndarray
     else:
         qpos, qvel = (np.asarray(x, dtype=dtype) for x in state)
     if nudge:
-        qpos = np.nextafter(qpos, np.inf * np.sign(qpos)).astype(dtype)
-        qvel = np.nextafter(qvel, np.inf * np.sign(qvel)).astype(dtype)
+        qpos, qvel = _nudged(qpos, dtype), _nudged(qvel, dtype)
     return qpos, qvel
+
+
+def _nudged(values: np.ndarray, dtype) -> np.ndarray:
+    """:func:`pitheorem.simulation.nudged` in `dtype`: up one ulp, by the ulp of 1 near 0 (never NaN at 0)."""
+    x = np.asarray(values, dtype=dtype)
+    one = np.spacing(np.ones((), dtype=dtype))
+    return np.where(np.abs(x) >= 1, np.nextafter(x, np.array(np.inf, dtype=dtype)), x + one).astype(dtype)
 
 
 def _control_rows(controls, n_steps: int, nu: int, dt: float, dtype) -> np.ndarray:
