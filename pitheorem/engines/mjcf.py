@@ -158,7 +158,6 @@ class _Walker:
         self.names: set[str] = set()
         self.tendon_kinds: dict = {}  # tendon (name or id) -> (tendon, its kind), found once
         self.inputs: list = []  # per actuator walked: its control's and its activation's dimensions
-        self.defaults = _builtin_defaults(mj)
         # every element listed once, kept alive, so that an element's id gives its address
         self.lists = {collection: list(getattr(spec, collection)) for collection in _COLLECTIONS}
         self.where_of = _Elements.addresses(spec, self.lists)
@@ -582,8 +581,9 @@ class _Walker:
         ident, path = self.label("actuator", act, index)
         length, force, ctrl, act_dim = self.control_dimension(act, path)
         # the input of the force: the activation when there are dynamics, else ctrl
-        driven = act_dim if act.dyntype != mj.mjtDyn.mjDYN_NONE else ctrl
-        self.inputs.append((ctrl, act_dim if act.dyntype != mj.mjtDyn.mjDYN_NONE else None))
+        dynamic = act.dyntype != mj.mjtDyn.mjDYN_NONE
+        driven = act_dim if dynamic else ctrl
+        self.inputs.append((ctrl, act_dim if dynamic else None))
         if act.trntype == mj.mjtTrn.mjTRN_SITE:
             self.add("actuator", act, ident, path, "gear", _L, slice(3, 6), "_torque")
         if act.trntype == mj.mjtTrn.mjTRN_SLIDERCRANK:
@@ -1130,13 +1130,8 @@ class MjcfBackend:
 
     def _actuator_inputs(self):
         """Per actuator: the dimension of its control input and of its activation (None: no dynamics)."""
-        if self._inputs is None:  # once: the spec of a backend is not changed after it is made
-            mj = _mujoco()
-            walker = _Walker(mj, self.spec, self.mjmodel, self.path)
-            self._inputs = []
-            for i, a in enumerate(self.spec.actuators):
-                _length, _force, ctrl, act = walker.control_dimension(a, walker.label("actuator", a, i)[1])
-                self._inputs.append((ctrl, act if a.dyntype != mj.mjtDyn.mjDYN_NONE else None))
+        if self._inputs is None:  # found on the walk of the file (a copy is given its original's)
+            self._walked = self._walk()
         return self._inputs
 
     def timestep(self) -> float:
@@ -1457,7 +1452,8 @@ class RefusedMjcfBackend(MjcfBackend):
                 continue
         else:
             raise refusal
-        self._walked = _Walker(mj, spec, _Unprobed(self.mjmodel, 2.0**power), path, warn=True).walk()
+        walker = _Walker(mj, spec, _Unprobed(self.mjmodel, 2.0**power), path, warn=True)
+        self._walked, self._inputs = walker.walk(), walker.inputs
 
     def run_many(self, n_steps: int, jobs):
         raise EngineModelError(self.path, self.refusal.element, f"{self.refusal.reason}; MuJoCo does not run it. "

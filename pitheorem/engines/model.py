@@ -951,6 +951,7 @@ class EngineModel(TableDisplay):
         low, high = self._backend.control_ranges()
         return list(self._backend.control_dimensions()), low, high
 
+
 def check_scaling(scaling) -> Scaling:
     """A scaling an engine model can take: a change of units over M, L and T.
 
