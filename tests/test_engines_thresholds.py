@@ -27,6 +27,7 @@ from pitheorem.engines.thresholds import (
     THRESHOLDS,
     Threshold,
     crossed,
+    held_against,
     mjx_parameters,
     thresholds,
 )
@@ -544,6 +545,11 @@ def test_mjx_parameters_are_the_half_lengths_mjxs_collisions_hold_against_its_co
     assert "below mjx_cylinder_plane_parallel (0.001)" in said["geom3_half_length"]
     assert "by 5 clears it" in said["geom3_half_length"]  # to twice 1e-3: 2e-3 / 4e-4
     assert engines.check(model.converted(L="mm"), "mjx") == ()  # 250 and 0.4 mm
+    # what check and the fit hold against each engine: the table, and for MJX the half-lengths after it
+    assert held_against(model, "mujoco") == held_against(model, "pybullet") == model.parameters
+    assert held_against(model, "mjx") == (*model.parameters, *mjx_parameters(model))
+    with pytest.raises(pt.InvalidRequestError, match="unknown engine 'MJX'"):
+        held_against(model, "MJX")
 
 
 def test_float32s_range_is_held_only_against_float32():

@@ -30,7 +30,7 @@ from ..system import System
 from ..unitfit import fit_units
 from .model import Parameter, exact_product
 from .packages import check_engine
-from .thresholds import KINDS, mjx_parameters, thresholds
+from .thresholds import KINDS, held_against, thresholds
 from .units import SI, unit_size
 
 __all__ = ["FLOAT32_ENGINES", "FLOAT32_RANGE", "OPEN", "engine_fit", "engine_ranges", "fitted_units", "unit_name"]
@@ -163,10 +163,8 @@ def engine_fit(source, values=None, *, engine: str | None = None, clearance: flo
             raise InvalidRequestError("fit_units on a System needs its values")
         parameters = _pseudo_parameters(source, values)
     elif hasattr(source, "parameters") and hasattr(source, "engine"):
-        parameters = list(source.parameters)
         engine = source.engine if engine is None else engine
-        if str(engine).lower() == "mjx":  # the half-lengths MJX's own constants are held against
-            parameters += mjx_parameters(source)
+        parameters = list(held_against(source, engine))  # for MJX, with the numbers its own constants read
     else:
         raise InvalidRequestError(f"fit_units with an engine needs an EngineModel or a System, got "
                                   f"{type(source).__name__}")

@@ -43,7 +43,7 @@ from .model import EngineModel, Parameter
 from .packages import check_engine
 from .registry import registered
 
-__all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "mjx_parameters", "thresholds"]
+__all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "held_against", "mjx_parameters", "thresholds"]
 
 #: how a threshold acts: on numbers below it, above it, on numbers the engine computes as it runs (a solver's
 #: residual, a contact's separation: nothing in a model's table), or as a setting the engine does not apply
@@ -513,6 +513,25 @@ def mjx_parameters(model) -> tuple[Parameter, ...]:
     return tuple(out)
 
 
+def held_against(model, engine: str) -> tuple[Parameter, ...]:
+    """The numbers of `model` that `engine`'s thresholds are held against (:func:`check`, the fit).
+
+    The model's table; for MJX, with the numbers its own constants read
+    (:func:`mjx_parameters`: capsules' and cylinders' half-lengths, the
+    fluid model's masses and moments).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.thresholds import held_against
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> held_against(model, "mjx") == model.parameters  # its rod touches nothing: nothing more for MJX
+    True
+    """
+    table = tuple(model.parameters)
+    return (*table, *mjx_parameters(model)) if check_engine(engine) == "mjx" else table
+
+
 def check(model, engine: str | None = None) -> tuple[Cause, ...]:
     """The engine thresholds a model sits beyond or near: a tuple of Cause.
 
@@ -556,9 +575,7 @@ def check(model, engine: str | None = None) -> tuple[Cause, ...]:
     if not isinstance(model, EngineModel):
         raise InvalidRequestError(f"check needs an EngineModel (from engines.load), got {type(model).__name__}")
     engine = model.engine if engine is None else check_engine(engine)
-    table = model.parameters
-    if engine == "mjx":  # MJX's own thresholds: its capsules' and cylinders' half-lengths, its fluid model
-        table = (*table, *mjx_parameters(model))
+    table = held_against(model, engine)
     # an MJX model says its precision; a MuJoCo model held against MJX's thresholds gets MJX's default
     causes = crossed(engine, table, precision=model.settings().get("precision", "float32"))
     refusal = getattr(model._backend, "refusal", None)  # a file the engine refused to compile (read as a table)
