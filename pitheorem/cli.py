@@ -2,8 +2,9 @@
 
 Every subcommand reads a TOML model file (format: :mod:`pitheorem.modelfile`),
 an MJCF (MuJoCo) or a URDF (PyBullet) file, or a shipped example
-``example:NAME``, NAME one of ``hinged_rod``, ``superball`` (TOML) and
-``pendulum.xml``, ``superball.xml`` (MJCF): the names
+``example:NAME``, NAME one of ``hinged_rod``, ``superball`` (TOML),
+``hinged_rod.xml``, ``pendulum.xml``, ``superball.xml`` (MJCF) and
+``hinged_rod.urdf`` (URDF, with its settings file): the names
 :func:`pitheorem.modelfile.examples` lists::
 
     pitheorem params FILE

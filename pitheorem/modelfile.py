@@ -224,10 +224,10 @@ def examples() -> tuple[str, ...]:
     --------
     >>> from pitheorem.modelfile import examples
     >>> examples()
-    ('hinged_rod', 'pendulum.xml', 'superball', 'superball.xml')
+    ('hinged_rod', 'hinged_rod.urdf', 'hinged_rod.xml', 'pendulum.xml', 'superball', 'superball.xml')
     """
     return tuple(sorted(p.stem if p.suffix == ".toml" else p.name for p in EXAMPLES.iterdir()
-                        if p.is_file() and p.suffix in (".toml", ".xml")))
+                        if p.is_file() and p.suffix in (".toml", ".xml", ".urdf")))
 
 
 def model_kind(path) -> str:

@@ -111,13 +111,6 @@ def test_the_page_lists_every_module_in_its_layer():
 #: name for the backends) may import one or ask engine_module for one
 ENGINE_PACKAGES = ("mujoco", "pybullet", "pybullet_data", "jax", "jaxlib")
 
-#: modules that run an engine without being a registered backend, each with its reason
-RUNNERS = {
-    "engines.rod": "the white paper's hinged rod, built in code in each engine (issue 21: to become shipped files)",
-    "engines.superball": "SUPERball's hand-built runner beside its shipped MJCF file (issue 21: to go)",
-}
-
-
 def _graph() -> dict[str, set[str]]:
     """Each module's imports of package modules; the loader imports each registered backend by name."""
     from pitheorem.engines.registry import REGISTRY
@@ -198,7 +191,8 @@ def test_only_backends_import_an_engine():
 
     backends = {f"engines.{e.module}" for e in REGISTRY}
     users = {_module(p) for p in sorted(PACKAGE.rglob("*.py")) if _engine_users(p)}
-    assert users <= backends | {"engines.packages"} | set(RUNNERS), users - backends
+    # the paper's rod and SUPERball run through the backends too: no module runs an engine by hand
+    assert users <= backends | {"engines.packages"}, users - backends
     assert backends <= users  # each backend runs its engine
     # the model, the registry, the loader, verify, audit and diagnose run engines only through backends
     for module in ("engines.model", "engines.registry", "engines.loading", "engines.verify", "engines.audit",

@@ -299,11 +299,12 @@ def test_shipped_engine_models_are_named_like_the_others(capsys):
     assert main(["groups", "example:pendulum"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1
-    assert "hinged_rod, pendulum.xml, superball, superball.xml" in err
+    assert "hinged_rod, hinged_rod.urdf, hinged_rod.xml, pendulum.xml, superball, superball.xml" in err
     assert main(["--help"]) == 0
     help_text = capsys.readouterr().out
     assert "TOML model file." not in help_text
-    assert "example:NAME, NAME one of hinged_rod, pendulum.xml, superball, superball.xml" in " ".join(
+    assert ("example:NAME, NAME one of hinged_rod, hinged_rod.urdf, hinged_rod.xml, pendulum.xml, superball, "
+            "superball.xml") in " ".join(
         help_text.split())
 
 

@@ -503,15 +503,15 @@ def test_a_scaled_copy_shares_the_batch_unless_a_heightfield_reads_its_bounds(pe
 def test_a_batch_starts_from_given_states_nudged_by_one_float32_ulp(pendulum):
     b = pendulum._backend
     n = round(DURATION / b.timestep())  # the batch size and length of the verifications above: compiled once
-    given = (np.array([0.5]), np.array([-0.25]))
+    given = np.array([0.5, -0.25])  # a first row: qpos, qvel (the pendulum has no activation)
     inputs = np.full((n, 1), 0.1)
     runs = b.run_many(n, [(b, None, False, None), (b, None, True, given), (b, None, False, given),
                           (b, inputs, False, None), (b, lambda t: [0.1], False, None)])
     swinging = runs[2]
     k = n // 2
-    state = (swinging[k, :1], swinging[k, 1:])
-    assert state[0][0] != 0
-    assert state[1][0] != 0  # swinging: a state no rest pose has
+    state = swinging[k]
+    assert state[0] != 0
+    assert state[1] != 0  # swinging: a state no rest pose has
     from_state = b.run_many(n, [(b, None, False, state)] * 5)
     assert all(np.array_equal(run, from_state[0]) for run in from_state)
     # a run from the state at step k goes on as the run it was taken from
@@ -537,3 +537,13 @@ def test_a_variant_changes_the_solver_tolerance_only(pendulum):
     assert pendulum._backend.solver_settings() == {"tolerance": pendulum.parameter("tolerance").value[0]}
     assert float(variant.device_model().opt.tolerance) == pytest.approx(1e-3)
     assert variant.precision == pendulum._backend.precision
+
+
+def test_a_start_with_activations_is_refused_by_name(tmp_path):
+    path = tmp_path / "filtered.xml"
+    path.write_text('<mujoco><worldbody><body><joint name="j" type="hinge"/><geom size="0.1" mass="1"/></body>'
+                    '</worldbody><actuator><general joint="j" dyntype="filter" dynprm="0.1"/></actuator></mujoco>')
+    model = engines.load(path, engine="mjx")
+    assert model.coordinates()[0] == ["qpos[j]", "qvel[j]", "act[0]"]
+    with pytest.raises(pt.InvalidRequestError, match="MJX runs start with every activation at zero"):
+        model.run(2, initial=[0.1, 0.0, 0.5])

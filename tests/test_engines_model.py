@@ -116,12 +116,70 @@ def test_a_model_runs_in_its_engine_without_handing_out_the_engine_object():
     assert np.array_equal(model.run(20, policy=lambda m, d: [0.3]), rows)
 
 
+def test_a_run_starts_from_a_given_first_row_as_mujoco_steps_it():
+    mujoco = pytest.importorskip("mujoco")
+    path = engines.example_path("pendulum.xml")
+    model = engines.load(path)
+    rows = model.run(5, controls=lambda t: [0.2], initial=(0.5, -0.25))
+    native = mujoco.MjModel.from_xml_path(str(path))
+    data = mujoco.MjData(native)
+    data.qpos[0], data.qvel[0] = 0.5, -0.25
+    assert rows[0].tolist() == [0.5, -0.25]
+    for step in range(5):
+        data.ctrl[:] = 0.2
+        mujoco.mj_step(native, data)
+        assert rows[step + 1].tolist() == [*data.qpos, *data.qvel], step
+    closed = model.run(5, policy=lambda m, d: [0.2], initial=(0.5, -0.25))
+    assert np.array_equal(closed, rows)
+
+
+@pytest.mark.parametrize(("n_steps", "initial", "says"), [
+    (-1, None, "n_steps is a whole number of steps, 0 or more; got -1"),
+    (2.5, None, "got 2.5"),
+    (True, None, "got True"),
+    (3, (0.1,), "initial is a row of 2 finite numbers (qpos[hinge], qvel[hinge]), got [0.1]"),
+    (3, (0.1, float("nan")), "got [0.1, nan]"),
+    (3, ("up", 0), "initial is a row of 2 numbers, got ('up', 0)"),
+])
+def test_a_bad_run_is_refused_by_name(n_steps, initial, says):
+    pytest.importorskip("mujoco")
+    model = engines.load(engines.example_path("pendulum.xml"))
+    with pytest.raises(pt.InvalidRequestError) as err:
+        model.run(n_steps, initial=initial)
+    assert says in str(err.value)
+
+
+@pytest.mark.parametrize("integrator", ["Euler", "RK4", "implicitfast"])
+def test_a_policy_sees_everything_computed_for_the_state_it_acts_on(integrator, tmp_path):
+    """Sensors, site poses and tendon lengths are the current state's when the policy is called, not the last step's."""
+    pytest.importorskip("mujoco")
+    (tmp_path / "arm.xml").write_text(
+        f'<mujoco><option integrator="{integrator}"/><worldbody><body><joint name="j" type="hinge" axis="0 1 0"/>'
+        '<geom type="capsule" fromto="0 0 0 1 0 0" size="0.05"/><site name="tip" pos="1 0 0"/></body></worldbody>'
+        '<actuator><motor joint="j"/></actuator><sensor><jointpos joint="j"/></sensor></mujoco>')
+    model = engines.load(tmp_path / "arm.xml")
+    seen = []
+
+    def policy(m, d):
+        # the tip of a unit arm turned by q about y sits at (cos q, 0, -sin q)
+        seen.append((d.qpos[0], d.sensordata[0], d.site_xpos[0][0], -d.site_xpos[0][2]))
+        return [0.0]
+
+    model.run(30, policy=policy)
+    q, sensed, x, z = np.array(seen).T
+    assert np.ptp(q) > 0.01  # the arm fell: the state moved
+    assert np.array_equal(sensed, q)
+    assert np.allclose(x, np.cos(q), rtol=0, atol=1e-12)
+    assert np.allclose(z, np.sin(q), rtol=0, atol=1e-12)
+
+
 def test_an_unknown_example_names_the_shipped_ones():
     assert engines.example_path("superball.xml").name == "superball.xml"
     with pytest.raises(ModelFileError) as caught:
         engines.example_path("hopper.xml")
     assert "example:hopper.xml" in str(caught.value)
-    assert str(caught.value).endswith("the shipped examples are hinged_rod, pendulum.xml, superball, superball.xml")
+    assert str(caught.value).endswith("the shipped examples are hinged_rod, hinged_rod.urdf, hinged_rod.xml, "
+                                      "pendulum.xml, superball, superball.xml")
 
 
 def test_engines_read_s_and_every_number_through_the_one_reader():

@@ -594,3 +594,75 @@ def test_a_scaled_copy_keeps_each_file_numbers_name_place_dimension_and_note():
 
     assert described(copy) == described(model)
     assert any(note for *_, note in described(model))  # the inertia's note among them: not only empty notes
+
+
+def test_joint_springs_have_the_dimension_of_their_joint_and_scale_save_and_reload(tmp_path):
+    model = engines.load(ARM, fixed_base=True, damping=0.0, split_impulse=False).with_settings(
+        joint_springs={"slide": (40, "0.1"), "swing": (2.5, -0.2)})
+    dims = {p.name: str(p.dimension) for p in model.parameters if "spring" in p.name}
+    assert dims == {"joint_slide_spring_stiffness": "M T^-2", "joint_slide_spring_rest": "L",
+                    "joint_swing_spring_stiffness": "M L^2 T^-2", "joint_swing_spring_rest": "1"}
+    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    scaled = model.scaled(sc, 4)
+    springs = {s["jointIndex"]: (s["stiffness"], s["restPosition"]) for s in scaled.settings()["jointSprings"]}
+    assert springs == {0: (40.0, 0.1 * 4), 1: (2.5 * 16, -0.2)}  # M T^-2 keeps, M L^2 T^-2 by s^2
+    again = engines.load(scaled.save(tmp_path / "arm4.urdf"))
+    assert again.settings() == scaled.settings()
+    snippet = Path(tmp_path / "arm4.urdf.settings.py").read_text()
+    assert "def apply_springs():" in snippet
+    rep = engines.verify(model, sc, 4, duration=0.5, ensemble=1)
+    assert rep.exact, str(rep)
+    assert rep.excited
+
+
+def test_a_joint_spring_pulls_its_joint_as_the_torque_minus_k_q_minus_q0():
+    """The spring's run against the same run with its torque given as a closed-loop policy, bit for bit."""
+    plain = engines.load(ARM, fixed_base=True, damping=0.0, split_impulse=False)
+    sprung = plain.with_settings(joint_springs={"swing": (2.5, 0.3)})
+    names = plain.coordinates()[0]
+    q = names.index("q[swing]")
+
+    def by_hand(client, body, t):
+        import pybullet
+
+        angle = pybullet.getJointState(body, 1, physicsClientId=client)[0]
+        return [0.0, -2.5 * (angle - 0.3)]
+
+    ours = sprung.run(200)
+    theirs = plain.run(200, policy=by_hand)
+    assert np.array_equal(ours, theirs)
+    assert np.ptp(ours[:, q]) > 0.1  # it swung
+
+
+@pytest.mark.parametrize(("springs", "says"), [
+    ({"elbow": (1, 0)}, "no movable joint 'elbow' for a spring; the movable joints are slide, swing"),
+    ({"swing": (-1, 0)}, "the spring stiffness of joint 'swing' cannot be negative"),
+    ({"swing": 3}, "the spring of joint 'swing' is (stiffness, rest position)"),
+    ([("swing", 1, 0)], "joint_springs maps a joint's name to (stiffness, rest position)"),
+    ({"swing": ("stiff", 0)}, "stiff"),
+])
+def test_bad_joint_springs_are_named(springs, says):
+    model = engines.load(ARM, fixed_base=True)
+    with pytest.raises(pt.PiTheoremError) as err:
+        model.with_settings(joint_springs=springs)
+    assert says in str(err.value)
+
+
+def test_with_settings_sets_the_multibody_damping_and_back_to_pybullets_own():
+    model = engines.load(ARM, fixed_base=True)
+    off = model.with_settings(damping=0)
+    assert {p.value for p in off.parameters if p.name.endswith("Damping")} == {(0.0,)}
+    back = off.with_settings(damping=None)
+    assert back.settings() == model.settings()
+    with pytest.raises(pt.InvalidRequestError, match="unknown setting 'gravity'"):
+        model.with_settings(gravity=1)
+
+
+def test_a_run_starts_from_a_given_first_row():
+    model = engines.load(ARM, fixed_base=True, damping=0.0, split_impulse=False)
+    names = model.coordinates()[0]
+    first = model.run(0)[0]
+    first[names.index("q[swing]")], first[names.index("qdot[slide]")] = 0.4, -0.3
+    rows = model.run(3, initial=first)
+    assert np.array_equal(rows[0], first)
+    assert not np.array_equal(rows, model.run(3))

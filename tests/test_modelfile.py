@@ -30,14 +30,17 @@ def write(tmp_path, text: str, name: str = "model.toml"):
 
 
 def test_examples_are_listed():
-    assert examples() == ("hinged_rod", "pendulum.xml", "superball", "superball.xml")
+    assert examples() == ("hinged_rod", "hinged_rod.urdf", "hinged_rod.xml", "pendulum.xml", "superball",
+                          "superball.xml")
     assert example_path("hinged_rod.toml") == example_path("hinged_rod")
     assert example_path("hinged_rod").name == "hinged_rod.toml"
     assert example_path("pendulum.xml") == EXAMPLES / "pendulum.xml"
     # the engines' call is the same function: one home for the shipped files
     assert engines.example_path is example_path
-    assert sorted(p.name for p in EXAMPLES.iterdir() if p.suffix in (".toml", ".xml")) == [
-        "hinged_rod.toml", "pendulum.xml", "superball.toml", "superball.xml"]
+    assert sorted(p.name for p in EXAMPLES.iterdir() if p.suffix in (".toml", ".xml", ".urdf")) == [
+        "hinged_rod.toml", "hinged_rod.urdf", "hinged_rod.xml", "pendulum.xml", "superball.toml", "superball.xml"]
+    # a URDF's settings file ships beside it and is no example of its own
+    assert (EXAMPLES / "hinged_rod.urdf.settings.json").is_file()
 
 
 def test_hinged_rod_example_is_the_papers_rod():
@@ -65,7 +68,7 @@ def test_unknown_example(name):
     with pytest.raises(ModelFileError) as caught:
         example_path(name)
     assert str(caught.value) == (f"example:{name}: no such example; the shipped examples are "
-                                 "hinged_rod, pendulum.xml, superball, superball.xml")
+                                 "hinged_rod, hinged_rod.urdf, hinged_rod.xml, pendulum.xml, superball, superball.xml")
     assert caught.value.culprit == f"example:{name}"
 
 

@@ -64,7 +64,7 @@ __all__ = [
 #: open-loop inputs: None (zero input), rows of inputs (one per step) or ``t -> inputs``
 Controls = np.ndarray | Callable[[float], Sequence[float]] | None
 
-#: a run of a batch: (backend, controls, nudge, initial state or None)
+#: a run of a batch: (backend, controls, nudge, first row or None)
 Job = tuple[Any, Controls, bool, Any]
 
 
@@ -93,8 +93,11 @@ class EngineRunner(Protocol):
         """Each input's lower and upper limit; -inf and inf where it has none."""
 
     def run(self, n_steps: int, controls: Controls = None, nudge: bool = False,
-            policy: Callable | None = None) -> np.ndarray:
-        """Rows of coordinates after 0..n_steps steps; ``nudge`` moves the start by one ulp."""
+            policy: Callable | None = None, initial: np.ndarray | None = None) -> np.ndarray:
+        """Rows of coordinates after 0..n_steps steps from `initial` (a first row; None: the model's own).
+
+        ``nudge`` moves the start by one ulp.
+        """
 
     def run_many(self, n_steps: int, jobs: Sequence[Job]) -> list[np.ndarray]:
         """Several open-loop runs of models of the same sizes at once: the rows of each."""

@@ -1007,12 +1007,14 @@ class MjcfBackend:
         return self._field_names
 
     def variant(self, *, tolerance: float | None = None, contacts: bool = True, solver: str | None = None,
-                inactive_equalities: tuple[int, ...] = ()) -> MjcfBackend:
-        """A copy run with another solver or tolerance, with contacts switched off, or with some equality
-        constraints inactive: a counter-run's model."""
+                inactive_equalities: tuple[int, ...] = (), integrator: str | None = None) -> MjcfBackend:
+        """A copy run with another solver, tolerance or integrator, with contacts switched off, or with some
+        equality constraints inactive: a counter-run's model (or the rod's, in another integrator)."""
         mj = _mujoco()
         out = self._with_model_copy()
         m = out.mjmodel
+        if integrator is not None:
+            m.opt.integrator = int(getattr(mj.mjtIntegrator, f"mjINT_{integrator.upper()}"))
         for i in inactive_equalities:
             m.eq_active0[i] = 0
         if solver is not None:
@@ -1137,28 +1139,29 @@ class MjcfBackend:
     def timestep(self) -> float:
         return float(self.mjmodel.opt.timestep)
 
-    def run(self, n_steps: int, controls=None, nudge: bool = False, state=None, policy=None):
+    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None):
         """Step the model ``n_steps`` times from its initial state; rows of (qpos, qvel, act).
 
         ``controls`` is None, an array of ``data.ctrl`` rows (one per step)
         or a callable of the step's start time ``i * dt`` giving one row;
         ``policy`` is None or a closed-loop ``policy(mjmodel, mjdata)``
         giving ``data.ctrl``; ``nudge`` moves every initial coordinate by
-        one ulp; ``state`` is an initial (qpos, qvel) pair.
+        one ulp; ``initial`` is a first row, (qpos, qvel, act) laid out as
+        the rows returned.
 
         Open-loop runs step in MuJoCo's own ``rollout`` (the loop in C,
         bit for bit the same steps as ``mj_step`` in Python); a policy
         needs Python between the steps.
         """
         if policy is not None and self.mjmodel.nu:
-            data, first = self._start(nudge, state)
+            data, first = self._start(nudge, initial)
             return self._run_closed_loop(n_steps, data, policy, first)
-        return self.run_many(n_steps, [(self, controls, nudge, state)])[0]
+        return self.run_many(n_steps, [(self, controls, nudge, initial)])[0]
 
     def run_many(self, n_steps: int, jobs) -> list[np.ndarray]:
         """Several open-loop runs in one call of MuJoCo's rollout, spread over the processor's cores.
 
-        ``jobs`` holds ``(backend, controls, nudge, state)`` tuples, as the
+        ``jobs`` holds ``(backend, controls, nudge, initial)`` tuples, as the
         arguments of :meth:`run`; the backends' models must have the same
         sizes (a model and its scaled copies do).  Returns the runs' rows.
         """
@@ -1174,9 +1177,9 @@ class MjcfBackend:
         # reset leaves in a data (the controls, applied forces, which equality constraints are active,
         # mocap poses, user data), and a zero warm start, so that no run inherits another's.
         datas = [mj.MjData(jobs[0][0].mjmodel) for _ in range(threads)]
-        for backend, controls, nudge, state in jobs:
+        for backend, controls, nudge, row in jobs:
             m = backend.mjmodel
-            data, first = backend._start(nudge, state, datas[0])
+            data, first = backend._start(nudge, row, datas[0])
             x0, u0 = np.empty(mj.mj_stateSize(m, physics)), np.empty(mj.mj_stateSize(m, user))
             mj.mj_getState(m, data, x0, physics)
             mj.mj_getState(m, data, u0, user)
@@ -1200,15 +1203,19 @@ class MjcfBackend:
             out.append(np.concatenate([first[None, :], rows[:, start:start + m.nq + m.nv + m.na]]))
         return out
 
-    def _start(self, nudge: bool, state, data=None):
-        """The initial data (a new one, or `data` reset to this model) and its first row of coordinates."""
+    def _start(self, nudge: bool, initial, data=None):
+        """The initial data (a new one, or `data` reset to this model) and its first row of coordinates.
+
+        `initial` is None (the model's reference pose at rest) or a first row: qpos, qvel, act.
+        """
         mj, m = _mujoco(), self.mjmodel
         if data is None:
             data = mj.MjData(m)
         else:
             mj.mj_resetData(m, data)
-        if state is not None:
-            data.qpos[:], data.qvel[:] = state
+        if initial is not None:
+            data.qpos[:], data.qvel[:] = initial[:m.nq], initial[m.nq:m.nq + m.nv]
+            data.act[:] = initial[m.nq + m.nv:]
         if nudge:
             data.qpos[:] = nudged(data.qpos)
             data.qvel[:] = nudged(data.qvel)
@@ -1231,9 +1238,20 @@ class MjcfBackend:
         out = np.empty((n_steps + 1, nq + nv + m.na))
         out[0] = first
         qpos, qvel, act = out[:, :nq], out[:, nq:nq + nv], out[:, nq + nv:]
+        # The policy must see the state it acts on: after mj_step, data's positions and velocities are the
+        # new ones but everything computed from them (site and body poses, tendon lengths, sensors) is
+        # still the last step's.  mj_step1 computes them first, mj_step2 finishes the step: together the
+        # same step as mj_step, except for RK4, which mj_step2 does not take (there mj_forward goes first).
+        split = int(m.opt.integrator) != int(mj.mjtIntegrator.mjINT_RK4)
         for i in range(1, n_steps + 1):
-            data.ctrl[:] = policy(m, data)
-            mj.mj_step(m, data)
+            if split:
+                mj.mj_step1(m, data)
+                data.ctrl[:] = policy(m, data)
+                mj.mj_step2(m, data)
+            else:
+                mj.mj_forward(m, data)
+                data.ctrl[:] = policy(m, data)
+                mj.mj_step(m, data)
             qpos[i], qvel[i], act[i] = data.qpos, data.qvel, data.act
         return out
 
@@ -1460,7 +1478,7 @@ class RefusedMjcfBackend(MjcfBackend):
                                "Convert it to units clear of the threshold (pitheorem.fit_units(model), "
                                "model.converted(...), or pitheorem convert FILE --fit mujoco)")
 
-    def run(self, n_steps: int, controls=None, nudge: bool = False, state=None, policy=None):
+    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None):
         return self.run_many(n_steps, [])
 
     def twin(self, seed: int):

@@ -163,7 +163,7 @@ class MjxBackend:
     def control_ranges(self):
         return self.mjcf.control_ranges()
 
-    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None) -> np.ndarray:
+    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None) -> np.ndarray:
         """Rows of (qpos, qvel, act) after 0..n_steps steps from the initial state, open loop.
 
         Raises
@@ -174,14 +174,15 @@ class MjxBackend:
         if policy is not None:
             raise InvalidRequestError("MJX runs open loop here; run a closed-loop controller in 'mujoco' "
                                       "(engines.load(path))")
-        return self.run_many(n_steps, [(self, controls, nudge, None)])[0]
+        return self.run_many(n_steps, [(self, controls, nudge, initial)])[0]
 
     def run_many(self, n_steps: int, jobs) -> list[np.ndarray]:
-        """The runs of ``(backend, controls, nudge, state)`` jobs, vmapped: one call per static part.
+        """The runs of ``(backend, controls, nudge, initial)`` jobs, vmapped: one call per static part.
 
         The models must have the same sizes (a model, its scaled copies and
         its twins do).  ``controls`` is None, rows of inputs (one per step)
-        or ``t -> inputs``; ``state`` is None or an initial (qpos, qvel).
+        or ``t -> inputs``; ``initial`` is None or a first row (qpos, qvel,
+        act; MJX starts every activation at zero).
         """
         jax = _jax()
         import jax.numpy as jnp
@@ -293,14 +294,17 @@ def _replaced(jax, device, values: dict):
     return device.replace(**top, opt=device.opt.replace(**opt), stat=device.stat.replace(**stat))
 
 
-def _initial(backend: MjxBackend, nudge: bool, state, dtype) -> tuple[np.ndarray, np.ndarray]:
-    """The initial (qpos, qvel): the model's reference pose at rest, or `state`; nudged by one ulp of `dtype`."""
+def _initial(backend: MjxBackend, nudge: bool, initial, dtype) -> tuple[np.ndarray, np.ndarray]:
+    """The initial (qpos, qvel): the model's reference pose at rest, or `initial`'s; nudged by one ulp of `dtype`."""
     m = backend.mjcf.mjmodel
-    if state is None:
+    if initial is None:
         qpos = np.asarray(backend._device.qpos0, dtype=dtype)
         qvel = np.zeros(m.nv, dtype)
     else:
-        qpos, qvel = (np.asarray(x, dtype=dtype) for x in state)
+        if np.any(initial[m.nq + m.nv:]):
+            raise InvalidRequestError("MJX runs start with every activation at zero; run a start with "
+                                      "activations in 'mujoco' (engines.load(path))")
+        qpos, qvel = (np.asarray(x, dtype=dtype) for x in (initial[:m.nq], initial[m.nq:m.nq + m.nv]))
     if nudge:
         qpos, qvel = _nudged(qpos, dtype), _nudged(qvel, dtype)
     return qpos, qvel

@@ -894,7 +894,7 @@ class EngineModel(TableDisplay):
         """
         return self._backend.timestep()
 
-    def run(self, n_steps: int, controls=None, *, policy=None) -> np.ndarray:
+    def run(self, n_steps: int, controls=None, *, policy=None, initial=None) -> np.ndarray:
         """Step the model ``n_steps`` times from its initial state, in its engine.
 
         Parameters
@@ -905,7 +905,14 @@ class EngineModel(TableDisplay):
             the step's start time giving one row.  None: no input.
         policy : callable, optional
             A closed-loop controller giving the inputs of each step
-            (MuJoCo's ``policy(mjmodel, mjdata)``; MJX runs open loop).
+            (MuJoCo's ``policy(mjmodel, mjdata)``, called with everything
+            in ``mjdata`` computed for the state it acts on; PyBullet's
+            ``policy(client, body, t)``; MJX runs open loop).
+        initial : array_like, optional
+            The state to start from, as a first row of the result (the
+            columns :meth:`coordinates` names); default the model's own
+            start (MuJoCo: its reference pose at rest; PyBullet: the pose
+            the file loads in).
 
         Returns
         -------
@@ -914,14 +921,37 @@ class EngineModel(TableDisplay):
             their rates, and the actuators' activations (MuJoCo, MJX) as
             :meth:`coordinates` names them.
 
+        Raises
+        ------
+        InvalidRequestError
+            For a negative or fractional ``n_steps``, or an ``initial`` of
+            the wrong length or with a number that is not finite.
+
         Examples
         --------
         >>> from pitheorem import engines
         >>> model = engines.load(engines.example_path("pendulum.xml"))
         >>> model.run(10, controls=lambda t: [0.1]).shape
         (11, 2)
+        >>> model.run(1, initial=[0.5, 0.0])[0]
+        array([0.5, 0. ])
         """
-        return self._backend.run(n_steps, controls, policy=policy)
+        import numpy as np
+
+        if isinstance(n_steps, bool) or not isinstance(n_steps, int | np.integer) or n_steps < 0:
+            raise InvalidRequestError(f"n_steps is a whole number of steps, 0 or more; got {n_steps!r}",
+                                      culprit=n_steps)
+        if initial is not None:
+            names = self.coordinates()[0]
+            try:
+                initial = np.array(initial, dtype=float).reshape(-1)
+            except (TypeError, ValueError):
+                raise InvalidRequestError(f"initial is a row of {len(names)} numbers, got {initial!r}",
+                                          culprit=initial) from None
+            if len(initial) != len(names) or not np.all(np.isfinite(initial)):
+                raise InvalidRequestError(f"initial is a row of {len(names)} finite numbers ({', '.join(names)}), "
+                                          f"got {initial.tolist()!r}", culprit=initial)
+        return self._backend.run(int(n_steps), controls, policy=policy, initial=initial)
 
     def coordinates(self) -> tuple[list[str], list[Dimension]]:
         """The names and dimensions of the columns :meth:`run` returns.

@@ -1,29 +1,33 @@
-"""The white paper's hinged rod in PyBullet and in MuJoCo, and similarity checks of both.
+"""The white paper's hinged rod in PyBullet and in MuJoCo, from shipped model files.
 
 The rod (mass ``m``, length ``l``, hinged at one end, a rotational spring
 ``k_theta`` with rest angle ``theta_r`` and a damper ``c_theta`` at the
-hinge, gravity ``g``) is :func:`pitheorem.models.hinged_rod`; here it is
-built in a real engine:
+hinge, gravity ``g``) is :func:`pitheorem.models.hinged_rod`.  In an engine
+it is a model file shipped with pitheorem, loaded by
+:func:`pitheorem.engines.load` and run by the engine's backend, as a user's
+file is:
 
-* **PyBullet**: a fixed base with one link on a revolute joint about the
-  y axis (so a positive angle turns the rod towards -z, the way gravity
-  pulls), the link's centre of mass at ``l/2`` and its inertia set to
-  ``m l^2 / 12`` about the centre of mass (so ``m l^2 / 3`` about the
-  hinge), no collision shapes.  The default velocity motor is disabled and
-  the spring-damper torque ``-k_theta (theta - theta_r) - c_theta omega``
-  is applied before every step with ``TORQUE_CONTROL``.  Unless
-  ``engine_defaults=True``, the multibody's built-in damping (0.04, see
-  :mod:`pitheorem.engines.constants`) is set to zero, sleeping is disabled
-  and the joint-speed cap is lifted.
-* **MuJoCo**: an MJCF model with one hinge joint carrying ``stiffness``,
-  ``springref`` and ``damping``, an explicit ``fullinertia``, contacts
-  disabled and angles read in radians (MJCF's default is degrees).
+* ``hinged_rod.xml`` (MuJoCo): one hinge joint carrying ``stiffness``,
+  ``springref`` and ``damping``, an explicit inertia ``m l^2 / 12`` about
+  the centre of mass at ``l/2``, contacts disabled, angles in radians;
+* ``hinged_rod.urdf`` (PyBullet): a fixed base and one link on a
+  continuous joint about the y axis (a positive angle turns the rod towards
+  -z, the way gravity pulls) with URDF's joint damping, which PyBullet
+  applies.  URDF holds neither a joint spring nor, for a link without
+  collision shapes, its inertia: both are in the settings file beside it
+  (``hinged_rod.urdf.settings.json``), with the fixed base, gravity, the
+  multibody damping switched off and the joint-speed cap lifted.  The
+  backend applies the spring as the torque ``-k_theta (theta - theta_r)``
+  before every step.
 
-:func:`verify_engine_similarity` runs the engine on the original and on
-the scaled parameters (time step scaled with time, or not), maps the
-scaled run back to original units (the mapping of
+:func:`rod_model` sets the paper's parameters into the numbers of a file
+(:func:`rod_file_numbers` says which number each one sets);
+:func:`simulate_rod` runs it; :func:`verify_engine_similarity` runs the
+original and the scaled parameters (time step scaled with time, or not),
+maps the scaled run back to original units (the mapping of
 :meth:`pitheorem.Scaling.map_back`) and compares, next to the pure-ODE
-answer of :func:`pitheorem.verify_similarity`.
+answer of :func:`pitheorem.verify_similarity`.  The files themselves
+scale like any other: ``engines.verify(engines.load(path), scaling, s)``.
 """
 
 from __future__ import annotations
@@ -36,7 +40,8 @@ from types import MappingProxyType
 
 import numpy as np
 
-from ..errors import EngineUnavailableError, InvalidRequestError, PiTheoremError
+from ..errors import EngineUnavailableError, InvalidRequestError
+from ..modelfile import example_path
 from ..models import hinged_rod
 from ..simulation import (
     ModelScaling,
@@ -49,20 +54,28 @@ from ..simulation import (
 )
 from ..simulation import simulate as simulate_ode
 from .constants import hidden_constants
-from .packages import check_engine, engine_module, quiet_stdout
+from .loading import load
+from .model import EngineModel
+from .packages import check_engine
 
 #: the paper's rod, built once: solving and compiling its equations costs more than a short engine run
 _rod_model = functools.cache(hinged_rod)
 
-__all__ = ["DEFAULT_TIME_STEP", "EngineSimilarityReport", "EngineUnavailableError", "simulate_rod",
-           "verify_engine_similarity"]
+__all__ = ["DEFAULT_TIME_STEP", "ROD_FILES", "EngineSimilarityReport", "EngineUnavailableError", "rod_file_numbers",
+           "rod_model", "simulate_rod", "verify_engine_similarity"]
 
 #: each engine's own default time step, as the catalogue of pitheorem.engines.constants has it
 DEFAULT_TIME_STEP = MappingProxyType({engine: hidden_constants(engine, names=[name])[0].default
                                       for engine, name in (("pybullet", "bullet_time_step"),
                                                            ("mujoco", "mujoco_timestep"))})
 
+#: the shipped file of the rod in each engine (in ``pitheorem/examples``)
+ROD_FILES = MappingProxyType({"mujoco": "hinged_rod.xml", "pybullet": "hinged_rod.urdf"})
+
 _MUJOCO_INTEGRATORS = ("Euler", "RK4", "implicit", "implicitfast")
+
+#: the joint's coordinate and rate, as each engine's runs name them
+_COLUMNS = {"mujoco": ("qpos[hinge]", "qvel[hinge]"), "pybullet": ("q[hinge]", "qdot[hinge]")}
 
 
 # -- the rod in each engine --------------------------------------------------------------------
@@ -77,118 +90,142 @@ def _rod_engine(engine) -> str:
     return engine
 
 
-def _run_bullet(p, y0, dt, n_steps, engine_defaults):
-    pb = engine_module("pybullet")
-    with quiet_stdout():
-        client = pb.connect(pb.DIRECT)
-    try:
-        m, l, g = p["m"], p["l"], p["g"]  # noqa: E741
-        k, c, theta_r = p["k_theta"], p["c_theta"], p["theta_r"]
-        i_com = m * l * l / 12.0
-        ident = [0.0, 0.0, 0.0, 1.0]
-        body = pb.createMultiBody(
-            baseMass=0.0, baseCollisionShapeIndex=-1, baseVisualShapeIndex=-1, basePosition=[0.0, 0.0, 0.0],
-            linkMasses=[m], linkCollisionShapeIndices=[-1], linkVisualShapeIndices=[-1],
-            linkPositions=[[0.0, 0.0, 0.0]], linkOrientations=[ident],
-            linkInertialFramePositions=[[l / 2.0, 0.0, 0.0]], linkInertialFrameOrientations=[ident],
-            linkParentIndices=[0], linkJointTypes=[pb.JOINT_REVOLUTE], linkJointAxis=[[0.0, 1.0, 0.0]],
-            physicsClientId=client,
-        )
-        # one setting per call: pybullet 3.2.7 applies localInertiaDiagonal to the base instead of the
-        # link when it is combined with body-wide settings (damping, activation state) in one call
-        pb.changeDynamics(body, 0, jointDamping=0.0, physicsClientId=client)
-        if not engine_defaults:
-            pb.changeDynamics(body, -1, linearDamping=0.0, angularDamping=0.0, physicsClientId=client)
-            pb.changeDynamics(body, -1, activationState=pb.ACTIVATION_STATE_DISABLE_SLEEPING, physicsClientId=client)
-            pb.changeDynamics(body, 0, maxJointVelocity=1e30, physicsClientId=client)
-        pb.changeDynamics(body, 0, localInertiaDiagonal=[i_com, i_com, i_com], physicsClientId=client)
-        got = pb.getDynamicsInfo(body, 0, physicsClientId=client)[2]
-        if not np.allclose(got, i_com, rtol=1e-12, atol=0.0):
-            raise PiTheoremError(f"pybullet did not take the rod's inertia {i_com!r} (it reports {got!r})")
-        pb.setGravity(0.0, 0.0, -g, physicsClientId=client)
-        pb.setTimeStep(dt, physicsClientId=client)
-        pb.setPhysicsEngineParameter(numSubSteps=0, physicsClientId=client)
-        pb.resetJointState(body, 0, float(y0[0]), float(y0[1]), physicsClientId=client)
-        pb.setJointMotorControl2(body, 0, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=client)
-        out = np.empty((n_steps + 1, 2))
-        theta, omega = pb.getJointState(body, 0, physicsClientId=client)[:2]
-        out[0] = theta, omega
-        for i in range(1, n_steps + 1):
-            torque = -k * (theta - theta_r) - c * omega
-            pb.setJointMotorControl2(body, 0, pb.TORQUE_CONTROL, force=torque, physicsClientId=client)
-            pb.stepSimulation(physicsClientId=client)
-            theta, omega = pb.getJointState(body, 0, physicsClientId=client)[:2]
-            out[i] = theta, omega
-        return out
-    finally:
-        pb.disconnect(physicsClientId=client)
+@functools.cache
+def _shipped(engine: str) -> EngineModel:
+    """The shipped file of the rod, loaded once (a model never changes)."""
+    return load(example_path(ROD_FILES[engine]))
 
 
-def rod_mjcf(params: Mapping[str, float], *, dt: float = DEFAULT_TIME_STEP["mujoco"], integrator: str = "Euler") -> str:
-    """The MJCF text of the hinged rod for MuJoCo.
+def rod_file_numbers(engine: str, params: Mapping[str, float]) -> dict[str, tuple[float, ...]]:
+    """The numbers of the rod's file that the paper's parameters set, by parameter name.
+
+    One parameter of the paper sets several numbers of a file: the length
+    ``l`` places the centre of mass at ``l/2``, enters the inertia
+    ``m l^2 / 12`` and draws the rod; the others set one number each.
 
     Parameters
     ----------
+    engine : {"mujoco", "pybullet"}
     params : mapping of str to float
-        ``m, l, g, k_theta, c_theta, theta_r`` (all needed).
-    dt : float
-        MuJoCo's time step.
-    integrator : {"Euler", "RK4", "implicit", "implicitfast"}
+        ``m, l, g, k_theta, c_theta, theta_r``, all of them.
 
     Returns
     -------
-    str
+    dict of str to tuple of float
+        The file's parameter name (as ``model.parameters`` names it) to
+        its values.
+
+    Raises
+    ------
+    InvalidRequestError
+        For an engine other than the two, or a missing parameter.
 
     Examples
     --------
     >>> import pitheorem as pt
-    >>> from pitheorem.engines.rod import rod_mjcf
-    >>> text = rod_mjcf(pt.models.hinged_rod().defaults)
-    >>> 'angle="radian"' in text, 'contact="disable"' in text
-    (True, True)
+    >>> from pitheorem.engines.rod import rod_file_numbers
+    >>> numbers = rod_file_numbers("mujoco", pt.models.hinged_rod().defaults)
+    >>> numbers["body_rod_ipos"], numbers["body_rod_inertia"]
+    ((1.0, 0.0, 0.0), (0.5, 0.5, 0.5))
     """
-    if integrator not in _MUJOCO_INTEGRATORS:
-        raise InvalidRequestError(f"unknown MuJoCo integrator {integrator!r}; use one of {', '.join(_MUJOCO_INTEGRATORS)}")
+    engine = _rod_engine(engine)
     missing = [n for n in ("m", "l", "g", "k_theta", "c_theta", "theta_r") if n not in params]
     if missing:
-        raise InvalidRequestError(f"rod_mjcf needs parameter {missing[0]!r}")
-    m, l, g = (float(params[n]) for n in ("m", "l", "g"))  # noqa: E741
-    k, c, theta_r = (float(params[n]) for n in ("k_theta", "c_theta", "theta_r"))
+        raise InvalidRequestError(f"the rod's file needs parameter {missing[0]!r}", culprit=missing[0])
+    m, l, g, k, c, theta_r = (float(params[n]) for n in ("m", "l", "g", "k_theta", "c_theta", "theta_r"))  # noqa: E741
     i_com = m * l * l / 12.0
-    return (
-        '<mujoco model="hinged_rod">\n'
-        '  <compiler angle="radian"/>\n'
-        f'  <option timestep="{float(dt)!r}" gravity="0 0 {-g!r}" integrator="{integrator}">\n'
-        '    <flag contact="disable"/>\n'
-        "  </option>\n"
-        "  <worldbody>\n"
-        '    <body name="rod">\n'
-        f'      <joint name="hinge" type="hinge" axis="0 1 0" stiffness="{k!r}" springref="{theta_r!r}" '
-        f'damping="{c!r}"/>\n'
-        f'      <inertial pos="{l / 2.0!r} 0 0" mass="{m!r}" fullinertia="{i_com!r} {i_com!r} {i_com!r} 0 0 0"/>\n'
-        "    </body>\n"
-        "  </worldbody>\n"
-        "</mujoco>\n"
-    )
+    if engine == "mujoco":
+        return {"g": (g,), "body_rod_mass": (m,), "body_rod_ipos": (l / 2.0, 0.0, 0.0),
+                "body_rod_inertia": (i_com,) * 3, "geom_rod_fromto": (0.0, 0.0, 0.0, l, 0.0, 0.0),
+                "joint_hinge_stiffness": (k,), "joint_hinge_springref": (theta_r,), "joint_hinge_damping": (c,)}
+    return {"g": (g,), "link_rod_mass": (m,), "link_rod_com": (l / 2.0, 0.0, 0.0), "link_rod_ixx": (i_com,),
+            "link_rod_iyy": (i_com,), "link_rod_izz": (i_com,), "link_rod_inertia": (i_com,) * 3,
+            "link_rod_visual0_xyz": (l / 2.0, 0.0, 0.0), "link_rod_visual0_length": (l,),
+            "joint_hinge_damping": (c,), "joint_hinge_spring_stiffness": (k,), "joint_hinge_spring_rest": (theta_r,)}
 
 
-def _run_mujoco(p, y0, dt, n_steps, integrator):
-    mj = engine_module("mujoco")
-    model = mj.MjModel.from_xml_string(rod_mjcf(p, dt=dt, integrator=integrator))
-    data = mj.MjData(model)
-    data.qpos[0], data.qvel[0] = float(y0[0]), float(y0[1])
-    mj.mj_forward(model, data)
-    out = np.empty((n_steps + 1, 2))
-    out[0] = data.qpos[0], data.qvel[0]
-    for i in range(1, n_steps + 1):
-        mj.mj_step(model, data)
-        out[i] = data.qpos[0], data.qvel[0]
-    return out
+def _with_numbers(model: EngineModel, numbers: dict[str, tuple[float, ...]]) -> EngineModel:
+    """`model` with its parameters set to `numbers`: a number by its value, a vector by its one factor."""
+    values, factors = {}, {}
+    for name, wanted in numbers.items():
+        now = model.parameter(name).value
+        if wanted == now:
+            continue
+        if len(now) == 1:
+            values[name] = wanted[0]
+            continue
+        f = next(w / n for w, n in zip(wanted, now, strict=True) if n != 0)  # the rod's vectors: (x, 0, 0) ...
+        factors[name] = f
+    if factors:
+        model = model.multiplied(**factors)
+    return model.with_values(**values) if values else model
+
+
+def rod_model(engine: str, params=None, *, dt: float | None = None, integrator: str | None = None,
+              engine_defaults: bool = False) -> EngineModel:
+    """The rod's shipped file with the paper's parameters set into it, ready to run.
+
+    Parameters
+    ----------
+    engine : {"pybullet", "mujoco"}
+    params : mapping of str to float, optional
+        Rod parameters; unlisted ones take the defaults of
+        :func:`pitheorem.models.hinged_rod` (the file's own values).
+    dt : float, optional
+        Time step; default the file's (the engine's own: 1/240 s, 0.002 s).
+    integrator : str, optional
+        MuJoCo only: ``"Euler"`` (the file's), ``"RK4"``, ``"implicit"``
+        or ``"implicitfast"``.
+    engine_defaults : bool
+        PyBullet only: keep the multibody's built-in damping and joint
+        speed cap instead of the settings file's (switched off).
+
+    Returns
+    -------
+    EngineModel
+        An unsaved copy of the shipped file (or the file itself, for its
+        own values).
+
+    Raises
+    ------
+    InvalidRequestError
+        For an unknown engine or integrator, an option of the other
+        engine, or a bad number.
+    EngineUnavailableError
+        When the engine's package is not installed.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.rod import rod_model
+    >>> model = rod_model("mujoco", {"l": 1.0})
+    >>> model.parameter("body_rod_ipos").value
+    (0.5, 0.0, 0.0)
+    """
+    engine = _rod_engine(engine)
+    if engine == "pybullet" and integrator is not None:
+        raise InvalidRequestError("integrator is a MuJoCo option; Bullet always uses semi-implicit Euler")
+    if engine == "mujoco" and engine_defaults:
+        raise InvalidRequestError("engine_defaults is a Bullet option; the MuJoCo rod has no hidden setting to keep")
+    if integrator is not None and integrator not in _MUJOCO_INTEGRATORS:
+        raise InvalidRequestError(f"unknown MuJoCo integrator {integrator!r}; use one of {', '.join(_MUJOCO_INTEGRATORS)}",
+                                  culprit=integrator)
+    model = _shipped(engine)
+    numbers = rod_file_numbers(engine, _rod_model().resolve_params(params))
+    if dt is not None:
+        numbers["timestep"] = (positive_float(dt, "dt"),)
+    if engine_defaults:  # PyBullet's own multibody damping and joint speed cap, as a URDF loads without settings
+        model = model.with_settings(damping=None)
+        cap = hidden_constants("pybullet", names=["bullet_max_joint_velocity"])[0].default
+        numbers["joint_hinge_maxJointVelocity"] = (cap,)
+    model = _with_numbers(model, numbers)
+    if integrator not in (None, "Euler"):
+        model = EngineModel(model._backend.variant(integrator=integrator), model.engine, "", model.units)
+    return model
 
 
 def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt: float | None = None,
                  integrator: str | None = None, engine_defaults: bool = False) -> Trajectory:
-    """Run the paper's hinged rod in PyBullet or MuJoCo.
+    """Run the paper's hinged rod in PyBullet or MuJoCo, from its shipped file.
 
     Parameters
     ----------
@@ -200,14 +237,8 @@ def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt:
         Initial ``theta`` and ``omega`` (default ``pi/4, 0``).
     t_final : float
         End time; the run takes ``t_final / dt`` steps (rounded up).
-    dt : float, optional
-        Time step; default the engine's own (1/240 s, 0.002 s).
-    integrator : str, optional
-        MuJoCo only: ``"Euler"`` (its default), ``"RK4"``, ``"implicit"`` or
-        ``"implicitfast"``.
-    engine_defaults : bool
-        Bullet only: keep the multibody's built-in damping, sleeping and
-        joint-speed cap instead of switching them off.
+    dt, integrator, engine_defaults
+        As in :func:`rod_model`.
 
     Returns
     -------
@@ -228,22 +259,18 @@ def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt:
     >>> len(tr)
     6
     """
-    engine = _rod_engine(engine)
-    if engine == "pybullet" and integrator is not None:
-        raise InvalidRequestError("integrator is a MuJoCo option; Bullet always uses semi-implicit Euler")
-    if engine == "mujoco" and engine_defaults:
-        raise InvalidRequestError("engine_defaults is a Bullet option; the MuJoCo rod has no hidden setting to keep")
-    model = _rod_model()
-    p = model.resolve_params(params)
-    y = model.resolve_initial(y0)
+    model = rod_model(engine, params, dt=dt, integrator=integrator, engine_defaults=engine_defaults)
+    rod = _rod_model()
+    y = rod.resolve_initial(y0)
     t_final = positive_float(t_final, "t_final")
-    dt = DEFAULT_TIME_STEP[engine] if dt is None else positive_float(dt, "dt")
+    dt = model.timestep()
     n_steps = fixed_steps(t_final, dt)
-    if engine == "pybullet":
-        states = _run_bullet(p, y, dt, n_steps, engine_defaults)
-    else:
-        states = _run_mujoco(p, y, dt, n_steps, integrator or "Euler")
-    return Trajectory(np.arange(n_steps + 1) * dt, states, model.states, model.time)
+    names = model.coordinates()[0]
+    columns = [names.index(c) for c in _COLUMNS[model.engine]]
+    first = model.run(0)[0]
+    first[columns] = y
+    states = model.run(n_steps, initial=first)[:, columns]
+    return Trajectory(np.arange(n_steps + 1) * dt, states, rod.states, rod.time)
 
 
 @dataclass(frozen=True, eq=False)

@@ -54,17 +54,16 @@ from ..immutable import immutable
 from ..modelfile import EXAMPLES
 from ..system import System
 from .model import EngineModel, attribute_text, dim
-from .packages import engine_module
 
 __all__ = [
     "PAPER_SCALING",
     "PARAMETERS",
     "CableController",
     "SuperballParameter",
+    "bar_ends",
     "bar_nodes",
     "cable_pairs",
     "draw_superball",
-    "simulate_superball",
     "superball_mjcf",
     "superball_parameters",
     "superball_system",
@@ -398,21 +397,20 @@ class CableController:
     """
 
     def __init__(self, model):
-        mujoco = engine_module("mujoco")
         model = _compiled(model)
 
         def numeric(name: str) -> float:
-            index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_NUMERIC, name)
-            if index < 0:
-                raise InvalidRequestError(f"model has no custom numeric {name!r}; write it with superball_mjcf")
-            return float(model.numeric_data[model.numeric_adr[index]])
+            try:
+                return float(model.numeric(name).data[0])
+            except KeyError:
+                raise InvalidRequestError(f"model has no custom numeric {name!r}; write it with superball_mjcf",
+                                          culprit=name) from None
 
         self.v, self.gain, self.amplitude = numeric("v"), numeric("K_eps"), numeric("A")
         self.t_on, self.t_ramp = numeric("t_on"), numeric("t_ramp")
         self.stiffness = np.array(model.tendon_stiffness, dtype=float)
-        data = mujoco.MjData(model)
-        mujoco.mj_forward(model, data)
-        self.span = np.array(data.ten_length, dtype=float)
+        # each cable's length in the robot's starting pose, as MuJoCo's compiler measured it
+        self.span = np.array(model.tendon_length0, dtype=float)
         self._first = model.wrap_objid[model.tendon_adr]
         self._second = model.wrap_objid[model.tendon_adr + 1]
         self.reeled = np.zeros(model.ntendon)
@@ -476,60 +474,52 @@ class CableController:
         return -self.stiffness * self.reeled
 
 
-def simulate_superball(model, duration: float, *, controlled: bool = True, every: int = 10, nudge: bool = False):
-    """Drop the robot (and run its controller) in MuJoCo; return the bar ends.
+def bar_ends(model, rows) -> np.ndarray:
+    """The twelve bar ends of each recorded state of a run: where the bars' end sites are.
+
+    A run (:meth:`pitheorem.engines.EngineModel.run`) records each bar's
+    free joint: its centre and its orientation as a unit quaternion.  An
+    end sits at a fixed place in its bar's frame (the site ``bar<i>_end<j>``
+    of the file), so its position is the centre plus that place turned by
+    the quaternion, the kinematics MuJoCo computes for the site.
 
     Parameters
     ----------
-    model : str, Path, mujoco.MjModel or EngineModel
-        MJCF text, a path to an MJCF file, a compiled model, or a model of
-        :func:`pitheorem.engines.load` (or a scaled copy of one).
-    duration : float
-        Simulated time, in the model's own time unit.
-    controlled : bool
-        Run :class:`CableController`; ``False`` leaves the reels idle.
-    every : int
-        Keep one sample every ``every`` steps.
-    nudge : bool
-        Move every initial position coordinate up by one unit in the last
-        place: the run against the plain one is the model's own sensitivity.
+    model : EngineModel
+        SUPERball loaded by :func:`pitheorem.engines.load` (the shipped
+        file, a file of :func:`superball_mjcf`, or a scaled copy).
+    rows : array_like, shape (n, n_coordinates) or (n_coordinates,)
+        States as ``model.run`` returns them.
 
     Returns
     -------
-    times : ndarray, shape (n,)
-    ends : ndarray, shape (n, 6, 2, 3)
+    ndarray, shape (n, 6, 2, 3)
         The positions of the twelve bar ends, in the model's own units.
 
     Examples
     --------
-    >>> from pitheorem.engines.superball import simulate_superball, superball_mjcf
-    >>> times, ends = simulate_superball(superball_mjcf(), 0.5)
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.superball import CableController, bar_ends
+    >>> model = engines.load(engines.example_path("superball.xml"))
+    >>> rows = model.run(500, policy=CableController(model))
+    >>> ends = bar_ends(model, rows)
     >>> ends.shape, bool(ends[-1, :, :, 2].min() < ends[0, :, :, 2].min())   # it fell
-    ((51, 6, 2, 3), True)
+    ((501, 6, 2, 3), True)
     """
-    mujoco = engine_module("mujoco")
-    if isinstance(model, Path) or (isinstance(model, str) and not model.lstrip().startswith("<")):
-        model = mujoco.MjModel.from_xml_path(str(model))
-    elif isinstance(model, str):
-        model = mujoco.MjModel.from_xml_string(model)
-    model = _compiled(model)
-    data = mujoco.MjData(model)
-    if nudge:
-        data.qpos[:] = np.nextafter(data.qpos, np.inf)
-    controller = CableController(model) if controlled else None
-    n_steps = round(duration / model.opt.timestep)
-    times, ends = [], []
-    for step in range(n_steps + 1):
-        if step % every == 0:
-            mujoco.mj_forward(model, data)
-            times.append(data.time)
-            ends.append(np.array(data.site_xpos[:12], dtype=float).reshape(6, 2, 3))
-        if step == n_steps:
-            break
-        if controller is not None:
-            data.ctrl[:] = controller(model, data)
-        mujoco.mj_step(model, data)
-    return np.array(times), np.array(ends)
+    m = _compiled(model)
+    rows = np.atleast_2d(np.asarray(rows, dtype=float))
+    out = np.empty((len(rows), 12, 3))
+    for k in range(12):
+        body = m.site_bodyid[k]
+        address = m.jnt_qposadr[m.body_jntadr[body]]
+        centre, quat = rows[:, address:address + 3], rows[:, address + 3:address + 7]
+        quat = quat / np.linalg.norm(quat, axis=1, keepdims=True)
+        w, axis = quat[:, :1], quat[:, 1:]
+        place = np.broadcast_to(m.site_pos[k], axis.shape)
+        # v turned by the unit quaternion (w, u): v + 2 w (u x v) + 2 u x (u x v)
+        turn = np.cross(axis, place)
+        out[:, k] = centre + place + 2 * w * turn + 2 * np.cross(axis, turn)
+    return out.reshape(len(rows), 6, 2, 3)
 
 
 def draw_superball(ends, ax=None, *, a: float | None = None, l: float | None = None, color="C0"):  # noqa: E741
@@ -538,7 +528,7 @@ def draw_superball(ends, ax=None, *, a: float | None = None, l: float | None = N
     Parameters
     ----------
     ends : array_like, shape (6, 2, 3)
-        Bar end positions, one sample of :func:`simulate_superball`.
+        Bar end positions, one sample of :func:`bar_ends`.
     ax : matplotlib 3-D axes, optional
         Drawn into a new figure when omitted.
     a, l : float, optional
@@ -555,9 +545,10 @@ def draw_superball(ends, ax=None, *, a: float | None = None, l: float | None = N
     --------
     >>> import matplotlib
     >>> matplotlib.use("Agg")
-    >>> from pitheorem.engines.superball import draw_superball, simulate_superball, superball_mjcf
-    >>> _, ends = simulate_superball(superball_mjcf(), 0.0)
-    >>> ax = draw_superball(ends[0])
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.superball import bar_ends, draw_superball
+    >>> model = engines.load(engines.example_path("superball.xml"))
+    >>> ax = draw_superball(bar_ends(model, model.run(0))[0])
     >>> len(ax.lines)    # 6 bars and 24 cables
     30
     """

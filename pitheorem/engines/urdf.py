@@ -13,7 +13,9 @@ unless told otherwise), the time step, ``setPhysicsEngineParameter``
 values of dimension (``contactSlop``, ``restitutionVelocityThreshold``,
 ``solverResidualThreshold``) and per-link ``changeDynamics`` values
 (collision margin, rolling and spinning friction, joint speed cap, the
-multibody damping).  PyBullet's default velocity motors on every joint
+multibody damping) and joint springs (URDF has none: pitheorem applies the
+torque ``-k (q - q_0)`` before every step, as a PyBullet user does by hand).
+PyBullet's default velocity motors on every joint
 are switched off (``VELOCITY_CONTROL`` with ``force=0``) in every run, as
 the PyBullet guide advises for torque control: their impulse cap has no
 documented value to scale.
@@ -262,6 +264,11 @@ def _joint_speed_parameter(joint: str) -> str:
     return identifier(f"joint_{joint}_maxJointVelocity")
 
 
+def _spring_parameters(joint: str) -> tuple[str, str]:
+    """The parameter names of a joint spring's stiffness and rest position."""
+    return identifier(f"joint_{joint}_spring_stiffness"), identifier(f"joint_{joint}_spring_rest")
+
+
 def _xml_text(tree: ET.ElementTree) -> str:
     return ET.tostring(tree.getroot(), encoding="unicode")
 
@@ -410,6 +417,15 @@ class UrdfBackend:
             out.append(Parameter(_joint_speed_parameter(jname), f"joint {jname!r} maxJointVelocity",
                                  (self._max_joint_velocity(j),), _joint_kind(jtype).q / _T, "engine",
                                  "changeDynamics(maxJointVelocity=...)"))
+        for j, jname, jtype in self._info["joints"]:
+            if str(j) in st["springs"]:
+                kind, (k, rest) = _joint_kind(jtype), st["springs"][str(j)]
+                stiffness, rest_name = _spring_parameters(jname)
+                out.append(Parameter(stiffness, f"joint {jname!r} spring stiffness", (k,), kind.force / kind.q,
+                                     "engine", "joint spring (a torque each step)",
+                                     note="URDF has no joint spring: pitheorem applies -k (q - q0) before every step"))
+                out.append(Parameter(rest_name, f"joint {jname!r} spring rest position", (rest,), kind.q, "engine",
+                                     "joint spring (a torque each step)"))
         if st["useSplitImpulse"]:
             out.append(Parameter("splitImpulsePenetrationThreshold", "btContactSolverInfo",
                                  (_BULLET["bullet_split_impulse_penetration_threshold"].default,), _L, "engine", "",
@@ -431,6 +447,8 @@ class UrdfBackend:
             "setPhysicsEngineParameter": {**{n: st[n] for n, *_ in ENGINE_PARAMETERS},
                                           "useSplitImpulse": st["useSplitImpulse"]},
             "changeDynamics": self._dynamics_calls(),
+            "jointSprings": [{"jointIndex": int(key), "stiffness": k, "restPosition": rest}
+                             for key, (k, rest) in sorted(st["springs"].items(), key=lambda item: int(item[0]))],
             "disableDefaultMotors": True,
             "loadURDF": {"basePosition": list(self.scene["base_position"]), "useFixedBase": self.scene["fixed_base"]},
             "ground": {"collisionMargin": st["ground_margin"]} if self.scene["ground"] else None,
@@ -498,6 +516,9 @@ class UrdfBackend:
         for j, jname, _jtype in self._info["joints"]:
             name = _joint_speed_parameter(jname)
             st["max_joint_velocity"][str(j)] = params[name].value[0] * factors.get(name, 1.0)
+            if str(j) in st["springs"]:
+                names = _spring_parameters(jname)
+                st["springs"][str(j)] = [params[n].value[0] * factors.get(n, 1.0) for n in names]
         for err in self.unscalable(factors):
             raise err
         if self.scene["ground"]:
@@ -599,8 +620,9 @@ class UrdfBackend:
     def stored_numbers(self) -> dict[str, np.ndarray]:
         """What PyBullet holds once the robot is loaded and set: each link's dynamics, each joint's info.
 
-        Fields are ``link.<quantity>`` (one row per link, the base first) and ``joint.<quantity>`` (one
-        row per movable joint); the collision margins are left to :meth:`ignored_settings`.
+        Fields are ``link.<quantity>`` (one row per link, the base first), ``joint.<quantity>`` (one
+        row per movable joint) and ``spring.<quantity>`` (one row per joint spring, which the run applies
+        as a torque); the collision margins are left to :meth:`ignored_settings`.
         """
         dyn, joints = self._held()
         out = {f"link.{name}": np.array([np.atleast_1d(d[k]) for d in dyn], dtype=float)
@@ -608,12 +630,18 @@ class UrdfBackend:
         if joints:
             out.update({f"joint.{name}": np.array([np.atleast_1d(info[k]) for info in joints], dtype=float)
                         for k, name in _JOINT_FIELDS})
+        sprung, stiffness, rest = self._springs()
+        if sprung:  # not PyBullet's but the run's: the torque -k (q - q0) applied before every step
+            out["spring.stiffness"], out["spring.restPosition"] = stiffness[:, None], rest[:, None]
         return out
 
     def element_name(self, field: str, row: int) -> str:
         """A row of a stored field, named by its link or joint."""
         if field.startswith("link."):
             return f"link {self._info['links'][row][1]!r} {field[5:]}"
+        if field.startswith("spring."):
+            place = self._springs()[0][row]
+            return f"joint {self._info['joints'][place][1]!r} spring {field[7:]}"
         return f"joint {self._info['joints'][row][1]!r} {field[6:]}"
 
     def ignored_settings(self) -> tuple:
@@ -678,9 +706,9 @@ class UrdfBackend:
         pb, client = self._connect()
         try:
             out = []
-            for backend, controls, nudge, _state in jobs:
+            for backend, controls, nudge, initial in jobs:
                 pb.resetSimulation(physicsClientId=client)
-                out.append(backend._run_in(pb, client, n_steps, controls, nudge))
+                out.append(backend._run_in(pb, client, n_steps, controls, nudge, initial=initial))
             return out
         finally:
             pb.disconnect(physicsClientId=client)
@@ -690,25 +718,33 @@ class UrdfBackend:
         high = np.full(len(self._info["joints"]), np.inf)
         return -high, high
 
-    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None):
+    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None):
         pb, client = self._connect()
         try:
-            return self._run_in(pb, client, n_steps, controls, nudge, policy)
+            return self._run_in(pb, client, n_steps, controls, nudge, policy, initial)
         finally:
             pb.disconnect(physicsClientId=client)
 
-    def _run_in(self, pb, client, n_steps: int, controls=None, nudge: bool = False, policy=None):
-        """One run in a connected client whose world is empty."""
+    def _run_in(self, pb, client, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None):
+        """One run in a connected client whose world is empty, from `initial` (a first row) if given."""
         nudge = nudge or self.nudge_start
         st = self._settings
         body = self._setup(pb, client)
         joints = [j for j, _n, _t in self._info["joints"]]
+        n = len(joints)
+        if initial is not None:  # the row's layout: base position, orientation, velocities; q; qdot
+            pb.resetBasePositionAndOrientation(body, initial[:3].tolist(), initial[3:7].tolist(),
+                                               physicsClientId=client)
+            pb.resetBaseVelocity(body, initial[7:10].tolist(), initial[10:13].tolist(), physicsClientId=client)
+            for k, j in enumerate(joints):
+                pb.resetJointState(body, j, float(initial[13 + k]), float(initial[13 + n + k]),
+                                   physicsClientId=client)
         if nudge:
             pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=client)
             pb.resetBasePositionAndOrientation(body, nudged(pos).tolist(), orn, physicsClientId=client)
             for j in joints:
-                q = pb.getJointState(body, j, physicsClientId=client)[0]
-                pb.resetJointState(body, j, float(nudged([q])[0]), 0.0, physicsClientId=client)
+                q, qdot = pb.getJointState(body, j, physicsClientId=client)[:2]
+                pb.resetJointState(body, j, float(nudged([q])[0]), qdot, physicsClientId=client)
         out = np.empty((n_steps + 1, 13 + 2 * len(joints)))
 
         def record(i):
@@ -719,32 +755,75 @@ class UrdfBackend:
 
         record(0)
         dt = st["timestep"]
+        sprung, stiffness, rest = self._springs()
         for i in range(1, n_steps + 1):
-            if (controls is not None or policy is not None) and joints:
+            if (controls is not None or policy is not None or sprung) and joints:
                 t = (i - 1) * dt
-                if controls is None:
+                if controls is None and policy is None:
+                    u = np.zeros(len(joints))
+                elif controls is None:
                     u = policy(client, body, t)
                 else:  # an array of rows, one per step, or a function of time
                     u = controls(t) if callable(controls) else controls[i - 1]
-                pb.setJointMotorControlArray(body, joints, pb.TORQUE_CONTROL, forces=list(map(float, u)),
+                u = np.array(u, dtype=float)
+                if sprung:  # the springs' torques from the state this step starts from
+                    q = out[i - 1, 13:13 + len(joints)]
+                    u[sprung] += -stiffness * (q[sprung] - rest)
+                pb.setJointMotorControlArray(body, joints, pb.TORQUE_CONTROL, forces=u.tolist(),
                                              physicsClientId=client)
             pb.stepSimulation(physicsClientId=client)
             record(i)
         return out
 
+    def _springs(self) -> tuple[list[int], np.ndarray, np.ndarray]:
+        """The movable joints with a spring (by their place among the movable joints), stiffnesses, rests."""
+        places = {str(j): place for place, (j, _n, _t) in enumerate(self._info["joints"])}
+        springs = sorted((places[key], k, rest) for key, (k, rest) in self._settings["springs"].items())
+        return ([place for place, _k, _r in springs], np.array([k for _p, k, _r in springs]),
+                np.array([r for _p, _k, r in springs]))
+
     def with_settings(self, **changes) -> UrdfBackend:
         st = json.loads(json.dumps(self._settings))
         scene = dict(self.scene)
         for key, value in changes.items():
-            if key not in ("split_impulse", *scene):
-                raise InvalidRequestError(f"unknown setting {key!r}; use split_impulse, ground, fixed_base or "
-                                          "base_position")
+            if key not in ("split_impulse", "damping", "joint_springs", *scene):
+                raise InvalidRequestError(f"unknown setting {key!r}; use split_impulse, damping, joint_springs, "
+                                          "ground, fixed_base or base_position", culprit=key)
             if key == "split_impulse":
                 st["useSplitImpulse"] = int(scene_option(key, value))
+            elif key == "damping":  # None: PyBullet's own
+                st["damping"] = {} if value is None else {
+                    str(index): {name: scene_option(key, value) for name, *_ in MIXED_DAMPING}
+                    for index, _ in self._info["links"]}
+            elif key == "joint_springs":
+                st["springs"] = self._joint_springs(value)
             else:
                 scene[key] = scene_option(key, value)
         # the same file (a tree is never changed once read), other settings
-        return UrdfBackend(self.tree, self.path, self.source_dir, st, scene=scene, attrs=self._attrs)
+        # the same links and joints unless the scene moved or fixed the base: PyBullet's reading is kept
+        info = self._info if scene == self.scene else None
+        return UrdfBackend(self.tree, self.path, self.source_dir, st, scene=scene, attrs=self._attrs, info=info)
+
+    def _joint_springs(self, springs) -> dict:
+        """``{joint name: (stiffness, rest position)}`` read into the settings' ``{joint index: [k, q0]}``."""
+        movable = {name: j for j, name, _t in self._info["joints"]}
+        if not isinstance(springs, dict):
+            raise InvalidRequestError(f"joint_springs maps a joint's name to (stiffness, rest position), got "
+                                      f"{springs!r}", culprit=springs)
+        out = {}
+        for name, spring in springs.items():
+            if name not in movable:
+                raise InvalidRequestError(f"no movable joint {name!r} for a spring; the movable joints are "
+                                          f"{', '.join(sorted(movable)) or 'none'}", culprit=name)
+            if isinstance(spring, str | bytes) or np.ndim(spring) != 1 or len(spring) != 2:
+                raise InvalidRequestError(f"the spring of joint {name!r} is (stiffness, rest position), got "
+                                          f"{spring!r}", culprit=spring)
+            stiffness = float(read_number(spring[0], f"the spring stiffness of joint {name!r}"))
+            if stiffness < 0:
+                raise InvalidRequestError(f"the spring stiffness of joint {name!r} cannot be negative, got "
+                                          f"{spring[0]!r}", culprit=spring[0])
+            out[str(movable[name])] = [stiffness, float(read_number(spring[1], f"the rest position of {name!r}"))]
+        return out
 
 
 #: getDynamicsInfo's numbers (index, name), the margin (11) aside; getJointInfo's for a movable joint
@@ -786,6 +865,18 @@ def _snippet(name: str, settings: dict) -> str:
     lines.append("        p.changeDynamics(body, index, **{key: value})")
     lines.append("for j in range(p.getNumJoints(body)):  # PyBullet's default velocity motors off")
     lines.append("    p.setJointMotorControl2(body, j, p.VELOCITY_CONTROL, force=0)")
+    if settings["jointSprings"]:
+        lines += ["",
+                  "# URDF has no joint spring: call apply_springs() before every p.stepSimulation()",
+                  "# (a torque of your own on a sprung joint is added to the spring's, not set instead)",
+                  f"springs = {settings['jointSprings']!r}",
+                  "",
+                  "",
+                  "def apply_springs():",
+                  "    for spring in springs:",
+                  "        q = p.getJointState(body, spring['jointIndex'])[0]",
+                  "        torque = -spring['stiffness'] * (q - spring['restPosition'])",
+                  "        p.setJointMotorControl2(body, spring['jointIndex'], p.TORQUE_CONTROL, force=torque)"]
     return "\n".join(lines) + "\n"
 
 
@@ -934,7 +1025,7 @@ def _scene_backend(path: Path, scene: dict) -> UrdfBackend:
         "timestep": _BULLET["bullet_time_step"].default,
         **{name: _BULLET[constant].default for name, constant, _note in ENGINE_PARAMETERS},
         "useSplitImpulse": int(scene["split_impulse"]),
-        "margins": {}, "friction": {}, "damping": {}, "max_joint_velocity": {}, "inertia": {},
+        "margins": {}, "friction": {}, "damping": {}, "max_joint_velocity": {}, "inertia": {}, "springs": {},
         "ground_margin": _BULLET["bullet_collision_margin"].default,
     }
     placed = {name: scene[name] for name in ("base_position", "fixed_base", "ground")}
@@ -993,6 +1084,11 @@ def _load_saved(path: Path, saved: Path) -> EngineModel:
             for name, *_ in MIXED_DAMPING:
                 if name in call:
                     st["damping"].setdefault(key, {})[name] = float(call[name])
+        for spring in doc.get("jointSprings", []):  # a file saved before springs existed has none
+            key = str(spring["jointIndex"])
+            if key not in joints:
+                raise ValueError(f"jointSprings: joint {key} is not a movable joint")
+            st["springs"][key] = [float(spring["stiffness"]), float(spring["restPosition"])]
     except (ValueError, KeyError, TypeError, IndexError) as err:
         raise malformed(err) from None
     return EngineModel(backend, "pybullet", str(path))

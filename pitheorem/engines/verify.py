@@ -82,7 +82,9 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         ``controller(run_model)`` is called once per run with that run's
         EngineModel and returns a policy giving the inputs at each step in
         that model's own units.  MuJoCo calls ``policy(mjmodel, mjdata)``
-        (return ``data.ctrl``); PyBullet calls ``policy(client, body, t)``
+        with everything in ``mjdata`` (poses, tendon lengths, sensors)
+        computed for the state the inputs act on (return ``data.ctrl``);
+        PyBullet calls ``policy(client, body, t)``
         (return one torque or force per movable joint).  A controller
         whose numbers live in the model file is scaled with it; one whose
         numbers live in Python is not, and the report shows it.
