@@ -223,6 +223,9 @@ def test_saved_model_reloads_with_its_settings_and_only_so(tmp_path):
     (("loadURDF", "basePosition"), [0, 0, "x"], "base_position must be a finite real number"),
     (("loadURDF", "basePosition"), [0, 0], "base_position takes three numbers"),
     (("loadURDF", "useFixedBase"), "no", "fixed_base is true or false, got 'no'"),
+    (("jointSprings",), [{"jointIndex": 7, "stiffness": 1.0, "restPosition": 0.0}],
+     "jointSprings: joint 7 is not a movable joint"),
+    (("jointSprings",), [{"jointIndex": 0, "stiffness": 1.0}], "key 'restPosition'"),
 ])
 def test_a_saved_settings_file_with_a_bad_scene_is_named(tmp_path, where, bad, says):
     model = engines.load(ARM, damping=0.0, split_impulse=False)

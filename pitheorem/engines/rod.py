@@ -238,7 +238,7 @@ def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt:
     t_final : float
         End time; the run takes ``t_final / dt`` steps (rounded up).
     dt, integrator, engine_defaults
-        As in :func:`rod_model`.
+        As in :func:`~pitheorem.engines.rod.rod_model`.
 
     Returns
     -------
