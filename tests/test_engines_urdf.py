@@ -133,6 +133,7 @@ def test_saved_settings_snippet_runs(tmp_path):
 @pytest.mark.parametrize(("text", "culprit"), [
     ("not xml at all", "not well-formed XML"),
     ("<mujoco/>", "root element must be <robot>"),
+    ('<robot name="r"><!-- only a comment --></robot>', "a URDF file needs at least one <link>; this one has none"),
     ('<robot name="r"><link name="a"><collision><geometry><mesh filename="gone.stl"/></geometry></collision>'
      "</link></robot>", "link 'a' collision #0 mesh 'gone.stl'"),
     ('<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="planar"><parent link="a"/>'
