@@ -135,8 +135,6 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
     root = tree.getroot()
     if root.tag != "robot":
         raise EngineModelError(path, f"<{root.tag}>", "a URDF file's root element must be <robot>")
-    if root.find("link") is None:  # PyBullet says only "Cannot load URDF file."
-        raise EngineModelError(path, "<robot>", "a URDF file needs at least one <link>; this one has none")
     out: list[_Attr] = []
     names: set[str] = set()
     address = {id(element): i for i, element in enumerate(root.iter())}
@@ -369,6 +367,8 @@ class UrdfBackend:
     def _probe(self) -> dict:
         pb, client = self._connect()
         try:
+            if self.tree.getroot().find("link") is None:  # PyBullet says only "Cannot load URDF file."
+                raise EngineModelError(self.path, "<robot>", "a URDF file needs at least one <link>; this one has none")
             try:
                 body = self._load(pb, client)
             except pb.error as err:
