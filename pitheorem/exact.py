@@ -41,6 +41,7 @@ printable.
 from __future__ import annotations
 
 import math
+import numbers
 import re
 import sys
 from decimal import Decimal
@@ -48,7 +49,7 @@ from fractions import Fraction
 
 import sympy
 
-from .errors import LimitError, NumberError
+from .errors import InvalidRequestError, LimitError, NumberError
 
 __all__ = [
     "FLOAT_DIGITS",
@@ -57,6 +58,7 @@ __all__ = [
     "MAX_FORMULA_LENGTH",
     "MAX_NESTING",
     "is_float",
+    "read_count",
     "read_exponent",
     "read_number",
     "read_positive",
@@ -192,6 +194,46 @@ def read_positive(value, what: str, *, irrational_ok: bool = False) -> Fraction:
     if number <= 0:
         raise NumberError(value, what, expected)
     return number
+
+
+def read_count(value, what: str, least: int = 0) -> int:
+    """Read a count, such as a number of steps: a whole number of at least `least`.
+
+    Parameters
+    ----------
+    value : int
+        A Python or numpy integer; ``True``, ``2.0`` and ``"2"`` are not
+        counts.
+    what : str
+        What the count is, for the error message (``"n_steps"``).
+    least : int
+        The smallest count allowed (default 0).
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    InvalidRequestError
+        For anything else, naming `what`, `least` and the value.
+
+    Examples
+    --------
+    >>> from pitheorem.exact import read_count
+    >>> read_count(3, "n_steps")
+    3
+    >>> from pitheorem import InvalidRequestError
+    >>> try:
+    ...     read_count(0, "ensemble", least=1)
+    ... except InvalidRequestError as err:
+    ...     print(err)
+    ensemble must be a whole number of at least 1, got 0
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < least:
+        raise InvalidRequestError(f"{what} must be a whole number of at least {least}, got {value!r}",
+                                  culprit=value)
+    return int(value)
 
 
 def read_scale_factor(s) -> float | Fraction | sympy.Expr:

@@ -134,9 +134,9 @@ def test_a_run_starts_from_a_given_first_row_as_mujoco_steps_it():
 
 
 @pytest.mark.parametrize(("n_steps", "initial", "says"), [
-    (-1, None, "n_steps is a whole number of steps, 0 or more; got -1"),
-    (2.5, None, "got 2.5"),
-    (True, None, "got True"),
+    (-1, None, "n_steps must be a whole number of at least 0, got -1"),
+    (2.5, None, "n_steps must be a whole number of at least 0, got 2.5"),
+    (True, None, "n_steps must be a whole number of at least 0, got True"),
     (3, (0.1,), "initial is a row of 2 finite numbers (qpos[hinge], qvel[hinge]), got [0.1]"),
     (3, (0.1, float("nan")), "got [0.1, nan]"),
     (3, ("up", 0), "initial is a row of 2 numbers, got ('up', 0)"),

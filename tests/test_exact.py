@@ -330,3 +330,26 @@ def test_decimals_one_and_negative_magnitudes():
     assert simplest_fraction_rounding_to(1.0) == 1
     assert short_text(Fraction(-(10**400))) == "about -10^400"
     assert short_text(Fraction(-1, 10**50)) == "about -10^-50"
+
+
+@given(st.integers(min_value=-5, max_value=50), st.integers(min_value=0, max_value=3))
+def test_read_count_takes_whole_numbers_from_its_least_up(value, least):
+    from pitheorem.exact import read_count
+
+    for given_as in (value, np.int64(value)):
+        if value >= least:
+            got = read_count(given_as, "n", least)
+            assert (got, type(got)) == (value, int)
+        else:
+            with pytest.raises(pt.InvalidRequestError) as caught:
+                read_count(given_as, "n", least)
+            assert str(caught.value) == f"n must be a whole number of at least {least}, got {given_as!r}"
+            assert caught.value.culprit == given_as
+
+
+@pytest.mark.parametrize("value", [True, 2.0, "2", None, Fraction(2)])
+def test_read_count_refuses_what_is_no_integer(value):
+    from pitheorem.exact import read_count
+
+    with pytest.raises(pt.InvalidRequestError, match="n_steps must be a whole number of at least 0"):
+        read_count(value, "n_steps")

@@ -34,7 +34,7 @@ from typing import TYPE_CHECKING, ClassVar
 
 from ..dimensions import Dimension
 from ..errors import EngineModelError, InvalidRequestError, UnscalableParameterError
-from ..exact import read_number, read_scale_factor, read_value
+from ..exact import read_count, read_number, read_scale_factor, read_value
 from ..formatting import TableDisplay
 from ..immutable import immutable
 from ..modelfile import example_path
@@ -924,8 +924,9 @@ class EngineModel(TableDisplay):
         Raises
         ------
         InvalidRequestError
-            For a negative or fractional ``n_steps``, or an ``initial`` of
-            the wrong length or with a number that is not finite.
+            For an ``n_steps`` that is no whole number of 0 or more, or
+            an ``initial`` of the wrong length or with a number that is
+            not finite.
 
         Examples
         --------
@@ -938,9 +939,7 @@ class EngineModel(TableDisplay):
         """
         import numpy as np
 
-        if isinstance(n_steps, bool) or not isinstance(n_steps, int | np.integer) or n_steps < 0:
-            raise InvalidRequestError(f"n_steps is a whole number of steps, 0 or more; got {n_steps!r}",
-                                      culprit=n_steps)
+        n_steps = read_count(n_steps, "n_steps")
         if initial is not None:
             names = self.coordinates()[0]
             try:
@@ -951,7 +950,7 @@ class EngineModel(TableDisplay):
             if len(initial) != len(names) or not np.all(np.isfinite(initial)):
                 raise InvalidRequestError(f"initial is a row of {len(names)} finite numbers ({', '.join(names)}), "
                                           f"got {initial.tolist()!r}", culprit=initial)
-        return self._backend.run(int(n_steps), controls, policy=policy, initial=initial)
+        return self._backend.run(n_steps, controls, policy=policy, initial=initial)
 
     def coordinates(self) -> tuple[list[str], list[Dimension]]:
         """The names and dimensions of the columns :meth:`run` returns.

@@ -45,7 +45,7 @@ import math
 import numpy as np
 
 from ..errors import InvalidRequestError
-from ..exact import read_scale_factor
+from ..exact import read_count, read_scale_factor
 from ..scaling import is_power_of_two
 from ..simulation import SimilarityReport, Trajectory, positive_float, similarity_report
 from .backend import EngineRunner
@@ -133,8 +133,8 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     s = read_scale_factor(s)
     check_scaling(scaling)
     duration = positive_float(duration, "duration")
-    ensemble = _count(ensemble, "ensemble")
-    seed = _count(seed, "seed", least=0)
+    ensemble = read_count(ensemble, "ensemble", least=1)
+    seed = read_count(seed, "seed")
     if scaled is None:
         scaled = model.scaled(scaling, s)
     elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:
@@ -274,12 +274,6 @@ def smooth_controls(model: EngineModel, amplitude: float = 0.3, period: float = 
         return middle + amplitude * half * np.sin(2 * np.pi * time / period + phase)
 
     return controls
-
-
-def _count(value, what: str, least: int = 1) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
-        raise InvalidRequestError(f"{what} must be a whole number of at least {least}, got {value!r}")
-    return int(value)
 
 
 def _open_loop_rows(controls, n_steps: int, dt: float, size: int):
