@@ -794,9 +794,7 @@ class UrdfBackend:
             if key == "split_impulse":
                 st["useSplitImpulse"] = int(scene_option(key, value))
             elif key == "damping":  # None: PyBullet's own
-                st["damping"] = {} if value is None else {
-                    str(index): {name: scene_option(key, value) for name, *_ in MIXED_DAMPING}
-                    for index, _ in self._info["links"]}
+                st["damping"] = self._damping(None if value is None else scene_option(key, value))
             elif key == "joint_springs":
                 st["springs"] = self._joint_springs(value)
             else:
@@ -805,6 +803,12 @@ class UrdfBackend:
         # the same links and joints unless the scene moved or fixed the base: PyBullet's reading is kept
         info = self._info if scene == self.scene else None
         return UrdfBackend(self.tree, self.path, self.source_dir, st, scene=scene, attrs=self._attrs, info=info)
+
+    def _damping(self, value: float | None) -> dict:
+        """The settings' multibody damping: `value` for both numbers of every link, or {} (PyBullet's own)."""
+        if value is None:
+            return {}
+        return {str(index): {name: value for name, *_ in MIXED_DAMPING} for index, _ in self._info["links"]}
 
     def _joint_springs(self, springs) -> dict:
         """``{joint name: (stiffness, rest position)}`` read into the settings' ``{joint index: [k, q0]}``."""
@@ -1033,9 +1037,7 @@ def _scene_backend(path: Path, scene: dict) -> UrdfBackend:
     placed = {name: scene[name] for name in ("base_position", "fixed_base", "ground")}
     backend = UrdfBackend(tree, str(path), path.resolve().parent, settings, scene=placed)
     _warn_compound_meshes(tree, str(path), path.resolve().parent)
-    if scene["damping"] is not None:
-        backend._settings["damping"] = {str(index): {name: scene["damping"] for name, *_ in MIXED_DAMPING}
-                                        for index, _ in backend._info["links"]}
+    backend._settings["damping"] = backend._damping(scene["damping"])
     return backend
 
 
