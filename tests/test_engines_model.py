@@ -133,6 +133,21 @@ def test_a_run_starts_from_a_given_first_row_as_mujoco_steps_it():
     assert np.array_equal(closed, rows)
 
 
+def test_a_run_starts_from_a_given_activation_as_mujoco_steps_it(tmp_path):
+    mujoco = pytest.importorskip("mujoco")
+    path = tmp_path / "filtered.xml"
+    path.write_text('<mujoco><worldbody><body><joint name="j" type="hinge"/><geom size="0.1" mass="1"/></body>'
+                    '</worldbody><actuator><general joint="j" dyntype="filter" dynprm="0.1"/></actuator></mujoco>')
+    rows = engines.load(path).run(3, initial=(0.2, 0.0, 0.5))
+    native = mujoco.MjModel.from_xml_path(str(path))
+    data = mujoco.MjData(native)
+    data.qpos[0], data.act[0] = 0.2, 0.5
+    for step in range(3):
+        mujoco.mj_step(native, data)
+        assert rows[step + 1].tolist() == [*data.qpos, *data.qvel, *data.act], step
+    assert rows[0].tolist() == [0.2, 0.0, 0.5]
+
+
 @pytest.mark.parametrize(("n_steps", "initial", "says"), [
     (-1, None, "n_steps must be a whole number of at least 0, got -1"),
     (2.5, None, "n_steps must be a whole number of at least 0, got 2.5"),
