@@ -65,8 +65,11 @@ mutation: $(VENV)/.mutation-stamp
 	$(VENV)/bin/mutmut export-cicd-stats && cat mutants/mutmut-cicd-stats.json && echo
 	$(VENV)/bin/mutmut results
 
+# ruff's linter and its formatter (style.md): `ruff format` on the same paths fixes what --check reports
+LINTED = pitheorem tests matlab_ports benchmarks docs/conf.py docs/check_pages.py docs/check_offline.py
 lint: $(VENV)/.test-stamp
-	$(PY) -m ruff check pitheorem tests matlab_ports benchmarks docs/check_pages.py docs/check_offline.py
+	$(PY) -m ruff check $(LINTED)
+	$(PY) -m ruff format --check $(LINTED)
 
 clean:
 	rm -rf $(VENV) docs/_build docs/jupyter_execute

@@ -30,8 +30,9 @@ def timed(fn: Callable[[], object]) -> tuple[object, float]:
     return value, time.perf_counter() - start
 
 
-def sampled_seconds(work: Callable[[object], object], items: Iterable, total: int,
-                    sample: int | None) -> tuple[float, bool]:
+def sampled_seconds(
+    work: Callable[[object], object], items: Iterable, total: int, sample: int | None
+) -> tuple[float, bool]:
     """Seconds `work` takes over all `total` items, timed on the first `sample` of them and scaled up.
 
     Returns the seconds and whether they were extrapolated (a table marks those with "~").

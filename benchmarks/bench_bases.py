@@ -68,8 +68,9 @@ def numpy_det_count(system: pt.System, chunk: int = 1 << 17) -> int:
 def plain_seconds(system: pt.System, sample: int | None) -> tuple[float, bool]:
     columns = [[system.dimension(v).exponent_of(b) for b in system.base_dimensions] for v in system.variables]
     subsets = combinations(range(len(columns)), system.rank)
-    return sampled_seconds(lambda subset: rank([columns[j] for j in subset]), subsets,
-                           comb(len(columns), system.rank), sample)
+    return sampled_seconds(
+        lambda subset: rank([columns[j] for j in subset]), subsets, comb(len(columns), system.rank), sample
+    )
 
 
 def main(argv=None) -> None:
@@ -80,8 +81,10 @@ def main(argv=None) -> None:
     warm_up = synthetic_system(8)  # one-off costs (module imports, index tables) are not per-size work
     warm_up.count_bases()
     numpy_det_count(warm_up)
-    print(f"{'n':>3} {'subsets':>10} {'bases':>10} {'pitheorem s':>12} {'numpy-det s':>12} "
-          f"{'plain s':>10} {'vs numpy':>9} {'vs plain':>9}")
+    print(
+        f"{'n':>3} {'subsets':>10} {'bases':>10} {'pitheorem s':>12} {'numpy-det s':>12} "
+        f"{'plain s':>10} {'vs numpy':>9} {'vs plain':>9}"
+    )
     for n in sizes:
         system = synthetic_system(n)
         count, ours = timed(system.count_bases)
@@ -89,10 +92,14 @@ def main(argv=None) -> None:
         plain, estimated = plain_seconds(system, sample=20_000)
         assert det_count == count, "the float determinant disagrees with the exact count"
         mark = "~" if estimated else " "
-        print(f"{n:>3} {comb(n, system.rank):>10} {count:>10} {ours:>12.3f} {det:>12.3f} "
-              f"{mark}{plain:>9.2f} {ours / det:>8.2f}x {plain / ours:>8.1f}x")
-    print("\n'vs numpy' = pitheorem time / numpy-det time (target <= 2);"
-          " 'vs plain' = plain time / pitheorem time (target >= 1); ~ = extrapolated from 20,000 subsets")
+        print(
+            f"{n:>3} {comb(n, system.rank):>10} {count:>10} {ours:>12.3f} {det:>12.3f} "
+            f"{mark}{plain:>9.2f} {ours / det:>8.2f}x {plain / ours:>8.1f}x"
+        )
+    print(
+        "\n'vs numpy' = pitheorem time / numpy-det time (target <= 2);"
+        " 'vs plain' = plain time / pitheorem time (target >= 1); ~ = extrapolated from 20,000 subsets"
+    )
     listing(25 if args.quick else 30)
     largest = synthetic_system(sizes[-1])
     count, peak = peak_bytes(largest.count_bases)
@@ -116,14 +123,18 @@ def listing(n: int) -> None:
     length, ours = timed(lambda: len(list(system.bases())))
     det_count, det = timed(lambda: numpy_det_count(system))
     assert length == det_count, "the float determinant disagrees with the exact list"
-    print(f"  len(list(system.bases())) = {length}: {ours:.3f} s; numpy-det count {det:.3f} s; "
-          f"ratio {ours / det:.2f}x (target <= 1.0)")
+    print(
+        f"  len(list(system.bases())) = {length}: {ours:.3f} s; numpy-det count {det:.3f} s; "
+        f"ratio {ours / det:.2f}x (target <= 1.0)"
+    )
     bases, peak = peak_bytes(system.bases)
     held = bases.indices.nbytes
     as_int64 = len(bases) * system.rank * 8
-    print(f"  peak memory of bases(): {peak / 2**20:.1f} MiB; its index array ({bases.indices.dtype}) "
-          f"{held / 2**20:.1f} MiB; ratio {peak / held:.2f}x (target <= 1.2); "
-          f"the same array in int64 {as_int64 / 2**20:.1f} MiB")
+    print(
+        f"  peak memory of bases(): {peak / 2**20:.1f} MiB; its index array ({bases.indices.dtype}) "
+        f"{held / 2**20:.1f} MiB; ratio {peak / held:.2f}x (target <= 1.2); "
+        f"the same array in int64 {as_int64 / 2**20:.1f} MiB"
+    )
     del bases
     count, count_peak = peak_bytes(system.count_bases)
     print(f"  peak memory of count_bases(): {count_peak / 2**20:.2f} MiB for {count} bases (no prefix table kept)")

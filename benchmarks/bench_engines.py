@@ -68,14 +68,17 @@ def load_scale_save(repeat: int) -> str:
 
     path = engines.example_path("superball.xml")
     with tempfile.TemporaryDirectory() as folder:
+
         def ours():
             model = engines.load(path)
             model.scaled(pt.Scaling.from_unit_change(model.system(), {"L": 1}), 10).save(Path(folder) / "sb.xml")
 
         t_ours = best_of(ours, repeat)
     t_engine = best_of(lambda: mujoco.MjModel.from_xml_path(str(path)), repeat)
-    return (f"superball.xml: load + scale + save {t_ours * 1e3:.1f} ms, MuJoCo's compile {t_engine * 1e3:.2f} ms "
-            f"(ratio {t_ours / t_engine:.0f}); 64.5 ms before issue 21's work")
+    return (
+        f"superball.xml: load + scale + save {t_ours * 1e3:.1f} ms, MuJoCo's compile {t_engine * 1e3:.2f} ms "
+        f"(ratio {t_ours / t_engine:.0f}); 64.5 ms before issue 21's work"
+    )
 
 
 def ratio(time, baseline) -> str:
@@ -96,6 +99,7 @@ def main(quick: bool = False):
     print(f"{'model':34s} {'params':>6s} {'load+system+search':>19s} {'engine load':>12s} {'ratio':>7s}")
     largest = (0, None, 0.0)
     for path in mjcf:
+
         def ours(path=path):
             model = load_quiet(path)
             pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings  # noqa: B018
@@ -106,36 +110,56 @@ def main(quick: bool = False):
         largest = max(largest, (n, path.name, t_ours))
         print(f"{path.name:34s} {n:6d} {t_ours:17.3f} s {t_engine:10.4f} s {t_ours / t_engine:7.1f}")
     print(load_scale_save(repeat))
-    print(f"largest model {largest[1]} ({largest[0]} parameters): load + system + search {largest[2]:.3f} s "
-          f"(goal: under 1 s)")
+    print(
+        f"largest model {largest[1]} ({largest[0]} parameters): load + system + search {largest[2]:.3f} s "
+        f"(goal: under 1 s)"
+    )
     print()
-    print(f"{'model':34s} {'verify 1 s':>11s} {'user loop':>10s} {'ratio':>6s} {'rollout':>9s} {'ratio':>6s}"
-          f" {'verdict':>7s}  (goal: within 4x, URDF 5x)")
+    print(
+        f"{'model':34s} {'verify 1 s':>11s} {'user loop':>10s} {'ratio':>6s} {'rollout':>9s} {'ratio':>6s}"
+        f" {'verdict':>7s}  (goal: within 4x, URDF 5x)"
+    )
     print("  verdict: where the runs are not similar verify also finds the causes (the audit, counter-runs);")
     print("  this column is the verdict alone (diagnose=False) over the user loop, the ratios beside it are")
     print("  verify's with its causes")
     cases = [(p, {}) for p in (mjcf[:3] if quick else mjcf)]
-    cases += [(p, {"base_position": (0, 0, 1), "ground": True, "damping": 0.0, "split_impulse": False})
-              for p in (urdf[:1] if quick else urdf)]
+    cases += [
+        (p, {"base_position": (0, 0, 1), "ground": True, "damping": 0.0, "split_impulse": False})
+        for p in (urdf[:1] if quick else urdf)
+    ]
     cases += [] if quick else robots()
     for path, options in cases:
         model = load_quiet(path, **options)
         sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
         n_steps = round(1.0 / model.timestep())
         controls = engines.smooth_controls(model)
-        t_verify = best_of(lambda model=model, sc=sc, controls=controls: engines.verify(
-            model, sc, 10, duration=1.0, controls=controls), repeat)
+        t_verify = best_of(
+            lambda model=model, sc=sc, controls=controls: engines.verify(
+                model, sc, 10, duration=1.0, controls=controls
+            ),
+            repeat,
+        )
         diagnosed = engines.verify(model, sc, 10, duration=1.0, controls=controls).similar is False
         verdict = "-"
         if diagnosed:
-            t_verdict = best_of(lambda model=model, sc=sc, controls=controls: engines.verify(
-                model, sc, 10, duration=1.0, controls=controls, diagnose=False), repeat)
+            t_verdict = best_of(
+                lambda model=model, sc=sc, controls=controls: engines.verify(
+                    model, sc, 10, duration=1.0, controls=controls, diagnose=False
+                ),
+                repeat,
+            )
             verdict = t_verdict
         if path.suffix == ".urdf":  # PyBullet reads the file in the run itself, stepping from Python
-            t_loop = best_of(lambda path=path, n=n_steps, controls=controls, options=options:
-                             load_quiet(path, **options).run(n, controls), repeat)
-            print(f"{label(path):34s} {t_verify:9.3f} s {t_loop:8.3f} s {t_verify / t_loop:6.2f} {'':9s} {'':6s} "
-                  f"{ratio(verdict, t_loop):>7s}")
+            t_loop = best_of(
+                lambda path=path, n=n_steps, controls=controls, options=options: load_quiet(path, **options).run(
+                    n, controls
+                ),
+                repeat,
+            )
+            print(
+                f"{label(path):34s} {t_verify:9.3f} s {t_loop:8.3f} s {t_verify / t_loop:6.2f} {'':9s} {'':6s} "
+                f"{ratio(verdict, t_loop):>7s}"
+            )
             continue
 
         def user_loop(path=path, n=n_steps, controls=controls):
@@ -151,8 +175,10 @@ def main(quick: bool = False):
             return model.run(n, controls)
 
         t_loop, t_rollout = best_of(user_loop, repeat), best_of(in_rollout, repeat)
-        print(f"{label(path):34s} {t_verify:9.3f} s {t_loop:8.3f} s {t_verify / t_loop:6.2f} "
-              f"{t_rollout:7.3f} s {t_verify / t_rollout:6.2f} {ratio(verdict, t_loop):>7s}")
+        print(
+            f"{label(path):34s} {t_verify:9.3f} s {t_loop:8.3f} s {t_verify / t_loop:6.2f} "
+            f"{t_rollout:7.3f} s {t_verify / t_rollout:6.2f} {ratio(verdict, t_loop):>7s}"
+        )
 
 
 if __name__ == "__main__":

@@ -43,8 +43,10 @@ def main(argv=None) -> None:
     parser.add_argument("--quick", action="store_true", help="fewer repetitions")
     args = parser.parse_args(argv)
     repeats = 20 if args.quick else 100
-    print(f"{'system':<11} {'n':>3} {'groups':>6} {'pitheorem ms':>13} {'bridgman ms':>12} {'sympy ms':>9} "
-          f"{'vs fastest':>10}  (target <= 1.0)")
+    print(
+        f"{'system':<11} {'n':>3} {'groups':>6} {'pitheorem ms':>13} {'bridgman ms':>12} {'sympy ms':>9} "
+        f"{'vs fastest':>10}  (target <= 1.0)"
+    )
     for label, system in cases():
         strings = {n: str(d) for n, d in system.dimensions.items()}
         ints = {n: {b: int(p) for b, p in d.exponents.items()} for n, d in system.dimensions.items()}
@@ -60,13 +62,18 @@ def main(argv=None) -> None:
         t_bridgman = best_of(lambda ints=ints: bridgman.pi_groups(ints), repeats)
         t_sympy = best_of(lambda matrix=matrix: sympy.Matrix(matrix).nullspace(), repeats)
         fastest = min(t_bridgman, t_sympy)
-        print(f"{label:<11} {len(system.variables):>3} {len(groups):>6} {t_ours * 1e3:>13.3f} {t_bridgman * 1e3:>12.3f} "
-              f"{t_sympy * 1e3:>9.3f} {t_ours / fastest:>9.2f}x")
+        print(
+            f"{label:<11} {len(system.variables):>3} {len(groups):>6} {t_ours * 1e3:>13.3f} {t_bridgman * 1e3:>12.3f} "
+            f"{t_sympy * 1e3:>9.3f} {t_ours / fastest:>9.2f}x"
+        )
     big = synthetic_system(40)
-    t_default = best_of(lambda: pt.System(big.dimensions, base_dimensions=big.base_dimensions).pi_groups(),
-                        max(3, repeats // 10))
-    print(f"\npi_groups() with no arguments at n=40, k=7 (System built from Dimensions): "
-          f"{t_default * 1e3:.2f} ms (target < 50 ms)")
+    t_default = best_of(
+        lambda: pt.System(big.dimensions, base_dimensions=big.base_dimensions).pi_groups(), max(3, repeats // 10)
+    )
+    print(
+        f"\npi_groups() with no arguments at n=40, k=7 (System built from Dimensions): "
+        f"{t_default * 1e3:.2f} ms (target < 50 ms)"
+    )
     print(f"best of {repeats} calls each; 'vs fastest' = pitheorem time / min(bridgman, sympy)")
 
 

@@ -70,13 +70,16 @@ def main(argv=None) -> None:
     for n in sizes:
         system = synthetic_system(n, seed=n)
         scale, fixed = request(system)
-        (_result, count), ours = timed(lambda system=system, scale=scale, fixed=fixed: search_and_count(
-            system, scale, fixed))
+        (_result, count), ours = timed(
+            lambda system=system, scale=scale, fixed=fixed: search_and_count(system, scale, fixed)
+        )
         brute, estimated = brute_force_seconds(system, scale, fixed, sample=2_000)
         mark = "~" if estimated else " "
         print(f"{n:>3} {count:>8} {ours:>12.4f} {mark}{brute:>13.3g} {brute / ours:>11.3g}x")
-    print("\nspeed-up = brute-force time / pitheorem time; ~ = extrapolated from 2,000 subsets."
-          "  Target: n = 40 under 0.5 s.")
+    print(
+        "\nspeed-up = brute-force time / pitheorem time; ~ = extrapolated from 2,000 subsets."
+        "  Target: n = 40 under 0.5 s."
+    )
     worst_case(16 if args.quick else 22)
 
 
@@ -89,8 +92,10 @@ def worst_case(n: int) -> None:
     same = count == exact_count and list(result._enumerate()) == list(exact._enumerate())
     assert same, "batched and exact minimal scalings differ"
     print(f"\nWorst case, n = {n}, k = 7, one variable scaled, fixed=(), family dimension {len(result.directions)}:")
-    print(f"  {count} minimal scalings: pitheorem {ours:.3f} s (target < 1 s); exact per-subset solves "
-          f"{baseline:.2f} s; speed-up {baseline / ours:.0f}x; every scaling and its coordinates identical: {same}")
+    print(
+        f"  {count} minimal scalings: pitheorem {ours:.3f} s (target < 1 s); exact per-subset solves "
+        f"{baseline:.2f} s; speed-up {baseline / ours:.0f}x; every scaling and its coordinates identical: {same}"
+    )
 
 
 if __name__ == "__main__":

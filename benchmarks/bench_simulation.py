@@ -55,14 +55,17 @@ def euler(rhs, p, y0, n_steps, dt=1e-3):
 def main(quick: bool = False):
     repeat, t_final, n_steps = (3, 5.0, 2000) if quick else (7, 20.0, 20000)
     cases = [(pt.models.hinged_rod(), rod_by_hand), (pt.models.hinged_rod_longitudinal(), spring_by_hand)]
-    print(f"{'model':26s} {'integrator':11s} {'generated':>10s} {'by hand':>10s} {'ratio':>7s}  "
-          f"(goal: within {TARGET}x)")
+    print(
+        f"{'model':26s} {'integrator':11s} {'generated':>10s} {'by hand':>10s} {'ratio':>7s}  (goal: within {TARGET}x)"
+    )
     worst = 0.0
     for model, by_hand in cases:
         p, y0 = model.resolve_params(), model.resolve_initial()
         np.testing.assert_allclose(model.rhs(0.0, y0, p), by_hand(0.0, y0, p), rtol=1e-12)
-        runs = {"solve_ivp": lambda rhs, p=p, y0=y0: adaptive(rhs, p, y0, t_final),
-                "euler": lambda rhs, p=p, y0=y0: euler(rhs, p, y0, n_steps)}
+        runs = {
+            "solve_ivp": lambda rhs, p=p, y0=y0: adaptive(rhs, p, y0, t_final),
+            "euler": lambda rhs, p=p, y0=y0: euler(rhs, p, y0, n_steps),
+        }
         for name, run in runs.items():
             ours = best_of(lambda run=run, rhs=model.rhs: run(rhs), repeat)
             base = best_of(lambda run=run, rhs=by_hand: run(rhs), repeat)

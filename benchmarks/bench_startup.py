@@ -29,7 +29,8 @@ GROUPS = "pitheorem groups example:hinged_rod"
 COMMANDS = {
     "import sympy (baseline)": [sys.executable, "-c", "import sympy"],
     "import pitheorem": [sys.executable, "-c", "import pitheorem"],
-    GROUPS: [str(SCRIPT), "groups", "example:hinged_rod"] if SCRIPT.exists()
+    GROUPS: [str(SCRIPT), "groups", "example:hinged_rod"]
+    if SCRIPT.exists()
     else [sys.executable, "-c", CLI, "groups", "example:hinged_rod"],
     "pitheorem groups hinged_rod.toml (python -c)": [sys.executable, "-c", CLI, "groups", ROD],
     "pitheorem bases hinged_rod.toml": [sys.executable, "-c", CLI, "bases", ROD],
@@ -65,18 +66,24 @@ def main(argv=None) -> None:
             times[name].append(time.perf_counter() - start)
     base = statistics.median(times["import sympy (baseline)"])
     fastest = min(times["import sympy (baseline)"])
-    print(f"{'command':<46} {'median s':>9} {'vs sympy':>9} {'min s':>7} {'vs sympy':>9} {'target':>7}  "
-          "modules loaded (of sympy, numpy, scipy, matplotlib, pint)")
+    print(
+        f"{'command':<46} {'median s':>9} {'vs sympy':>9} {'min s':>7} {'vs sympy':>9} {'target':>7}  "
+        "modules loaded (of sympy, numpy, scipy, matplotlib, pint)"
+    )
     for name, command in COMMANDS.items():
         t, t_min = statistics.median(times[name]), min(times[name])
         target = f"{TARGETS[name]:.1f}x" if name in TARGETS else ""
         heavy = ", ".join(loaded_modules(command)) or "-"
         print(f"{name:<46} {t:>9.3f} {t / base:>8.2f}x {t_min:>7.3f} {t_min / fastest:>8.2f}x {target:>7}  {heavy}")
-    print(f"\n{repeats} fresh interpreters per command, interleaved in rotating order; "
-          "'vs sympy' = time / the same statistic of import sympy")
+    print(
+        f"\n{repeats} fresh interpreters per command, interleaved in rotating order; "
+        "'vs sympy' = time / the same statistic of import sympy"
+    )
     ratio = statistics.median(times[GROUPS]) / base
-    print(f"start-up ratio: {GROUPS} / import sympy = {ratio:.2f}x (median; target {TARGETS[GROUPS]:.1f}x: "
-          f"{'met' if ratio <= TARGETS[GROUPS] else 'NOT met'})")
+    print(
+        f"start-up ratio: {GROUPS} / import sympy = {ratio:.2f}x (median; target {TARGETS[GROUPS]:.1f}x: "
+        f"{'met' if ratio <= TARGETS[GROUPS] else 'NOT met'})"
+    )
 
 
 if __name__ == "__main__":

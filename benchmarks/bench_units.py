@@ -57,8 +57,12 @@ def main(quick: bool = False) -> None:
     print(f"largest corpus model: {path.parent.name}/{path.name} ({sizes[path]} parameters)")
     print(f"{'step':28s} {'seconds':>8s} {'x MuJoCo load':>14s}")
     print(f"{'MuJoCo load (baseline)':28s} {t_engine:8.4f} {1.0:14.1f}")
-    for name, t in (("converted(L='mm', M='g')", t_convert), ("engines.check", t_check),
-                    ("load + engines.check", t_load_check), ("pt.fit_units(model)", t_fit)):
+    for name, t in (
+        ("converted(L='mm', M='g')", t_convert),
+        ("engines.check", t_check),
+        ("load + engines.check", t_load_check),
+        ("pt.fit_units(model)", t_fit),
+    ):
         print(f"{name:28s} {t:8.4f} {t / t_engine:14.1f}")
     ok = t_convert < 0.5 and t_check < 0.5
     print(f"goal (convert and check under 0.5 s each): {'met' if ok else 'NOT met'}")

@@ -46,8 +46,11 @@ def main() -> None:
         u = engines.smooth_controls(model)
         four = engines.verify(model, sc, s=4, duration=args.duration, controls=u, diagnose=False)
         ten = engines.verify(model, sc, s=10, duration=args.duration, controls=u, diagnose=False)
-        print(f"{name:28s} s=4 exact {four.exact!s:5} excited {four.excited!s:5} | s=10 similar {ten.similar!s:5} "
-              f"max deviation {ten.max_deviation:.3g} | {time.perf_counter() - start:.1f} s", flush=True)
+        print(
+            f"{name:28s} s=4 exact {four.exact!s:5} excited {four.excited!s:5} | s=10 similar {ten.similar!s:5} "
+            f"max deviation {ten.max_deviation:.3g} | {time.perf_counter() - start:.1f} s",
+            flush=True,
+        )
 
 
 if __name__ == "__main__":

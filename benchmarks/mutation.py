@@ -56,13 +56,24 @@ PACKAGE = ROOT / "pitheorem"
 
 #: the tests that exercise each core module (fast: no simulations, no docs; ``-m "not slow"``)
 TARGETS = {
-    "exact": ["tests/test_exact.py", "tests/test_cli.py", "tests/test_errors.py", "tests/test_system.py",
-              "tests/test_dimensions.py"],
+    "exact": [
+        "tests/test_exact.py",
+        "tests/test_cli.py",
+        "tests/test_errors.py",
+        "tests/test_system.py",
+        "tests/test_dimensions.py",
+    ],
     "dimensions": ["tests/test_dimensions.py", "tests/test_system.py", "tests/test_errors.py"],
     "system": ["tests/test_system.py", "tests/test_errors.py", "tests/test_groups.py", "tests/test_dimensions.py"],
     "groups": ["tests/test_groups.py", "tests/test_system.py", "tests/test_errors.py"],
-    "linalg": ["tests/test_linalg.py", "tests/test_groups.py", "tests/test_scalesearch.py", "tests/test_bases.py",
-               "tests/test_properties.py", "tests/test_equations.py"],
+    "linalg": [
+        "tests/test_linalg.py",
+        "tests/test_groups.py",
+        "tests/test_scalesearch.py",
+        "tests/test_bases.py",
+        "tests/test_properties.py",
+        "tests/test_equations.py",
+    ],
     "bases": ["tests/test_bases.py", "tests/test_groups.py", "tests/test_properties.py", "tests/test_system.py"],
     "family": ["tests/test_family.py", "tests/test_scalesearch.py"],
     "basis_sequence": ["tests/test_basis_sequence.py", "tests/test_bases.py", "tests/test_groups.py"],
@@ -72,14 +83,33 @@ TARGETS = {
     "model": ["tests/test_model.py", "tests/test_models.py", "tests/test_errors.py"],
     "models": ["tests/test_models.py", "tests/test_model.py", "tests/test_equations.py"],
     "simulation": ["tests/test_simulation.py", "tests/test_models.py", "tests/test_plotting.py"],
-    **{f"formatting/{name}": ["tests/test_formatting.py", "tests/test_cli.py", "tests/test_scalesearch.py"]
-       for name in ("__init__", "pieces", "text", "latex", "html", "json")},
+    **{
+        f"formatting/{name}": ["tests/test_formatting.py", "tests/test_cli.py", "tests/test_scalesearch.py"]
+        for name in ("__init__", "pieces", "text", "latex", "html", "json")
+    },
 }
 
-_COMPARE_SWAP = {ast.Lt: ast.LtE, ast.LtE: ast.Lt, ast.Gt: ast.GtE, ast.GtE: ast.Gt, ast.Eq: ast.NotEq,
-                 ast.NotEq: ast.Eq, ast.In: ast.NotIn, ast.NotIn: ast.In, ast.Is: ast.IsNot, ast.IsNot: ast.Is}
-_ARITH_SWAP = {ast.Add: ast.Sub, ast.Sub: ast.Add, ast.Mult: ast.Div, ast.Div: ast.Mult, ast.FloorDiv: ast.Div,
-               ast.Mod: ast.FloorDiv, ast.Pow: ast.Mult}
+_COMPARE_SWAP = {
+    ast.Lt: ast.LtE,
+    ast.LtE: ast.Lt,
+    ast.Gt: ast.GtE,
+    ast.GtE: ast.Gt,
+    ast.Eq: ast.NotEq,
+    ast.NotEq: ast.Eq,
+    ast.In: ast.NotIn,
+    ast.NotIn: ast.In,
+    ast.Is: ast.IsNot,
+    ast.IsNot: ast.Is,
+}
+_ARITH_SWAP = {
+    ast.Add: ast.Sub,
+    ast.Sub: ast.Add,
+    ast.Mult: ast.Div,
+    ast.Div: ast.Mult,
+    ast.FloorDiv: ast.Div,
+    ast.Mod: ast.FloorDiv,
+    ast.Pow: ast.Mult,
+}
 
 
 @dataclass(frozen=True)
@@ -111,7 +141,9 @@ class _Mutator(ast.NodeTransformer):
             for field in ("decorator_list", "args", "bases", "keywords"):
                 if hasattr(node, field):
                     value = getattr(node, field)
-                    setattr(node, field, [self.visit(v) for v in value] if isinstance(value, list) else self.visit(value))
+                    setattr(
+                        node, field, [self.visit(v) for v in value] if isinstance(value, list) else self.visit(value)
+                    )
             return node
         return self.generic_visit(node)
 
@@ -171,7 +203,11 @@ class _Mutator(ast.NodeTransformer):
 
     def visit_If(self, node):
         self.generic_visit(node)
-        if len(node.body) == 1 and isinstance(node.body[0], ast.Raise) and self._site(node, "drop-check", "if ...: raise -> if False"):
+        if (
+            len(node.body) == 1
+            and isinstance(node.body[0], ast.Raise)
+            and self._site(node, "drop-check", "if ...: raise -> if False")
+        ):
             node.test = ast.copy_location(ast.Constant(False), node.test)
         return node
 
@@ -208,9 +244,21 @@ def read_equivalent(path: Path | None) -> dict[str, str]:
 
 def run_tests(module: str, timeout: float, tests: list[str] | None = None) -> str:
     """'killed', 'survived' or 'timeout' for the module's current source."""
-    cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", "-p", "no:randomly",
-           "--hypothesis-seed=0", "-m", "not slow",
-           *(tests or [str(PACKAGE / f"{module}.py"), *TARGETS[module]])]
+    cmd = [
+        sys.executable,
+        "-m",
+        "pytest",
+        "-x",
+        "-q",
+        "-p",
+        "no:cacheprovider",
+        "-p",
+        "no:randomly",
+        "--hypothesis-seed=0",
+        "-m",
+        "not slow",
+        *(tests or [str(PACKAGE / f"{module}.py"), *TARGETS[module]]),
+    ]
     try:
         proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=timeout, check=False)
     except subprocess.TimeoutExpired:
@@ -229,8 +277,10 @@ def chosen_mutants(args) -> list[Mutant]:
     picked = []
     for module in args.module:
         every = list_mutants(module)
-        picked += sorted(random.Random(f"{args.seed}:{module}").sample(every, min(args.per_module, len(every))),
-                         key=lambda m: m.index)
+        picked += sorted(
+            random.Random(f"{args.seed}:{module}").sample(every, min(args.per_module, len(every))),
+            key=lambda m: m.index,
+        )
         print(f"-- {module}: {min(args.per_module, len(every))} of {len(every)} sites", flush=True)
     return picked
 
@@ -240,12 +290,25 @@ def main(argv=None) -> int:
     parser.add_argument("--per-module", type=int, default=20, help="mutants drawn per module (default 20)")
     parser.add_argument("--seed", type=int, default=12, help="seed of the draw (default 12)")
     parser.add_argument("--module", nargs="*", default=sorted(TARGETS), choices=sorted(TARGETS))
-    parser.add_argument("--site", nargs="*", default=(), metavar="MODULE:INDEX",
-                        help="run only these mutants (the site numbers the report prints)")
-    parser.add_argument("--tests", nargs="*", default=None,
-                        help="run these tests instead of the module's TARGETS (to check that a new test kills)")
-    parser.add_argument("--equivalent", type=Path, default=None,
-                        help="file of known-equivalent mutants ('LABEL -- reason' a line); the score leaves them out")
+    parser.add_argument(
+        "--site",
+        nargs="*",
+        default=(),
+        metavar="MODULE:INDEX",
+        help="run only these mutants (the site numbers the report prints)",
+    )
+    parser.add_argument(
+        "--tests",
+        nargs="*",
+        default=None,
+        help="run these tests instead of the module's TARGETS (to check that a new test kills)",
+    )
+    parser.add_argument(
+        "--equivalent",
+        type=Path,
+        default=None,
+        help="file of known-equivalent mutants ('LABEL -- reason' a line); the score leaves them out",
+    )
     parser.add_argument("--timeout", type=float, default=120.0, help="seconds per mutant run (default 120)")
     args = parser.parse_args(argv)
     known = read_equivalent(args.equivalent)
@@ -271,11 +334,15 @@ def main(argv=None) -> int:
     survivors = [m for m, o in results if o == "survived"]
     equivalent = [m for m in survivors if label(m) in known]
     scored = len(results) - len(equivalent)
-    print(f"\n{killed} of {len(results)} mutants killed ({100 * killed / max(len(results), 1):.1f}%) "
-          f"in {time.perf_counter() - start:.0f} s")
+    print(
+        f"\n{killed} of {len(results)} mutants killed ({100 * killed / max(len(results), 1):.1f}%) "
+        f"in {time.perf_counter() - start:.0f} s"
+    )
     if known:
-        print(f"{len(equivalent)} survivors are known equivalent; {killed} of {scored} non-equivalent mutants "
-              f"killed ({100 * killed / max(scored, 1):.1f}%)")
+        print(
+            f"{len(equivalent)} survivors are known equivalent; {killed} of {scored} non-equivalent mutants "
+            f"killed ({100 * killed / max(scored, 1):.1f}%)"
+        )
     if survivors:
         print("survivors (missing tests, or equivalent mutants):")
         for m in survivors:

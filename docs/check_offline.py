@@ -59,9 +59,7 @@ _NON_FETCHING_REL = {
 }
 
 _REMOTE = re.compile(r"^\s*(?:[a-z][a-z0-9+.-]*:)?//", re.IGNORECASE)
-_CSS_URL = re.compile(
-    r"""(?:@import\s+(?:url\(\s*)?|url\(\s*)(['"]?)([^'")\s;]+)\1""", re.IGNORECASE
-)
+_CSS_URL = re.compile(r"""(?:@import\s+(?:url\(\s*)?|url\(\s*)(['"]?)([^'")\s;]+)\1""", re.IGNORECASE)
 
 
 def is_remote(address: str) -> bool:
@@ -112,9 +110,7 @@ class _ResourceFinder(HTMLParser):
                 continue
             # srcset holds "url size, url size, ..."
             candidates = (
-                [part.strip().split()[0] for part in value.split(",") if part.strip()]
-                if name == "srcset"
-                else [value]
+                [part.strip().split()[0] for part in value.split(",") if part.strip()] if name == "srcset" else [value]
             )
             self.found.extend((tag, name, c) for c in candidates if is_remote(c))
 
@@ -187,9 +183,7 @@ def main(argv: list[str] | None = None) -> int:
     if len(args) > 1:
         print("usage: python docs/check_offline.py [BUILD_DIR]", file=sys.stderr)
         return 2
-    root = (
-        Path(args[0]) if args else Path(__file__).resolve().parent / "_build" / "html"
-    )
+    root = Path(args[0]) if args else Path(__file__).resolve().parent / "_build" / "html"
     pages = sorted(root.rglob("*.html")) if root.is_dir() else []
     if not pages:
         print(
@@ -224,9 +218,7 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _inline_styles(html: str) -> list[str]:
-    return re.findall(
-        r"<style[^>]*>(.*?)</style>", html, flags=re.IGNORECASE | re.DOTALL
-    )
+    return re.findall(r"<style[^>]*>(.*?)</style>", html, flags=re.IGNORECASE | re.DOTALL)
 
 
 if __name__ == "__main__":

@@ -224,7 +224,9 @@ def check_page(page: Path, root: Path) -> list[str]:
     for block in scan.blocks:
         longest = max(block.splitlines() or [""], key=len)
         if len(longest) > MAX_LINE:
-            problems.append(f"a code or output line has {len(longest)} characters (at most {MAX_LINE}): {longest[:60]!r}...")
+            problems.append(
+                f"a code or output line has {len(longest)} characters (at most {MAX_LINE}): {longest[:60]!r}..."
+            )
     if scan.has_math and not any("mathjax" in s.lower() and not s.startswith(("http", "//")) for s in scan.scripts):
         problems.append("has math but does not load the bundled MathJax")
     return [f"{rel}: {p}" for p in problems]
@@ -249,19 +251,37 @@ def layout_problems(pages: list[Path], root: Path, program: str, width: int = PH
         script = _PROBE.replace("PAGES", json.dumps([p.resolve().as_uri() for p in pages]))
         runner.write_text(
             f'<html><body style="margin:0"><iframe id="page" style="width:{width}px;height:1200px;border:0">'
-            f'</iframe><pre id="out"></pre><script>{script}</script></body></html>', encoding="utf-8")
+            f'</iframe><pre id="out"></pre><script>{script}</script></body></html>',
+            encoding="utf-8",
+        )
         dom = subprocess.run(
-            [program, "--headless", "--no-sandbox", "--disable-gpu", "--allow-file-access-from-files",
-             f"--window-size={width + 20},1300", f"--virtual-time-budget={60000 * len(pages)}", "--dump-dom",
-             runner.as_uri()], capture_output=True, text=True, timeout=60 + 10 * len(pages), check=False).stdout
+            [
+                program,
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--allow-file-access-from-files",
+                f"--window-size={width + 20},1300",
+                f"--virtual-time-budget={60000 * len(pages)}",
+                "--dump-dom",
+                runner.as_uri(),
+            ],
+            capture_output=True,
+            text=True,
+            timeout=60 + 10 * len(pages),
+            check=False,
+        ).stdout
     start, end = dom.find('<pre id="out">'), dom.find("</pre>", dom.find('<pre id="out">'))
-    text = dom[start + len('<pre id="out">'):end] if start >= 0 else ""
+    text = dom[start + len('<pre id="out">') : end] if start >= 0 else ""
     if not text.strip():
         return [f"layout check at {width} px: the browser measured nothing ({program})"]
     found = json.loads(text.replace("&lt;", "<").replace("&gt;", ">").replace("&quot;", '"').replace("&amp;", "&"))
     by_uri = {p.resolve().as_uri(): p for p in pages}
-    return [f"{by_uri[uri].relative_to(root).as_posix()}: at {width} px, {what}"
-            for uri, whats in found.items() for what in whats]
+    return [
+        f"{by_uri[uri].relative_to(root).as_posix()}: at {width} px, {what}"
+        for uri, whats in found.items()
+        for what in whats
+    ]
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -30,9 +30,7 @@ ROOT = DOCS.parent
 # there. The notebook kernels are separate processes: they get the same path through
 # PYTHONPATH, which they inherit from this process.
 sys.path.insert(0, str(ROOT))
-os.environ["PYTHONPATH"] = os.pathsep.join(
-    p for p in (str(ROOT), os.environ.get("PYTHONPATH", "")) if p
-)
+os.environ["PYTHONPATH"] = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH", "")) if p)
 
 from pybtex.plugin import register_plugin  # noqa: E402
 from pybtex.richtext import Text  # noqa: E402
@@ -80,8 +78,7 @@ source_suffix = {
 # with a message rather than building a site without tutorials.
 if not (DOCS / "tutorials" / "index.md").is_file():
     raise RuntimeError(
-        "docs/tutorials must be a symbolic link to ../tutorials "
-        "(re-create it with: ln -s ../tutorials docs/tutorials)"
+        "docs/tutorials must be a symbolic link to ../tutorials (re-create it with: ln -s ../tutorials docs/tutorials)"
     )
 
 # Notebooks are never sources here: the tutorials are MyST markdown. A stray ``.ipynb`` beside
@@ -282,7 +279,7 @@ def _keep_proof_titles(app, doctree):
     for node in doctree.findall(lambda n: hasattr(n, "get") and n.get("realtype") and n.get("label")):
         title = node.get("title", "")
         if before and title.startswith(before):
-            title = title[len(before):]
+            title = title[len(before) :]
         if after and title.endswith(after):
             title = title[: -len(after)]
         if node["label"] in proofs:

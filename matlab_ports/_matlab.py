@@ -59,8 +59,9 @@ def colon(a: float, d: float, b: float) -> np.ndarray:
     return v
 
 
-def write_figures_main(description: str, make_figures: Callable[..., Mapping], prefix: str = "",
-                       argv=None, *, fast_mode: bool = False) -> list[Path]:
+def write_figures_main(
+    description: str, make_figures: Callable[..., Mapping], prefix: str = "", argv=None, *, fast_mode: bool = False
+) -> list[Path]:
     """The command line shared by the ports: make the figures and save each as PNG.
 
     Parameters

@@ -134,9 +134,7 @@ def rod_hinge_dynamics_longitudinal(y, m, x_r, l, g, k, c, theta_r):
     s, co = math.sin(theta), math.cos(theta)
     # QUIRK (kept): prefactor 3/(m*l^3) and damping term c*l*theta_dot*sin^2 are dimensionally
     # inconsistent with the other terms; see the docstring.
-    acc = 3 / (m * l**3) * (
-        (m * g * l / 2) * co - c * l * theta_dot * s**2 + k * l**2 * s * co - k * x_r * l * s
-    )
+    acc = 3 / (m * l**3) * ((m * g * l / 2) * co - c * l * theta_dot * s**2 + k * l**2 * s * co - k * x_r * l * s)
     return np.array([theta_dot, acc])
 
 

@@ -227,8 +227,9 @@ def main(argv=None):
     ...     [p.name for p in main(["--outdir", folder, "--n-points", "200"])]
     ['figure1.png', 'figure2.png', 'figure3.png', 'figure4.png', 'figure5.png']
     """
-    return write_figures_main(__doc__.splitlines()[0], lambda n: plot_figures(simulate_figures(n)), "", argv,
-                              fast_mode=True)
+    return write_figures_main(
+        __doc__.splitlines()[0], lambda n: plot_figures(simulate_figures(n)), "", argv, fast_mode=True
+    )
 
 
 if __name__ == "__main__":

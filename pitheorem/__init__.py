@@ -60,8 +60,9 @@ _LAZY = {
 }
 
 
-def fit_units(system, values=None, *, ranges=None, dimension_ranges=None, fixed=(), fixed_units=(), nice=None,
-              engine=None):
+def fit_units(
+    system, values=None, *, ranges=None, dimension_ranges=None, fixed=(), fixed_units=(), nice=None, engine=None
+):
     """Find the change of base units that brings values into ranges.
 
     The ranges are given, or those an engine's thresholds leave (`engine`).
@@ -131,14 +132,28 @@ def fit_units(system, values=None, *, ranges=None, dimension_ranges=None, fixed=
     if engine is None and not hasattr(system, "parameters"):  # a System (unitfit refuses anything else)
         from .unitfit import fit_units as fit
 
-        return fit(system, values, ranges=ranges, dimension_ranges=dimension_ranges, fixed=fixed,
-                   fixed_units=fixed_units, nice=nice)
+        return fit(
+            system,
+            values,
+            ranges=ranges,
+            dimension_ranges=dimension_ranges,
+            fixed=fixed,
+            fixed_units=fixed_units,
+            nice=nice,
+        )
     if dimension_ranges:
         raise InvalidRequestError("dimension_ranges is not for an engine fit; give ranges per parameter")
     from .engines.fitting import engine_fit
 
-    return engine_fit(system, values, engine=engine, ranges=ranges, fixed=fixed, fixed_units=fixed_units,
-                      nice=10 if nice is None else nice)
+    return engine_fit(
+        system,
+        values,
+        engine=engine,
+        ranges=ranges,
+        fixed=fixed,
+        fixed_units=fixed_units,
+        nice=10 if nice is None else nice,
+    )
 
 
 def __getattr__(name: str):

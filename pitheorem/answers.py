@@ -16,8 +16,15 @@ from typing import NamedTuple
 
 from .formatting import TextDisplay
 
-__all__ = ["ApplyAnswer", "BasesAnswer", "EngineApplyAnswer", "EngineVerifyAnswer", "GroupsAnswer", "ParamsAnswer",
-           "SearchAnswer"]
+__all__ = [
+    "ApplyAnswer",
+    "BasesAnswer",
+    "EngineApplyAnswer",
+    "EngineVerifyAnswer",
+    "GroupsAnswer",
+    "ParamsAnswer",
+    "SearchAnswer",
+]
 
 
 class GroupsAnswer(NamedTuple):
@@ -60,7 +67,6 @@ class GroupsAnswer(NamedTuple):
     __format__ = TextDisplay.__format__
 
 
-
 class BasesAnswer(NamedTuple):
     """``pitheorem bases``: the valid repeating sets of a model, or only their number.
 
@@ -94,7 +100,6 @@ class BasesAnswer(NamedTuple):
     __format__ = TextDisplay.__format__
 
 
-
 class SearchAnswer(NamedTuple):
     """``pitheorem search``: a search on a model; its notes in the command line's terms.
 
@@ -117,7 +122,6 @@ class SearchAnswer(NamedTuple):
 
     __str__ = TextDisplay.__str__
     __format__ = TextDisplay.__format__
-
 
 
 class ApplyAnswer(NamedTuple):
@@ -166,7 +170,6 @@ class ApplyAnswer(NamedTuple):
     __format__ = TextDisplay.__format__
 
 
-
 class ParamsAnswer(NamedTuple):
     """``pitheorem params``: a model's parameter table, under the file name as given.
 
@@ -192,7 +195,6 @@ class ParamsAnswer(NamedTuple):
 
     __str__ = TextDisplay.__str__
     __format__ = TextDisplay.__format__
-
 
 
 class EngineApplyAnswer(NamedTuple):

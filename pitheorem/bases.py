@@ -186,8 +186,9 @@ class LaplaceTables:
             sign = np.array([[(-1.0) ** (q + j) for q in range(j + 1)]] * len(new)).reshape(len(new), j + 1)
             self.steps.append((entry, minor, sign))
         everything = tuple(range(r))
-        self.last_order = np.array([position[r - 1][everything[:i] + everything[i + 1 :]] for i in range(r)] if r
-                                   else [], dtype=np.int64)
+        self.last_order = np.array(
+            [position[r - 1][everything[:i] + everything[i + 1 :]] for i in range(r)] if r else [], dtype=np.int64
+        )
         self.last_signs = np.array([(-1.0) ** (i + r - 1) for i in range(r)])
 
     @classmethod

@@ -74,8 +74,11 @@ class BasisSequence(Sequence):
         The smallest unsigned integer type that holds every position is used.
         """
         if len(self._blocks) != 1:
-            whole = (np.concatenate(self._blocks) if self._blocks
-                     else np.zeros((0, self._width), dtype=np.min_scalar_type(max(len(self._names) - 1, 0))))
+            whole = (
+                np.concatenate(self._blocks)
+                if self._blocks
+                else np.zeros((0, self._width), dtype=np.min_scalar_type(max(len(self._names) - 1, 0)))
+            )
             whole.flags.writeable = False
             self._hold([whole], [0, len(whole)])  # one copy, not the blocks and their concatenation
         return self._blocks[0]
@@ -105,8 +108,11 @@ class BasisSequence(Sequence):
 
     def __eq__(self, other) -> bool:
         if isinstance(other, BasisSequence):
-            return (len(self) == len(other) and list(self._names) == list(other._names)
-                    and bool(np.array_equal(self.indices, other.indices)))
+            return (
+                len(self) == len(other)
+                and list(self._names) == list(other._names)
+                and bool(np.array_equal(self.indices, other.indices))
+            )
         if isinstance(other, Sequence) and not isinstance(other, str):
             return len(self) == len(other) and all(a == b for a, b in zip(self, other, strict=True))
         return NotImplemented

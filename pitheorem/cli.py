@@ -96,8 +96,10 @@ BASES_SHOWN = 50
 #: how the help and the error for a bad ``example:`` name list the shipped examples
 _EXAMPLES_TEXT = "example:NAME, NAME one of " + ", ".join(examples())
 
-_SCALE_HELP = ("NAME=EXP: EXP is the exponent of the scale factor s, not a factor: NAME -> s^EXP NAME "
-               "(g=1: g -> s g; l=-1/2: l -> s^(-1/2) l; g=1/6: g -> s^(1/6) g)")
+_SCALE_HELP = (
+    "NAME=EXP: EXP is the exponent of the scale factor s, not a factor: NAME -> s^EXP NAME "
+    "(g=1: g -> s g; l=-1/2: l -> s^(-1/2) l; g=1/6: g -> s^(1/6) g)"
+)
 
 
 # -- helpers ---------------------------------------------------------------------------------
@@ -111,8 +113,9 @@ def _engine_path(path: str) -> str | None:
     if path.startswith("example:"):
         name = path.removeprefix("example:")
         if name not in examples():
-            raise _CommandError(f"{path}: no such example; the shipped examples are {', '.join(examples())}",
-                                culprit=path)
+            raise _CommandError(
+                f"{path}: no such example; the shipped examples are {', '.join(examples())}", culprit=path
+            )
         shipped = example_path(name)
         return str(shipped) if model_kind(shipped) in ("mjcf", "urdf") else None
     return path if model_kind(path) in ("mjcf", "urdf") else None
@@ -122,8 +125,7 @@ def _load(path: str, scene: list[str] | None = None) -> ModelFile:
     return _load_with_engine(path, scene)[0]
 
 
-def _load_with_engine(path: str, scene: list[str] | None = None, engine: str | None = None
-                      ) -> tuple[ModelFile, object]:
+def _load_with_engine(path: str, scene: list[str] | None = None, engine: str | None = None) -> tuple[ModelFile, object]:
     """The model file and, for MJCF or URDF, the engine's model it was read from (else None)."""
     engine_path = _engine_path(path)
     if engine_path is not None:  # MJCF or URDF: its system and scalar values, through the engine
@@ -149,8 +151,11 @@ def _parse_scale(entries: Sequence[str]) -> dict[str, Fraction]:
         name, sep, text = entry.partition("=")
         name, text = name.strip(), text.strip()
         if not sep or not name or not text:
-            raise _CommandError(f"--scale entry {entry!r} must look like NAME=EXP, where EXP is the exponent "
-                                "of the scale factor s (g=1 means g -> s g), e.g. g=1 or l=-1/2", culprit=entry)
+            raise _CommandError(
+                f"--scale entry {entry!r} must look like NAME=EXP, where EXP is the exponent "
+                "of the scale factor s (g=1 means g -> s g), e.g. g=1 or l=-1/2",
+                culprit=entry,
+            )
         if name in scale:
             raise _CommandError(f"--scale names {name!r} twice; give each variable one exponent", culprit=name)
         try:
@@ -161,10 +166,14 @@ def _parse_scale(entries: Sequence[str]) -> dict[str, Fraction]:
                 raise _CommandError(
                     f"--scale {entry!r}: EXP must be a plain number, the exponent of the scale factor s "
                     f"({name}={text} is not one); {name}=2 means {name} -> s^2 {name}, and {name}=1/6 means "
-                    f"{name} -> s^(1/6) {name}, not a factor 1/6; apply takes s itself with --s", culprit=entry
+                    f"{name} -> s^(1/6) {name}, not a factor 1/6; apply takes s itself with --s",
+                    culprit=entry,
                 ) from None
-            raise _CommandError(f"--scale {entry!r}: {err}; EXP is the exponent of the scale factor s "
-                                f"({name}=1 means {name} -> s {name})", culprit=entry) from None
+            raise _CommandError(
+                f"--scale {entry!r}: {err}; EXP is the exponent of the scale factor s "
+                f"({name}=1 means {name} -> s {name})",
+                culprit=entry,
+            ) from None
     return scale
 
 
@@ -189,8 +198,11 @@ def _scaled_values(sc, values: dict, s: Fraction) -> dict:
     for n, new in scaled.items():
         if isinstance(new, Fraction):
             if max(new.numerator.bit_length(), new.denominator.bit_length()) > _MAX_DIGITS * 3.32:
-                raise _CommandError(f"the scaled value of {n!r} is {short_text(new)}, with more than {_MAX_DIGITS} "
-                                    "digits; choose a smaller --s", culprit=n)
+                raise _CommandError(
+                    f"the scaled value of {n!r} is {short_text(new)}, with more than {_MAX_DIGITS} "
+                    "digits; choose a smaller --s",
+                    culprit=n,
+                )
         elif not isinstance(new, float):  # an irrational exact number
             new = float(new) if abs(new) < 1e308 else math.inf
         if isinstance(new, float) and (not math.isfinite(new) or (new == 0 and values[n] != 0)):
@@ -200,8 +212,10 @@ def _scaled_values(sc, values: dict, s: Fraction) -> dict:
 
 
 def _out_of_float_range(what: str, culprit) -> CommandLineError:
-    return _CommandError(f"{what} is beyond the range of floating point (about 1e-308 to 1e308); "
-                         "choose an --s nearer to 1", culprit=culprit)
+    return _CommandError(
+        f"{what} is beyond the range of floating point (about 1e-308 to 1e308); choose an --s nearer to 1",
+        culprit=culprit,
+    )
 
 
 def _run_search(model: ModelFile, args):
@@ -290,8 +304,11 @@ def _cmd_bases(args) -> int:
         count = len(bases)
     else:  # the count, and the first sets only: a large model has millions
         count = system.count_bases(exclude=args.exclude, require=args.require)
-        bases = None if args.count else tuple(
-            islice(system.iter_bases(exclude=args.exclude, require=args.require), BASES_SHOWN))
+        bases = (
+            None
+            if args.count
+            else tuple(islice(system.iter_bases(exclude=args.exclude, require=args.require), BASES_SHOWN))
+        )
     _print(BasesAnswer(model.name, system.rank, tuple(args.exclude), tuple(args.require), count, bases), args)
     return EXIT_OK
 
@@ -323,8 +340,10 @@ def _cmd_apply(args) -> int:
     model, engine_model = _load_with_engine(args.file, args.scene)
     s = read_positive(args.s, "--s")
     if engine_model is None and not model.values:
-        raise _CommandError(f"{args.file}: no variable has a value, so there is nothing to scale; "
-                            "give values in the model file, e.g. m = { dimension = \"M\", value = 1.5 }")
+        raise _CommandError(
+            f"{args.file}: no variable has a value, so there is nothing to scale; "
+            'give values in the model file, e.g. m = { dimension = "M", value = 1.5 }'
+        )
     result = _run_search(model, args)
     if not result.feasible:
         print(f"pitheorem: {result.explanation()} Nothing written.", file=sys.stderr)
@@ -381,8 +400,9 @@ def _cmd_check(args) -> int:
     path = _engine_file(args, "check")
     from .engines.cli import check_engine_model, parse_units
 
-    text, clean = check_engine_model(path, from_units=parse_units(args.from_units, "--from"), engine=args.engine,
-                                     fmt=args.format)
+    text, clean = check_engine_model(
+        path, from_units=parse_units(args.from_units, "--from"), engine=args.engine, fmt=args.format
+    )
     print(text)
     return EXIT_OK if clean else EXIT_INFEASIBLE
 
@@ -391,9 +411,14 @@ def _cmd_convert(args) -> int:
     path = _engine_file(args, "convert")
     from .engines.cli import convert_engine, parse_units
 
-    text = convert_engine(path, from_units=parse_units(args.from_units, "--from"),
-                          units=parse_units(args.units, "--units"), fit=args.fit, output=args.output,
-                          fmt=args.format)
+    text = convert_engine(
+        path,
+        from_units=parse_units(args.from_units, "--from"),
+        units=parse_units(args.units, "--units"),
+        fit=args.fit,
+        output=args.output,
+        fmt=args.format,
+    )
     print(text)
     return EXIT_INFEASIBLE if "no units keep every number clear" in text or '"feasible": false' in text else EXIT_OK
 
@@ -471,98 +496,163 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     common = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
-    common.add_argument("file", metavar="FILE", help=f"TOML, MJCF (.xml) or URDF (.urdf) model file, or {_EXAMPLES_TEXT}")
+    common.add_argument(
+        "file", metavar="FILE", help=f"TOML, MJCF (.xml) or URDF (.urdf) model file, or {_EXAMPLES_TEXT}"
+    )
     common.add_argument("--format", choices=FORMATS, default="text", help="output format (default: text)")
     common.add_argument("--scene", nargs="+", metavar="NAME=VALUE", help="URDF files: PyBullet's scene")
 
     request = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
     request.add_argument("--scale", nargs="+", required=True, metavar="NAME=EXP", help=_SCALE_HELP)
-    request.add_argument("--fixed", nargs="*", metavar="NAME",
-                         help="variables held unchanged (default: those of dimension T; no names: none)")
-    request.add_argument("--allow", nargs="*", metavar="NAME",
-                         help="only these variables (besides --scale) may change")
-    request.add_argument("--no-default-fixed", action="store_true",
-                         help="do not hold time fixed by default (same as --fixed with no names)")
+    request.add_argument(
+        "--fixed",
+        nargs="*",
+        metavar="NAME",
+        help="variables held unchanged (default: those of dimension T; no names: none)",
+    )
+    request.add_argument("--allow", nargs="*", metavar="NAME", help="only these variables (besides --scale) may change")
+    request.add_argument(
+        "--no-default-fixed",
+        action="store_true",
+        help="do not hold time fixed by default (same as --fixed with no names)",
+    )
 
     options = {"allow_abbrev": False, "formatter_class": _Help}
-    p = sub.add_parser("params", parents=[common], **options,
-                       help="every variable or engine parameter, with its dimension and value",
-                       description="List every variable of a TOML model file, or every dimensional number of "
-                       "an MJCF (MuJoCo) or URDF (PyBullet) model, with its dimension and value.")
+    p = sub.add_parser(
+        "params",
+        parents=[common],
+        **options,
+        help="every variable or engine parameter, with its dimension and value",
+        description="List every variable of a TOML model file, or every dimensional number of "
+        "an MJCF (MuJoCo) or URDF (PyBullet) model, with its dimension and value.",
+    )
     p.set_defaults(run=_cmd_params)
 
-    p = sub.add_parser("groups", parents=[common], **options, help="Pi groups of the model",
-                       description="Print the dimensionless (Pi) groups of the model.")
-    p.add_argument("--repeating", nargs="+", metavar="NAME",
-                   help="repeating variables (default: the first valid set without time variables; if "
-                   "that holds a variable whose value is 0, the first without those either)")
+    p = sub.add_parser(
+        "groups",
+        parents=[common],
+        **options,
+        help="Pi groups of the model",
+        description="Print the dimensionless (Pi) groups of the model.",
+    )
+    p.add_argument(
+        "--repeating",
+        nargs="+",
+        metavar="NAME",
+        help="repeating variables (default: the first valid set without time variables; if "
+        "that holds a variable whose value is 0, the first without those either)",
+    )
     p.set_defaults(run=_cmd_groups)
 
-    p = sub.add_parser("bases", parents=[common], **options, help=f"the number of valid repeating sets, and the first {BASES_SHOWN}",
-                       description="List every valid set of repeating variables, with their count.")
+    p = sub.add_parser(
+        "bases",
+        parents=[common],
+        **options,
+        help=f"the number of valid repeating sets, and the first {BASES_SHOWN}",
+        description="List every valid set of repeating variables, with their count.",
+    )
     p.add_argument("--exclude", nargs="*", default=[], metavar="NAME", help="never use these as repeaters")
     p.add_argument("--require", nargs="*", default=[], metavar="NAME", help="every set must contain these")
     p.add_argument("--count", action="store_true", help="print only the number of sets")
-    p.add_argument("--all", action="store_true",
-                   help=f"list every set (default: the number of sets and the first {BASES_SHOWN})")
+    p.add_argument(
+        "--all", action="store_true", help=f"list every set (default: the number of sets and the first {BASES_SHOWN})"
+    )
     p.set_defaults(run=_cmd_bases)
 
-    p = sub.add_parser("search", parents=[common, request], **options,
-                       help="every minimal similarity scaling, or a proof that none exists",
-                       description="Find every minimal similarity scaling meeting the request, "
-                       "or print a certificate that none exists (exit code 1).")
+    p = sub.add_parser(
+        "search",
+        parents=[common, request],
+        **options,
+        help="every minimal similarity scaling, or a proof that none exists",
+        description="Find every minimal similarity scaling meeting the request, "
+        "or print a certificate that none exists (exit code 1).",
+    )
     p.set_defaults(run=_cmd_search)
 
-    p = sub.add_parser("apply", parents=[common, request], **options,
-                       help="scale the model's values by a minimal scaling (and write them with --output)",
-                       description="Scale the values of the model file by a minimal similarity scaling; "
-                       "--output writes the scaled file.")
-    p.add_argument("--s", required=True, metavar="S",
-                   help="the scale factor s itself, e.g. 2 or 1/2 (each variable is multiplied by s^EXP)")
-    p.add_argument("--solution", type=int, default=1, metavar="K",
-                   help="use the K-th minimal scaling (default 1)")
-    p.add_argument("--output", metavar="OUT",
-                   help="write the scaled model file: .toml or .json for a TOML model, the same kind for MJCF/URDF")
+    p = sub.add_parser(
+        "apply",
+        parents=[common, request],
+        **options,
+        help="scale the model's values by a minimal scaling (and write them with --output)",
+        description="Scale the values of the model file by a minimal similarity scaling; "
+        "--output writes the scaled file.",
+    )
+    p.add_argument(
+        "--s",
+        required=True,
+        metavar="S",
+        help="the scale factor s itself, e.g. 2 or 1/2 (each variable is multiplied by s^EXP)",
+    )
+    p.add_argument("--solution", type=int, default=1, metavar="K", help="use the K-th minimal scaling (default 1)")
+    p.add_argument(
+        "--output",
+        metavar="OUT",
+        help="write the scaled model file: .toml or .json for a TOML model, the same kind for MJCF/URDF",
+    )
     p.set_defaults(run=_cmd_apply)
 
-    p = sub.add_parser("verify", parents=[common, request], **options,
-                       help="run an MJCF or URDF model and its scaled copy: similar or not, and why",
-                       description="Run the model and its scaled copy in their engine and compare them in original "
-                       "units: exact at s a power of four, similar within the model's own rounding, or not, with "
-                       "the causes found. Exit codes: 0 similar, 1 not similar, 2 bad input.")
+    p = sub.add_parser(
+        "verify",
+        parents=[common, request],
+        **options,
+        help="run an MJCF or URDF model and its scaled copy: similar or not, and why",
+        description="Run the model and its scaled copy in their engine and compare them in original "
+        "units: exact at s a power of four, similar within the model's own rounding, or not, with "
+        "the causes found. Exit codes: 0 similar, 1 not similar, 2 bad input.",
+    )
     p.add_argument("--s", required=True, metavar="S", help="the scale factor, e.g. 4 (a power of four: exact) or 10")
     p.add_argument("--duration", default="1", metavar="T", help="simulated time of the original run (default 1)")
-    p.add_argument("--input", choices=("smooth", "zero"), default="smooth",
-                   help="actuator inputs: a smooth sine per actuator (default), or none")
-    p.add_argument("--solution", type=int, default=1, metavar="K",
-                   help="use the K-th minimal scaling (default 1)")
-    p.add_argument("--engine", metavar="ENGINE", help="run the file in this engine instead of its own "
-                   "(an MJCF file in mjx, say)")
+    p.add_argument(
+        "--input",
+        choices=("smooth", "zero"),
+        default="smooth",
+        help="actuator inputs: a smooth sine per actuator (default), or none",
+    )
+    p.add_argument("--solution", type=int, default=1, metavar="K", help="use the K-th minimal scaling (default 1)")
+    p.add_argument(
+        "--engine", metavar="ENGINE", help="run the file in this engine instead of its own (an MJCF file in mjx, say)"
+    )
     p.set_defaults(run=_cmd_verify)
 
     units = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
     units.add_argument("file", metavar="FILE", help=f"MJCF (.xml) or URDF (.urdf) model file, or {_EXAMPLES_TEXT}")
     units.add_argument("--format", choices=("text", "json"), default="text", help="output format (default: text)")
-    units.add_argument("--from", dest="from_units", nargs="+", metavar="BASE=UNIT",
-                       help="the units the file is written in, e.g. L=cm M=g (default: SI, or those the file records)")
+    units.add_argument(
+        "--from",
+        dest="from_units",
+        nargs="+",
+        metavar="BASE=UNIT",
+        help="the units the file is written in, e.g. L=cm M=g (default: SI, or those the file records)",
+    )
 
-    p = sub.add_parser("check", parents=[units], **options,
-                       help="the engine thresholds an MJCF or URDF model sits beyond or near",
-                       description="Hold every number of the model against the catalogued thresholds of its engine "
-                       "(MuJoCo: mjMINVAL, mjMINMU, mjMAXVAL; PyBullet: its minimum object sizes), each with a unit "
-                       "change that clears it. Exit codes: 0 clean, 1 some number beyond or near a threshold, "
-                       "2 bad input.")
-    p.add_argument("--engine", metavar="ENGINE", help="hold the numbers against this engine's thresholds "
-                   "(default: the file's engine)")
+    p = sub.add_parser(
+        "check",
+        parents=[units],
+        **options,
+        help="the engine thresholds an MJCF or URDF model sits beyond or near",
+        description="Hold every number of the model against the catalogued thresholds of its engine "
+        "(MuJoCo: mjMINVAL, mjMINMU, mjMAXVAL; PyBullet: its minimum object sizes), each with a unit "
+        "change that clears it. Exit codes: 0 clean, 1 some number beyond or near a threshold, "
+        "2 bad input.",
+    )
+    p.add_argument(
+        "--engine",
+        metavar="ENGINE",
+        help="hold the numbers against this engine's thresholds (default: the file's engine)",
+    )
     p.set_defaults(run=_cmd_check)
 
-    p = sub.add_parser("convert", parents=[units], **options,
-                       help="the same MJCF model in other units (--units L=mm, or --fit ENGINE)",
-                       description="Write the same model in other units: every number by its dimension (gravity, "
-                       "densities, stiffness, damping, gains, time constants, the time step and keyframes), the "
-                       "units recorded in the file. --fit ENGINE chooses units clear of that engine's thresholds. "
-                       "Exit codes: 0 converted, 1 no units clear every threshold (the closest are used), "
-                       "2 bad input.")
+    p = sub.add_parser(
+        "convert",
+        parents=[units],
+        **options,
+        help="the same MJCF model in other units (--units L=mm, or --fit ENGINE)",
+        description="Write the same model in other units: every number by its dimension (gravity, "
+        "densities, stiffness, damping, gains, time constants, the time step and keyframes), the "
+        "units recorded in the file. --fit ENGINE chooses units clear of that engine's thresholds. "
+        "Exit codes: 0 converted, 1 no units clear every threshold (the closest are used), "
+        "2 bad input.",
+    )
     p.add_argument("--units", nargs="+", metavar="BASE=UNIT", help="the new units, e.g. L=mm M=g T=ms")
     p.add_argument("--fit", metavar="ENGINE", help="choose units clear of this engine's thresholds (mujoco, ...)")
     p.add_argument("--output", metavar="OUT", help="write the converted file")

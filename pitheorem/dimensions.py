@@ -66,16 +66,16 @@ def base_dimension_names(names, what: str = "base_dimensions") -> tuple[str, ...
     try:
         names = tuple(names)
     except TypeError:
-        raise InvalidRequestError(f"{what} must be a list of names such as ('M', 'L', 'T'), got {names!r}",
-                                  culprit=names) from None
+        raise InvalidRequestError(
+            f"{what} must be a list of names such as ('M', 'L', 'T'), got {names!r}", culprit=names
+        ) from None
     for b in names:
         if not isinstance(b, str) or not b.isidentifier():
             raise InvalidRequestError(f"base dimension names must be identifiers, got {b!r}", culprit=b)
     return names
 
-_TOKEN = re.compile(
-    r"\s*(?:(?P<name>[A-Za-z_][A-Za-z_0-9]*)|(?P<number>\d+(?:\.\d*)?|\.\d+)|(?P<op>\*\*|[\^*/()+-]))"
-)
+
+_TOKEN = re.compile(r"\s*(?:(?P<name>[A-Za-z_][A-Za-z_0-9]*)|(?P<number>\d+(?:\.\d*)?|\.\d+)|(?P<op>\*\*|[\^*/()+-]))")
 
 
 def _order_key(base: str) -> tuple[int, str]:
@@ -121,8 +121,9 @@ class Dimension(MathDisplay):
         total: dict[str, Fraction] = {}
         for base, p in _pairs(exponents):
             if not isinstance(base, str) or not base.isidentifier():
-                raise InvalidRequestError(f"base dimension names must be identifiers such as 'L' or 'Theta', "
-                                          f"got {base!r}", culprit=base)
+                raise InvalidRequestError(
+                    f"base dimension names must be identifiers such as 'L' or 'Theta', got {base!r}", culprit=base
+                )
             total[base] = total.get(base, Fraction(0)) + read_number(p, f"the exponent of {base!r}")
         # the limits hold for the total, however it was reached: many small terms, or a power of a power
         for base, p in total.items():
@@ -281,8 +282,11 @@ class Dimension(MathDisplay):
         # System checks the limits of what enters it.  The power's size is bounded so that results stay printable
         e = read_number(exponent, "the power of a dimension")
         if max(abs(e.numerator), e.denominator) > MAX_DENOMINATOR:
-            raise LimitError(short_text(e), "the power of a dimension",
-                             f"its numerator and denominator may not exceed {MAX_DENOMINATOR} in magnitude")
+            raise LimitError(
+                short_text(e),
+                "the power of a dimension",
+                f"its numerator and denominator may not exceed {MAX_DENOMINATOR} in magnitude",
+            )
         return Dimension._combined((b, p * e) for b, p in self._exponents)
 
     # -- display (text, LaTeX and the rest: pitheorem.formatting) -----------
@@ -331,8 +335,11 @@ class _Parser:
         self.text, self.allowed = text, allowed
         self.depth = 0
         if len(text) > MAX_FORMULA_LENGTH:
-            raise LimitError(f"{text[:20]}...", "the dimension formula",
-                             f"its length {len(text)} exceeds the limit of {MAX_FORMULA_LENGTH} characters")
+            raise LimitError(
+                f"{text[:20]}...",
+                "the dimension formula",
+                f"its length {len(text)} exceeds the limit of {MAX_FORMULA_LENGTH} characters",
+            )
         self.tokens: list[tuple[str, str, int]] = []
         pos = 0
         while pos < len(text):
@@ -418,8 +425,11 @@ class _Parser:
         if value == "(":
             self.depth += 1
             if self.depth > MAX_NESTING:
-                raise LimitError(f"{self.text[:20]}...", "the dimension formula",
-                                 f"its brackets nest deeper than the limit of {MAX_NESTING}")
+                raise LimitError(
+                    f"{self.text[:20]}...",
+                    "the dimension formula",
+                    f"its brackets nest deeper than the limit of {MAX_NESTING}",
+                )
             dim = self.product()
             if self.peek()[1] != ")":
                 self.fail(self.peek(), "expected ')' to close the bracket")

@@ -153,8 +153,10 @@ class _DimensionWalker:
         winners = _vote(dims)
         if len(winners) > 1:
             each = dims.count(winners[0])
-            self.ties.append(f"in {' + '.join(sympy.sstr(t) for t in terms)}, {' and '.join(map(str, winners))} "
-                             f"have {each} term(s) each: no majority says which is wrong, so all are listed")
+            self.ties.append(
+                f"in {' + '.join(sympy.sstr(t) for t in terms)}, {' and '.join(map(str, winners))} "
+                f"have {each} term(s) each: no majority says which is wrong, so all are listed"
+            )
         for term, d in zip(terms, dims, strict=True):
             if d not in winners:
                 self.flag(term, d, winners[0])
@@ -486,8 +488,10 @@ def scaling_symmetries(equations, system: System, *, time: str | None = "t") -> 
     if isinstance(equations, sympy.Basic):
         equations = [equations]
     if isinstance(equations, str) or not isinstance(equations, Iterable):
-        raise InvalidRequestError(f"scaling_symmetries needs sympy equations (a list of sympy.Eq or expressions), "
-                                  f"got {equations!r}", culprit=equations)
+        raise InvalidRequestError(
+            f"scaling_symmetries needs sympy equations (a list of sympy.Eq or expressions), got {equations!r}",
+            culprit=equations,
+        )
     equations = list(equations)
     if not equations:
         raise InvalidRequestError("scaling_symmetries needs at least one equation")
@@ -506,8 +510,9 @@ def scaling_symmetries(equations, system: System, *, time: str | None = "t") -> 
     units = system.rows(names)
     unit_rows = [u for u in units if any(u)]
     unit_basis = [row for row in _independent(unit_rows)]
-    contains = all(all(sum(c.get(n, 0) * u[i] for i, n in enumerate(names)) == 0 for c in walker.conditions)
-                   for u in unit_basis)
+    contains = all(
+        all(sum(c.get(n, 0) * u[i] for i, n in enumerate(names)) == 0 for c in walker.conditions) for u in unit_basis
+    )
     beyond = []
     current = list(unit_basis)
     for vec in basis:
@@ -546,8 +551,9 @@ def _canonical_complement(vectors: list[list[Fraction]], units: list[list[Fracti
         for cols in supports:
             # the unit change u^T rows that agrees with vec on cols
             u = solve([[row[c] for row in rows] for c in cols], [vec[c] for c in cols])
-            cand = [x - sum((ui * row[j] for ui, row in zip(u, rows, strict=True)), Fraction(0))
-                    for j, x in enumerate(vec)]
+            cand = [
+                x - sum((ui * row[j] for ui, row in zip(u, rows, strict=True)), Fraction(0)) for j, x in enumerate(vec)
+            ]
             if sum(map(bool, cand)) < sum(map(bool, best)):
                 best = cand
         out.append([Fraction(x) for x in primitive_integer_vector(best)])

@@ -205,8 +205,11 @@ class EmptySystemError(PiTheoremError, ValueError):
     a system needs at least one variable, e.g. System({'l': 'L', 't': 'T'})
     """
 
-    def __init__(self, message: str = "a system needs at least one variable, e.g. System({'l': 'L', 't': 'T'})",
-                 culprit: object = None):
+    def __init__(
+        self,
+        message: str = "a system needs at least one variable, e.g. System({'l': 'L', 't': 'T'})",
+        culprit: object = None,
+    ):
         super().__init__(message, culprit)
 
 
@@ -560,5 +563,7 @@ class EngineUnavailableError(PiTheoremError, ImportError):
 
     def __str__(self) -> str:
         here = f"; installed here: {', '.join(map(repr, self.installed))}" if self.installed else ""
-        return (f'engine {self.engine!r} needs the Python package {self.package!r}: '
-                f'pip install "pitheorem[{self.extra}]"{here}')
+        return (
+            f"engine {self.engine!r} needs the Python package {self.package!r}: "
+            f'pip install "pitheorem[{self.extra}]"{here}'
+        )

@@ -231,8 +231,7 @@ def read_count(value, what: str, least: int = 0) -> int:
     ensemble must be a whole number of at least 1, got 0
     """
     if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < least:
-        raise InvalidRequestError(f"{what} must be a whole number of at least {least}, got {value!r}",
-                                  culprit=value)
+        raise InvalidRequestError(f"{what} must be a whole number of at least {least}, got {value!r}", culprit=value)
     return int(value)
 
 
@@ -331,8 +330,12 @@ def _finite_float(value, exact: Fraction, what: str) -> float:
     """
     number = float(value)
     if math.isinf(number) or (number == 0 and exact != 0):
-        raise LimitError(short_text(exact), what, "it is beyond the range of floating point (about 1e-308 "
-                         "to 1.8e308)", "pass it exactly, as an int, a Fraction or a string")
+        raise LimitError(
+            short_text(exact),
+            what,
+            "it is beyond the range of floating point (about 1e-308 to 1.8e308)",
+            "pass it exactly, as an int, a Fraction or a string",
+        )
     return number
 
 
@@ -430,7 +433,9 @@ def check_exponent(exponent: Fraction, what: str, *, shown: object = None) -> Fr
     Fraction(1, 3)
     """
     np = numpy_if_loaded()
-    from_decimal = isinstance(shown, float | Decimal | sympy.Float) or (np is not None and isinstance(shown, np.floating))
+    from_decimal = isinstance(shown, float | Decimal | sympy.Float) or (
+        np is not None and isinstance(shown, np.floating)
+    )
     if shown is None or isinstance(shown, int | Fraction):
         shown = short_text(Fraction(exponent))
     elif isinstance(shown, str) and len(shown) > 40:
@@ -440,10 +445,16 @@ def check_exponent(exponent: Fraction, what: str, *, shown: object = None) -> Fr
     if exponent.denominator > MAX_DENOMINATOR:
         hint = ""
         if from_decimal:
-            hint = ("a float is read as the decimal it prints as, or as the simplest fraction that rounds to it; "
-                    "pass an exact exponent such as Fraction(1, 3) or '1/3'")
-        raise LimitError(shown, what, f"its denominator {short_text(Fraction(exponent.denominator))} exceeds the limit {MAX_DENOMINATOR}",
-                         hint)
+            hint = (
+                "a float is read as the decimal it prints as, or as the simplest fraction that rounds to it; "
+                "pass an exact exponent such as Fraction(1, 3) or '1/3'"
+            )
+        raise LimitError(
+            shown,
+            what,
+            f"its denominator {short_text(Fraction(exponent.denominator))} exceeds the limit {MAX_DENOMINATOR}",
+            hint,
+        )
     return exponent
 
 

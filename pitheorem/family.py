@@ -61,8 +61,10 @@ class MinimalPoints(Sequence):
         point = tuple(Fraction(p, scale) for p in key[1:])
         w = self._weights[i].tolist()
         z = [Fraction(x, w[-1]) for x in w[:-1]]
-        coords = tuple(u + sum((zi * v[j] for zi, v in zip(z, self._kept, strict=True)), Fraction(0))
-                       for j, u in enumerate(self._u0))
+        coords = tuple(
+            u + sum((zi * v[j] for zi, v in zip(z, self._kept, strict=True)), Fraction(0))
+            for j, u in enumerate(self._u0)
+        )
         return point, coords
 
     def __iter__(self):
@@ -89,8 +91,9 @@ def _merge(supports, keys, weights):
     return supports, keys[first], weights[first]
 
 
-def minimal_points(a0_int: Sequence[int], dirs_int: Sequence[Sequence[int]], free: Sequence[int],
-                   constrained: Sequence[int]):
+def minimal_points(
+    a0_int: Sequence[int], dirs_int: Sequence[Sequence[int]], free: Sequence[int], constrained: Sequence[int]
+):
     """Distinct minimal points of ``a0 + span(dirs)``, or None when floats cannot be proved exact.
 
     Parameters

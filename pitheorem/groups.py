@@ -71,7 +71,9 @@ class PiGroup(MathDisplay):
                 if exact.denominator != 1:
                     raise InvalidRequestError(
                         f"the exponent of {name!r} in a Pi group is {exact}: PiGroup takes integer exponents; "
-                        "PiGroup.from_exponents normalises rational ones", culprit=p)
+                        "PiGroup.from_exponents normalises rational ones",
+                        culprit=p,
+                    )
                 p = int(exact)
             if p:
                 pairs.append((name, p))
@@ -254,8 +256,9 @@ class PiGroup(MathDisplay):
         try:
             return float(self._product([Fraction(v) for v in read], Fraction(1)))
         except OverflowError:
-            raise LimitError(str(self), "the value of the group", "it is beyond the range of floating point "
-                             "(about 1.8e308)") from None
+            raise LimitError(
+                str(self), "the value of the group", "it is beyond the range of floating point (about 1.8e308)"
+            ) from None
 
     def _product(self, values, one):
         result = one

@@ -154,8 +154,14 @@ class Model:
         for n in initial:
             if n not in found.states:
                 raise UnknownVariableError(n, found.states, "initial (states)")
-        for name, value in (("equations", equations), ("parameters", params), ("states", found.states),
-                            ("defaults", defaults), ("initial", initial), ("rhs", found.compile(params))):
+        for name, value in (
+            ("equations", equations),
+            ("parameters", params),
+            ("states", found.states),
+            ("defaults", defaults),
+            ("initial", initial),
+            ("rhs", found.compile(params)),
+        ):
             object.__setattr__(self, name, value)
 
     def _listed_parameters(self, found: _Equations) -> tuple[str, ...]:
@@ -167,19 +173,38 @@ class Model:
             if n not in params:
                 i, text = found.user(n)
                 raise ModelEquationError(
-                    text, f"it uses {n!r}, which is not among the parameters {params}; list it there, "
-                    "or leave parameters out to take every symbol of the equations", i)
+                    text,
+                    f"it uses {n!r}, which is not among the parameters {params}; list it there, "
+                    "or leave parameters out to take every symbol of the equations",
+                    i,
+                )
         return params
 
     def __reduce__(self):
         # the generated rhs does not pickle: rebuild the model (and its rhs) from its equations
-        options = {"time": self.time, "parameters": self.parameters, "defaults": dict(self.defaults),
-                   "initial": dict(self.initial), "name": self.name, "description": self.description}
+        options = {
+            "time": self.time,
+            "parameters": self.parameters,
+            "defaults": dict(self.defaults),
+            "initial": dict(self.initial),
+            "name": self.name,
+            "description": self.description,
+        }
         return (partial(type(self), **options), (self.system, self.equations))
 
     def __hash__(self) -> int:
-        return hash((self.system, self.equations, self.time, self.parameters, self.states,
-                     tuple(self.defaults.items()), tuple(self.initial.items()), self.name))
+        return hash(
+            (
+                self.system,
+                self.equations,
+                self.time,
+                self.parameters,
+                self.states,
+                tuple(self.defaults.items()),
+                tuple(self.initial.items()),
+                self.name,
+            )
+        )
 
     def state_dimension(self, name: str):
         """The dimension of one state variable.
@@ -332,7 +357,9 @@ def _read_equations(equations) -> tuple:
             raise ModelEquationError(
                 repr(eq) if isinstance(eq, str) else sympy.sstr(eq),
                 f"it is {what}, not an equation; write sympy.Eq(left side, right side) with sympy "
-                "symbols and functions of time", i)
+                "symbols and functions of time",
+                i,
+            )
     return equations
 
 
@@ -354,9 +381,12 @@ class _Equations:
         for n in sorted(calls - rated):
             i, text = self.user(n)
             raise ModelEquationError(
-                text, f"{n}({time}) is a function of time whose derivative appears in no equation; every "
+                text,
+                f"{n}({time}) is a function of time whose derivative appears in no equation; every "
                 f"function of {time} must be a state with an equation for its rate, such as "
-                f"Eq({n}({time}).diff({time}), ...); write a parameter as a plain symbol", i)
+                f"Eq({n}({time}).diff({time}), ...); write a parameter as a plain symbol",
+                i,
+            )
         plain = {name for node, name in self.leaves.items() if isinstance(node, sympy.Symbol)}
         for n in sorted(plain & rated):
             i, text = self.user(n)
@@ -365,11 +395,15 @@ class _Equations:
         for i, (eq, text) in enumerate(zip(equations, self.texts, strict=True), start=1):
             report = check_dimensions(eq, system, time=time)
             if not report.consistent:
-                terms = "; ".join(f"{sympy.sstr(term)} has dimension {got}, expected {want}"
-                                  for term, got, want in report.offending)
+                terms = "; ".join(
+                    f"{sympy.sstr(term)} has dimension {got}, expected {want}" for term, got, want in report.offending
+                )
                 raise ModelEquationError(
-                    text, f"it is dimensionally inconsistent: {terms}; every term of an equation needs "
-                    "one dimension (check the term, or the dimensions in the system)", i)
+                    text,
+                    f"it is dimensionally inconsistent: {terms}; every term of an equation needs "
+                    "one dimension (check the term, or the dimensions in the system)",
+                    i,
+                )
         self.rates = self._solve()
 
     def user(self, name: str) -> tuple[int, str]:
@@ -386,15 +420,20 @@ class _Equations:
                 first = isinstance(var, sympy.Symbol) and var.name == time and count == 1 and not more
                 if not (first and self._of_time(node.expr)):
                     raise ModelEquationError(
-                        text, f"{sympy.sstr(node)} is not the first time derivative of a state; a model's "
+                        text,
+                        f"{sympy.sstr(node)} is not the first time derivative of a state; a model's "
                         f"equations are first order: write a higher derivative with a new state (omega({time}) "
-                        f"for theta({time}).diff({time})), and differentiate only functions x({time})", i)
+                        f"for theta({time}).diff({time})), and differentiate only functions x({time})",
+                        i,
+                    )
                 self.derivatives[node] = node.expr.func.__name__
             elif isinstance(node, AppliedUndef):
                 if not self._of_time(node):
                     raise ModelEquationError(
-                        text, f"{sympy.sstr(node)} is not a function of the time alone; write "
-                        f"{node.func.__name__}({time})", i)
+                        text,
+                        f"{sympy.sstr(node)} is not a function of the time alone; write {node.func.__name__}({time})",
+                        i,
+                    )
                 self.leaves[node] = node.func.__name__
             elif isinstance(node, sympy.Symbol):
                 self.leaves[node] = node.name
@@ -407,19 +446,27 @@ class _Equations:
         return names
 
     def _of_time(self, node) -> bool:
-        return (isinstance(node, AppliedUndef) and len(node.args) == 1
-                and isinstance(node.args[0], sympy.Symbol) and node.args[0].name == self.time)
+        return (
+            isinstance(node, AppliedUndef)
+            and len(node.args) == 1
+            and isinstance(node.args[0], sympy.Symbol)
+            and node.args[0].name == self.time
+        )
 
     def _solve(self) -> list[sympy.Expr]:
         """Each state's rate, in state order: A d = c solved exactly, A and c free of the derivatives d."""
         if not self.states:
             raise ModelEquationError(
-                None, f"no equation holds the time derivative of a state, such as x({self.time}).diff({self.time}); "
-                "a model needs at least one state, a function of time with an equation for its rate")
+                None,
+                f"no equation holds the time derivative of a state, such as x({self.time}).diff({self.time}); "
+                "a model needs at least one state, a function of time with an equation for its rate",
+            )
         if len(self.equations) != len(self.states):
             raise ModelEquationError(
-                None, f"{len(self.equations)} equation(s) for {len(self.states)} state(s) "
-                f"({', '.join(self.states)}); give one first-order equation per state")
+                None,
+                f"{len(self.equations)} equation(s) for {len(self.states)} state(s) "
+                f"({', '.join(self.states)}); give one first-order equation per state",
+            )
         d = {n: sympy.Dummy(f"d{n}") for n in self.states}
         to_d = {node: d[name] for node, name in self.derivatives.items()}
         to_zero = dict.fromkeys(d.values(), 0)
@@ -429,12 +476,18 @@ class _Equations:
             row = [sympy.diff(lhs - rhs, d[n]) for n in self.states]
             if any(a.has(*d.values()) for a in row):
                 raise ModelEquationError(
-                    text, "it is not linear in the derivatives; write it as (coefficient) * x'(t) + ... = "
-                    "(right side), with coefficients and right side free of derivatives", i)
+                    text,
+                    "it is not linear in the derivatives; write it as (coefficient) * x'(t) + ... = "
+                    "(right side), with coefficients and right side free of derivatives",
+                    i,
+                )
             if all(a == 0 for a in row):
                 raise ModelEquationError(
-                    text, "it holds no derivative of a state; a model's equations are differential "
-                    "equations, one per state, such as Eq(x(t).diff(t), v(t))", i)
+                    text,
+                    "it holds no derivative of a state; a model's equations are differential "
+                    "equations, one per state, such as Eq(x(t).diff(t), v(t))",
+                    i,
+                )
             rows.append(row)
             right.append(rhs.xreplace(to_zero) - lhs.xreplace(to_zero))
         return _solve_linear(sympy.Matrix(rows), right, self.states)
@@ -471,6 +524,8 @@ def _solve_linear(a: sympy.Matrix, c: list, states: tuple[str, ...]) -> list[sym
         return rates
     if sympy.simplify(a.det()) == 0:
         raise ModelEquationError(
-            None, "they do not determine each state's rate: the coefficients of the derivatives of "
-            f"{', '.join(states)} form a singular matrix; give each state an equation of its own")
+            None,
+            "they do not determine each state's rate: the coefficients of the derivatives of "
+            f"{', '.join(states)} form a singular matrix; give each state an equation of its own",
+        )
     return list(a.LUsolve(sympy.Matrix(c)))

@@ -226,8 +226,13 @@ def examples() -> tuple[str, ...]:
     >>> examples()
     ('hinged_rod', 'hinged_rod.urdf', 'hinged_rod.xml', 'pendulum.xml', 'superball', 'superball.xml')
     """
-    return tuple(sorted(p.stem if p.suffix == ".toml" else p.name for p in EXAMPLES.iterdir()
-                        if p.is_file() and p.suffix in (".toml", ".xml", ".urdf")))
+    return tuple(
+        sorted(
+            p.stem if p.suffix == ".toml" else p.name
+            for p in EXAMPLES.iterdir()
+            if p.is_file() and p.suffix in (".toml", ".xml", ".urdf")
+        )
+    )
 
 
 def model_kind(path) -> str:
@@ -307,8 +312,9 @@ def load_model_file(path) -> ModelFile:
     1.0471975511965976
     """
     if not isinstance(path, str | os.PathLike):
-        raise ModelFileError(repr(path), f"a model file is named by a path (str or pathlib.Path), "
-                             f"not a {type(path).__name__}")
+        raise ModelFileError(
+            repr(path), f"a model file is named by a path (str or pathlib.Path), not a {type(path).__name__}"
+        )
     text_path = str(path)
     if text_path.startswith("example:"):
         path = example_path(text_path.removeprefix("example:"))
@@ -346,12 +352,13 @@ def _toml_error(path: str, text: str, err: tomllib.TOMLDecodeError) -> ModelFile
             return ModelFileError(path, f"{what}; TOML allows each table once", variable=variable, line=line)
         if key and section == "variables":
             return ModelFileError(
-                path, "is defined twice in [variables]; each variable may appear once", variable=key.group(1),
+                path,
+                "is defined twice in [variables]; each variable may appear once",
+                variable=key.group(1),
                 line=line,
             )
         if key:
-            return ModelFileError(path, f"key {key.group(1)!r} is defined twice; TOML allows each key once",
-                                  line=line)
+            return ModelFileError(path, f"key {key.group(1)!r} is defined twice; TOML allows each key once", line=line)
     return ModelFileError(path, f"invalid TOML: {reason}", line=line)
 
 
@@ -381,10 +388,10 @@ def _read(path: str, data: dict, *, default_name: str) -> ModelFile:
             raise ModelFileError(path, f"{key} must be a string, got {value!r}")
     allowed = data.get("base_dimensions", DEFAULT_BASE_DIMENSIONS)
     if not isinstance(allowed, list | tuple) or not all(isinstance(b, str) and b.isidentifier() for b in allowed):
-        raise ModelFileError(path, f"base_dimensions must be a list of names such as [\"M\", \"L\", \"T\"], got {allowed!r}")
+        raise ModelFileError(path, f'base_dimensions must be a list of names such as ["M", "L", "T"], got {allowed!r}')
     allowed = tuple(allowed)
     if "variables" not in data:
-        raise ModelFileError(path, "no [variables] table; declare each variable there, e.g. m = { dimension = \"M\" }")
+        raise ModelFileError(path, 'no [variables] table; declare each variable there, e.g. m = { dimension = "M" }')
     variables = data["variables"]
     if not isinstance(variables, dict):
         raise ModelFileError(path, f"variables must be a table, got {variables!r}")
@@ -395,13 +402,12 @@ def _read(path: str, data: dict, *, default_name: str) -> ModelFile:
         if not var.isidentifier():
             raise ModelFileError(path, "is not a valid name; use letters, digits and _ (e.g. k_theta)", variable=var)
         if not isinstance(entry, dict):
-            raise ModelFileError(
-                path, f"must be a table such as {{ dimension = \"M\" }}, got {entry!r}", variable=var
-            )
+            raise ModelFileError(path, f'must be a table such as {{ dimension = "M" }}, got {entry!r}', variable=var)
         for key in entry:
             if key not in _VARIABLE_KEYS:
                 raise ModelFileError(
-                    path, f"unknown key {key!r}{_suggest(key, _VARIABLE_KEYS)}; allowed: {', '.join(_VARIABLE_KEYS)}",
+                    path,
+                    f"unknown key {key!r}{_suggest(key, _VARIABLE_KEYS)}; allowed: {', '.join(_VARIABLE_KEYS)}",
                     variable=var,
                 )
         has_dim, has_unit = "dimension" in entry, "unit" in entry
@@ -417,12 +423,14 @@ def _read(path: str, data: dict, *, default_name: str) -> ModelFile:
         role = entry.get("role", ROLES[0])
         if role not in ROLES:
             raise ModelFileError(
-                path, f"unknown role {role!r}{_suggest(str(role), ROLES)}; valid roles: {', '.join(ROLES)}",
+                path,
+                f"unknown role {role!r}{_suggest(str(role), ROLES)}; valid roles: {', '.join(ROLES)}",
                 variable=var,
             )
         if role == "time" and dims[var] != Dimension({"T": 1}):
-            raise ModelFileError(path, f"has role 'time' but dimension {dims[var]}; time must have dimension T",
-                                 variable=var)
+            raise ModelFileError(
+                path, f"has role 'time' but dimension {dims[var]}; time must have dimension T", variable=var
+            )
         roles[var] = role
         if "value" in entry:
             values[var] = _value(entry["value"], path, var)
@@ -432,8 +440,9 @@ def _read(path: str, data: dict, *, default_name: str) -> ModelFile:
             descriptions[var] = entry["description"]
     times = [n for n, r in roles.items() if r == "time"]
     if len(times) > 1:
-        raise ModelFileError(path, f"has role 'time' as well as {times[0]!r}; at most one variable is time",
-                             variable=times[1])
+        raise ModelFileError(
+            path, f"has role 'time' as well as {times[0]!r}; at most one variable is time", variable=times[1]
+        )
     if "base_dimensions" not in data:  # a unit such as "mol" brings its opt-in base (N) with it
         used = {b for var in units for b in dims[var].base_dimensions}
         allowed += tuple(b for b in OPT_IN_BASE_DIMENSIONS if b in used)
@@ -446,7 +455,7 @@ def _read(path: str, data: dict, *, default_name: str) -> ModelFile:
 
 def _read_dimension(path: str, var: str, text, allowed) -> Dimension:
     if not isinstance(text, str):
-        raise ModelFileError(path, f"dimension must be a string such as \"M L^2 T^-2\", got {text!r}", variable=var)
+        raise ModelFileError(path, f'dimension must be a string such as "M L^2 T^-2", got {text!r}', variable=var)
     try:
         dim = Dimension.parse(text, base_dimensions=allowed)
     except DimensionSyntaxError as err:
@@ -465,7 +474,7 @@ def _read_dimension(path: str, var: str, text, allowed) -> Dimension:
 
 def _read_unit(path: str, var: str, unit) -> Dimension:
     if not isinstance(unit, str):
-        raise ModelFileError(path, f"unit must be a string such as \"N*m/rad\", got {unit!r}", variable=var)
+        raise ModelFileError(path, f'unit must be a string such as "N*m/rad", got {unit!r}', variable=var)
     try:
         return System.from_units({var: unit}).dimension(var)
     except PiTheoremError as err:
@@ -479,8 +488,9 @@ def _value(value, path: str, var: str) -> float | Fraction:
     try:
         return read_value(value, "value")
     except PiTheoremError as err:
-        raise ModelFileError(path, f"{str(err).splitlines()[0]} (numbers may also be exact strings such as \"1/3\")",
-                             variable=var) from None
+        raise ModelFileError(
+            path, f'{str(err).splitlines()[0]} (numbers may also be exact strings such as "1/3")', variable=var
+        ) from None
 
 
 # -- writing ---------------------------------------------------------------------------------
@@ -556,17 +566,18 @@ def dump_values(model: ModelFile, values: Mapping[str, object] | None = None, *,
             entry["description"] = model.descriptions[n]
         entries[n] = entry
     if format == "json":
-        doc = {"name": model.name, "description": model.description,
-               "variables": {n: {k: json_number(v) for k, v in e.items()} for n, e in entries.items()}}
+        doc = {
+            "name": model.name,
+            "description": model.description,
+            "variables": {n: {k: json_number(v) for k, v in e.items()} for n, e in entries.items()},
+        }
         return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
     lines = [f"name = {_toml_string(model.name)}"]
     if model.description:
         lines.append(f"description = {_toml_string(model.description)}")
     lines += ["", "[variables]"]
     for n, entry in entries.items():
-        body = ", ".join(
-            f"{k} = {_toml_value(v) if k == 'value' else _toml_string(v)}" for k, v in entry.items()
-        )
+        body = ", ".join(f"{k} = {_toml_value(v) if k == 'value' else _toml_string(v)}" for k, v in entry.items())
         lines.append(f"{_toml_key(n)} = {{ {body} }}")
     return "\n".join(lines) + "\n"
 

@@ -158,8 +158,19 @@ def hinged_rod() -> Model:
     t, (theta, omega), (m, l, g, k, c, theta_r) = _symbols("theta omega", "m l g k_theta c_theta theta_r")  # noqa: E741
     torque = m * g * l / 2 * sympy.cos(theta) - c * omega - k * (theta - theta_r)
     return Model(
-        System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1",
-                "theta_r": "1", "t": "T", "theta": "1", "omega": "T^-1"}),
+        System(
+            {
+                "m": "M",
+                "l": "L",
+                "g": "L T^-2",
+                "k_theta": "M L^2 T^-2",
+                "c_theta": "M L^2 T^-1",
+                "theta_r": "1",
+                "t": "T",
+                "theta": "1",
+                "omega": "T^-1",
+            }
+        ),
         [sympy.Eq(theta.diff(t), omega), sympy.Eq(omega.diff(t), 3 / (m * l**2) * torque)],
         defaults={"m": 1.5, "l": 2.0, "g": 9.81, "k_theta": 100.0, "c_theta": 10.0, "theta_r": math.pi / 3},
         initial={"theta": math.pi / 4, "omega": 0.0},
@@ -226,8 +237,10 @@ def hinged_rod_longitudinal(damper: bool = True) -> Model:
         del dims["c"], defaults["c"]
     return Model(
         System({**dims, "t": "T", "theta": "1", "omega": "T^-1"}),
-        [sympy.Eq(theta.diff(t), omega),
-         sympy.Eq(omega.diff(t), 3 / (m * l**2) * (m * g * l / 2 * sympy.cos(theta) - tension * arm))],
+        [
+            sympy.Eq(theta.diff(t), omega),
+            sympy.Eq(omega.diff(t), 3 / (m * l**2) * (m * g * l / 2 * sympy.cos(theta) - tension * arm)),
+        ],
         defaults=defaults,
         initial={"theta": math.pi / 4, "omega": 0.0},
         name="hinged_rod_longitudinal",
@@ -259,8 +272,9 @@ def spring_mass_damper() -> Model:
     """
     t, (y, v), (m, k, c, g, y_rest) = _symbols("y v", "m k c g y_rest")
     return Model(
-        System({"m": "M", "k": "M T^-2", "c": "M T^-1", "g": "L T^-2", "y_rest": "L",
-                "t": "T", "y": "L", "v": "L T^-1"}),
+        System(
+            {"m": "M", "k": "M T^-2", "c": "M T^-1", "g": "L T^-2", "y_rest": "L", "t": "T", "y": "L", "v": "L T^-1"}
+        ),
         [sympy.Eq(y.diff(t), v), sympy.Eq(m * v.diff(t), -k * (y - y_rest) - c * v - m * g)],
         defaults={"m": 2.0, "k": 150.0, "c": 10.0, "g": 9.81, "y_rest": 1.0},
         initial={"y": 1.0, "v": 0.0},
@@ -303,5 +317,3 @@ def projectile() -> Model:
         name="projectile",
         description="point mass under gravity, launched at 10 m/s and 45 degrees",
     )
-
-

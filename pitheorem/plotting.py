@@ -118,8 +118,7 @@ def plot_similarity(report, states=None, units=None):
     for n in names:
         line = top.plot(t, report.original[n], label=f"{n} (original)")[0]
         top.plot(t, report.mapped[n], "--", color=line.get_color(), label=f"{n} (scaled, mapped back)")
-        bottom.plot(t, np.abs(report.mapped[n] - report.original[n]), color=line.get_color(),
-                    label=f"|{n} difference|")
+        bottom.plot(t, np.abs(report.mapped[n] - report.original[n]), color=line.get_color(), label=f"|{n} difference|")
     quantities = ", ".join(_unit_label(n, report, units) for n in names)
     top.set_ylabel(quantities)
     top.legend(loc="best", fontsize="small")

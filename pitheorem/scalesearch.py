@@ -246,8 +246,9 @@ class SearchResult(TableDisplay):
         >>> pt.search(s, scale={"g": 1}).roles
         {'m': 'free', 'l': 'free', 'g': 'scale', 't': 'fixed'}
         """
-        return {n: "scale" if n in self.scale else "fixed" if n in self.fixed else "free"
-                for n in self.system.variables}
+        return {
+            n: "scale" if n in self.scale else "fixed" if n in self.fixed else "free" for n in self.system.variables
+        }
 
     # -- display (pitheorem.formatting renders it: text, LaTeX, HTML, JSON) --
     def explanation(self) -> str:
@@ -294,8 +295,10 @@ class SearchResult(TableDisplay):
         if not self.feasible:
             answer = f"infeasible, certificate {self.certificate.expr}"
         elif self.directions:
-            answer = (f"feasible, a family of dimension {len(self.directions)}, "
-                      f"at most {self.max_n_scalings} minimal solution(s)")
+            answer = (
+                f"feasible, a family of dimension {len(self.directions)}, "
+                f"at most {self.max_n_scalings} minimal solution(s)"
+            )
         else:
             answer = "feasible, unique"
         return f"<SearchResult {request_text(self)}: {answer}>"
@@ -342,8 +345,9 @@ def _scaling(system: System, generators, is_units: bool, coords) -> Scaling:
     return Scaling(system, vector, tuple(coords) if is_units else None)
 
 
-def _solve(system: System, scale: dict[str, Fraction], fixed: tuple[str, ...], notes: tuple[SearchNote, ...],
-           generators=None) -> SearchResult:
+def _solve(
+    system: System, scale: dict[str, Fraction], fixed: tuple[str, ...], notes: tuple[SearchNote, ...], generators=None
+) -> SearchResult:
     """The whole answer of a request, as one frozen :class:`SearchResult`."""
     # allowed exponent vectors are combinations of these rows: the rows of
     # the dimension matrix (changes of units), or a symmetry basis
@@ -352,8 +356,13 @@ def _solve(system: System, scale: dict[str, Fraction], fixed: tuple[str, ...], n
     names = list(scale) + list(fixed)
     rhs = [scale[n] for n in scale] + [Fraction(0)] * len(fixed)
     rows = [[g[system.index(n)] for g in gens] for n in names]
-    request = {"system": system, "scale": MappingProxyType(dict(scale)), "fixed": tuple(fixed),
-               "notes": tuple(notes), "_is_units": is_units}
+    request = {
+        "system": system,
+        "scale": MappingProxyType(dict(scale)),
+        "fixed": tuple(fixed),
+        "notes": tuple(notes),
+        "_is_units": is_units,
+    }
     w0 = solve(rows, rhs) if gens else ([] if not any(rhs) else None)
     if w0 is None:
         certificate, power = _certificate(system, scale, names, rows, rhs)
@@ -382,8 +391,11 @@ def _certificate(system: System, scale, names, rows, rhs) -> tuple[PiGroup, Frac
     changing = [y for y in candidates if _dot(y, rhs) != 0]
     best = min(changing, key=lambda y: (sum(1 for x in y if x), [i for i, x in enumerate(y) if x]))
     scaled = [n for n, y in zip(names, best, strict=True) if y and n in scale]
-    group = PiGroup.from_exponents(dict(zip(names, best, strict=True)), variable=scaled[0] if scaled else None,
-                                   order=[n for n in system.variables if n in names])
+    group = PiGroup.from_exponents(
+        dict(zip(names, best, strict=True)),
+        variable=scaled[0] if scaled else None,
+        order=[n for n in system.variables if n in names],
+    )
     group = PiGroup(group.exponents, None)
     return group, _dot([group.exponents.get(n, 0) for n in names], rhs)
 
@@ -426,8 +438,7 @@ def _exact_points(a0_int, dirs_int, den, free, u0, kept) -> dict[tuple[Fraction,
         z = solve([[v[i] for v in dirs_int] for i in zero], [-a0_int[i] for i in zero])
         z_den = lcm(*(x.denominator for x in z))
         z_num = [int(x * z_den) for x in z]
-        point = [a * z_den + sum(c * v[i] for c, v in zip(z_num, dirs_int, strict=True))
-                 for i, a in enumerate(a0_int)]
+        point = [a * z_den + sum(c * v[i] for c, v in zip(z_num, dirs_int, strict=True)) for i, a in enumerate(a0_int)]
         g = gcd(den * z_den, *point)
         key = (den * z_den // g, *(p // g for p in point))
         if key not in seen:

@@ -44,14 +44,21 @@ def _rounded(x, name: str) -> float:
     try:
         return _finite(float(x))
     except OverflowError:
-        raise LimitError(short_text(x) if isinstance(x, Fraction) else str(x), f"the scaled value of {name!r}",
-                         "it is beyond the range of floating point (about 1e308)",
-                         "use an exact value (int or Fraction), or an s nearer to 1") from None
+        raise LimitError(
+            short_text(x) if isinstance(x, Fraction) else str(x),
+            f"the scaled value of {name!r}",
+            "it is beyond the range of floating point (about 1e308)",
+            "use an exact value (int or Fraction), or an s nearer to 1",
+        ) from None
 
 
 def _beyond_floats(what: str, shown: str) -> LimitError:
-    return LimitError(shown, what, "it is beyond the range of floating point (about 1.8e308)",
-                      "use an exact s (an int, a Fraction or a string such as '1/2'), or an s nearer to 1")
+    return LimitError(
+        shown,
+        what,
+        "it is beyond the range of floating point (about 1.8e308)",
+        "use an exact s (an int, a Fraction or a string such as '1/2'), or an s nearer to 1",
+    )
 
 
 def _check_arguments(system, mapping, what: str, example: str) -> None:
@@ -122,8 +129,12 @@ def float_power(s, exponent, what: str) -> float:
         return float(s) ** float(exponent) if is_float(s) else _finite(float(_exact_power(s, exponent)))
     except OverflowError:  # s^p itself is beyond floating point, however exact the values it multiplies
         shown = short_text(read_number(s, "s")) if is_float(s) or isinstance(s, Fraction) else str(s)
-        raise LimitError(f"s^{exponent} with s = {shown}", what, "it is beyond the range of floating point",
-                         "choose an s nearer to 1") from None
+        raise LimitError(
+            f"s^{exponent} with s = {shown}",
+            what,
+            "it is beyond the range of floating point",
+            "choose an s nearer to 1",
+        ) from None
 
 
 @immutable
@@ -335,9 +346,7 @@ class Scaling(MathDisplay):
         bases = self.system.base_dimensions
         extra = [b for b in dim.base_dimensions if b not in bases]
         if extra:
-            raise InvalidRequestError(
-                f"dimension {dim} uses base {extra[0]!r}, which no variable of the system has"
-            )
+            raise InvalidRequestError(f"dimension {dim} uses base {extra[0]!r}, which no variable of the system has")
         return sum((dim.exponent_of(b) * u for b, u in zip(bases, self._need_units(), strict=True)), Fraction(0))
 
     def factors(self, s) -> dict[str, object]:
@@ -371,8 +380,10 @@ class Scaling(MathDisplay):
         """
         s = read_scale_factor(s)
         if is_float(s):
-            return {n: float_power(s, p, f"the factor of {n!r}")
-                    for n, p in zip(self.system.variables, self.vector, strict=True)}
+            return {
+                n: float_power(s, p, f"the factor of {n!r}")
+                for n, p in zip(self.system.variables, self.vector, strict=True)
+            }
         return {n: _exact_power(s, p) for n, p in zip(self.system.variables, self.vector, strict=True)}
 
     def apply(self, values: Mapping[str, object], s) -> dict[str, object]:
@@ -411,8 +422,11 @@ class Scaling(MathDisplay):
         {'l': 3*sqrt(2)}
         """
         if not isinstance(values, Mapping):
-            raise InvalidRequestError(f"values must be a mapping of variable names to numbers, such as {{'l': 2}}, "
-                                      f"got {type(values).__name__}", culprit=values)
+            raise InvalidRequestError(
+                f"values must be a mapping of variable names to numbers, such as {{'l': 2}}, "
+                f"got {type(values).__name__}",
+                culprit=values,
+            )
         s = read_scale_factor(s)
         np = numpy_if_loaded()  # a value cannot be an array unless numpy is loaded
         out = {}
@@ -483,12 +497,23 @@ class Scaling(MathDisplay):
             )
         a_t = self.vector[self.system.index(time, "time")]
         a_y = [
-            self.vector[self.system.index(st, "states")] if isinstance(st, str) and st in self.system.variables
+            self.vector[self.system.index(st, "states")]
+            if isinstance(st, str) and st in self.system.variables
             else self.exponent_of(st)
             for st in states
         ]
-        scale = np.array([float_power(s, p, f"the factor of state {st!r}" if isinstance(st, str)
-                                      else f"the factor of a state of dimension {st}") for st, p in zip(states, a_y, strict=True)])
+        scale = np.array(
+            [
+                float_power(
+                    s,
+                    p,
+                    f"the factor of state {st!r}"
+                    if isinstance(st, str)
+                    else f"the factor of a state of dimension {st}",
+                )
+                for st, p in zip(states, a_y, strict=True)
+            ]
+        )
         return t / float_power(s, a_t, f"the factor of {time!r}"), y / scale
 
     # -- algebra ----------------------------------------------------------
@@ -525,7 +550,8 @@ class Scaling(MathDisplay):
         return Scaling(
             self.system,
             tuple(a + b for a, b in zip(self.vector, other.vector, strict=True)),
-            None if self.unit_change_vector is None or other.unit_change_vector is None
+            None
+            if self.unit_change_vector is None or other.unit_change_vector is None
             else tuple(a + b for a, b in zip(self.unit_change_vector, other.unit_change_vector, strict=True)),
         )
 
@@ -541,5 +567,9 @@ class Scaling(MathDisplay):
         return hash((self.system, self.vector))
 
     def __repr__(self) -> str:
-        exps = {n: str(p) if p.denominator != 1 else int(p) for n, p in zip(self.system.variables, self.vector, strict=True) if p}
+        exps = {
+            n: str(p) if p.denominator != 1 else int(p)
+            for n, p in zip(self.system.variables, self.vector, strict=True)
+            if p
+        }
         return f"Scaling.from_exponents({self.system!r}, {exps!r})"

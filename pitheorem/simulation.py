@@ -48,6 +48,7 @@ __all__ = [
     "verify_similarity",
 ]
 
+
 @dataclass(frozen=True, eq=False)
 class Trajectory:
     """Sampled solution of a model: times and states, read-only.
@@ -256,8 +257,19 @@ def _default_grid(t_final: float) -> np.ndarray:
     return np.linspace(0.0, t_final, 1001)
 
 
-def simulate(model, params=None, y0=None, t_final=10.0, *, method="solve_ivp", dt=None, t_eval=None,
-             rtol=1e-10, atol=1e-12, ivp_method="DOP853") -> Trajectory:
+def simulate(
+    model,
+    params=None,
+    y0=None,
+    t_final=10.0,
+    *,
+    method="solve_ivp",
+    dt=None,
+    t_eval=None,
+    rtol=1e-10,
+    atol=1e-12,
+    ivp_method="DOP853",
+) -> Trajectory:
     """Integrate a model from its initial state over ``[0, t_final]``.
 
     Two engines:
@@ -774,9 +786,24 @@ class SimilarityReport(TableDisplay):
         return plot_similarity(self, states=states, units=units)
 
 
-def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, method="solve_ivp", dt=None,
-                      scale_dt=True, check=True, rtol=1e-10, atol=1e-12, tol=1e-6,
-                      ivp_method="DOP853", baseline=False) -> SimilarityReport:
+def verify_similarity(
+    model,
+    scaling,
+    s,
+    params=None,
+    y0=None,
+    t_final=10.0,
+    *,
+    method="solve_ivp",
+    dt=None,
+    scale_dt=True,
+    check=True,
+    rtol=1e-10,
+    atol=1e-12,
+    tol=1e-6,
+    ivp_method="DOP853",
+    baseline=False,
+) -> SimilarityReport:
     """Check numerically that a scaled run reproduces the original.
 
     Simulates the model with `params`; then scales each parameter and
@@ -857,8 +884,7 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
     method = _check_method(method)
     scaled = ModelScaling.of(model, scaling, s, check=check)
     tol = positive_float(tol, "tol")
-    original = simulate(model, params, y0, t_final, method=method, dt=dt, rtol=rtol, atol=atol,
-                        ivp_method=ivp_method)
+    original = simulate(model, params, y0, t_final, method=method, dt=dt, rtol=rtol, atol=atol, ivp_method=ivp_method)
     # read as simulate read them ("1/2", Fractions): it has refused what is no positive number
     t_final = positive_float(t_final, "t_final")
     dt = None if dt is None else positive_float(dt, "dt")
@@ -873,13 +899,35 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
         else:
             dt_scaled = dt
             n_steps = fixed_steps(t_final_scaled, dt_scaled)
-        run = _run(model, scaled.scale_params(p), y_scaled, t_final_scaled, method, dt_scaled, n_steps, None,
-                   rtol, atol, ivp_method)
+        run = _run(
+            model,
+            scaled.scale_params(p),
+            y_scaled,
+            t_final_scaled,
+            method,
+            dt_scaled,
+            n_steps,
+            None,
+            rtol,
+            atol,
+            ivp_method,
+        )
     else:
         grid = np.minimum(original.t * f_t, t_final_scaled)
         atol_scaled = scaled.scale_state(np.broadcast_to(np.asarray(atol, dtype=float), y_init.shape))
-        run = _run(model, scaled.scale_params(p), y_scaled, t_final_scaled, method, None, None, grid, rtol,
-                   atol_scaled, ivp_method)
+        run = _run(
+            model,
+            scaled.scale_params(p),
+            y_scaled,
+            t_final_scaled,
+            method,
+            None,
+            None,
+            grid,
+            rtol,
+            atol_scaled,
+            ivp_method,
+        )
     mapped = scaled.map_back(run, original.t)
 
     reference = None
@@ -887,9 +935,16 @@ def verify_similarity(model, scaling, s, params=None, y0=None, t_final=10.0, *, 
         kwargs = {"dt": dt} if method == "euler" else {"t_eval": original.t, "rtol": rtol, "atol": atol}
         reference = simulate(model, params, nudged(y_init), t_final, method=method, ivp_method=ivp_method, **kwargs)
     return similarity_report(
-        original, mapped, s=scaled.s, scaling=scaled.scaling, exponents=scaled.exponents,
-        tol=None if baseline else tol, nudged=reference, is_similarity=scaled.is_similarity,
-        method=method, scaled_dt=bool(scale_dt) if method == "euler" else True,
+        original,
+        mapped,
+        s=scaled.s,
+        scaling=scaled.scaling,
+        exponents=scaled.exponents,
+        tol=None if baseline else tol,
+        nudged=reference,
+        is_similarity=scaled.is_similarity,
+        method=method,
+        scaled_dt=bool(scale_dt) if method == "euler" else True,
     )
 
 
@@ -917,10 +972,22 @@ def _max_abs(diff: np.ndarray) -> float:
     return worst if math.isfinite(worst) and np.all(np.isfinite(diff)) else math.inf
 
 
-def similarity_report(original: Trajectory, mapped: Trajectory, *, s: float, scaling, exponents,
-                      tol: float | None = None, nudged: Trajectory | None = None, baseline_factor: float = 10.0,
-                      is_similarity: bool = True, method: str = "solve_ivp",
-                      scaled_dt: bool = True, twins=None, causes=()) -> SimilarityReport:
+def similarity_report(
+    original: Trajectory,
+    mapped: Trajectory,
+    *,
+    s: float,
+    scaling,
+    exponents,
+    tol: float | None = None,
+    nudged: Trajectory | None = None,
+    baseline_factor: float = 10.0,
+    is_similarity: bool = True,
+    method: str = "solve_ivp",
+    scaled_dt: bool = True,
+    twins=None,
+    causes=(),
+) -> SimilarityReport:
     """Compare an original run with a scaled run mapped back: the one verdict of every simulator.
 
     :func:`verify_similarity` (scipy or Euler) and
@@ -1027,8 +1094,9 @@ def allowed_deviation(original: Trajectory, sensitivity, baseline_factor: float)
     [2e-09, 0.0]
     """
     span = np.ptp(original.y, axis=0) if len(original) else np.zeros(len(original.states))
-    return np.array([max(baseline_factor * sensitivity[n], 1e-9 * float(span[j]))
-                     for j, n in enumerate(original.states)])
+    return np.array(
+        [max(baseline_factor * sensitivity[n], 1e-9 * float(span[j])) for j, n in enumerate(original.states)]
+    )
 
 
 def first_divergence(original: Trajectory, mapped: Trajectory) -> tuple[float, str] | None:

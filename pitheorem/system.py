@@ -220,13 +220,17 @@ class System:
                 read_exponent(power, f"the exponent of {base!r} in the dimension of {name!r}")
             dim = Dimension(spec)
         else:
-            raise InvalidRequestError(
-                f"dimension of {name!r} must be a formula string like 'M L^2 T^-2', got {spec!r}"
-            )
+            raise InvalidRequestError(f"dimension of {name!r} must be a formula string like 'M L^2 T^-2', got {spec!r}")
         unknown = [b for b in dim.base_dimensions if b not in allowed]
         if unknown:
-            opt_in = (f"; {unknown[0]!r} is opt-in because it is also an SI unit symbol: declare it with "
-                      f"base_dimensions=(..., {unknown[0]!r})") if unknown[0] in OPT_IN_BASE_DIMENSIONS else ""
+            opt_in = (
+                (
+                    f"; {unknown[0]!r} is opt-in because it is also an SI unit symbol: declare it with "
+                    f"base_dimensions=(..., {unknown[0]!r})"
+                )
+                if unknown[0] in OPT_IN_BASE_DIMENSIONS
+                else ""
+            )
             raise InvalidRequestError(
                 f"dimension of {name!r} uses base {unknown[0]!r}; allowed bases are {', '.join(allowed)}{opt_in}",
                 culprit=unknown[0],
@@ -271,8 +275,10 @@ class System:
             ambiguous = _AMBIGUOUS_POWER.search(text)
             if ambiguous:
                 # pint reads 'm^-1/2' as (m^-1)/2, a length to the -1; Dimension.parse refuses 'L^-1/2'
-                raise UnitError(f"the unit {text!r} of {name!r} is ambiguous: {ambiguous.group(0).strip()!r} is a power "
-                                "divided by a number; write a fractional power in brackets, such as 'm^(-1/2)'")
+                raise UnitError(
+                    f"the unit {text!r} of {name!r} is ambiguous: {ambiguous.group(0).strip()!r} is a power "
+                    "divided by a number; write a fractional power in brackets, such as 'm^(-1/2)'"
+                )
             what = f"the unit {text!r} of {name!r}" if len(text) <= 40 else f"the unit of {name!r}"
             try:
                 quantity = registry.parse_expression(text) if text.strip() else registry.Quantity(1)
@@ -300,7 +306,9 @@ class System:
             dims[name] = Dimension(exponents)
         # pint names the dimension, so an opt-in letter (N for [substance]) is meant here
         used = {b for d in dims.values() for b in d.base_dimensions}
-        return cls(dims, base_dimensions=DEFAULT_BASE_DIMENSIONS + tuple(b for b in OPT_IN_BASE_DIMENSIONS if b in used))
+        return cls(
+            dims, base_dimensions=DEFAULT_BASE_DIMENSIONS + tuple(b for b in OPT_IN_BASE_DIMENSIONS if b in used)
+        )
 
     # -- basic properties -------------------------------------------------
     @property

@@ -98,8 +98,7 @@ _HUGE = Fraction(10**300)
 def _in_float_range(value: Fraction, what: str) -> Fraction:
     """`value` itself; the fit runs in floating point (logarithms, a linear program), so it must stay well inside."""
     if value and not 1 / _HUGE <= abs(value) <= _HUGE:
-        raise LimitError(short_text(value), what,
-                         "fit_units needs magnitudes between 1e-300 and 1e300")
+        raise LimitError(short_text(value), what, "fit_units needs magnitudes between 1e-300 and 1e300")
     return value
 
 
@@ -108,8 +107,12 @@ def _read_range(spec, what: str) -> tuple[Fraction, Fraction]:
         lo, hi = spec
     except (TypeError, ValueError):
         raise InvalidRequestError(f"{what} must be a pair (low, high), got {spec!r}") from None
-    lo, hi = (_in_float_range(read_number(x, f"the {side} bound of {what}", irrational_ok=True),
-                              f"the {side} bound of {what}") for x, side in ((lo, "low"), (hi, "high")))
+    lo, hi = (
+        _in_float_range(
+            read_number(x, f"the {side} bound of {what}", irrational_ok=True), f"the {side} bound of {what}"
+        )
+        for x, side in ((lo, "low"), (hi, "high"))
+    )
     if lo <= 0 or hi <= 0:
         raise InvalidRequestError(f"{what} is ({lo}, {hi}): both bounds must be positive (a range of magnitudes)")
     if lo >= hi:
@@ -124,7 +127,9 @@ def _resolve_ranges(system: System, values, ranges, dimension_ranges):
         try:
             dim = key if isinstance(key, Dimension) else Dimension.parse(str(key))
         except DimensionSyntaxError as err:
-            raise InvalidRequestError(f"dimension_ranges key {key!r} is not a dimension formula: {err.reason}") from None
+            raise InvalidRequestError(
+                f"dimension_ranges key {key!r} is not a dimension formula: {err.reason}"
+            ) from None
         rng = _read_range(spec, f"the range of dimension {dim}")
         matched = [n for n in system.variables if system.dimension(n) == dim]
         if not matched:
@@ -180,8 +185,7 @@ class _Problem:
             # integer powers of nice; fixed variables as equalities on them
             self.P = np.eye(len(bases)) * math.log10(nice)
             self.basis = None
-            self.A_eq = (np.array([[float(x) for x in row] for row in eq_rows]) if eq_rows
-                         else np.zeros((0, len(bases))))
+            self.A_eq = np.array([[float(x) for x in row] for row in eq_rows]) if eq_rows else np.zeros((0, len(bases)))
         self.n_v = self.P.shape[1]
         # integer variables get explicit bounds too, so that the branch and bound of HiGHS
         # never chases an unbounded direction
@@ -227,8 +231,14 @@ class _Problem:
     # one solver entry point for both kinds
     def _solve(self, c, A_ub, b_ub, lb, ub, n_int):
         if self.nice is None:
-            res = linprog(c, A_ub=A_ub if len(b_ub) else None, b_ub=b_ub if len(b_ub) else None,
-                          bounds=list(zip(lb, ub, strict=True)), method="highs", options=_HIGHS)
+            res = linprog(
+                c,
+                A_ub=A_ub if len(b_ub) else None,
+                b_ub=b_ub if len(b_ub) else None,
+                bounds=list(zip(lb, ub, strict=True)),
+                method="highs",
+                options=_HIGHS,
+            )
             return res.x if res.status == 0 else None
         n = len(c)
         cons = []
@@ -238,8 +248,13 @@ class _Problem:
             cons.append(LinearConstraint(np.hstack([self.A_eq, np.zeros((self.A_eq.shape[0], n - self.n_v))]), 0, 0))
         integrality = np.zeros(n)
         integrality[:n_int] = 1
-        res = milp(c, constraints=cons, integrality=integrality, bounds=Bounds(lb, ub),
-                   options={"presolve": True, "mip_rel_gap": 0.0})
+        res = milp(
+            c,
+            constraints=cons,
+            integrality=integrality,
+            bounds=Bounds(lb, ub),
+            options={"presolve": True, "mip_rel_gap": 0.0},
+        )
         return res.x if res.status == 0 else None
 
     def worst(self, keep=None, *, slack: bool = False) -> tuple[float, np.ndarray | None]:
@@ -304,13 +319,13 @@ class _Problem:
         b_ub = np.array(rhs)
         c2 = np.zeros(n)
         if self.centre_values:  # else stage 3 alone: the smallest unit change within the worst violation
-            c2[nv + 1: nv + 1 + n_e] = 1.0
+            c2[nv + 1 : nv + 1 + n_e] = 1.0
         x2 = self._solve(c2, A, b_ub, lb, ub, nv)
         if x2 is None:
             return t_star, v1
         opt2 = float(c2 @ x2)
         c3 = np.zeros(n)
-        c3[nv + 1 + n_e:] = 1.0
+        c3[nv + 1 + n_e :] = 1.0
         A3 = np.vstack([A, c2])
         b3 = np.append(b_ub, opt2 + 1e-9 * max(1.0, abs(opt2)))
         x3 = self._solve(c3, A3, b3, lb, ub, nv)
@@ -494,12 +509,20 @@ class UnitFit(TableDisplay):
         >>> fit.rounded(10).factors
         {'L': Fraction(100, 1)}
         """
-        return fit_units(self.system, dict(self.values), ranges={n: (lo, hi) for n, lo, hi in self.ranges},
-                         fixed=self.fixed, fixed_units=self.fixed_units, nice=nice)
+        return fit_units(
+            self.system,
+            dict(self.values),
+            ranges={n: (lo, hi) for n, lo, hi in self.ranges},
+            fixed=self.fixed,
+            fixed_units=self.fixed_units,
+            nice=nice,
+        )
 
     def __repr__(self) -> str:
-        return (f"UnitFit(feasible={self.feasible}, s={self.s!r}, unit_change={dict(self.unit_change)!r}, "
-                f"violated={self.violated!r})")
+        return (
+            f"UnitFit(feasible={self.feasible}, s={self.s!r}, unit_change={dict(self.unit_change)!r}, "
+            f"violated={self.violated!r})"
+        )
 
 
 def _snap(problem: _Problem, v: np.ndarray, t_star: float) -> list[Fraction]:
@@ -533,9 +556,17 @@ def _snap(problem: _Problem, v: np.ndarray, t_star: float) -> list[Fraction]:
     return finest if finest is not None else decades([Fraction(round(float(z) * 1000), 1000) for z in v])
 
 
-def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[str, object] | None = None,
-              dimension_ranges: Mapping[str, object] | None = None, fixed: Iterable[str] = (),
-              fixed_units: Iterable[str] = (), nice: int | None = None, centre: bool = True) -> UnitFit:
+def fit_units(
+    system: System,
+    values: Mapping[str, object],
+    *,
+    ranges: Mapping[str, object] | None = None,
+    dimension_ranges: Mapping[str, object] | None = None,
+    fixed: Iterable[str] = (),
+    fixed_units: Iterable[str] = (),
+    nice: int | None = None,
+    centre: bool = True,
+) -> UnitFit:
     """Find the change of base units that brings values into ranges.
 
     Parameters
@@ -610,8 +641,9 @@ def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[s
     for name, x in values.items():
         system.index(name, "values")
         given[name] = read_value(x, f"the value of {name!r}")
-        exact_values[name] = _in_float_range(read_number(x, f"the value of {name!r}", irrational_ok=True),
-                                             f"the value of {name!r}")
+        exact_values[name] = _in_float_range(
+            read_number(x, f"the value of {name!r}", irrational_ok=True), f"the value of {name!r}"
+        )
     if nice is not None and (isinstance(nice, bool) or not isinstance(nice, int | np.integer) or nice < 2):
         raise InvalidRequestError(f"nice must be an integer base of at least 2 (10, 2, ...), got {nice!r}")
     fixed = system.check_names(fixed, "fixed")
@@ -662,10 +694,19 @@ def fit_units(system: System, values: Mapping[str, object], *, ranges: Mapping[s
         (satisfied if ok else violated).append(name)
     conflict = problem.conflict() if violated else ()
     return UnitFit(
-        system=system, s=s,
+        system=system,
+        s=s,
         unit_change=MappingProxyType(dict(zip(system.base_dimensions, units, strict=True))),
-        scaling=scaling, values=MappingProxyType(given), scaled=MappingProxyType(scaled),
-        ranges=rng, satisfied=tuple(satisfied), violated=tuple(violated),
-        worst_violation=max(worst, 0.0) if violated else 0.0, conflict=conflict,
-        fixed=fixed, fixed_units=fixed_units, nice=None if nice is None else int(nice), exact=exact,
+        scaling=scaling,
+        values=MappingProxyType(given),
+        scaled=MappingProxyType(scaled),
+        ranges=rng,
+        satisfied=tuple(satisfied),
+        violated=tuple(violated),
+        worst_violation=max(worst, 0.0) if violated else 0.0,
+        conflict=conflict,
+        fixed=fixed,
+        fixed_units=fixed_units,
+        nice=None if nice is None else int(nice),
+        exact=exact,
     )

@@ -95,26 +95,37 @@ BROKEN_MODEL_FILES = {
     "unknown_key": ('[variables]\nl = { dimension = "L", vaule = 2 }\n', ["variable 'l'", "'vaule'", "'value'"]),
     "unknown_key_dim": ('[variables]\nl = { dim = "L" }\n', ["variable 'l'", "'dim'"]),
     "both": ('[variables]\nl = { dimension = "L", unit = "m" }\n', ["variable 'l'", "both dimension and unit"]),
-    "neither": ('[variables]\nl = { value = 2 }\n', ["variable 'l'", "neither dimension nor unit"]),
+    "neither": ("[variables]\nl = { value = 2 }\n", ["variable 'l'", "neither dimension nor unit"]),
     "unknown_dimension": ('[variables]\nq = { dimension = "Q" }\n', ["variable 'q'", "'Q'"]),
-    "bad_dimension_syntax": ('[variables]\nm = { dimension = "M L^^2" }\n',
-                             ["variable 'm'", "'M L^^2'", "position 4"]),
+    "bad_dimension_syntax": ('[variables]\nm = { dimension = "M L^^2" }\n', ["variable 'm'", "'M L^^2'", "position 4"]),
     "dimension_not_string": ("[variables]\nq = { dimension = 1 }\n", ["variable 'q'", "string"]),
-    "outside_base_dimensions": ('base_dimensions = ["M", "L"]\n[variables]\nt = { dimension = "T" }\n',
-                                ["variable 't'", "unknown base dimension 'T'", "M, L"]),
-    "bad_base_dimensions": ('base_dimensions = "MLT"\n[variables]\nm = { dimension = "M" }\n',
-                            ["base_dimensions", "'MLT'"]),
+    "outside_base_dimensions": (
+        'base_dimensions = ["M", "L"]\n[variables]\nt = { dimension = "T" }\n',
+        ["variable 't'", "unknown base dimension 'T'", "M, L"],
+    ),
+    "bad_base_dimensions": (
+        'base_dimensions = "MLT"\n[variables]\nm = { dimension = "M" }\n',
+        ["base_dimensions", "'MLT'"],
+    ),
     "bad_unit": ('[variables]\nq = { unit = "furlongz" }\n', ["variable 'q'", "furlongz"]),
-    "duplicate": ('[variables]\nm = { dimension = "M" }\nm = { dimension = "L" }\n',
-                  ["line 3", "variable 'm'", "twice"]),
-    "duplicate_table": ('[variables.m]\ndimension = "M"\n[variables.m]\ndimension = "L"\n',
-                        ["line 3", "variable 'm'", "twice"]),
+    "duplicate": (
+        '[variables]\nm = { dimension = "M" }\nm = { dimension = "L" }\n',
+        ["line 3", "variable 'm'", "twice"],
+    ),
+    "duplicate_table": (
+        '[variables.m]\ndimension = "M"\n[variables.m]\ndimension = "L"\n',
+        ["line 3", "variable 'm'", "twice"],
+    ),
     "duplicate_key_in_entry": ('[variables]\nm = { dimension = "M", dimension = "L" }\n', ["line 2"]),
     "bad_role": ('[variables]\nt = { dimension = "T", role = "clock" }\n', ["variable 't'", "'clock'", "time"]),
-    "time_not_T": ('[variables]\nl = { dimension = "L", role = "time" }\n',
-                   ["variable 'l'", "dimension L", "dimension T"]),
-    "two_times": ('[variables]\nt = { dimension = "T", role = "time" }\ntau = { dimension = "T", role = "time" }\n',
-                  ["variable 'tau'", "'t'", "at most one"]),
+    "time_not_T": (
+        '[variables]\nl = { dimension = "L", role = "time" }\n',
+        ["variable 'l'", "dimension L", "dimension T"],
+    ),
+    "two_times": (
+        '[variables]\nt = { dimension = "T", role = "time" }\ntau = { dimension = "T", role = "time" }\n',
+        ["variable 'tau'", "'t'", "at most one"],
+    ),
     "value_not_number": ('[variables]\nm = { dimension = "M", value = "heavy" }\n', ["variable 'm'", "'heavy'"]),
     "value_bool": ('[variables]\nm = { dimension = "M", value = true }\n', ["variable 'm'", "true"]),
     "value_list": ('[variables]\nm = { dimension = "M", value = [1, 2] }\n', ["variable 'm'", "number"]),
@@ -215,8 +226,10 @@ def oracle_search(system: pt.System, scale: dict, fixed) -> list[tuple[Fraction,
     points = set()
     for size in range(len(free) + 1):
         for zero in combinations(free, size):
-            held = {**{n: sympy.Rational(str(Fraction(p))) for n, p in scale.items()},
-                    **dict.fromkeys([*fixed, *zero], sympy.Integer(0))}
+            held = {
+                **{n: sympy.Rational(str(Fraction(p))) for n, p in scale.items()},
+                **dict.fromkeys([*fixed, *zero], sympy.Integer(0)),
+            }
             rows = sympy.Matrix([d_t.row(system.variables.index(n)) for n in held])
             rhs = sympy.Matrix(list(held.values()))
             try:

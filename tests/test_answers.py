@@ -21,8 +21,15 @@ ANSWERS = [getattr(answers, name) for name in answers.__all__]
 
 
 def test_every_answer_is_a_named_tuple_with_the_text_display():
-    assert [cls.__name__ for cls in ANSWERS] == ["ApplyAnswer", "BasesAnswer", "EngineApplyAnswer",
-                                                 "EngineVerifyAnswer", "GroupsAnswer", "ParamsAnswer", "SearchAnswer"]
+    assert [cls.__name__ for cls in ANSWERS] == [
+        "ApplyAnswer",
+        "BasesAnswer",
+        "EngineApplyAnswer",
+        "EngineVerifyAnswer",
+        "GroupsAnswer",
+        "ParamsAnswer",
+        "SearchAnswer",
+    ]
     for cls in ANSWERS:
         assert issubclass(cls, tuple)
         assert cls.__str__ is TextDisplay.__str__

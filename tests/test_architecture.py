@@ -18,21 +18,39 @@ PAGE = ROOT / "docs" / "explanation" / "architecture.md"
 
 #: layer of each module (a subpackage's modules take their subpackage's layer unless listed)
 LAYERS = {
-    "errors": 0, "exact": 0, "immutable": 0, "linalg": 0,
-    "formatting": 1, "plotting": 1,
-    "dimensions": 2, "system": 2, "groups": 2, "bases": 2, "basis_sequence": 2, "family": 2,
-    "scaling": 3, "scalesearch": 3, "equations": 3, "unitfit": 3,
-    "model": 4, "models": 4, "simulation": 4,
-    "modelfile": 5, "answers": 5, "cli": 5, "__main__": 5, "": 5,  # "" is the package itself
+    "errors": 0,
+    "exact": 0,
+    "immutable": 0,
+    "linalg": 0,
+    "formatting": 1,
+    "plotting": 1,
+    "dimensions": 2,
+    "system": 2,
+    "groups": 2,
+    "bases": 2,
+    "basis_sequence": 2,
+    "family": 2,
+    "scaling": 3,
+    "scalesearch": 3,
+    "equations": 3,
+    "unitfit": 3,
+    "model": 4,
+    "models": 4,
+    "simulation": 4,
+    "modelfile": 5,
+    "answers": 5,
+    "cli": 5,
+    "__main__": 5,
+    "": 5,  # "" is the package itself
     "engines": 6,
 }
 
 #: the upward imports allowed, (importer, imported) -> why
 UPWARD = {
     ("", "engines.fitting"): "pt.fit_units(engine=...) reads that engine's thresholds, imported inside the "
-                             "function only when an engine or an engine model is given",
+    "function only when an engine or an engine model is given",
     ("cli", "engines.cli"): "the command line reads MJCF and URDF files through the optional engines, "
-                            "imported inside the function that handles such a file",
+    "imported inside the function that handles such a file",
 }
 
 
@@ -61,11 +79,17 @@ def _imports(path: Path) -> set[str]:
         elif isinstance(node, ast.ImportFrom) and (node.module or "").startswith("pitheorem"):
             found.add(node.module.removeprefix("pitheorem").lstrip("."))
         elif isinstance(node, ast.Import):
-            found.update(a.name.removeprefix("pitheorem").lstrip(".") for a in node.names
-                         if a.name.split(".")[0] == "pitheorem")
+            found.update(
+                a.name.removeprefix("pitheorem").lstrip(".") for a in node.names if a.name.split(".")[0] == "pitheorem"
+            )
     # `from . import name` may name a module or an attribute of the package: keep modules only
-    return {t for t in found if t == "" or (PACKAGE / Path(*t.split("."))).with_suffix(".py").exists()
-            or (PACKAGE / Path(*t.split("."))).is_dir()}
+    return {
+        t
+        for t in found
+        if t == ""
+        or (PACKAGE / Path(*t.split("."))).with_suffix(".py").exists()
+        or (PACKAGE / Path(*t.split("."))).is_dir()
+    }
 
 
 def test_every_module_has_a_layer():
@@ -102,14 +126,16 @@ def test_the_page_lists_every_module_in_its_layer():
     for module, layer in LAYERS.items():
         if module and layer < 6:  # the engines' row names each engines.* module
             assert module in rows[layer], (module, layer)
-    engine_modules = {f"engines.{_module(p).split('.')[-1]}" for p in (PACKAGE / "engines").glob("*.py")
-                      if p.name != "__init__.py"}
+    engine_modules = {
+        f"engines.{_module(p).split('.')[-1]}" for p in (PACKAGE / "engines").glob("*.py") if p.name != "__init__.py"
+    }
     assert engine_modules == rows[6]
 
 
 #: the Python packages of the engines: only a backend module (and engines.packages, which imports them by
 #: name for the backends) may import one or ask engine_module for one
 ENGINE_PACKAGES = ("mujoco", "pybullet", "pybullet_data", "jax", "jaxlib")
+
 
 def _graph() -> dict[str, set[str]]:
     """Each module's imports of package modules; the loader imports each registered backend by name."""
@@ -158,8 +184,9 @@ def test_no_import_circle_anywhere():
     # the check finds one: the circle that load's if-chain in engines.model once closed with the backends
     graph = _graph()
     graph["engines.model"] = graph["engines.model"] | {"engines.mjcf"}
-    assert ["engines.mjcf", "engines.model"] in [[m for m in c if m in ("engines.mjcf", "engines.model")]
-                                                  for c in _cycles(graph)]
+    assert ["engines.mjcf", "engines.model"] in [
+        [m for m in c if m in ("engines.mjcf", "engines.model")] for c in _cycles(graph)
+    ]
 
 
 def test_no_backend_imports_another_engines_backend():
@@ -177,8 +204,13 @@ def test_no_backend_imports_another_engines_backend():
 def _engine_users(path: Path) -> bool:
     """Whether a module imports an engine's package or asks engine_module for one."""
     for node in ast.walk(ast.parse(path.read_text())):
-        names = ([a.name for a in node.names] if isinstance(node, ast.Import)
-                 else [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level else [])
+        names = (
+            [a.name for a in node.names]
+            if isinstance(node, ast.Import)
+            else [node.module or ""]
+            if isinstance(node, ast.ImportFrom) and not node.level
+            else []
+        )
         if any(name.split(".")[0] in ENGINE_PACKAGES for name in names):
             return True
         if isinstance(node, ast.Call) and getattr(node.func, "id", "") == "engine_module":
@@ -195,8 +227,15 @@ def test_only_backends_import_an_engine():
     assert users <= backends | {"engines.packages"}, users - backends
     assert backends <= users  # each backend runs its engine
     # the model, the registry, the loader, verify, audit and diagnose run engines only through backends
-    for module in ("engines.model", "engines.registry", "engines.loading", "engines.verify", "engines.audit",
-                   "engines.diagnose", "engines.backend"):
+    for module in (
+        "engines.model",
+        "engines.registry",
+        "engines.loading",
+        "engines.verify",
+        "engines.audit",
+        "engines.diagnose",
+        "engines.backend",
+    ):
         assert module not in users
 
 

@@ -33,11 +33,13 @@ def det2(a, b, c, d):
 @settings(max_examples=100, deadline=None)
 @given(st.integers(1, 3), st.integers(1, 7), st.data())
 def test_independent_subsets_of_candidates_with_required_columns_equal_brute_force(size, n_cols, data):
-    rows = data.draw(st.lists(st.lists(st.integers(-3, 3), min_size=n_cols, max_size=n_cols),
-                              min_size=size, max_size=size))
+    rows = data.draw(
+        st.lists(st.lists(st.integers(-3, 3), min_size=n_cols, max_size=n_cols), min_size=size, max_size=size)
+    )
     assume(sympy.Matrix(rows).rank() == size)  # the functions take a matrix of full row rank
-    roles = data.draw(st.lists(st.sampled_from(["candidate", "required", "left out"]), min_size=n_cols,
-                               max_size=n_cols))
+    roles = data.draw(
+        st.lists(st.sampled_from(["candidate", "required", "left out"]), min_size=n_cols, max_size=n_cols)
+    )
     candidates = [j for j, role in enumerate(roles) if role == "candidate"]
     required = [j for j, role in enumerate(roles) if role == "required"]
     assume(len(required) <= size)  # System refuses more required variables than the rank before this
@@ -50,7 +52,8 @@ def test_independent_subsets_of_candidates_with_required_columns_equal_brute_for
     assert list(independent_subsets(rows, candidates, required, size)) == expected
     assert count_independent_subsets(rows, candidates, required, size) == len(expected)
     assert [tuple(c) for chunk in independent_chunks(rows, candidates, required, size) for c in chunk.tolist()] == (
-        expected)
+        expected
+    )
 
 
 def test_determinant_two_to_the_64_is_not_zero():
@@ -67,8 +70,9 @@ def test_determinant_two_to_the_64_is_not_zero():
 def test_entries_beyond_int64_safe_range(big):
     # was: (columns**2).sum() wrapped (math domain error) or OverflowError building int64 arrays
     rows = [[big, big + 1, 1], [1, 1, 0]]
-    expected = [(i, j) for i, j in [(0, 1), (0, 2), (1, 2)]
-                if det2(rows[0][i], rows[0][j], rows[1][i], rows[1][j]) != 0]
+    expected = [
+        (i, j) for i, j in [(0, 1), (0, 2), (1, 2)] if det2(rows[0][i], rows[0][j], rows[1][i], rows[1][j]) != 0
+    ]
     assert list(independent_subsets(rows, [0, 1, 2], [], 2)) == expected
     assert count_independent_subsets(rows, [0, 1, 2], [], 2) == len(expected)
 
@@ -87,8 +91,9 @@ reciprocal_primes = st.sampled_from([Fraction(s, p) for p in PRIMES for s in (1,
 @given(systems(), st.data())
 def test_bases_equal_brute_force_in_order(system, data):
     exclude = tuple(data.draw(st.lists(st.sampled_from(system.variables), unique=True, max_size=2)))
-    require = tuple(n for n in data.draw(st.lists(st.sampled_from(system.variables), unique=True, max_size=2))
-                    if n not in exclude)
+    require = tuple(
+        n for n in data.draw(st.lists(st.sampled_from(system.variables), unique=True, max_size=2)) if n not in exclude
+    )
     try:
         got = system.bases(exclude=exclude, require=require)
     except (pt.DependentRepeatingSetError, pt.RepeatingCountError):
@@ -103,14 +108,21 @@ def test_bases_equal_brute_force_in_order(system, data):
 
 def brute_force_subsets(rows, size):
     """Every size-subset of columns, in lex order, whose submatrix sympy finds of full rank."""
-    return [s for s in combinations(range(len(rows[0])), size)
-            if sympy.Matrix([[row[j] for j in s] for row in rows]).rank() == size]
+    return [
+        s
+        for s in combinations(range(len(rows[0])), size)
+        if sympy.Matrix([[row[j] for j in s] for row in rows]).rank() == size
+    ]
 
 
-@pytest.mark.parametrize(("entry", "max_cols"), [
-    (huge, 6),  # entries far beyond 2^53 and int64: the float path must step aside, residues and exact rank decide
-    (st.integers(-(10**6), 10**6), 8),
-], ids=["huge", "millions"])
+@pytest.mark.parametrize(
+    ("entry", "max_cols"),
+    [
+        (huge, 6),  # entries far beyond 2^53 and int64: the float path must step aside, residues and exact rank decide
+        (st.integers(-(10**6), 10**6), 8),
+    ],
+    ids=["huge", "millions"],
+)
 @settings(max_examples=60, deadline=None)
 @given(data=st.data())
 def test_subsets_exact_with_extreme_entries(entry, max_cols, data):
@@ -160,7 +172,9 @@ def test_hadamard_bound_is_computed_in_python_integers():
 
 
 def test_reciprocal_prime_exponents():
-    variables = {f"x{p}": {"L": Fraction(1, p), "T": Fraction(1, q)} for p, q in zip(PRIMES, (*PRIMES[1:], 2), strict=True)}
+    variables = {
+        f"x{p}": {"L": Fraction(1, p), "T": Fraction(1, q)} for p, q in zip(PRIMES, (*PRIMES[1:], 2), strict=True)
+    }
     system = pt.System({**variables, "m": "M"})
     assert system.bases() == oracle_bases(system)
     assert system.count_bases() == len(oracle_bases(system))
@@ -184,8 +198,12 @@ def test_lex_combinations_are_itertools_combinations(m, k):
 
 
 @settings(max_examples=60, deadline=None)
-@given(systems(exponent=st.sampled_from([Fraction(s * n, p) for p in (997, 991, 983) for n in (1, 500, 999)
-                                         for s in (1, -1)]), max_vars=8))
+@given(
+    systems(
+        exponent=st.sampled_from([Fraction(s * n, p) for p in (997, 991, 983) for n in (1, 500, 999) for s in (1, -1)]),
+        max_vars=8,
+    )
+)
 def test_exponents_at_the_limits_take_the_modular_path_and_stay_exact(system):
     # exponents n/p with primes near 1000: integer rows up to about 10^9, and with three or four base
     # dimensions Hadamard bounds beyond 2^53, where the float path steps aside for the residues
@@ -209,6 +227,7 @@ def test_modular_path_equals_brute_force(system):
 # float64's exact range, minors that are multiples of the residue primes, and the exact fallback.
 # Oracles: itertools.combinations, and determinants of small integer matrices (numpy's, rounded: exact
 # for entries this small) or sympy's, never the code under test.
+
 
 def _small_independent(small, k):
     """Lex-ordered k-subsets of the columns of a small integer matrix with nonzero determinant."""
@@ -294,8 +313,7 @@ def test_the_exact_fallback_decides_when_every_residue_prime_divides_every_minor
     factor = prod(bases_module._PRIMES)
     small = [[1, 2, 0, 1], [0, 0, 1, 1], [1, 2, 1, 0]]
     rows = [[x * factor for x in row] for row in small]
-    expected = [s for s in combinations(range(4), 3)
-                if sympy.Matrix([[row[j] for j in s] for row in small]).det() != 0]
+    expected = [s for s in combinations(range(4), 3) if sympy.Matrix([[row[j] for j in s] for row in small]).det() != 0]
     assert 0 < len(expected) < 4
     with mock.patch.object(bases_module, "rank", wraps=bases_module.rank) as exact_rank:
         assert list(independent_subsets(rows, range(4), [], 3)) == expected

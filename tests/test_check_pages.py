@@ -115,26 +115,38 @@ SITE_CSS = Path(__file__).resolve().parent.parent / "docs" / "_static" / "custom
 needs_browser = pytest.mark.skipif(check_pages.browser() is None, reason="no headless Chromium on the path")
 
 #: an aligned text table with a line wider than a phone, a display equation and a table wider than one
-WIDE_BLOCK = ('<div class="cell_output"><div class="highlight"><pre>'
-              + "name      dimension  value  scaled value   source  path of the attribute in the file\n"
-              + "g         L T^-2     9.81   98.1           file    option/@gravity\n</pre></div></div>")
-WIDE_EQUATION = ('<div class="math"><mjx-container display="true" style="display: block">'
-                 '<span style="display: inline-block; width: 900px">x = 1</span></mjx-container></div>')
-WIDE_TABLE = '<table class="docutils"><tr><td><span style="display: inline-block; width: 900px">a</span></td></tr></table>'
+WIDE_BLOCK = (
+    '<div class="cell_output"><div class="highlight"><pre>'
+    + "name      dimension  value  scaled value   source  path of the attribute in the file\n"
+    + "g         L T^-2     9.81   98.1           file    option/@gravity\n</pre></div></div>"
+)
+WIDE_EQUATION = (
+    '<div class="math"><mjx-container display="true" style="display: block">'
+    '<span style="display: inline-block; width: 900px">x = 1</span></mjx-container></div>'
+)
+WIDE_TABLE = (
+    '<table class="docutils"><tr><td><span style="display: inline-block; width: 900px">a</span></td></tr></table>'
+)
 
 
 def _laid_out(site, style: str) -> list[str]:
     page = site / "page.html"
-    page.write_text(f"<html><head><style>{style}</style></head><body><article>"
-                    f"{WIDE_BLOCK}{WIDE_EQUATION}{WIDE_TABLE}</article></body></html>", encoding="utf-8")
+    page.write_text(
+        f"<html><head><style>{style}</style></head><body><article>"
+        f"{WIDE_BLOCK}{WIDE_EQUATION}{WIDE_TABLE}</article></body></html>",
+        encoding="utf-8",
+    )
     return check_pages.layout_problems([page], site, check_pages.browser())
 
 
 @needs_browser
 def test_layout_check_finds_a_wrapped_block_a_clipped_equation_and_a_clipped_table(site):
     # what the site did below 960 px before: code wrapped, and nothing scrolled
-    found = _laid_out(site, "pre { white-space: pre-wrap; font-size: 12px; } mjx-container, div.math, table "
-                            "{ overflow: hidden; } article { width: 360px; }")
+    found = _laid_out(
+        site,
+        "pre { white-space: pre-wrap; font-size: 12px; } mjx-container, div.math, table "
+        "{ overflow: hidden; } article { width: 360px; }",
+    )
     assert len(found) == 3, found
     assert "page.html: at 390 px, an aligned block wraps (2 lines shown on " in found[0]
     assert "a display equation is clipped: x = 1" in found[1]

@@ -195,8 +195,11 @@ def test_search_text_table_shows_the_base_unit_change(capsys):
     code, out, _ = run(capsys, "search", ROD, "--scale", "g=1")
     assert code == EXIT_OK
     rows = {line.split()[0]: line.split()[1:] for line in out.splitlines() if line.startswith("[")}
-    assert rows == {"[M]": ["base", "1/s^2", "1/s", "-"], "[L]": ["base", "s", "s", "s"],
-                    "[T]": ["base", "-", "-", "-"]}
+    assert rows == {
+        "[M]": ["base", "1/s^2", "1/s", "-"],
+        "[L]": ["base", "s", "s", "s"],
+        "[T]": ["base", "-", "-", "-"],
+    }
 
 
 def test_json_is_deterministic(capsys):
@@ -217,8 +220,7 @@ def _groups_with_values(model):
 @pytest.mark.parametrize(("solution", "s"), [(1, "2"), (2, "1/3"), (3, "0.5")])
 def test_apply_keeps_every_group(capsys, tmp_path, solution, s):
     out = tmp_path / "scaled.toml"
-    code, text, _ = run(capsys, "apply", ROD, "--scale", "g=1", "--s", s, "--solution", solution,
-                        "--output", out)
+    code, text, _ = run(capsys, "apply", ROD, "--scale", "g=1", "--s", s, "--solution", solution, "--output", out)
     assert code == EXIT_OK
     assert f"minimal scaling #{solution} of 3" in text
     assert f"wrote {out}" in text
@@ -234,8 +236,10 @@ def test_apply_keeps_every_group(capsys, tmp_path, solution, s):
 
 def test_apply_is_exact_for_exact_values(capsys, tmp_path):
     model = tmp_path / "exact.toml"
-    model.write_text('[variables]\nm = { dimension = "M", value = "3/2" }\nl = { dimension = "L", value = 2 }\n'
-                     'g = { dimension = "L T^-2", value = 10 }\nt = { dimension = "T", role = "time" }\n')
+    model.write_text(
+        '[variables]\nm = { dimension = "M", value = "3/2" }\nl = { dimension = "L", value = 2 }\n'
+        'g = { dimension = "L T^-2", value = 10 }\nt = { dimension = "T", role = "time" }\n'
+    )
     code, doc = run_json(capsys, "apply", model, "--scale", "g=1", "--s", "1/3")
     assert code == EXIT_OK
     assert doc["count"] == 1
@@ -251,8 +255,10 @@ def test_apply_is_exact_for_exact_values(capsys, tmp_path):
 
 def test_apply_rounds_an_irrational_scaled_value_once_to_the_nearest_float(capsys, tmp_path):
     model = tmp_path / "exact.toml"
-    model.write_text('[variables]\nl = { dimension = "L", value = 2 }\ng = { dimension = "L T^-2", value = 10 }\n'
-                     't = { dimension = "T", value = "1/2", role = "time" }\n')
+    model.write_text(
+        '[variables]\nl = { dimension = "L", value = 2 }\ng = { dimension = "L T^-2", value = 10 }\n'
+        't = { dimension = "T", value = "1/2", role = "time" }\n'
+    )
     # g times s with l fixed: t times s^(-1/2), and 1/2 / sqrt(2) is irrational
     code, doc = run_json(capsys, "apply", model, "--scale", "g=1", "--fixed", "l", "--s", "2")
     assert code == EXIT_OK
@@ -271,8 +277,9 @@ def test_bases_all_lists_every_set(capsys):
 def test_verify_of_an_impossible_request_runs_nothing_and_says_why(capsys):
     pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
     # g times s with the time step and a length fixed: g dt^2 / length cannot change
-    code, out, err = run(capsys, "verify", "example:pendulum.xml", "--scale", "g=1", "--fixed", "timestep",
-                         "ccd_tolerance", "--s", "2")
+    code, out, err = run(
+        capsys, "verify", "example:pendulum.xml", "--scale", "g=1", "--fixed", "timestep", "ccd_tolerance", "--s", "2"
+    )
     assert code == EXIT_ERROR
     assert out == ""
     assert err.startswith("pitheorem: Impossible: g*timestep**2/ccd_tolerance is dimensionless")
@@ -288,8 +295,9 @@ def test_apply_only_scaling_is_named(capsys):
 
 def test_apply_infeasible_writes_nothing(capsys, tmp_path):
     out = tmp_path / "never.toml"
-    code, text, err = run(capsys, "apply", ROD, "--scale", "g=1", "--fixed", "t", "m", "k_theta", "--s", "2",
-                          "--output", out)
+    code, text, err = run(
+        capsys, "apply", ROD, "--scale", "g=1", "--fixed", "t", "m", "k_theta", "--s", "2", "--output", out
+    )
     assert code == EXIT_INFEASIBLE
     assert text == ""
     assert err.count("\n") == 1
@@ -323,10 +331,16 @@ BAD_REQUESTS = {
     "bad_output_suffix": (["apply", ROD, "--scale", "g=1", "--s", "2", "--output", "out.yaml"], "out.yaml"),
     "overwrite_input": (["apply", ROD, "--scale", "g=1", "--s", "2", "--output", ROD], "input file"),
     "count_and_all": (["bases", ROD, "--count", "--all"], "--count prints only the number of sets and --all lists"),
-    "verify_a_toml_file": (["verify", ROD, "--scale", "g=1", "--s", "2"], "verify runs MJCF (.xml) or URDF (.urdf) model files"),
+    "verify_a_toml_file": (
+        ["verify", ROD, "--scale", "g=1", "--s", "2"],
+        "verify runs MJCF (.xml) or URDF (.urdf) model files",
+    ),
     "check_a_toml_file": (["check", ROD], "check reads MJCF (.xml) or URDF (.urdf) model files"),
     "check_in_latex": (["check", "example:pendulum.xml", "--format", "latex"], "'latex'"),
-    "convert_a_toml_file": (["convert", ROD, "--units", "L=cm"], "convert reads MJCF (.xml) or URDF (.urdf) model files"),
+    "convert_a_toml_file": (
+        ["convert", ROD, "--units", "L=cm"],
+        "convert reads MJCF (.xml) or URDF (.urdf) model files",
+    ),
 }
 
 
@@ -369,8 +383,10 @@ def test_broken_model_file(capsys, tmp_path, case):
 def test_contradictory_search_exits_infeasible_with_the_proof(capsys, tmp_path):
     # a well-formed file and request whose constraints contradict each other: exit 1, not 2
     path = tmp_path / "superball.toml"
-    path.write_text('[variables]\nm = { dimension = "M" }\nl = { dimension = "L" }\nk = { dimension = "M T^-2" }\n'
-                    't = { dimension = "T", role = "time" }\n')
+    path.write_text(
+        '[variables]\nm = { dimension = "M" }\nl = { dimension = "L" }\nk = { dimension = "M T^-2" }\n'
+        't = { dimension = "T", role = "time" }\n'
+    )
     code, out, err = run(capsys, "search", path, "--scale", "k=1", "--fixed", "m", "t")
     assert code == EXIT_INFEASIBLE, err
     assert "Impossible" in out
@@ -420,8 +436,10 @@ def test_broken_file_message(capsys, tmp_path):
     path.write_text('[variables]\nm = { dimension = "M" }\nm = { dimension = "L" }\n')
     code, _, err = run(capsys, "groups", path)
     assert code == EXIT_ERROR
-    assert err == f"pitheorem: error: {path}, line 3: variable 'm': is defined twice in [variables]; " \
+    assert (
+        err == f"pitheorem: error: {path}, line 3: variable 'm': is defined twice in [variables]; "
         "each variable may appear once\n"
+    )
 
 
 def test_usage_error_names_the_missing_option(capsys):
@@ -439,11 +457,14 @@ def test_python_dash_m_infeasible_exit_code():
     assert proc.stderr == ""
 
 
-@pytest.mark.skipif(_console_script() is None, reason="pitheorem is not installed (pip install -e .), so no console script")
+@pytest.mark.skipif(
+    _console_script() is None, reason="pitheorem is not installed (pip install -e .), so no console script"
+)
 def test_console_script(tmp_path):
     out = tmp_path / "scaled.toml"
-    proc = subprocess_run("apply", "example:hinged_rod", "--scale", "g=1", "--s", "2", "--output", out,
-                          program=[_console_script()])
+    proc = subprocess_run(
+        "apply", "example:hinged_rod", "--scale", "g=1", "--s", "2", "--output", out, program=[_console_script()]
+    )
     assert proc.returncode == EXIT_OK, proc.stderr
     assert load_model_file(out).values["g"] == pytest.approx(19.62)
     proc = subprocess_run("groups", tmp_path / "nope.toml", program=[_console_script()])
@@ -452,8 +473,10 @@ def test_console_script(tmp_path):
 
 
 def test_cli_groups_and_search_load_neither_scipy_nor_matplotlib(tmp_path):
-    run = ("import sys\nfrom pitheorem.cli import main\nsys.argv = ['pitheorem', *{args!r}]\n"
-           "try:\n    main()\nexcept SystemExit:\n    pass")
+    run = (
+        "import sys\nfrom pitheorem.cli import main\nsys.argv = ['pitheorem', *{args!r}]\n"
+        "try:\n    main()\nexcept SystemExit:\n    pass"
+    )
     assert loaded_after(run.format(args=["groups", "example:hinged_rod"])) == set()
     assert "scipy" not in loaded_after(run.format(args=["search", "example:hinged_rod", "--scale", "g=1"]))
     assert "matplotlib" not in loaded_after(run.format(args=["bases", "example:hinged_rod"]))
@@ -503,19 +526,22 @@ def test_bad_dimension_in_file(tmp_path, capsys, dimension, fragment, command):
     assert_one_line_error(code, out, err, fragment, "'x'")
 
 
-@pytest.mark.parametrize(("entry", "fragments"), [
-    ("g=1e400", ["1000", "exponent of the scale factor s"]),
-    ("g=1/0", ["exponent of the scale factor s"]),
-    ("g=s^2", ["exponent of the scale factor s", "not a factor"]),
-    ("g=2s", ["exponent of the scale factor s"]),
-    ("g=*6", ["exponent of the scale factor s"]),
-    ("g=x6", ["exponent of the scale factor s"]),
-    ("g=nan", ["exponent of the scale factor s"]),
-    ("g=inf", ["exponent of the scale factor s"]),
-    ("g", ["NAME=EXP", "exponent of the scale factor s"]),
-    ("g=0.3333333333333333", ["1000000000000"]),
-    ("nope=1", ["'nope'"]),
-])
+@pytest.mark.parametrize(
+    ("entry", "fragments"),
+    [
+        ("g=1e400", ["1000", "exponent of the scale factor s"]),
+        ("g=1/0", ["exponent of the scale factor s"]),
+        ("g=s^2", ["exponent of the scale factor s", "not a factor"]),
+        ("g=2s", ["exponent of the scale factor s"]),
+        ("g=*6", ["exponent of the scale factor s"]),
+        ("g=x6", ["exponent of the scale factor s"]),
+        ("g=nan", ["exponent of the scale factor s"]),
+        ("g=inf", ["exponent of the scale factor s"]),
+        ("g", ["NAME=EXP", "exponent of the scale factor s"]),
+        ("g=0.3333333333333333", ["1000000000000"]),
+        ("nope=1", ["'nope'"]),
+    ],
+)
 def test_bad_scale_entries(model, capsys, entry, fragments):
     code, out, err = run(capsys, "search", model, "--scale", entry)
     assert_one_line_error(code, out, err, *fragments)
@@ -531,8 +557,13 @@ def test_bad_s(model, capsys, s):
 def test_scaled_value_out_of_float_range(model, capsys, s):
     code, out, err = run(capsys, "apply", model, "--scale", "g=1000", "--fixed", "--s", s)
     # the command line's remedy, never the Python caller's ("use an exact value")
-    assert_one_line_error(code, out, err, "the scaled value of 'g' is beyond the range of floating point "
-                                          "(about 1e-308 to 1e308); choose an --s nearer to 1")
+    assert_one_line_error(
+        code,
+        out,
+        err,
+        "the scaled value of 'g' is beyond the range of floating point "
+        "(about 1e-308 to 1e308); choose an --s nearer to 1",
+    )
 
 
 def test_impossible_is_exit_1_and_only_that(model, capsys):
@@ -592,21 +623,26 @@ def test_the_command_line_reads_toml_files_without_the_engines(monkeypatch, caps
     assert capsys.readouterr().out.strip()
 
 
-@pytest.mark.parametrize(("argv", "fragment"), [
-    ([], "COMMAND"),
-    (["frobnicate", ROD], "'frobnicate'"),
-    (["groups", ROD, "--format", "yaml"], "'yaml'"),
-    (["apply", ROD, "--scale", "g=1", "--s", "2", "--solution", "x"], "--solution"),
-    (["search", ROD], "--scale"),
-])
+@pytest.mark.parametrize(
+    ("argv", "fragment"),
+    [
+        ([], "COMMAND"),
+        (["frobnicate", ROD], "'frobnicate'"),
+        (["groups", ROD, "--format", "yaml"], "'yaml'"),
+        (["apply", ROD, "--scale", "g=1", "--s", "2", "--solution", "x"], "--solution"),
+        (["search", ROD], "--scale"),
+    ],
+)
 def test_usage_errors_are_one_line_not_the_usage_block(capsys, argv, fragment):
     code, out, err = run(capsys, *argv)
     assert_one_line_error(code, out, err, fragment)
     assert "usage:" not in err
 
 
-@pytest.mark.parametrize(("unit", "fragment"), [("m**inf", "finite"), ("m**-1e400", "finite"),
-                                                ("m**100000", "1000"), ("m^-1/2", "ambiguous")])
+@pytest.mark.parametrize(
+    ("unit", "fragment"),
+    [("m**inf", "finite"), ("m**-1e400", "finite"), ("m**100000", "1000"), ("m^-1/2", "ambiguous")],
+)
 def test_a_bad_unit_exponent_in_a_file_is_named_not_reported_as_a_bug(capsys, tmp_path, unit, fragment):
     path = tmp_path / "units.toml"
     path.write_text(f'[variables]\nx = {{ unit = "{unit}", value = 1.0 }}\ny = {{ dimension = "L", value = 2.0 }}\n')

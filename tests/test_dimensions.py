@@ -130,15 +130,19 @@ def test_bad_formula(formula, culprit):
 
 # -- the limits hold for totals, and the arguments are checked by name (issue 23's reproducers)
 
-@pytest.mark.parametrize("build", [
-    lambda: pt.Dimension({"L": Fraction(1, 10**5000)}),  # str() would hit Python's digit limit
-    lambda: pt.Dimension.parse("L^1000 L^1000"),
-    lambda: pt.Dimension.parse("L^1000 * L"),
-    lambda: pt.Dimension.parse("L") ** Fraction(1, 10**13),
-    lambda: pt.Dimension.parse("L") ** 10**5000,
-    lambda: pt.Dimension([("L", 600), ("L", 600)]),
-    lambda: pt.Dimension(pt.Dimension.parse("L^999").exponents | {"L": 1001}),
-])
+
+@pytest.mark.parametrize(
+    "build",
+    [
+        lambda: pt.Dimension({"L": Fraction(1, 10**5000)}),  # str() would hit Python's digit limit
+        lambda: pt.Dimension.parse("L^1000 L^1000"),
+        lambda: pt.Dimension.parse("L^1000 * L"),
+        lambda: pt.Dimension.parse("L") ** Fraction(1, 10**13),
+        lambda: pt.Dimension.parse("L") ** 10**5000,
+        lambda: pt.Dimension([("L", 600), ("L", 600)]),
+        lambda: pt.Dimension(pt.Dimension.parse("L^999").exponents | {"L": 1001}),
+    ],
+)
 def test_exponent_limits_hold_for_the_total(build):
     with pytest.raises(pt.LimitError, match=r"exponent of 'L'|the power of a dimension"):
         build()
@@ -210,60 +214,162 @@ def test_a_dimension_multiplies_and_divides_only_by_dimensions():
 
 # -- whole messages and culprits (each assertion kills a mutmut survivor that changed one of them)
 
-_NUMBER = ("a finite real number (int, float, Fraction, numpy or sympy number, or a string such as '0.1' or "
-           "'1/3')")
+_NUMBER = "a finite real number (int, float, Fraction, numpy or sympy number, or a string such as '0.1' or '1/3')"
 
 
-@pytest.mark.parametrize(("build", "error", "first_line", "culprit"), [
-    (lambda: pt.Dimension.parse("L Q"), pt.DimensionSyntaxError,
-     "cannot parse dimension 'L Q' at position 2: unknown base dimension 'Q'; valid base dimensions are M, L, T, "
-     "Theta, I (declare others with base_dimensions=..., or give units with System.from_units); found 'Q'", "Q"),
-    (lambda: pt.Dimension.parse("L 2"), pt.DimensionSyntaxError, "cannot parse dimension 'L 2' at position 2: a bare "
-     "number '2' has no dimension; only '1' may stand alone; found '2'", "2"),
-    (lambda: pt.Dimension.parse("(L"), pt.DimensionSyntaxError, "cannot parse dimension '(L' at position 2: expected "
-     "')' to close the bracket; found the end of the formula", ""),
-    (lambda: pt.Dimension.parse("L^(1"), pt.DimensionSyntaxError, "cannot parse dimension 'L^(1' at position 4: "
-     "expected ')' to close the exponent; found the end of the formula", ""),
-    (lambda: pt.Dimension.parse("L^(1/0)"), pt.DimensionSyntaxError, "cannot parse dimension 'L^(1/0)' at position 5: "
-     "division by zero in exponent; found '0'", "0)"),
-    (lambda: pt.Dimension.parse("L^x"), pt.DimensionSyntaxError, "cannot parse dimension 'L^x' at position 2: "
-     "expected a number as exponent, e.g. ^2, ^-1 or ^(1/2); found 'x'", "x"),
-    (lambda: pt.Dimension.parse("L*"), pt.DimensionSyntaxError, "cannot parse dimension 'L*' at position 2: formula "
-     "ends too early; found the end of the formula", ""),
-    (lambda: pt.Dimension.parse("L*)"), pt.DimensionSyntaxError, "cannot parse dimension 'L*)' at position 2: "
-     "expected a base dimension, '1' or '('; found ')'", ")"),
-    (lambda: pt.Dimension.parse(3), pt.DimensionSyntaxError, "cannot parse dimension '3' at position 0: expected a "
-     "string, got int", "3"),
-    (lambda: pt.Dimension.parse("L^" + "1" * 41), pt.LimitError,
-     "an exponent is 11111111111111111111...: it has more than 40 digits", "11111111111111111111..."),
-    (lambda: pt.Dimension.parse("M" * 10_001), pt.LimitError, "the dimension formula is MMMMMMMMMMMMMMMMMMMM...: its "
-     "length 10001 exceeds the limit of 10000 characters", "MMMMMMMMMMMMMMMMMMMM..."),
-    (lambda: pt.Dimension.parse("(" * 101 + "L" + ")" * 101), pt.LimitError, "the dimension formula is "
-     "((((((((((((((((((((...: its brackets nest deeper than the limit of 100", "((((((((((((((((((((..."),
-    (lambda: pt.Dimension.parse("L^1001"), pt.LimitError,
-     "exponent in 'L^1001' is 1001: its magnitude exceeds the limit 1000", "1001"),
-    (lambda: pt.Dimension.parse("L^1001" + " T" * 17), pt.LimitError,  # 40 characters: the formula is quoted
-     f"exponent in {'L^1001' + ' T' * 17!r} is 1001: its magnitude exceeds the limit 1000", "1001"),
-    (lambda: pt.Dimension.parse("L^1001" + " T" * 17 + " "), pt.LimitError,  # 41 characters: it is not
-     "an exponent is 1001: its magnitude exceeds the limit 1000", "1001"),
-    (lambda: pt.Dimension.parse("L") ** 10**13, pt.LimitError, "the power of a dimension is 10000000000000: its "
-     "numerator and denominator may not exceed 1000000000000 in magnitude", "10000000000000"),
-    (lambda: pt.Dimension.parse("L") ** "x", pt.NumberError, f"the power of a dimension must be {_NUMBER}, got 'x'",
-     "x"),
-    (lambda: pt.Dimension({"L": "x"}), pt.NumberError, f"the exponent of 'L' must be {_NUMBER}, got 'x'", "x"),
-    (lambda: pt.Dimension(3), pt.InvalidRequestError, "a Dimension takes a mapping of base names to exponents, such "
-     "as {'L': 1, 'T': -2} (use Dimension.parse for a formula), got 3", 3),
-    (lambda: pt.Dimension("L"), pt.InvalidRequestError, "a Dimension takes a mapping of base names to exponents, such "
-     "as {'L': 1, 'T': -2} (use Dimension.parse for a formula), not the string 'L'", "L"),
-    (lambda: pt.Dimension([("L",)]), pt.InvalidRequestError, "a Dimension takes a mapping of base names to exponents, "
-     "such as {'L': 1, 'T': -2} (use Dimension.parse for a formula), got the entry ('L',)", ("L",)),
-    (lambda: pt.Dimension.parse("L", base_dimensions="LT"), pt.InvalidRequestError,
-     "base_dimensions must be a list of names such as ('M', 'L', 'T'), not the string 'LT'", "LT"),
-    (lambda: pt.Dimension.parse("L", base_dimensions=3), pt.InvalidRequestError,
-     "base_dimensions must be a list of names such as ('M', 'L', 'T'), got 3", 3),
-    (lambda: pt.Dimension.parse("L", base_dimensions=["1L"]), pt.InvalidRequestError,
-     "base dimension names must be identifiers, got '1L'", "1L"),
-])
+@pytest.mark.parametrize(
+    ("build", "error", "first_line", "culprit"),
+    [
+        (
+            lambda: pt.Dimension.parse("L Q"),
+            pt.DimensionSyntaxError,
+            "cannot parse dimension 'L Q' at position 2: unknown base dimension 'Q'; valid base dimensions are M, L, T, "
+            "Theta, I (declare others with base_dimensions=..., or give units with System.from_units); found 'Q'",
+            "Q",
+        ),
+        (
+            lambda: pt.Dimension.parse("L 2"),
+            pt.DimensionSyntaxError,
+            "cannot parse dimension 'L 2' at position 2: a bare "
+            "number '2' has no dimension; only '1' may stand alone; found '2'",
+            "2",
+        ),
+        (
+            lambda: pt.Dimension.parse("(L"),
+            pt.DimensionSyntaxError,
+            "cannot parse dimension '(L' at position 2: expected "
+            "')' to close the bracket; found the end of the formula",
+            "",
+        ),
+        (
+            lambda: pt.Dimension.parse("L^(1"),
+            pt.DimensionSyntaxError,
+            "cannot parse dimension 'L^(1' at position 4: "
+            "expected ')' to close the exponent; found the end of the formula",
+            "",
+        ),
+        (
+            lambda: pt.Dimension.parse("L^(1/0)"),
+            pt.DimensionSyntaxError,
+            "cannot parse dimension 'L^(1/0)' at position 5: division by zero in exponent; found '0'",
+            "0)",
+        ),
+        (
+            lambda: pt.Dimension.parse("L^x"),
+            pt.DimensionSyntaxError,
+            "cannot parse dimension 'L^x' at position 2: "
+            "expected a number as exponent, e.g. ^2, ^-1 or ^(1/2); found 'x'",
+            "x",
+        ),
+        (
+            lambda: pt.Dimension.parse("L*"),
+            pt.DimensionSyntaxError,
+            "cannot parse dimension 'L*' at position 2: formula ends too early; found the end of the formula",
+            "",
+        ),
+        (
+            lambda: pt.Dimension.parse("L*)"),
+            pt.DimensionSyntaxError,
+            "cannot parse dimension 'L*)' at position 2: expected a base dimension, '1' or '('; found ')'",
+            ")",
+        ),
+        (
+            lambda: pt.Dimension.parse(3),
+            pt.DimensionSyntaxError,
+            "cannot parse dimension '3' at position 0: expected a string, got int",
+            "3",
+        ),
+        (
+            lambda: pt.Dimension.parse("L^" + "1" * 41),
+            pt.LimitError,
+            "an exponent is 11111111111111111111...: it has more than 40 digits",
+            "11111111111111111111...",
+        ),
+        (
+            lambda: pt.Dimension.parse("M" * 10_001),
+            pt.LimitError,
+            "the dimension formula is MMMMMMMMMMMMMMMMMMMM...: its length 10001 exceeds the limit of 10000 characters",
+            "MMMMMMMMMMMMMMMMMMMM...",
+        ),
+        (
+            lambda: pt.Dimension.parse("(" * 101 + "L" + ")" * 101),
+            pt.LimitError,
+            "the dimension formula is ((((((((((((((((((((...: its brackets nest deeper than the limit of 100",
+            "((((((((((((((((((((...",
+        ),
+        (
+            lambda: pt.Dimension.parse("L^1001"),
+            pt.LimitError,
+            "exponent in 'L^1001' is 1001: its magnitude exceeds the limit 1000",
+            "1001",
+        ),
+        (
+            lambda: pt.Dimension.parse("L^1001" + " T" * 17),
+            pt.LimitError,  # 40 characters: the formula is quoted
+            f"exponent in {'L^1001' + ' T' * 17!r} is 1001: its magnitude exceeds the limit 1000",
+            "1001",
+        ),
+        (
+            lambda: pt.Dimension.parse("L^1001" + " T" * 17 + " "),
+            pt.LimitError,  # 41 characters: it is not
+            "an exponent is 1001: its magnitude exceeds the limit 1000",
+            "1001",
+        ),
+        (
+            lambda: pt.Dimension.parse("L") ** 10**13,
+            pt.LimitError,
+            "the power of a dimension is 10000000000000: its "
+            "numerator and denominator may not exceed 1000000000000 in magnitude",
+            "10000000000000",
+        ),
+        (
+            lambda: pt.Dimension.parse("L") ** "x",
+            pt.NumberError,
+            f"the power of a dimension must be {_NUMBER}, got 'x'",
+            "x",
+        ),
+        (lambda: pt.Dimension({"L": "x"}), pt.NumberError, f"the exponent of 'L' must be {_NUMBER}, got 'x'", "x"),
+        (
+            lambda: pt.Dimension(3),
+            pt.InvalidRequestError,
+            "a Dimension takes a mapping of base names to exponents, such "
+            "as {'L': 1, 'T': -2} (use Dimension.parse for a formula), got 3",
+            3,
+        ),
+        (
+            lambda: pt.Dimension("L"),
+            pt.InvalidRequestError,
+            "a Dimension takes a mapping of base names to exponents, such "
+            "as {'L': 1, 'T': -2} (use Dimension.parse for a formula), not the string 'L'",
+            "L",
+        ),
+        (
+            lambda: pt.Dimension([("L",)]),
+            pt.InvalidRequestError,
+            "a Dimension takes a mapping of base names to exponents, "
+            "such as {'L': 1, 'T': -2} (use Dimension.parse for a formula), got the entry ('L',)",
+            ("L",),
+        ),
+        (
+            lambda: pt.Dimension.parse("L", base_dimensions="LT"),
+            pt.InvalidRequestError,
+            "base_dimensions must be a list of names such as ('M', 'L', 'T'), not the string 'LT'",
+            "LT",
+        ),
+        (
+            lambda: pt.Dimension.parse("L", base_dimensions=3),
+            pt.InvalidRequestError,
+            "base_dimensions must be a list of names such as ('M', 'L', 'T'), got 3",
+            3,
+        ),
+        (
+            lambda: pt.Dimension.parse("L", base_dimensions=["1L"]),
+            pt.InvalidRequestError,
+            "base dimension names must be identifiers, got '1L'",
+            "1L",
+        ),
+    ],
+)
 def test_each_refusal_names_the_culprit_and_what_is_valid(build, error, first_line, culprit):
     with pytest.raises(error) as caught:
         build()

@@ -88,7 +88,8 @@ def public_members(cls):
 OBJECTS = public_objects()
 MEMBERS = {
     f"{name}.{attr}": (func, not isinstance(inspect.getattr_static(cls, attr), property))
-    for name, cls in OBJECTS.items() if inspect.isclass(cls)
+    for name, cls in OBJECTS.items()
+    if inspect.isclass(cls)
     for attr, func in public_members(cls).items()
 }
 

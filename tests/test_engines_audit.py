@@ -115,9 +115,11 @@ def test_the_audit_reads_as_text():
 def test_a_probe_the_engine_refuses_is_named_not_raised(tmp_path):
     """A speck whose inertia sits just above mjMINVAL: the probe at 1/4 of its mass unit does not compile."""
     speck = tmp_path / "speck.xml"
-    speck.write_text('<mujoco><option timestep="0.002"/><worldbody><geom type="plane" size="1 1 0.1"/>'
-                     '<body pos="0 0 0.1"><freejoint/><geom type="sphere" size="0.01" mass="6e-11"/></body>'
-                     '</worldbody></mujoco>')
+    speck.write_text(
+        '<mujoco><option timestep="0.002"/><worldbody><geom type="plane" size="1 1 0.1"/>'
+        '<body pos="0 0 0.1"><freejoint/><geom type="sphere" size="0.01" mass="6e-11"/></body>'
+        "</worldbody></mujoco>"
+    )
     model = engines.load(speck)
     unit = pt.Scaling.from_unit_change(model.system(), {"M": 1})
     with pytest.raises(engines.EngineModelError, match="mjMINVAL"):  # independent of audit: MuJoCo refuses it
@@ -132,8 +134,13 @@ def test_a_probe_the_engine_refuses_is_named_not_raised(tmp_path):
 
 def test_the_solver_cause_names_the_engines_own_setting_and_its_remedy():
     pybullet_data = pytest.importorskip("pybullet_data")
-    cube = engines.load(Path(pybullet_data.getDataPath()) / "cube.urdf", ground=True, base_position=(0, 0, 1),
-                        damping=0.0, split_impulse=False)
+    cube = engines.load(
+        Path(pybullet_data.getDataPath()) / "cube.urdf",
+        ground=True,
+        base_position=(0, 0, 1),
+        damping=0.0,
+        split_impulse=False,
+    )
     sc = pt.search(cube.system(), scale={"g": 1}).scalings[0]
     solver = [c for c in engines.audit(cube, sc, 10).causes if c.kind == "solver"]
     assert [c.element for c in solver] == ["option solverResidualThreshold"]
@@ -156,9 +163,11 @@ def test_a_vertex_that_is_the_rounding_residue_of_zero_is_held_to_nothing():
 def test_a_threshold_that_moves_with_the_time_step_is_no_cause(tmp_path):
     """A solref time constant below two time steps is clamped in the model and its copy alike."""
     stiff = tmp_path / "stiff.xml"
-    stiff.write_text('<mujoco><option timestep="0.004"/><worldbody><geom type="plane" size="1 1 0.1"/>'
-                     '<body pos="0 0 0.1"><freejoint/><geom type="sphere" size="0.05" solref="0.005 1"/></body>'
-                     '</worldbody></mujoco>')
+    stiff.write_text(
+        '<mujoco><option timestep="0.004"/><worldbody><geom type="plane" size="1 1 0.1"/>'
+        '<body pos="0 0 0.1"><freejoint/><geom type="sphere" size="0.05" solref="0.005 1"/></body>'
+        "</worldbody></mujoco>"
+    )
     model = engines.load(stiff)
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     assert any("refsafe" in c.detail for c in engines.check(model))  # the clamp is there, check names it

@@ -27,8 +27,20 @@ ENGINES = REPO / "pitheorem" / "engines"
 
 
 def test_the_required_methods_are_the_runner_and_the_model_file():
-    assert set(REQUIRED) == {"timestep", "coordinate_dimensions", "control_dimensions", "control_ranges", "run",
-                             "run_many", "twin", "parameters", "settings", "scaled", "save", "stored_numbers"}
+    assert set(REQUIRED) == {
+        "timestep",
+        "coordinate_dimensions",
+        "control_dimensions",
+        "control_ranges",
+        "run",
+        "run_many",
+        "twin",
+        "parameters",
+        "settings",
+        "scaled",
+        "save",
+        "stored_numbers",
+    }
     assert OPTIONAL["RefusesScalings"] == ("unscalable", "unscalable_remedy")
     assert OPTIONAL["CounterRuns"] == ("solver_settings", "variant")
     optional = {m for members in OPTIONAL.values() for m in members}
@@ -46,8 +58,10 @@ def test_mujocos_backend_has_every_part_but_the_scene_and_the_refusals():
 def test_pybullets_backend_has_the_scene_the_refusals_and_no_solver_diagnosis(tmp_path):
     pytest.importorskip("pybullet", reason="pybullet is not installed (pip install 'pitheorem[engines]')")
     urdf = tmp_path / "box.urdf"
-    urdf.write_text('<robot name="box"><link name="base"><inertial><mass value="1"/>'
-                    '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>')
+    urdf.write_text(
+        '<robot name="box"><link name="base"><inertial><mass value="1"/>'
+        '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>'
+    )
     backend = engines.load(urdf)._backend
     for protocol in (EngineBackend, HasSceneSettings, RefusesScalings, IgnoredSettings, CounterRuns, NamesElements):
         assert isinstance(backend, protocol), protocol

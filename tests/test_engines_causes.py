@@ -36,9 +36,18 @@ def test_a_cause_is_immutable_and_hashable():
 
 
 def test_sorted_causes_orders_by_kind_then_element_and_drops_repeats():
-    given = [Cause("contact", "b", ""), Cause("precision", "z", ""), Cause("unscaled", "y", ""),
-             Cause("contact", "a", ""), Cause("contact", "b", "")]
+    given = [
+        Cause("contact", "b", ""),
+        Cause("precision", "z", ""),
+        Cause("unscaled", "y", ""),
+        Cause("contact", "a", ""),
+        Cause("contact", "b", ""),
+    ]
     got = sorted_causes(given)
-    assert [(c.kind, c.element) for c in got] == [("unscaled", "y"), ("precision", "z"), ("contact", "a"),
-                                                   ("contact", "b")]
+    assert [(c.kind, c.element) for c in got] == [
+        ("unscaled", "y"),
+        ("precision", "z"),
+        ("contact", "a"),
+        ("contact", "b"),
+    ]
     assert sorted_causes(reversed(given)) == got

@@ -99,14 +99,17 @@ def test_scene_options_make_a_urdf_scalable_and_reach_its_settings(tmp_path, cap
     capsys.readouterr()
 
 
-@pytest.mark.parametrize(("scene", "says"), [
-    (["dampin=0"], "NAME one of"),
-    (["ground=maybe"], "true or false"),
-    (["base_position=0,1"], "three numbers"),
-    (["damping=-1"], "cannot be negative"),
-    (["g=1", "g=2"], "twice"),
-    (["damping=x"], "damping"),
-])
+@pytest.mark.parametrize(
+    ("scene", "says"),
+    [
+        (["dampin=0"], "NAME one of"),
+        (["ground=maybe"], "true or false"),
+        (["base_position=0,1"], "three numbers"),
+        (["damping=-1"], "cannot be negative"),
+        (["g=1", "g=2"], "twice"),
+        (["damping=x"], "damping"),
+    ],
+)
 def test_bad_scene_options_exit_2_naming_them(capsys, scene, says):
     assert main(["params", str(DATA / "slider_arm.urdf"), "--scene", *scene]) == 2
     err = capsys.readouterr().err
@@ -125,30 +128,43 @@ def test_scene_options_have_one_list_that_the_loader_parser_and_help_use(capsys)
     assert names == ("fixed_base", "ground", "split_impulse", "g", "damping", "base_position")
     # the defaults load_urdf documents
     assert {name: default for name, (_kind, default) in SCENE_OPTIONS.items()} == {
-        "fixed_base": False, "ground": False, "split_impulse": True, "g": 9.81, "damping": None,
-        "base_position": (0.0, 0.0, 0.0)}
+        "fixed_base": False,
+        "ground": False,
+        "split_impulse": True,
+        "g": 9.81,
+        "damping": None,
+        "base_position": (0.0, 0.0, 0.0),
+    }
     # load_urdf's keyword options are exactly the scene (and the settings file)
     keywords = [p.name for p in inspect.signature(load_urdf).parameters.values() if p.kind is p.KEYWORD_ONLY]
     assert sorted(keywords) == sorted(("settings", *names))
     # the parser takes every name of the list, each by its kind, and lists them in its message
     typed = {"flag": "true", "number": "2", "point": "1,2,3"}
     parsed = parse_scene([f"{name}={typed[kind]}" for name, (kind, _default) in SCENE_OPTIONS.items()])
-    assert parsed == {"fixed_base": True, "ground": True, "split_impulse": True, "g": 2.0, "damping": 2.0,
-                      "base_position": (1.0, 2.0, 3.0)}
+    assert parsed == {
+        "fixed_base": True,
+        "ground": True,
+        "split_impulse": True,
+        "g": 2.0,
+        "damping": 2.0,
+        "base_position": (1.0, 2.0, 3.0),
+    }
     with pytest.raises(pt.InvalidRequestError) as caught:
         parse_scene(["gravity=1"])
     assert str(caught.value).endswith("NAME one of " + ", ".join(names))
     # a URDF loaded with no scene option runs with every default of the list
     settings = engines.load(DATA / "slider_arm.urdf").settings()
-    assert settings["loadURDF"] == {"basePosition": list(SCENE_OPTIONS["base_position"][1]),
-                                    "useFixedBase": SCENE_OPTIONS["fixed_base"][1]}
+    assert settings["loadURDF"] == {
+        "basePosition": list(SCENE_OPTIONS["base_position"][1]),
+        "useFixedBase": SCENE_OPTIONS["fixed_base"][1],
+    }
     assert settings["ground"] is None
     assert settings["setPhysicsEngineParameter"]["useSplitImpulse"] == int(SCENE_OPTIONS["split_impulse"][1])
     assert settings["gravity"] == [0.0, 0.0, -SCENE_OPTIONS["g"][1]]
     # the command line's help for --scene names every option
     assert main(["params", "--help"]) == 0
     help_text = " ".join(capsys.readouterr().out.split())
-    scene_help = help_text[help_text.index("--scene"):]
+    scene_help = help_text[help_text.index("--scene") :]
     assert all(f"{name}=" in scene_help for name in names)
 
 
@@ -164,8 +180,12 @@ BAD_FILES = [
     ("junk.xml", "this is not XML", "junk.xml"),
     ("unknown_element.xml", (DATA / "unknown_element.xml").read_text(), "gizmo"),
     ("missing_mesh.xml", (DATA / "missing_mesh.xml").read_text(), "mesh 'hull'"),
-    ("bad.urdf", '<robot name="r"><link name="a"><collision><geometry><mesh filename="gone.stl"/></geometry>'
-     "</collision></link></robot>", "mesh 'gone.stl'"),
+    (
+        "bad.urdf",
+        '<robot name="r"><link name="a"><collision><geometry><mesh filename="gone.stl"/></geometry>'
+        "</collision></link></robot>",
+        "mesh 'gone.stl'",
+    ),
     ("junk.urdf", "<robot", "not well-formed XML"),
 ]
 
@@ -214,8 +234,11 @@ def test_verify_exits_0_when_similar_1_when_not_and_2_on_bad_input(capsys, tmp_p
     assert data["causes"] == []
     # the contact test model with MuJoCo's default stopping rule and the PGS solver: not exact at s = 4
     pgs = tmp_path / "pgs.xml"
-    pgs.write_text((Path(__file__).parent / "data" / "engines" / "contact.xml").read_text()
-                   .replace('<option timestep="0.002" tolerance="0"/>', '<option timestep="0.002" solver="PGS"/>'))
+    pgs.write_text(
+        (Path(__file__).parent / "data" / "engines" / "contact.xml")
+        .read_text()
+        .replace('<option timestep="0.002" tolerance="0"/>', '<option timestep="0.002" solver="PGS"/>')
+    )
     code = main(["verify", str(pgs), "--scale", "g=1", "--s", "4"])
     out = capsys.readouterr().out
     assert code == 1, out
@@ -303,9 +326,9 @@ def test_shipped_engine_models_are_named_like_the_others(capsys):
     assert main(["--help"]) == 0
     help_text = capsys.readouterr().out
     assert "TOML model file." not in help_text
-    assert ("example:NAME, NAME one of hinged_rod, hinged_rod.urdf, hinged_rod.xml, pendulum.xml, superball, "
-            "superball.xml") in " ".join(
-        help_text.split())
+    assert (
+        "example:NAME, NAME one of hinged_rod, hinged_rod.urdf, hinged_rod.xml, pendulum.xml, superball, superball.xml"
+    ) in " ".join(help_text.split())
 
 
 def test_bases_of_a_large_model_lists_the_first_sets_after_their_count(capsys):
@@ -330,8 +353,9 @@ def test_search_on_a_large_model_opens_with_a_short_summary(capsys):
     assert len(lines[0]) < 300
     n = int(lines[0].split(" fixed: ")[1].split()[0])
     start = lines.index(f"summary (the table below has a row for each of the {len(model.system())} variables):")
-    assert [line.split(":")[0].strip() for line in lines[start + 1:start + n + 1]] == [f"#{k}" for k in
-                                                                                       range(1, n + 1)]
+    assert [line.split(":")[0].strip() for line in lines[start + 1 : start + n + 1]] == [
+        f"#{k}" for k in range(1, n + 1)
+    ]
 
 
 def test_apply_names_a_parameter_no_scene_option_can_fix(capsys):
@@ -365,8 +389,9 @@ def test_verify_says_when_a_run_moved_nothing_and_expects_bits_where_every_facto
     assert "this verdict proves nothing" in out
     model = engines.load(PENDULUM)
     half = pt.Scaling.from_unit_change(model.system(), {"L": Fraction(1, 2)})  # lengths times s^(1/2)
-    powers = [s for s in ("4", "16", "1/4", "1/64", "2", "8", "10", "3/4", "1")
-              if exact_in_binary(model, half, Fraction(s))]
+    powers = [
+        s for s in ("4", "16", "1/4", "1/64", "2", "8", "10", "3/4", "1") if exact_in_binary(model, half, Fraction(s))
+    ]
     assert powers == ["4", "16", "1/4", "1/64", "1"]
     whole = pt.Scaling.from_unit_change(model.system(), {"L": 1})  # whole exponents: every power of two
     assert [s for s in ("2", "8", "1/2", "3") if exact_in_binary(model, whole, Fraction(s))] == ["2", "8", "1/2"]
@@ -405,17 +430,20 @@ def test_check_exits_0_on_a_clean_model_and_reads_the_units_given(capsys):
     capsys.readouterr()
 
 
-@pytest.mark.parametrize(("argv", "says"), [
-    (["convert", PENDULUM], "--units BASE=UNIT ... or --fit ENGINE"),
-    (["convert", PENDULUM, "--units", "L=mm", "--fit", "mujoco"], "one of the two"),
-    (["convert", PENDULUM, "--units", "L=furlongz"], "'furlongz' is no unit of length"),
-    (["convert", PENDULUM, "--units", "X=mm"], "BASE one of M, L, T"),
-    (["convert", PENDULUM, "--units", "L=mm", "L=cm"], "sets L twice"),
-    (["convert", PENDULUM, "--units", "L=mm", "--output", PENDULUM], "is the input file"),
-    (["convert", "example:hinged_rod", "--units", "L=mm"], "reads MJCF (.xml) or URDF"),
-    (["check", PENDULUM, "--engine", "ode"], "ode"),
-    (["check", PENDULUM, "--format", "latex"], "invalid choice"),
-])
+@pytest.mark.parametrize(
+    ("argv", "says"),
+    [
+        (["convert", PENDULUM], "--units BASE=UNIT ... or --fit ENGINE"),
+        (["convert", PENDULUM, "--units", "L=mm", "--fit", "mujoco"], "one of the two"),
+        (["convert", PENDULUM, "--units", "L=furlongz"], "'furlongz' is no unit of length"),
+        (["convert", PENDULUM, "--units", "X=mm"], "BASE one of M, L, T"),
+        (["convert", PENDULUM, "--units", "L=mm", "L=cm"], "sets L twice"),
+        (["convert", PENDULUM, "--units", "L=mm", "--output", PENDULUM], "is the input file"),
+        (["convert", "example:hinged_rod", "--units", "L=mm"], "reads MJCF (.xml) or URDF"),
+        (["check", PENDULUM, "--engine", "ode"], "ode"),
+        (["check", PENDULUM, "--format", "latex"], "invalid choice"),
+    ],
+)
 def test_bad_convert_and_check_requests_exit_2_with_one_line(argv, says, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err.strip().splitlines()
@@ -431,7 +459,24 @@ def test_verify_runs_a_file_in_the_engine_named(capsys):
     assert "unknown engine 'ode'" in err[0]
     pytest.importorskip("mujoco.mjx", reason="MJX is not installed (pip install 'pitheorem[mjx]')")
     capsys.readouterr()  # what importing MJX here printed (a note on a missing warp): the command silences it
-    assert main(["verify", PENDULUM, "--scale", "g=1", "--s", "4", "--engine", "mjx", "--duration", "0.2",
-                 "--format", "json"]) == 0
+    assert (
+        main(
+            [
+                "verify",
+                PENDULUM,
+                "--scale",
+                "g=1",
+                "--s",
+                "4",
+                "--engine",
+                "mjx",
+                "--duration",
+                "0.2",
+                "--format",
+                "json",
+            ]
+        )
+        == 0
+    )
     doc = json.loads(capsys.readouterr().out)  # nothing but the answer: not MJX's note on a missing warp
     assert (doc["engine"], doc["exact"]) == ("mjx", True)

@@ -84,13 +84,17 @@ def test_catalogue_is_read_whole_and_exactly_from_its_data_file():
     assert hidden_constants(names=["bullet_split_impulse_penetration_threshold"])[0].default == -0.04
     # the shared source texts are filled in: no placeholder is left, and each reaches the entries naming it
     assert not any("{" in c.source or "}" in c.source for c in CATALOGUE)
-    multibody = [c.name for c in CATALOGUE if c.source.startswith("bullet3 src/BulletDynamics/Featherstone/btMultiBody")]
+    multibody = [
+        c.name for c in CATALOGUE if c.source.startswith("bullet3 src/BulletDynamics/Featherstone/btMultiBody")
+    ]
     assert len(multibody) == 9
     assert hidden_constants(names=["mujoco_timestep"])[0].source == (
         "mujoco 4.0.0 model defaults (MjModel.opt, MjSpec.default); MuJoCo XML Reference (mujoco.readthedocs.io), "
-        "option/timestep")
+        "option/timestep"
+    )
     assert hidden_constants(names=["bullet_collision_margin"])[0].source.startswith(
-        "measured with pybullet 3.2.7 (getPhysicsEngineParameters / getDynamicsInfo): getDynamicsInfo(...)[11]")
+        "measured with pybullet 3.2.7 (getPhysicsEngineParameters / getDynamicsInfo): getDynamicsInfo(...)[11]"
+    )
 
 
 def test_hidden_constants_filters():
@@ -108,7 +112,7 @@ def test_hidden_constants_bad_inputs():
 
 def test_with_hidden_constants_adds_dimensional_ones():
     ext = with_hidden_constants(HINGED_ROD.system, "pybullet")
-    added = ext.variables[len(HINGED_ROD.system.variables):]
+    added = ext.variables[len(HINGED_ROD.system.variables) :]
     assert added == tuple(c.name for c in hidden_constants("pybullet", dimensional=True))
     assert ext.dimension("bullet_linear_damping_k2") == pt.Dimension.parse("L^-1")
     with pytest.raises(pt.DuplicateVariableError, match="mujoco_timestep"):
@@ -151,8 +155,9 @@ def test_broken_constants_needs_a_scaling():
     with pytest.raises(pt.InvalidRequestError, match="Scaling"):
         broken_constants({"g": 1}, "pybullet")
     sc = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1})
-    look_alike = SimpleNamespace(system=sc.system, powers=sc.vector, exponent_of=sc.exponent_of,
-                                 unit_change=sc.unit_change)  # what the old attribute check accepted
+    look_alike = SimpleNamespace(
+        system=sc.system, powers=sc.vector, exponent_of=sc.exponent_of, unit_change=sc.unit_change
+    )  # what the old attribute check accepted
     with pytest.raises(pt.InvalidRequestError, match="needs a Scaling, got SimpleNamespace"):
         broken_constants(look_alike, "pybullet")
 
@@ -177,8 +182,11 @@ def test_mujoco_defaults_match_the_engine():
     assert geom.solimp[0] == default("mujoco_solimp_dmin")
     assert geom.solimp[2] == default("mujoco_solimp_width")
     assert geom.margin == default("mujoco_geom_margin")
-    assert list(geom.friction) == [default("mujoco_sliding_friction"), default("mujoco_torsional_friction"),
-                                   default("mujoco_rolling_friction")]
+    assert list(geom.friction) == [
+        default("mujoco_sliding_friction"),
+        default("mujoco_torsional_friction"),
+        default("mujoco_rolling_friction"),
+    ]
     assert geom.density == default("mujoco_geom_density")
     assert joint.margin == default("mujoco_joint_margin")
     assert list(joint.stiffness)[1:] == [default("mujoco_stiffness_poly")] * 2
@@ -203,11 +211,13 @@ def test_bullet_defaults_match_the_engine(bullet):
     params = pb.getPhysicsEngineParameters(physicsClientId=client)
     assert params["fixedTimeStep"] == default("bullet_time_step")
     assert params["numSolverIterations"] == default("bullet_solver_iterations")
-    box = pb.createMultiBody(1.0, pb.createCollisionShape(pb.GEOM_BOX, halfExtents=[0.1] * 3,
-                                                          physicsClientId=client), physicsClientId=client)
+    box = pb.createMultiBody(
+        1.0, pb.createCollisionShape(pb.GEOM_BOX, halfExtents=[0.1] * 3, physicsClientId=client), physicsClientId=client
+    )
     assert pb.getDynamicsInfo(box, -1, physicsClientId=client)[11] == default("bullet_collision_margin")
-    ball = pb.createMultiBody(1.0, pb.createCollisionShape(pb.GEOM_SPHERE, radius=0.25, physicsClientId=client),
-                              physicsClientId=client)
+    ball = pb.createMultiBody(
+        1.0, pb.createCollisionShape(pb.GEOM_SPHERE, radius=0.25, physicsClientId=client), physicsClientId=client
+    )
     assert pb.getDynamicsInfo(ball, -1, physicsClientId=client)[11] == 0.25  # a sphere's margin is its radius
 
 
@@ -216,15 +226,24 @@ def drop_ball(pb, client, *, scale, breaking):
     pb.resetSimulation(physicsClientId=client)
     pb.setPhysicsEngineParameter(contactBreakingThreshold=breaking, physicsClientId=client)
     # the lengths among the solver's settings scaled too; split impulses (threshold not settable) off
-    pb.setPhysicsEngineParameter(contactSlop=1e-5 * scale, restitutionVelocityThreshold=0.2 * scale,
-                                 solverResidualThreshold=1e-7 * scale**2, useSplitImpulse=0, physicsClientId=client)
+    pb.setPhysicsEngineParameter(
+        contactSlop=1e-5 * scale,
+        restitutionVelocityThreshold=0.2 * scale,
+        solverResidualThreshold=1e-7 * scale**2,
+        useSplitImpulse=0,
+        physicsClientId=client,
+    )
     pb.setGravity(0, 0, -9.81 * scale, physicsClientId=client)
-    plane = pb.createMultiBody(0, pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=client),
-                               physicsClientId=client)
+    plane = pb.createMultiBody(
+        0, pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=client), physicsClientId=client
+    )
     pb.changeDynamics(plane, -1, collisionMargin=0.001 * scale, restitution=0.9, physicsClientId=client)
-    ball = pb.createMultiBody(1.0, pb.createCollisionShape(pb.GEOM_SPHERE, radius=0.1 * scale,
-                                                           physicsClientId=client),
-                              basePosition=[0, 0, 1.0 * scale], physicsClientId=client)
+    ball = pb.createMultiBody(
+        1.0,
+        pb.createCollisionShape(pb.GEOM_SPHERE, radius=0.1 * scale, physicsClientId=client),
+        basePosition=[0, 0, 1.0 * scale],
+        physicsClientId=client,
+    )
     pb.changeDynamics(ball, -1, restitution=0.9, physicsClientId=client)
     # the multibody damping (0.04) mixes a rate and an inverse length: off in every run
     pb.changeDynamics(ball, -1, linearDamping=0.0, angularDamping=0.0, physicsClientId=client)
@@ -261,8 +280,10 @@ def test_every_model_names_its_engine_as_the_catalogue_does(tmp_path):
     from pitheorem import engines
 
     urdf = tmp_path / "box.urdf"
-    urdf.write_text('<robot name="box"><link name="base"><inertial><mass value="1"/>'
-                    '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>')
+    urdf.write_text(
+        '<robot name="box"><link name="base"><inertial><mass value="1"/>'
+        '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>'
+    )
     for model in (engines.load(urdf), engines.load(engines.example_path("pendulum.xml"))):
         assert model.engine in ENGINES
         constants = hidden_constants(model.engine)

@@ -62,8 +62,11 @@ def load_quiet(path, **options):
 
 def exhaustive(test):
     """The slow sweep of a test over models: s = 2 and 10, each with and without controls."""
-    for mark in (pytest.mark.parametrize("controls", [False, True]), pytest.mark.parametrize("s", [2, 10]),
-                 pytest.mark.slow):
+    for mark in (
+        pytest.mark.parametrize("controls", [False, True]),
+        pytest.mark.parametrize("s", [2, 10]),
+        pytest.mark.slow,
+    ):
         test = mark(test)
     return test
 
@@ -97,8 +100,14 @@ def reloaded(name: str, solver: str | None, folder: Path, s):
 def verified(name: str, solver: str | None, folder: Path, s, controls: bool):
     model, res = searched(name, solver, folder)
     nu = model._backend.mjmodel.nu
-    return engines.verify(model, res.scalings[0], s, duration=1.0, controls=smooth(nu) if controls else None,
-                          scaled=reloaded(name, solver, folder, s))
+    return engines.verify(
+        model,
+        res.scalings[0],
+        s,
+        duration=1.0,
+        controls=smooth(nu) if controls else None,
+        scaled=reloaded(name, solver, folder, s),
+    )
 
 
 def check(name, folder, s, controls, solver=None):
@@ -141,9 +150,20 @@ def test_corpus_exhaustive(name, s, controls, folder):
 
 # -- PyBullet: URDFs of pybullet_data, dropped from 1 m onto a ground plane ---------------------
 
-URDFS = ("cartpole.urdf", "pendulum5.urdf", "sphere2.urdf", "sphere_small.urdf", "sphere_with_restitution.urdf",
-         "soccerball.urdf", "cube.urdf", "cube_small.urdf", "lego/lego.urdf", "jenga/jenga.urdf", "table/table.urdf",
-         "kuka_iiwa/model.urdf")
+URDFS = (
+    "cartpole.urdf",
+    "pendulum5.urdf",
+    "sphere2.urdf",
+    "sphere_small.urdf",
+    "sphere_with_restitution.urdf",
+    "soccerball.urdf",
+    "cube.urdf",
+    "cube_small.urdf",
+    "lego/lego.urdf",
+    "jenga/jenga.urdf",
+    "table/table.urdf",
+    "kuka_iiwa/model.urdf",
+)
 
 #: measured: not similar beyond the one-ulp baseline even at s = 2, and similar in the air (no contact): the
 #: duck and the teddy are convex decompositions whose parts' collision margins changeDynamics cannot reach
@@ -183,8 +203,9 @@ def urdf_verified(name: str, folder: Path, s, controls: bool):
     model, sc = urdf_searched(name)
     again = load_quiet(urdf_saved(name, folder, s))  # the saved settings beside the file set up the scaled scene
     nj = len(model._backend.control_dimensions())
-    return again, engines.verify(model, sc, s, duration=1.0, controls=smooth(nj) if controls and nj else None,
-                                 scaled=again)
+    return again, engines.verify(
+        model, sc, s, duration=1.0, controls=smooth(nj) if controls and nj else None, scaled=again
+    )
 
 
 def urdf_check(name, folder, s, controls):

@@ -91,8 +91,9 @@ def test_wrong_copies_are_caught(name):
         rep = engines.verify(model, sc, 10, duration=1.0, controls=u, scaled=g_back, diagnose=False)
         assert rep.excited
         assert not rep.similar
-    rep = engines.verify(model, sc, 10, duration=1.0, controls=u, scaled=limb_left_unscaled(model, right, sc),
-                         diagnose=False)
+    rep = engines.verify(
+        model, sc, 10, duration=1.0, controls=u, scaled=limb_left_unscaled(model, right, sc), diagnose=False
+    )
     assert rep.excited
     assert not rep.similar
 
@@ -161,8 +162,11 @@ def test_an_ensemble_of_one_is_the_least_and_the_seed_is_checked():
 
 ROBOTS = Path(__file__).resolve().parent / "robots"
 #: each URDF robot's scene: on the ground or on a fixed base, damping and split impulses off (see the corpus)
-URDF_SCENES = {name: {key: tuple(v) if isinstance(v, list) else v for key, v in scene.items()}
-               for name, scene in json.loads((ROBOTS / "scenes.json").read_text()).items() if name != "_comment"}
+URDF_SCENES = {
+    name: {key: tuple(v) if isinstance(v, list) else v for key, v in scene.items()}
+    for name, scene in json.loads((ROBOTS / "scenes.json").read_text()).items()
+    if name != "_comment"
+}
 
 
 def robot_files():
@@ -189,8 +193,14 @@ def robot(name):
 def mass_that_matters(model, u):
     """A mass or density of the model that changes its run when doubled (MuJoCo's or PyBullet's own runs)."""
     for p in model.parameters:
-        if (p.name.endswith(("_mass", "_density")) and not p.mixed and len(p.value) == 1 and p.value[0] > 0
-                and p.source != "derived" and moves_apart(model, model.multiplied(**{p.name: 2.0}), u, n=100)):
+        if (
+            p.name.endswith(("_mass", "_density"))
+            and not p.mixed
+            and len(p.value) == 1
+            and p.value[0] > 0
+            and p.source != "derived"
+            and moves_apart(model, model.multiplied(**{p.name: 2.0}), u, n=100)
+        ):
             return p
     return None
 
@@ -216,7 +226,7 @@ def test_wrong_copies_of_every_robot_are_caught(name):
     right = model.scaled(sc, 10)
     honest = engines.verify(model, sc, 10, duration=1.0, controls=u, scaled=right.multiplied(g=0.1), diagnose=False)
     if not honest.excited:  # the gripper's fingers rest on its palm: a run that moves nothing proves nothing,
-        return              # and the report says so (excited False) instead of a verdict
+        return  # and the report says so (excited False) instead of a verdict
     checked = 0
     if moves_apart(model, model.multiplied(g=2), u):
         assert not honest.similar
@@ -231,14 +241,29 @@ def test_wrong_copies_of_every_robot_are_caught(name):
 
 
 def test_all_but_one_robot_moves_under_the_smooth_input():
-    still = [name for name in robot_files() if not engines.verify(
-        robot(name), pt.search(robot(name).system(), scale={"g": 1}).scalings[0], 4, duration=1.0,
-        controls=engines.smooth_controls(robot(name), amplitude=0.2), diagnose=False).excited]
+    still = [
+        name
+        for name in robot_files()
+        if not engines.verify(
+            robot(name),
+            pt.search(robot(name).system(), scale={"g": 1}).scalings[0],
+            4,
+            duration=1.0,
+            controls=engines.smooth_controls(robot(name), amplitude=0.2),
+            diagnose=False,
+        ).excited
+    ]
     assert still == ["mjcf/attach/gripper/gripper.xml"]
 
 
-PYBULLET_CORPUS = ("cartpole.urdf", "pendulum5.urdf", "sphere2.urdf", "cube.urdf", "lego/lego.urdf",
-                   "kuka_iiwa/model.urdf")
+PYBULLET_CORPUS = (
+    "cartpole.urdf",
+    "pendulum5.urdf",
+    "sphere2.urdf",
+    "cube.urdf",
+    "lego/lego.urdf",
+    "kuka_iiwa/model.urdf",
+)
 
 
 @pytest.mark.parametrize("name", PYBULLET_CORPUS)
@@ -246,8 +271,13 @@ def test_wrong_copies_of_pybullet_data_models_are_caught(name):
     pybullet_data = pytest.importorskip("pybullet_data")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", engines.UnscalableModelWarning)
-        model = engines.load(Path(pybullet_data.getDataPath()) / name, base_position=(0, 0, 1), ground=True,
-                             damping=0.0, split_impulse=False).with_values(solverResidualThreshold=0.0)
+        model = engines.load(
+            Path(pybullet_data.getDataPath()) / name,
+            base_position=(0, 0, 1),
+            ground=True,
+            damping=0.0,
+            split_impulse=False,
+        ).with_values(solverResidualThreshold=0.0)
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     u = engines.smooth_controls(model, amplitude=0.2)
     right = model.scaled(sc, 10)
@@ -277,7 +307,7 @@ def test_an_equality_constraint_that_is_not_scale_free_is_named_by_its_counter_r
     exponents = np.array([sc.exponent_of(d) for d in dims], dtype=float)
     a, b = hand._backend.variant(inactive_equalities=(weld,)), copy._backend.variant(inactive_equalities=(weld,))
     first, second = a.run(200), b.run(200)
-    assert np.array_equal(first, second / 4.0 ** exponents)
+    assert np.array_equal(first, second / 4.0**exponents)
 
 
 def test_contacts_that_touch_alike_are_no_cause_beside_the_solver_that_iterates_on_them(tmp_path):
@@ -291,8 +321,11 @@ def test_contacts_that_touch_alike_are_no_cause_beside_the_solver_that_iterates_
     assert [c.kind for c in rep.causes] == ["solver", "solver"]
     box = model._backend.variant(contacts=False)  # independent of verify: with contacts off they agree bit for bit
     copy = model.scaled(sc, 4)._backend.variant(contacts=False)
-    assert np.array_equal(box.run(200), copy.run(200) / 4 ** np.array(
-        [sc.exponent_of(d) for d in model._backend.coordinate_dimensions()[1]], dtype=float))
+    assert np.array_equal(
+        box.run(200),
+        copy.run(200)
+        / 4 ** np.array([sc.exponent_of(d) for d in model._backend.coordinate_dimensions()[1]], dtype=float),
+    )
 
 
 def test_a_model_whose_coordinates_are_all_angles_is_not_held_to_bits_at_s_10():
@@ -333,7 +366,8 @@ def test_the_solver_remedy_names_every_stopping_rule_and_it_works(tmp_path):
         '<geom type="plane" size="2 2 0.1"/><body pos="0 0 0.4"><freejoint/>'
         '<geom type="box" size="0.1 0.05 0.03" mass="2"/><body pos="0.1 0 0"><joint name="hip" axis="0 1 0" '
         'range="-1 1" damping="0.5"/><geom type="capsule" fromto="0 0 0 0 0 -0.45" size="0.02"/></body></body>'
-        '</worldbody><actuator><position joint="hip" kp="20" kv="1" ctrlrange="-1 1"/></actuator></mujoco>')
+        '</worldbody><actuator><position joint="hip" kp="20" kv="1" ctrlrange="-1 1"/></actuator></mujoco>'
+    )
     model, sc = searched(leg)
     u = engines.smooth_controls(model)
     rep = engines.verify(model, sc, 4, duration=1.0, controls=u)

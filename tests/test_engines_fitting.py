@@ -30,14 +30,24 @@ def superball_scaled(s):
 
 def test_ranges_keep_a_factor_clear_of_each_threshold_on_the_side_the_engine_takes():
     mass = Parameter("body_b_mass", "body 'b' mass", (1.0,), Dimension.parse("M"), "file", "file")
-    rolling = Parameter("geom_g_friction_torsional_rolling", "geom 'g' friction torsional rolling", (1e-3, 1e-4),
-                        Dimension.parse("L"), "file", "file")
-    ctrl = Parameter("actuator_a_ctrlrange", "actuator 'a' ctrlrange", (-1.0, 1.0), Dimension.parse("M L T^-2"),
-                     "file", "file")
+    rolling = Parameter(
+        "geom_g_friction_torsional_rolling",
+        "geom 'g' friction torsional rolling",
+        (1e-3, 1e-4),
+        Dimension.parse("L"),
+        "file",
+        "file",
+    )
+    ctrl = Parameter(
+        "actuator_a_ctrlrange", "actuator 'a' ctrlrange", (-1.0, 1.0), Dimension.parse("M L T^-2"), "file", "file"
+    )
     size = Parameter("geom_g_size", "geom 'g' size", (1.0,), Dimension.parse("L"), "file", "file")
     ranges = engine_ranges("mujoco", [mass, rolling, ctrl, size])
-    assert ranges == {"body_b_mass": (1e-14, 1e14), "geom_g_friction_torsional_rolling": (1e-4, OPEN[1]),
-                      "actuator_a_ctrlrange": (OPEN[0], 1e9)}
+    assert ranges == {
+        "body_b_mass": (1e-14, 1e14),
+        "geom_g_friction_torsional_rolling": (1e-4, OPEN[1]),
+        "actuator_a_ctrlrange": (OPEN[0], 1e9),
+    }
     assert engine_ranges("mujoco", [mass], clearance=100)["body_b_mass"] == (1e-13, 1e13)
     with pytest.raises(pt.InvalidRequestError, match="clearance"):
         engine_ranges("mujoco", [mass], clearance=0.5)
@@ -81,8 +91,11 @@ def test_a_model_whose_numbers_are_too_large_is_fitted_into_smaller_units():
 
 def test_fit_units_on_a_system_reads_each_numbers_kind_from_its_name():
     tiny = superball_scaled(1e-3)
-    values = {p.name: min(abs(v) for v in p.value if v) for p in tiny.parameters
-              if not p.mixed and any(v != 0 for v in p.value)}
+    values = {
+        p.name: min(abs(v) for v in p.value if v)
+        for p in tiny.parameters
+        if not p.mixed and any(v != 0 for v in p.value)
+    }
     fit = pt.fit_units(tiny.system(), values, engine="mujoco")
     assert fit.feasible
     assert fit.factors["L"] >= 10

@@ -39,8 +39,10 @@ def test_a_urdf_file_does_not_run_in_an_mjcf_engine(tmp_path):
 def test_options_an_engine_does_not_take_are_refused_by_name():
     with pytest.raises(pt.InvalidRequestError) as caught:
         engines.load(PENDULUM, fixed_base=True)
-    assert str(caught.value) == ("engine 'mujoco' takes no option 'fixed_base' (its options: none, an MJCF file "
-                                 "holds its settings); 'fixed_base' is for URDF files in 'pybullet'")
+    assert str(caught.value) == (
+        "engine 'mujoco' takes no option 'fixed_base' (its options: none, an MJCF file "
+        "holds its settings); 'fixed_base' is for URDF files in 'pybullet'"
+    )
     assert caught.value.culprit == "fixed_base"
 
 

@@ -165,8 +165,17 @@ def test_scaled_model_compiles_to_the_scaled_numbers(tmp_path):
     # saved, reloaded: the same numbers (full precision)
     out = scaled.save(tmp_path / "scaled.xml")
     again = engines.load(out)._backend.mjmodel
-    for field in ("body_mass", "body_inertia", "geom_size", "dof_damping", "jnt_stiffness", "actuator_gainprm",
-                  "actuator_biasprm", "tendon_stiffness", "geom_solref"):
+    for field in (
+        "body_mass",
+        "body_inertia",
+        "geom_size",
+        "dof_damping",
+        "jnt_stiffness",
+        "actuator_gainprm",
+        "actuator_biasprm",
+        "tendon_stiffness",
+        "geom_solref",
+    ):
         assert np.array_equal(getattr(again, field), getattr(b, field)), field
 
 
@@ -214,16 +223,25 @@ def test_with_values_and_bad_requests():
         with pytest.raises(pt.InvalidRequestError):
             model.scaled(sc, bad)
     # the check is isinstance, not a list of attributes: a look-alike is refused
-    look_alike = SimpleNamespace(system=sc.system, powers=sc.vector, vector=sc.vector, exponent_of=sc.exponent_of,
-                                 units=sc.unit_change_vector, unit_change_vector=sc.unit_change_vector)
+    look_alike = SimpleNamespace(
+        system=sc.system,
+        powers=sc.vector,
+        vector=sc.vector,
+        exponent_of=sc.exponent_of,
+        units=sc.unit_change_vector,
+        unit_change_vector=sc.unit_change_vector,
+    )
     with pytest.raises(pt.InvalidRequestError, match="Scaling, got SimpleNamespace"):
         model.scaled(look_alike, 2)
 
 
-@pytest.mark.parametrize(("name", "element", "reason"), [
-    ("missing_mesh.xml", "mesh 'hull'", "no_such_hull.stl"),
-    ("unknown_element.xml", "gizmo", "unrecognized element"),
-])
+@pytest.mark.parametrize(
+    ("name", "element", "reason"),
+    [
+        ("missing_mesh.xml", "mesh 'hull'", "no_such_hull.stl"),
+        ("unknown_element.xml", "gizmo", "unrecognized element"),
+    ],
+)
 def test_bad_files_name_the_element(name, element, reason):
     with pytest.raises(EngineModelError) as caught:
         load(name)
@@ -244,8 +262,11 @@ def test_missing_and_non_xml_files(tmp_path):
 
 
 def test_mixed_fixed_tendon_cannot_be_rewritten(tmp_path):
-    text = (DATA / "tendon_actuators.xml").read_text().replace(
-        '<joint joint="wrist" coef="-0.5"/>', '<joint joint="slide" coef="-0.5"/>')
+    text = (
+        (DATA / "tendon_actuators.xml")
+        .read_text()
+        .replace('<joint joint="wrist" coef="-0.5"/>', '<joint joint="slide" coef="-0.5"/>')
+    )
     path = tmp_path / "mixed.xml"
     path.write_text(text)
     model = engines.load(path)
@@ -258,22 +279,29 @@ def test_mixed_fixed_tendon_cannot_be_rewritten(tmp_path):
 
 def test_unknown_sensor_and_numeric_warn(tmp_path):
     path = tmp_path / "numeric.xml"
-    path.write_text('<mujoco><custom><numeric name="frame_skip" data="5"/></custom>'
-                    '<worldbody><body><joint/><geom size="0.1"/></body></worldbody></mujoco>')
+    path.write_text(
+        '<mujoco><custom><numeric name="frame_skip" data="5"/></custom>'
+        '<worldbody><body><joint/><geom size="0.1"/></body></worldbody></mujoco>'
+    )
     with pytest.warns(engines.UnscalableModelWarning, match="numeric 'frame_skip'"):
         engines.load(path)
 
 
 def _custom_model(tmp_path, custom: str):
     path = tmp_path / "custom.xml"
-    path.write_text(f"<mujoco><custom>{custom}</custom>"
-                    '<worldbody><body><joint type="slide"/><geom size="0.1"/></body></worldbody></mujoco>')
+    path.write_text(
+        f"<mujoco><custom>{custom}</custom>"
+        '<worldbody><body><joint type="slide"/><geom size="0.1"/></body></worldbody></mujoco>'
+    )
     return path
 
 
 def test_custom_numerics_with_a_declared_dimension_are_parameters(tmp_path):
-    path = _custom_model(tmp_path, '<numeric name="gain" data="4 0.5"/><text name="dimension:gain" data="L T^-1"/>'
-                                   '<numeric name="ratio" data="2"/><text name="dimension:ratio" data="1"/>')
+    path = _custom_model(
+        tmp_path,
+        '<numeric name="gain" data="4 0.5"/><text name="dimension:gain" data="L T^-1"/>'
+        '<numeric name="ratio" data="2"/><text name="dimension:ratio" data="1"/>',
+    )
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # declared numerics warn no more
         model = engines.load(path)
@@ -289,11 +317,17 @@ def test_custom_numerics_with_a_declared_dimension_are_parameters(tmp_path):
     assert saved.parameter("numeric_gain").dimension_text == "L T^-1"  # the declaration travels with the file
 
 
-@pytest.mark.parametrize(("custom", "culprit", "hint"), [
-    ('<numeric name="gain" data="4"/><text name="dimension:gain" data="L T^^-1"/>', "dimension:gain",
-     "dimension formula"),
-    ('<numeric name="gain" data="4"/><text name="dimension:gian" data="L"/>', "dimension:gian", "'gain'"),
-])
+@pytest.mark.parametrize(
+    ("custom", "culprit", "hint"),
+    [
+        (
+            '<numeric name="gain" data="4"/><text name="dimension:gain" data="L T^^-1"/>',
+            "dimension:gain",
+            "dimension formula",
+        ),
+        ('<numeric name="gain" data="4"/><text name="dimension:gian" data="L"/>', "dimension:gian", "'gain'"),
+    ],
+)
 def test_bad_dimension_declarations_name_the_text(tmp_path, custom, culprit, hint):
     with pytest.raises(EngineModelError) as caught:
         engines.load(_custom_model(tmp_path, custom))
@@ -315,18 +349,23 @@ _PENDULUM = """<mujoco model="p">
 """
 
 
-@pytest.mark.parametrize(("numbers", "element", "attribute"), [
-    ({"damping": "nan"}, "<joint name='h'>", "damping='nan'"),
-    ({"stiffness": "inf"}, "<joint name='h'>", "stiffness='inf'"),
-    ({"timestep": "nan"}, "<option>", "timestep='nan'"),
-    ({"damping": "1e999"}, "<joint name='h'>", "damping='1e999'"),
-])
+@pytest.mark.parametrize(
+    ("numbers", "element", "attribute"),
+    [
+        ({"damping": "nan"}, "<joint name='h'>", "damping='nan'"),
+        ({"stiffness": "inf"}, "<joint name='h'>", "stiffness='inf'"),
+        ({"timestep": "nan"}, "<option>", "timestep='nan'"),
+        ({"damping": "1e999"}, "<joint name='h'>", "damping='1e999'"),
+    ],
+)
 def test_nan_and_infinite_numbers_are_refused_by_name(tmp_path, numbers, element, attribute):
     path = tmp_path / "bad.xml"
     path.write_text(_PENDULUM.format(**{"timestep": "0.002", "damping": "0.1", "stiffness": "0", **numbers}))
     with pytest.raises(EngineModelError) as caught:
         engines.load(path)
-    assert str(caught.value) == f"{path}: {element}: {attribute} is not a finite number; a model holds finite numbers only"
+    assert (
+        str(caught.value) == f"{path}: {element}: {attribute} is not a finite number; a model holds finite numbers only"
+    )
 
 
 def test_the_same_file_with_finite_numbers_loads_them():
@@ -343,8 +382,11 @@ def test_the_same_file_with_finite_numbers_loads_them():
 
 def test_a_byte_that_is_not_utf8_is_refused_by_line(tmp_path):
     path = tmp_path / "latin1.xml"
-    path.write_bytes(_PENDULUM.format(timestep="0.002", damping="0.1", stiffness="0")
-                     .replace('name="b"', 'name="b\xe9"').encode("latin-1"))
+    path.write_bytes(
+        _PENDULUM.format(timestep="0.002", damping="0.1", stiffness="0")
+        .replace('name="b"', 'name="b\xe9"')
+        .encode("latin-1")
+    )
     with pytest.raises(EngineModelError, match=r"latin1\.xml: line 4: byte 0xe9 .* not UTF-8"):
         engines.load(path)
 
@@ -390,14 +432,21 @@ def test_assets_pairs_statistics_compiler_bounds_and_direct_solrefs_have_their_d
         model = load("rich_elements.xml")
     got = {p.name: (p.dimension_text, p.value) for p in model.parameters}
     expected = {
-        "stat_meanmass": ("M", (2.0,)), "stat_meansize": ("L", (0.5,)), "stat_extent": ("L", (3.0,)),
-        "stat_center": ("L", (0.0, 0.0, 1.0)), "compiler_boundmass": ("M", (0.01,)),
-        "compiler_boundinertia": ("M L^2", (0.001,)), "compiler_settotalmass": ("M", (3.0,)),
+        "stat_meanmass": ("M", (2.0,)),
+        "stat_meansize": ("L", (0.5,)),
+        "stat_extent": ("L", (3.0,)),
+        "stat_center": ("L", (0.0, 0.0, 1.0)),
+        "compiler_boundmass": ("M", (0.01,)),
+        "compiler_boundinertia": ("M L^2", (0.001,)),
+        "compiler_settotalmass": ("M", (3.0,)),
         "hfield_ground_size": ("L", (1.0, 1.0, 0.1, 0.05)),
         # a negative solref is a stiffness and a damping of the reference acceleration, not a time constant
-        "joint_h_solref_limit_stiffness": ("T^-2", (-100.0,)), "joint_h_solref_limit_damping": ("T^-1", (-10.0,)),
-        "pair0_margin": ("L", (0.01,)), "pair0_gap": ("L", (0.002,)),
-        "pair0_solref_stiffness": ("T^-2", (-200.0,)), "pair0_solref_damping": ("T^-1", (-20.0,)),
+        "joint_h_solref_limit_stiffness": ("T^-2", (-100.0,)),
+        "joint_h_solref_limit_damping": ("T^-1", (-10.0,)),
+        "pair0_margin": ("L", (0.01,)),
+        "pair0_gap": ("L", (0.002,)),
+        "pair0_solref_stiffness": ("T^-2", (-200.0,)),
+        "pair0_solref_damping": ("T^-1", (-20.0,)),
     }
     assert {name: got[name] for name in expected} == expected
     # inline vertices are the length scaled; their scale (a factor on them) is not scaled too (s^2)
@@ -408,8 +457,10 @@ def test_assets_pairs_statistics_compiler_bounds_and_direct_solrefs_have_their_d
 
 def test_a_flex_element_is_refused_by_name(tmp_path):
     path = tmp_path / "flex.xml"
-    path.write_text('<mujoco><worldbody><flexcomp name="cloth" type="grid" count="2 2 1" spacing="0.1 0.1 0.1" '
-                    'dim="2"/></worldbody></mujoco>')
+    path.write_text(
+        '<mujoco><worldbody><flexcomp name="cloth" type="grid" count="2 2 1" spacing="0.1 0.1 0.1" '
+        'dim="2"/></worldbody></mujoco>'
+    )
     with pytest.raises(EngineModelError, match="flex elements cannot be scaled"):
         engines.load(path)
 
@@ -459,11 +510,13 @@ def test_a_file_refused_for_a_threshold_loads_as_a_table_and_converts_into_units
     assert mm.parameter("body_s1_mass").value[0] == pytest.approx(1050 * volume * 1e6, rel=1e-12)
 
 
-MUSCLE = ('<mujoco><option timestep="0.002"/><worldbody><site name="a"/><body pos="0 0 -0.3">'
-          '<joint name="j" type="slide" axis="0 0 1" limited="true" range="-0.1 0.1"/>'
-          '<geom size="0.05" mass="1"/><site name="b"/></body></worldbody>'
-          '<tendon><spatial name="t"><site site="a"/><site site="b"/></spatial></tendon>'
-          '<actuator><muscle name="m" tendon="t" FORCE/></actuator></mujoco>')
+MUSCLE = (
+    '<mujoco><option timestep="0.002"/><worldbody><site name="a"/><body pos="0 0 -0.3">'
+    '<joint name="j" type="slide" axis="0 0 1" limited="true" range="-0.1 0.1"/>'
+    '<geom size="0.05" mass="1"/><site name="b"/></body></worldbody>'
+    '<tendon><spatial name="t"><site site="a"/><site site="b"/></spatial></tendon>'
+    '<actuator><muscle name="m" tendon="t" FORCE/></actuator></mujoco>'
+)
 
 
 def test_a_muscle_is_read_with_its_dimensions_and_its_found_length_range_is_stated_in_a_copy(tmp_path):
@@ -486,8 +539,12 @@ def test_a_muscle_is_read_with_its_dimensions_and_its_found_length_range_is_stat
     excite = engines.verify(model, sc, 4, duration=1.0, scaled=saved, controls=lambda t: [0.5 + 0.4 * np.sin(6 * t)])
     assert excite.exact
     assert excite.excited
-    again = mujoco.MjModel.from_xml_string(MUSCLE.replace("FORCE", 'force="200"').replace("0.3", "1.2").replace(
-        "0.05", "0.2").replace("-0.1 0.1", "-0.4 0.4"))  # the copy without the stated range: found again, not x4
+    again = mujoco.MjModel.from_xml_string(
+        MUSCLE.replace("FORCE", 'force="200"')
+        .replace("0.3", "1.2")
+        .replace("0.05", "0.2")
+        .replace("-0.1 0.1", "-0.4 0.4")
+    )  # the copy without the stated range: found again, not x4
     assert list(again.actuator_lengthrange[0]) != [4 * v for v in found.value]
 
 

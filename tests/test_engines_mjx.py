@@ -79,8 +79,7 @@ def test_float64_on_request_and_jax_left_as_it_was():
 
 # the shipped pendulum and gymnasium's hopper (contacts, and margins on its geoms: the copy's static body_margin
 # differs); the rest of gymnasium's files run in benchmarks/mjx_corpus.py
-@pytest.mark.parametrize("path", [PENDULUM, ASSETS / "hopper.xml"],
-                         ids=lambda p: Path(p).name)
+@pytest.mark.parametrize("path", [PENDULUM, ASSETS / "hopper.xml"], ids=lambda p: Path(p).name)
 def test_s4_reproduces_the_original_bit_for_bit_in_float32(path):
     with warnings.catch_warnings():  # gymnasium's custom numerics (frame_skip) have no known dimension
         warnings.simplefilter("ignore", engines.UnscalableModelWarning)
@@ -128,28 +127,46 @@ def test_twins_move_every_number_by_one_float32_ulp(pendulum):
         if field == "opt.timestep":
             assert np.array_equal(after[field], value)
             continue
-        assert np.array_equal(ulp[nonzero], np.abs(np.spacing(value[nonzero], dtype=np.float32).astype(float))
-                              ) or np.all(ulp[nonzero] <= np.abs(np.spacing(value[nonzero])).astype(float) * 2)
+        assert np.array_equal(
+            ulp[nonzero], np.abs(np.spacing(value[nonzero], dtype=np.float32).astype(float))
+        ) or np.all(ulp[nonzero] <= np.abs(np.spacing(value[nonzero])).astype(float) * 2)
         assert np.all(after[field][~nonzero] == 0)
         moved += int(nonzero.sum())
     assert moved > 20
 
 
 UNSUPPORTED = {
-    "pgs": ('<mujoco><option solver="PGS"/><worldbody><body><joint type="hinge"/><geom size="0.1" mass="1"/>'
-            "</body></worldbody></mujoco>", "option solver", "MJX does not support the PGS solver"),
-    "box_cylinder": ('<mujoco><worldbody><geom type="cylinder" size="0.1 0.1"/><body pos="0 0 1"><freejoint/>'
-                     '<geom type="box" size="0.1 0.1 0.1"/></body></worldbody></mujoco>', "geom pair",
-                     "collisions not implemented"),
+    "pgs": (
+        '<mujoco><option solver="PGS"/><worldbody><body><joint type="hinge"/><geom size="0.1" mass="1"/>'
+        "</body></worldbody></mujoco>",
+        "option solver",
+        "MJX does not support the PGS solver",
+    ),
+    "box_cylinder": (
+        '<mujoco><worldbody><geom type="cylinder" size="0.1 0.1"/><body pos="0 0 1"><freejoint/>'
+        '<geom type="box" size="0.1 0.1 0.1"/></body></worldbody></mujoco>',
+        "geom pair",
+        "collisions not implemented",
+    ),
     # MJX's own wording after "MJX does not support": the culprit is the element it names, or "model"
-    "implicit": ('<mujoco><option integrator="implicit"/><worldbody><body><joint type="hinge"/>'
-                 '<geom size="0.1" mass="1"/></body></worldbody></mujoco>', "option", "mjINT_IMPLICIT"),
-    "contact_sensor": ('<mujoco><worldbody><body name="b"><joint type="hinge"/><geom size="0.1" mass="1"/>'
-                       '</body></worldbody><sensor><contact body1="b"/></sensor></mujoco>', "sensor",
-                       "Contact sensor with body matching"),
-    "fluid_implicitfast": ('<mujoco><option integrator="implicitfast" density="1.2"/><worldbody><body>'
-                           '<joint type="hinge"/><geom size="0.1" mass="1"/></body></worldbody></mujoco>', "model",
-                           "fluid drag"),
+    "implicit": (
+        '<mujoco><option integrator="implicit"/><worldbody><body><joint type="hinge"/>'
+        '<geom size="0.1" mass="1"/></body></worldbody></mujoco>',
+        "option",
+        "mjINT_IMPLICIT",
+    ),
+    "contact_sensor": (
+        '<mujoco><worldbody><body name="b"><joint type="hinge"/><geom size="0.1" mass="1"/>'
+        '</body></worldbody><sensor><contact body1="b"/></sensor></mujoco>',
+        "sensor",
+        "Contact sensor with body matching",
+    ),
+    "fluid_implicitfast": (
+        '<mujoco><option integrator="implicitfast" density="1.2"/><worldbody><body>'
+        '<joint type="hinge"/><geom size="0.1" mass="1"/></body></worldbody></mujoco>',
+        "model",
+        "fluid drag",
+    ),
 }
 
 
@@ -237,8 +254,9 @@ def test_mjx_takes_cylinders_shorter_than_2_mm_as_lying_on_a_plane():
 
     def contacts(h):  # a cylinder of radius 0.01 standing on the plane z = 0
         m = SimpleNamespace(geom_size=np.array([[0, 0, 0], [0.01, h, 0]], np.float32))
-        d = SimpleNamespace(geom_xpos=np.array([[0, 0, 0], [0, 0, h]], np.float32),
-                            geom_xmat=np.array([np.eye(3)] * 2, np.float32))
+        d = SimpleNamespace(
+            geom_xpos=np.array([[0, 0, 0], [0, 0, h]], np.float32), geom_xmat=np.array([np.eye(3)] * 2, np.float32)
+        )
         dist, _, _ = plane_cylinder(m, d, None, jax.numpy.array([[0, 1]]))
         return np.asarray(dist, float)
 
@@ -256,9 +274,11 @@ def test_numbers_beyond_float32s_range_are_flushed_or_infinite_and_checked(tmp_p
     assert float(product(np.float32(2e-38), np.float32(0.5))) == 0
     assert float(product(np.float32(2e38), np.float32(2))) == np.inf
     path = tmp_path / "extreme.xml"
-    path.write_text('<mujoco><worldbody><body><joint name="a" type="hinge" damping="1e-40"/><geom size="0.1"/>'
-                    '</body><body pos="1 0 0"><joint name="b" type="hinge" damping="1e39"/><geom size="0.1"/>'
-                    "</body></worldbody></mujoco>")
+    path.write_text(
+        '<mujoco><worldbody><body><joint name="a" type="hinge" damping="1e-40"/><geom size="0.1"/>'
+        '</body><body pos="1 0 0"><joint name="b" type="hinge" damping="1e39"/><geom size="0.1"/>'
+        "</body></worldbody></mujoco>"
+    )
     with pytest.warns(RuntimeWarning, match="overflow encountered in cast"):  # JAX, putting 1e39 in float32
         model = engines.load(path, engine="mjx")
     damping = model._backend.stored_numbers()["dof_damping"]
@@ -314,8 +334,11 @@ def test_a_shrunk_hopper_is_flagged_for_mjx_and_fitted_units_clear_it(tmp_path):
     assert {c.element for c in engines.check(tenth) if "mjx_" in c.detail} == own
     stuck = pt.fit_units(tenth, engine="mjx")
     assert not stuck.feasible
-    assert {b.name for b in stuck.conflict} == {"geom_foot_geom_density", "joint_foot_joint_armature",
-                                                "geom_foot_geom_half_length"}
+    assert {b.name for b in stuck.conflict} == {
+        "geom_foot_geom_density",
+        "joint_foot_joint_armature",
+        "geom_foot_geom_half_length",
+    }
     fit = pt.fit_units(tenth, engine="mjx", nice=2)
     assert fit.feasible
     assert fit.factors["L"] == 2048
@@ -340,9 +363,11 @@ def test_mjx_floors_the_fluid_models_masses_and_moments_at_1e_12(tmp_path):
     forward = jax.jit(mjx.forward)
 
     def text(mass, moment):
-        return ('<mujoco><option viscosity="1" density="1" gravity="0 0 0"/><worldbody><body name="speck">'
-                f'<freejoint/><inertial pos="0 0 0" mass="{mass}" diaginertia="{moment} {moment} {moment}"/>'
-                '<geom size="0.001" contype="0" conaffinity="0" mass="0"/></body></worldbody></mujoco>')
+        return (
+            '<mujoco><option viscosity="1" density="1" gravity="0 0 0"/><worldbody><body name="speck">'
+            f'<freejoint/><inertial pos="0 0 0" mass="{mass}" diaginertia="{moment} {moment} {moment}"/>'
+            '<geom size="0.001" contype="0" conaffinity="0" mass="0"/></body></worldbody></mujoco>'
+        )
 
     def ratio(mass, moment):  # MJX's force and torque over MuJoCo's
         m = mujoco.MjModel.from_xml_string(text(mass, moment))
@@ -421,8 +446,7 @@ FILTERED = """<mujoco><worldbody><geom name="ground" type="plane" size="1 1 0.1"
   <contact><exclude body1="c" body2="a"/><pair geom1="d" geom2="a"/></contact></mujoco>"""
 
 
-@pytest.mark.parametrize("name", ["hopper.xml", "walker2d.xml", "ant.xml", "humanoid.xml", "reacher.xml",
-                                  "filtered"])
+@pytest.mark.parametrize("name", ["hopper.xml", "walker2d.xml", "ant.xml", "humanoid.xml", "reacher.xml", "filtered"])
 def test_the_pairs_thresholds_reads_are_mjxs_own(name):
     import mujoco
     from mujoco.mjx._src.collision_driver import geom_pairs
@@ -430,8 +454,11 @@ def test_the_pairs_thresholds_reads_are_mjxs_own(name):
     from pitheorem.engines.thresholds import _FILTERPARENT, _collision_pairs
 
     assert mujoco.mjtDisableBit.mjDSBL_FILTERPARENT == _FILTERPARENT
-    m = (mujoco.MjModel.from_xml_string(FILTERED) if name == "filtered"
-         else mujoco.MjModel.from_xml_path(str(ASSETS / name)))
+    m = (
+        mujoco.MjModel.from_xml_string(FILTERED)
+        if name == "filtered"
+        else mujoco.MjModel.from_xml_path(str(ASSETS / name))
+    )
     theirs = {tuple(sorted((int(a), int(b)))) for a, b, _ in geom_pairs(m)}
     plane = int(mujoco.mjtGeom.mjGEOM_PLANE)
     ours = {(a, b) for a, b in _collision_pairs(m) if not m.geom_type[a] == m.geom_type[b] == plane}
@@ -439,7 +466,8 @@ def test_the_pairs_thresholds_reads_are_mjxs_own(name):
     # with the parent filter off, a body's geoms meet its parent's too
     m.opt.disableflags |= _FILTERPARENT
     assert {tuple(sorted((int(a), int(b)))) for a, b, _ in geom_pairs(m)} == {
-        (a, b) for a, b in _collision_pairs(m) if not m.geom_type[a] == m.geom_type[b] == plane}
+        (a, b) for a, b in _collision_pairs(m) if not m.geom_type[a] == m.geom_type[b] == plane
+    }
 
 
 @pytest.mark.parametrize("name", ["hopper.xml", "ant.xml"])
@@ -473,8 +501,9 @@ def test_the_static_arrays_taken_from_the_original_are_never_read_by_mjx():
 
 def test_a_file_mujoco_refuses_is_refused_with_mujocos_reason(tmp_path):
     speck = tmp_path / "speck.xml"  # a mass below MuJoCo's threshold: its compiler refuses the file
-    speck.write_text('<mujoco><worldbody><body><freejoint/><geom size="1e-6" density="1000"/>'
-                     "</body></worldbody></mujoco>")
+    speck.write_text(
+        '<mujoco><worldbody><body><freejoint/><geom size="1e-6" density="1000"/></body></worldbody></mujoco>'
+    )
     with pytest.raises(engines.EngineModelError, match="mass and inertia of moving bodies") as caught:
         engines.load(speck, engine="mjx")
     assert str(caught.value) == str(engines.load(speck)._backend.refusal)  # as MuJoCo's loader has it
@@ -483,16 +512,21 @@ def test_a_file_mujoco_refuses_is_refused_with_mujocos_reason(tmp_path):
 def test_a_scaled_copy_shares_the_batch_unless_a_heightfield_reads_its_bounds(pendulum, tmp_path):
     # the pendulum's copy runs with the original's geom_rbound_hfield (never read without a heightfield)
     copy = pendulum.scaled(time_free(pendulum), 4)._backend
-    mine, theirs = copy.device_model()._impl.geom_rbound_hfield, pendulum._backend.device_model()._impl.geom_rbound_hfield
+    mine, theirs = (
+        copy.device_model()._impl.geom_rbound_hfield,
+        pendulum._backend.device_model()._impl.geom_rbound_hfield,
+    )
     assert not np.array_equal(mine, theirs)
     aligned = mjx_backend._aligned(copy, pendulum._backend)
     assert np.array_equal(aligned._impl.geom_rbound_hfield, theirs)
     assert np.array_equal(aligned.opt.gravity, copy.device_model().opt.gravity)  # the rest is the copy's own
     # with a heightfield the bounds size its collision patch: the copy keeps its own
     terrain = tmp_path / "terrain.xml"
-    terrain.write_text('<mujoco><asset><hfield name="h" nrow="3" ncol="3" size="1 1 0.1 0.1" '
-                       'elevation="0 0 0 0 1 0 0 0 0"/></asset><worldbody><geom type="hfield" hfield="h"/>'
-                       '<body pos="0 0 1"><freejoint/><geom type="sphere" size="0.1"/></body></worldbody></mujoco>')
+    terrain.write_text(
+        '<mujoco><asset><hfield name="h" nrow="3" ncol="3" size="1 1 0.1 0.1" '
+        'elevation="0 0 0 0 1 0 0 0 0"/></asset><worldbody><geom type="hfield" hfield="h"/>'
+        '<body pos="0 0 1"><freejoint/><geom type="sphere" size="0.1"/></body></worldbody></mujoco>'
+    )
     ground = engines.load(terrain, engine="mjx")
     scaled_ground = ground.scaled(time_free(ground), 4)._backend
     assert mjx_backend._aligned(scaled_ground, ground._backend) is scaled_ground.device_model()
@@ -505,8 +539,16 @@ def test_a_batch_starts_from_given_states_nudged_by_one_float32_ulp(pendulum):
     n = round(DURATION / b.timestep())  # the batch size and length of the verifications above: compiled once
     given = np.array([0.5, -0.25])  # a first row: qpos, qvel (the pendulum has no activation)
     inputs = np.full((n, 1), 0.1)
-    runs = b.run_many(n, [(b, None, False, None), (b, None, True, given), (b, None, False, given),
-                          (b, inputs, False, None), (b, lambda t: [0.1], False, None)])
+    runs = b.run_many(
+        n,
+        [
+            (b, None, False, None),
+            (b, None, True, given),
+            (b, None, False, given),
+            (b, inputs, False, None),
+            (b, lambda t: [0.1], False, None),
+        ],
+    )
     swinging = runs[2]
     k = n // 2
     state = swinging[k]
@@ -518,7 +560,7 @@ def test_a_batch_starts_from_given_states_nudged_by_one_float32_ulp(pendulum):
     np.testing.assert_allclose(from_state[0][: n - k + 1], swinging[k:], rtol=1e-5, atol=1e-6)
     # a nudge moves each start coordinate up by the float32 ulp of 1 below magnitude 1 (as MuJoCo's nudge does
     # in float64), and the run parts from the unnudged
-    eps = 2.0 ** -23
+    eps = 2.0**-23
     assert runs[2][0].tolist() == [0.5, -0.25]
     assert runs[1][0].tolist() == [0.5 + eps, -0.25 + eps]
     assert not np.array_equal(runs[1], runs[2])
@@ -541,8 +583,10 @@ def test_a_variant_changes_the_solver_tolerance_only(pendulum):
 
 def test_a_start_with_activations_is_refused_by_name(tmp_path):
     path = tmp_path / "filtered.xml"
-    path.write_text('<mujoco><worldbody><body><joint name="j" type="hinge"/><geom size="0.1" mass="1"/></body>'
-                    '</worldbody><actuator><general joint="j" dyntype="filter" dynprm="0.1"/></actuator></mujoco>')
+    path.write_text(
+        '<mujoco><worldbody><body><joint name="j" type="hinge"/><geom size="0.1" mass="1"/></body>'
+        '</worldbody><actuator><general joint="j" dyntype="filter" dynprm="0.1"/></actuator></mujoco>'
+    )
     model = engines.load(path, engine="mjx")
     assert model.coordinates()[0] == ["qpos[j]", "qvel[j]", "act[0]"]
     with pytest.raises(pt.InvalidRequestError, match="MJX runs start with every activation at zero"):

@@ -34,12 +34,15 @@ def test_a_parameter_stands_for_one_variable_or_one_per_part():
     assert dim("M L T^-2") == pt.Dimension({"M": 1, "L": 1, "T": -2})
 
 
-@pytest.mark.parametrize(("unit_change", "dimension", "factor"), [
-    ({"L": 1}, "L T^-2", 10.0),  # gravity with lengths
-    ({"L": 1, "T": 1}, "L T^-2", 0.1),  # s / s^2
-    ({"M": 1, "L": 2}, "M L^2", 10.0**5),  # an inertia
-    ({"T": -1}, "1", 1.0),  # a number without dimension never moves
-])
+@pytest.mark.parametrize(
+    ("unit_change", "dimension", "factor"),
+    [
+        ({"L": 1}, "L T^-2", 10.0),  # gravity with lengths
+        ({"L": 1, "T": 1}, "L T^-2", 0.1),  # s / s^2
+        ({"M": 1, "L": 2}, "M L^2", 10.0**5),  # an inertia
+        ({"T": -1}, "1", 1.0),  # a number without dimension never moves
+    ],
+)
 def test_dimension_factor_is_s_to_the_dimensions_exponent(unit_change, dimension, factor):
     sc = pt.Scaling.from_unit_change(pt.System({"m": "M", "l": "L", "t": "T"}), unit_change)
     assert dimension_factor(sc, 10, dim(dimension)) == factor
@@ -57,8 +60,7 @@ def test_with_values_is_multiplied_by_the_ratio_and_may_reach_zero_or_change_sig
     assert doubled.parameter("timestep").value == model.parameter("timestep").value
     # a value of 0, or of the other sign: with_values reaches it, multiplied refuses the factor
     assert model.with_values(tolerance=0).parameter("tolerance").value == (0.0,)
-    assert model.with_values(actuator_torque_gainprm_gain=-2).parameter("actuator_torque_gainprm_gain").value == (
-        -2.0,)
+    assert model.with_values(actuator_torque_gainprm_gain=-2).parameter("actuator_torque_gainprm_gain").value == (-2.0,)
     for bad in (0, -2, math.inf, math.nan, True):
         with pytest.raises(pt.InvalidRequestError, match="positive finite"):
             model.multiplied(actuator_torque_gainprm_gain=bad)
@@ -102,8 +104,10 @@ def test_a_model_runs_in_its_engine_without_handing_out_the_engine_object():
     assert [str(d) for d in dims] == ["1", "T^-1"]  # a hinge's angle and its rate
     dims, low, high = model.inputs()
     assert [str(d) for d in dims] == ["M L^2 T^-2"]  # the motor drives the hinge with a torque
-    assert (low.tolist(), high.tolist()) == (native.actuator_ctrlrange[:, 0].tolist(),
-                                             native.actuator_ctrlrange[:, 1].tolist())
+    assert (low.tolist(), high.tolist()) == (
+        native.actuator_ctrlrange[:, 0].tolist(),
+        native.actuator_ctrlrange[:, 1].tolist(),
+    )
     # the run is MuJoCo's own stepping: the oracle steps mj_step in Python
     rows = model.run(20, controls=lambda t: [0.3])
     data = mujoco.MjData(native)
@@ -136,8 +140,10 @@ def test_a_run_starts_from_a_given_first_row_as_mujoco_steps_it():
 def test_a_run_starts_from_a_given_activation_as_mujoco_steps_it(tmp_path):
     mujoco = pytest.importorskip("mujoco")
     path = tmp_path / "filtered.xml"
-    path.write_text('<mujoco><worldbody><body><joint name="j" type="hinge"/><geom size="0.1" mass="1"/></body>'
-                    '</worldbody><actuator><general joint="j" dyntype="filter" dynprm="0.1"/></actuator></mujoco>')
+    path.write_text(
+        '<mujoco><worldbody><body><joint name="j" type="hinge"/><geom size="0.1" mass="1"/></body>'
+        '</worldbody><actuator><general joint="j" dyntype="filter" dynprm="0.1"/></actuator></mujoco>'
+    )
     rows = engines.load(path).run(3, initial=(0.2, 0.0, 0.5))
     native = mujoco.MjModel.from_xml_path(str(path))
     data = mujoco.MjData(native)
@@ -148,14 +154,17 @@ def test_a_run_starts_from_a_given_activation_as_mujoco_steps_it(tmp_path):
     assert rows[0].tolist() == [0.2, 0.0, 0.5]
 
 
-@pytest.mark.parametrize(("n_steps", "initial", "says"), [
-    (-1, None, "n_steps must be a whole number of at least 0, got -1"),
-    (2.5, None, "n_steps must be a whole number of at least 0, got 2.5"),
-    (True, None, "n_steps must be a whole number of at least 0, got True"),
-    (3, (0.1,), "initial is a row of 2 finite numbers (qpos[hinge], qvel[hinge]), got [0.1]"),
-    (3, (0.1, float("nan")), "got [0.1, nan]"),
-    (3, ("up", 0), "initial is a row of 2 numbers, got ('up', 0)"),
-])
+@pytest.mark.parametrize(
+    ("n_steps", "initial", "says"),
+    [
+        (-1, None, "n_steps must be a whole number of at least 0, got -1"),
+        (2.5, None, "n_steps must be a whole number of at least 0, got 2.5"),
+        (True, None, "n_steps must be a whole number of at least 0, got True"),
+        (3, (0.1,), "initial is a row of 2 finite numbers (qpos[hinge], qvel[hinge]), got [0.1]"),
+        (3, (0.1, float("nan")), "got [0.1, nan]"),
+        (3, ("up", 0), "initial is a row of 2 numbers, got ('up', 0)"),
+    ],
+)
 def test_a_bad_run_is_refused_by_name(n_steps, initial, says):
     pytest.importorskip("mujoco")
     model = engines.load(engines.example_path("pendulum.xml"))
@@ -171,7 +180,8 @@ def test_a_policy_sees_everything_computed_for_the_state_it_acts_on(integrator, 
     (tmp_path / "arm.xml").write_text(
         f'<mujoco><option integrator="{integrator}"/><worldbody><body><joint name="j" type="hinge" axis="0 1 0"/>'
         '<geom type="capsule" fromto="0 0 0 1 0 0" size="0.05"/><site name="tip" pos="1 0 0"/></body></worldbody>'
-        '<actuator><motor joint="j"/></actuator><sensor><jointpos joint="j"/></sensor></mujoco>')
+        '<actuator><motor joint="j"/></actuator><sensor><jointpos joint="j"/></sensor></mujoco>'
+    )
     model = engines.load(tmp_path / "arm.xml")
     seen = []
 
@@ -193,8 +203,9 @@ def test_an_unknown_example_names_the_shipped_ones():
     with pytest.raises(ModelFileError) as caught:
         engines.example_path("hopper.xml")
     assert "example:hopper.xml" in str(caught.value)
-    assert str(caught.value).endswith("the shipped examples are hinged_rod, hinged_rod.urdf, hinged_rod.xml, "
-                                      "pendulum.xml, superball, superball.xml")
+    assert str(caught.value).endswith(
+        "the shipped examples are hinged_rod, hinged_rod.urdf, hinged_rod.xml, pendulum.xml, superball, superball.xml"
+    )
 
 
 def test_engines_read_s_and_every_number_through_the_one_reader():
@@ -212,7 +223,8 @@ def test_engines_read_s_and_every_number_through_the_one_reader():
             with pytest.raises(pt.NumberError) as caught:
                 call(bad)
             assert str(caught.value) == (
-                f"the scale factor s must be a positive finite number such as 2, 0.5 or '1/3', got {bad!r}")
+                f"the scale factor s must be a positive finite number such as 2, 0.5 or '1/3', got {bad!r}"
+            )
     # a value and a factor: each names its parameter
     assert model.with_values(g="19.62").parameters == model.with_values(g=19.62).parameters
     with pytest.raises(pt.NumberError, match="the value of 'g' must be a finite real number"):
@@ -233,15 +245,18 @@ def test_an_engine_takes_a_change_of_units_over_m_l_and_t():
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     assert check_scaling(sc) is sc
     lengths = pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1})
-    for call in (lambda: model.scaled(lengths, 2), lambda: engines.verify(model, lengths, 2, duration=0.01),
-                 lambda: engines.verify(model, lengths, 2, duration=0.01, scaled=model)):
+    for call in (
+        lambda: model.scaled(lengths, 2),
+        lambda: engines.verify(model, lengths, 2, duration=0.01),
+        lambda: engines.verify(model, lengths, 2, duration=0.01, scaled=model),
+    ):
         with pytest.raises(pt.InvalidRequestError) as caught:
             call()
         assert str(caught.value) == "the scaling's system has no base dimension 'M'; search on model.system()"
 
 
 @settings(max_examples=200, deadline=None)
-@given(digits=st.integers(-10**6, 10**6), places=st.integers(0, 6), factor=st.sampled_from([10, 0.1, 2, 0.5, 1e3, 3]))
+@given(digits=st.integers(-(10**6), 10**6), places=st.integers(0, 6), factor=st.sampled_from([10, 0.1, 2, 0.5, 1e3, 3]))
 def test_attribute_text_writes_the_exact_decimal_product(digits, places, factor):
     from pitheorem.engines.model import attribute_text, exact_product
 

@@ -19,13 +19,23 @@ def write(tmp_path, text, name="m.xml"):
     return path
 
 
-@pytest.mark.parametrize(("attribute", "value"), [
-    ("damping", "nan"), ("damping", "NaN"), ("stiffness", "inf"), ("stiffness", "-Infinity"), ("pos", "0 0 nan"),
-    ("range", "-1e999 1"), ("data", "1 nan"),
-])
+@pytest.mark.parametrize(
+    ("attribute", "value"),
+    [
+        ("damping", "nan"),
+        ("damping", "NaN"),
+        ("stiffness", "inf"),
+        ("stiffness", "-Infinity"),
+        ("pos", "0 0 nan"),
+        ("range", "-1e999 1"),
+        ("data", "1 nan"),
+    ],
+)
 def test_nan_and_infinities_are_refused_naming_element_and_attribute(tmp_path, attribute, value):
-    path = write(tmp_path, f'<mujoco><worldbody><body name="b"><joint name="h" {attribute}="{value}"/>'
-                           "</body></worldbody></mujoco>")
+    path = write(
+        tmp_path,
+        f'<mujoco><worldbody><body name="b"><joint name="h" {attribute}="{value}"/></body></worldbody></mujoco>',
+    )
     with pytest.raises(EngineModelError) as caught:
         check_model_file(path)
     message = str(caught.value)
@@ -34,19 +44,23 @@ def test_nan_and_infinities_are_refused_naming_element_and_attribute(tmp_path, a
 
 
 def test_an_unnamed_element_is_named_by_its_nearest_named_ancestor(tmp_path):
-    path = write(tmp_path, '<robot name="r"><link name="b"><inertial><mass value="nan"/></inertial></link></robot>',
-                 "r.urdf")
+    path = write(
+        tmp_path, '<robot name="r"><link name="b"><inertial><mass value="nan"/></inertial></link></robot>', "r.urdf"
+    )
     with pytest.raises(EngineModelError, match=r"<mass> in <link name='b'>: value='nan'"):
         check_model_file(path)
 
 
-@pytest.mark.parametrize("text", [
-    '<mujoco model="nan"><worldbody><body name="inf"><joint name="nan"/></body></worldbody></mujoco>',
-    '<mujoco><compiler meshdir="inf"/><asset><mesh file="nan"/></asset></mujoco>',
-    '<mujoco><custom><text name="x" data="some nan text"/></custom></mujoco>',  # text data may say anything
-    '<mujoco><option timestep="0.002" gravity="0 0 -9.81"/></mujoco>',
-    "not xml at all",  # the engine's reader names that
-])
+@pytest.mark.parametrize(
+    "text",
+    [
+        '<mujoco model="nan"><worldbody><body name="inf"><joint name="nan"/></body></worldbody></mujoco>',
+        '<mujoco><compiler meshdir="inf"/><asset><mesh file="nan"/></asset></mujoco>',
+        '<mujoco><custom><text name="x" data="some nan text"/></custom></mujoco>',  # text data may say anything
+        '<mujoco><option timestep="0.002" gravity="0 0 -9.81"/></mujoco>',
+        "not xml at all",  # the engine's reader names that
+    ],
+)
 def test_names_text_and_finite_numbers_pass(tmp_path, text):
     check_model_file(write(tmp_path, text))
 
@@ -62,17 +76,28 @@ def test_a_missing_file_is_left_to_the_engine(tmp_path):
     check_model_file(tmp_path / "absent.xml")
 
 
-@pytest.mark.parametrize(("text", "nonnegative"), [
-    ("", False), ("   ", False), ("heavy", False), ("1 two", False), ("nan", False), ("inf", False), ("-inf", False),
-    ("-1", True), ("1 -0.5", True),
-])
+@pytest.mark.parametrize(
+    ("text", "nonnegative"),
+    [
+        ("", False),
+        ("   ", False),
+        ("heavy", False),
+        ("1 two", False),
+        ("nan", False),
+        ("inf", False),
+        ("-inf", False),
+        ("-1", True),
+        ("1 -0.5", True),
+    ],
+)
 def test_check_numbers_refuses_what_is_no_finite_number(text, nonnegative):
     with pytest.raises(EngineModelError, match=r"r\.urdf: link 'a' inertial mass: value="):
         check_numbers("r.urdf", "link 'a' inertial mass", "value", text, nonnegative=nonnegative)
 
 
-@pytest.mark.parametrize(("text", "nonnegative"), [(None, True), ("0", True), ("2.5", True), ("-1 2", False),
-                                                   ("1e-300 3", True)])
+@pytest.mark.parametrize(
+    ("text", "nonnegative"), [(None, True), ("0", True), ("2.5", True), ("-1 2", False), ("1e-300 3", True)]
+)
 def test_check_numbers_passes_finite_numbers(text, nonnegative):
     check_numbers("r.urdf", "x", "value", text, nonnegative=nonnegative)
 
@@ -81,7 +106,10 @@ def test_the_whole_messages(tmp_path):
     path = write(tmp_path, '<mujoco><option timestep="nan"/></mujoco>')
     with pytest.raises(EngineModelError) as caught:
         check_model_file(path)
-    assert str(caught.value) == f"{path}: <option>: timestep='nan' is not a finite number; a model holds finite numbers only"
+    assert (
+        str(caught.value)
+        == f"{path}: <option>: timestep='nan' is not a finite number; a model holds finite numbers only"
+    )
     bad = tmp_path / "bad.xml"
     bad.write_bytes(b"<mujoco>\n<x a='\xc3'/></mujoco>")
     with pytest.raises(EngineModelError) as caught:
@@ -109,12 +137,18 @@ def test_negative_numbers_pass_unless_asked_to_refuse_them():
 
 def test_text_attributes_do_not_end_the_scan(tmp_path):
     # a text attribute (not numbers) is skipped; elements and attributes after it are still read
-    path = write(tmp_path, '<mujoco><custom><text name="x" data="some text"/></custom>'
-                           '<option timestep="0.002"/><worldbody><geom size="1 inf"/></worldbody></mujoco>')
+    path = write(
+        tmp_path,
+        '<mujoco><custom><text name="x" data="some text"/></custom>'
+        '<option timestep="0.002"/><worldbody><geom size="1 inf"/></worldbody></mujoco>',
+    )
     with pytest.raises(EngineModelError, match=r"<geom>: size='1 inf' is not a finite number"):
         check_model_file(path)
-    fine = write(tmp_path, '<mujoco><custom><text name="x" data="some text"/></custom><option timestep="0.002"/>'
-                           "</mujoco>", "fine.xml")
+    fine = write(
+        tmp_path,
+        '<mujoco><custom><text name="x" data="some text"/></custom><option timestep="0.002"/></mujoco>',
+        "fine.xml",
+    )
     root = check_model_file(fine)
     assert root is not None
     assert [e.tag for e in root.iter()] == ["mujoco", "custom", "text", "option"]

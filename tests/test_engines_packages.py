@@ -22,8 +22,12 @@ def test_each_engine_names_its_package_in_one_place(monkeypatch):
     # the catalogue's engines are the engines with a package, and every reader of an engine name agrees
     assert tuple(PACKAGES) == ENGINES == ("pybullet", "mujoco", "mjx")
     assert PACKAGES["pybullet"] == "pybullet"
-    for call in (lambda: check_engine("ode"), lambda: engine_module("ode"), lambda: hidden_constants("ode"),
-                 lambda: simulate_rod("ode")):
+    for call in (
+        lambda: check_engine("ode"),
+        lambda: engine_module("ode"),
+        lambda: hidden_constants("ode"),
+        lambda: simulate_rod("ode"),
+    ):
         with pytest.raises(pt.InvalidRequestError) as caught:
             call()
         assert str(caught.value) == "unknown engine 'ode'; use 'pybullet', 'mujoco' or 'mjx'"
@@ -39,7 +43,9 @@ def test_each_engine_names_its_package_in_one_place(monkeypatch):
     with pytest.raises(EngineUnavailableError) as caught:
         engine_module("pybullet")
     assert (caught.value.engine, caught.value.package, caught.value.culprit) == ("pybullet", "pybullet", "pybullet")
-    assert str(caught.value) == 'engine \'pybullet\' needs the Python package \'pybullet\': pip install "pitheorem[engines]"'
+    assert (
+        str(caught.value) == "engine 'pybullet' needs the Python package 'pybullet': pip install \"pitheorem[engines]\""
+    )
 
 
 def test_bullet_prints_no_banner():

@@ -34,8 +34,9 @@ DIFFER = 1e-3
 
 @pytest.fixture(params=tuple(DEFAULT_TIME_STEP))  # the engines the rod is built in (MJX runs files only)
 def engine(request):
-    pytest.importorskip(PACKAGES[request.param],
-                        reason=f"{PACKAGES[request.param]} is not installed (pip install 'pitheorem[engines]')")
+    pytest.importorskip(
+        PACKAGES[request.param], reason=f"{PACKAGES[request.param]} is not installed (pip install 'pitheorem[engines]')"
+    )
     return request.param
 
 
@@ -49,27 +50,48 @@ def test_the_rods_default_time_steps_are_the_catalogues_and_the_files():
 def _mujoco_numbers(model):
     """What MuJoCo compiled from the rod's file: the oracle is the engine, not the file's table."""
     m = model._backend.mjmodel
-    return {"m": m.body_mass[1], "com": tuple(m.body_ipos[1]), "inertia": tuple(m.body_inertia[1]),
-            "g": -m.opt.gravity[2], "k_theta": m.jnt_stiffness[0], "theta_r": m.qpos_spring[0],
-            "c_theta": m.dof_damping[0]}
+    return {
+        "m": m.body_mass[1],
+        "com": tuple(m.body_ipos[1]),
+        "inertia": tuple(m.body_inertia[1]),
+        "g": -m.opt.gravity[2],
+        "k_theta": m.jnt_stiffness[0],
+        "theta_r": m.qpos_spring[0],
+        "c_theta": m.dof_damping[0],
+    }
 
 
 def _bullet_numbers(model):
     """What PyBullet holds once the rod is loaded and set, and the spring the settings file gives."""
     dyn, joints = model._backend._held()
     spring = model.settings()["jointSprings"][0]
-    return {"m": dyn[1][0], "com": tuple(dyn[1][3]), "inertia": tuple(dyn[1][2]), "g": -model.settings()["gravity"][2],
-            "k_theta": spring["stiffness"], "theta_r": spring["restPosition"], "c_theta": joints[0][6]}
+    return {
+        "m": dyn[1][0],
+        "com": tuple(dyn[1][3]),
+        "inertia": tuple(dyn[1][2]),
+        "g": -model.settings()["gravity"][2],
+        "k_theta": spring["stiffness"],
+        "theta_r": spring["restPosition"],
+        "c_theta": joints[0][6],
+    }
 
 
 def _expected(p):
     i_com = p["m"] * p["l"] ** 2 / 12
-    return {"m": p["m"], "com": (p["l"] / 2, 0.0, 0.0), "inertia": (i_com,) * 3, "g": p["g"],
-            "k_theta": p["k_theta"], "theta_r": p["theta_r"], "c_theta": p["c_theta"]}
+    return {
+        "m": p["m"],
+        "com": (p["l"] / 2, 0.0, 0.0),
+        "inertia": (i_com,) * 3,
+        "g": p["g"],
+        "k_theta": p["k_theta"],
+        "theta_r": p["theta_r"],
+        "c_theta": p["c_theta"],
+    }
 
 
-@pytest.mark.parametrize("params", [None, {"m": 0.25, "l": 0.3, "g": 3.7, "k_theta": 7.0, "c_theta": 0.5,
-                                           "theta_r": -0.2}])
+@pytest.mark.parametrize(
+    "params", [None, {"m": 0.25, "l": 0.3, "g": 3.7, "k_theta": 7.0, "c_theta": 0.5, "theta_r": -0.2}]
+)
 def test_the_shipped_files_hold_the_papers_rod(engine, params):
     p = HINGED_ROD.resolve_params(params)
     numbers = (_mujoco_numbers if engine == "mujoco" else _bullet_numbers)(rod_model(engine, params))
@@ -93,11 +115,13 @@ def _stepped_in_python(p, y0, dt, n_steps):
     """The oracle: the rod written out here as MJCF text and stepped with mj_step, one step at a time."""
     mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed")
     i = p["m"] * p["l"] ** 2 / 12
-    text = (f'<mujoco><compiler angle="radian"/><option timestep="{dt!r}" gravity="0 0 {-p["g"]!r}">'
-            '<flag contact="disable"/></option><worldbody><body>'
-            f'<joint type="hinge" axis="0 1 0" stiffness="{p["k_theta"]!r}" springref="{p["theta_r"]!r}" '
-            f'damping="{p["c_theta"]!r}"/><inertial pos="{p["l"] / 2!r} 0 0" mass="{p["m"]!r}" '
-            f'diaginertia="{i!r} {i!r} {i!r}"/></body></worldbody></mujoco>')
+    text = (
+        f'<mujoco><compiler angle="radian"/><option timestep="{dt!r}" gravity="0 0 {-p["g"]!r}">'
+        '<flag contact="disable"/></option><worldbody><body>'
+        f'<joint type="hinge" axis="0 1 0" stiffness="{p["k_theta"]!r}" springref="{p["theta_r"]!r}" '
+        f'damping="{p["c_theta"]!r}"/><inertial pos="{p["l"] / 2!r} 0 0" mass="{p["m"]!r}" '
+        f'diaginertia="{i!r} {i!r} {i!r}"/></body></worldbody></mujoco>'
+    )
     m = mujoco.MjModel.from_xml_string(text)
     d = mujoco.MjData(m)
     d.qpos[0], d.qvel[0] = y0
@@ -189,4 +213,5 @@ def test_the_shipped_files_verify_like_a_users(engine):
     assert not rep.similar
     # named by the number the engine runs with: MuJoCo's compiled jnt_stiffness, the URDF run's spring
     assert [(c.kind, c.element) for c in rep.causes] == [
-        ("unscaled", "jnt_stiffness" if engine == "mujoco" else "spring.stiffness")]
+        ("unscaled", "jnt_stiffness" if engine == "mujoco" else "spring.stiffness")
+    ]

@@ -29,7 +29,8 @@ def test_bullet_rule_is_the_change_of_length_unit():
 def test_mujoco_similar_is_mass_by_volume_and_length():
     rule = MUJOCO_FRAME_SIMILAR
     assert pt.Scaling.from_exponents(rule.system, rule.exponents) == pt.Scaling.from_unit_change(
-        rule.system, {"M": 3, "L": 1})
+        rule.system, {"M": 3, "L": 1}
+    )
     verdict = check_rule(rule)
     assert verdict.unit_change == {"M": 3, "L": 1, "T": 0}
     # a global option no frame touches: the convex collision tolerance, a length (issue 10)
@@ -43,8 +44,12 @@ def test_bullet_rule_incomplete_for_the_rod(rod):
     assert v.unchanged == ("t",)
     assert not v.complete
     names = [c.name for c in v.broken]
-    for hidden in ("bullet_collision_margin", "bullet_contact_slop",
-                   "bullet_multibody_sleep_epsilon", "bullet_split_impulse_penetration_threshold"):
+    for hidden in (
+        "bullet_collision_margin",
+        "bullet_contact_slop",
+        "bullet_multibody_sleep_epsilon",
+        "bullet_split_impulse_penetration_threshold",
+    ):
         assert hidden in names
     # a factor of each shape's bounding radius, not a length: leaving it alone is right (issue 10)
     assert "bullet_contact_breaking_threshold" not in names
@@ -76,9 +81,17 @@ def test_each_rule_agrees_with_search(rod):
 
 
 def test_a_wrong_rule_gets_a_certificate():
-    wrong = RuleOfThumb("torques by X", "pybullet", "made up", (
-        RuleQuantity("length", "L", 1), RuleQuantity("mass", "M", 0), RuleQuantity("torque", "M L^2 T^-2", 1),
-        RuleQuantity("time", "T", 0)))
+    wrong = RuleOfThumb(
+        "torques by X",
+        "pybullet",
+        "made up",
+        (
+            RuleQuantity("length", "L", 1),
+            RuleQuantity("mass", "M", 0),
+            RuleQuantity("torque", "M L^2 T^-2", 1),
+            RuleQuantity("time", "T", 0),
+        ),
+    )
     v = check_rule(wrong)
     assert not v.is_unit_change
     assert not v.complete
@@ -104,11 +117,13 @@ def test_mujoco_frame_scale_measured():
 
     def build(scale):
         frame = f'<frame scale="{scale}">' if scale else "<frame>"
-        xml = (f'<mujoco><compiler angle="radian"/><worldbody>{frame}<body name="b" pos="0 0 1">'
-               '<joint name="h" type="hinge" axis="0 1 0" stiffness="3" damping="0.5" springref="0.1"/>'
-               '<joint name="s" type="slide" axis="1 0 0" stiffness="7" damping="0.3" frictionloss="0.2"/>'
-               '<geom type="capsule" fromto="0 0 0 1 0 0" size="0.05" margin="0.01" '
-               'solimp="0.9 0.95 0.001 0.5 2" solref="0.02 1"/></body></frame></worldbody></mujoco>')
+        xml = (
+            f'<mujoco><compiler angle="radian"/><worldbody>{frame}<body name="b" pos="0 0 1">'
+            '<joint name="h" type="hinge" axis="0 1 0" stiffness="3" damping="0.5" springref="0.1"/>'
+            '<joint name="s" type="slide" axis="1 0 0" stiffness="7" damping="0.3" frictionloss="0.2"/>'
+            '<geom type="capsule" fromto="0 0 0 1 0 0" size="0.05" margin="0.01" '
+            'solimp="0.9 0.95 0.001 0.5 2" solref="0.02 1"/></body></frame></worldbody></mujoco>'
+        )
         return mujoco.MjModel.from_xml_string(xml)
 
     try:
@@ -117,10 +132,20 @@ def test_mujoco_frame_scale_measured():
         pytest.skip("this MuJoCo has no frame scale")
     x = 2.0
     u = check_rule(MUJOCO_FRAME_SIMILAR).scaling
-    expect = {name: x ** float(u.exponent_of(dim)) for name, dim in [
-        ("mass", "M"), ("inertia", "M L^2"), ("torque", "M L^2 T^-2"), ("angular_damping", "M L^2 T^-1"),
-        ("linear_stiffness", "M T^-2"), ("linear_damping", "M T^-1"), ("length", "L"), ("time", "T"),
-        ("force", "M L T^-2")]}
+    expect = {
+        name: x ** float(u.exponent_of(dim))
+        for name, dim in [
+            ("mass", "M"),
+            ("inertia", "M L^2"),
+            ("torque", "M L^2 T^-2"),
+            ("angular_damping", "M L^2 T^-1"),
+            ("linear_stiffness", "M T^-2"),
+            ("linear_damping", "M T^-1"),
+            ("length", "L"),
+            ("time", "T"),
+            ("force", "M L T^-2"),
+        ]
+    }
     assert b.body_mass[1] / a.body_mass[1] == pytest.approx(expect["mass"])
     assert np.allclose(b.body_inertia[1] / a.body_inertia[1], expect["inertia"])
     assert b.jnt_stiffness[0] / a.jnt_stiffness[0] == pytest.approx(expect["torque"])

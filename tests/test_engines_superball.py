@@ -56,7 +56,7 @@ def test_bar_ends_are_where_mujoco_puts_the_end_sites():
     native = mujoco.MjModel.from_xml_path(str(SHIPPED))
     data = mujoco.MjData(native)
     for i in (0, 150, 400):  # the oracle: MuJoCo's own kinematics of the recorded pose
-        data.qpos[:] = rows[i, :native.nq]
+        data.qpos[:] = rows[i, : native.nq]
         mujoco.mj_kinematics(native, data)
         assert np.allclose(ends[i], data.site_xpos[:12].reshape(6, 2, 3), rtol=0, atol=1e-14), i
     assert ends[-1, :, :, 2].min() < ends[0, :, :, 2].min()  # it fell
@@ -188,8 +188,15 @@ def test_engines_load_reads_six_bars_twenty_four_cables_and_the_controller(engin
 def test_the_files_own_search_gives_section_4(engine_model, engine_scaling):
     assert engine_scaling.unit_change == {"M": 0, "L": 1, "T": 0}
     # the factors the file's numbers get, against the paper's list in PAPER_SCALING, by hand
-    paper = {"geom_bar0_density": "rho", "tendon_cable0_springlength": "x_r", "tendon_cable0_stiffness": "k",
-             "tendon_cable0_damping": "c", "numeric_v": "v", "numeric_K_eps": "K_eps", "g": "g"}
+    paper = {
+        "geom_bar0_density": "rho",
+        "tendon_cable0_springlength": "x_r",
+        "tendon_cable0_stiffness": "k",
+        "tendon_cable0_damping": "c",
+        "numeric_v": "v",
+        "numeric_K_eps": "K_eps",
+        "g": "g",
+    }
     for name, symbol in paper.items():
         assert engine_scaling.exponent_of(engine_model.parameter(name).dimension) == sb.PAPER_SCALING[symbol], name
 
@@ -204,12 +211,26 @@ def test_engines_verify_says_similar(engine_model, engine_scaling, s):
 def test_the_paper_scaling_written_by_the_generator_is_the_scaled_file(engine_model, engine_scaling, tmp_path):
     """Section 4 applied to the paper's parameters and written out: a scaled file made another way."""
     by_hand = load_text(sb.superball_mjcf(scaled_values(10)), tmp_path)
-    rep = engines.verify(engine_model, engine_scaling, 10, duration=ENGINE_DURATION, scaled=by_hand,
-                         controller=sb.CableController, ensemble=1)
+    rep = engines.verify(
+        engine_model,
+        engine_scaling,
+        10,
+        duration=ENGINE_DURATION,
+        scaled=by_hand,
+        controller=sb.CableController,
+        ensemble=1,
+    )
     assert rep.similar, str(rep)
     folk = load_text(sb.superball_mjcf(scaled_values(10, leave=("x_r",))), tmp_path)
-    rep = engines.verify(engine_model, engine_scaling, 10, duration=ENGINE_DURATION, scaled=folk,
-                         controller=sb.CableController, ensemble=1)
+    rep = engines.verify(
+        engine_model,
+        engine_scaling,
+        10,
+        duration=ENGINE_DURATION,
+        scaled=folk,
+        controller=sb.CableController,
+        ensemble=1,
+    )
     assert not rep.similar
     assert rep.max_deviation > 1e-2
 
@@ -231,8 +252,9 @@ def contrasts(engine_model, engine_scaling):
 @pytest.mark.parametrize("which", [0, 1, 2])
 def test_engines_verify_says_not_similar_for_each_contrast(engine_model, engine_scaling, contrasts, which):
     why, contrast = list(contrasts.items())[which]
-    rep = engines.verify(engine_model, engine_scaling, 10, duration=ENGINE_DURATION, scaled=contrast,
-                         controller=sb.CableController)
+    rep = engines.verify(
+        engine_model, engine_scaling, 10, duration=ENGINE_DURATION, scaled=contrast, controller=sb.CableController
+    )
     assert not rep.similar, why
     assert rep.max_deviation > 1e-2, why
 

@@ -90,8 +90,14 @@ def test_mujoco_thresholds_are_the_engines_own_constants():
 
 
 def test_solver_settings_of_no_pure_dimension_are_catalogued_without_one():
-    for name in ("mujoco_solver_tolerance", "bullet_solver_residual", "bullet_multibody_sleep",
-                 "mujoco_minval_mass", "mujoco_minmu", "mujoco_maxval"):
+    for name in (
+        "mujoco_solver_tolerance",
+        "bullet_solver_residual",
+        "bullet_multibody_sleep",
+        "mujoco_minval_mass",
+        "mujoco_minmu",
+        "mujoco_maxval",
+    ):
         assert thresholds(names=[name])[0].dimension is None
     (residual,) = engines.hidden_constants("pybullet", names=["bullet_solver_residual_threshold"])
     assert residual.dimension.is_dimensionless  # no change of units scales it: copied unchanged
@@ -112,7 +118,9 @@ def test_threshold_records_are_immutable_and_checked():
 
 def test_thresholds_are_picked_by_engine_and_name():
     assert [t.name for t in thresholds("mujoco", names=["mujoco_maxval", "mujoco_minmu"])] == [
-        "mujoco_maxval", "mujoco_minmu"]
+        "mujoco_maxval",
+        "mujoco_minmu",
+    ]
     assert thresholds("bullet") == thresholds("pybullet")  # the old spelling reads as the one name
     assert {t.engine for t in thresholds("pybullet")} == {"pybullet"}
     with pytest.raises(pt.InvalidRequestError, match="no threshold 'mujoco_minmu' of pybullet"):
@@ -125,8 +133,10 @@ def test_thresholds_are_picked_by_engine_and_name():
 
 
 def sliding_body(mass: float, inertia: float) -> str:
-    return (f'<mujoco><worldbody><body><joint type="slide"/><inertial pos="0 0 0" mass="{mass!r}" '
-            f'diaginertia="{inertia!r} {inertia!r} {inertia!r}"/></body></worldbody></mujoco>')
+    return (
+        f'<mujoco><worldbody><body><joint type="slide"/><inertial pos="0 0 0" mass="{mass!r}" '
+        f'diaginertia="{inertia!r} {inertia!r} {inertia!r}"/></body></worldbody></mujoco>'
+    )
 
 
 def test_mujoco_refuses_moving_masses_and_inertias_below_minval():
@@ -145,7 +155,7 @@ def softness(mass: float) -> np.ndarray:
         </worldbody></mujoco>""")
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
-    return d.efc_R[:d.nefc].copy()
+    return d.efc_R[: d.nefc].copy()
 
 
 def test_mujoco_floors_the_softness_of_heavy_bodies_at_minval():
@@ -271,10 +281,14 @@ def resting_height(cid, shape: str, size: float) -> float:
     pb.resetSimulation(physicsClientId=cid)
     pb.setGravity(0, 0, -9.81, physicsClientId=cid)
     pb.createMultiBody(0, pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=cid), physicsClientId=cid)
-    geometry = ({"shapeType": pb.GEOM_BOX, "halfExtents": [size] * 3} if shape == "box"
-                else {"shapeType": pb.GEOM_SPHERE, "radius": size})
-    body = pb.createMultiBody(1.0, pb.createCollisionShape(**geometry, physicsClientId=cid),
-                              basePosition=[0, 0, size], physicsClientId=cid)
+    geometry = (
+        {"shapeType": pb.GEOM_BOX, "halfExtents": [size] * 3}
+        if shape == "box"
+        else {"shapeType": pb.GEOM_SPHERE, "radius": size}
+    )
+    body = pb.createMultiBody(
+        1.0, pb.createCollisionShape(**geometry, physicsClientId=cid), basePosition=[0, 0, size], physicsClientId=cid
+    )
     for _ in range(480):
         pb.stepSimulation(physicsClientId=cid)
     return pb.getBasePositionAndOrientation(body, physicsClientId=cid)[0][2]
@@ -302,8 +316,13 @@ def slide(cid, speed: float, turn: float = 0.0, *, maximal: bool, sleeping: bool
     pb.setGravity(0, 0, -9.81, physicsClientId=cid)
     plane = pb.createMultiBody(0, pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=cid), physicsClientId=cid)
     pb.changeDynamics(plane, -1, lateralFriction=0, physicsClientId=cid)
-    box = pb.createMultiBody(1.0, pb.createCollisionShape(pb.GEOM_BOX, halfExtents=[0.1] * 3, physicsClientId=cid),
-                             basePosition=[0, 0, 0.1], useMaximalCoordinates=maximal, physicsClientId=cid)
+    box = pb.createMultiBody(
+        1.0,
+        pb.createCollisionShape(pb.GEOM_BOX, halfExtents=[0.1] * 3, physicsClientId=cid),
+        basePosition=[0, 0, 0.1],
+        useMaximalCoordinates=maximal,
+        physicsClientId=cid,
+    )
     flag = {"activationState": pb.ACTIVATION_STATE_ENABLE_SLEEPING} if sleeping else {}
     pb.changeDynamics(box, -1, lateralFriction=0, linearDamping=0, angularDamping=0, physicsClientId=cid, **flag)
     pb.resetBaseVelocity(box, [speed, 0, 0], [0, 0, turn], physicsClientId=cid)
@@ -363,8 +382,13 @@ def test_bullet_ignores_collision_margins_set_on_links(client, path, height):
 def test_bullet_solver_residual_is_exact_only_at_zero():
     # a prismatic and a revolute joint with a base on the ground: rows in m/s and rad/s in one residual;
     # the scaled copy keeps the residual threshold (it has no dimension a scaling could carry)
-    model = engines.load(REPO / "tests" / "data" / "engines" / "slider_arm.urdf", ground=True, damping=0.0,
-                         split_impulse=False, base_position=(0, 0, 0.3))
+    model = engines.load(
+        REPO / "tests" / "data" / "engines" / "slider_arm.urdf",
+        ground=True,
+        damping=0.0,
+        split_impulse=False,
+        base_position=(0, 0, 0.3),
+    )
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     assert model.parameter("solverResidualThreshold").value == (value("bullet_solver_residual"),)
     assert model.scaled(sc, 10).parameter("solverResidualThreshold").value == (value("bullet_solver_residual"),)
@@ -411,8 +435,12 @@ def test_crossed_tells_beyond_from_near_from_clear():
     assert "= 1e-07 is below" in next(c.detail for c in causes if c.element == "geom_g_friction_torsional_rolling")
     assert "body_c_mass" in {c.element for c in crossed("mujoco", table, near=10)}
     assert {c.element for c in crossed("mujoco", table, near=1)} == {
-        "body_a_mass", "body_d_inertia", "geom_e_solref_timeconst", "actuator0_ctrlrange",
-        "geom_g_friction_torsional_rolling"}
+        "body_a_mass",
+        "body_d_inertia",
+        "geom_e_solref_timeconst",
+        "actuator0_ctrlrange",
+        "geom_g_friction_torsional_rolling",
+    }
     # the time step scales the refsafe floor with it
     assert "geom_e_solref_timeconst" not in {c.element for c in crossed("mujoco", table, {"timestep": 0.25})}
     # PyBullet has none of MuJoCo's thresholds
@@ -444,8 +472,9 @@ def test_check_flags_a_shrunk_hopper_and_not_the_original():
     causes = engines.check(shrunk)
     # every geom of the file touches something, and each one's torsional and rolling friction is now
     # below mjMINMU (0.005 and 1e-4 m shrunk to 5e-8 and 1e-9 m)
-    assert {c.element for c in causes} == {f"geom_{g}_friction_torsional_rolling" for g in (
-        "floor", "torso_geom", "thigh_geom", "leg_geom", "foot_geom")}
+    assert {c.element for c in causes} == {
+        f"geom_{g}_friction_torsional_rolling" for g in ("floor", "torso_geom", "thigh_geom", "leg_geom", "foot_geom")
+    }
     assert all(c.kind == "threshold" and "below mujoco_minmu" in c.detail for c in causes)
     # each cause names the change of units that clears it: lengths by the largest factor named clear them all
     needs = [float(re.search(r"dimension L by (\S+) clears it", c.detail).group(1)) for c in causes]
@@ -475,17 +504,21 @@ def test_check_flags_a_urdf_box_below_the_minimum_size(tmp_path):
 
 def test_bad_requests_name_their_culprit():
     table = hopper().parameters
-    for call, culprit in ((lambda: crossed("ode", table), "ode"),
-                          (lambda: crossed("mujoco", table, {"no_such": 2.0}), "no_such"),
-                          (lambda: crossed("mujoco", table, near=0.5), 0.5),
-                          (lambda: crossed("mujoco", [*table, "body_mass"]), "body_mass")):
+    for call, culprit in (
+        (lambda: crossed("ode", table), "ode"),
+        (lambda: crossed("mujoco", table, {"no_such": 2.0}), "no_such"),
+        (lambda: crossed("mujoco", table, near=0.5), 0.5),
+        (lambda: crossed("mujoco", [*table, "body_mass"]), "body_mass"),
+    ):
         with pytest.raises(pt.InvalidRequestError) as caught:
             call()
         assert caught.value.culprit == culprit
     # numbers that are no positive factor: the message names which
-    for call, named in ((lambda: crossed("mujoco", table, {"timestep": -1.0}), "the factor of 'timestep'"),
-                        (lambda: crossed("mujoco", table, {"timestep": True}), "the factor of 'timestep'"),
-                        (lambda: crossed("mujoco", table, near=float("nan")), "near")):
+    for call, named in (
+        (lambda: crossed("mujoco", table, {"timestep": -1.0}), "the factor of 'timestep'"),
+        (lambda: crossed("mujoco", table, {"timestep": True}), "the factor of 'timestep'"),
+        (lambda: crossed("mujoco", table, near=float("nan")), "near"),
+    ):
         with pytest.raises(pt.NumberError, match=named):
             call()
     with pytest.raises(pt.InvalidRequestError, match="factors must map"):
@@ -498,12 +531,12 @@ def test_grouped_causes_name_every_number_once_and_detail_the_worst():
     from pitheorem.engines import Parameter
 
     def mass(name, value):
-        return Parameter(f"body_{name}_mass", f"body {name!r} mass", (value,), pt.Dimension.parse("M"), "file",
-                         "file")
+        return Parameter(f"body_{name}_mass", f"body {name!r} mass", (value,), pt.Dimension.parse("M"), "file", "file")
 
     table = [mass(n, v) for n, v in (("e", 5e-16), ("a", 4e-16), ("d", 2e-16), ("c", 3e-16), ("b", 8e-16))]
-    inertia = Parameter("body_a_inertia", "body 'a' inertia", (1e-17, 2e-17, 3e-17), pt.Dimension.parse("M L^2"),
-                        "file", "file")
+    inertia = Parameter(
+        "body_a_inertia", "body 'a' inertia", (1e-17, 2e-17, 3e-17), pt.Dimension.parse("M L^2"), "file", "file"
+    )
     one_each = crossed("mujoco", [*table, inertia], near=1.0)
     assert len(one_each) == 6
     grouped = crossed("mujoco", [*table, inertia], near=1.0, grouped=True)
@@ -517,14 +550,16 @@ def test_grouped_causes_name_every_number_once_and_detail_the_worst():
 
 def test_mjx_parameters_are_the_half_lengths_mjxs_collisions_hold_against_its_constants(tmp_path):
     path = tmp_path / "segments.xml"
-    path.write_text(textwrap.dedent("""\
+    path.write_text(
+        textwrap.dedent("""\
         <mujoco><worldbody>
           <geom name="ground" type="plane" size="1 1 0.1"/>
           <body name="a" pos="0 0 1"><freejoint/>
             <geom name="arm" type="capsule" fromto="0 0 0 0.3 0.4 0" size="0.01"/></body>
           <body name="b" pos="0 0 2"><freejoint/><geom name="ball" type="sphere" size="0.05"/></body>
           <body name="c" pos="0 0 3"><freejoint/><geom type="cylinder" size="0.02 0.0004"/></body>
-        </worldbody></mujoco>"""))
+        </worldbody></mujoco>""")
+    )
     model = engines.load(path)
     found = {p.name: p for p in mjx_parameters(model)}
     assert sorted(found) == ["geom3_half_length", "geom_arm_half_length"]
@@ -553,13 +588,17 @@ def test_mjx_parameters_are_the_half_lengths_mjxs_collisions_hold_against_its_co
 
 
 def test_float32s_range_is_held_only_against_float32():
-    table = [parameter("joint_a_damping", "joint 'a' damping", [1e-40], "M L^2 T^-1"),
-             parameter("joint_b_damping", "joint 'b' damping", [-1e39], "M L^2 T^-1"),
-             parameter("joint_c_damping", "joint 'c' damping", [2e-38], "M L^2 T^-1")]
+    table = [
+        parameter("joint_a_damping", "joint 'a' damping", [1e-40], "M L^2 T^-1"),
+        parameter("joint_b_damping", "joint 'b' damping", [-1e39], "M L^2 T^-1"),
+        parameter("joint_c_damping", "joint 'c' damping", [2e-38], "M L^2 T^-1"),
+    ]
     said = {c.element: c.detail.split(" is ")[1].split(" (")[0] for c in crossed("mjx", table)}
-    assert said == {"joint_a_damping": "below mjx_float32_min_normal",
-                    "joint_b_damping": "above mjx_float32_max",
-                    "joint_c_damping": "within a factor 2 of mjx_float32_min_normal"}
+    assert said == {
+        "joint_a_damping": "below mjx_float32_min_normal",
+        "joint_b_damping": "above mjx_float32_max",
+        "joint_c_damping": "within a factor 2 of mjx_float32_min_normal",
+    }
     assert crossed("mjx", table, precision="float64") == crossed("mujoco", table) == ()
     with pytest.raises(pt.InvalidRequestError) as caught:
         crossed("mjx", table, precision="float16")
@@ -569,8 +608,10 @@ def test_float32s_range_is_held_only_against_float32():
 def test_the_fluid_models_numbers_join_only_with_a_fluid_and_a_compiled_mass(tmp_path):
     def speck(radius, fluid):
         path = tmp_path / f"speck{radius}{fluid}.xml"
-        path.write_text(f'<mujoco><option {fluid}/><worldbody><body name="s"><freejoint/>'
-                        f'<geom size="{radius}" density="1000"/></body></worldbody></mujoco>')
+        path.write_text(
+            f'<mujoco><option {fluid}/><worldbody><body name="s"><freejoint/>'
+            f'<geom size="{radius}" density="1000"/></body></worldbody></mujoco>'
+        )
         return engines.load(path)
 
     model = speck(0.01, 'viscosity="1e-3"')

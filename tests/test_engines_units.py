@@ -69,23 +69,29 @@ def test_a_model_is_in_si_unless_told_and_units_name_each_base():
     assert unit_size("L", "inch") == Fraction(254, 10000)
 
 
-@pytest.mark.parametrize(("units", "error", "says"), [
-    ({"L": "furlongz"}, pt.UnitError, "furlongz"),
-    ({"L": "kg"}, pt.UnitError, "no unit of length"),
-    ({"X": "m"}, pt.InvalidRequestError, "'X'"),
-    ({"L": -1}, pt.InvalidRequestError, "positive"),
-    ("cm", pt.InvalidRequestError, "map base dimensions"),
-])
+@pytest.mark.parametrize(
+    ("units", "error", "says"),
+    [
+        ({"L": "furlongz"}, pt.UnitError, "furlongz"),
+        ({"L": "kg"}, pt.UnitError, "no unit of length"),
+        ({"X": "m"}, pt.InvalidRequestError, "'X'"),
+        ({"L": -1}, pt.InvalidRequestError, "positive"),
+        ("cm", pt.InvalidRequestError, "map base dimensions"),
+    ],
+)
 def test_bad_units_are_refused_by_name(units, error, says):
     with pytest.raises(error, match=says):
         engines.load(PENDULUM, units=units)
 
 
-@pytest.mark.parametrize(("old", "new"), [
-    ({"L": "cm", "M": "g"}, {"L": "mm", "M": "g"}),  # FlyGym's conversion
-    ({}, {"L": "mm", "M": "g", "T": "ms"}),
-    ({}, {"L": "inch", "M": "lb"}),  # no common base: one scaling per unit
-])
+@pytest.mark.parametrize(
+    ("old", "new"),
+    [
+        ({"L": "cm", "M": "g"}, {"L": "mm", "M": "g"}),  # FlyGym's conversion
+        ({}, {"L": "mm", "M": "g", "T": "ms"}),
+        ({}, {"L": "inch", "M": "lb"}),  # no common base: one scaling per unit
+    ],
+)
 def test_every_number_converts_by_its_dimension_as_pint_says(old, new):
     model = quiet(ROBOTS / "mjcf" / "drone.xml", units=old)  # air density and viscosity, site gears
     converted = model.converted(**new)
@@ -236,8 +242,9 @@ FLYGYM = {"torque": 100, "rotational inertia": 100, "gravity": 10, "density": 1e
 
 
 def test_the_cgs_insect_in_millimetres_takes_the_factors_flygym_derived_by_hand():
-    fly = engines.load(Path(__file__).resolve().parent / "data" / "engines" / "cgs_insect.xml",
-                       units={"L": "cm", "M": "g"})
+    fly = engines.load(
+        Path(__file__).resolve().parent / "data" / "engines" / "cgs_insect.xml", units={"L": "cm", "M": "g"}
+    )
     mm = fly.converted(L="mm")
     assert mm.units == {"M": "g", "L": "mm", "T": "s"}
 
@@ -245,19 +252,29 @@ def test_the_cgs_insect_in_millimetres_takes_the_factors_flygym_derived_by_hand(
         before, after = fly.parameter(name).value, mm.parameter(name).value
         return next(b / a for a, b in zip(before, after, strict=True) if a)
 
-    kinds = {"torque": "actuator_stroke_l_ctrlrange", "rotational inertia": "body_thorax_inertia",
-             "gravity": "g", "density": "density", "viscosity": "viscosity"}
+    kinds = {
+        "torque": "actuator_stroke_l_ctrlrange",
+        "rotational inertia": "body_thorax_inertia",
+        "gravity": "g",
+        "density": "density",
+        "viscosity": "viscosity",
+    }
     for kind, name in kinds.items():
         # the dimension the package gives the number, and FlyGym's published factor, agree with the conversion
         dimension = fly.parameter(name).dimension
         assert factor(name) == pytest.approx(pint_factor(dimension, fly.units, mm.units), rel=1e-15), kind
         assert factor(name) == pytest.approx(FLYGYM[kind], rel=1e-15), kind
     # and what the hand-derived list leaves out: each by its own dimension
-    for name, expected in (("joint_hip_l_stiffness", 100), ("joint_hip_l_damping", 100),
-                           ("actuator_hip_l_gainprm_gain", 100),
-                           # adhesion: the gain is the force (MuJoCo's reference), the input a fraction of it
-                           ("actuator_stick_l_gainprm_gain", 10),
-                           ("geom_thorax_margin", 10), ("geom_thorax_friction_torsional_rolling", 10),
-                           ("geom_thorax_solref_timeconst", 1), ("timestep", 1)):
+    for name, expected in (
+        ("joint_hip_l_stiffness", 100),
+        ("joint_hip_l_damping", 100),
+        ("actuator_hip_l_gainprm_gain", 100),
+        # adhesion: the gain is the force (MuJoCo's reference), the input a fraction of it
+        ("actuator_stick_l_gainprm_gain", 10),
+        ("geom_thorax_margin", 10),
+        ("geom_thorax_friction_torsional_rolling", 10),
+        ("geom_thorax_solref_timeconst", 1),
+        ("timestep", 1),
+    ):
         assert factor(name) == pytest.approx(expected, rel=1e-15), name
     assert mm.parameter("actuator_stick_l_ctrlrange").value == fly.parameter("actuator_stick_l_ctrlrange").value

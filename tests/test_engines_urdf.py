@@ -56,8 +56,10 @@ def test_engine_defaults_are_pybullets_own():
         sphere = engines.load(Path(pybullet_data.getDataPath()) / "sphere2.urdf")
         assert sphere.parameter("link_baseLink_collision_margin").value == (0.5,)  # a lone sphere: its radius
         assert model.parameter("link_cart_rollingFriction").value == (pytest.approx(0.01),)
-        assert pb.getPhysicsEngineParameters(physicsClientId=client)["fixedTimeStep"] == model.parameter(
-            "timestep").value[0]
+        assert (
+            pb.getPhysicsEngineParameters(physicsClientId=client)["fixedTimeStep"]
+            == model.parameter("timestep").value[0]
+        )
     finally:
         pb.disconnect(client)
 
@@ -65,12 +67,15 @@ def test_engine_defaults_are_pybullets_own():
 def test_engine_settings_default_to_the_hidden_constant_catalogue():
     model = engines.load(ARM)  # PyBullet's own settings: split impulse on, multibody damping 0.04
     catalogue = {c.name: c for c in engines.hidden_constants("bullet")}
-    pairs = {"timestep": "bullet_time_step", "contactSlop": "bullet_contact_slop",
-             "restitutionVelocityThreshold": "bullet_restitution_velocity_threshold",
-             "solverResidualThreshold": "bullet_solver_residual_threshold",
-             "splitImpulsePenetrationThreshold": "bullet_split_impulse_penetration_threshold",
-             "joint_slide_maxJointVelocity": "bullet_max_joint_velocity",
-             "joint_swing_maxJointVelocity": "bullet_max_joint_velocity"}
+    pairs = {
+        "timestep": "bullet_time_step",
+        "contactSlop": "bullet_contact_slop",
+        "restitutionVelocityThreshold": "bullet_restitution_velocity_threshold",
+        "solverResidualThreshold": "bullet_solver_residual_threshold",
+        "splitImpulsePenetrationThreshold": "bullet_split_impulse_penetration_threshold",
+        "joint_slide_maxJointVelocity": "bullet_max_joint_velocity",
+        "joint_swing_maxJointVelocity": "bullet_max_joint_velocity",
+    }
     for name, constant in pairs.items():
         assert model.parameter(name).value == (catalogue[constant].default,)
     for name in ("timestep", "contactSlop", "restitutionVelocityThreshold", "solverResidualThreshold"):
@@ -80,8 +85,10 @@ def test_engine_settings_default_to_the_hidden_constant_catalogue():
     damping = model.parameter("link_cart_angularDamping")
     assert damping.value == (0.04,)
     assert damping.parts == (("rate", pt.Dimension.parse("T^-1")), ("per_radian", pt.Dimension.parse("1")))
-    assert dict(damping.parts) == {"rate": catalogue["bullet_angular_damping_k1"].dimension,
-                                   "per_radian": catalogue["bullet_angular_damping_k2"].dimension}
+    assert dict(damping.parts) == {
+        "rate": catalogue["bullet_angular_damping_k1"].dimension,
+        "per_radian": catalogue["bullet_angular_damping_k2"].dimension,
+    }
     calls = engines.load(ARM, ground=True).settings()
     assert calls["ground"] == {"collisionMargin": 0.001}
     assert [call["maxJointVelocity"] for call in calls["changeDynamics"] if "maxJointVelocity" in call] == [100.0] * 2
@@ -130,17 +137,28 @@ def test_saved_settings_snippet_runs(tmp_path):
     assert done.returncode == 0, done.stderr
 
 
-@pytest.mark.parametrize(("text", "culprit"), [
-    ("not xml at all", "not well-formed XML"),
-    ("<mujoco/>", "root element must be <robot>"),
-    ('<robot name="r"><!-- only a comment --></robot>', "a URDF file needs at least one <link>; this one has none"),
-    ('<robot name="r"><link name="a"><collision><geometry><mesh filename="gone.stl"/></geometry></collision>'
-     "</link></robot>", "link 'a' collision #0 mesh 'gone.stl'"),
-    ('<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="planar"><parent link="a"/>'
-     '<child link="b"/></joint></robot>', "joint 'j' (type 'planar')"),
-    ('<robot name="r"><link name="a"><collision><geometry><torus/></geometry></collision></link></robot>',
-     "<torus>"),
-])
+@pytest.mark.parametrize(
+    ("text", "culprit"),
+    [
+        ("not xml at all", "not well-formed XML"),
+        ("<mujoco/>", "root element must be <robot>"),
+        ('<robot name="r"><!-- only a comment --></robot>', "a URDF file needs at least one <link>; this one has none"),
+        (
+            '<robot name="r"><link name="a"><collision><geometry><mesh filename="gone.stl"/></geometry></collision>'
+            "</link></robot>",
+            "link 'a' collision #0 mesh 'gone.stl'",
+        ),
+        (
+            '<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="planar"><parent link="a"/>'
+            '<child link="b"/></joint></robot>',
+            "joint 'j' (type 'planar')",
+        ),
+        (
+            '<robot name="r"><link name="a"><collision><geometry><torus/></geometry></collision></link></robot>',
+            "<torus>",
+        ),
+    ],
+)
 def test_bad_urdf_files_name_the_element(tmp_path, text, culprit):
     path = tmp_path / "bad.urdf"
     path.write_text(text)
@@ -158,8 +176,10 @@ def _pd_controller(numbers_from):
 
     def controller(run_model):
         source = run_model if numbers_from is None else numbers_from
-        p = {n: source.parameter(n).value for n in ("joint_slide_effort", "joint_slide_upper", "link_arm_mass",
-                                                     "link_arm_com", "g")}
+        p = {
+            n: source.parameter(n).value
+            for n in ("joint_slide_effort", "joint_slide_upper", "link_arm_mass", "link_arm_com", "g")
+        }
         k_slide = p["joint_slide_effort"][0] / p["joint_slide_upper"][0]  # M T^-2
         k_swing = 20 * p["link_arm_mass"][0] * p["g"][0] * p["link_arm_com"][2]  # M L^2 T^-2 per radian
         reach = p["joint_slide_upper"][0]
@@ -219,15 +239,21 @@ def test_saved_model_reloads_with_its_settings_and_only_so(tmp_path):
     assert "settings" not in str(caught.value)
 
 
-@pytest.mark.parametrize(("where", "bad", "says"), [
-    (("gravity",), [0, 0, 9.81], "gravity along -z only"),
-    (("loadURDF", "basePosition"), [0, 0, "x"], "base_position must be a finite real number"),
-    (("loadURDF", "basePosition"), [0, 0], "base_position takes three numbers"),
-    (("loadURDF", "useFixedBase"), "no", "fixed_base is true or false, got 'no'"),
-    (("jointSprings",), [{"jointIndex": 7, "stiffness": 1.0, "restPosition": 0.0}],
-     "jointSprings: joint 7 is not a movable joint"),
-    (("jointSprings",), [{"jointIndex": 0, "stiffness": 1.0}], "key 'restPosition'"),
-])
+@pytest.mark.parametrize(
+    ("where", "bad", "says"),
+    [
+        (("gravity",), [0, 0, 9.81], "gravity along -z only"),
+        (("loadURDF", "basePosition"), [0, 0, "x"], "base_position must be a finite real number"),
+        (("loadURDF", "basePosition"), [0, 0], "base_position takes three numbers"),
+        (("loadURDF", "useFixedBase"), "no", "fixed_base is true or false, got 'no'"),
+        (
+            ("jointSprings",),
+            [{"jointIndex": 7, "stiffness": 1.0, "restPosition": 0.0}],
+            "jointSprings: joint 7 is not a movable joint",
+        ),
+        (("jointSprings",), [{"jointIndex": 0, "stiffness": 1.0}], "key 'restPosition'"),
+    ],
+)
 def test_a_saved_settings_file_with_a_bad_scene_is_named(tmp_path, where, bad, says):
     model = engines.load(ARM, damping=0.0, split_impulse=False)
     out = model.scaled(pt.search(model.system(), scale={"g": 1}).scalings[0], 2).save(tmp_path / "arm2.urdf")
@@ -244,16 +270,19 @@ def test_a_saved_settings_file_with_a_bad_scene_is_named(tmp_path, where, bad, s
     assert says in str(caught.value)
 
 
-@pytest.mark.parametrize(("options", "error", "says"), [
-    ({"g": -9.81}, pt.InvalidRequestError, "g cannot be negative, got -9.81"),
-    ({"damping": -1e-9}, pt.InvalidRequestError, "damping cannot be negative"),
-    ({"damping": "x"}, pt.NumberError, "damping must be a finite real number"),
-    ({"ground": "yes"}, pt.InvalidRequestError, "ground is true or false, got 'yes'"),
-    ({"fixed_base": 1}, pt.InvalidRequestError, "fixed_base is true or false, got 1"),
-    ({"base_position": (0, 1)}, pt.InvalidRequestError, "base_position takes three numbers"),
-    ({"base_position": "001"}, pt.InvalidRequestError, "base_position takes three numbers"),
-    ({"base_position": (0, 0, float("inf"))}, pt.NumberError, "base_position must be a finite real number"),
-])
+@pytest.mark.parametrize(
+    ("options", "error", "says"),
+    [
+        ({"g": -9.81}, pt.InvalidRequestError, "g cannot be negative, got -9.81"),
+        ({"damping": -1e-9}, pt.InvalidRequestError, "damping cannot be negative"),
+        ({"damping": "x"}, pt.NumberError, "damping must be a finite real number"),
+        ({"ground": "yes"}, pt.InvalidRequestError, "ground is true or false, got 'yes'"),
+        ({"fixed_base": 1}, pt.InvalidRequestError, "fixed_base is true or false, got 1"),
+        ({"base_position": (0, 1)}, pt.InvalidRequestError, "base_position takes three numbers"),
+        ({"base_position": "001"}, pt.InvalidRequestError, "base_position takes three numbers"),
+        ({"base_position": (0, 0, float("inf"))}, pt.NumberError, "base_position must be a finite real number"),
+    ],
+)
 def test_the_loader_reads_its_scene_as_the_command_line_does(options, error, says):
     # one reader for the keyword options, --scene and with_settings: the same refusals everywhere
     with pytest.raises(error) as caught:
@@ -290,16 +319,22 @@ def test_scene_values_are_read_exactly_once_into_floats_and_flags():
 _ARM_TEXT = ARM.read_text()
 
 
-@pytest.mark.parametrize(("old", "new", "says"), [
-    ('<mass value="2.0"', '<mass value="nan"', "value='nan' is not a finite number"),
-    ('<mass value="2.0"', '<mass value="inf"', "value='inf' is not a finite number"),
-    ('<mass value="2.0"', '<mass value=""', "inertial mass: value='' must be a finite number"),
-    ('<mass value="2.0"', '<mass value="heavy"', "inertial mass: value='heavy' must be a finite number"),
-    ('<mass value="2.0"', '<mass value="-1"', "inertial mass: value='-1' must be a finite number, such as 1.5, and not "
-                                             "negative"),
-    ('izz="', 'izz="nan" old_izz="', "izz='nan' is not a finite number"),
-    ('damping="', 'damping="nan" old_damping="', "damping='nan' is not a finite number"),
-])
+@pytest.mark.parametrize(
+    ("old", "new", "says"),
+    [
+        ('<mass value="2.0"', '<mass value="nan"', "value='nan' is not a finite number"),
+        ('<mass value="2.0"', '<mass value="inf"', "value='inf' is not a finite number"),
+        ('<mass value="2.0"', '<mass value=""', "inertial mass: value='' must be a finite number"),
+        ('<mass value="2.0"', '<mass value="heavy"', "inertial mass: value='heavy' must be a finite number"),
+        (
+            '<mass value="2.0"',
+            '<mass value="-1"',
+            "inertial mass: value='-1' must be a finite number, such as 1.5, and not negative",
+        ),
+        ('izz="', 'izz="nan" old_izz="', "izz='nan' is not a finite number"),
+        ('damping="', 'damping="nan" old_damping="', "damping='nan' is not a finite number"),
+    ],
+)
 def test_bad_numbers_are_refused_by_element_and_attribute(tmp_path, old, new, says):
     assert old in _ARM_TEXT
     path = tmp_path / "bad.urdf"
@@ -343,8 +378,13 @@ def test_the_default_scene_names_every_unscalable_number_at_once_with_one_remedy
 def test_runs_in_one_client_equal_the_runs_each_in_its_own():
     """run_many resets one client's world between runs: each run is what a fresh client gives, bit for bit."""
     pybullet_data = pytest.importorskip("pybullet_data")
-    model = engines.load(Path(pybullet_data.getDataPath()) / "r2d2.urdf", base_position=(0, 0, 1), ground=True,
-                         damping=0.0, split_impulse=False)  # wheels on the ground: contacts from the first steps
+    model = engines.load(
+        Path(pybullet_data.getDataPath()) / "r2d2.urdf",
+        base_position=(0, 0, 1),
+        ground=True,
+        damping=0.0,
+        split_impulse=False,
+    )  # wheels on the ground: contacts from the first steps
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     b, copy = model._backend, model.scaled(sc, 10)._backend
     u = engines.smooth_controls(model)
@@ -358,8 +398,13 @@ def test_runs_in_one_client_equal_the_runs_each_in_its_own():
 def test_a_scaled_copy_reads_as_its_saved_file_does(tmp_path):
     """The copy shares its original's reading of the links; the saved file is read by PyBullet afresh."""
     pybullet_data = pytest.importorskip("pybullet_data")
-    model = engines.load(Path(pybullet_data.getDataPath()) / "r2d2.urdf", base_position=(0, 0, 1), ground=True,
-                         damping=0.0, split_impulse=False)
+    model = engines.load(
+        Path(pybullet_data.getDataPath()) / "r2d2.urdf",
+        base_position=(0, 0, 1),
+        ground=True,
+        damping=0.0,
+        split_impulse=False,
+    )
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     copy = model.scaled(sc, 10)
     reread = engines.load(copy.save(tmp_path / "r2d2_10.urdf"))
@@ -390,8 +435,11 @@ def test_no_file_is_written_into_the_users_folder_and_meshes_still_load(tmp_path
     assert written  # PyBullet read copies ...
     assert all(folder != robot for folder in written)  # ... none of them in the user's folder
     assert sorted(p.name for p in robot.rglob("*")) == before
-    assert any(shape[4].endswith(b".obj") or shape[4].endswith(b".stl")
-               for shapes in model._backend._info["shapes"].values() for shape in shapes)  # meshes were loaded
+    assert any(
+        shape[4].endswith(b".obj") or shape[4].endswith(b".stl")
+        for shapes in model._backend._info["shapes"].values()
+        for shape in shapes
+    )  # meshes were loaded
 
 
 def test_a_compound_collision_mesh_is_named_as_a_setting_cause_and_matters_only_in_contact():
@@ -416,17 +464,28 @@ def test_a_compound_collision_mesh_is_named_as_a_setting_cause_and_matters_only_
 def test_a_file_pybullet_reads_despite_blank_lines_a_nul_or_a_material_inside_a_visual_geometry(tmp_path):
     """pybullet_data's biped, humanoid and racecar files have each of these; PyBullet's reader shrugs them off."""
     text = ARM.read_text()
-    body = text[text.index("<robot"):]
+    body = text[text.index("<robot") :]
     odd = tmp_path / "odd.urdf"
-    odd.write_text("\n\n" + '<?xml version="1.0"?>\n' + body.replace(
-        "</robot>", '<link name="decor"><visual><geometry><box size="0.1 0.1 0.1"/><material name="grey"/>'
-        '</geometry></visual></link><joint name="decor_fixed" type="fixed"><parent link="base"/>'
-        '<child link="decor"/></joint></robot>') + "\x00")
+    odd.write_text(
+        "\n\n"
+        + '<?xml version="1.0"?>\n'
+        + body.replace(
+            "</robot>",
+            '<link name="decor"><visual><geometry><box size="0.1 0.1 0.1"/><material name="grey"/>'
+            '</geometry></visual></link><joint name="decor_fixed" type="fixed"><parent link="base"/>'
+            '<child link="decor"/></joint></robot>',
+        )
+        + "\x00"
+    )
     model = engines.load(odd)
     assert model.parameter("link_decor_visual0_size").value == (0.1, 0.1, 0.1)
     bad = tmp_path / "bad.urdf"  # the same in a collision: refused, for it would change the dynamics
-    bad.write_text(body.replace("</robot>", '<link name="decor"><collision><geometry><material name="grey"/>'
-                                '</geometry></collision></link></robot>'))
+    bad.write_text(
+        body.replace(
+            "</robot>",
+            '<link name="decor"><collision><geometry><material name="grey"/></geometry></collision></link></robot>',
+        )
+    )
     with pytest.raises(EngineModelError, match="unknown geometry"):
         engines.load(bad)
 
@@ -460,7 +519,8 @@ def test_reading_changes_nothing_and_a_copy_is_written_by_address(tmp_path, monk
     reread = engines.load(copy.save(tmp_path / "arm_4.urdf"))  # its scene from the settings saved beside it
     assert [(p.name, p.value) for p in reread.parameters] == [(p.name, p.value) for p in copy.parameters]
     assert {p.name: p.value for p in reread.parameters if p.name.endswith("_scale")} == {
-        p.name: (4.0, 4.0, 4.0) for p in scales}
+        p.name: (4.0, 4.0, 4.0) for p in scales
+    }
 
 
 # -- the reader: every dimensional number of a URDF, by element and attribute -------------------------
@@ -502,10 +562,11 @@ def test_the_reader_finds_every_number_with_its_name_place_dimension_and_note(tm
 
     (tmp_path / "part.stl").write_text("solid part\nendsolid part\n")
     tree = ET.ElementTree(ET.fromstring(_EVERY_NUMBER))
-    read = [(a.name, a.path, a.attr, str(a.dimension), a.read(), a.note)
-            for a in _attributes(tree, "r.urdf", tmp_path)]
-    inertia = [(f"link_base_{i}", f"link 'base' inertia {i}", i, "M L^2", (v,), _INERTIA_NOTE)
-               for i, v in (("ixx", 1.0), ("ixy", 0.5), ("ixz", 0.25), ("iyy", 2.0), ("iyz", 0.125), ("izz", 3.0))]
+    read = [(a.name, a.path, a.attr, str(a.dimension), a.read(), a.note) for a in _attributes(tree, "r.urdf", tmp_path)]
+    inertia = [
+        (f"link_base_{i}", f"link 'base' inertia {i}", i, "M L^2", (v,), _INERTIA_NOTE)
+        for i, v in (("ixx", 1.0), ("ixy", 0.5), ("ixz", 0.25), ("iyy", 2.0), ("iyz", 0.125), ("izz", 3.0))
+    ]
     mesh_note = "a factor times the mesh file's units, a length"
     assert read == [
         ("link_base_com", "link 'base' inertial origin xyz", "xyz", "L", (0.0, 0.0, 0.1), ""),
@@ -516,8 +577,7 @@ def test_the_reader_finds_every_number_with_its_name_place_dimension_and_note(tm
         ("link_base_collision1_radius", "link 'base' collision #1 cylinder radius", "radius", "L", (0.1,), ""),
         ("link_base_collision1_length", "link 'base' collision #1 cylinder length", "length", "L", (0.4,), ""),
         # a mesh without a scale is read at scale 1, PyBullet's default (reading adds nothing to the file)
-        ("link_base_collision2_scale", "link 'base' collision #2 mesh scale", "scale", "L", (1.0, 1.0, 1.0),
-         mesh_note),
+        ("link_base_collision2_scale", "link 'base' collision #2 mesh scale", "scale", "L", (1.0, 1.0, 1.0), mesh_note),
         # a shape without geometry keeps its origin, and the shapes after it are read
         ("link_base_collision4_xyz", "link 'base' collision #4 origin xyz", "xyz", "L", (0.0, 0.0, 9.0), ""),
         ("link_base_collision5_xyz", "link 'base' collision #5 origin xyz", "xyz", "L", (0.0, 0.0, 8.0), ""),
@@ -549,21 +609,42 @@ def test_the_reader_finds_every_number_with_its_name_place_dimension_and_note(tm
     assert tree.getroot().find("link/collision[3]/geometry/mesh").get("scale") is None
 
 
-@pytest.mark.parametrize(("text", "element", "reason"), [
-    ("<mujoco/>", "<mujoco>", "a URDF file's root element must be <robot>"),
-    ('<robot><link name="a"><visual><geometry><mesh filename="gone.stl"/></geometry></visual></link></robot>',
-     "link 'a' visual #0 mesh 'gone.stl'", "mesh file not found (relative to the URDF's folder)"),
-    ('<robot><link name="a"><collision><geometry><mesh/></geometry></collision></link></robot>',
-     "link 'a' collision #0 mesh ''", "mesh file not found (relative to the URDF's folder)"),
-    ('<robot><link name="a"><collision><geometry><torus/></geometry></collision></link></robot>',
-     "link 'a' collision #0 <torus>", "unknown geometry; use box, cylinder, capsule, sphere, mesh or plane"),
-    ('<robot><link name="a"><contact><stickiness value="1"/></contact></link></robot>',
-     "link 'a' contact <stickiness>", "unknown contact parameter"),
-    ('<robot><joint name="j" type="floating"/></robot>', "joint 'j' (type 'floating')",
-     "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic or fixed"),
-    ('<robot><joint name="j"/></robot>', "joint 'j' (type '')",
-     "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic or fixed"),
-])
+@pytest.mark.parametrize(
+    ("text", "element", "reason"),
+    [
+        ("<mujoco/>", "<mujoco>", "a URDF file's root element must be <robot>"),
+        (
+            '<robot><link name="a"><visual><geometry><mesh filename="gone.stl"/></geometry></visual></link></robot>',
+            "link 'a' visual #0 mesh 'gone.stl'",
+            "mesh file not found (relative to the URDF's folder)",
+        ),
+        (
+            '<robot><link name="a"><collision><geometry><mesh/></geometry></collision></link></robot>',
+            "link 'a' collision #0 mesh ''",
+            "mesh file not found (relative to the URDF's folder)",
+        ),
+        (
+            '<robot><link name="a"><collision><geometry><torus/></geometry></collision></link></robot>',
+            "link 'a' collision #0 <torus>",
+            "unknown geometry; use box, cylinder, capsule, sphere, mesh or plane",
+        ),
+        (
+            '<robot><link name="a"><contact><stickiness value="1"/></contact></link></robot>',
+            "link 'a' contact <stickiness>",
+            "unknown contact parameter",
+        ),
+        (
+            '<robot><joint name="j" type="floating"/></robot>',
+            "joint 'j' (type 'floating')",
+            "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic or fixed",
+        ),
+        (
+            '<robot><joint name="j"/></robot>',
+            "joint 'j' (type '')",
+            "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic or fixed",
+        ),
+    ],
+)
 def test_the_reader_refuses_what_it_cannot_read_in_full_words(tmp_path, text, element, reason):
     import xml.etree.ElementTree as ET
 
@@ -581,11 +662,22 @@ def test_the_reader_reads_a_nameless_joint_and_every_joint_type(tmp_path):
     from pitheorem.engines.urdf import _attributes, _joint_kind
 
     assert [_joint_kind(t) for t in ("prismatic", "revolute", "continuous", "fixed", "planar", "Revolute", "")] == [
-        JointKind.SLIDE, JointKind.HINGE, JointKind.HINGE, None, None, None, None]
+        JointKind.SLIDE,
+        JointKind.HINGE,
+        JointKind.HINGE,
+        None,
+        None,
+        None,
+        None,
+    ]
     text = '<robot><joint type="revolute"><limit effort="2"/></joint></robot>'
     (read,) = _attributes(ET.ElementTree(ET.fromstring(text)), "j.urdf", tmp_path)
     assert (read.name, read.path, str(read.dimension), read.read()) == (
-        "joint__effort", "joint '' limit effort", "M L^2 T^-2", (2.0,))
+        "joint__effort",
+        "joint '' limit effort",
+        "M L^2 T^-2",
+        (2.0,),
+    )
 
 
 def test_a_scaled_copy_keeps_each_file_numbers_name_place_dimension_and_note():
@@ -602,10 +694,15 @@ def test_a_scaled_copy_keeps_each_file_numbers_name_place_dimension_and_note():
 
 def test_joint_springs_have_the_dimension_of_their_joint_and_scale_save_and_reload(tmp_path):
     model = engines.load(ARM, fixed_base=True, damping=0.0, split_impulse=False).with_settings(
-        joint_springs={"slide": (40, "0.1"), "swing": (2.5, -0.2)})
+        joint_springs={"slide": (40, "0.1"), "swing": (2.5, -0.2)}
+    )
     dims = {p.name: str(p.dimension) for p in model.parameters if "spring" in p.name}
-    assert dims == {"joint_slide_spring_stiffness": "M T^-2", "joint_slide_spring_rest": "L",
-                    "joint_swing_spring_stiffness": "M L^2 T^-2", "joint_swing_spring_rest": "1"}
+    assert dims == {
+        "joint_slide_spring_stiffness": "M T^-2",
+        "joint_slide_spring_rest": "L",
+        "joint_swing_spring_stiffness": "M L^2 T^-2",
+        "joint_swing_spring_rest": "1",
+    }
     sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
     scaled = model.scaled(sc, 4)
     springs = {s["jointIndex"]: (s["stiffness"], s["restPosition"]) for s in scaled.settings()["jointSprings"]}
@@ -638,13 +735,16 @@ def test_a_joint_spring_pulls_its_joint_as_the_torque_minus_k_q_minus_q0():
     assert np.ptp(ours[:, q]) > 0.1  # it swung
 
 
-@pytest.mark.parametrize(("springs", "says"), [
-    ({"elbow": (1, 0)}, "no movable joint 'elbow' for a spring; the movable joints are slide, swing"),
-    ({"swing": (-1, 0)}, "the spring stiffness of joint 'swing' cannot be negative"),
-    ({"swing": 3}, "the spring of joint 'swing' is (stiffness, rest position)"),
-    ([("swing", 1, 0)], "joint_springs maps a joint's name to (stiffness, rest position)"),
-    ({"swing": ("stiff", 0)}, "stiff"),
-])
+@pytest.mark.parametrize(
+    ("springs", "says"),
+    [
+        ({"elbow": (1, 0)}, "no movable joint 'elbow' for a spring; the movable joints are slide, swing"),
+        ({"swing": (-1, 0)}, "the spring stiffness of joint 'swing' cannot be negative"),
+        ({"swing": 3}, "the spring of joint 'swing' is (stiffness, rest position)"),
+        ([("swing", 1, 0)], "joint_springs maps a joint's name to (stiffness, rest position)"),
+        ({"swing": ("stiff", 0)}, "stiff"),
+    ],
+)
 def test_bad_joint_springs_are_named(springs, says):
     model = engines.load(ARM, fixed_base=True)
     with pytest.raises(pt.PiTheoremError) as err:

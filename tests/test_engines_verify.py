@@ -196,13 +196,19 @@ def test_a_batch_run_inherits_nothing_from_the_run_before_it_on_its_thread(tmp_p
         '<body name="b" pos="0.3 0 0"><joint name="jb" axis="0 1 0"/>'
         '<geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/></body></body></worldbody>'
         '<equality><joint joint1="ja" joint2="jb"/></equality>'
-        '<actuator><motor joint="ja" gear="1"/></actuator></mujoco>')
+        '<actuator><motor joint="ja" gear="1"/></actuator></mujoco>'
+    )
     b = engines.load(chain)._backend
     free = b.variant(inactive_equalities=(0,))
     u = np.full((80, 1), 0.5)
     # more jobs than threads: each thread runs a constrained and a free run, driven and undriven, in turn
-    jobs = [(b, u, False, None), (free, None, False, None), (free, u, False, None), (b, None, False, None),
-            (b, u, False, None)]
+    jobs = [
+        (b, u, False, None),
+        (free, None, False, None),
+        (free, u, False, None),
+        (b, None, False, None),
+        (b, u, False, None),
+    ]
     together = b.run_many(80, jobs)
     one_by_one = [backend.run(80, controls) for backend, controls, _, _ in jobs]
     assert all(np.array_equal(x, y) for x, y in zip(one_by_one, together, strict=True))
@@ -225,8 +231,13 @@ def test_what_verify_cannot_compare_is_refused_by_name():
         engines.verify(model, sc, 2, duration=0.01, scaled=other)
     assert engines.verify(model, sc, 2, duration=0.01).similar  # its own scaled copy: no refusal
     # ensemble and seed: whole numbers, at least 1 and at least 0
-    for what, bad, least in (("ensemble", 0, 1), ("ensemble", 2.0, 1), ("ensemble", True, 1), ("seed", -1, 0),
-                             ("seed", "1", 0)):
+    for what, bad, least in (
+        ("ensemble", 0, 1),
+        ("ensemble", 2.0, 1),
+        ("ensemble", True, 1),
+        ("seed", -1, 0),
+        ("seed", "1", 0),
+    ):
         with pytest.raises(pt.InvalidRequestError) as caught:
             engines.verify(model, sc, 2, duration=0.01, **{what: bad})
         assert str(caught.value) == f"{what} must be a whole number of at least {least}, got {bad!r}"
@@ -235,10 +246,12 @@ def test_what_verify_cannot_compare_is_refused_by_name():
 
 def test_a_model_or_copy_mujoco_refuses_is_verified_into_mujocos_refusal(tmp_path):
     """MuJoCo refuses masses below its threshold: verify raises that refusal, for the original or the copy."""
+
     def body(size):
         path = tmp_path / f"ball_{size}.xml"
-        path.write_text(f'<mujoco><worldbody><body><freejoint/><geom size="{size}" density="1000"/>'
-                        '</body></worldbody></mujoco>')
+        path.write_text(
+            f'<mujoco><worldbody><body><freejoint/><geom size="{size}" density="1000"/></body></worldbody></mujoco>'
+        )
         return engines.load(path)
 
     speck, ball = body("1e-6"), body("0.01")

@@ -21,8 +21,16 @@ m, l, g, k, c, x_r, th_r, k_th, c_th = sympy.symbols("m l g k c x_r theta_r k_th
 
 
 theta = sympy.Function("theta")(t)
-ROD_DIMS = {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1",
-            "theta_r": "1", "t": "T", "theta": "1"}
+ROD_DIMS = {
+    "m": "M",
+    "l": "L",
+    "g": "L T^-2",
+    "k_theta": "M L^2 T^-2",
+    "c_theta": "M L^2 T^-1",
+    "theta_r": "1",
+    "t": "T",
+    "theta": "1",
+}
 
 
 def test_paper_eq1_is_consistent_with_either_sign():
@@ -35,15 +43,20 @@ def test_paper_eq1_is_consistent_with_either_sign():
 
 
 def longitudinal_system(damper_dimension: str) -> pt.System:
-    return pt.System({"m": "M", "l": "L", "g": "L T^-2", "k": "M T^-2", "c": damper_dimension, "x_r": "L",
-                      "t": "T", "theta": "1"})
+    return pt.System(
+        {"m": "M", "l": "L", "g": "L T^-2", "k": "M T^-2", "c": damper_dimension, "x_r": "L", "t": "T", "theta": "1"}
+    )
 
 
 def test_longitudinal_variant_with_longitudinal_damper_is_flagged():
     # matlab_ports.rod_hinge_dynamics.rod_hinge_dynamics_longitudinal, as written in the original
     damping = c * l * theta.diff(t) * sympy.sin(theta) ** 2
-    bracket = (m * g * l / 2 * sympy.cos(theta) - damping + k * l**2 * sympy.sin(theta) * sympy.cos(theta)
-               - k * x_r * l * sympy.sin(theta))
+    bracket = (
+        m * g * l / 2 * sympy.cos(theta)
+        - damping
+        + k * l**2 * sympy.sin(theta) * sympy.cos(theta)
+        - k * x_r * l * sympy.sin(theta)
+    )
     rhs = 3 / (m * l**3) * bracket
     report = pt.check_dimensions(sympy.Eq(theta.diff(t, 2), rhs), longitudinal_system("M T^-1"))
     assert not report.consistent
@@ -58,12 +71,18 @@ def test_longitudinal_variant_with_longitudinal_damper_is_flagged():
 
 
 def test_longitudinal_variant_with_rotational_damper_is_flagged_for_its_prefactor():
-    bracket = (m * g * l / 2 * sympy.cos(theta) - c * theta.diff(t) + k * l**2 * sympy.sin(theta) * sympy.cos(theta)
-               - k * x_r * l * sympy.sin(theta))
+    bracket = (
+        m * g * l / 2 * sympy.cos(theta)
+        - c * theta.diff(t)
+        + k * l**2 * sympy.sin(theta) * sympy.cos(theta)
+        - k * x_r * l * sympy.sin(theta)
+    )
     rhs = 3 / (m * l**3) * bracket
     report = pt.check_dimensions(sympy.Eq(theta.diff(t, 2), rhs), longitudinal_system("M L^2 T^-1"))
     assert [(term, str(got), str(want)) for term, got, want in report.offending] == [
-        (theta.diff(t, 2), "T^-2", "L^-1 T^-2"), (rhs, "L^-1 T^-2", "T^-2")]
+        (theta.diff(t, 2), "T^-2", "L^-1 T^-2"),
+        (rhs, "L^-1 T^-2", "T^-2"),
+    ]
     assert "tie:" in str(report)
 
 
@@ -139,11 +158,23 @@ def test_spring_mass_damper_has_no_symmetry_beyond_units():
 
 
 def test_small_angle_rod_without_gravity_has_amplitude_scaling():
-    s = pt.System({"m": "M", "l": "L", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "theta_r": "1",
-                   "t": "T", "theta": "1", "omega": "T^-1"})
+    s = pt.System(
+        {
+            "m": "M",
+            "l": "L",
+            "k_theta": "M L^2 T^-2",
+            "c_theta": "M L^2 T^-1",
+            "theta_r": "1",
+            "t": "T",
+            "theta": "1",
+            "omega": "T^-1",
+        }
+    )
     omega = sympy.Function("omega")(t)
-    eqs = [sympy.Eq(theta.diff(t), omega),
-           sympy.Eq(omega.diff(t), 3 / (m * l**2) * (-c_th * omega - k_th * (theta - th_r)))]
+    eqs = [
+        sympy.Eq(theta.diff(t), omega),
+        sympy.Eq(omega.diff(t), 3 / (m * l**2) * (-c_th * omega - k_th * (theta - th_r))),
+    ]
     sym = pt.scaling_symmetries(eqs, s)
     amplitude = {"theta_r": 1, "theta": 1, "omega": 1}
     assert [vec(v) for v in sym.beyond_units] == [amplitude]  # the fewest-support form, not any complement
@@ -166,9 +197,7 @@ def test_projectile_lengths_scale_independently():
     assert sym.contains({"y": 1, "vy": 1, "g": 1})
     # search within the symmetries: stretch x alone, time and gravity fixed
     res = pt.search(proj.system, scale={"x": 1}, fixed=("t", "g"), within=sym)
-    assert [vec(sc.exponents) for sc in res.scalings] == [
-        {"x": 1, "vx": 1}
-    ]
+    assert [vec(sc.exponents) for sc in res.scalings] == [{"x": 1, "vx": 1}]
     assert res.scalings[0].is_unit_change is False
     # m is not in the equations
     assert pt.SearchNote("outside_equations", ("m",)) in res.notes
@@ -206,8 +235,11 @@ def test_bad_equation_inputs():
     with pytest.raises(pt.InvalidRequestError, match="SymmetryReport"):
         pt.search(s, scale={"x": 1}, within="symmetries")
     with pytest.raises(pt.InvalidRequestError, match="'t' does not appear"):
-        pt.search(pt.System({"x": "L", "t": "T", "u": "T"}), scale={"t": 1}, within=pt.scaling_symmetries(
-            [sympy.Eq(x, 0)], pt.System({"x": "L", "t": "T", "u": "T"}), time=None))
+        pt.search(
+            pt.System({"x": "L", "t": "T", "u": "T"}),
+            scale={"t": 1},
+            within=pt.scaling_symmetries([sympy.Eq(x, 0)], pt.System({"x": "L", "t": "T", "u": "T"}), time=None),
+        )
     assert sym.variables == ("x", "t")
     with pytest.raises(pt.InvalidRequestError, match="no equation holds the time derivative of a state"):
         pt.Model(s, [sympy.Eq(x, 0)])  # equations without a state define no model
@@ -236,8 +268,9 @@ x = sympy.Function("x")(t)
 
 
 psi = sympy.Function("psi")
-SYSTEM = pt.System({"t": "T", "X": "L", "Y": "L", "l": "L", "v": "L T^-1", "a": "1", "n": "1", "x": "L",
-                    "psi": "1", "F": "M L T^-2"})
+SYSTEM = pt.System(
+    {"t": "T", "X": "L", "Y": "L", "l": "L", "v": "L T^-1", "a": "1", "n": "1", "x": "L", "psi": "1", "F": "M L T^-2"}
+)
 
 
 F = sympy.Symbol("F")
@@ -248,18 +281,18 @@ def offending(expr, system=SYSTEM):
 
 
 CONSISTENT = [
-    sympy.atan2(Y, X),                       # a ratio of two lengths: an angle
-    sympy.sign(x.diff(t)) * v,               # Coulomb friction's direction
-    sympy.Heaviside(X - l) * F,              # a contact force switched on past l
-    sympy.Heaviside(X - l, sympy.S.Half),    # with the value at zero, dimensionless
+    sympy.atan2(Y, X),  # a ratio of two lengths: an angle
+    sympy.sign(x.diff(t)) * v,  # Coulomb friction's direction
+    sympy.Heaviside(X - l) * F,  # a contact force switched on past l
+    sympy.Heaviside(X - l, sympy.S.Half),  # with the value at zero, dimensionless
     sympy.Abs(X) + Y,
     sympy.Min(X, Y, l) + sympy.Max(X, l),
     sympy.Mod(X, l) + Y,
-    sympy.floor(X / l) * l + Y,              # quantised position: floor of a ratio
-    X**0.5 * Y**0.5 + l,                     # float powers, read as 1/2
-    X**sympy.Float("1.5") / l**0.5,          # ... and 3/2
-    a**n,                                    # symbolic power of dimensionless things
-    sympy.DiracDelta(X - l) * X * l,         # delta of a length has dimension 1/L
+    sympy.floor(X / l) * l + Y,  # quantised position: floor of a ratio
+    X**0.5 * Y**0.5 + l,  # float powers, read as 1/2
+    X ** sympy.Float("1.5") / l**0.5,  # ... and 3/2
+    a**n,  # symbolic power of dimensionless things
+    sympy.DiracDelta(X - l) * X * l,  # delta of a length has dimension 1/L
     psi(t) * l + X,
 ]
 
@@ -282,14 +315,14 @@ def test_dimensions_of_functions():
 
 
 INCONSISTENT = [
-    (sympy.atan2(Y, t), [(t, "T", "L"), (Y, "L", "T")]),           # a tie: both listed
-    (psi(t + l), [(l, "L", "T"), (t, "T", "L")]),                  # undefined function of a bad sum
+    (sympy.atan2(Y, t), [(t, "T", "L"), (Y, "L", "T")]),  # a tie: both listed
+    (psi(t + l), [(l, "L", "T"), (t, "T", "L")]),  # undefined function of a bad sum
     (sympy.Heaviside(X - t), [(-t, "T", "L"), (X, "L", "T")]),
-    (sympy.Heaviside(X, l), [(l, "L", "1")]),                      # its value at zero is a number
-    (sympy.floor(X), [(X, "L", "1")]),                             # floor is not homogeneous
+    (sympy.Heaviside(X, l), [(l, "L", "1")]),  # its value at zero is a number
+    (sympy.floor(X), [(X, "L", "1")]),  # floor is not homogeneous
     (sympy.ceiling(t), [(t, "T", "1")]),
-    (X**n, [(X, "L", "1")]),                                       # a symbolic power of a length
-    (sympy.Min(X, t, l), [(t, "T", "L")]),                         # outvoted two to one
+    (X**n, [(X, "L", "1")]),  # a symbolic power of a length
+    (sympy.Min(X, t, l), [(t, "T", "L")]),  # outvoted two to one
     (sympy.sin(X), [(X, "L", "1")]),
 ]
 
@@ -342,7 +375,7 @@ def test_symmetries_of_the_new_functions():
     eq = sympy.Eq(sympy.Symbol("m") * X, F * t**2 * sympy.Heaviside(X - l) * sympy.sign(Y))
     sym = pt.scaling_symmetries([eq], s)
     assert sym.contains({"X": 1, "l": 1, "F": 1})
-    assert sym.contains({"Y": 1})             # only Y's sign matters
+    assert sym.contains({"Y": 1})  # only Y's sign matters
     assert not sym.contains({"X": 1, "F": 1})  # X - l must stay homogeneous
     # atan2(Y, X) is invariant only when Y and X scale together
     sym2 = pt.scaling_symmetries([sympy.Eq(sympy.Symbol("m"), sympy.atan2(Y, X) * sympy.Symbol("m"))], s)
@@ -372,7 +405,7 @@ def test_contains_units_is_false_for_inconsistent_equations():
 
 
 def test_float_exponent_uses_the_number_rule():
-    report = pt.check_dimensions(X**(1 / 3), SYSTEM)
+    report = pt.check_dimensions(X ** (1 / 3), SYSTEM)
     assert report.dimension == pt.Dimension({"L": Fraction(1, 3)})  # a computed float: the simplest fraction
 
 

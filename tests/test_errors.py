@@ -68,11 +68,23 @@ def _every_error_with_every_field_set():
 
 #: the culprit each error of _every_error_with_every_field_set names
 CULPRITS = {
-    "DimensionSyntaxError": "^", "UnknownVariableError": "x", "DuplicateVariableError": "a", "EmptySystemError": "{}",
-    "RepeatingCountError": ("a",), "DependentRepeatingSetError": ("a", "b"), "InvalidRequestError": "n",
-    "UnitError": "furlongz", "CommandLineError": "--s", "SystemMismatchError": "m", "ModelEquationError": "Eq(x, 1)",
-    "NumberError": "1/0", "LimitError": "L^5000", "ModelFileError": "t", "EngineModelError": "robot.xml",
-    "UnscalableParameterError": "joint_root_damping", "EngineUnavailableError": "bullet",
+    "DimensionSyntaxError": "^",
+    "UnknownVariableError": "x",
+    "DuplicateVariableError": "a",
+    "EmptySystemError": "{}",
+    "RepeatingCountError": ("a",),
+    "DependentRepeatingSetError": ("a", "b"),
+    "InvalidRequestError": "n",
+    "UnitError": "furlongz",
+    "CommandLineError": "--s",
+    "SystemMismatchError": "m",
+    "ModelEquationError": "Eq(x, 1)",
+    "NumberError": "1/0",
+    "LimitError": "L^5000",
+    "ModelFileError": "t",
+    "EngineModelError": "robot.xml",
+    "UnscalableParameterError": "joint_root_damping",
+    "EngineUnavailableError": "bullet",
 }
 
 
@@ -122,19 +134,38 @@ def provoked_errors():
         errors.DependentRepeatingSetError: (catch(lambda: rod.pi_groups(repeating=("l", "t", "g"))), ("l", "t", "g")),
         errors.InvalidRequestError: (catch(lambda: pt.System({"x": "L"}, base_dimensions="LT")), "LT"),
         errors.UnitError: (catch(lambda: pt.System.from_units({"x": "furlongs per flibber"})), None),
-        errors.SystemMismatchError: (catch(lambda: pt.verify_similarity(
-            pt.models.projectile(), pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1}),
-            s=2, t_final=0.1)), "m"),
-        errors.ModelEquationError: (catch(lambda: pt.Model(pt.System({"x": "L", "t": "T"}), [sympy.Eq(
-            sympy.Function("x")(sympy.Symbol("t")).diff("t", 2), 0)])), "Eq(Derivative(x(t), (t, 2)), 0)"),
-        errors.NumberError: (catch(lambda: pt.search(pt.System({"l": "L", "t": "T"}), scale={"l": float("nan")})), "nan"),
+        errors.SystemMismatchError: (
+            catch(
+                lambda: pt.verify_similarity(
+                    pt.models.projectile(),
+                    pt.Scaling.from_unit_change(pt.System({"l": "L", "t": "T"}), {"L": 1}),
+                    s=2,
+                    t_final=0.1,
+                )
+            ),
+            "m",
+        ),
+        errors.ModelEquationError: (
+            catch(
+                lambda: pt.Model(
+                    pt.System({"x": "L", "t": "T"}), [sympy.Eq(sympy.Function("x")(sympy.Symbol("t")).diff("t", 2), 0)]
+                )
+            ),
+            "Eq(Derivative(x(t), (t, 2)), 0)",
+        ),
+        errors.NumberError: (
+            catch(lambda: pt.search(pt.System({"l": "L", "t": "T"}), scale={"l": float("nan")})),
+            "nan",
+        ),
         errors.LimitError: (catch(lambda: pt.Dimension.parse("L^5000")), "5000"),
         errors.ModelFileError: (catch(lambda: pt.load_model_file("example:nope")), "example:nope"),
         errors.CommandLineError: (catch(lambda: _parse_scale(["g=1", "g=2"])), "g"),
         errors.EngineUnavailableError: (errors.EngineUnavailableError("bullet", "pybullet"), "bullet"),
         errors.EngineModelError: (catch(lambda: engines.load("no_such_robot.xml")), "no_such_robot.xml"),
-        errors.UnscalableParameterError: (errors.UnscalableParameterError("joint_root_damping", "needs s^1 and s^3"),
-                                          "joint_root_damping"),
+        errors.UnscalableParameterError: (
+            errors.UnscalableParameterError("joint_root_damping", "needs s^1 and s^3"),
+            "joint_root_damping",
+        ),
     }
 
 

@@ -27,12 +27,24 @@ from pitheorem.exact import (
 )
 
 
-@pytest.mark.parametrize(("value", "expected"), [
-    (0.1, Fraction(1, 10)), (2.5e-3, Fraction(1, 400)), (1e22, Fraction(10**22)), (-0.0, Fraction(0)),
-    (np.float64(0.5), Fraction(1, 2)), (np.float32(0.1), Fraction(1, 10)), (np.float16(0.25), Fraction(1, 4)),
-    (np.int8(-3), Fraction(-3)), (np.array(0.2), Fraction(1, 5)), ("  -7/21 ", Fraction(-1, 3)),
-    ("1e-3", Fraction(1, 1000)), (Fraction(2, 6), Fraction(1, 3)), (10**40, Fraction(10**40)),
-])
+@pytest.mark.parametrize(
+    ("value", "expected"),
+    [
+        (0.1, Fraction(1, 10)),
+        (2.5e-3, Fraction(1, 400)),
+        (1e22, Fraction(10**22)),
+        (-0.0, Fraction(0)),
+        (np.float64(0.5), Fraction(1, 2)),
+        (np.float32(0.1), Fraction(1, 10)),
+        (np.float16(0.25), Fraction(1, 4)),
+        (np.int8(-3), Fraction(-3)),
+        (np.array(0.2), Fraction(1, 5)),
+        ("  -7/21 ", Fraction(-1, 3)),
+        ("1e-3", Fraction(1, 1000)),
+        (Fraction(2, 6), Fraction(1, 3)),
+        (10**40, Fraction(10**40)),
+    ],
+)
 def test_read_number_rule(value, expected):
     assert read_number(value) == expected
 
@@ -43,16 +55,30 @@ def test_read_number_refuses(bad):
         read_number(bad, "the test value")
 
 
-@pytest.mark.parametrize("bad", [float("inf"), float("-inf"), float("nan"), np.float32("inf"), np.float64("nan"),
-                                 Decimal("Infinity"), Decimal("-Infinity"), Decimal("NaN"), Decimal("sNaN")])
+@pytest.mark.parametrize(
+    "bad",
+    [
+        float("inf"),
+        float("-inf"),
+        float("nan"),
+        np.float32("inf"),
+        np.float64("nan"),
+        Decimal("Infinity"),
+        Decimal("-Infinity"),
+        Decimal("NaN"),
+        Decimal("sNaN"),
+    ],
+)
 def test_read_number_refuses_non_finite_numbers_of_every_type_by_name(bad):
     with pytest.raises(pt.NumberError, match="the test value must be") as info:
         read_number(bad, "the test value")
     assert info.value.culprit is bad
 
 
-@pytest.mark.parametrize(("value", "expected"), [(2, Fraction(2)), ("1/3", Fraction(1, 3)), (0.5, Fraction(1, 2)),
-                                               (sympy.Rational(3, 4), Fraction(3, 4))])
+@pytest.mark.parametrize(
+    ("value", "expected"),
+    [(2, Fraction(2)), ("1/3", Fraction(1, 3)), (0.5, Fraction(1, 2)), (sympy.Rational(3, 4), Fraction(3, 4))],
+)
 def test_read_positive_reads_like_read_number(value, expected):
     assert read_positive(value, "the scale factor s") == expected
 
@@ -69,8 +95,12 @@ def test_read_value_keeps_floats_and_makes_the_rest_fractions():
     for value in (9.81, np.float32(0.5), sympy.Float(0.25), sympy.pi):
         assert type(read_value(value, "v")) is float
     assert read_value(sympy.pi, "v") == pytest.approx(3.141592653589793)
-    for value, exact in ((3, Fraction(3)), ("1/3", Fraction(1, 3)), (sympy.Rational(1, 7), Fraction(1, 7)),
-                         (np.int64(-4), Fraction(-4))):
+    for value, exact in (
+        (3, Fraction(3)),
+        ("1/3", Fraction(1, 3)),
+        (sympy.Rational(1, 7), Fraction(1, 7)),
+        (np.int64(-4), Fraction(-4)),
+    ):
         got = read_value(value, "v")
         assert got == exact
         assert type(got) is Fraction
@@ -88,9 +118,14 @@ def test_number_strings_up_to_a_thousand_characters_are_read():
     assert info.value.value == "1" * 20 + "..."
 
 
-@pytest.mark.parametrize(("irrational", "printed"), [
-    (sympy.pi, "3.141592653589793"), (sympy.sqrt(2), "1.4142135623730951"), (sympy.E, "2.718281828459045"),
-])
+@pytest.mark.parametrize(
+    ("irrational", "printed"),
+    [
+        (sympy.pi, "3.141592653589793"),
+        (sympy.sqrt(2), "1.4142135623730951"),
+        (sympy.E, "2.718281828459045"),
+    ],
+)
 def test_irrational_numbers_need_the_opt_in(irrational, printed):
     # an exponent must be rational: pi is refused unless the caller accepts irrationals (values, not exponents);
     # accepted, it is read through its nearest float, whose 16 digits make it a computed float: the simplest
@@ -146,10 +181,17 @@ def test_huge_power_of_ten_string_is_refused_before_it_is_built():
         read_exponent("1e99999999", "x")
 
 
-@pytest.mark.parametrize(("s", "expected"), [
-    (2, Fraction(2)), ("1/2", Fraction(1, 2)), (np.int64(3), Fraction(3)), (sympy.Rational(3, 4), Fraction(3, 4)),
-    (Fraction(10, 4), Fraction(5, 2)), ("0.1", Fraction(1, 10)),
-])
+@pytest.mark.parametrize(
+    ("s", "expected"),
+    [
+        (2, Fraction(2)),
+        ("1/2", Fraction(1, 2)),
+        (np.int64(3), Fraction(3)),
+        (sympy.Rational(3, 4), Fraction(3, 4)),
+        (Fraction(10, 4), Fraction(5, 2)),
+        ("0.1", Fraction(1, 10)),
+    ],
+)
 def test_read_scale_factor_makes_exact_numbers_fractions(s, expected):
     got = read_scale_factor(s)
     assert got == expected
@@ -166,10 +208,17 @@ def test_read_scale_factor_keeps_floats_and_irrational_numbers():
             read_scale_factor(bad)
 
 
-@pytest.mark.parametrize(("value", "expected"), [
-    ("-1/2", Fraction(-1, 2)), (0.25, Fraction(1, 4)), (3, Fraction(3)), ("1e-3", Fraction(1, 1000)),
-    (f"1/{MAX_DENOMINATOR}", Fraction(1, MAX_DENOMINATOR)), (MAX_EXPONENT, Fraction(MAX_EXPONENT)),
-])
+@pytest.mark.parametrize(
+    ("value", "expected"),
+    [
+        ("-1/2", Fraction(-1, 2)),
+        (0.25, Fraction(1, 4)),
+        (3, Fraction(3)),
+        ("1e-3", Fraction(1, 1000)),
+        (f"1/{MAX_DENOMINATOR}", Fraction(1, MAX_DENOMINATOR)),
+        (MAX_EXPONENT, Fraction(MAX_EXPONENT)),
+    ],
+)
 def test_read_exponent_reads_within_the_limits(value, expected):
     assert read_exponent(value, "the exponent of 'x'") == expected
 
@@ -184,6 +233,7 @@ def test_read_exponent_refuses_beyond_the_limits(value):
 # -- the float rule: a float of at most 12 significant digits is the decimal typed; a longer one, the
 # simplest fraction whose nearest double it is.  Oracles: decimal strings built here, float() of a
 # Fraction (correctly rounded), and Fraction.limit_denominator for minimality.
+
 
 @given(st.integers(-(10**12) + 1, 10**12 - 1), st.integers(-290, 290))
 def test_a_float_of_at_most_twelve_digits_reads_as_the_decimal_typed(mantissa, exponent):
@@ -213,11 +263,19 @@ def test_a_computed_quotient_of_small_integers_reads_as_that_fraction(p, q):
     assert read_number(p / q) == Fraction(p, q)
 
 
-@pytest.mark.parametrize(("value", "expected"), [
-    (1 / 3, Fraction(1, 3)), (-22 / 7, Fraction(-22, 7)), (0.1, Fraction(1, 10)), (0.123456789, Fraction(123456789, 10**9)),
-    (123456789012.0, Fraction(123456789012)), (0.000123456789012, Fraction(123456789012, 10**15)),
-    (np.float64(2 / 3), Fraction(2, 3)), (sympy.Float(1 / 7), Fraction(1, 7)),
-])
+@pytest.mark.parametrize(
+    ("value", "expected"),
+    [
+        (1 / 3, Fraction(1, 3)),
+        (-22 / 7, Fraction(-22, 7)),
+        (0.1, Fraction(1, 10)),
+        (0.123456789, Fraction(123456789, 10**9)),
+        (123456789012.0, Fraction(123456789012)),
+        (0.000123456789012, Fraction(123456789012, 10**15)),
+        (np.float64(2 / 3), Fraction(2, 3)),
+        (sympy.Float(1 / 7), Fraction(1, 7)),
+    ],
+)
 def test_float_rule_examples(value, expected):
     assert read_number(value) == expected
 
@@ -267,45 +325,95 @@ def test_the_simplest_fraction_of_zero_is_zero():
 # -- whole messages and culprits: every refusal names the value, what it was and what is valid
 # (each assertion kills a mutmut survivor that changed one of them)
 
-_FINITE = ("a finite real number (int, float, Fraction, numpy or sympy number, or a string such as '0.1' or "
-           "'1/3')")
+_FINITE = "a finite real number (int, float, Fraction, numpy or sympy number, or a string such as '0.1' or '1/3')"
 
 
-@pytest.mark.parametrize(("read", "error", "message", "culprit"), [
-    (lambda: read_value(sympy.Float("1e400"), "the value of 'x'"), pt.LimitError,
-     "the value of 'x' is about 10^400: it is beyond the range of floating point (about 1e-308 to 1.8e308); "
-     "pass it exactly, as an int, a Fraction or a string", "about 10^400"),
-    (lambda: read_scale_factor(sympy.Float("1e400")), pt.LimitError,
-     "the scale factor s is about 10^400: it is beyond the range of floating point (about 1e-308 to 1.8e308); "
-     "pass it exactly, as an int, a Fraction or a string", "about 10^400"),
-    (lambda: read_number("abc", "w"), pt.NumberError, f"w must be {_FINITE}, got 'abc'", "abc"),
-    (lambda: read_number("1e99999", "w"), pt.LimitError, "w is 1e99999: its power of ten exceeds the limit 10^10000",
-     "1e99999"),
-    (lambda: read_positive("1e99999", "s"), pt.LimitError, "s is 1e99999: its power of ten exceeds the limit 10^10000",
-     "1e99999"),
-    (lambda: read_number("1/0", "w"), pt.NumberError, f"w must be {_FINITE}, with a nonzero denominator, got '1/0'",
-     "1/0"),
-    (lambda: read_number("1" * 1001, "w"), pt.LimitError,
-     "w is 11111111111111111111...: a number string may have at most 1000 characters", "11111111111111111111..."),
-    (lambda: read_exponent(1001, "w"), pt.LimitError, "w is 1001: its magnitude exceeds the limit 1000", "1001"),
-    (lambda: read_exponent(Fraction(1, 10**13), "w"), pt.LimitError,
-     "w is 1/10000000000000: its denominator 10000000000000 exceeds the limit 1000000000000", "1/10000000000000"),
-    (lambda: read_exponent(np.float32(1e-13), "w"), pt.LimitError,
-     f"w is {np.float32(1e-13)}: its denominator 10000000000000 exceeds the limit 1000000000000; a float is read as the decimal it "
-     "prints as, or as the simplest fraction that rounds to it; pass an exact exponent such as Fraction(1, 3) or "
-     "'1/3'", np.float32(1e-13)),
-    (lambda: read_number(None), pt.NumberError, f"the number must be {_FINITE}, got None", None),
-    (lambda: read_number([1], "w"), pt.NumberError, f"w must be {_FINITE}, got [1]", [1]),
-    (lambda: read_number(True, "w"), pt.NumberError, f"w must be {_FINITE}, not a bool, got True", True),
-    (lambda: read_number(np.bool_(True), "w"), pt.NumberError, f"w must be {_FINITE}, not a bool, got np.True_",
-     np.bool_(True)),
-    (lambda: read_number(sympy.pi, "w"), pt.NumberError, "w must be a rational number such as 1, -2 or '1/2', got pi",
-     sympy.pi),
-    (lambda: read_number(sympy.zoo, "w", irrational_ok=True), pt.NumberError, f"w must be {_FINITE}, got zoo",
-     sympy.zoo),
-    (lambda: read_positive(sympy.pi, "s"), pt.NumberError,
-     "s must be a positive finite number such as 2, 0.5 or '1/3', got pi", sympy.pi),
-])
+@pytest.mark.parametrize(
+    ("read", "error", "message", "culprit"),
+    [
+        (
+            lambda: read_value(sympy.Float("1e400"), "the value of 'x'"),
+            pt.LimitError,
+            "the value of 'x' is about 10^400: it is beyond the range of floating point (about 1e-308 to 1.8e308); "
+            "pass it exactly, as an int, a Fraction or a string",
+            "about 10^400",
+        ),
+        (
+            lambda: read_scale_factor(sympy.Float("1e400")),
+            pt.LimitError,
+            "the scale factor s is about 10^400: it is beyond the range of floating point (about 1e-308 to 1.8e308); "
+            "pass it exactly, as an int, a Fraction or a string",
+            "about 10^400",
+        ),
+        (lambda: read_number("abc", "w"), pt.NumberError, f"w must be {_FINITE}, got 'abc'", "abc"),
+        (
+            lambda: read_number("1e99999", "w"),
+            pt.LimitError,
+            "w is 1e99999: its power of ten exceeds the limit 10^10000",
+            "1e99999",
+        ),
+        (
+            lambda: read_positive("1e99999", "s"),
+            pt.LimitError,
+            "s is 1e99999: its power of ten exceeds the limit 10^10000",
+            "1e99999",
+        ),
+        (
+            lambda: read_number("1/0", "w"),
+            pt.NumberError,
+            f"w must be {_FINITE}, with a nonzero denominator, got '1/0'",
+            "1/0",
+        ),
+        (
+            lambda: read_number("1" * 1001, "w"),
+            pt.LimitError,
+            "w is 11111111111111111111...: a number string may have at most 1000 characters",
+            "11111111111111111111...",
+        ),
+        (lambda: read_exponent(1001, "w"), pt.LimitError, "w is 1001: its magnitude exceeds the limit 1000", "1001"),
+        (
+            lambda: read_exponent(Fraction(1, 10**13), "w"),
+            pt.LimitError,
+            "w is 1/10000000000000: its denominator 10000000000000 exceeds the limit 1000000000000",
+            "1/10000000000000",
+        ),
+        (
+            lambda: read_exponent(np.float32(1e-13), "w"),
+            pt.LimitError,
+            f"w is {np.float32(1e-13)}: its denominator 10000000000000 exceeds the limit 1000000000000; a float is read as the decimal it "
+            "prints as, or as the simplest fraction that rounds to it; pass an exact exponent such as Fraction(1, 3) or "
+            "'1/3'",
+            np.float32(1e-13),
+        ),
+        (lambda: read_number(None), pt.NumberError, f"the number must be {_FINITE}, got None", None),
+        (lambda: read_number([1], "w"), pt.NumberError, f"w must be {_FINITE}, got [1]", [1]),
+        (lambda: read_number(True, "w"), pt.NumberError, f"w must be {_FINITE}, not a bool, got True", True),
+        (
+            lambda: read_number(np.bool_(True), "w"),
+            pt.NumberError,
+            f"w must be {_FINITE}, not a bool, got np.True_",
+            np.bool_(True),
+        ),
+        (
+            lambda: read_number(sympy.pi, "w"),
+            pt.NumberError,
+            "w must be a rational number such as 1, -2 or '1/2', got pi",
+            sympy.pi,
+        ),
+        (
+            lambda: read_number(sympy.zoo, "w", irrational_ok=True),
+            pt.NumberError,
+            f"w must be {_FINITE}, got zoo",
+            sympy.zoo,
+        ),
+        (
+            lambda: read_positive(sympy.pi, "s"),
+            pt.NumberError,
+            "s must be a positive finite number such as 2, 0.5 or '1/3', got pi",
+            sympy.pi,
+        ),
+    ],
+)
 def test_each_refusal_names_value_what_and_the_valid_kind(read, error, message, culprit):
     with pytest.raises(error) as caught:
         read()

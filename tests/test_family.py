@@ -23,9 +23,12 @@ def brute_force_minimal_points(a0, dirs, free):
         if minor.det() == 0:
             continue
         coords = minor.T.solve(sympy.Matrix([-a0[j] for j in subset]))  # sum_i c_i v_i[j] = -a0[j] on the subset
-        points.add(tuple(Fraction(a) + sum(Fraction(int(c.p), int(c.q)) * v[j] for c, v in zip(coords, dirs,
-                                                                                               strict=True))
-                         for j, a in enumerate(a0)))
+        points.add(
+            tuple(
+                Fraction(a) + sum(Fraction(int(c.p), int(c.q)) * v[j] for c, v in zip(coords, dirs, strict=True))
+                for j, a in enumerate(a0)
+            )
+        )
     support = {p: [j for j, x in enumerate(p) if x] for p in points}
     return sorted(points, key=lambda p: (len(support[p]), support[p]))
 
@@ -37,8 +40,10 @@ def test_minimal_points_equal_brute_force_in_order(n, d, data):
     constrained = [j for j in range(n) if j not in free]
     a0 = data.draw(st.lists(st.integers(-3, 3), min_size=n, max_size=n))
     # the directions of a family never move a prescribed or fixed position
-    dirs = [[0 if j in constrained else x for j, x in enumerate(v)]
-            for v in data.draw(st.lists(st.lists(st.integers(-3, 3), min_size=n, max_size=n), min_size=d, max_size=d))]
+    dirs = [
+        [0 if j in constrained else x for j, x in enumerate(v)]
+        for v in data.draw(st.lists(st.lists(st.integers(-3, 3), min_size=n, max_size=n), min_size=d, max_size=d))
+    ]
     keys, _weights = family_module.minimal_points(a0, dirs, free, constrained)
     got = [tuple(Fraction(p, key[0]) for p in key[1:]) for key in keys.tolist()]
     assert got == brute_force_minimal_points(a0, dirs, free)
@@ -68,8 +73,10 @@ def test_minimal_points_of_directions_dependent_on_the_free_variables():
 
 def test_no_minimal_point_keeps_integer_arrays():
     # no two free positions with an independent minor, and no free position at all: no point either way
-    for a0, dirs, free, constrained in (([1, 1, 0, 0], [[0, 1, 0, 0], [0, 2, 0, 0]], [1, 2, 3], [0]),
-                                        ([1, 1], [[1, -1]], [], [])):
+    for a0, dirs, free, constrained in (
+        ([1, 1, 0, 0], [[0, 1, 0, 0], [0, 2, 0, 0]], [1, 2, 3], [0]),
+        ([1, 1], [[1, -1]], [], []),
+    ):
         keys, weights = family_module.minimal_points(a0, dirs, free, constrained)
         assert keys.shape == (0, len(a0) + 1)
         assert weights.shape == (0, len(dirs) + 1)

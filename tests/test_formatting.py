@@ -61,8 +61,11 @@ def _projectile():
 def _dimension_reports():
     s = pt.System({"x": "L", "y": "L", "t": "T"})
     x, y, t = sympy.symbols("x y t")
-    return {"ok": pt.check_dimensions(x + y, s), "bad": pt.check_dimensions(x + y + t, s),
-            "tie": pt.check_dimensions(x + t, s)}
+    return {
+        "ok": pt.check_dimensions(x + y, s),
+        "bad": pt.check_dimensions(x + y + t, s),
+        "tie": pt.check_dimensions(x + t, s),
+    }
 
 
 def _similarity(**options):
@@ -90,8 +93,9 @@ def _engine_apply_answer():
     changed = tuple((p.name, sc.exponent_of(p.dimension)) for p in kept)
     scaled = model.scaled(sc, 10)
     details = tuple((p.dimension_text, p.value, scaled.parameter(p.name).value) for p in kept)
-    return EngineApplyAnswer("pendulum.xml", Fraction(10), sc, changed, len(model.parameters), "p.xml",
-                             ("p.xml.settings.json",), details)
+    return EngineApplyAnswer(
+        "pendulum.xml", Fraction(10), sc, changed, len(model.parameters), "p.xml", ("p.xml.settings.json",), details
+    )
 
 
 @cache
@@ -119,46 +123,67 @@ SAMPLES = {
     "scaling": lambda: _search(scale={"g": 1}).scalings[0],
     "scaling_rational": lambda: _search(scale={"g": Fraction(1, 2)}, fixed=()).scalings[0],
     "scaling_identity": lambda: pt.Scaling.from_unit_change(ROD, {}),
-    "scaling_beyond_units": lambda: pt.search(_projectile()[0].system, scale={"x": 1}, fixed=("t", "g"),
-                                              within=_projectile()[1]).scalings[0],
+    "scaling_beyond_units": lambda: pt.search(
+        _projectile()[0].system, scale={"x": 1}, fixed=("t", "g"), within=_projectile()[1]
+    ).scalings[0],
     "note": lambda: _search(scale={"g": 1}).notes[0],
     "note_outside": lambda: pt.SearchNote("outside_equations", ("m", "k_theta")),
     "search": lambda: _search(scale={"g": 1}),
     "search_rational": lambda: _search(scale={"g": Fraction(1, 2), "l": -1}, fixed=("t",)),
     "search_infeasible": lambda: _search(scale={"g": 1}, fixed=("t", "m", "k_theta")),
-    "search_within": lambda: pt.search(_projectile()[0].system, scale={"x": 1}, fixed=("t", "g"),
-                                       within=_projectile()[1]),
+    "search_within": lambda: pt.search(
+        _projectile()[0].system, scale={"x": 1}, fixed=("t", "g"), within=_projectile()[1]
+    ),
     "dimension_report": lambda: _dimension_reports()["ok"],
     "dimension_report_bad": lambda: _dimension_reports()["bad"],
     "dimension_report_tie": lambda: _dimension_reports()["tie"],
     "symmetry_report": lambda: _projectile()[1],
     "similarity_report": lambda: _similarity(),
     "similarity_report_baseline": lambda: _similarity(baseline=True),
-    "unit_fit": lambda: pt.fit_units(pt.System({"l": "L", "m": "M", "t": "T"}), {"l": 500, "m": Fraction(1, 3),
-                                                                                 "t": 1}, ranges={"l": (0.05, 10)}),
-    "unit_fit_nice": lambda: pt.fit_units(pt.System({"l": "L", "m": "M"}), {"l": 500, "m": 2},
-                                          ranges={"l": (0.05, 10)}, nice=10),
-    "unit_fit_conflict": lambda: pt.fit_units(pt.System({"l": "L", "a": "L^2"}), {"l": 1, "a": 1000},
-                                              ranges={"l": (1, 2), "a": (1, 2)}),
+    "unit_fit": lambda: pt.fit_units(
+        pt.System({"l": "L", "m": "M", "t": "T"}), {"l": 500, "m": Fraction(1, 3), "t": 1}, ranges={"l": (0.05, 10)}
+    ),
+    "unit_fit_nice": lambda: pt.fit_units(
+        pt.System({"l": "L", "m": "M"}), {"l": 500, "m": 2}, ranges={"l": (0.05, 10)}, nice=10
+    ),
+    "unit_fit_conflict": lambda: pt.fit_units(
+        pt.System({"l": "L", "a": "L^2"}), {"l": 1, "a": 1000}, ranges={"l": (1, 2), "a": (1, 2)}
+    ),
     "range_bound": lambda: pt.RangeBound("k_theta", "low", Fraction(-1, 20)),
     "hidden_constant": lambda: engines.hidden_constants("pybullet", names=["bullet_time_step"])[0],
     "rule_verdict": lambda: engines.check_rule(engines.BULLET_SCALE_THE_WORLD, ROD),
-    "rule_verdict_no_units": lambda: engines.check_rule(engines.RuleOfThumb(
-        "wrong", "pybullet", "made up", (engines.RuleQuantity("length", pt.Dimension.parse("L"), Fraction(1)),
-                                       engines.RuleQuantity("time", pt.Dimension.parse("T"), Fraction(0)),
-                                       engines.RuleQuantity("speed", pt.Dimension.parse("L T^-1"), Fraction(0))))),
+    "rule_verdict_no_units": lambda: engines.check_rule(
+        engines.RuleOfThumb(
+            "wrong",
+            "pybullet",
+            "made up",
+            (
+                engines.RuleQuantity("length", pt.Dimension.parse("L"), Fraction(1)),
+                engines.RuleQuantity("time", pt.Dimension.parse("T"), Fraction(0)),
+                engines.RuleQuantity("speed", pt.Dimension.parse("L T^-1"), Fraction(0)),
+            ),
+        )
+    ),
     "engine_model": _engine_model,
     "cause": lambda: engines.Cause("contact", "geom 'foot' / geom 'floor'", "starts at step 3 (t = 0.006) & more"),
-    "audit": lambda: engines.audit(_engine_model(), pt.search(_engine_model().system(), scale={"g": 1}).scalings[0],
-                                   10),
+    "audit": lambda: engines.audit(
+        _engine_model(), pt.search(_engine_model().system(), scale={"g": 1}).scalings[0], 10
+    ),
     "engine_similarity_report": lambda: engines.verify_engine_similarity(
-        "mujoco", pt.search(pt.models.hinged_rod().system, scale={"g": 1}).scalings[0], s=2, t_final=0.02),
-    "groups_answer": lambda: GroupsAnswer("hinged rod", ROD, ROD.pi_groups(repeating=("m", "l", "k_theta")),
-                                          (None, Fraction(1, 3), 0.2943, None, None, None)),
+        "mujoco", pt.search(pt.models.hinged_rod().system, scale={"g": 1}).scalings[0], s=2, t_final=0.02
+    ),
+    "groups_answer": lambda: GroupsAnswer(
+        "hinged rod",
+        ROD,
+        ROD.pi_groups(repeating=("m", "l", "k_theta")),
+        (None, Fraction(1, 3), 0.2943, None, None, None),
+    ),
     "bases_answer": lambda: BasesAnswer("hinged rod", 3, ("t",), ("m",), 2, [("m", "l", "g"), ("m", "l", "k_theta")]),
     "bases_answer_count": lambda: BasesAnswer("hinged rod", 3, (), (), 44, None),
     "search_answer": lambda: SearchAnswer("hinged rod", _search(scale={"g": 1})),
-    "search_answer_infeasible": lambda: SearchAnswer("hinged rod", _search(scale={"g": 1}, fixed=("t", "m", "k_theta"))),
+    "search_answer_infeasible": lambda: SearchAnswer(
+        "hinged rod", _search(scale={"g": 1}, fixed=("t", "m", "k_theta"))
+    ),
     "apply_answer": _apply_answer,
     "params_answer": lambda: ParamsAnswer("pendulum.xml", _engine_model()),
     "engine_apply_answer": _engine_apply_answer,
@@ -203,39 +228,57 @@ def _value_numbers(values: dict, doc: dict):
 #: type name -> check that a JSON document gives back the value's exact numbers
 JSON_NUMBERS = {
     "Dimension": lambda v, doc: _exact_map(doc["exponents"]) == v.exponents,
-    "PiGroup": lambda v, doc: doc["exponents"] == v.exponents and all(type(p) is int for p in doc["exponents"].values()),
+    "PiGroup": lambda v, doc: (
+        doc["exponents"] == v.exponents and all(type(p) is int for p in doc["exponents"].values())
+    ),
     "PiSet": lambda v, doc: [g["exponents"] for g in doc["groups"]] == [g.exponents for g in v],
-    "Scaling": lambda v, doc: (_exact_map(doc["exponents"]) == v.exponents
-                               and (doc["unit_change"] is None) == (not v.is_unit_change)
-                               and (not v.is_unit_change or _exact_map(doc["unit_change"]) == v.unit_change)),
+    "Scaling": lambda v, doc: (
+        _exact_map(doc["exponents"]) == v.exponents
+        and (doc["unit_change"] is None) == (not v.is_unit_change)
+        and (not v.is_unit_change or _exact_map(doc["unit_change"]) == v.unit_change)
+    ),
     "SearchNote": lambda v, doc: (doc["kind"], tuple(doc["variables"])) == (v.kind, v.variables),
     "SearchResult": lambda v, doc: _search_numbers(v, doc) is None,
     "DimensionReport": lambda v, doc: pt.Dimension.parse(doc["dimension"]) == v.dimension,
     "SymmetryReport": lambda v, doc: [_exact_map(b) for b in doc["basis"]] == [dict(b) for b in v.basis],
-    "SimilarityReport": lambda v, doc: (_exact_map(doc["exponents"]) == dict(v.exponents)
-                                        and doc["max_deviation"] == v.max_deviation),
+    "SimilarityReport": lambda v, doc: (
+        _exact_map(doc["exponents"]) == dict(v.exponents) and doc["max_deviation"] == v.max_deviation
+    ),
     "EngineSimilarityReport": lambda v, doc: doc["dt"] == v.dt and _exact_map(doc["exponents"]) == dict(v.exponents),
-    "UnitFit": lambda v, doc: (_exact_map(doc["unit_change"]) == dict(v.unit_change)
-                               and _value_numbers(v.values, doc["values"]) is None),
+    "UnitFit": lambda v, doc: (
+        _exact_map(doc["unit_change"]) == dict(v.unit_change) and _value_numbers(v.values, doc["values"]) is None
+    ),
     "RangeBound": lambda v, doc: _exact(doc["bound"]) == v.bound,
     "Cause": lambda v, doc: doc == {"kind": v.kind, "element": v.element, "detail": v.detail},
     "Audit": lambda v, doc: doc["compared"] == v.compared and len(doc["causes"]) == len(v.causes),
     "HiddenConstant": lambda v, doc: pt.Dimension.parse(doc["dimension"]) == v.dimension,
-    "RuleVerdict": lambda v, doc: (doc["unit_change"] is None if v.unit_change is None
-                                   else _exact_map(doc["unit_change"]) == v.unit_change),
+    "RuleVerdict": lambda v, doc: (
+        doc["unit_change"] is None if v.unit_change is None else _exact_map(doc["unit_change"]) == v.unit_change
+    ),
     "EngineModel": lambda v, doc: [tuple(p["value"]) for p in doc["parameters"]] == [p.value for p in v.parameters],
-    "GroupsAnswer": lambda v, doc: [g["value"] if g["value"] is None or isinstance(g["value"], float)
-                                    else _exact(g["value"]) for g in doc["groups"]] == list(v.values),
+    "GroupsAnswer": lambda v, doc: (
+        [
+            g["value"] if g["value"] is None or isinstance(g["value"], float) else _exact(g["value"])
+            for g in doc["groups"]
+        ]
+        == list(v.values)
+    ),
     "BasesAnswer": lambda v, doc: doc["count"] == v.n_bases,
     "SearchAnswer": lambda v, doc: _search_numbers(v.result, doc) is None,
-    "ApplyAnswer": lambda v, doc: (_exact(doc["s"]) == v.s and _value_numbers(v.values, doc["values"]) is None
-                                   and _value_numbers(v.scaled, doc["scaled"]) is None),
+    "ApplyAnswer": lambda v, doc: (
+        _exact(doc["s"]) == v.s
+        and _value_numbers(v.values, doc["values"]) is None
+        and _value_numbers(v.scaled, doc["scaled"]) is None
+    ),
     "ParamsAnswer": lambda v, doc: len(doc["parameters"]) == len(v.engine_model.parameters),
     "EngineApplyAnswer": lambda v, doc: [_exact(c["exponent"]) for c in doc["changed"]] == [p for _, p in v.changed],
-    "EngineVerifyAnswer": lambda v, doc: (_exact(doc["s"]) == v.s and doc["exact"] is v.report.exact
-                                          and doc["max_deviation"] == v.report.max_deviation
-                                          and [c["kind"] for c in doc["causes"]] == [c.kind for c in v.report.causes]
-                                          and doc["report"]["causes"] == doc["causes"]),
+    "EngineVerifyAnswer": lambda v, doc: (
+        _exact(doc["s"]) == v.s
+        and doc["exact"] is v.report.exact
+        and doc["max_deviation"] == v.report.max_deviation
+        and [c["kind"] for c in doc["causes"]] == [c.kind for c in v.report.causes]
+        and doc["report"]["causes"] == doc["causes"]
+    ),
 }
 
 
@@ -350,8 +393,11 @@ def test_notebook_hooks_by_kind(name):
         assert not hasattr(value, "_repr_latex_")
     if isinstance(value, TableDisplay):
         assert value._repr_html_() == format(value, "html")
-        assert "<table" in value._repr_html_() or not getattr(value, "feasible", True) \
+        assert (
+            "<table" in value._repr_html_()
+            or not getattr(value, "feasible", True)
             or isinstance(value, pt.DimensionReport | pt.SymmetryReport)
+        )
 
 
 #: public classes that do not display as values, by kind, with the reason
@@ -408,9 +454,11 @@ def test_no_class_of_the_package_builds_its_own_display():
 
 
 def test_a_format_loads_on_first_use_and_alone():
-    code = ("import sys, pitheorem as pt\n"
-            "def loaded(): return sorted(m[21:] for m in sys.modules if m.startswith('pitheorem.formatting.'))\n"
-            "dim = pt.Dimension.parse('L'); print(loaded()); str(dim); print(loaded())")
+    code = (
+        "import sys, pitheorem as pt\n"
+        "def loaded(): return sorted(m[21:] for m in sys.modules if m.startswith('pitheorem.formatting.'))\n"
+        "dim = pt.Dimension.parse('L'); print(loaded()); str(dim); print(loaded())"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.splitlines() == ["[]", "['pieces', 'text']"]
 
@@ -445,18 +493,24 @@ def test_powers_of_s_read_back_as_their_exponent(p):
     assert _read_power_latex(power_latex(p)) == p
 
 
-@pytest.mark.parametrize("request_", [{"scale": {"g": 1}}, {"scale": {"g": 1, "l": -1}, "fixed": ("m", "k_theta")},
-                                      {"scale": {"g": 1}, "allow": ("l", "m", "F")}])
+@pytest.mark.parametrize(
+    "request_",
+    [
+        {"scale": {"g": 1}},
+        {"scale": {"g": 1, "l": -1}, "fixed": ("m", "k_theta")},
+        {"scale": {"g": 1}, "allow": ("l", "m", "F")},
+    ],
+)
 def test_roles_in_every_table_follow_the_request(request_):
     res = pt.search(ROD, **request_)
     scale, fixed = set(request_["scale"]), set(res.fixed)
     oracle = {n: "scale" if n in scale else "fixed" if n in fixed else "free" for n in ROD.variables}
     assert res.roles == oracle
-    text_rows = [line.split()[:2] for line in res.table().splitlines()[1:len(ROD.variables) + 1]]
+    text_rows = [line.split()[:2] for line in res.table().splitlines()[1 : len(ROD.variables) + 1]]
     assert dict(text_rows) == oracle
-    latex_rows = [line.split(" & ")[:2] for line in format(res, "latex").splitlines()[2:len(ROD.variables) + 2]]
+    latex_rows = [line.split(" & ")[:2] for line in format(res, "latex").splitlines()[2 : len(ROD.variables) + 2]]
     assert [role for _, role in latex_rows] == list(oracle.values())
-    assert re.findall(r"<em>(\w+)</em>", format(res, "html"))[:len(ROD.variables)] == list(oracle.values())
+    assert re.findall(r"<em>(\w+)</em>", format(res, "html"))[: len(ROD.variables)] == list(oracle.values())
 
 
 def test_every_table_cell_is_the_power_of_its_scaling():
@@ -464,12 +518,11 @@ def test_every_table_cell_is_the_power_of_its_scaling():
     (sc,) = res.scalings
     assert sc.exponents["k_theta"] == 1
     assert sc.exponents["F"] == Fraction(1, 2)
-    latex = format(res, "latex").splitlines()[2:len(ROD.variables) + 2]
-    assert [_read_power_latex(row.split(" & ")[2].removesuffix(r" \\").strip("$")) for row in latex] == list(
-        sc.vector)
+    latex = format(res, "latex").splitlines()[2 : len(ROD.variables) + 2]
+    assert [_read_power_latex(row.split(" & ")[2].removesuffix(r" \\").strip("$")) for row in latex] == list(sc.vector)
     cells = re.findall(r"<td[^>]*>([^<]*)</td>", format(res, "html"))
     html_powers = [_read_power_latex(c.strip("$")) for c in cells if c.startswith(("$s", "-"))]
-    assert html_powers[:len(ROD.variables)] == list(sc.vector)
+    assert html_powers[: len(ROD.variables)] == list(sc.vector)
     doc = json.loads(format(res, "json"))
     assert _exact_map(doc["scalings"][0]["unit_change"]) == sc.unit_change
 
@@ -528,8 +581,9 @@ def test_search_notes_are_phrased_by_each_front_end():
     assert format(note, "latex").endswith(r"\texttt{t} is held fixed by default; pass fixed=() to let time change")
     assert json.loads(format(note, "json"))["text"] == str(note)
     answer = SearchAnswer("rod", pt.search(ROD, scale={"g": 1}))
-    assert json.loads(format(answer, "json"))["notes"][0]["text"].endswith("give --fixed with no names to let "
-                                                                             "time change")
+    assert json.loads(format(answer, "json"))["notes"][0]["text"].endswith(
+        "give --fixed with no names to let time change"
+    )
     assert "give <code>--fixed</code> with no names" in format(answer, "html")
 
 
@@ -549,41 +603,53 @@ def test_dimension_text_writes_every_power():
     dim = pt.Dimension.parse("M L^2 T^-2 Theta^(1/2) I^(-1/3)")
     assert str(dim) == "M L^2 T^-2 Theta^(1/2) I^(-1/3)"
     assert format(dim, "latex") == r"\mathsf{M}\,\mathsf{L}^{2}\,\mathsf{T}^{-2}\,\Theta^{1/2}\,\mathsf{I}^{-1/3}"
-    assert json.loads(format(dim, "json")) == {"dimension": str(dim), "exponents": {
-        "M": "1", "L": "2", "T": "-2", "Theta": "1/2", "I": "-1/3"}}
+    assert json.loads(format(dim, "json")) == {
+        "dimension": str(dim),
+        "exponents": {"M": "1", "L": "2", "T": "-2", "Theta": "1/2", "I": "-1/3"},
+    }
 
 
 def test_search_of_a_family_in_latex_and_html():
     res = pt.search(pt.System({"m": "M", "l": "L", "g": "L T^-2", "t": "T"}), scale={"g": 1}, fixed=())
-    assert format(res, "latex") == "\n".join([
-        r"\begin{tabular}{llcc}",
-        r"variable & role & \#1 & \#2 \\ \hline",
-        r"$m$ & free & - & - \\",
-        r"$l$ & free & $s$ & - \\",
-        r"$g$ & scale & $s$ & $s$ \\",
-        r"$t$ & free & - & $s^{-1/2}$ \\",
-        r"\hline",
-        r"$[\mathrm{M}]$ & base unit & - & - \\",
-        r"$[\mathrm{L}]$ & base unit & $s$ & - \\",
-        r"$[\mathrm{T}]$ & base unit & - & $s^{-1/2}$ \\",
-        r"\end{tabular}"])
+    assert format(res, "latex") == "\n".join(
+        [
+            r"\begin{tabular}{llcc}",
+            r"variable & role & \#1 & \#2 \\ \hline",
+            r"$m$ & free & - & - \\",
+            r"$l$ & free & $s$ & - \\",
+            r"$g$ & scale & $s$ & $s$ \\",
+            r"$t$ & free & - & $s^{-1/2}$ \\",
+            r"\hline",
+            r"$[\mathrm{M}]$ & base unit & - & - \\",
+            r"$[\mathrm{L}]$ & base unit & $s$ & - \\",
+            r"$[\mathrm{T}]$ & base unit & - & $s^{-1/2}$ \\",
+            r"\end{tabular}",
+        ]
+    )
     html = _plain(format(res, "html"))
-    assert html.startswith("<p>Scaling g by s: 2 minimal solutions of a 2-parameter family.</p><table>"
-                           "<tr><th>variable</th><th>role</th><th>#1</th><th>#2</th></tr>"
-                           "<tr><th>$m$</th><td><em>free</em></td><td>-</td><td>-</td></tr>")
-    assert html.endswith('<tr class="base-unit"><th>$[\\mathrm{T}]$</th><td><em>base unit</em></td>'
-                         "<td>-</td><td>$s^{-1/2}$</td></tr></table>")
+    assert html.startswith(
+        "<p>Scaling g by s: 2 minimal solutions of a 2-parameter family.</p><table>"
+        "<tr><th>variable</th><th>role</th><th>#1</th><th>#2</th></tr>"
+        "<tr><th>$m$</th><td><em>free</em></td><td>-</td><td>-</td></tr>"
+    )
+    assert html.endswith(
+        '<tr class="base-unit"><th>$[\\mathrm{T}]$</th><td><em>base unit</em></td>'
+        "<td>-</td><td>$s^{-1/2}$</td></tr></table>"
+    )
 
 
 def test_unit_fit_in_text_latex_and_html():
     fit = pt.fit_units(pt.System({"l": "L", "m": "M", "t": "T"}), {"l": 500, "t": 2}, ranges={"l": (1, 10)}, nice=10)
-    assert str(fit) == "\n".join([
-        "unit fit (factors rounded to powers of 10): every value in range",
-        "  M: readings x 1 (10^0), new unit = 1 old units",
-        "  L: readings x 0.01 (10^-2), new unit = 100 old units",
-        "  T: readings x 1 (10^0), new unit = 1 old units",
-        "         l          500 ->            5   in [1, 10]  ok",
-        "         t            2 ->            2"])
+    assert str(fit) == "\n".join(
+        [
+            "unit fit (factors rounded to powers of 10): every value in range",
+            "  M: readings x 1 (10^0), new unit = 1 old units",
+            "  L: readings x 0.01 (10^-2), new unit = 100 old units",
+            "  T: readings x 1 (10^0), new unit = 1 old units",
+            "         l          500 ->            5   in [1, 10]  ok",
+            "         t            2 ->            2",
+        ]
+    )
     latex = format(fit, "latex")
     assert r"$\mathsf{L}$ & 0.01 & 100 \\" in latex
     assert r"$l$ & 500 & 5 & [1, 10] & ok \\" in latex
@@ -597,34 +663,61 @@ def test_unit_fit_in_text_latex_and_html():
 def test_symmetries_and_a_tie_in_latex_and_html():
     proj = pt.models.projectile()
     sym = pt.scaling_symmetries(proj.equations, proj.system)
-    assert format(sym, "latex").endswith("\n".join([
-        "symmetries beyond changes of units:", "", r"\begin{tabular}{cccccc}",
-        r"$g$ & $t$ & $x$ & $y$ & $vx$ & $vy$ \\ \hline", r"$0$ & $0$ & $1$ & $0$ & $1$ & $0$ \\",
-        r"\end{tabular}"]))
+    assert format(sym, "latex").endswith(
+        "\n".join(
+            [
+                "symmetries beyond changes of units:",
+                "",
+                r"\begin{tabular}{cccccc}",
+                r"$g$ & $t$ & $x$ & $y$ & $vx$ & $vy$ \\ \hline",
+                r"$0$ & $0$ & $1$ & $0$ & $1$ & $0$ \\",
+                r"\end{tabular}",
+            ]
+        )
+    )
     assert _plain(format(sym, "html")).endswith(
-        "<tr><th>#1</th><td>$0$</td><td>$0$</td><td>$1$</td><td>$0$</td><td>$1$</td><td>$0$</td></tr></table>")
+        "<tr><th>#1</th><td>$0$</td><td>$0$</td><td>$1$</td><td>$0$</td><td>$1$</td><td>$0$</td></tr></table>"
+    )
     x, t = sympy.symbols("x t")
     tie = pt.check_dimensions(x + t, pt.System({"x": "L", "t": "T"}))
-    assert format(tie, "latex") == "\n".join([
-        "inconsistent: 2 offending term(s)", "", r"\begin{tabular}{lll}", r"term & dimension & expected \\ \hline",
-        r"$t$ & $\mathsf{T}$ & $\mathsf{L}$ \\", r"$x$ & $\mathsf{L}$ & $\mathsf{T}$ \\", r"\end{tabular}", "",
-        "tie: in t + x, T and L have 1 term(s) each: no majority says which is wrong, so all are listed"])
+    assert format(tie, "latex") == "\n".join(
+        [
+            "inconsistent: 2 offending term(s)",
+            "",
+            r"\begin{tabular}{lll}",
+            r"term & dimension & expected \\ \hline",
+            r"$t$ & $\mathsf{T}$ & $\mathsf{L}$ \\",
+            r"$x$ & $\mathsf{L}$ & $\mathsf{T}$ \\",
+            r"\end{tabular}",
+            "",
+            "tie: in t + x, T and L have 1 term(s) each: no majority says which is wrong, so all are listed",
+        ]
+    )
 
 
 def test_rule_verdict_text():
-    verdict = engines.check_rule(engines.BULLET_SCALE_THE_WORLD, pt.System({"m": "M", "c": "M L^2 T^-1", "t": "T"}),
-                                 hidden=["bullet_contact_slop"])
-    assert str(verdict) == "\n".join([
-        "Bullet wiki: Scaling The World:",
-        "  a change of units: readings of L by X^1",
-        "  not named: c [M L^2 T^-1] must scale by X^2",
-        "  not named, rightly unchanged: t",
-        "  hidden constant left out: bullet_contact_slop [L] (default 1e-05) must scale by X^1"])
+    verdict = engines.check_rule(
+        engines.BULLET_SCALE_THE_WORLD,
+        pt.System({"m": "M", "c": "M L^2 T^-1", "t": "T"}),
+        hidden=["bullet_contact_slop"],
+    )
+    assert str(verdict) == "\n".join(
+        [
+            "Bullet wiki: Scaling The World:",
+            "  a change of units: readings of L by X^1",
+            "  not named: c [M L^2 T^-1] must scale by X^2",
+            "  not named, rightly unchanged: t",
+            "  hidden constant left out: bullet_contact_slop [L] (default 1e-05) must scale by X^1",
+        ]
+    )
     assert format(verdict, "latex").splitlines()[:3] == [
-        r"\textbf{Bullet wiki: Scaling The World:}", r"\begin{itemize}",
-        r"\item a change of units: readings of L by X\^{}1"]
-    nothing = engines.check_rule(engines.RuleOfThumb("still", "pybullet", "", (
-        engines.RuleQuantity("length", "L", 0),)))
+        r"\textbf{Bullet wiki: Scaling The World:}",
+        r"\begin{itemize}",
+        r"\item a change of units: readings of L by X\^{}1",
+    ]
+    nothing = engines.check_rule(
+        engines.RuleOfThumb("still", "pybullet", "", (engines.RuleQuantity("length", "L", 0),))
+    )
     assert str(nothing).splitlines()[1] == "  a change of units: readings of nothing"
 
 
@@ -653,21 +746,25 @@ def test_engine_model_names_its_file_or_says_it_is_unsaved():
 
 def test_answers_of_the_command_line():
     bases = sample("bases_answer")
-    assert str(bases) == "hinged rod: 2 valid repeating sets of 3 variables (without t; with m)\n1  m l g\n2  m l k_theta"
-    assert format(bases, "latex") == "\n".join([r"\begin{tabular}{rl}", r"1 & $m, l, g$ \\",
-                                                r"2 & $m, l, k_{\theta}$ \\", r"\end{tabular}"])
+    assert (
+        str(bases) == "hinged rod: 2 valid repeating sets of 3 variables (without t; with m)\n1  m l g\n2  m l k_theta"
+    )
+    assert format(bases, "latex") == "\n".join(
+        [r"\begin{tabular}{rl}", r"1 & $m, l, g$ \\", r"2 & $m, l, k_{\theta}$ \\", r"\end{tabular}"]
+    )
     assert _plain(format(bases, "html")).endswith(
-        "<tr><th>1</th><td>$m, l, g$</td></tr><tr><th>2</th><td>$m, l, k_{\\theta}$</td></tr></table>")
+        "<tr><th>1</th><td>$m, l, g$</td></tr><tr><th>2</th><td>$m, l, k_{\\theta}$</td></tr></table>"
+    )
     assert _plain(format(bases, "html")).startswith(f"<p>{str(bases).splitlines()[0]}</p>")
     applied = sample("engine_apply_answer")
     assert len(applied.changed) > 8
     lines = str(applied).splitlines()
     assert lines[1] == f"{len(applied.changed)} of {applied.n_parameters} parameters change, by dimension:"
     # the summary: one row per dimension, whose counts add up to every changed parameter
-    summary = lines[3:lines.index("")]
+    summary = lines[3 : lines.index("")]
     count_at = lines[2].index("count")  # the summary's columns are aligned under its header
     assert sum(int(line[count_at:].split()[0]) for line in summary) == len(applied.changed)
-    table = lines[lines.index("") + 2:-2]  # then every changed parameter with its factor, value and scaled value
+    table = lines[lines.index("") + 2 : -2]  # then every changed parameter with its factor, value and scaled value
     assert [row.split()[:2] for row in table] == [[name, power_text(p)] for name, p in applied.changed]
     g_row = next(row.split() for row in table if row.split()[0] == "g")
     assert g_row[2:] == ["9.81", "98.1"]
@@ -714,7 +811,6 @@ def test_search_table_heads_the_minimal_scalings(rod):
     table = pt.search(rod, scale={"g": 1}).table().splitlines()
     assert table[0].split() == ["variable", "role", "#1", "#2", "#3"]
     assert table[1].split() == ["m", "free", "1/s^2", "1/s", "-"]
-
 
 
 @pytest.mark.parametrize(

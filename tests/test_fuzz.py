@@ -45,13 +45,61 @@ numbers = st.one_of(
     st.integers(-5, 5).map(np.int64),
     st.booleans(),
     st.none(),
-    st.sampled_from(["1/3", "-1/2", "0.1", "1e400", "1e99999", "x", "", "1/0", "--1", Decimal("0.25"),
-                     sympy.Rational(1, 7), sympy.pi, sympy.Float(0.5), [1], {}]),
+    st.sampled_from(
+        [
+            "1/3",
+            "-1/2",
+            "0.1",
+            "1e400",
+            "1e99999",
+            "x",
+            "",
+            "1/0",
+            "--1",
+            Decimal("0.25"),
+            sympy.Rational(1, 7),
+            sympy.pi,
+            sympy.Float(0.5),
+            [1],
+            {},
+        ]
+    ),
 )
 
-formula_tokens = st.sampled_from(["M", "L", "T", "Theta", "I", "N", "J", "A", "kg", "x", "1", "2", "^", "**", "*",
-                                  "/", "(", ")", "-", "--", "+", "0.5", "(1/2)", "(1/0)", "99999999999999999999",
-                                  " ", "$", "é", "1e5", "1001"])
+formula_tokens = st.sampled_from(
+    [
+        "M",
+        "L",
+        "T",
+        "Theta",
+        "I",
+        "N",
+        "J",
+        "A",
+        "kg",
+        "x",
+        "1",
+        "2",
+        "^",
+        "**",
+        "*",
+        "/",
+        "(",
+        ")",
+        "-",
+        "--",
+        "+",
+        "0.5",
+        "(1/2)",
+        "(1/0)",
+        "99999999999999999999",
+        " ",
+        "$",
+        "é",
+        "1e5",
+        "1001",
+    ]
+)
 formulas = st.one_of(
     st.lists(formula_tokens, max_size=12).map("".join),
     st.lists(formula_tokens, max_size=12).map(" ".join),
@@ -80,8 +128,10 @@ def name_lists(draw, system):
 
 
 def is_dimensionless(system, exponents) -> bool:
-    return all(sum(Fraction(p) * system.dimension(n).exponent_of(b) for n, p in exponents.items()) == 0
-               for b in system.base_dimensions)
+    return all(
+        sum(Fraction(p) * system.dimension(n).exponent_of(b) for n, p in exponents.items()) == 0
+        for b in system.base_dimensions
+    )
 
 
 # -- the entry points, each with its own check of the answer ------------------------------
@@ -157,11 +207,18 @@ def fuzz_apply(draw):
 
 def fuzz_fit_units(draw):
     system = good_system(draw)
-    values = draw(st.dictionaries(st.one_of(st.sampled_from(system.variables), names),
-                                  st.one_of(st.floats(1e-3, 1e3), numbers), max_size=3))
-    ranges = draw(st.dictionaries(st.one_of(st.sampled_from(system.variables), names),
-                                  st.one_of(st.tuples(st.floats(1e-3, 1), st.floats(1, 1e3)), st.tuples(numbers, numbers),
-                                            numbers), max_size=2))
+    values = draw(
+        st.dictionaries(
+            st.one_of(st.sampled_from(system.variables), names), st.one_of(st.floats(1e-3, 1e3), numbers), max_size=3
+        )
+    )
+    ranges = draw(
+        st.dictionaries(
+            st.one_of(st.sampled_from(system.variables), names),
+            st.one_of(st.tuples(st.floats(1e-3, 1), st.floats(1, 1e3)), st.tuples(numbers, numbers), numbers),
+            max_size=2,
+        )
+    )
     fit = pt.fit_units(system, values, ranges=ranges)
     assert isinstance(fit.feasible, bool)
 
@@ -176,8 +233,12 @@ def fuzz_check_dimensions(draw):
             st.tuples(children, children).map(lambda ab: ab[0] + ab[1]),
             st.tuples(children, children).map(lambda ab: ab[0] * ab[1]),
             st.tuples(children, st.sampled_from([2, -1, sympy.Rational(1, 2), 0.5, sympy.Symbol("a")])).map(
-                lambda ab: ab[0] ** ab[1]),
-            children.map(sympy.sin), children.map(sympy.Abs), children.map(sympy.sign), children.map(sympy.floor),
+                lambda ab: ab[0] ** ab[1]
+            ),
+            children.map(sympy.sin),
+            children.map(sympy.Abs),
+            children.map(sympy.sign),
+            children.map(sympy.floor),
             st.tuples(children, children).map(lambda ab: sympy.atan2(ab[0], ab[1])),
             st.tuples(children, children).map(lambda ab: sympy.Heaviside(ab[0] - ab[1])),
             children.map(lambda e: sympy.Function("f")(e)),
@@ -191,18 +252,28 @@ def fuzz_check_dimensions(draw):
 
 
 def fuzz_model_file(draw):
-    value = draw(st.one_of(st.sampled_from(["1.5", "\"1/3\"", "true", "1e400", "nan", "inf", "-2", "\"x\"",
-                                            "99999999999999999999999999", "[1]"]), st.integers().map(str)))
+    value = draw(
+        st.one_of(
+            st.sampled_from(
+                ["1.5", '"1/3"', "true", "1e400", "nan", "inf", "-2", '"x"', "99999999999999999999999999", "[1]"]
+            ),
+            st.integers().map(str),
+        )
+    )
     dimension = draw(formulas).replace("\\", "").replace('"', "")
-    extra = draw(st.sampled_from(["", "role = \"time\"", "unit = \"m\"", "rolee = 1", "value = 2"]))
+    extra = draw(st.sampled_from(["", 'role = "time"', 'unit = "m"', "rolee = 1", "value = 2"]))
     entry = ", ".join(p for p in (f'dimension = "{dimension}"', f"value = {value}", extra) if p)
-    text = draw(st.sampled_from([
-        f"[variables]\nx = {{ {entry} }}\nt = {{ dimension = \"T\" }}\n",
-        f"base_dimensions = [\"M\", \"L\", \"T\", \"N\"]\n[variables]\nx = {{ {entry} }}\n",
-        f"[variables]\nx = {{ {entry} \n",
-        "[variables]\n",
-        f"name = 3\n[variables]\nx = {{ {entry} }}\n",
-    ]))
+    text = draw(
+        st.sampled_from(
+            [
+                f'[variables]\nx = {{ {entry} }}\nt = {{ dimension = "T" }}\n',
+                f'base_dimensions = ["M", "L", "T", "N"]\n[variables]\nx = {{ {entry} }}\n',
+                f"[variables]\nx = {{ {entry} \n",
+                "[variables]\n",
+                f"name = 3\n[variables]\nx = {{ {entry} }}\n",
+            ]
+        )
+    )
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "model.toml"
         path.write_text(text, encoding="utf-8")
@@ -210,8 +281,17 @@ def fuzz_model_file(draw):
     assert set(model.values) <= set(model.system.variables)
 
 
-ENTRY_POINTS = [fuzz_system, fuzz_parse, fuzz_pi_groups, fuzz_bases, fuzz_search, fuzz_apply, fuzz_fit_units,
-                fuzz_check_dimensions, fuzz_model_file]
+ENTRY_POINTS = [
+    fuzz_system,
+    fuzz_parse,
+    fuzz_pi_groups,
+    fuzz_bases,
+    fuzz_search,
+    fuzz_apply,
+    fuzz_fit_units,
+    fuzz_check_dimensions,
+    fuzz_model_file,
+]
 
 
 @settings(max_examples=600, deadline=timedelta(seconds=5), suppress_health_check=[HealthCheck.too_slow])

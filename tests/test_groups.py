@@ -163,6 +163,7 @@ def test_bad_evaluate_and_group_lookup(rod):
 
 # -- evaluate beyond floating point (issue 23)
 
+
 def test_evaluate_names_a_float_value_beyond_floating_point():
     with pytest.raises(pt.LimitError, match="beyond the range of floating point"):
         pt.PiGroup({"x": 1, "y": -2}).evaluate({"x": 1.0, "y": 1e-200})
@@ -229,8 +230,10 @@ def test_from_exponents_of_zeros_is_the_trivial_group():
 def test_group_messages_in_full():
     with pytest.raises(pt.InvalidRequestError) as caught:
         pt.PiGroup({"x": Fraction(1, 2)})
-    assert str(caught.value) == ("the exponent of 'x' in a Pi group is 1/2: PiGroup takes integer exponents; "
-                                 "PiGroup.from_exponents normalises rational ones")
+    assert str(caught.value) == (
+        "the exponent of 'x' in a Pi group is 1/2: PiGroup takes integer exponents; "
+        "PiGroup.from_exponents normalises rational ones"
+    )
     with pytest.raises(pt.PiTheoremError) as caught:
         pt.PiGroup({"x": "abc"})
     assert str(caught.value).startswith("the exponent of 'x' in a Pi group must be a finite real number")
@@ -240,8 +243,9 @@ def test_group_messages_in_full():
     assert str(caught.value) == "evaluate needs a value for 'x', 'y' of Pi = x/y**2"
     with pytest.raises(pt.LimitError) as caught:
         group.evaluate({"x": 1e300, "y": 1e-300})  # 1e900
-    assert str(caught.value) == ("the value of the group is Pi = x/y**2: it is beyond the range of floating point "
-                                 "(about 1.8e308)")
+    assert str(caught.value) == (
+        "the value of the group is Pi = x/y**2: it is beyond the range of floating point (about 1.8e308)"
+    )
     assert caught.value.culprit == "Pi = x/y**2"
     groups = pt.System({"m": "M", "l": "L", "g": "L/T^2", "t": "T", "v": "L/T"}).pi_groups(["m", "l", "g"])
     with pytest.raises(pt.InvalidRequestError) as caught:
@@ -251,7 +255,9 @@ def test_group_messages_in_full():
 
 def test_repr_names_the_variable_only_when_there_is_one():
     assert repr(pt.PiGroup({"a": 1, "b": -1})) == "PiGroup.from_exponents({'a': 1, 'b': -1})"
-    assert repr(pt.PiGroup({"a": 1, "b": -1}, variable="b")) == "PiGroup.from_exponents({'a': 1, 'b': -1}, variable='b')"
+    assert (
+        repr(pt.PiGroup({"a": 1, "b": -1}, variable="b")) == "PiGroup.from_exponents({'a': 1, 'b': -1}, variable='b')"
+    )
 
 
 def test_different_pi_sets_hash_apart():

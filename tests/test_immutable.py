@@ -46,8 +46,9 @@ def _similarity_report():
 
 def _engine_report():
     rod = pt.models.hinged_rod()
-    return engines.verify_engine_similarity("mujoco", pt.search(rod.system, scale={"g": 1}).scalings[0], s=2,
-                                            t_final=0.02, compare_ode=False)
+    return engines.verify_engine_similarity(
+        "mujoco", pt.search(rod.system, scale={"g": 1}).scalings[0], s=2, t_final=0.02, compare_ode=False
+    )
 
 
 def _engine_model():
@@ -130,8 +131,9 @@ def _storage(obj) -> str:
 
 def test_every_exported_class_is_a_probed_value_type_or_excluded_with_a_reason():
     exported = _exported_classes()
-    unaccounted = [name for name, cls in exported.items()
-                   if cls not in VALUE_TYPES and cls.__name__ not in NOT_VALUE_TYPES]
+    unaccounted = [
+        name for name, cls in exported.items() if cls not in VALUE_TYPES and cls.__name__ not in NOT_VALUE_TYPES
+    ]
     assert not unaccounted, f"add these to VALUE_TYPES (and protect them) or to NOT_VALUE_TYPES: {unaccounted}"
     # the exclusions are what they claim, and none is stale
     for name, cls in exported.items():
@@ -173,9 +175,17 @@ def test_the_decorator_names_the_attribute_and_the_type():
     assert p.x == 1
 
 
-@pytest.mark.parametrize("make", [lambda: ROD, lambda: ROD.pi_groups(), lambda: ROD.bases(),
-                                  lambda: pt.Dimension.parse("L T^-2"), lambda: _search().scalings[0]],
-                         ids=["System", "PiSet", "BasisSequence", "Dimension", "Scaling"])
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda: ROD,
+        lambda: ROD.pi_groups(),
+        lambda: ROD.bases(),
+        lambda: pt.Dimension.parse("L T^-2"),
+        lambda: _search().scalings[0],
+    ],
+    ids=["System", "PiSet", "BasisSequence", "Dimension", "Scaling"],
+)
 def test_protected_types_still_pickle(make):
     # unpickling must not assign attributes the ordinary way, which the protection refuses
     obj = make()

@@ -99,7 +99,7 @@ def test_integer_rref_is_sympys_rref_with_positive_coprime_pivots(rows):
         assert a[i][p] > 0
         assert gcd(*a[i]) == 1
         assert [sympy.Rational(x, a[i][p]) for x in a[i]] == list(want.row(i))
-    assert all(not any(row) for row in a[len(pivots):])
+    assert all(not any(row) for row in a[len(pivots) :])
 
 
 def test_integer_rref_of_unit_and_negative_pivots():

@@ -140,9 +140,15 @@ positive = st.floats(0.1, 5.0)
 
 
 @settings(max_examples=60, deadline=None)
-@given(a=st.tuples(coefficient, coefficient, coefficient, coefficient),
-       b=st.tuples(coefficient, coefficient, coefficient, coefficient),
-       x=value, v=value, t=value, tau=positive, ell=positive)
+@given(
+    a=st.tuples(coefficient, coefficient, coefficient, coefficient),
+    b=st.tuples(coefficient, coefficient, coefficient, coefficient),
+    x=value,
+    v=value,
+    t=value,
+    tau=positive,
+    ell=positive,
+)
 def test_coupled_equations_solve_as_numpy_does(a, b, x, v, t, tau, ell):
     """A x' + ... = b: sympy's exact solution, generated, equals numpy's numeric solve."""
     a11, a12, a21, a22 = a
@@ -157,8 +163,7 @@ def test_coupled_equations_solve_as_numpy_does(a, b, x, v, t, tau, ell):
     model = pt.Model(pt.System(DIMS), eqs, parameters=("tau", "l"))  # some b may drop l from the equations
     assert model.states == ("x", "v")
     matrix = np.array([[a11, a12 * tau], [a21 / tau, a22]])
-    right = np.array([b1 * v + b2 * ell / tau * math.sin(x / ell),
-                      b3 * x / tau**2 + b4 * v * math.cos(t / tau) / tau])
+    right = np.array([b1 * v + b2 * ell / tau * math.sin(x / ell), b3 * x / tau**2 + b4 * v * math.cos(t / tau) / tau])
     want = np.linalg.solve(matrix, right)
     got = model.rhs(t, [x, v], {"tau": tau, "l": ell})
     np.testing.assert_allclose(got, want, rtol=1e-9, atol=1e-9 * (1 + np.abs(want).max()))
@@ -168,14 +173,23 @@ ROD, SPRING, PROJECTILE = models.hinged_rod(), models.hinged_rod_longitudinal(),
 
 
 @settings(max_examples=40, deadline=None)
-@given(theta=st.floats(-3.0, 3.0), omega=st.floats(-5.0, 5.0), m=positive, ell=positive, g=positive,
-       k=positive, c=positive, x_r=positive)
+@given(
+    theta=st.floats(-3.0, 3.0),
+    omega=st.floats(-5.0, 5.0),
+    m=positive,
+    ell=positive,
+    g=positive,
+    k=positive,
+    c=positive,
+    x_r=positive,
+)
 def test_catalogue_rates_equal_hand_written_physics(theta, omega, m, ell, g, k, c, x_r):
     """The generated rhs of each paper model against its physics written out by hand."""
     p = {"m": m, "l": ell, "g": g, "k_theta": k, "c_theta": c, "theta_r": x_r}
     torque = m * g * ell / 2 * math.cos(theta) - c * omega - k * (theta - x_r)
-    np.testing.assert_allclose(ROD.rhs(0.0, [theta, omega], p), [omega, 3 * torque / (m * ell**2)],
-                               rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(
+        ROD.rhs(0.0, [theta, omega], p), [omega, 3 * torque / (m * ell**2)], rtol=1e-12, atol=1e-12
+    )
     p = {"m": m, "l": ell, "g": g, "k": k, "x_r": x_r, "c": c}
     x = ell * math.sqrt(5 + 4 * math.sin(theta))
     arm = 2 * ell**2 * math.cos(theta) / x
@@ -193,8 +207,13 @@ def test_a_user_model_named_projectile_with_other_states():
     h, w = sympy.Function("h")(T), sympy.Function("w")(T)
     g = sympy.Symbol("g")
     system = pt.System({"g": "L T^-2", "t": "T", "h": "L", "w": "L T^-1"})
-    user = pt.Model(system, [sympy.Eq(h.diff(T), w), sympy.Eq(w.diff(T), -g)],
-                    defaults={"g": 9.81}, initial={"h": 0.0, "w": 10.0}, name="projectile")
+    user = pt.Model(
+        system,
+        [sympy.Eq(h.diff(T), w), sympy.Eq(w.diff(T), -g)],
+        defaults={"g": 9.81},
+        initial={"h": 0.0, "w": 10.0},
+        name="projectile",
+    )
     assert user.states == ("h", "w")
     assert user != models.projectile()
     for eq in user.equations:

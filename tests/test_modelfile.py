@@ -30,15 +30,27 @@ def write(tmp_path, text: str, name: str = "model.toml"):
 
 
 def test_examples_are_listed():
-    assert examples() == ("hinged_rod", "hinged_rod.urdf", "hinged_rod.xml", "pendulum.xml", "superball",
-                          "superball.xml")
+    assert examples() == (
+        "hinged_rod",
+        "hinged_rod.urdf",
+        "hinged_rod.xml",
+        "pendulum.xml",
+        "superball",
+        "superball.xml",
+    )
     assert example_path("hinged_rod.toml") == example_path("hinged_rod")
     assert example_path("hinged_rod").name == "hinged_rod.toml"
     assert example_path("pendulum.xml") == EXAMPLES / "pendulum.xml"
     # the engines' call is the same function: one home for the shipped files
     assert engines.example_path is example_path
     assert sorted(p.name for p in EXAMPLES.iterdir() if p.suffix in (".toml", ".xml", ".urdf")) == [
-        "hinged_rod.toml", "hinged_rod.urdf", "hinged_rod.xml", "pendulum.xml", "superball.toml", "superball.xml"]
+        "hinged_rod.toml",
+        "hinged_rod.urdf",
+        "hinged_rod.xml",
+        "pendulum.xml",
+        "superball.toml",
+        "superball.xml",
+    ]
     # a URDF's settings file ships beside it and is no example of its own
     assert (EXAMPLES / "hinged_rod.urdf.settings.json").is_file()
 
@@ -47,8 +59,14 @@ def test_hinged_rod_example_is_the_papers_rod():
     rod = load_model_file(example_path("hinged_rod"))
     assert rod.name == "hinged rod"
     assert rod.system == pt.models.rod_system()
-    assert rod.values == {"m": 1.5, "theta_r": pytest.approx(1.0471975511965976), "l": 2, "g": 9.81,
-                          "k_theta": 100, "c_theta": 10}
+    assert rod.values == {
+        "m": 1.5,
+        "theta_r": pytest.approx(1.0471975511965976),
+        "l": 2,
+        "g": 9.81,
+        "k_theta": 100,
+        "c_theta": 10,
+    }
     assert rod.roles["t"] == "time"
     assert rod.time == "t"
     assert rod.roles["m"] == "parameter"
@@ -62,21 +80,25 @@ def test_superball_example_has_the_section_4_list():
     assert sb.system.rank == 3
 
 
-@pytest.mark.parametrize("name", ["superbal", "pendulum", "hopper.xml", "../modelfile.py", "examples/pendulum.xml",
-                                  "pendulum.xml.toml", ""])
+@pytest.mark.parametrize(
+    "name", ["superbal", "pendulum", "hopper.xml", "../modelfile.py", "examples/pendulum.xml", "pendulum.xml.toml", ""]
+)
 def test_unknown_example(name):
     with pytest.raises(ModelFileError) as caught:
         example_path(name)
-    assert str(caught.value) == (f"example:{name}: no such example; the shipped examples are "
-                                 "hinged_rod, hinged_rod.urdf, hinged_rod.xml, pendulum.xml, superball, superball.xml")
+    assert str(caught.value) == (
+        f"example:{name}: no such example; the shipped examples are "
+        "hinged_rod, hinged_rod.urdf, hinged_rod.xml, pendulum.xml, superball, superball.xml"
+    )
     assert caught.value.culprit == f"example:{name}"
 
 
 def test_an_engine_example_is_no_toml_model_file():
     with pytest.raises(ModelFileError) as caught:
         load_model_file("example:pendulum.xml")
-    assert str(caught.value) == (f"example:pendulum.xml: is an engine model, not a TOML model file; "
-                                 f"pass its path, {EXAMPLES / 'pendulum.xml'}")
+    assert str(caught.value) == (
+        f"example:pendulum.xml: is an engine model, not a TOML model file; pass its path, {EXAMPLES / 'pendulum.xml'}"
+    )
 
 
 def test_minimal_file_defaults(tmp_path):
@@ -89,14 +111,19 @@ def test_minimal_file_defaults(tmp_path):
 
 
 def test_values_exact_and_float(tmp_path):
-    model = load_model_file(write(tmp_path, """
+    model = load_model_file(
+        write(
+            tmp_path,
+            """
 [variables]
 a = { dimension = "L", value = "1/3" }
 b = { dimension = "L", value = 2 }
 c = { dimension = "L", value = 2.5 }
 d = { dimension = "L", value = " -4/2 " }
 e = { dimension = "L", value = 1e-3 }
-"""))
+""",
+        )
+    )
     assert model.values == {"a": Fraction(1, 3), "b": 2, "c": 2.5, "d": -2, "e": 0.001}
     assert type(model.values["b"]) is Fraction  # every exact value is a Fraction
     assert type(model.values["d"]) is Fraction
@@ -104,35 +131,50 @@ e = { dimension = "L", value = 1e-3 }
 
 
 def test_units_read_by_pint(tmp_path):
-    model = load_model_file(write(tmp_path, """
+    model = load_model_file(
+        write(
+            tmp_path,
+            """
 [variables]
 k_theta = { unit = "N*m/rad", value = 100 }
 l = { unit = "cm" }
 t = { unit = "s", role = "time" }
-"""))
+""",
+        )
+    )
     assert str(model.system.dimension("k_theta")) == "M L^2 T^-2"
     assert str(model.system.dimension("l")) == "L"
     assert model.units == {"k_theta": "N*m/rad", "l": "cm", "t": "s"}
 
 
 def test_custom_base_dimensions(tmp_path):
-    model = load_model_file(write(tmp_path, """
+    model = load_model_file(
+        write(
+            tmp_path,
+            """
 base_dimensions = ["M", "L", "T", "A"]
 [variables]
 k_theta = { dimension = "M L^2 T^-2 A^-1" }
 theta = { dimension = "A", role = "state" }
-"""))
+""",
+        )
+    )
     assert model.system.base_dimensions == ("M", "L", "T", "A")
 
 
 def test_order_of_variables_is_the_files(tmp_path):
-    model = load_model_file(write(tmp_path, """
+    model = load_model_file(
+        write(
+            tmp_path,
+            """
 [variables]
 z = { dimension = "T" }
 a = { dimension = "L" }
 [variables.m]
 dimension = "M"
-"""))
+""",
+        )
+    )
     assert model.system.variables == ("z", "a", "m")
 
 
@@ -151,12 +193,17 @@ def test_round_trip_toml(tmp_path):
 
 
 def test_round_trip_units_and_odd_names(tmp_path):
-    model = load_model_file(write(tmp_path, """
+    model = load_model_file(
+        write(
+            tmp_path,
+            """
 name = "quote \\" and backslash \\\\"
 [variables]
 "θ" = { dimension = "1" }
 l = { unit = "m", value = 1.5 }
-"""))
+""",
+        )
+    )
     again = load_model_file(write(tmp_path, dump_values(model), "again.toml"))
     assert again.name == 'quote " and backslash \\'
     assert again.system == model.system
@@ -240,9 +287,18 @@ def test_the_kind_of_a_model_file_is_told_in_one_place(tmp_path):
     mjcf = tmp_path / "world.xml"
     mjcf.write_text('<mujoco model="w"><worldbody/></mujoco>\n')
     # a shipped example is named by the command line's example list, whatever its name ends with
-    kinds = {"robot.URDF": "urdf", "model.toml": "toml", "model.json": "toml", "example:superball": "toml",
-             "example:robot.urdf": "toml", "example:pendulum.xml": "toml",
-             str(urdf_in_xml): "urdf", str(mjcf): "mjcf", str(tmp_path / "absent.xml"): "mjcf", "hopper.mjcf": "mjcf"}
+    kinds = {
+        "robot.URDF": "urdf",
+        "model.toml": "toml",
+        "model.json": "toml",
+        "example:superball": "toml",
+        "example:robot.urdf": "toml",
+        "example:pendulum.xml": "toml",
+        str(urdf_in_xml): "urdf",
+        str(mjcf): "mjcf",
+        str(tmp_path / "absent.xml"): "mjcf",
+        "hopper.mjcf": "mjcf",
+    }
     assert {path: model_kind(path) for path in kinds} == kinds
 
 
@@ -252,15 +308,18 @@ def test_load_model_file_names_a_path_that_is_no_path(bad):
         pt.load_model_file(bad)
 
 
-@pytest.mark.parametrize(("unit", "exponent"), [("m**0.3333333", Fraction(3333333, 10**7)), ("m**1e-7", Fraction(1, 10**7)),
-                                                ("m**(1/3)", Fraction(1, 3))])
+@pytest.mark.parametrize(
+    ("unit", "exponent"),
+    [("m**0.3333333", Fraction(3333333, 10**7)), ("m**1e-7", Fraction(1, 10**7)), ("m**(1/3)", Fraction(1, 3))],
+)
 def test_a_unit_in_a_file_keeps_its_exponent_exactly(tmp_path, unit, exponent):
     model = load_model_file(write(tmp_path, f'[variables]\nx = {{ unit = "{unit}" }}\n'))
     assert model.system.dimension("x") == pt.Dimension({"L": exponent})
 
 
-@pytest.mark.parametrize(("unit", "says"), [("m**inf", "finite"), ("m**(1/1000001)", "denominator"),
-                                            ("m^-1/2", "ambiguous")])
+@pytest.mark.parametrize(
+    ("unit", "says"), [("m**inf", "finite"), ("m**(1/1000001)", "denominator"), ("m^-1/2", "ambiguous")]
+)
 def test_a_unit_exponent_no_fraction_can_hold_is_named_in_a_file(tmp_path, unit, says):
     with pytest.raises(pt.ModelFileError, match=says) as caught:
         load_model_file(write(tmp_path, f'[variables]\nx = {{ unit = "{unit}" }}\n'))

@@ -48,8 +48,14 @@ def test_hinged_rod_matches_the_paper_and_its_matlab_code():
     assert rod.parameters == ("m", "l", "g", "k_theta", "c_theta", "theta_r")
     assert rod.states == ("theta", "omega")
     assert rod.time == "t"
-    assert dict(rod.defaults) == {"m": 1.5, "l": 2.0, "g": 9.81, "k_theta": 100.0, "c_theta": 10.0,
-                                  "theta_r": math.pi / 3}
+    assert dict(rod.defaults) == {
+        "m": 1.5,
+        "l": 2.0,
+        "g": 9.81,
+        "k_theta": 100.0,
+        "c_theta": 10.0,
+        "theta_r": math.pi / 3,
+    }
     assert dict(rod.initial) == {"theta": math.pi / 4, "omega": 0.0}
     assert str(rod.state_dimension("theta")) == "1"
     assert str(rod.state_dimension("omega")) == "T^-1"

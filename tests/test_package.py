@@ -43,8 +43,12 @@ def test_pytest_imports_every_module_of_the_installed_package_once(request):
         if name == "pitheorem.__main__":
             continue  # running it is the command line
         mine = importlib.import_module(name)
-        theirs = import_path(path, mode=request.config.getoption("importmode"), root=request.config.rootpath,
-                             consider_namespace_packages=False)
+        theirs = import_path(
+            path,
+            mode=request.config.getoption("importmode"),
+            root=request.config.rootpath,
+            consider_namespace_packages=False,
+        )
         assert Path(theirs.__file__).resolve() == path, name
         assert theirs is mine, name
     # and no file of the package is loaded twice, under any name
@@ -61,8 +65,11 @@ def test_pytest_imports_every_module_of_the_installed_package_once(request):
 
 def test_submodules_and_the_functions_they_define_keep_apart():
     # a module named like its function would be rebound over the function on import
-    for module_name, function in (("scalesearch", "search"), ("simulation", "simulate"),
-                                  ("simulation", "verify_similarity")):
+    for module_name, function in (
+        ("scalesearch", "search"),
+        ("simulation", "simulate"),
+        ("simulation", "verify_similarity"),
+    ):
         module = importlib.import_module(f"pitheorem.{module_name}")
         assert getattr(pt, module_name) is module
         assert callable(getattr(pt, function))
@@ -94,28 +101,42 @@ def _private_imports(path: Path, root: Path = ROOT) -> list[str]:
             names = [alias.name for alias in node.names if alias.name.split(".")[0] == "pitheorem"]
         else:
             continue
-        found += [name for name in names
-                  if any(part.startswith("_") and not part.startswith("__") for part in name.split("."))]
+        found += [
+            name
+            for name in names
+            if any(part.startswith("_") and not part.startswith("__") for part in name.split("."))
+        ]
     return found
 
 
 def test_no_module_imports_another_modules_private_names(tmp_path):
-    offenders = {str(path.relative_to(ROOT.parent)): found for path in sorted(ROOT.rglob("*.py"))
-                 if (found := _private_imports(path))}
+    offenders = {
+        str(path.relative_to(ROOT.parent)): found
+        for path in sorted(ROOT.rglob("*.py"))
+        if (found := _private_imports(path))
+    }
     assert offenders == {}
     # the check finds each form it looks for: relative, absolute, a private module, and a package's own name
     sample = tmp_path / "pitheorem" / "engines" / "sample.py"
     sample.parent.mkdir(parents=True)
-    sample.write_text("from .rod import _quiet\nfrom ..bases import LaplaceTables, _Descent\n"
-                      "from pitheorem.engines.model import _check_s\nimport pitheorem._hidden\n"
-                      "from . import _private\nfrom os import _exit\nfrom .model import __all__\n")
+    sample.write_text(
+        "from .rod import _quiet\nfrom ..bases import LaplaceTables, _Descent\n"
+        "from pitheorem.engines.model import _check_s\nimport pitheorem._hidden\n"
+        "from . import _private\nfrom os import _exit\nfrom .model import __all__\n"
+    )
     assert _private_imports(sample, tmp_path / "pitheorem") == [
-        "pitheorem.engines.rod._quiet", "pitheorem.bases._Descent", "pitheorem.engines.model._check_s",
-        "pitheorem._hidden", "pitheorem.engines._private"]
+        "pitheorem.engines.rod._quiet",
+        "pitheorem.bases._Descent",
+        "pitheorem.engines.model._check_s",
+        "pitheorem._hidden",
+        "pitheorem.engines._private",
+    ]
 
 
 def test_import_loads_neither_numpy_scipy_nor_matplotlib_nor_the_engines():
-    loaded = loaded_after("import pitheorem", ("numpy", "scipy", "matplotlib", "pitheorem.engines", "pybullet", "mujoco"))
+    loaded = loaded_after(
+        "import pitheorem", ("numpy", "scipy", "matplotlib", "pitheorem.engines", "pybullet", "mujoco")
+    )
     assert not loaded & {"numpy", "scipy", "matplotlib"}, loaded
     assert not loaded & {"pitheorem.engines", "pybullet", "mujoco"}, loaded
 
@@ -175,24 +196,74 @@ def test_every_module_has_its_test_file_and_every_test_file_a_module_or_a_reason
     present = {path.name for path in tests.glob("test_*.py")}
     wanted = module_test_files()
     # formatting's parts may have files of their own: test_formatting_<part>.py
-    parts_covered = {name for name in wanted if name.startswith("formatting.")
-                     and f"test_formatting_{name.split('.')[-1]}.py" in present}
+    parts_covered = {
+        name
+        for name in wanted
+        if name.startswith("formatting.") and f"test_formatting_{name.split('.')[-1]}.py" in present
+    }
     assert {name: file for name, file in wanted.items() if file not in present and name not in parts_covered} == {}
-    allowed = set(wanted.values()) | {f"test_formatting_{name.split('.')[-1]}.py" for name in wanted
-                                      if name.startswith("formatting.")} | set(CROSS_CUTTING)
+    allowed = (
+        set(wanted.values())
+        | {f"test_formatting_{name.split('.')[-1]}.py" for name in wanted if name.startswith("formatting.")}
+        | set(CROSS_CUTTING)
+    )
     assert sorted(present - allowed) == []
     assert set(CROSS_CUTTING) <= present  # no stale reason
     assert not set(CROSS_CUTTING) & set(wanted.values())
     # the modules of the list, so that a rename shows up here
     assert {file for file in wanted.values() if not file.startswith("test_engines_")} == {
-        f"test_{m}.py" for m in ("answers", "bases", "basis_sequence", "cli", "dimensions", "equations", "errors",
-                                 "exact", "family", "formatting", "groups", "immutable", "linalg", "model",
-                                 "modelfile", "models", "plotting", "scalesearch", "scaling", "simulation",
-                                 "system", "unitfit")}
+        f"test_{m}.py"
+        for m in (
+            "answers",
+            "bases",
+            "basis_sequence",
+            "cli",
+            "dimensions",
+            "equations",
+            "errors",
+            "exact",
+            "family",
+            "formatting",
+            "groups",
+            "immutable",
+            "linalg",
+            "model",
+            "modelfile",
+            "models",
+            "plotting",
+            "scalesearch",
+            "scaling",
+            "simulation",
+            "system",
+            "unitfit",
+        )
+    }
     assert {file for file in wanted.values() if file.startswith("test_engines_")} == {
-        f"test_engines_{m}.py" for m in ("audit", "backend", "causes", "cli", "constants", "diagnose", "fitting",
-                                         "loading", "mjcf", "mjx", "model", "numbers", "packages", "registry", "rod",
-                                         "rules", "superball", "thresholds", "units", "urdf", "verify")}
+        f"test_engines_{m}.py"
+        for m in (
+            "audit",
+            "backend",
+            "causes",
+            "cli",
+            "constants",
+            "diagnose",
+            "fitting",
+            "loading",
+            "mjcf",
+            "mjx",
+            "model",
+            "numbers",
+            "packages",
+            "registry",
+            "rod",
+            "rules",
+            "superball",
+            "thresholds",
+            "units",
+            "urdf",
+            "verify",
+        )
+    }
 
 
 def test_the_layout_check_finds_a_missing_file_and_a_stray_one(tmp_path):
@@ -203,5 +274,9 @@ def test_the_layout_check_finds_a_missing_file_and_a_stray_one(tmp_path):
     (package / "formatting").mkdir()
     (package / "formatting" / "__init__.py").write_text("")
     (package / "formatting" / "gamma.py").write_text("")
-    assert module_test_files(package) == {"alpha": "test_alpha.py", "engines.beta": "test_engines_beta.py",
-                                          "formatting": "test_formatting.py", "formatting.gamma": "test_formatting.py"}
+    assert module_test_files(package) == {
+        "alpha": "test_alpha.py",
+        "engines.beta": "test_engines_beta.py",
+        "formatting": "test_formatting.py",
+        "formatting.gamma": "test_formatting.py",
+    }

@@ -28,7 +28,8 @@ def test_search_chart_shows_every_minimal_scaling(rod):
     assert [t.get_text() for t in ax.get_xticklabels()] == ["#1", "#2", "#3"]
     # one row a variable, labelled with its role unless free; one cell a power of s
     assert [t.get_text() for t in ax.get_yticklabels()] == [
-        n if role == "free" else f"{n} ({role})" for n, role in res.roles.items()]
+        n if role == "free" else f"{n} ({role})" for n, role in res.roles.items()
+    ]
     labels = [t.get_text() for t in ax.get_yticklabels()]
     assert (labels[rod.index("g")], labels[rod.index("t")], labels[rod.index("m")]) == ("g (scale)", "t (fixed)", "m")
     cells = {(round(text.get_position()[1]), round(text.get_position()[0])): text.get_text() for text in ax.texts}
@@ -61,8 +62,12 @@ def test_report_plot(hinged):
     fig = rep.plot()
     top, bottom = fig.axes
     labels = [line.get_label() for line in top.get_lines()]
-    assert labels == ["theta (original)", "theta (scaled, mapped back)", "omega (original)",
-                      "omega (scaled, mapped back)"]
+    assert labels == [
+        "theta (original)",
+        "theta (scaled, mapped back)",
+        "omega (original)",
+        "omega (scaled, mapped back)",
+    ]
     assert top.get_legend() is not None
     assert bottom.get_legend() is not None
     diff_labels = [line.get_label() for line in bottom.get_lines()]
@@ -106,4 +111,5 @@ def test_plot_similarity_is_the_reports_plot(hinged):
     # judged against its one-ulp baseline, a report has no tolerance to draw (no "tol = nan")
     judged = pt.verify_similarity(hinged, sc, s=2, t_final=0.5, baseline=True)
     assert [line.get_label() for line in plot_similarity(judged, states=["theta"]).axes[1].get_lines()] == [
-        "|theta difference|"]
+        "|theta difference|"
+    ]

@@ -171,8 +171,21 @@ def _search_module():
     return module
 
 
-@pytest.mark.parametrize("attr", ["feasible", "scale", "fixed", "notes", "certificate", "certificate_power",
-                                  "particular", "directions", "system", "n_scalings"])
+@pytest.mark.parametrize(
+    "attr",
+    [
+        "feasible",
+        "scale",
+        "fixed",
+        "notes",
+        "certificate",
+        "certificate_power",
+        "particular",
+        "directions",
+        "system",
+        "n_scalings",
+    ],
+)
 def test_result_attributes_cannot_be_assigned(rod, attr):
     res = pt.search(rod, scale={"g": 1})
     with pytest.raises(AttributeError):
@@ -191,8 +204,9 @@ def test_repr_does_not_enumerate_and_the_enumeration_runs_once(rod):
         res = pt.search(rod, scale={"g": 1})
         text = repr(res)
         assert spy.call_count == 0
-        assert text == ("<SearchResult g by s with t fixed: feasible, a family of dimension 1, "
-                        "at most 7 minimal solution(s)>")
+        assert text == (
+            "<SearchResult g by s with t fixed: feasible, a family of dimension 1, at most 7 minimal solution(s)>"
+        )
         assert res.max_n_scalings == 7  # known without enumerating
         assert spy.call_count == 0
         assert res.n_scalings == 3
@@ -200,10 +214,12 @@ def test_repr_does_not_enumerate_and_the_enumeration_runs_once(rod):
         str(res), res.table(), res._repr_html_(), list(res.iter_scalings())
         assert spy.call_count == 1
     infeasible = pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta"))
-    assert repr(infeasible) == ("<SearchResult g by s with t, m, k_theta fixed: infeasible, "
-                                "certificate g**2*m*t**2/k_theta>")
+    assert repr(infeasible) == (
+        "<SearchResult g by s with t, m, k_theta fixed: infeasible, certificate g**2*m*t**2/k_theta>"
+    )
     assert repr(pt.search(rod, scale={"g": 1, "l": -1}, fixed=("m", "k_theta"))) == (
-        "<SearchResult g by s, l by 1/s with m, k_theta fixed: feasible, unique>")
+        "<SearchResult g by s, l by 1/s with m, k_theta fixed: feasible, unique>"
+    )
 
 
 def test_equal_requests_give_equal_hashable_results(rod):
@@ -274,17 +290,20 @@ def test_float_exponent_beyond_denominator_limit_is_named(value):
     assert "Fraction(1, 3)" in str(info.value)  # says how to write it exactly
 
 
-@pytest.mark.parametrize(("value", "exponent"), [
-    (Fraction(1, 10**9), Fraction(1, 10**9)),
-    (1e-9, Fraction(1, 10**9)),
-    (0.123456789, Fraction(123456789, 10**9)),
-    (1 / 3, Fraction(1, 3)),  # a computed float: the simplest fraction that rounds to it
-    (np.float64(2 / 7), Fraction(2, 7)),
-    (np.float64(0.5), Fraction(1, 2)),
-    (np.float32(0.1), Fraction(1, 10)),
-    (np.int64(2), Fraction(2)),
-    ("1/3", Fraction(1, 3)),
-])
+@pytest.mark.parametrize(
+    ("value", "exponent"),
+    [
+        (Fraction(1, 10**9), Fraction(1, 10**9)),
+        (1e-9, Fraction(1, 10**9)),
+        (0.123456789, Fraction(123456789, 10**9)),
+        (1 / 3, Fraction(1, 3)),  # a computed float: the simplest fraction that rounds to it
+        (np.float64(2 / 7), Fraction(2, 7)),
+        (np.float64(0.5), Fraction(1, 2)),
+        (np.float32(0.1), Fraction(1, 10)),
+        (np.int64(2), Fraction(2)),
+        ("1/3", Fraction(1, 3)),
+    ],
+)
 def test_exponents_read_as_written(value, exponent):
     res = pt.search(LT, scale={"l": value}, fixed=())
     assert res.n_scalings == 1
@@ -298,8 +317,7 @@ def test_fraction_one_over_ten_to_twenty_is_named():
 
 @pytest.mark.parametrize("g", [Fraction(1, 3), Fraction(1, 10**9), Fraction(1, 10**12)])
 def test_search_with_large_denominators_on_the_rod(g):
-    rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1",
-                     "t": "T"})
+    rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "t": "T"})
     result = pt.search(rod, scale={"g": g}, fixed=())
     expected = oracle_search(rod, {"g": g}, ())
     assert result.n_scalings == len(expected)
@@ -319,8 +337,7 @@ def test_search_one_third_on_length_and_time():
 
 
 @settings(max_examples=50, deadline=None)
-@given(systems(exponent=st.sampled_from([-2, -1, 0, 0, 1, 2, Fraction(1, 2)]), max_vars=6, max_bases=3),
-       st.data())
+@given(systems(exponent=st.sampled_from([-2, -1, 0, 0, 1, 2, Fraction(1, 2)]), max_vars=6, max_bases=3), st.data())
 def test_search_equals_brute_force_in_order(system, data):
     name = data.draw(st.sampled_from(system.variables))
     power = data.draw(st.sampled_from([1, -1, 2, Fraction(1, 3), Fraction(-3, 2)]))
@@ -354,13 +371,16 @@ def support(group) -> set[str]:
     return {n for n, p in group.exponents.items() if p}
 
 
-@pytest.mark.parametrize(("variables", "expected"), [
-    # four lengths: every pair is a certificate; the first pair in system order is chosen
-    ({"a": "L", "b": "L", "c": "L", "d": "L"}, {"a", "b"}),
-    # a/d (two variables) beats a*b/c (three)
-    ({"c": "L M", "b": "M", "a": "L", "d": "L"}, {"a", "d"}),
-    ({"d": "L", "c": "L M", "b": "M", "a": "L"}, {"a", "d"}),
-])
+@pytest.mark.parametrize(
+    ("variables", "expected"),
+    [
+        # four lengths: every pair is a certificate; the first pair in system order is chosen
+        ({"a": "L", "b": "L", "c": "L", "d": "L"}, {"a", "b"}),
+        # a/d (two variables) beats a*b/c (three)
+        ({"c": "L M", "b": "M", "a": "L", "d": "L"}, {"a", "d"}),
+        ({"d": "L", "c": "L M", "b": "M", "a": "L"}, {"a", "d"}),
+    ],
+)
 def test_certificate_has_fewest_variables(variables, expected):
     res = pt.search(pt.System(variables), scale={"a": 1}, fixed=tuple(n for n in variables if n != "a"))
     assert not res.feasible
@@ -376,14 +396,17 @@ def test_certificate_is_as_small_as_any_changing_product():
     smallest = min(
         sum(1 for e in vec if e)
         for vec in product(range(-2, 3), repeat=len(names))
-        if vec[names.index("g")] != 0 and vec[names.index("l")] == 0
+        if vec[names.index("g")] != 0
+        and vec[names.index("l")] == 0
         and all(sum(e * dims[n][i] for e, n in zip(vec, names, strict=True)) == 0 for i in range(3))
     )
     assert len(support(res.certificate)) == smallest == 4  # g^2 t^2 m / k, as in the paper
 
 
 def test_search_with_reciprocal_prime_exponents():
-    variables = {f"x{p}": {"L": Fraction(1, p), "T": Fraction(1, q)} for p, q in zip(PRIMES, (*PRIMES[1:], 2), strict=True)}
+    variables = {
+        f"x{p}": {"L": Fraction(1, p), "T": Fraction(1, q)} for p, q in zip(PRIMES, (*PRIMES[1:], 2), strict=True)
+    }
     small = pt.System({n: variables[n] for n in ("x2", "x3", "x23", "x29")} | {"t": "T"})
     result = pt.search(small, scale={"x23": 1}, fixed=())
     assert [s.vector for s in result.scalings] == oracle_search(small, {"x23": 1}, ())
@@ -403,15 +426,36 @@ def test_search_needs_a_system():
         pt.search({"g": "L"}, scale={"g": 1})
 
 
-@pytest.mark.parametrize(("variables", "name", "power"), [
-    # found by mutating _exact_points (gcd(den // z_den, ...)): solutions whose denominator exceeds the
-    # system's common one came out with the prescribed exponent 2 turned into 95/47
-    ({"x0": {"M": Fraction(2, 3), "L": 2, "T": 3}, "x1": {"M": 2, "L": Fraction(1, 3)},
-      "x2": {"M": 3, "L": Fraction(1, 3), "T": Fraction(2, 3)}, "x3": {"M": 3, "T": 2}, "x4": {"L": Fraction(1, 2)}},
-     "x0", 2),
-    ({"x0": {"M": Fraction(1, 2), "T": 3}, "x1": {"M": Fraction(2, 3), "L": 3, "T": 3}, "x2": {"M": -1, "T": Fraction(1, 2)},
-      "x3": {"L": 2, "T": Fraction(-3, 2)}, "x4": {"M": 3, "L": -1, "T": 3}, "x5": {"T": 2}}, "x3", 2),
-])
+@pytest.mark.parametrize(
+    ("variables", "name", "power"),
+    [
+        # found by mutating _exact_points (gcd(den // z_den, ...)): solutions whose denominator exceeds the
+        # system's common one came out with the prescribed exponent 2 turned into 95/47
+        (
+            {
+                "x0": {"M": Fraction(2, 3), "L": 2, "T": 3},
+                "x1": {"M": 2, "L": Fraction(1, 3)},
+                "x2": {"M": 3, "L": Fraction(1, 3), "T": Fraction(2, 3)},
+                "x3": {"M": 3, "T": 2},
+                "x4": {"L": Fraction(1, 2)},
+            },
+            "x0",
+            2,
+        ),
+        (
+            {
+                "x0": {"M": Fraction(1, 2), "T": 3},
+                "x1": {"M": Fraction(2, 3), "L": 3, "T": 3},
+                "x2": {"M": -1, "T": Fraction(1, 2)},
+                "x3": {"L": 2, "T": Fraction(-3, 2)},
+                "x4": {"M": 3, "L": -1, "T": 3},
+                "x5": {"T": 2},
+            },
+            "x3",
+            2,
+        ),
+    ],
+)
 def test_exact_fallback_with_solution_denominators_beyond_the_systems(variables, name, power):
     system = pt.System(variables)
     expected = oracle_search(system, {name: power}, ())
@@ -452,8 +496,11 @@ def test_a_search_within_symmetries_of_equations():
     assert str(caught.value) == "'t' does not appear in the equations, so their symmetries say nothing about scaling it"
     other = pt.System({"x": "L", "q": "T"})
     with pytest.raises(pt.UnknownVariableError) as caught:
-        pt.search(pt.System({"x": "L", "t": "T"}), scale={"x": 1},
-                  within=pt.scaling_symmetries([sympy.Eq(x, q)], other, time=None))
+        pt.search(
+            pt.System({"x": "L", "t": "T"}),
+            scale={"x": 1},
+            within=pt.scaling_symmetries([sympy.Eq(x, q)], other, time=None),
+        )
     assert str(caught.value) == "unknown variable 'q' in within (the equations' symbols); the system has x, t"
 
 
@@ -530,8 +577,10 @@ def test_search_refusals_in_full():
         (lambda: pt.search(lt, scale={"q": 1}), "unknown variable 'q' in scale; the system has l, t, v"),
         (lambda: pt.search(lt, scale={"l": 1}, fixed=("q",)), "unknown variable 'q' in fixed; the system has l, t, v"),
         (lambda: pt.search(lt, scale={"l": 1}, allow=("q",)), "unknown variable 'q' in allow; the system has l, t, v"),
-        (lambda: pt.search(lt, scale={}),
-         "empty request: scale must prescribe at least one variable, e.g. scale={'g': 1}"),
+        (
+            lambda: pt.search(lt, scale={}),
+            "empty request: scale must prescribe at least one variable, e.g. scale={'g': 1}",
+        ),
     ]
     for call, message in cases:
         with pytest.raises(pt.PiTheoremError) as caught:

@@ -27,8 +27,11 @@ def test_composition_adds_exponents_and_unit_changes():
 
 def test_composition_refuses_scalings_of_different_systems():
     other = pt.System({"l": "L", "t": "T"})
-    with pytest.raises(pt.InvalidRequestError, match=r"different systems, System\(\{'l': 'L', 't': 'T', 'v': 'L T\^-1'\}\)"
-                       r" and System\(\{'l': 'L', 't': 'T'\}\); build both scalings from the same System"):
+    with pytest.raises(
+        pt.InvalidRequestError,
+        match=r"different systems, System\(\{'l': 'L', 't': 'T', 'v': 'L T\^-1'\}\)"
+        r" and System\(\{'l': 'L', 't': 'T'\}\); build both scalings from the same System",
+    ):
         pt.Scaling.from_unit_change(LT, {"L": 1}) * pt.Scaling.from_unit_change(other, {"L": 1})
 
 
@@ -40,8 +43,10 @@ def test_composition_with_a_scaling_without_units_has_none():
     assert (units * bare).exponents == {"l": 1, "t": 0, "v": 2}
 
 
-@pytest.mark.parametrize(("k", "units"), [(2, {"L": 2, "T": -2}), (Fraction(1, 2), {"L": Fraction(1, 2), "T": Fraction(-1, 2)}),
-                                          (-3, {"L": -3, "T": 3})])
+@pytest.mark.parametrize(
+    ("k", "units"),
+    [(2, {"L": 2, "T": -2}), (Fraction(1, 2), {"L": Fraction(1, 2), "T": Fraction(-1, 2)}), (-3, {"L": -3, "T": 3})],
+)
 def test_power_multiplies_exponents_and_unit_changes(k, units):
     base = pt.Scaling.from_unit_change(LT, {"L": 1, "T": -1})  # l -> s l, t -> t/s, v -> s^2 v
     powered = base**k
@@ -208,20 +213,24 @@ def test_apply_keeps_an_irrational_exact_value_exact():
 
 # -- arguments checked by name, and no silent infinity (issue 23's reproducers)
 
+
 def test_apply_takes_a_mapping_of_values():
     sc = pt.Scaling.from_unit_change(LT, {"L": 1})
     with pytest.raises(pt.InvalidRequestError, match="mapping of variable names"):
         sc.apply([("l", 1)], 2)
 
 
-@pytest.mark.parametrize("build", [
-    lambda: pt.Scaling.from_unit_change(LT, None),
-    lambda: pt.Scaling.from_exponents(LT, None),
-    lambda: pt.Scaling.from_unit_change(LT, ["L"]),
-    lambda: pt.Scaling.from_exponents(LT, "l"),
-    lambda: pt.Scaling.from_unit_change(None, {"L": 1}),
-    lambda: pt.Scaling.from_exponents({"l": "L"}, {"l": 1}),
-])
+@pytest.mark.parametrize(
+    "build",
+    [
+        lambda: pt.Scaling.from_unit_change(LT, None),
+        lambda: pt.Scaling.from_exponents(LT, None),
+        lambda: pt.Scaling.from_unit_change(LT, ["L"]),
+        lambda: pt.Scaling.from_exponents(LT, "l"),
+        lambda: pt.Scaling.from_unit_change(None, {"L": 1}),
+        lambda: pt.Scaling.from_exponents({"l": "L"}, {"l": 1}),
+    ],
+)
 def test_constructors_name_a_wrong_argument(build):
     with pytest.raises(pt.InvalidRequestError, match=r"a Scaling needs a System|must be a mapping"):
         build()
@@ -326,46 +335,79 @@ def test_scaling_messages_in_full():
     beyond = "it is beyond the range of floating point"
     exact_hint = "use an exact s (an int, a Fraction or a string such as '1/2'), or an s nearer to 1"
     cases = [  # (call, message, culprit)
-        (lambda: sc.apply({"l": 1e300}, s=10**10),
-         f"the scaled value of 'l' is about 10^310: {beyond} (about 1e308); use an exact value (int or Fraction), "
-         "or an s nearer to 1", "about 10^310"),
-        (lambda: sc.apply({"l": Fraction(10**300)}, s=1e10),
-         f"the scaled value of 'l' is about 10^310: {beyond} (about 1e308); use an exact value (int or Fraction), "
-         "or an s nearer to 1", "about 10^310"),
-        (lambda: sc.apply({"l": 1e300}, s=1e10),
-         f"the scaled value of 'l' is 1e+300 times 10000000000.0: {beyond} (about 1.8e308); {exact_hint}",
-         "1e+300 times 10000000000.0"),
-        (lambda: sc.apply({"l": np.array([1e300, 1.0])}, s=1e10),
-         f"the scaled samples of 'l' is a sample times 10000000000.0: {beyond} (about 1.8e308); {exact_hint}",
-         "a sample times 10000000000.0"),
-        (lambda: squared.apply({"l": 1.0}, s=1e300),
-         f"the factor of 'l' is s^2 with s = about 10^300: {beyond}; choose an s nearer to 1",
-         "s^2 with s = about 10^300"),
-        (lambda: squared.factors(1e300),
-         f"the factor of 'l' is s^2 with s = about 10^300: {beyond}; choose an s nearer to 1",
-         "s^2 with s = about 10^300"),
-        (lambda: squared.map_back([0.0, 1.0], [[1.0], [2.0]], 1e300, time="t", states=["m"]),
-         f"the factor of 't' is s^2 with s = about 10^300: {beyond}; choose an s nearer to 1",
-         "s^2 with s = about 10^300"),
-        (lambda: pt.scaling.float_power(sympy.sqrt(2), 5000, "the factor of 'x'"),
-         f"the factor of 'x' is s^5000 with s = sqrt(2): {beyond}; choose an s nearer to 1",
-         "s^5000 with s = sqrt(2)"),
+        (
+            lambda: sc.apply({"l": 1e300}, s=10**10),
+            f"the scaled value of 'l' is about 10^310: {beyond} (about 1e308); use an exact value (int or Fraction), "
+            "or an s nearer to 1",
+            "about 10^310",
+        ),
+        (
+            lambda: sc.apply({"l": Fraction(10**300)}, s=1e10),
+            f"the scaled value of 'l' is about 10^310: {beyond} (about 1e308); use an exact value (int or Fraction), "
+            "or an s nearer to 1",
+            "about 10^310",
+        ),
+        (
+            lambda: sc.apply({"l": 1e300}, s=1e10),
+            f"the scaled value of 'l' is 1e+300 times 10000000000.0: {beyond} (about 1.8e308); {exact_hint}",
+            "1e+300 times 10000000000.0",
+        ),
+        (
+            lambda: sc.apply({"l": np.array([1e300, 1.0])}, s=1e10),
+            f"the scaled samples of 'l' is a sample times 10000000000.0: {beyond} (about 1.8e308); {exact_hint}",
+            "a sample times 10000000000.0",
+        ),
+        (
+            lambda: squared.apply({"l": 1.0}, s=1e300),
+            f"the factor of 'l' is s^2 with s = about 10^300: {beyond}; choose an s nearer to 1",
+            "s^2 with s = about 10^300",
+        ),
+        (
+            lambda: squared.factors(1e300),
+            f"the factor of 'l' is s^2 with s = about 10^300: {beyond}; choose an s nearer to 1",
+            "s^2 with s = about 10^300",
+        ),
+        (
+            lambda: squared.map_back([0.0, 1.0], [[1.0], [2.0]], 1e300, time="t", states=["m"]),
+            f"the factor of 't' is s^2 with s = about 10^300: {beyond}; choose an s nearer to 1",
+            "s^2 with s = about 10^300",
+        ),
+        (
+            lambda: pt.scaling.float_power(sympy.sqrt(2), 5000, "the factor of 'x'"),
+            f"the factor of 'x' is s^5000 with s = sqrt(2): {beyond}; choose an s nearer to 1",
+            "s^5000 with s = sqrt(2)",
+        ),
         (lambda: pt.Scaling.from_unit_change(3, {"L": 1}), "a Scaling needs a System, got int", 3),
         (lambda: pt.Scaling.from_exponents(3, {"l": 1}), "a Scaling needs a System, got int", 3),
         (lambda: pt.Scaling.from_unit_change(ROD, 5), "unit_change must be a mapping such as {'L': 1}, got 5", 5),
         (lambda: pt.Scaling.from_exponents(ROD, 5), "exponents must be a mapping such as {'l': 1}, got 5", 5),
-        (lambda: pt.Scaling.from_unit_change(ROD, {"Q": 1}),
-         "unknown base dimension 'Q' in unit_change; the system's base dimensions are M, L, T", None),
-        (lambda: pt.Scaling.from_exponents(ROD, {"q": 1}),
-         "unknown variable 'q' in exponents; the system has m, l, g, t", "q"),
-        (lambda: pt.Scaling.from_exponents(ROD, {"l": 1}),
-         "exponents {'l': 1} are not a similarity scaling: they change a Pi group (only changes of base units keep "
-         "every group invariant)", None),
-        (lambda: sc.apply(3, s=2),
-         "values must be a mapping of variable names to numbers, such as {'l': 2}, got int", 3),
+        (
+            lambda: pt.Scaling.from_unit_change(ROD, {"Q": 1}),
+            "unknown base dimension 'Q' in unit_change; the system's base dimensions are M, L, T",
+            None,
+        ),
+        (
+            lambda: pt.Scaling.from_exponents(ROD, {"q": 1}),
+            "unknown variable 'q' in exponents; the system has m, l, g, t",
+            "q",
+        ),
+        (
+            lambda: pt.Scaling.from_exponents(ROD, {"l": 1}),
+            "exponents {'l': 1} are not a similarity scaling: they change a Pi group (only changes of base units keep "
+            "every group invariant)",
+            None,
+        ),
+        (
+            lambda: sc.apply(3, s=2),
+            "values must be a mapping of variable names to numbers, such as {'l': 2}, got int",
+            3,
+        ),
         (lambda: sc.apply({"q": 1}, s=2), "unknown variable 'q' in values; the system has m, l, g, t", "q"),
-        (lambda: sc.map_back([0, 1], [[1], [2]], 2.0, time="q", states=["l"]),
-         "unknown variable 'q' in time; the system has m, l, g, t", "q"),
+        (
+            lambda: sc.map_back([0, 1], [[1], [2]], 2.0, time="q", states=["l"]),
+            "unknown variable 'q' in time; the system has m, l, g, t",
+            "q",
+        ),
     ]
     for call, message, culprit in cases:
         err = raised(call)
@@ -377,15 +419,18 @@ def test_scaling_messages_in_full():
     assert err.culprit == str(huge)
     assert str(err).startswith(f"the scaled value of 'l' is {huge}: {beyond} (about 1e308)")
     # the start of a number's refusal names what it was meant to be
-    for call, what in ((lambda: pt.Scaling.from_unit_change(ROD, {"L": "x"}), "exponent of base unit 'L'"),
-                       (lambda: pt.Scaling.from_exponents(ROD, {"l": "x"}), "exponent of 'l'"),
-                       (lambda: sc.apply({"l": "abc"}, s=2), "the value of 'l'"),
-                       (lambda: sc**"abc", "the power of a scaling")):
+    for call, what in (
+        (lambda: pt.Scaling.from_unit_change(ROD, {"L": "x"}), "exponent of base unit 'L'"),
+        (lambda: pt.Scaling.from_exponents(ROD, {"l": "x"}), "exponent of 'l'"),
+        (lambda: sc.apply({"l": "abc"}, s=2), "the value of 'l'"),
+        (lambda: sc ** "abc", "the power of a scaling"),
+    ):
         assert str(raised(call)).startswith(f"{what} must be a finite real number")
     bare = pt.Scaling(ROD, (Fraction(0), Fraction(1), Fraction(0), Fraction(0)), None)
     assert str(raised(lambda: bare.unit_change)) == (
         f"{bare} is a symmetry of particular equations, not a change of units: it has no unit change, and "
-        "quantities outside the system have no defined exponent")
+        "quantities outside the system have no defined exponent"
+    )
 
 
 def test_exponents_are_fractions_even_without_base_dimensions():
@@ -399,8 +444,14 @@ def test_exponents_are_fractions_even_without_base_dimensions():
 def test_exponent_of_any_dimension_is_its_exponents_times_the_unit_change():
     sc = pt.Scaling.from_unit_change(ROD, {"M": 2, "L": Fraction(1, 3), "T": -1})
     # M^a L^b T^c moves by s^(2a + b/3 - c), by hand
-    for text, want in (("M", 2), ("L", Fraction(1, 3)), ("T", -1), ("1", 0), ("M L^2 T^-2", Fraction(14, 3)),
-                       ("L^3/M", -1)):
+    for text, want in (
+        ("M", 2),
+        ("L", Fraction(1, 3)),
+        ("T", -1),
+        ("1", 0),
+        ("M L^2 T^-2", Fraction(14, 3)),
+        ("L^3/M", -1),
+    ):
         assert sc.exponent_of(text) == want
         assert sc.exponent_of(pt.Dimension.parse(text)) == want
 
@@ -440,5 +491,6 @@ def test_scalings_hash_by_system_and_exponents():
 def test_repr_writes_integer_exponents_as_integers():
     rod = repr(ROD)
     assert repr(pt.Scaling.from_unit_change(ROD, {"L": 1})) == f"Scaling.from_exponents({rod}, {{'l': 1, 'g': 1}})"
-    assert (repr(pt.Scaling.from_unit_change(ROD, {"T": Fraction(1, 2)}))
-            == f"Scaling.from_exponents({rod}, {{'g': '-1', 't': '1/2'}})".replace("'-1'", "-1"))
+    assert repr(
+        pt.Scaling.from_unit_change(ROD, {"T": Fraction(1, 2)})
+    ) == f"Scaling.from_exponents({rod}, {{'g': '-1', 't': '1/2'}})".replace("'-1'", "-1")

@@ -45,8 +45,17 @@ def figure1():
 
 
 def test_search_scaling_is_figure5(figure5):
-    assert figure5.exponents == {"m": 0, "l": -1, "g": 1, "k_theta": 0, "c_theta": -1, "theta_r": 0,
-                                 "t": -1, "theta": 0, "omega": 1}
+    assert figure5.exponents == {
+        "m": 0,
+        "l": -1,
+        "g": 1,
+        "k_theta": 0,
+        "c_theta": -1,
+        "theta_r": 0,
+        "t": -1,
+        "theta": 0,
+        "omega": 1,
+    }
 
 
 @pytest.mark.parametrize("s", [2.0, 3.0, 0.37])
@@ -142,7 +151,9 @@ def test_euler_scaled_dt_is_exact_for_any_s(hinged, figure5):
 
 def test_euler_gap_is_first_order_in_dt(hinged, figure5):
     gaps = [
-        pt.verify_similarity(hinged, figure5, s=2, t_final=5.0, method="euler", dt=dt, scale_dt=False).deviation["theta"]
+        pt.verify_similarity(hinged, figure5, s=2, t_final=5.0, method="euler", dt=dt, scale_dt=False).deviation[
+            "theta"
+        ]
         for dt in (2e-3, 1e-3)
     ]
     assert gaps[0] / gaps[1] == pytest.approx(2.0, rel=0.1)
@@ -419,8 +430,12 @@ def test_a_failing_solver_is_reported():
     # x' = x^2 / (l tau) from x = l blows up at t = tau: solve_ivp cannot pass it
     t, ell, tau = sympy.Symbol("t"), sympy.Symbol("l"), sympy.Symbol("tau")
     x = sympy.Function("x")(t)
-    blow_up = pt.Model(pt.System({"l": "L", "tau": "T", "t": "T", "x": "L"}), [sympy.Eq(x.diff(t), x**2 / (ell * tau))],
-                       defaults={"l": 1.0, "tau": 1.0}, initial={"x": 1.0})
+    blow_up = pt.Model(
+        pt.System({"l": "L", "tau": "T", "t": "T", "x": "L"}),
+        [sympy.Eq(x.diff(t), x**2 / (ell * tau))],
+        defaults={"l": 1.0, "tau": 1.0},
+        initial={"x": 1.0},
+    )
     with pytest.raises(pt.PiTheoremError, match="solve_ivp failed"):
         pt.simulate(blow_up, t_final=2.0)
 
@@ -438,7 +453,8 @@ def test_non_similarity_names_a_group_it_changes(hinged):
         pt.verify_similarity(hinged, {"g": 1}, s=2)
     assert str(info.value) == (
         "exponents (g: 1) are not a similarity scaling; they multiply the Pi group k_theta/(g*l*m) by s^-1 "
-        "(only changes of base units keep every group invariant)")
+        "(only changes of base units keep every group invariant)"
+    )
     # the first group, k_theta/(g*l*m), keeps its value here: the message skips it
     with pytest.raises(pt.InvalidRequestError, match=r"the Pi group c_theta\*\*2/\(g\*l\*\*3\*m\*\*2\) by s\^2 "):
         pt.verify_similarity(hinged, {"c_theta": 1}, s=2)
@@ -480,7 +496,9 @@ def test_fixed_steps_cover_the_span():
 
 @pytest.mark.parametrize("bad", [0, -1.0, float("inf"), float("nan"), "soon", None, True, False])
 def test_positive_float_refuses_and_names(bad):
-    with pytest.raises(pt.InvalidRequestError, match=r"^dt must be a positive finite number such as 2, 0.5 or .1/3., got "):
+    with pytest.raises(
+        pt.InvalidRequestError, match=r"^dt must be a positive finite number such as 2, 0.5 or .1/3., got "
+    ):
         positive_float(bad, "dt")
     assert positive_float("2.5", "dt") == 2.5
     assert positive_float(np.float32(0.5), "dt") == 0.5
@@ -568,13 +586,17 @@ def test_check_names_the_pi_group_and_prints_plain_exponents():
     assert "Pi group k_theta/(g*l*m) by s^-3/2" in message
 
 
-@pytest.mark.parametrize(("option", "value"), [("dt", "1e-400"), ("tol", "1e-400"), ("s", "1e400"), ("s", 10**400),
-                                               ("t_final", "1e400")])
+@pytest.mark.parametrize(
+    ("option", "value"), [("dt", "1e-400"), ("tol", "1e-400"), ("s", "1e400"), ("s", 10**400), ("t_final", "1e400")]
+)
 def test_numbers_that_no_float_can_hold_are_refused_by_name(hinged, figure5, option, value):
     # exact and positive, but 1e-400 rounds to 0.0 and 1e400 overflows: neither can drive a simulation
     request = {"s": 2, "t_final": 0.5, "method": "euler", "dt": 0.01, option: value}
-    with pytest.raises(pt.NumberError, match=f"{'the scale factor s' if option == 's' else option} must be a "
-                                              r"positive number within the range of floating point") as info:
+    with pytest.raises(
+        pt.NumberError,
+        match=f"{'the scale factor s' if option == 's' else option} must be a "
+        r"positive number within the range of floating point",
+    ) as info:
         pt.verify_similarity(hinged, figure5, **request)
     assert info.value.culprit is value
 

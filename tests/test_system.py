@@ -30,12 +30,15 @@ def test_time_variables_are_those_of_dimension_time_alone_in_system_order():
     assert pt.System({"l": "L", "f": "T^-1"}).time_variables == ()
 
 
-@pytest.mark.parametrize(("variables", "expected"), [
-    ({"t": "T", "l": "L", "g": "L T^-2"}, ("l", "g")),
-    ({"tau": "T", "l": "L", "v": "L/T"}, ("l", "v")),
-    ({"t": "T", "tau": "T", "l": "L", "v": "L/T"}, ("l", "v")),
-    ({"t": "T", "l": "L"}, ("t", "l")),  # every basis needs time
-])
+@pytest.mark.parametrize(
+    ("variables", "expected"),
+    [
+        ({"t": "T", "l": "L", "g": "L T^-2"}, ("l", "g")),
+        ({"tau": "T", "l": "L", "v": "L/T"}, ("l", "v")),
+        ({"t": "T", "tau": "T", "l": "L", "v": "L/T"}, ("l", "v")),
+        ({"t": "T", "l": "L"}, ("t", "l")),  # every basis needs time
+    ],
+)
 def test_default_repeaters_avoid_the_time_variables(variables, expected):
     assert pt.System(variables).default_repeating() == expected
 
@@ -53,7 +56,9 @@ def test_a_column_is_the_exponents_of_the_variables_dimension_over_the_base_dime
         system.column("x")
 
 
-@pytest.mark.parametrize("spec", ["L^99999999999999999999999", {"L": 1e300}, {"L": 10**400}, "L^1001", "L^(1/1000000000001)"])
+@pytest.mark.parametrize(
+    "spec", ["L^99999999999999999999999", {"L": 1e300}, {"L": 10**400}, "L^1001", "L^(1/1000000000001)"]
+)
 def test_exponent_limits(spec):
     with pytest.raises(pt.LimitError) as info:
         pt.System({"x": spec})
@@ -137,8 +142,11 @@ def test_default_repeaters_need_time_when_the_rest_do_not_span():
 
 
 @settings(max_examples=100, deadline=None)
-@given(systems(exponent=st.sampled_from([-2, -1, 0, 0, 1, 2, Fraction(1, 2)]), max_vars=7), st.booleans(),
-       st.integers(0, 7))
+@given(
+    systems(exponent=st.sampled_from([-2, -1, 0, 0, 1, 2, Fraction(1, 2)]), max_vars=7),
+    st.booleans(),
+    st.integers(0, 7),
+)
 def test_pi_groups_equal_sympy_solutions(system, with_time, at):
     if with_time:  # a variable of dimension time, anywhere in the order
         items = [(n, system.dimension(n)) for n in system.variables]
@@ -154,12 +162,19 @@ def test_pi_groups_equal_sympy_solutions(system, with_time, at):
     assert [tuple(g.exponents.items()) for g in groups] == oracle_groups(system, default)
     for basis in every[:3]:
         assert [tuple(g.exponents.items()) for g in system.pi_groups(repeating=basis[::-1])] == oracle_groups(
-            system, basis[::-1])
+            system, basis[::-1]
+        )
 
 
 @settings(max_examples=100, deadline=None)
-@given(st.lists(st.tuples(st.sampled_from(["M", "L", "T", "Theta", "I", "N", "J", "A", "Q", "kg"]),
-                          st.integers(-120, 120)), min_size=1, max_size=4), st.booleans())
+@given(
+    st.lists(
+        st.tuples(st.sampled_from(["M", "L", "T", "Theta", "I", "N", "J", "A", "Q", "kg"]), st.integers(-120, 120)),
+        min_size=1,
+        max_size=4,
+    ),
+    st.booleans(),
+)
 def test_quick_formula_reader_agrees_with_the_parser(factors, spaced):
     text = (" " if spaced else "  ").join(f"{b}^{p}" if p != 1 else b for b, p in factors)
     try:
@@ -190,9 +205,12 @@ def test_from_units_matches_formulas():
     s = pt.System.from_units(
         {"m": "kg", "l": "m", "g": "m/s^2", "k_theta": "N*m/rad", "c_theta": "N*m*s/rad", "t": "s"}
     )
-    assert s.dimensions == pt.System(
-        {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "t": "T"}
-    ).dimensions
+    assert (
+        s.dimensions
+        == pt.System(
+            {"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2", "c_theta": "M L^2 T^-1", "t": "T"}
+        ).dimensions
+    )
 
 
 def test_from_units_angle_as_base():
@@ -298,8 +316,9 @@ def test_rows_are_the_dimension_matrix_over_the_names_asked(system, data):
     # the oracle: each variable's Dimension, read base by base
     expected = [[system.dimension(n).exponent_of(b) for n in names] for b in system.base_dimensions]
     assert system.rows(names) == expected
-    assert system.rows() == [[Fraction(int(x.p), int(x.q)) for x in system.matrix.row(i)]
-                             for i in range(len(system.base_dimensions))]
+    assert system.rows() == [
+        [Fraction(int(x.p), int(x.q)) for x in system.matrix.row(i)] for i in range(len(system.base_dimensions))
+    ]
 
 
 def test_rows_refuse_an_unknown_name():
@@ -309,14 +328,18 @@ def test_rows_refuse_an_unknown_name():
 
 # -- from_units: pint's float exponents under the float rule, never rounded to a nearby fraction
 
-@pytest.mark.parametrize(("unit", "exponent"), [
-    ("m**1e-7", Fraction(1, 10**7)),  # was dimensionless
-    ("m**0.3333333", Fraction(3333333, 10**7)),  # was 1/3
-    ("m**(1/3)", Fraction(1, 3)),  # pint's 0.3333333333333333, a computed float
-    ("m**(2/7)", Fraction(2, 7)),
-    ("m**1.5", Fraction(3, 2)),
-    ("m**(1/1000)", Fraction(1, 1000)),
-])
+
+@pytest.mark.parametrize(
+    ("unit", "exponent"),
+    [
+        ("m**1e-7", Fraction(1, 10**7)),  # was dimensionless
+        ("m**0.3333333", Fraction(3333333, 10**7)),  # was 1/3
+        ("m**(1/3)", Fraction(1, 3)),  # pint's 0.3333333333333333, a computed float
+        ("m**(2/7)", Fraction(2, 7)),
+        ("m**1.5", Fraction(3, 2)),
+        ("m**(1/1000)", Fraction(1, 1000)),
+    ],
+)
 def test_from_units_reads_exponents_by_the_float_rule(unit, exponent):
     assert pt.System.from_units({"x": unit}).dimension("x") == pt.Dimension({"L": exponent})
 
@@ -335,11 +358,17 @@ def test_from_units_refuses_a_power_it_cannot_hold_exactly():
         pt.System.from_units({"x": "m**(1/1000001)"})
 
 
-@pytest.mark.parametrize(("unit", "error", "fragment"), [
-    ("m**inf", pt.NumberError, "finite"), ("m**-1e400", pt.NumberError, "finite"),
-    ("m**nan", pt.NumberError, "finite"), ("kg^nan/N", pt.NumberError, "finite"),  # pint loops forever on that one
-    ("m**100000", pt.LimitError, "1000"), ("m**1e-13", pt.LimitError, "denominator"),
-])
+@pytest.mark.parametrize(
+    ("unit", "error", "fragment"),
+    [
+        ("m**inf", pt.NumberError, "finite"),
+        ("m**-1e400", pt.NumberError, "finite"),
+        ("m**nan", pt.NumberError, "finite"),
+        ("kg^nan/N", pt.NumberError, "finite"),  # pint loops forever on that one
+        ("m**100000", pt.LimitError, "1000"),
+        ("m**1e-13", pt.LimitError, "denominator"),
+    ],
+)
 def test_from_units_refuses_exponents_beyond_the_limits_by_name(unit, error, fragment):
     with pytest.raises(error, match=fragment) as info:
         pt.System.from_units({"x": unit})
@@ -370,8 +399,10 @@ def test_from_units_takes_a_mapping(bad):
 def test_from_units_messages_in_full():
     with pytest.raises(pt.UnitError) as caught:
         pt.System.from_units({"x": "m^-1/2"})
-    assert str(caught.value) == ("the unit 'm^-1/2' of 'x' is ambiguous: '^-1/2' is a power divided by a number; "
-                                 "write a fractional power in brackets, such as 'm^(-1/2)'")
+    assert str(caught.value) == (
+        "the unit 'm^-1/2' of 'x' is ambiguous: '^-1/2' is a power divided by a number; "
+        "write a fractional power in brackets, such as 'm^(-1/2)'"
+    )
     # a unit text of up to 40 characters is quoted in the message, a longer one is not
     forty = "m**inf" + "*s" * 17
     longer = "m**inf" + "*s" * 16 + "*kg"
@@ -400,8 +431,12 @@ def test_systems_differ_by_dimensions_as_well_as_names():
 
 
 def test_dimensionless_products_span_the_null_space():
-    for dims in ({"l": "L", "t": "T", "v": "L/T"}, {"m": "M", "l": "L", "g": "L T^-2", "t": "T", "k": "M L^2 T^-2"},
-                 {"x": "1", "y": "1"}, {"a": "L", "b": "L^2"}):
+    for dims in (
+        {"l": "L", "t": "T", "v": "L/T"},
+        {"m": "M", "l": "L", "g": "L T^-2", "t": "T", "k": "M L^2 T^-2"},
+        {"x": "1", "y": "1"},
+        {"a": "L", "b": "L^2"},
+    ):
         system = pt.System(dims)
         # the dimension matrix by hand, from the formulas' exponents
         bases = ["M", "L", "T"]
@@ -411,7 +446,9 @@ def test_dimensionless_products_span_the_null_space():
         for vector in products:
             assert len(vector) == len(dims)
             assert all(isinstance(x, Fraction) for x in vector)
-            assert matrix * sympy.Matrix([sympy.Rational(x.numerator, x.denominator) for x in vector]) == sympy.zeros(3, 1)
+            assert matrix * sympy.Matrix([sympy.Rational(x.numerator, x.denominator) for x in vector]) == sympy.zeros(
+                3, 1
+            )
         if products:
             assert sympy.Matrix([[sympy.Rational(str(x)) for x in v] for v in products]).rank() == len(products)
 
@@ -422,8 +459,9 @@ def test_from_units_angles_malformed_and_unknown_dimensions():
     assert pt.System.from_units({"x": "m"}, angle_as_base=True).dimension("x") == pt.Dimension.parse("L")
     with pytest.raises(pt.LimitError) as caught:
         pt.System.from_units({"x": "rad**1001"}, angle_as_base=True)
-    assert str(caught.value) == ("the exponent of radian in the unit 'rad**1001' of 'x' is 1001: its magnitude "
-                                 "exceeds the limit 1000")
+    assert str(caught.value) == (
+        "the exponent of radian in the unit 'rad**1001' of 'x' is 1001: its magnitude exceeds the limit 1000"
+    )
     for text in ("m**", "m/", "*m"):
         with pytest.raises(pt.UnitError) as caught:
             pt.System.from_units({"x": text})
@@ -442,8 +480,11 @@ def test_a_base_outside_the_declared_ones_is_refused_even_in_a_simple_formula():
 
 def test_unknown_names_in_bases_and_pi_groups_are_named_with_the_argument():
     lt = pt.System({"l": "L", "t": "T", "v": "L/T"})
-    for call, argument in ((lambda: lt.bases(require=("q",)), "require"), (lambda: lt.bases(exclude=("q",)), "exclude"),
-                           (lambda: lt.pi_groups(["q", "l"]), "repeating")):
+    for call, argument in (
+        (lambda: lt.bases(require=("q",)), "require"),
+        (lambda: lt.bases(exclude=("q",)), "exclude"),
+        (lambda: lt.pi_groups(["q", "l"]), "repeating"),
+    ):
         with pytest.raises(pt.UnknownVariableError) as caught:
             call()
         assert str(caught.value) == f"unknown variable 'q' in {argument}; the system has l, t, v"
@@ -452,21 +493,36 @@ def test_unknown_names_in_bases_and_pi_groups_are_named_with_the_argument():
 def test_basis_and_dimension_refusals_in_full():
     lt = pt.System({"l": "L", "t": "T", "v": "L/T"})
     cases = [
-        (lambda: lt.bases(require=("l", "t", "v")),
-         "repeating set ('l', 't', 'v') has 3 variables, but the dimension matrix has rank 2: choose exactly 2 "
-         "variables with independent dimensions (System.bases() lists every valid choice)", ("l", "t", "v")),
-        (lambda: pt.System({"a": "L", "b": "T", "c": "L/T", "d": "M"}).bases(require=("a", "b", "c")),
-         "repeating set ('a', 'b', 'c') is dependent: a/(b*c) is dimensionless, so these variables cannot serve as "
-         "a basis; System.bases() lists every valid choice", ("a", "b", "c")),
-        (lambda: lt.check_names(("l", "l"), "fixed"), "variable 'l' is named twice in fixed; name each variable once",
-         "l"),
+        (
+            lambda: lt.bases(require=("l", "t", "v")),
+            "repeating set ('l', 't', 'v') has 3 variables, but the dimension matrix has rank 2: choose exactly 2 "
+            "variables with independent dimensions (System.bases() lists every valid choice)",
+            ("l", "t", "v"),
+        ),
+        (
+            lambda: pt.System({"a": "L", "b": "T", "c": "L/T", "d": "M"}).bases(require=("a", "b", "c")),
+            "repeating set ('a', 'b', 'c') is dependent: a/(b*c) is dimensionless, so these variables cannot serve as "
+            "a basis; System.bases() lists every valid choice",
+            ("a", "b", "c"),
+        ),
+        (
+            lambda: lt.check_names(("l", "l"), "fixed"),
+            "variable 'l' is named twice in fixed; name each variable once",
+            "l",
+        ),
         (lambda: lt.index("q"), "unknown variable 'q'; the system has l, t, v", "q"),
         (lambda: pt.System({"x": {3: 1}}), "dimension of 'x' must map base names to numbers, got the key 3", 3),
-        (lambda: pt.System({"x": {"Q": 1}}), "dimension of 'x' uses base 'Q'; allowed bases are M, L, T, Theta, I",
-         "Q"),
-        (lambda: pt.System({"x": {"N": 1}}),
-         "dimension of 'x' uses base 'N'; allowed bases are M, L, T, Theta, I; 'N' is opt-in because it is also "
-         "an SI unit symbol: declare it with base_dimensions=(..., 'N')", "N"),
+        (
+            lambda: pt.System({"x": {"Q": 1}}),
+            "dimension of 'x' uses base 'Q'; allowed bases are M, L, T, Theta, I",
+            "Q",
+        ),
+        (
+            lambda: pt.System({"x": {"N": 1}}),
+            "dimension of 'x' uses base 'N'; allowed bases are M, L, T, Theta, I; 'N' is opt-in because it is also "
+            "an SI unit symbol: declare it with base_dimensions=(..., 'N')",
+            "N",
+        ),
     ]
     for call, message, culprit in cases:
         with pytest.raises(pt.PiTheoremError) as caught:
@@ -476,10 +532,18 @@ def test_basis_and_dimension_refusals_in_full():
 
 
 def test_a_name_given_twice_is_named_with_where():
-    cases = [(lambda: pt.System({"x": "L"}, base_dimensions=("T", "L", "L")),
-              "variable 'L' is named twice in base_dimensions; name each variable once", "L"),
-             (lambda: pt.System([("x", "L"), ("x", "T")]),
-              "variable 'x' is named twice in the system; name each variable once", "x")]
+    cases = [
+        (
+            lambda: pt.System({"x": "L"}, base_dimensions=("T", "L", "L")),
+            "variable 'L' is named twice in base_dimensions; name each variable once",
+            "L",
+        ),
+        (
+            lambda: pt.System([("x", "L"), ("x", "T")]),
+            "variable 'x' is named twice in the system; name each variable once",
+            "x",
+        ),
+    ]
     for call, message, culprit in cases:
         with pytest.raises(pt.DuplicateVariableError) as caught:
             call()

@@ -14,8 +14,20 @@ from hypothesis import strategies as st
 import pitheorem as pt
 
 #: plausible SUPERball values in SI units (illustration, as in tutorial 04), time step as t
-SB_VALUES = {"m": 1.5, "l": 1.7, "k": 600.0, "x_r": 0.8, "g": 9.81, "c": 20.0, "F": 40.0, "t": 1 / 240,
-             "G": 8e10, "E": 2e11, "v": 0.05, "rho": 1500.0}
+SB_VALUES = {
+    "m": 1.5,
+    "l": 1.7,
+    "k": 600.0,
+    "x_r": 0.8,
+    "g": 9.81,
+    "c": 20.0,
+    "F": 40.0,
+    "t": 1 / 240,
+    "G": 8e10,
+    "E": 2e11,
+    "v": 0.05,
+    "rho": 1500.0,
+}
 
 
 BULLET = (0.05, 10)
@@ -89,7 +101,7 @@ def check_conflict(fit, *, frozen=()):
     hard = fixed_rows(fit.system, fit.fixed, frozen=frozen) + float_rows(fit.system, fit.values, frozen=frozen)
     assert fm_slack(rows + hard, n) < 1e-7, "the reported conflict is feasible"
     for i in range(len(rows)):
-        rest = rows[:i] + rows[i + 1:] + hard
+        rest = rows[:i] + rows[i + 1 :] + hard
         assert fm_slack(rest, n) > -1e-7, f"dropping {fit.conflict[i]} leaves it infeasible"
 
 
@@ -100,8 +112,9 @@ def in_range(fit):
 
 
 def test_superball_fits_bullet_ranges(superball):
-    fit = pt.fit_units(superball, SB_VALUES, dimension_ranges={"L": BULLET, "M": BULLET}, ranges={"g": (1, 100)},
-                       fixed=("t",))
+    fit = pt.fit_units(
+        superball, SB_VALUES, dimension_ranges={"L": BULLET, "M": BULLET}, ranges={"g": (1, 100)}, fixed=("t",)
+    )
     assert fit.feasible
     assert not fit.conflict
     assert fit.worst_violation == 0
@@ -126,9 +139,13 @@ def test_superball_moved_into_range(superball):
 
 
 def test_superball_infeasible_conflict_is_minimal(superball):
-    fit = pt.fit_units(superball, SB_VALUES,
-                       dimension_ranges={"L": BULLET, "M": BULLET, "M L^-1 T^-2": (1e-3, 1e3)},
-                       ranges={"g": (1, 100)}, fixed=("t",))
+    fit = pt.fit_units(
+        superball,
+        SB_VALUES,
+        dimension_ranges={"L": BULLET, "M": BULLET, "M L^-1 T^-2": (1e-3, 1e3)},
+        ranges={"g": (1, 100)},
+        fixed=("t",),
+    )
     assert not fit.feasible
     assert fit.worst_violation > 1
     assert [str(b) for b in fit.conflict] == ["m >= 1/20", "g <= 100", "E <= 1000"]
@@ -136,13 +153,19 @@ def test_superball_infeasible_conflict_is_minimal(superball):
     # the same conflict by brute force over a grid of unit changes: never all three
     best = min(
         max(max(0.0, -1.30103 - math.log10(1.5) - ym), math.log10(9.81) + yl - 2, math.log10(2e11) + ym - yl - 3)
-        for ym in [i / 20 for i in range(-200, 201)] for yl in [i / 20 for i in range(-200, 201)])
+        for ym in [i / 20 for i in range(-200, 201)]
+        for yl in [i / 20 for i in range(-200, 201)]
+    )
     assert best > 1.9
 
 
 def test_superball_time_free_changes_the_conflict(superball):
-    fit = pt.fit_units(superball, SB_VALUES,
-                       dimension_ranges={"L": BULLET, "M": BULLET, "M L^-1 T^-2": (1e-3, 1e3)}, ranges={"g": (1, 100)})
+    fit = pt.fit_units(
+        superball,
+        SB_VALUES,
+        dimension_ranges={"L": BULLET, "M": BULLET, "M L^-1 T^-2": (1e-3, 1e3)},
+        ranges={"g": (1, 100)},
+    )
     assert not fit.feasible
     check_conflict(fit)
     assert fit.scaled["t"] != SB_VALUES["t"]
@@ -297,9 +320,13 @@ def requests(draw):
 
 #: found by test_property_fit: the 12-digit grid's decades, through a basis with halves, had denominators
 #: of 2e12, beyond the package's limit of 1e12 (a LimitError where a fit was due)
-WIDE_DENOMINATOR = (pt.System({"x0": "M^2 L T", "x1": "L^2 T^-2", "x2": "M^-1 L^-1 T", "x3": "1", "x4": "M L^-1"}),
-                    {"x0": 0.1, "x1": 0.30000000000000004, "x2": 1.0, "x3": 0.1, "x4": 0.1},
-                    {name: (Fraction(1), 1.2589254117941673) for name in ("x1", "x2", "x4")}, None, ("x0",))
+WIDE_DENOMINATOR = (
+    pt.System({"x0": "M^2 L T", "x1": "L^2 T^-2", "x2": "M^-1 L^-1 T", "x3": "1", "x4": "M L^-1"}),
+    {"x0": 0.1, "x1": 0.30000000000000004, "x2": 1.0, "x3": 0.1, "x4": 0.1},
+    {name: (Fraction(1), 1.2589254117941673) for name in ("x1", "x2", "x4")},
+    None,
+    ("x0",),
+)
 
 
 @settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -332,8 +359,9 @@ def test_rounded_fit_names_a_conflict_that_only_exact_arithmetic_sees():
     # that rounds to it, just above 10^-6) times 10^7 is just above the bound 10, by far less than the
     # floats' tolerance; 10^6 gives just above 1, below the low bound. The fit says so exactly, and so must
     # the conflict.
-    fit = pt.fit_units(pt.System({"x": "T"}), {"x": 1.0000000000000002e-06}, ranges={"x": (1.2589254117941673, 10.0)},
-                       nice=10)
+    fit = pt.fit_units(
+        pt.System({"x": "T"}), {"x": 1.0000000000000002e-06}, ranges={"x": (1.2589254117941673, 10.0)}, nice=10
+    )
     assert fit.violated == ("x",)
     assert 10 < fit.scaled["x"] < 10 + 1e-14
     assert [(b.name, b.side) for b in fit.conflict] == [("x", "low"), ("x", "high")]

@@ -50,8 +50,16 @@ SHOWN = 3
 #: ``actuator_biasprm``); bounding volumes only choose which pairs are tested, and a plane's is a fixed 5e9;
 #: ``stat.meaninertia`` (a mean of masses and moments of inertia) only normalises the solver's tolerance,
 #: which is named as a solver cause of its own; the other statistics and a tendon's width only draw
-NOT_STEPPED = ("actuator_acc0", "bvh_aabb", "stat.meaninertia", "stat.center", "stat.extent", "stat.meanmass",
-               "stat.meansize", "tendon_width")
+NOT_STEPPED = (
+    "actuator_acc0",
+    "bvh_aabb",
+    "stat.meaninertia",
+    "stat.center",
+    "stat.extent",
+    "stat.meanmass",
+    "stat.meansize",
+    "tendon_width",
+)
 #: a float64 number this close (relative) to its expected value, in a model with float32 numbers rounded,
 #: was computed from them (a mesh's mass and inertia from its vertices)
 DERIVED = 1e-5
@@ -143,8 +151,13 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
         # that stops at an absolute tolerance, say); and at s = 4 itself the first probe is the copy
         inverse = model.scaled(scaling, Fraction(1, PROBE))._backend.stored_numbers()
     except PiTheoremError as err:  # a probe the engine refuses (a mass below its floor): no exponents
-        causes.append(Cause("threshold", "the probes at s = 4 and 1/4", f"the engine refuses one: "
-                            f"{str(err).splitlines()[0]}; the stored numbers were not compared"))
+        causes.append(
+            Cause(
+                "threshold",
+                "the probes at s = 4 and 1/4",
+                f"the engine refuses one: {str(err).splitlines()[0]}; the stored numbers were not compared",
+            )
+        )
         original = {}
     copy = scaled._backend.stored_numbers()
     probed = {}  # field -> (exponents, clean): pass one, for the largest number of each exponent
@@ -177,8 +190,11 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
             off = ok & (got != expected)
             if off.any():
                 # at s a power of two nothing is rounded by the scaling: what differs was processed
-                causes.append(_reprocessed(backend, field, got, expected, off) if is_power_of_two(s)
-                              else _rounded(backend, field, before, got, expected, off))
+                causes.append(
+                    _reprocessed(backend, field, got, expected, off)
+                    if is_power_of_two(s)
+                    else _rounded(backend, field, before, got, expected, off)
+                )
             continue
         # rounding: relative to the number, or to the largest number of its dimension (a residue of 1e-16
         # left by a difference of lengths of order one is rounding too)
@@ -193,16 +209,27 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
     if derived and any(c.kind == "precision" for c in causes):
         fields = ", ".join(f for f, *_ in derived[:6]) + (f" and {len(derived) - 6} more" if len(derived) > 6 else "")
         worst = max(r for _, r, *_ in derived)
-        causes.append(Cause("precision", "numbers derived from float32 ones", f"{fields}: computed by the engine "
-                            f"from the rounded float32 numbers, off by up to {worst:.2g} relative"))
+        causes.append(
+            Cause(
+                "precision",
+                "numbers derived from float32 ones",
+                f"{fields}: computed by the engine from the rounded float32 numbers, off by up to {worst:.2g} relative",
+            )
+        )
     else:
         causes.extend(_mismatch(backend, field, got, expected, off) for field, _, off, got, expected in derived)
     for name, value in (backend.solver_settings() if isinstance(backend, CounterRuns) else {}).items():
-        causes.append(Cause("solver", f"option {name}", f"{value:g}: a stopping rule of no pure dimension (it "
-                            "compares numbers of different dimensions: MuJoCo's cost is normalised by a mean of "
-                            "masses and moments of inertia, Bullet's residual adds rows in m/s and rad/s), so the "
-                            f"scaled run may stop after another number of iterations; with_values({name}=0) runs "
-                            "every iteration"))
+        causes.append(
+            Cause(
+                "solver",
+                f"option {name}",
+                f"{value:g}: a stopping rule of no pure dimension (it "
+                "compares numbers of different dimensions: MuJoCo's cost is normalised by a mean of "
+                "masses and moments of inertia, Bullet's residual adds rows in m/s and rad/s), so the "
+                f"scaled run may stop after another number of iterations; with_values({name}=0) runs "
+                "every iteration",
+            )
+        )
     if isinstance(scaled._backend, IgnoredSettings):
         causes.extend(scaled._backend.ignored_settings())
     # the engine's floors and clamps (mjMINVAL, mjMINMU, ...) that a number of either model is beyond:
@@ -240,8 +267,9 @@ def _probe_exponents(before: np.ndarray, probe: np.ndarray) -> tuple[np.ndarray,
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(live, p / np.where(live, b, 1.0), 1.0)
         half = np.where(ratio > 0, np.round(2 * np.log(np.abs(ratio)) / math.log(PROBE)) / 2, 0.0)
-    clean[live] = (ratio[live] > 0) & (np.abs(ratio[live] - float(PROBE) ** half[live])
-                                       <= ROUNDING * float(PROBE) ** half[live])
+    clean[live] = (ratio[live] > 0) & (
+        np.abs(ratio[live] - float(PROBE) ** half[live]) <= ROUNDING * float(PROBE) ** half[live]
+    )
     k[live] = half[live]
     return k, clean, zero & (b != 0)
 
@@ -266,9 +294,13 @@ def _where(backend, field: str, mask: np.ndarray) -> str:
 
 def _not_a_power(backend, field, before, probe, mask) -> Cause:
     i = tuple(np.argwhere(mask)[0]) if mask.ndim else ()
-    return Cause("unscaled", field, f"{_where(backend, field, mask)}: scaled by {PROBE} as a change of units, "
-                 f"{float(before[i]):.17g} became {float(probe[i]):.17g}, no power of {PROBE}: the engine reads a "
-                 "sentinel or derives this number in a way no change of units carries")
+    return Cause(
+        "unscaled",
+        field,
+        f"{_where(backend, field, mask)}: scaled by {PROBE} as a change of units, "
+        f"{float(before[i]):.17g} became {float(probe[i]):.17g}, no power of {PROBE}: the engine reads a "
+        "sentinel or derives this number in a way no change of units carries",
+    )
 
 
 def _relative(got: np.ndarray, expected: np.ndarray) -> np.ndarray:
@@ -280,19 +312,31 @@ def _relative(got: np.ndarray, expected: np.ndarray) -> np.ndarray:
 
 def _rounded(backend, field, before, got, expected, mask) -> Cause:
     rel = _relative(got[mask], expected[mask])
-    return Cause("precision", field, f"{int(mask.sum())} of {before.size} values ({_where(backend, field, mask)}) "
-                 f"rounded to float32, by up to {float(rel.max()):.2g} relative: the engine keeps them in float32, "
-                 "where only a power-of-4 s scales them exactly")
+    return Cause(
+        "precision",
+        field,
+        f"{int(mask.sum())} of {before.size} values ({_where(backend, field, mask)}) "
+        f"rounded to float32, by up to {float(rel.max()):.2g} relative: the engine keeps them in float32, "
+        "where only a power-of-4 s scales them exactly",
+    )
 
 
 def _reprocessed(backend, field, got, expected, mask) -> Cause:
     rel = _relative(got[mask], expected[mask])
-    return Cause("unscaled", field, f"{int(mask.sum())} float32 values ({_where(backend, field, mask)}) differ from "
-                 f"the original times an exact factor, by up to {float(rel.max()):.2g} relative: the engine "
-                 "computes them from the file in a way that is not scale-free")
+    return Cause(
+        "unscaled",
+        field,
+        f"{int(mask.sum())} float32 values ({_where(backend, field, mask)}) differ from "
+        f"the original times an exact factor, by up to {float(rel.max()):.2g} relative: the engine "
+        "computes them from the file in a way that is not scale-free",
+    )
 
 
 def _mismatch(backend, field, got, expected, mask) -> Cause:
     i = tuple(np.argwhere(mask)[0])
-    return Cause("unscaled", field, f"{_where(backend, field, mask)}: the engine holds {float(got[i]):.17g}, the "
-                 f"original times its factor is {float(expected[i]):.17g}")
+    return Cause(
+        "unscaled",
+        field,
+        f"{_where(backend, field, mask)}: the engine holds {float(got[i]):.17g}, the "
+        f"original times its factor is {float(expected[i]):.17g}",
+    )

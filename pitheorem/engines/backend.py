@@ -92,8 +92,14 @@ class EngineRunner(Protocol):
     def control_ranges(self) -> tuple[np.ndarray, np.ndarray]:
         """Each input's lower and upper limit; -inf and inf where it has none."""
 
-    def run(self, n_steps: int, controls: Controls = None, nudge: bool = False,
-            policy: Callable | None = None, initial: np.ndarray | None = None) -> np.ndarray:
+    def run(
+        self,
+        n_steps: int,
+        controls: Controls = None,
+        nudge: bool = False,
+        policy: Callable | None = None,
+        initial: np.ndarray | None = None,
+    ) -> np.ndarray:
         """Rows of coordinates after 0..n_steps steps from `initial` (a first row; None: the model's own).
 
         ``nudge`` moves the start by one ulp.
@@ -246,5 +252,7 @@ def _members(protocol) -> tuple[str, ...]:
 REQUIRED = tuple(sorted({*_members(EngineRunner), *_members(EngineBackend)}))
 
 #: the optional capabilities: protocol -> its members
-OPTIONAL = {p.__name__: _members(p) for p in (RefusesScalings, HasSceneSettings, CounterRuns, SolverDiagnosis,
-                                               NamesElements, IgnoredSettings)}
+OPTIONAL = {
+    p.__name__: _members(p)
+    for p in (RefusesScalings, HasSceneSettings, CounterRuns, SolverDiagnosis, NamesElements, IgnoredSettings)
+}

@@ -21,8 +21,17 @@ from .loading import load
 from .model import EngineModel, UnscalableParameterError
 from .urdf import SCENE_OPTIONS, scene_option
 
-__all__ = ["apply_engine", "check_engine_model", "convert_engine", "engine_model_file", "params_answer", "parse_scene",
-           "parse_units", "scene_help", "verify_engine"]
+__all__ = [
+    "apply_engine",
+    "check_engine_model",
+    "convert_engine",
+    "engine_model_file",
+    "params_answer",
+    "parse_scene",
+    "parse_units",
+    "scene_help",
+    "verify_engine",
+]
 
 
 _TRUTH = {"true": True, "yes": True, "1": True, "false": False, "no": False, "0": False}
@@ -90,8 +99,10 @@ def parse_scene(items: list[str] | None) -> dict:
         else:
             parts = [part.strip() for part in text.split(",")]
             if len(parts) != (3 if kind == "point" else 1):
-                raise InvalidRequestError(f"--scene {item!r}: {name} takes "
-                                          + ("three numbers such as 0,0,1" if kind == "point" else "one number"))
+                raise InvalidRequestError(
+                    f"--scene {item!r}: {name} takes "
+                    + ("three numbers such as 0,0,1" if kind == "point" else "one number")
+                )
             value = parts if kind == "point" else parts[0]
         try:
             options[name] = scene_option(name, value)
@@ -116,8 +127,9 @@ def engine_model_file(path: str, **options) -> tuple[ModelFile, EngineModel]:
     values = {p.name: p.value[0] for p in model.parameters if not p.mixed and len(p.value) == 1}
     roles = {n: "time" if n == "t" else "parameter" for n in system.variables}
     name = Path(path).name
-    return ModelFile(name=name, description=f"{model.engine} model {name}", system=system, values=values,
-                     roles=roles, path=str(path)), model
+    return ModelFile(
+        name=name, description=f"{model.engine} model {name}", system=system, values=values, roles=roles, path=str(path)
+    ), model
 
 
 def params_answer(path: str, *, name: str | None = None, **options) -> ParamsAnswer:
@@ -193,8 +205,9 @@ def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None)
         if model.engine == "pybullet" and err.name.endswith("Damping") and "damping" not in (scene or {}):
             raise InvalidRequestError(f"{err}; on the command line: --scene damping=0") from None
         raise
-    exponents = ((p, scaling.exponent_of(p.dimension)) for p in model.parameters
-                 if not p.mixed and any(v != 0 for v in p.value))
+    exponents = (
+        (p, scaling.exponent_of(p.dimension)) for p in model.parameters if not p.mixed and any(v != 0 for v in p.value)
+    )
     changed_parameters = [(p, e) for p, e in exponents if e != 0]
     changed = tuple((p.name, e) for p, e in changed_parameters)
     details = tuple((p.dimension_text, p.value, scaled.parameter(p.name).value) for p, _ in changed_parameters)
@@ -206,9 +219,9 @@ def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None)
         scaled.save(out)
         written = str(out)
         beside = (f"{out}.settings.json", f"{out}.settings.py") if model.engine == "pybullet" else ()
-    return EngineApplyAnswer(Path(model.path).name, s, scaling, changed, len(model.parameters), written, beside,
-                             details)
-
+    return EngineApplyAnswer(
+        Path(model.path).name, s, scaling, changed, len(model.parameters), written, beside, details
+    )
 
 
 def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str = "smooth") -> EngineVerifyAnswer:
@@ -244,8 +257,9 @@ def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str =
 
     controls = smooth_controls(model) if inputs == "smooth" and len(model.inputs()[0]) else None
     rep = verify(model, scaling, s, duration=duration, controls=controls)
-    return EngineVerifyAnswer(model.path, model.engine, Fraction(s), duration, inputs,
-                              exact_in_binary(model, scaling, s), rep)
+    return EngineVerifyAnswer(
+        model.path, model.engine, Fraction(s), duration, inputs, exact_in_binary(model, scaling, s), rep
+    )
 
 
 def parse_units(items: list[str] | None, option: str) -> dict[str, str]:
@@ -277,16 +291,18 @@ def parse_units(items: list[str] | None, option: str) -> dict[str, str]:
     for item in items or ():
         base, sep, unit = (part.strip() for part in item.partition("="))
         if not sep or base not in ("M", "L", "T") or not unit:
-            raise InvalidRequestError(f"{option} {item!r}: write BASE=UNIT with BASE one of M, L, T (L=mm, M=g)",
-                                      culprit=item)
+            raise InvalidRequestError(
+                f"{option} {item!r}: write BASE=UNIT with BASE one of M, L, T (L=mm, M=g)", culprit=item
+            )
         if base in out:
             raise InvalidRequestError(f"{option} sets {base} twice", culprit=item)
         out[base] = unit
     return out
 
 
-def convert_engine(path: str, *, from_units=None, units=None, fit: str | None = None,
-                   output: str | None = None, fmt: str = "text") -> str:
+def convert_engine(
+    path: str, *, from_units=None, units=None, fit: str | None = None, output: str | None = None, fmt: str = "text"
+) -> str:
     """The command line's ``convert``: the same model in other units, written with ``--output``.
 
     Parameters
@@ -346,12 +362,26 @@ def convert_engine(path: str, *, from_units=None, units=None, fit: str | None = 
     steps = len(conversion(model.system(), model.units, new))
     crossings = tuple(str(c) for c in _check(converted, fit or None))
     if fmt == "json":
-        return json.dumps({"file": path, "from": model.units, "to": new, "factors": factors, "scalings": steps,
-                           "fit": fit, "feasible": None if fitted is None else fitted.feasible,
-                           "written": written, "thresholds": list(crossings)}, indent=2)
+        return json.dumps(
+            {
+                "file": path,
+                "from": model.units,
+                "to": new,
+                "factors": factors,
+                "scalings": steps,
+                "fit": fit,
+                "feasible": None if fitted is None else fitted.feasible,
+                "written": written,
+                "thresholds": list(crossings),
+            },
+            indent=2,
+        )
     name = Path(path).name
-    lines = [f"{name}: {_units_text(model.units)} -> {_units_text(new)} (factors "
-             + ", ".join(f"{b} {f}" for b, f in factors.items()) + ")"]
+    lines = [
+        f"{name}: {_units_text(model.units)} -> {_units_text(new)} (factors "
+        + ", ".join(f"{b} {f}" for b, f in factors.items())
+        + ")"
+    ]
     if fitted is not None and not fitted.feasible:
         lines.append(f"no units keep every number clear of {fit}'s thresholds; these are the closest")
     lines.extend(f"  {c}" for c in crossings)
@@ -376,8 +406,7 @@ def _check(model, engine: str | None = None):
     return check(model, engine)
 
 
-def check_engine_model(path: str, *, from_units=None, engine: str | None = None,
-                       fmt: str = "text") -> tuple[str, bool]:
+def check_engine_model(path: str, *, from_units=None, engine: str | None = None, fmt: str = "text") -> tuple[str, bool]:
     """The command line's ``check``: the thresholds a model sits beyond or near, and whether it is clean.
 
     Parameters
@@ -412,8 +441,9 @@ def check_engine_model(path: str, *, from_units=None, engine: str | None = None,
     engine = model.engine if engine is None else check_engine(engine)
     causes = _check(model, engine)
     if fmt == "json":
-        return json.dumps({"file": path, "engine": engine, "units": model.units,
-                           "causes": [c.to_dict() for c in causes]}, indent=2), not causes
+        return json.dumps(
+            {"file": path, "engine": engine, "units": model.units, "causes": [c.to_dict() for c in causes]}, indent=2
+        ), not causes
     name = Path(path).name
     if not causes:
         return f"{name}: clear of every catalogued threshold of {engine}", True

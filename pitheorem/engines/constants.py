@@ -96,8 +96,11 @@ def _catalogue(path: Path) -> tuple[HiddenConstant, ...]:
     doc = tomllib.loads(path.read_text(encoding="utf-8"))
     sources = doc.pop("sources")
     doc.pop("thresholds")  # read by pitheorem.engines.thresholds
-    return tuple(HiddenConstant(engine, **{**entry, "source": entry["source"].format_map(sources)})
-                 for engine, entries in doc.items() for entry in entries)
+    return tuple(
+        HiddenConstant(engine, **{**entry, "source": entry["source"].format_map(sources)})
+        for engine, entries in doc.items()
+        for entry in entries
+    )
 
 
 #: every catalogued constant, read from ``constants.toml`` beside this module (with each
@@ -108,8 +111,9 @@ CATALOGUE: tuple[HiddenConstant, ...] = _catalogue(Path(__file__).with_name("con
 ENGINES = tuple(dict.fromkeys(c.engine for c in CATALOGUE))
 
 
-def hidden_constants(engine: str | None = None, *, names: Iterable[str] | None = None,
-                     dimensional: bool | None = None) -> tuple[HiddenConstant, ...]:
+def hidden_constants(
+    engine: str | None = None, *, names: Iterable[str] | None = None, dimensional: bool | None = None
+) -> tuple[HiddenConstant, ...]:
     """The catalogued hidden constants of one engine (or of all).
 
     Parameters
@@ -154,8 +158,9 @@ def hidden_constants(engine: str | None = None, *, names: Iterable[str] | None =
     return tuple(pool)
 
 
-def with_hidden_constants(system: System, engine: str, *, names: Iterable[str] | None = None,
-                          include_dimensionless: bool = False) -> System:
+def with_hidden_constants(
+    system: System, engine: str, *, names: Iterable[str] | None = None, include_dimensionless: bool = False
+) -> System:
     """The system extended by an engine's hidden constants as variables.
 
     Parameters
@@ -199,8 +204,15 @@ def with_hidden_constants(system: System, engine: str, *, names: Iterable[str] |
     return System(dims)
 
 
-def engine_search(system: System, engine: str, scale: Mapping[str, object], fixed: Iterable[str] | None = None,
-                  *, names: Iterable[str] | None = None, allow: Iterable[str] | None = None) -> SearchResult:
+def engine_search(
+    system: System,
+    engine: str,
+    scale: Mapping[str, object],
+    fixed: Iterable[str] | None = None,
+    *,
+    names: Iterable[str] | None = None,
+    allow: Iterable[str] | None = None,
+) -> SearchResult:
     """Search scalings while an engine's hidden constants stay at their defaults.
 
     Runs :func:`pitheorem.search` on :func:`with_hidden_constants` with

@@ -35,8 +35,9 @@ from .causes import Cause, sorted_causes
 __all__ = ["find_causes"]
 
 
-def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factors, report,
-                exact_expected: bool) -> tuple[Cause, ...]:
+def find_causes(
+    model, scaled, scaling, s, n_steps, u_original, u_scaled, factors, report, exact_expected: bool
+) -> tuple[Cause, ...]:
     """The causes of a verdict that is not exact (at a power of four) or not similar.
 
     Parameters
@@ -92,8 +93,10 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
         """Both runs again under each variant's options, all in one batch: what each shows."""
         jobs = []
         for options in variants:
-            jobs += [(original.variant(**options), u_original, False, None),
-                     (copy.variant(**options), u_scaled, False, None)]
+            jobs += [
+                (original.variant(**options), u_original, False, None),
+                (copy.variant(**options), u_scaled, False, None),
+            ]
         runs = jobs[0][0].run_many(n_steps, jobs)
         out = []
         for run, other in zip(runs[::2], runs[1::2], strict=True):
@@ -109,8 +112,10 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
         """What a counter-run that shows a cause showed, in words."""
         if counter.agree:
             return f"they agree (largest deviation {counter.worst:.3g} instead of {report.max_deviation:.3g})"
-        return (f"they part later: first at t = {float(t[counter.parts]):.6g} instead of t = "
-                f"{float(t[verdict_parts]):.6g}, where another cause takes over")
+        return (
+            f"they part later: first at t = {float(t[counter.parts]):.6g} instead of t = "
+            f"{float(t[verdict_parts]):.6g}, where another cause takes over"
+        )
 
     if not isinstance(original, CounterRuns):
         return sorted_causes(causes)
@@ -131,9 +136,15 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
 
     if "tolerance" in results and results["tolerance"].shows:
         names = ", ".join(f"option {k} = {v:g}" for k, v in solver.items())
-        causes.append(Cause("solver", names, "a stopping rule of no pure dimension: the scaled run stops after "
-                            f"other iterations; with it at 0 in both runs {shown(results['tolerance'])}; load with "
-                            f"with_values({', '.join(f'{k}=0' for k in solver)})"))
+        causes.append(
+            Cause(
+                "solver",
+                names,
+                "a stopping rule of no pure dimension: the scaled run stops after "
+                f"other iterations; with it at 0 in both runs {shown(results['tolerance'])}; load with "
+                f"with_values({', '.join(f'{k}=0' for k in solver)})",
+            )
+        )
     if not mujoco_like:
         return sorted_causes(causes)
     newton, remedy = results.get("newton"), '<option solver="Newton"/>'
@@ -143,15 +154,27 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
         if stopped.exact or (stopped.shows and not newton.shows):
             newton, remedy = stopped, '<option solver="Newton" tolerance="0"/>'
     if newton is not None and newton.shows:
-        causes.append(Cause("solver", f"option solver = {original.solver_name()}", "this solver's iterations are "
-                            f"not scale-free; with Newton's in both runs {shown(newton)}: load the file with "
-                            f"{remedy} to scale it"))
+        causes.append(
+            Cause(
+                "solver",
+                f"option solver = {original.solver_name()}",
+                "this solver's iterations are "
+                f"not scale-free; with Newton's in both runs {shown(newton)}: load the file with "
+                f"{remedy} to scale it",
+            )
+        )
     if "equalities" in results and results["equalities"].shows:  # which of them: each one off alone
         alone = counters(*({"inactive_equalities": (i,)} for i in range(len(equalities))))
         named = ", ".join(name for name, counter in zip(equalities, alone, strict=True) if counter.shows)
-        causes.append(Cause("solver", named or "the equality constraints together", "an equality constraint the "
-                            "solver does not treat scale-free (a weld with an offset is one): with it inactive in both "
-                            f"runs {shown(results['equalities'])}"))
+        causes.append(
+            Cause(
+                "solver",
+                named or "the equality constraints together",
+                "an equality constraint the "
+                "solver does not treat scale-free (a weld with an offset is one): with it inactive in both "
+                f"runs {shown(results['equalities'])}",
+            )
+        )
     contacts = results["contacts"]
     # a contact can explain the runs' parting only if it differs before they part: after that, other contacts
     # are what parted runs do (and stepping in Python past that point would cost a whole run)
@@ -162,8 +185,11 @@ def find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factor
     explained = contact is None and any(c.kind == "solver" for c in causes)
     if (contact is not None or contacts.shows) and not explained:
         pairs, detail = contact if contact is not None else ("every contact", "the same pairs touch at every step")
-        verdict = shown(contacts) if contacts.shows else (f"they still differ (largest deviation {contacts.worst:.3g} "
-                                                          f"instead of {report.max_deviation:.3g})")
+        verdict = (
+            shown(contacts)
+            if contacts.shows
+            else (f"they still differ (largest deviation {contacts.worst:.3g} instead of {report.max_deviation:.3g})")
+        )
         causes.append(Cause("contact", pairs, f"{detail}; with contacts off in both runs {verdict}"))
     return sorted_causes(causes)
 
@@ -187,6 +213,7 @@ def _largest(diff: np.ndarray) -> float:
 
 def _contact_difference(original, copy, n_steps, u_original, u_scaled, t):
     """The first step at which other geom pairs touch in the scaled run: (pairs, detail), or None."""
+
     def first(rows):
         return None if rows is None else rows[:n_steps]
 
@@ -198,5 +225,7 @@ def _contact_difference(original, copy, n_steps, u_original, u_scaled, t):
     where = "the scaled run only" if only_scaled else "the original only"
     extra = len(only_scaled) + len(only_original) - 1
     more = f" (and {extra} other pair{'s' if extra > 1 else ''})" if extra else ""
-    return " / ".join(pair), (f"in contact in {where} after step {step} (t = {float(t[step]):.6g}){more}: a "
-                              "contact that starts or ends at another step")
+    return " / ".join(pair), (
+        f"in contact in {where} after step {step} (t = {float(t[step]):.6g}){more}: a "
+        "contact that starts or ends at another step"
+    )

@@ -117,8 +117,17 @@ def _pseudo_parameters(system: System, values: Mapping[str, object]) -> list[Par
     return out
 
 
-def engine_fit(source, values=None, *, engine: str | None = None, clearance: float = 10.0, nice: int | None = 10,
-               ranges=None, fixed=(), fixed_units=()):
+def engine_fit(
+    source,
+    values=None,
+    *,
+    engine: str | None = None,
+    clearance: float = 10.0,
+    nice: int | None = 10,
+    ranges=None,
+    fixed=(),
+    fixed_units=(),
+):
     """:func:`pitheorem.fit_units` for an engine: units that keep every number clear of its thresholds.
 
     Parameters
@@ -166,8 +175,9 @@ def engine_fit(source, values=None, *, engine: str | None = None, clearance: flo
         engine = source.engine if engine is None else engine
         parameters = list(held_against(source, engine))  # for MJX, with the numbers its own constants read
     else:
-        raise InvalidRequestError(f"fit_units with an engine needs an EngineModel or a System, got "
-                                  f"{type(source).__name__}")
+        raise InvalidRequestError(
+            f"fit_units with an engine needs an EngineModel or a System, got {type(source).__name__}"
+        )
     wanted = engine_ranges(engine, parameters, clearance=clearance)
     dims, vals, rng = {}, {}, {}
     for p in parameters:
@@ -181,8 +191,9 @@ def engine_fit(source, values=None, *, engine: str | None = None, clearance: flo
     for name, spec in (ranges or {}).items():
         p = next((q for q in parameters if q.name == name), None)
         if p is None or p.mixed or _ends(p) is None:
-            raise InvalidRequestError(f"ranges names {name!r}, which is no parameter with a nonzero value",
-                                      culprit=name)
+            raise InvalidRequestError(
+                f"ranges names {name!r}, which is no parameter with a nonzero value", culprit=name
+            )
         dims[name], vals[name], rng[name] = p.dimension, _ends(p)[0], spec
     for base in SI:  # every base present, so every factor is reported
         dims.setdefault(f"_{base}", Dimension.parse(base))

@@ -83,14 +83,17 @@ def load(path, engine=None, units=None, **options):
     kind = model_kind(path)
     readers = [e for e in REGISTRY if kind in e.kinds]
     if not readers:  # model_kind calls every other file a TOML model file
-        raise EngineModelError(str(path), "", "no engine reads this kind of file; give an MJCF (.xml) or URDF "
-                               "(.urdf) model file")
+        raise EngineModelError(
+            str(path), "", "no engine reads this kind of file; give an MJCF (.xml) or URDF (.urdf) model file"
+        )
     chosen = next(e for e in readers if e.default) if engine is None else registered(engine)
     if chosen not in readers:
         names = " or ".join(repr(e.name) for e in readers)
         article = "an" if kind.upper()[0] in "AEFHILMNORSX" else "a"  # as the letters are spoken: an MJCF, a URDF
-        raise InvalidRequestError(f"engine {chosen.name!r} does not read {kind.upper()} files; {article} "
-                                  f"{kind.upper()} file runs in {names}", culprit=chosen.name)
+        raise InvalidRequestError(
+            f"engine {chosen.name!r} does not read {kind.upper()} files; {article} {kind.upper()} file runs in {names}",
+            culprit=chosen.name,
+        )
     if not chosen.installed():
         missing = next(p for p in chosen.packages if not Engine("", "", "", (), (p,)).installed())
         raise EngineUnavailableError(chosen.name, missing, chosen.extra, backends())
@@ -101,8 +104,9 @@ def load(path, engine=None, units=None, **options):
         valid = ", ".join(sorted(taken)) or f"none, an {kind.upper()} file holds its settings"
         elsewhere = [e for e in REGISTRY if e is not chosen and wrong[0] in _options(e)]
         where = "".join(f"; {wrong[0]!r} is for {'/'.join(e.kinds).upper()} files in {e.name!r}" for e in elsewhere)
-        raise InvalidRequestError(f"engine {chosen.name!r} takes no option {wrong[0]!r} (its options: {valid}){where}",
-                                  culprit=wrong[0])
+        raise InvalidRequestError(
+            f"engine {chosen.name!r} takes no option {wrong[0]!r} (its options: {valid}){where}", culprit=wrong[0]
+        )
     model = loader(path, **options)
     return model.in_units(declared_units(model, units))
 

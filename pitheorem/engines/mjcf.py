@@ -123,8 +123,23 @@ def _array_slot(name, path, elem, attr, index, dimension, source, where, parts=(
 
 
 #: the spec's collections of elements a slot's address names (``spec.<name>[index]``)
-_COLLECTIONS = ("meshes", "hfields", "bodies", "geoms", "frames", "sites", "cameras", "lights", "joints", "tendons",
-                "actuators", "equalities", "pairs", "sensors", "numerics")
+_COLLECTIONS = (
+    "meshes",
+    "hfields",
+    "bodies",
+    "geoms",
+    "frames",
+    "sites",
+    "cameras",
+    "lights",
+    "joints",
+    "tendons",
+    "actuators",
+    "equalities",
+    "pairs",
+    "sensors",
+    "numerics",
+)
 #: the spec's single elements, addressed by their kind
 _SINGLES = ("option", "compiler", "stat")
 
@@ -201,9 +216,20 @@ class _Walker:
         if not chosen or (chosen[0] != chosen[0] and all(v != v for v in chosen)):  # absent, or NaN: "not set"
             return
         name = self.unique(f"{ident}_{attr}{suffix}" if ident else f"{attr}{suffix}")
-        self.slots.append(_array_slot(name, f"{path} {attr}{suffix.replace('_', ' ')}", elem, attr, index,
-                                      dimension, self.source(kind, elem, attr, values), self.where(kind, elem),
-                                      parts, note))
+        self.slots.append(
+            _array_slot(
+                name,
+                f"{path} {attr}{suffix.replace('_', ' ')}",
+                elem,
+                attr,
+                index,
+                dimension,
+                self.source(kind, elem, attr, values),
+                self.where(kind, elem),
+                parts,
+                note,
+            )
+        )
 
     def add_solref(self, kind, elem, ident, path, attr):
         ref = np.asarray(getattr(elem, attr), dtype=float)
@@ -222,8 +248,7 @@ class _Walker:
         for i in range(3):  # a polynomial shorter than three terms stops early (add skips what is absent)
             suffix = "" if i == 0 else f"_poly{i}"
             self.add(kind, elem, ident, path, "stiffness", joint_kind.per(force, i + 1), slice(i, i + 1), suffix)
-            self.add(kind, elem, ident, path, "damping", joint_kind.per(force, i + 1, rate=1), slice(i, i + 1),
-                     suffix)
+            self.add(kind, elem, ident, path, "damping", joint_kind.per(force, i + 1, rate=1), slice(i, i + 1), suffix)
         self.add(kind, elem, ident, path, "armature", joint_kind.per(force, 1, rate=2))
         self.add(kind, elem, ident, path, "frictionloss", force)
         self.add(kind, elem, ident, path, "actfrcrange", force)
@@ -258,41 +283,51 @@ class _Walker:
         spec, lists = self.spec, self.lists
         self.option()
         self.compiler()
-        for i, mesh in enumerate(lists['meshes']):
+        for i, mesh in enumerate(lists["meshes"]):
             ident, path = self.label("mesh", mesh, i)
             # MuJoCo multiplies the vertices by scale, whether they come from a file or from the element:
             # scale one of the two, never both (inline vertices scaled and scale scaled: s^2)
             if len(mesh.uservert):
                 self.add("mesh", mesh, ident, path, "uservert", _L)
             else:
-                self.add("mesh", mesh, ident, path, "scale", _L,
-                         note="a dimensionless factor times the file's vertex units, a length")
+                self.add(
+                    "mesh",
+                    mesh,
+                    ident,
+                    path,
+                    "scale",
+                    _L,
+                    note="a dimensionless factor times the file's vertex units, a length",
+                )
             self.add("mesh", mesh, ident, path, "refpos", _L)
-        for i, hfield in enumerate(lists['hfields']):
+        for i, hfield in enumerate(lists["hfields"]):
             ident, path = self.label("hfield", hfield, i)
             self.add("hfield", hfield, ident, path, "size", _L)
-        for i, body in enumerate(lists['bodies']):
+        for i, body in enumerate(lists["bodies"]):
             self.body(body, i)
-        for i, geom in enumerate(lists['geoms']):
+        for i, geom in enumerate(lists["geoms"]):
             self.geom(geom, i)
         # frames, sites, cameras and lights: positions (and a site's size) are lengths
-        for kind, items, attrs in (("frame", lists["frames"], ("pos",)),
-                                   ("site", lists["sites"], ("pos", "size", "fromto")),
-                                   ("camera", lists["cameras"], ("pos",)), ("light", lists["lights"], ("pos",))):
+        for kind, items, attrs in (
+            ("frame", lists["frames"], ("pos",)),
+            ("site", lists["sites"], ("pos", "size", "fromto")),
+            ("camera", lists["cameras"], ("pos",)),
+            ("light", lists["lights"], ("pos",)),
+        ):
             for i, item in enumerate(items):
                 ident, path = self.label(kind, item, i)
                 for attr in attrs:
                     if hasattr(item, attr):
                         self.add(kind, item, ident, path, attr, _L)
-        for i, joint in enumerate(lists['joints']):
+        for i, joint in enumerate(lists["joints"]):
             self.joint(joint, i)
-        for i, tendon in enumerate(lists['tendons']):
+        for i, tendon in enumerate(lists["tendons"]):
             self.tendon(tendon, i)
-        for i, act in enumerate(lists['actuators']):
+        for i, act in enumerate(lists["actuators"]):
             self.actuator(act, i)
-        for i, eq in enumerate(lists['equalities']):
+        for i, eq in enumerate(lists["equalities"]):
             self.equality(eq, i)
-        for i, pair in enumerate(lists['pairs']):
+        for i, pair in enumerate(lists["pairs"]):
             ident, path = self.label("pair", pair, i)
             self.friction("pair", pair, ident, path, 5)
             for attr in ("margin", "gap"):
@@ -300,7 +335,7 @@ class _Walker:
             self.add_solref("pair", pair, ident, path, "solref")
             self.add_solref("pair", pair, ident, path, "solreffriction")
             self.add_solimp("pair", pair, ident, path, "solimp", _L)
-        for i, sensor in enumerate(lists['sensors']):
+        for i, sensor in enumerate(lists["sensors"]):
             self.sensor(sensor, i)
         for kind, items in (("flex", spec.flexes), ("skin", spec.skins), ("plugin", spec.plugins)):
             for i, item in enumerate(items):
@@ -316,24 +351,40 @@ class _Walker:
             if text.name.startswith(DIMENSION_TEXT):
                 where = f"text {text.name!r}"
                 try:
-                    declared[text.name[len(DIMENSION_TEXT):]] = Dimension.parse(text.data)
+                    declared[text.name[len(DIMENSION_TEXT) :]] = Dimension.parse(text.data)
                 except PiTheoremError as err:
                     self.fail(where, f"{_first_line(str(err))} (data must be a dimension formula such as 'L T^-1')")
         names = {numeric.name for numeric in self.spec.numerics}
         for name in declared:
             if name not in names:
-                self.fail(f"text '{DIMENSION_TEXT}{name}'", f"declares the dimension of a custom numeric {name!r} "
-                          f"that the file does not have (its numerics: {', '.join(map(repr, sorted(names))) or 'none'})")
+                self.fail(
+                    f"text '{DIMENSION_TEXT}{name}'",
+                    f"declares the dimension of a custom numeric {name!r} "
+                    f"that the file does not have (its numerics: {', '.join(map(repr, sorted(names))) or 'none'})",
+                )
         for i, numeric in enumerate(self.lists["numerics"]):
             ident, path = self.label("numeric", numeric, i)
             dimension = declared.get(numeric.name)
             if dimension is None:
-                self.warning(path, "custom numeric data has no known dimension; copied unchanged (declare it "
-                             f'with <text name="{DIMENSION_TEXT}{numeric.name}" data="L T^-1"/>, say)')
+                self.warning(
+                    path,
+                    "custom numeric data has no known dimension; copied unchanged (declare it "
+                    f'with <text name="{DIMENSION_TEXT}{numeric.name}" data="L T^-1"/>, say)',
+                )
                 continue
-            self.slots.append(_array_slot(self.unique(ident), f"{path} data", numeric, "data", slice(None),
-                                          dimension, "file", self.where("numeric", numeric),
-                                          note="dimension declared in the file"))
+            self.slots.append(
+                _array_slot(
+                    self.unique(ident),
+                    f"{path} data",
+                    numeric,
+                    "data",
+                    slice(None),
+                    dimension,
+                    "file",
+                    self.where("numeric", numeric),
+                    note="dimension declared in the file",
+                )
+            )
 
     def option(self):
         opt = self.spec.option
@@ -343,26 +394,53 @@ class _Walker:
             return (float(np.linalg.norm(np.asarray(opt.gravity, dtype=float))),)
 
         self.names.add("g")
-        self.slots.append(Slot("g", "option gravity (magnitude)", read_g, (("gravity", slice(None)),), ("option",),
-                               dim("L T^-2"), self.source("option", opt, "gravity"),
-                               note="the direction is dimensionless"))
+        self.slots.append(
+            Slot(
+                "g",
+                "option gravity (magnitude)",
+                read_g,
+                (("gravity", slice(None)),),
+                ("option",),
+                dim("L T^-2"),
+                self.source("option", opt, "gravity"),
+                note="the direction is dimensionless",
+            )
+        )
         self.add("option", opt, "", "option", "wind", dim("L T^-1"))
         self.add("option", opt, "", "option", "density", dim("M L^-3"))
         self.add("option", opt, "", "option", "viscosity", dim("M L^-1 T^-1"))
         for attr in ("tolerance", "noslip_tolerance"):
-            self.add("option", opt, "", "option", attr, None, note="a solver's stopping rule relative to MuJoCo's own "
-                     "normalisation; no pure dimension, copied unchanged")
+            self.add(
+                "option",
+                opt,
+                "",
+                "option",
+                attr,
+                None,
+                note="a solver's stopping rule relative to MuJoCo's own "
+                "normalisation; no pure dimension, copied unchanged",
+            )
         self.add("option", opt, "", "option", "ccd_tolerance", _L)
         self.add("option", opt, "", "option", "o_margin", _L)
         self.add_solref("option", opt, "", "option", "o_solref")
         self.add_solimp("option", opt, "", "option", "o_solimp", _L)
         self.add("option", opt, "", "option", "o_friction", _L, slice(2, 5), "_torsional_rolling")
         if np.any(np.asarray(opt.magnetic) != 0) and any(
-                s.type == self.mj.mjtSensor.mjSENS_MAGNETOMETER for s in self.spec.sensors):
-            self.warning("option magnetic", "the magnetic field has no dimension over M, L, T; "
-                            "magnetometer readings are copied unchanged")
-        self.add("option", opt, "", "option", "sleep_tolerance", None,
-                 note="compared with velocities of every joint type (mixed); sleeping is off unless enabled")
+            s.type == self.mj.mjtSensor.mjSENS_MAGNETOMETER for s in self.spec.sensors
+        ):
+            self.warning(
+                "option magnetic",
+                "the magnetic field has no dimension over M, L, T; magnetometer readings are copied unchanged",
+            )
+        self.add(
+            "option",
+            opt,
+            "",
+            "option",
+            "sleep_tolerance",
+            None,
+            note="compared with velocities of every joint type (mixed); sleeping is off unless enabled",
+        )
         stat = self.spec.stat
         for attr, d in (("meanmass", _M), ("meansize", _L), ("extent", _L)):
             if not math.isnan(getattr(stat, attr)):
@@ -385,21 +463,34 @@ class _Walker:
         ident, path = self.label("body", body, index)
         self.add("body", body, ident, path, "pos", _L)
         bid = body.id if body.id >= 0 else index
-        derived = not body.explicitinertial or self.spec.compiler.inertiafromgeom == \
-            self.mj.mjtInertiaFromGeom.mjINERTIAFROMGEOM_TRUE
+        derived = (
+            not body.explicitinertial
+            or self.spec.compiler.inertiafromgeom == self.mj.mjtInertiaFromGeom.mjINERTIAFROMGEOM_TRUE
+        )
         source = "derived" if derived else "file"
         for attr, compiled, d, spec_attrs in (
-                ("mass", "body_mass", _M, (("mass", slice(None)),)),
-                ("inertia", "body_inertia", dim("M L^2"), (("inertia", slice(None)), ("fullinertia", slice(None)))),
-                ("ipos", "body_ipos", _L, (("ipos", slice(None)),))):
+            ("mass", "body_mass", _M, (("mass", slice(None)),)),
+            ("inertia", "body_inertia", dim("M L^2"), (("inertia", slice(None)), ("fullinertia", slice(None)))),
+            ("ipos", "body_ipos", _L, (("ipos", slice(None)),)),
+        ):
             values = np.atleast_1d(getattr(model, compiled)[bid])
 
             def read(values=values):
                 return tuple(float(v) for v in values)
 
             name = self.unique(f"{ident}_{attr}")
-            self.slots.append(Slot(name, f"{path} {attr}", read, spec_attrs, self.where("body", body), d, source,
-                                   note="computed by MuJoCo from the geoms" if derived else ""))
+            self.slots.append(
+                Slot(
+                    name,
+                    f"{path} {attr}",
+                    read,
+                    spec_attrs,
+                    self.where("body", body),
+                    d,
+                    source,
+                    note="computed by MuJoCo from the geoms" if derived else "",
+                )
+            )
 
     def friction(self, kind, elem, ident, path, n):
         # sliding is dimensionless; torsional and rolling are torques per normal force: lengths
@@ -409,8 +500,11 @@ class _Walker:
     def geom(self, geom, index):
         ident, path = self.label("geom", geom, index)
         mj = self.mj
-        if geom.type == mj.mjtGeom.mjGEOM_MESH and geom.meshname and geom.meshname not in [m.name for m in
-                                                                                            self.spec.meshes]:
+        if (
+            geom.type == mj.mjtGeom.mjGEOM_MESH
+            and geom.meshname
+            and geom.meshname not in [m.name for m in self.spec.meshes]
+        ):
             self.fail(path, f"mesh {geom.meshname!r} is not defined")
         self.add("geom", geom, ident, path, "size", _L)
         self.add("geom", geom, ident, path, "pos", _L)
@@ -432,16 +526,37 @@ class _Walker:
         self.add("joint", joint, ident, path, "pos", _L)
         self.refuse(joint, path, ("springyield",))
         if np.any(np.asarray(joint.springdamper) != 0):  # a time constant and a damping ratio (dimensionless)
-            self.add("joint", joint, ident, path, "springdamper", _T, slice(0, 1), "_time",
-                     note="the compiler turns it and the damping ratio into stiffness and damping")
+            self.add(
+                "joint",
+                joint,
+                ident,
+                path,
+                "springdamper",
+                _T,
+                slice(0, 1),
+                "_time",
+                note="the compiler turns it and the damping ratio into stiffness and damping",
+            )
         if kind is None:  # free joint: translation and rotation share each number
-            for attr, lin, rot in (("damping", "M T^-1", "M L^2 T^-1"), ("armature", "M", "M L^2"),
-                                   ("frictionloss", "M L T^-2", "M L^2 T^-2")):
+            for attr, lin, rot in (
+                ("damping", "M T^-1", "M L^2 T^-1"),
+                ("armature", "M", "M L^2"),
+                ("frictionloss", "M L T^-2", "M L^2 T^-2"),
+            ):
                 parts = (("lin", dim(lin)), ("rot", dim(rot)))
                 index_ = slice(0, 1) if attr == "damping" else slice(None)
                 value = np.atleast_1d(np.asarray(getattr(joint, attr), dtype=float))
-                self.add("joint", joint, ident, path, attr, None, index_, parts=parts,
-                         note="one number for the translational and the rotational coordinates")
+                self.add(
+                    "joint",
+                    joint,
+                    ident,
+                    path,
+                    attr,
+                    None,
+                    index_,
+                    parts=parts,
+                    note="one number for the translational and the rotational coordinates",
+                )
                 if attr == "damping" and np.any(value[1:] != 0):
                     self.fail(path, "damping polynomial terms on a free joint mix dimensions; not supported")
             return
@@ -474,11 +589,24 @@ class _Walker:
 
         def write(_element, factor):
             if factor != 1.0:
-                raise UnscalableParameterError(name, f"{path} joins a slide and a hinge joint, so its coefficient "
-                                               f"has dimension {dimension}, and MuJoCo's MjSpec cannot rewrite it")
+                raise UnscalableParameterError(
+                    name,
+                    f"{path} joins a slide and a hinge joint, so its coefficient "
+                    f"has dimension {dimension}, and MuJoCo's MjSpec cannot rewrite it",
+                )
 
-        self.slots.append(Slot(name, f"{path} joint #{k} coef", lambda: (float(wrap.coef),), (), ("option",),
-                               dimension, "file", write=write))
+        self.slots.append(
+            Slot(
+                name,
+                f"{path} joint #{k} coef",
+                lambda: (float(wrap.coef),),
+                (),
+                ("option",),
+                dimension,
+                "file",
+                write=write,
+            )
+        )
 
     def tendon(self, tendon, index):
         mj = self.mj
@@ -486,7 +614,9 @@ class _Walker:
         # the spec's path is slow to read: read it only for a tendon over joints (the compiled model tells)
         tid = tendon.id if tendon.id >= 0 else index
         first = self.model.tendon_adr[tid]
-        over_joints = np.any(self.model.wrap_type[first:first + self.model.tendon_num[tid]] == mj.mjtWrap.mjWRAP_JOINT)
+        over_joints = np.any(
+            self.model.wrap_type[first : first + self.model.tendon_num[tid]] == mj.mjtWrap.mjWRAP_JOINT
+        )
         wraps = list(tendon.path) if over_joints else []
         kind = self.tendon_kind(tendon, path, wraps)
         q = kind.q
@@ -503,9 +633,19 @@ class _Walker:
             # compiler from the scaled geometry; scaling the -1 itself would turn it into a real length
             tid = tendon.id if tendon.id >= 0 else index
             rest = tuple(float(v) for v in self.model.tendon_lengthspring[tid])
-            self.slots.append(Slot(self.unique(f"{ident}_springlength"), f"{path} springlength", lambda: rest,
-                                   (), ("option",), q, "derived", write=lambda _element, _factor: None,
-                                   note="springlength -1: computed by MuJoCo from the pose, scaled with it"))
+            self.slots.append(
+                Slot(
+                    self.unique(f"{ident}_springlength"),
+                    f"{path} springlength",
+                    lambda: rest,
+                    (),
+                    ("option",),
+                    q,
+                    "derived",
+                    write=lambda _element, _factor: None,
+                    note="springlength -1: computed by MuJoCo from the pose, scaled with it",
+                )
+            )
         else:
             self.add("tendon", tendon, ident, path, "springlength", q)
         self.spring_and_drive("tendon", tendon, ident, path, kind)
@@ -560,7 +700,8 @@ class _Walker:
             self.fail(path, f"gain type {gain.name} (user) is not supported by pitheorem's scaling")
         muscle = gain == mj.mjtGain.mjGAIN_MUSCLE
         if bias not in (mj.mjtBias.mjBIAS_NONE, mj.mjtBias.mjBIAS_AFFINE) and not (
-                muscle and bias == mj.mjtBias.mjBIAS_MUSCLE):
+            muscle and bias == mj.mjtBias.mjBIAS_MUSCLE
+        ):
             self.fail(path, f"bias type {bias.name} is not supported by pitheorem's scaling")
         dyn = act.dyntype
         if dyn == mj.mjtDyn.mjDYN_MUSCLE:
@@ -606,8 +747,17 @@ class _Walker:
             self.add("actuator", act, ident, path, "biasprm", force, slice(0, 1), "_offset")
             self.add("actuator", act, ident, path, "biasprm", force / length, slice(1, 2), "_length")
             if _damping_ratio(mj, act):
-                self.add("actuator", act, ident, path, "biasprm", _ONE, slice(2, 3), "_dampratio",
-                         note="a damping ratio: the compiler turns it into kv from kp and the joint's inertia")
+                self.add(
+                    "actuator",
+                    act,
+                    ident,
+                    path,
+                    "biasprm",
+                    _ONE,
+                    slice(2, 3),
+                    "_dampratio",
+                    note="a damping ratio: the compiler turns it into kv from kp and the joint's inertia",
+                )
             else:
                 self.add("actuator", act, ident, path, "biasprm", force * _T / length, slice(2, 3), "_velocity")
         self.refuse(act, path, ("damping", "armature", "delay", "ffrange", "velrange"))
@@ -631,9 +781,19 @@ class _Walker:
         def write(element, factor, found=found):
             element.lengthrange = found * factor
 
-        self.slots.append(Slot(name, f"{path} lengthrange", lambda: tuple(float(v) for v in found),
-                               (), self.where("actuator", act), length, "derived",
-                               write=write, note="found by MuJoCo's compiler; a scaled copy states it"))
+        self.slots.append(
+            Slot(
+                name,
+                f"{path} lengthrange",
+                lambda: tuple(float(v) for v in found),
+                (),
+                self.where("actuator", act),
+                length,
+                "derived",
+                write=write,
+                note="found by MuJoCo's compiler; a scaled copy states it",
+            )
+        )
 
     def muscle(self, act, ident, path, force) -> None:
         """A muscle (MuJoCo's model): its peak force, its speed limit and its time constants.
@@ -647,14 +807,27 @@ class _Walker:
         for attr in ("gainprm", "biasprm"):  # MuJoCo's muscle reads both; the <muscle> element sets them alike
             prm = np.asarray(getattr(act, attr), dtype=float)
             if prm[2] < 0:
-                self.fail(path, f"a muscle whose peak force MuJoCo derives from scale and acc0 ({attr}[2] = "
-                          f"{prm[2]:g}) cannot be scaled: give its force explicitly (force=\"...\")")
+                self.fail(
+                    path,
+                    f"a muscle whose peak force MuJoCo derives from scale and acc0 ({attr}[2] = "
+                    f'{prm[2]:g}) cannot be scaled: give its force explicitly (force="...")',
+                )
             self.add("actuator", act, ident, path, attr, force, slice(2, 3), "_peak_force")
-            self.add("actuator", act, ident, path, attr, _T ** -1, slice(6, 7), "_vmax",
-                     note="optimal lengths per unit time")
+            self.add(
+                "actuator", act, ident, path, attr, _T**-1, slice(6, 7), "_vmax", note="optimal lengths per unit time"
+            )
         if act.dyntype == mj.mjtDyn.mjDYN_MUSCLE:
-            self.add("actuator", act, ident, path, "dynprm", _T, slice(0, 3), "_timeconst",
-                     note="activation, deactivation, smoothing width")
+            self.add(
+                "actuator",
+                act,
+                ident,
+                path,
+                "dynprm",
+                _T,
+                slice(0, 3),
+                "_timeconst",
+                note="activation, deactivation, smoothing width",
+            )
 
     def equality(self, eq, index):
         mj = self.mj
@@ -665,8 +838,17 @@ class _Walker:
             width = _L
         elif t == mj.mjtEq.mjEQ_WELD:
             self.add("equality", eq, ident, path, "data", _L, slice(0, 6), "_anchor_relpos")
-            self.add("equality", eq, ident, path, "data", _L, slice(10, 11), "_torquescale",
-                     note="converts the angular residual into a length")
+            self.add(
+                "equality",
+                eq,
+                ident,
+                path,
+                "data",
+                _L,
+                slice(10, 11),
+                "_torquescale",
+                note="converts the angular residual into a length",
+            )
             width = _L
         elif t in (mj.mjtEq.mjEQ_JOINT, mj.mjtEq.mjEQ_TENDON):
             if t == mj.mjtEq.mjEQ_JOINT:
@@ -678,8 +860,7 @@ class _Walker:
             if k1 is None or k2 is None:
                 self.fail(path, "an equality on a free joint is not supported")
             for i in range(5):  # q1 = c0 + c1 q2 + c2 q2^2 + ...
-                self.add("equality", eq, ident, path, "data", k1.q * k2.q ** (-i), slice(i, i + 1),
-                         f"_polycoef{i}")
+                self.add("equality", eq, ident, path, "data", k1.q * k2.q ** (-i), slice(i, i + 1), f"_polycoef{i}")
             width = k1.q
         else:
             self.fail(path, f"equality type {t.name} is not supported by pitheorem's scaling")
@@ -690,23 +871,48 @@ class _Walker:
         mj = self.mj
         S = mj.mjtSensor
         table = {
-            S.mjSENS_TOUCH: _FORCE, S.mjSENS_ACCELEROMETER: dim("L T^-2"), S.mjSENS_VELOCIMETER: dim("L T^-1"),
-            S.mjSENS_GYRO: dim("T^-1"), S.mjSENS_FORCE: _FORCE, S.mjSENS_TORQUE: _TORQUE,
-            S.mjSENS_RANGEFINDER: _L, S.mjSENS_FRAMEPOS: _L, S.mjSENS_FRAMEQUAT: _ONE, S.mjSENS_FRAMEXAXIS: _ONE,
-            S.mjSENS_FRAMEYAXIS: _ONE, S.mjSENS_FRAMEZAXIS: _ONE, S.mjSENS_FRAMELINVEL: dim("L T^-1"),
-            S.mjSENS_FRAMEANGVEL: dim("T^-1"), S.mjSENS_FRAMELINACC: dim("L T^-2"),
-            S.mjSENS_FRAMEANGACC: dim("T^-2"), S.mjSENS_SUBTREECOM: _L, S.mjSENS_SUBTREELINVEL: dim("L T^-1"),
-            S.mjSENS_SUBTREEANGMOM: dim("M L^2 T^-1"), S.mjSENS_BALLQUAT: _ONE, S.mjSENS_BALLANGVEL: dim("T^-1"),
+            S.mjSENS_TOUCH: _FORCE,
+            S.mjSENS_ACCELEROMETER: dim("L T^-2"),
+            S.mjSENS_VELOCIMETER: dim("L T^-1"),
+            S.mjSENS_GYRO: dim("T^-1"),
+            S.mjSENS_FORCE: _FORCE,
+            S.mjSENS_TORQUE: _TORQUE,
+            S.mjSENS_RANGEFINDER: _L,
+            S.mjSENS_FRAMEPOS: _L,
+            S.mjSENS_FRAMEQUAT: _ONE,
+            S.mjSENS_FRAMEXAXIS: _ONE,
+            S.mjSENS_FRAMEYAXIS: _ONE,
+            S.mjSENS_FRAMEZAXIS: _ONE,
+            S.mjSENS_FRAMELINVEL: dim("L T^-1"),
+            S.mjSENS_FRAMEANGVEL: dim("T^-1"),
+            S.mjSENS_FRAMELINACC: dim("L T^-2"),
+            S.mjSENS_FRAMEANGACC: dim("T^-2"),
+            S.mjSENS_SUBTREECOM: _L,
+            S.mjSENS_SUBTREELINVEL: dim("L T^-1"),
+            S.mjSENS_SUBTREEANGMOM: dim("M L^2 T^-1"),
+            S.mjSENS_BALLQUAT: _ONE,
+            S.mjSENS_BALLANGVEL: dim("T^-1"),
         }
         if sensor.type in table:
             return table[sensor.type]
-        if sensor.type in (S.mjSENS_JOINTPOS, S.mjSENS_JOINTVEL, S.mjSENS_JOINTLIMITPOS, S.mjSENS_JOINTLIMITVEL,
-                           S.mjSENS_JOINTLIMITFRC, S.mjSENS_JOINTACTFRC):
+        if sensor.type in (
+            S.mjSENS_JOINTPOS,
+            S.mjSENS_JOINTVEL,
+            S.mjSENS_JOINTLIMITPOS,
+            S.mjSENS_JOINTLIMITVEL,
+            S.mjSENS_JOINTLIMITFRC,
+            S.mjSENS_JOINTACTFRC,
+        ):
             kind = self.named_joint_kind(sensor.objname)
             if kind is not None:
-                return {S.mjSENS_JOINTPOS: kind.q, S.mjSENS_JOINTVEL: kind.q / _T,
-                        S.mjSENS_JOINTLIMITPOS: kind.q, S.mjSENS_JOINTLIMITVEL: kind.q / _T,
-                        S.mjSENS_JOINTLIMITFRC: kind.force, S.mjSENS_JOINTACTFRC: kind.force}[sensor.type]
+                return {
+                    S.mjSENS_JOINTPOS: kind.q,
+                    S.mjSENS_JOINTVEL: kind.q / _T,
+                    S.mjSENS_JOINTLIMITPOS: kind.q,
+                    S.mjSENS_JOINTLIMITVEL: kind.q / _T,
+                    S.mjSENS_JOINTLIMITFRC: kind.force,
+                    S.mjSENS_JOINTACTFRC: kind.force,
+                }[sensor.type]
         return None
 
     def sensor(self, sensor, index):
@@ -715,8 +921,11 @@ class _Walker:
         busy = sensor.cutoff != 0 or np.any(np.asarray(sensor.noise) != 0)
         if d is None:
             if busy:
-                self.warning(path, f"sensor type {sensor.type.name}: its cutoff and noise have no "
-                                "known dimension and are copied unchanged")
+                self.warning(
+                    path,
+                    f"sensor type {sensor.type.name}: its cutoff and noise have no "
+                    "known dimension and are copied unchanged",
+                )
             return
         self.add("sensor", sensor, ident, path, "cutoff", d)
         self.add("sensor", sensor, ident, path, "noise", d)
@@ -762,12 +971,23 @@ def _builtin_defaults(mj) -> dict:
     if not _DEFAULTS_CACHE:
         spec = mj.MjSpec()
         body = spec.worldbody.add_body()
-        _DEFAULTS_CACHE.update({
-            "option": spec.option, "geom": body.add_geom(), "joint": body.add_joint(), "site": body.add_site(),
-            "actuator": spec.add_actuator(), "tendon": spec.add_tendon(), "equality": spec.add_equality(),
-            "pair": spec.add_pair(), "sensor": spec.add_sensor(), "camera": body.add_camera(),
-            "light": body.add_light(), "body": body, "_spec": spec,
-        })
+        _DEFAULTS_CACHE.update(
+            {
+                "option": spec.option,
+                "geom": body.add_geom(),
+                "joint": body.add_joint(),
+                "site": body.add_site(),
+                "actuator": spec.add_actuator(),
+                "tendon": spec.add_tendon(),
+                "equality": spec.add_equality(),
+                "pair": spec.add_pair(),
+                "sensor": spec.add_sensor(),
+                "camera": body.add_camera(),
+                "light": body.add_light(),
+                "body": body,
+                "_spec": spec,
+            }
+        )
     return _DEFAULTS_CACHE
 
 
@@ -818,8 +1038,9 @@ class MjcfBackend:
     # -- table --------------------------------------------------------------------------------
 
     def parameters(self):
-        return [Parameter(s.name, s.path, s.read(), s.dimension, s.source, "file", s.parts, s.note)
-                for s in self._slots]
+        return [
+            Parameter(s.name, s.path, s.read(), s.dimension, s.source, "file", s.parts, s.note) for s in self._slots
+        ]
 
     def settings(self) -> dict:
         return {}
@@ -881,8 +1102,10 @@ class MjcfBackend:
             factor = factors.get(slot.name, 1.0)
             if factor != 1.0:
                 element = mine.get(slot.where)
-                written.extend((slot.where, attr, index, np.array(getattr(element, attr), dtype=float), factor)
-                               for attr, index in slot.attrs)
+                written.extend(
+                    (slot.where, attr, index, np.array(getattr(element, attr), dtype=float), factor)
+                    for attr, index in slot.attrs
+                )
         return written
 
     def _portable_spec(self):
@@ -920,7 +1143,7 @@ class MjcfBackend:
 
         _, dims = self.coordinate_dimensions()  # qpos, qvel, then the activations
         nq, nv = model.nq, model.nv
-        fq, fv, fa = factors(dims[:nq]), factors(dims[nq:nq + nv]), factors(dims[nq + nv:])
+        fq, fv, fa = factors(dims[:nq]), factors(dims[nq : nq + nv]), factors(dims[nq + nv :])
         ft, fl = factor(_T), factor(_L)
         fctrl = factors(self.control_dimensions())
         for key in spec.keys:
@@ -1006,8 +1229,15 @@ class MjcfBackend:
             self._field_names = _stored_fields(self.mjmodel)
         return self._field_names
 
-    def variant(self, *, tolerance: float | None = None, contacts: bool = True, solver: str | None = None,
-                inactive_equalities: tuple[int, ...] = (), integrator: str | None = None) -> MjcfBackend:
+    def variant(
+        self,
+        *,
+        tolerance: float | None = None,
+        contacts: bool = True,
+        solver: str | None = None,
+        inactive_equalities: tuple[int, ...] = (),
+        integrator: str | None = None,
+    ) -> MjcfBackend:
         """A copy run with another solver, tolerance or integrator, with contacts switched off, or with some
         equality constraints inactive: a counter-run's model (or the rod's, in another integrator)."""
         mj = _mujoco()
@@ -1037,8 +1267,11 @@ class MjcfBackend:
     def solver_settings(self) -> dict[str, float]:
         """The solver's stopping rules that have no pure dimension, nonzero ones only."""
         opt = self.mjmodel.opt
-        return {name: float(getattr(opt, name)) for name in ("tolerance", "noslip_tolerance")
-                if getattr(opt, name) != 0 and (name == "tolerance" or opt.noslip_iterations > 0)}
+        return {
+            name: float(getattr(opt, name))
+            for name in ("tolerance", "noslip_tolerance")
+            if getattr(opt, name) != 0 and (name == "tolerance" or opt.noslip_iterations > 0)
+        }
 
     def equality_names(self) -> list[str]:
         """Each equality constraint, named as the reports name it."""
@@ -1056,8 +1289,10 @@ class MjcfBackend:
         None when the same pairs touch after every step.  `other` has the same geoms (a scaled copy).
         """
         mj = _mujoco()
-        runs = [(self, self._start(False, None)[0], self._control_rows(controls, n_steps)),
-                (other, other._start(False, None)[0], other._control_rows(other_controls, n_steps))]
+        runs = [
+            (self, self._start(False, None)[0], self._control_rows(controls, n_steps)),
+            (other, other._start(False, None)[0], other._control_rows(other_controls, n_steps)),
+        ]
         for i in range(n_steps):
             touching = []
             for backend, data, rows in runs:
@@ -1067,6 +1302,7 @@ class MjcfBackend:
                 touching.append(_touching(data))
             mine, theirs = touching
             if mine != theirs:
+
                 def named(pairs):
                     return sorted((self._geom_name(a), self._geom_name(b)) for a, b in pairs)
 
@@ -1186,7 +1422,7 @@ class MjcfBackend:
             rows = np.tile(u0, (n_steps, 1))
             ctrl = backend._control_rows(controls, n_steps)
             if ctrl is not None:  # the user state starts with the controls
-                rows[:, :m.nu] = ctrl
+                rows[:, : m.nu] = ctrl
             models.append(m)
             initial.append(x0)
             inputs.append(rows)
@@ -1194,13 +1430,20 @@ class MjcfBackend:
         if n_steps == 0:
             return [first[None, :] for first in firsts]
         with _thread_pool(threads) as pool:
-            states, _ = pool.rollout(models, datas, np.array(initial), np.array(inputs), control_spec=user,
-                                     initial_warmstart=np.zeros((len(jobs), models[0].nv)), nstep=n_steps)
+            states, _ = pool.rollout(
+                models,
+                datas,
+                np.array(initial),
+                np.array(inputs),
+                control_spec=user,
+                initial_warmstart=np.zeros((len(jobs), models[0].nv)),
+                nstep=n_steps,
+            )
         # the full-physics state is laid out by component: time, then qpos, qvel, act
         out = []
         for m, first, rows in zip(models, firsts, states, strict=True):
             start = mj.mj_stateSize(m, mj.mjtState.mjSTATE_TIME)
-            out.append(np.concatenate([first[None, :], rows[:, start:start + m.nq + m.nv + m.na]]))
+            out.append(np.concatenate([first[None, :], rows[:, start : start + m.nq + m.nv + m.na]]))
         return out
 
     def _start(self, nudge: bool, initial, data=None):
@@ -1214,8 +1457,8 @@ class MjcfBackend:
         else:
             mj.mj_resetData(m, data)
         if initial is not None:
-            data.qpos[:], data.qvel[:] = initial[:m.nq], initial[m.nq:m.nq + m.nv]
-            data.act[:] = initial[m.nq + m.nv:]
+            data.qpos[:], data.qvel[:] = initial[: m.nq], initial[m.nq : m.nq + m.nv]
+            data.act[:] = initial[m.nq + m.nv :]
         if nudge:
             data.qpos[:] = nudged(data.qpos)
             data.qvel[:] = nudged(data.qvel)
@@ -1237,7 +1480,7 @@ class MjcfBackend:
         nq, nv = m.nq, m.nv
         out = np.empty((n_steps + 1, nq + nv + m.na))
         out[0] = first
-        qpos, qvel, act = out[:, :nq], out[:, nq:nq + nv], out[:, nq + nv:]
+        qpos, qvel, act = out[:, :nq], out[:, nq : nq + nv], out[:, nq + nv :]
         # The policy must see the state it acts on: after mj_step, data's positions and velocities are the
         # new ones but everything computed from them (site and body poses, tendon lengths, sensors) is
         # still the last step's.  mj_step1 computes them first, mj_step2 finishes the step: together the
@@ -1257,15 +1500,45 @@ class MjcfBackend:
 
 
 #: the element each prefix of a compiled field belongs to, and the count of that element where not n<kind>
-_FIELD_OBJECTS = {"body": "body", "geom": "geom", "jnt": "joint", "site": "site", "cam": "camera", "light": "light",
-                  "mesh": "mesh", "tendon": "tendon", "actuator": "actuator", "sensor": "sensor", "eq": "equality",
-                  "pair": "pair", "key": "key", "hfield": "hfield", "numeric": "numeric", "mat": "material"}
+_FIELD_OBJECTS = {
+    "body": "body",
+    "geom": "geom",
+    "jnt": "joint",
+    "site": "site",
+    "cam": "camera",
+    "light": "light",
+    "mesh": "mesh",
+    "tendon": "tendon",
+    "actuator": "actuator",
+    "sensor": "sensor",
+    "eq": "equality",
+    "pair": "pair",
+    "key": "key",
+    "hfield": "hfield",
+    "numeric": "numeric",
+    "mat": "material",
+}
 _COUNTS = {"joint": "njnt", "camera": "ncam", "actuator": "nu", "equality": "neq", "material": "nmat"}
 
 _STRUCT_FIELDS = {
-    "opt": ("timestep", "gravity", "wind", "magnetic", "density", "viscosity", "impratio", "tolerance",
-            "ls_tolerance", "noslip_tolerance", "ccd_tolerance", "sleep_tolerance", "o_margin", "o_solref",
-            "o_solimp", "o_friction"),
+    "opt": (
+        "timestep",
+        "gravity",
+        "wind",
+        "magnetic",
+        "density",
+        "viscosity",
+        "impratio",
+        "tolerance",
+        "ls_tolerance",
+        "noslip_tolerance",
+        "ccd_tolerance",
+        "sleep_tolerance",
+        "o_margin",
+        "o_solref",
+        "o_solimp",
+        "o_friction",
+    ),
     "stat": ("meaninertia", "meanmass", "meansize", "extent", "center"),
 }
 
@@ -1329,7 +1602,7 @@ def _close_pools() -> None:
 
 def _touching(data) -> frozenset:
     """The geom pairs (ids) of a data's contacts."""
-    return frozenset(map(tuple, data.contact.geom[:data.ncon].tolist()))
+    return frozenset(map(tuple, data.contact.geom[: data.ncon].tolist()))
 
 
 def _holder(m, field: str):
@@ -1460,8 +1733,13 @@ class RefusedMjcfBackend(MjcfBackend):
             for collection, attrs in _MASS_ATTRIBUTES.items():
                 for element in getattr(probe, collection):
                     for attr in attrs:
-                        setattr(element, attr, np.asarray(getattr(element, attr), dtype=float) * 2.0**power
-                                if np.ndim(getattr(element, attr)) else getattr(element, attr) * 2.0**power)
+                        setattr(
+                            element,
+                            attr,
+                            np.asarray(getattr(element, attr), dtype=float) * 2.0**power
+                            if np.ndim(getattr(element, attr))
+                            else getattr(element, attr) * 2.0**power,
+                        )
             try:
                 with _muted():
                     self.mjmodel = probe.compile()
@@ -1474,9 +1752,13 @@ class RefusedMjcfBackend(MjcfBackend):
         self._walked, self._inputs = walker.walk(), walker.inputs
 
     def run_many(self, n_steps: int, jobs):
-        raise EngineModelError(self.path, self.refusal.element, f"{self.refusal.reason}; MuJoCo does not run it. "
-                               "Convert it to units clear of the threshold (pitheorem.fit_units(model), "
-                               "model.converted(...), or pitheorem convert FILE --fit mujoco)")
+        raise EngineModelError(
+            self.path,
+            self.refusal.element,
+            f"{self.refusal.reason}; MuJoCo does not run it. "
+            "Convert it to units clear of the threshold (pitheorem.fit_units(model), "
+            "model.converted(...), or pitheorem convert FILE --fit mujoco)",
+        )
 
     def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None):
         return self.run_many(n_steps, [])

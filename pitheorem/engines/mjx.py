@@ -172,8 +172,9 @@ class MjxBackend:
             For a closed-loop `policy` (run it in ``"mujoco"``).
         """
         if policy is not None:
-            raise InvalidRequestError("MJX runs open loop here; run a closed-loop controller in 'mujoco' "
-                                      "(engines.load(path))")
+            raise InvalidRequestError(
+                "MJX runs open loop here; run a closed-loop controller in 'mujoco' (engines.load(path))"
+            )
         return self.run_many(n_steps, [(self, controls, nudge, initial)])[0]
 
     def run_many(self, n_steps: int, jobs) -> list[np.ndarray]:
@@ -200,8 +201,7 @@ class MjxBackend:
                 models = [devices[i] for i in members]
                 batch = jax.tree_util.tree_map(lambda *xs: jnp.stack(xs), *models)
                 starts = [_initial(jobs[i][0], jobs[i][2], jobs[i][3], dtype) for i in members]
-                rows = np.stack([_control_rows(jobs[i][1], n_steps, nu, jobs[i][0].timestep(), dtype)
-                                 for i in members])
+                rows = np.stack([_control_rows(jobs[i][1], n_steps, nu, jobs[i][0].timestep(), dtype) for i in members])
                 qpos = jnp.asarray(np.stack([q for q, _ in starts]))
                 qvel = jnp.asarray(np.stack([v for _, v in starts]))
                 runs = np.asarray(runner(batch, qpos, qvel, jnp.asarray(rows)))
@@ -241,8 +241,11 @@ def _aligned(backend: MjxBackend, reference: MjxBackend):
             continue
         if geom_type is not None and np.any(backend.mjcf.mjmodel.geom_type == int(getattr(mujoco.mjtGeom, geom_type))):
             continue
-        device = (device.replace(_impl=device._impl.replace(**{field: theirs})) if owner
-                  else device.replace(**{field: theirs}))
+        device = (
+            device.replace(_impl=device._impl.replace(**{field: theirs}))
+            if owner
+            else device.replace(**{field: theirs})
+        )
     return device
 
 
@@ -252,15 +255,19 @@ def _put(mjcf: MjcfBackend, precision: str):
     mjx = engine_module("mjx")
     m = mjcf.mjmodel
     if int(m.opt.solver) == 0:  # MJX has CG and Newton; the file's PGS would be put as nothing it runs
-        raise EngineModelError(mjcf.path, "option solver", "MJX does not support the PGS solver; use "
-                               '<option solver="Newton"/> or "CG", or run the file in \'mujoco\'')
+        raise EngineModelError(
+            mjcf.path,
+            "option solver",
+            'MJX does not support the PGS solver; use <option solver="Newton"/> or "CG", or run the file in \'mujoco\'',
+        )
     with jax.enable_x64(precision == "float64"):
         try:
             return mjx.put_model(m, impl="jax")
         except NotImplementedError as err:
             reason = str(err).strip() or type(err).__name__
-            raise EngineModelError(mjcf.path, _unsupported(reason), f"MJX does not support {reason}; run the "
-                                   "file in 'mujoco'") from None
+            raise EngineModelError(
+                mjcf.path, _unsupported(reason), f"MJX does not support {reason}; run the file in 'mujoco'"
+            ) from None
 
 
 def _unsupported(reason: str) -> str:
@@ -301,10 +308,12 @@ def _initial(backend: MjxBackend, nudge: bool, initial, dtype) -> tuple[np.ndarr
         qpos = np.asarray(backend._device.qpos0, dtype=dtype)
         qvel = np.zeros(m.nv, dtype)
     else:
-        if np.any(initial[m.nq + m.nv:]):
-            raise InvalidRequestError("MJX runs start with every activation at zero; run a start with "
-                                      "activations in 'mujoco' (engines.load(path))")
-        qpos, qvel = (np.asarray(x, dtype=dtype) for x in (initial[:m.nq], initial[m.nq:m.nq + m.nv]))
+        if np.any(initial[m.nq + m.nv :]):
+            raise InvalidRequestError(
+                "MJX runs start with every activation at zero; run a start with "
+                "activations in 'mujoco' (engines.load(path))"
+            )
+        qpos, qvel = (np.asarray(x, dtype=dtype) for x in (initial[: m.nq], initial[m.nq : m.nq + m.nv]))
     if nudge:
         qpos, qvel = _nudged(qpos, dtype), _nudged(qvel, dtype)
     return qpos, qvel

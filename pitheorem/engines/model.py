@@ -59,7 +59,6 @@ __all__ = [
 SOURCES = ("file", "default", "derived", "engine")
 
 
-
 class UnscalableModelWarning(UserWarning):
     """An element whose scaling the package cannot check (it is copied unchanged).
 
@@ -183,8 +182,10 @@ class Parameter:
         if len(set(exponents.values())) > 1 and any(v != 0 for v in self.value):
             needs = ", ".join(f"s^{Fraction(e)} as {part}" for part, e in exponents.items())
             raise UnscalableParameterError(
-                self.name, f"the one number {self.path} acts with dimensions {self.dimension_text}, so the scaling "
-                f"needs {needs}; set it to 0 or hold the base units it mixes fixed")
+                self.name,
+                f"the one number {self.path} acts with dimensions {self.dimension_text}, so the scaling "
+                f"needs {needs}; set it to 0 or hold the base units it mixes fixed",
+            )
         return float_power(s, next(iter(exponents.values())), f"the factor of {self.name!r}")
 
     @property
@@ -462,8 +463,16 @@ class EngineModel(TableDisplay):
         units = tuple((units or {"M": "kg", "L": "m", "T": "s"}).items())
         # origin: (the model this one is a copy of, the factor of each of its parameters), for a copy made
         # by scaled(), with_values() or multiplied(); its table is then known without reading the copy
-        for name, value in (("_backend", backend), ("engine", engine), ("path", path), ("_parameters", None),
-                            ("_units", units), ("_groups", None), ("_origin", origin), ("_system", None)):
+        for name, value in (
+            ("_backend", backend),
+            ("engine", engine),
+            ("path", path),
+            ("_parameters", None),
+            ("_units", units),
+            ("_groups", None),
+            ("_origin", origin),
+            ("_system", None),
+        ):
             object.__setattr__(self, name, value)
 
     @property
@@ -716,8 +725,11 @@ class EngineModel(TableDisplay):
                 reasons.setdefault(err.reason.split(";")[0].split(" acts ", 1)[-1], err.reason.split(";")[0])
             remedy = self._backend.unscalable_remedy if refuses else ""
             raise UnscalableParameterError(
-                refused[0].name, f"{len(refused)} numbers cannot follow the scaling: {names}{more}. "
-                + "; ".join(reasons.values()) + (f". {remedy}" if remedy else ""))
+                refused[0].name,
+                f"{len(refused)} numbers cannot follow the scaling: {names}{more}. "
+                + "; ".join(reasons.values())
+                + (f". {remedy}" if remedy else ""),
+            )
         if refused:
             raise refused[0]
         return self._times(factors, scaling, s)
@@ -798,8 +810,9 @@ class EngineModel(TableDisplay):
 
     def _times(self, factors: dict[str, float], scaling=None, s=None) -> EngineModel:
         """The copy of :meth:`scaled`, :meth:`with_values` and :meth:`multiplied`: checked factors applied."""
-        return EngineModel(self._backend.scaled(factors, scaling, s), self.engine, "", self.units,
-                           origin=(self, dict(factors)))
+        return EngineModel(
+            self._backend.scaled(factors, scaling, s), self.engine, "", self.units, origin=(self, dict(factors))
+        )
 
     def save(self, path) -> Path:
         """Write the model as a file the engine loads as is.
@@ -945,11 +958,14 @@ class EngineModel(TableDisplay):
             try:
                 initial = np.array(initial, dtype=float).reshape(-1)
             except (TypeError, ValueError):
-                raise InvalidRequestError(f"initial is a row of {len(names)} numbers, got {initial!r}",
-                                          culprit=initial) from None
+                raise InvalidRequestError(
+                    f"initial is a row of {len(names)} numbers, got {initial!r}", culprit=initial
+                ) from None
             if len(initial) != len(names) or not np.all(np.isfinite(initial)):
-                raise InvalidRequestError(f"initial is a row of {len(names)} finite numbers ({', '.join(names)}), "
-                                          f"got {initial.tolist()!r}", culprit=initial)
+                raise InvalidRequestError(
+                    f"initial is a row of {len(names)} finite numbers ({', '.join(names)}), got {initial.tolist()!r}",
+                    culprit=initial,
+                )
         return self._backend.run(n_steps, controls, policy=policy, initial=initial)
 
     def coordinates(self) -> tuple[list[str], list[Dimension]]:
@@ -1014,12 +1030,15 @@ def check_scaling(scaling) -> Scaling:
     if not isinstance(scaling, Scaling):
         raise InvalidRequestError(f"scaling must be a pitheorem Scaling, got {type(scaling).__name__}")
     if not scaling.is_unit_change:
-        raise InvalidRequestError("the scaling is no change of units; an engine model needs one "
-                                  "(use a scaling from pt.search(model.system(), ...))")
+        raise InvalidRequestError(
+            "the scaling is no change of units; an engine model needs one "
+            "(use a scaling from pt.search(model.system(), ...))"
+        )
     missing = [b for b in ("M", "L", "T") if b not in scaling.system.base_dimensions]
     if missing:
-        raise InvalidRequestError(f"the scaling's system has no base dimension {missing[0]!r}; "
-                                  "search on model.system()")
+        raise InvalidRequestError(
+            f"the scaling's system has no base dimension {missing[0]!r}; search on model.system()"
+        )
     return scaling
 
 
@@ -1037,4 +1056,3 @@ def warn_unscalable(path: str, element: str, reason: str) -> None:
     "a.xml: sensor 'x': unknown type"
     """
     warnings.warn(f"{path}: {element}: {reason}", UnscalableModelWarning, stacklevel=3)
-

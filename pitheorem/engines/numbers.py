@@ -25,16 +25,57 @@ from ..errors import EngineModelError
 __all__ = ["check_model_file", "check_numbers"]
 
 # attributes that name things (other elements, files, classes): "nan" there is a name, not a number
-_NAMES = frozenset({
-    "name", "class", "childclass", "prefix", "content_type", "model", "link", "material", "texture", "mesh", "hfield",
-    "joint", "joint1", "joint2", "body", "body1", "body2", "site", "site1", "site2", "tendon", "geom", "geom1",
-    "geom2", "target", "objname", "refname", "actuator", "slidersite", "cranksite", "key", "plugin", "instance",
-    "skin", "camera", "light", "flex", "sensor", "meshdir", "texturedir", "assetdir", "type",
-})
+_NAMES = frozenset(
+    {
+        "name",
+        "class",
+        "childclass",
+        "prefix",
+        "content_type",
+        "model",
+        "link",
+        "material",
+        "texture",
+        "mesh",
+        "hfield",
+        "joint",
+        "joint1",
+        "joint2",
+        "body",
+        "body1",
+        "body2",
+        "site",
+        "site1",
+        "site2",
+        "tendon",
+        "geom",
+        "geom1",
+        "geom2",
+        "target",
+        "objname",
+        "refname",
+        "actuator",
+        "slidersite",
+        "cranksite",
+        "key",
+        "plugin",
+        "instance",
+        "skin",
+        "camera",
+        "light",
+        "flex",
+        "sensor",
+        "meshdir",
+        "texturedir",
+        "assetdir",
+        "type",
+    }
+)
 
 
 def _element(element: ET.Element, parents: dict) -> str:
     """``<joint name='h'>``, or an unnamed element with its nearest named ancestor: ``<mass> in <link name='b'>``."""
+
     def label(e):
         return f"<{e.tag} name={e.get('name')!r}>" if e.get("name") else f"<{e.tag}>"
 
@@ -89,8 +130,11 @@ def check_model_file(path) -> ET.Element | None:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as err:
         line = raw[: err.start].count(b"\n") + 1
-        raise EngineModelError(str(path), f"line {line}", f"byte {raw[err.start]:#04x} at offset {err.start} is "
-                               "not UTF-8; save the file as UTF-8 text") from None
+        raise EngineModelError(
+            str(path),
+            f"line {line}",
+            f"byte {raw[err.start]:#04x} at offset {err.start} is not UTF-8; save the file as UTF-8 text",
+        ) from None
     try:  # as the engines' own XML readers do: blank lines before the declaration, NUL bytes after the end
         root = ET.fromstring(text.strip().rstrip("\x00").strip())
     except ET.ParseError:
@@ -106,8 +150,11 @@ def check_model_file(path) -> ET.Element | None:
                 except ValueError:
                     break  # not a list of numbers: text of some kind, which the engine reads
                 if not math.isfinite(number):
-                    raise EngineModelError(str(path), _element(element, parents), f"{attr}={value!r} is not a finite number; "
-                                           "a model holds finite numbers only")
+                    raise EngineModelError(
+                        str(path),
+                        _element(element, parents),
+                        f"{attr}={value!r} is not a finite number; a model holds finite numbers only",
+                    )
     return root
 
 

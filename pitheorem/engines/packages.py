@@ -131,8 +131,7 @@ def quiet_stdout() -> Iterator[None]:
     try:
         # the descriptors for what C prints, and Python's streams for what Python prints where they are not
         # the descriptors (a notebook's, pytest's): mujoco.mjx prints its note on a missing warp from Python
-        with open(os.devnull, "w") as devnull, contextlib.redirect_stdout(devnull), \
-                contextlib.redirect_stderr(devnull):
+        with open(os.devnull, "w") as devnull, contextlib.redirect_stdout(devnull), contextlib.redirect_stderr(devnull):
             for fd, _ in saved:
                 os.dup2(devnull.fileno(), fd)
             yield

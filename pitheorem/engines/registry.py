@@ -93,8 +93,9 @@ class Engine:
 REGISTRY: tuple[Engine, ...] = (
     Engine("pybullet", "urdf", "load_urdf", ("urdf",), ("pybullet",)),
     Engine("mujoco", "mjcf", "load_mjcf", ("mjcf",), ("mujoco",)),
-    Engine("mjx", "mjx", "load_mjx", ("mjcf",), ("mujoco", "jax", "mujoco.mjx"), extra="mjx", default=False,
-           base="mujoco"),
+    Engine(
+        "mjx", "mjx", "load_mjx", ("mjcf",), ("mujoco", "jax", "mujoco.mjx"), extra="mjx", default=False, base="mujoco"
+    ),
 )
 
 _BY_NAME = {e.name: e for e in REGISTRY}
@@ -133,8 +134,7 @@ def registered(name) -> Engine:
     name = ALIASES.get(name, name) if isinstance(name, str) else name
     if not isinstance(name, str) or name not in _BY_NAME:
         names = [repr(e.name) for e in REGISTRY]
-        raise InvalidRequestError(f"unknown engine {name!r}; use {', '.join(names[:-1])} or {names[-1]}",
-                                  culprit=name)
+        raise InvalidRequestError(f"unknown engine {name!r}; use {', '.join(names[:-1])} or {names[-1]}", culprit=name)
     return _BY_NAME[name]
 
 
@@ -152,4 +152,3 @@ def backends() -> tuple[str, ...]:
     True
     """
     return tuple(sorted(e.name for e in REGISTRY if e.installed()))
-

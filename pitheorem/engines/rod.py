@@ -61,13 +61,24 @@ from .packages import check_engine
 #: the paper's rod, built once: solving and compiling its equations costs more than a short engine run
 _rod_model = functools.cache(hinged_rod)
 
-__all__ = ["DEFAULT_TIME_STEP", "ROD_FILES", "EngineSimilarityReport", "EngineUnavailableError", "rod_file_numbers",
-           "rod_model", "simulate_rod", "verify_engine_similarity"]
+__all__ = [
+    "DEFAULT_TIME_STEP",
+    "ROD_FILES",
+    "EngineSimilarityReport",
+    "EngineUnavailableError",
+    "rod_file_numbers",
+    "rod_model",
+    "simulate_rod",
+    "verify_engine_similarity",
+]
 
 #: each engine's own default time step, as the catalogue of pitheorem.engines.constants has it
-DEFAULT_TIME_STEP = MappingProxyType({engine: hidden_constants(engine, names=[name])[0].default
-                                      for engine, name in (("pybullet", "bullet_time_step"),
-                                                           ("mujoco", "mujoco_timestep"))})
+DEFAULT_TIME_STEP = MappingProxyType(
+    {
+        engine: hidden_constants(engine, names=[name])[0].default
+        for engine, name in (("pybullet", "bullet_time_step"), ("mujoco", "mujoco_timestep"))
+    }
+)
 
 #: the shipped file of the rod in each engine (in ``pitheorem/examples``)
 ROD_FILES = MappingProxyType({"mujoco": "hinged_rod.xml", "pybullet": "hinged_rod.urdf"})
@@ -85,8 +96,11 @@ def _rod_engine(engine) -> str:
     """The engine's one name, if the rod is built in it (PyBullet and MuJoCo; not MJX: load an MJCF file)."""
     engine = check_engine(engine)
     if engine not in DEFAULT_TIME_STEP:
-        raise InvalidRequestError(f"the rod is built in 'pybullet' and 'mujoco', not {engine!r}; run an MJCF file "
-                                  f"in {engine!r} with engines.load(path, engine={engine!r})", culprit=engine)
+        raise InvalidRequestError(
+            f"the rod is built in 'pybullet' and 'mujoco', not {engine!r}; run an MJCF file "
+            f"in {engine!r} with engines.load(path, engine={engine!r})",
+            culprit=engine,
+        )
     return engine
 
 
@@ -135,13 +149,30 @@ def rod_file_numbers(engine: str, params: Mapping[str, float]) -> dict[str, tupl
     m, l, g, k, c, theta_r = (float(params[n]) for n in ("m", "l", "g", "k_theta", "c_theta", "theta_r"))  # noqa: E741
     i_com = m * l * l / 12.0
     if engine == "mujoco":
-        return {"g": (g,), "body_rod_mass": (m,), "body_rod_ipos": (l / 2.0, 0.0, 0.0),
-                "body_rod_inertia": (i_com,) * 3, "geom_rod_fromto": (0.0, 0.0, 0.0, l, 0.0, 0.0),
-                "joint_hinge_stiffness": (k,), "joint_hinge_springref": (theta_r,), "joint_hinge_damping": (c,)}
-    return {"g": (g,), "link_rod_mass": (m,), "link_rod_com": (l / 2.0, 0.0, 0.0), "link_rod_ixx": (i_com,),
-            "link_rod_iyy": (i_com,), "link_rod_izz": (i_com,), "link_rod_inertia": (i_com,) * 3,
-            "link_rod_visual0_xyz": (l / 2.0, 0.0, 0.0), "link_rod_visual0_length": (l,),
-            "joint_hinge_damping": (c,), "joint_hinge_spring_stiffness": (k,), "joint_hinge_spring_rest": (theta_r,)}
+        return {
+            "g": (g,),
+            "body_rod_mass": (m,),
+            "body_rod_ipos": (l / 2.0, 0.0, 0.0),
+            "body_rod_inertia": (i_com,) * 3,
+            "geom_rod_fromto": (0.0, 0.0, 0.0, l, 0.0, 0.0),
+            "joint_hinge_stiffness": (k,),
+            "joint_hinge_springref": (theta_r,),
+            "joint_hinge_damping": (c,),
+        }
+    return {
+        "g": (g,),
+        "link_rod_mass": (m,),
+        "link_rod_com": (l / 2.0, 0.0, 0.0),
+        "link_rod_ixx": (i_com,),
+        "link_rod_iyy": (i_com,),
+        "link_rod_izz": (i_com,),
+        "link_rod_inertia": (i_com,) * 3,
+        "link_rod_visual0_xyz": (l / 2.0, 0.0, 0.0),
+        "link_rod_visual0_length": (l,),
+        "joint_hinge_damping": (c,),
+        "joint_hinge_spring_stiffness": (k,),
+        "joint_hinge_spring_rest": (theta_r,),
+    }
 
 
 def _with_numbers(model: EngineModel, numbers: dict[str, tuple[float, ...]]) -> EngineModel:
@@ -161,8 +192,9 @@ def _with_numbers(model: EngineModel, numbers: dict[str, tuple[float, ...]]) -> 
     return model.with_values(**values) if values else model
 
 
-def rod_model(engine: str, params=None, *, dt: float | None = None, integrator: str | None = None,
-              engine_defaults: bool = False) -> EngineModel:
+def rod_model(
+    engine: str, params=None, *, dt: float | None = None, integrator: str | None = None, engine_defaults: bool = False
+) -> EngineModel:
     """The rod's shipped file with the paper's parameters set into it, ready to run.
 
     Parameters
@@ -207,8 +239,9 @@ def rod_model(engine: str, params=None, *, dt: float | None = None, integrator: 
     if engine == "mujoco" and engine_defaults:
         raise InvalidRequestError("engine_defaults is a Bullet option; the MuJoCo rod has no hidden setting to keep")
     if integrator is not None and integrator not in _MUJOCO_INTEGRATORS:
-        raise InvalidRequestError(f"unknown MuJoCo integrator {integrator!r}; use one of {', '.join(_MUJOCO_INTEGRATORS)}",
-                                  culprit=integrator)
+        raise InvalidRequestError(
+            f"unknown MuJoCo integrator {integrator!r}; use one of {', '.join(_MUJOCO_INTEGRATORS)}", culprit=integrator
+        )
     model = _shipped(engine)
     numbers = rod_file_numbers(engine, _rod_model().resolve_params(params))
     if dt is not None:
@@ -223,8 +256,16 @@ def rod_model(engine: str, params=None, *, dt: float | None = None, integrator: 
     return model
 
 
-def simulate_rod(engine: str, params=None, y0=None, t_final: float = 5.0, *, dt: float | None = None,
-                 integrator: str | None = None, engine_defaults: bool = False) -> Trajectory:
+def simulate_rod(
+    engine: str,
+    params=None,
+    y0=None,
+    t_final: float = 5.0,
+    *,
+    dt: float | None = None,
+    integrator: str | None = None,
+    engine_defaults: bool = False,
+) -> Trajectory:
     """Run the paper's hinged rod in PyBullet or MuJoCo, from its shipped file.
 
     Parameters
@@ -308,10 +349,22 @@ class EngineSimilarityReport(SimilarityReport):
     ode_report: SimilarityReport | None = field(default=None, repr=False)
 
 
-def verify_engine_similarity(engine: str, scaling, s, params=None, y0=None, t_final: float = 5.0, *,
-                             dt: float | None = None, scale_dt: bool = True, tol: float = 1e-9,
-                             check: bool = True, integrator: str | None = None, engine_defaults: bool = False,
-                             compare_ode: bool = True) -> EngineSimilarityReport:
+def verify_engine_similarity(
+    engine: str,
+    scaling,
+    s,
+    params=None,
+    y0=None,
+    t_final: float = 5.0,
+    *,
+    dt: float | None = None,
+    scale_dt: bool = True,
+    tol: float = 1e-9,
+    check: bool = True,
+    integrator: str | None = None,
+    engine_defaults: bool = False,
+    compare_ode: bool = True,
+) -> EngineSimilarityReport:
     """Check in a real engine that a scaled rod reproduces the original.
 
     Runs the rod in `engine` with `params`, then with the parameters
@@ -372,19 +425,33 @@ def verify_engine_similarity(engine: str, scaling, s, params=None, y0=None, t_fi
 
     f_t = scaled.factor(model.time)
     dt_scaled = dt * f_t if scale_dt else dt
-    run = simulate_rod(engine, scaled.scale_params(p), scaled.scale_state(y_init), t_final * f_t, dt=dt_scaled,
-                       **opts)
+    run = simulate_rod(engine, scaled.scale_params(p), scaled.scale_state(y_init), t_final * f_t, dt=dt_scaled, **opts)
     mapped = scaled.map_back(run, original.t)
-    base = similarity_report(original, mapped, s=scaled.s, scaling=scaled.scaling, exponents=scaled.exponents,
-                             tol=tol, is_similarity=scaled.is_similarity, method=engine)
+    base = similarity_report(
+        original,
+        mapped,
+        s=scaled.s,
+        scaling=scaled.scaling,
+        exponents=scaled.exponents,
+        tol=tol,
+        is_similarity=scaled.is_similarity,
+        method=engine,
+    )
 
     engine_vs_ode, ode_report = None, None
     if compare_ode:
         exact = simulate_ode(model, p, y_init, float(original.t[-1]), t_eval=original.t)
         engine_vs_ode = float(np.abs(exact.y - original.y).max())
-        ode_report = verify_similarity(model, scaled.scaling, scaled.s, p, y_init, t_final,
-                                       check=check, tol=max(tol, 1e-6))  # of() has refused a non-similarity
+        ode_report = verify_similarity(
+            model, scaled.scaling, scaled.s, p, y_init, t_final, check=check, tol=max(tol, 1e-6)
+        )  # of() has refused a non-similarity
     shared = {f.name: getattr(base, f.name) for f in fields(SimilarityReport)}
     shared["scaled_dt"] = not math.isclose(dt, dt_scaled, rel_tol=1e-15, abs_tol=0.0)
-    return EngineSimilarityReport(**shared, engine=engine, dt=float(dt), dt_scaled=float(dt_scaled),
-                                  engine_vs_ode=engine_vs_ode, ode_report=ode_report)
+    return EngineSimilarityReport(
+        **shared,
+        engine=engine,
+        dt=float(dt),
+        dt_scaled=float(dt_scaled),
+        engine_vs_ode=engine_vs_ode,
+        ode_report=ode_report,
+    )

@@ -240,7 +240,9 @@ BULLET_SCALE_THE_WORLD = RuleOfThumb(
     quantities=(
         RuleQuantity("mass", "M", 0),  # "you should not have to change the mass"
         RuleQuantity("length", "L", 1),  # collision shapes and positions
-        RuleQuantity("velocity", "L T^-1", 1, ["bullet_linear_sleep_threshold"]),  # linear velocities, linear sleep threshold
+        RuleQuantity(
+            "velocity", "L T^-1", 1, ["bullet_linear_sleep_threshold"]
+        ),  # linear velocities, linear sleep threshold
         RuleQuantity("gravity", "L T^-2", 1),
         RuleQuantity("impulse", "M L T^-1", 1),  # "impulses you supply"
         RuleQuantity("torque", "M L^2 T^-2", 2),
@@ -256,8 +258,12 @@ MUJOCO_FRAME_SIMILAR = RuleOfThumb(
     engine="mujoco",
     source="MuJoCo 3.16.0 changelog (frame scale, scaling, massscale); powers measured with mujoco 4.0.0",
     quantities=(
-        RuleQuantity("length", "L", 1, ["mujoco_solimp_width", "mujoco_torsional_friction", "mujoco_rolling_friction",
-                              "mujoco_geom_margin"]),
+        RuleQuantity(
+            "length",
+            "L",
+            1,
+            ["mujoco_solimp_width", "mujoco_torsional_friction", "mujoco_rolling_friction", "mujoco_geom_margin"],
+        ),
         RuleQuantity("mass", "M", 3),  # "masses scale with volume"
         RuleQuantity("gravity", "L T^-2", 1),  # the premise: "proportionally scaled gravity" (a model parameter)
         RuleQuantity("inertia", "M L^2", 5),  # measured: body_inertia x 32 at scale 2
@@ -270,16 +276,17 @@ MUJOCO_FRAME_SIMILAR = RuleOfThumb(
         RuleQuantity("angle", "1", 0),  # measured: hinge springref x 1
     ),
     note="the frame does not touch option/gravity (a global setting): multiply it by X yourself; with "
-         "massscale the frame also scales masses independently, which with scale gives any time-free change "
-         "of units (M and L), not only this policy's mass by volume",
+    "massscale the frame also scales masses independently, which with scale gives any time-free change "
+    "of units (M and L), not only this policy's mass by volume",
 )
 
 #: every rule provided
 RULES = (BULLET_SCALE_THE_WORLD, MUJOCO_FRAME_SIMILAR)
 
 
-def check_rule(rule: RuleOfThumb, system: System | None = None, *, engine: str | None = None,
-               hidden: Iterable[str] | None = None) -> RuleVerdict:
+def check_rule(
+    rule: RuleOfThumb, system: System | None = None, *, engine: str | None = None, hidden: Iterable[str] | None = None
+) -> RuleVerdict:
     """Say which unit change a rule of thumb is, and what it leaves out.
 
     Parameters
@@ -319,8 +326,11 @@ def check_rule(rule: RuleOfThumb, system: System | None = None, *, engine: str |
     try:
         scaling = Scaling.from_exponents(rsys, rule.exponents)
     except InvalidRequestError:
-        res = search(rsys, scale={n: p for n, p in rule.exponents.items() if p}, fixed=tuple(
-            n for n, p in rule.exponents.items() if not p))
+        res = search(
+            rsys,
+            scale={n: p for n, p in rule.exponents.items() if p},
+            fixed=tuple(n for n, p in rule.exponents.items() if not p),
+        )
         return RuleVerdict(rule, None, None, res.certificate, (), (), ())
     units = scaling.unit_change
     missing, unchanged = [], []
@@ -332,7 +342,8 @@ def check_rule(rule: RuleOfThumb, system: System | None = None, *, engine: str |
             extra = [b for b in dim.base_dimensions if b not in units]
             if extra:
                 raise InvalidRequestError(
-                    f"variable {name!r} has base dimension {extra[0]!r}, which the rule {rule.name!r} does not use")
+                    f"variable {name!r} has base dimension {extra[0]!r}, which the rule {rule.name!r} does not use"
+                )
             p = scaling.exponent_of(dim)
             if p:
                 missing.append((name, dim, p))

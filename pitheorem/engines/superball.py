@@ -111,33 +111,51 @@ _CHOSEN = "chosen here"
 #: its density multiplied by 1000 and its forces divided by 10; stiffness and
 #: damping (M T^-2 and M T^-1) have no length and keep their values.
 PARAMETERS: tuple[SuperballParameter, ...] = (
-    SuperballParameter("g", 9.81, dim("L T^-2"), "gravitational acceleration (option gravity)",
-                       "Earth; NTRT uses 98.1 dm/s^2"),
+    SuperballParameter(
+        "g", 9.81, dim("L T^-2"), "gravitational acceleration (option gravity)", "Earth; NTRT uses 98.1 dm/s^2"
+    ),
     SuperballParameter("rho", 688.0, dim("M L^-3"), "density of the bars (geom density)", _NTRT + ": 0.688 kg/dm^3"),
     SuperballParameter("l", 1.684, dim("L"), "length of a bar (geom fromto)", _NTRT + ": 16.84 dm"),
     SuperballParameter("r", 0.031, dim("L"), "radius of a bar (geom size)", _NTRT + ": 0.31 dm"),
-    SuperballParameter("a", 0.75, dim("L"), "offset of each bar from the centre (body pos)",
-                       _NTRT + ": rod_space 7.5 dm"),
+    SuperballParameter(
+        "a", 0.75, dim("L"), "offset of each bar from the centre (body pos)", _NTRT + ": rod_space 7.5 dm"
+    ),
     SuperballParameter("k", 613.0, dim("M T^-2"), "cable stiffness (tendon stiffness)", _NTRT + ": 613 kg/s^2"),
     SuperballParameter("c", 200.0, dim("M T^-1"), "cable damping (tendon damping)", _NTRT + ": 200 kg/s"),
-    SuperballParameter("F", 245.2, dim("M L T^-2"), "cable pretension, k (span - x_r)",
-                       _NTRT + ": pretension 2452 kg dm/s^2"),
+    SuperballParameter(
+        "F", 245.2, dim("M L T^-2"), "cable pretension, k (span - x_r)", _NTRT + ": pretension 2452 kg dm/s^2"
+    ),
     SuperballParameter("x_r", math.nan, dim("L"), "cable rest length (tendon springlength)", "from F: span - F/k"),
-    SuperballParameter("F_max", 10000.0, dim("M L T^-2"),
-                       "largest cable tension a reel motor adds (actuator ctrlrange)",
-                       _NTRT + ": maxTens 100000 kg dm/s^2"),
-    SuperballParameter("v", 0.5, dim("L T^-1"), "fastest reel speed, the target actuator velocity (custom numeric)",
-                       _CHOSEN + " (NTRT's 10000 dm/s never binds)"),
-    SuperballParameter("K_eps", 4.0, dim("L T^-1"),
-                       "controller gain: reel speed per unit of cable strain (custom numeric)", _CHOSEN),
+    SuperballParameter(
+        "F_max",
+        10000.0,
+        dim("M L T^-2"),
+        "largest cable tension a reel motor adds (actuator ctrlrange)",
+        _NTRT + ": maxTens 100000 kg dm/s^2",
+    ),
+    SuperballParameter(
+        "v",
+        0.5,
+        dim("L T^-1"),
+        "fastest reel speed, the target actuator velocity (custom numeric)",
+        _CHOSEN + " (NTRT's 10000 dm/s never binds)",
+    ),
+    SuperballParameter(
+        "K_eps", 4.0, dim("L T^-1"), "controller gain: reel speed per unit of cable strain (custom numeric)", _CHOSEN
+    ),
     SuperballParameter("A", 0.5, dim("1"), "largest strain the controller asks of a cable (custom numeric)", _CHOSEN),
     SuperballParameter("t_on", 1.0, dim("T"), "time the controller starts (custom numeric)", _CHOSEN),
-    SuperballParameter("t_ramp", 0.5, dim("T"), "time its targets take to reach full strength (custom numeric)",
-                       _CHOSEN),
+    SuperballParameter(
+        "t_ramp", 0.5, dim("T"), "time its targets take to reach full strength (custom numeric)", _CHOSEN
+    ),
     SuperballParameter("mu", 0.99, dim("1"), "sliding friction (geom friction)", _NTRT + ": friction 0.99"),
-    SuperballParameter("mu_roll", 0.001, dim("L"),
-                       "torsional and rolling friction, lengths in MuJoCo (geom friction)",
-                       _NTRT + ": rollFriction 0.01, read as decimetres"),
+    SuperballParameter(
+        "mu_roll",
+        0.001,
+        dim("L"),
+        "torsional and rolling friction, lengths in MuJoCo (geom friction)",
+        _NTRT + ": rollFriction 0.01, read as decimetres",
+    ),
     SuperballParameter("t_c", 0.02, dim("T"), "contact time constant (geom solref)", "MuJoCo's default, written out"),
     SuperballParameter("w", 0.001, dim("L"), "contact impedance width (geom solimp)", "MuJoCo's default, written out"),
     SuperballParameter("h0", 0.2, dim("L"), "drop height of the lowest point (body pos)", _CHOSEN),
@@ -148,10 +166,30 @@ PARAMETERS: tuple[SuperballParameter, ...] = (
 #: The exponents of the white paper's Section 4 answer, x_r included: g and
 #: lengths times s, F and v times s, rho times s^-3, time, k and c unchanged.
 PAPER_SCALING: dict[str, Fraction] = {
-    name: Fraction(power) for name, power in {
-        "g": 1, "rho": -3, "l": 1, "r": 1, "a": 1, "k": 0, "c": 0, "F": 1, "x_r": 1, "F_max": 1, "v": 1,
-        "K_eps": 1, "A": 0, "t_on": 0, "t_ramp": 0, "mu": 0, "mu_roll": 1, "t_c": 0, "w": 1, "h0": 1,
-        "dt": 0, "t": 0,
+    name: Fraction(power)
+    for name, power in {
+        "g": 1,
+        "rho": -3,
+        "l": 1,
+        "r": 1,
+        "a": 1,
+        "k": 0,
+        "c": 0,
+        "F": 1,
+        "x_r": 1,
+        "F_max": 1,
+        "v": 1,
+        "K_eps": 1,
+        "A": 0,
+        "t_on": 0,
+        "t_ramp": 0,
+        "mu": 0,
+        "mu_roll": 1,
+        "t_c": 0,
+        "w": 1,
+        "h0": 1,
+        "dt": 0,
+        "t": 0,
     }.items()
 }
 
@@ -223,9 +261,14 @@ def bar_nodes(a: float, l: float) -> list[tuple[np.ndarray, np.ndarray]]:  # noq
     [(1.0, -2.0, 0.0), (1.0, 2.0, 0.0)]
     """
     h = l / 2
-    ends = (((a, -h, 0), (a, h, 0)), ((-a, -h, 0), (-a, h, 0)),
-            ((0, a, -h), (0, a, h)), ((0, -a, -h), (0, -a, h)),
-            ((-h, 0, a), (h, 0, a)), ((-h, 0, -a), (h, 0, -a)))
+    ends = (
+        ((a, -h, 0), (a, h, 0)),
+        ((-a, -h, 0), (-a, h, 0)),
+        ((0, a, -h), (0, a, h)),
+        ((0, -a, -h), (0, -a, h)),
+        ((-h, 0, a), (h, 0, a)),
+        ((-h, 0, -a), (h, 0, -a)),
+    )
     return [(np.array(e0, float), np.array(e1, float)) for e0, e1 in ends]
 
 
@@ -255,13 +298,18 @@ def cable_pairs(a: float, l: float) -> tuple[list[tuple[tuple[int, int], tuple[i
     """
     bars = bar_nodes(a, l)
     ends = [(i, j, bars[i][j]) for i in range(6) for j in range(2)]
-    candidates = [((i, j), (k, m), float(np.linalg.norm(x - y)))
-                  for (i, j, x), (k, m, y) in itertools.combinations(ends, 2) if i // 2 != k // 2]
+    candidates = [
+        ((i, j), (k, m), float(np.linalg.norm(x - y)))
+        for (i, j, x), (k, m, y) in itertools.combinations(ends, 2)
+        if i // 2 != k // 2
+    ]
     span = min(d for _, _, d in candidates)
     pairs = [(e0, e1) for e0, e1, d in candidates if d <= span * (1 + 1e-9)]
     if len(pairs) != 24:
-        raise InvalidRequestError(f"bar offset a={a} and length l={l} do not give a six-bar tensegrity "
-                                  f"(found {len(pairs)} nearest cables, need 24); use a between l/4 and l/2")
+        raise InvalidRequestError(
+            f"bar offset a={a} and length l={l} do not give a six-bar tensegrity "
+            f"(found {len(pairs)} nearest cables, need 24); use a between l/4 and l/2"
+        )
     return pairs, span
 
 
@@ -303,8 +351,9 @@ def superball_mjcf(params=None) -> str:
     if params is not None:
         unknown = sorted(set(params) - set(p))
         if unknown:
-            raise InvalidRequestError(f"unknown SUPERball parameter {unknown[0]!r}; use names of PARAMETERS: "
-                                      + ", ".join(sorted(p)))
+            raise InvalidRequestError(
+                f"unknown SUPERball parameter {unknown[0]!r}; use names of PARAMETERS: " + ", ".join(sorted(p))
+            )
         p.update({n: float(v) for n, v in params.items()})
         if "x_r" not in params:
             p["x_r"] = _span(p) - p["F"] / p["k"]
@@ -312,7 +361,7 @@ def superball_mjcf(params=None) -> str:
     turn = _rotation(*_TILT)
     bars = [(turn @ e0, turn @ e1) for e0, e1 in bar_nodes(p["a"], p["l"])]
     lift = p["h0"] + p["r"] - min(min(e0[2], e1[2]) for e0, e1 in bars)
-    friction = f'{p["mu"]!r} {p["mu_roll"]!r} {p["mu_roll"]!r}'
+    friction = f"{p['mu']!r} {p['mu_roll']!r} {p['mu_roll']!r}"
     contact = f'condim="6" friction="{friction}" solref="{p["t_c"]!r} 1" solimp="0.9 0.95 {p["w"]!r} 0.5 2"'
     lines = [
         '<mujoco model="superball">',
@@ -342,9 +391,11 @@ def superball_mjcf(params=None) -> str:
     lines += ["  </worldbody>", "  <tendon>"]
     for n, ((i, j), (k, m)) in enumerate(pairs):
         # springlength "0 x_r": no force between 0 and x_r, so a cable pulls but never pushes
-        lines.append(f'    <spatial name="cable{n}" stiffness="{p["k"]!r}" damping="{p["c"]!r}" '
-                     f'springlength="0 {p["x_r"]!r}"><site site="bar{i}_end{j}"/><site site="bar{k}_end{m}"/>'
-                     "</spatial>")
+        lines.append(
+            f'    <spatial name="cable{n}" stiffness="{p["k"]!r}" damping="{p["c"]!r}" '
+            f'springlength="0 {p["x_r"]!r}"><site site="bar{i}_end{j}"/><site site="bar{k}_end{m}"/>'
+            "</spatial>"
+        )
     lines += ["  </tendon>", "  <actuator>"]
     for n in range(len(pairs)):
         lines.append(f'    <motor name="reel{n}" tendon="cable{n}" ctrlrange="{-p["F_max"]!r} 0"/>')
@@ -403,8 +454,9 @@ class CableController:
             try:
                 return float(model.numeric(name).data[0])
             except KeyError:
-                raise InvalidRequestError(f"model has no custom numeric {name!r}; write it with superball_mjcf",
-                                          culprit=name) from None
+                raise InvalidRequestError(
+                    f"model has no custom numeric {name!r}; write it with superball_mjcf", culprit=name
+                ) from None
 
         self.v, self.gain, self.amplitude = numeric("v"), numeric("K_eps"), numeric("A")
         self.t_on, self.t_ramp = numeric("t_on"), numeric("t_ramp")
@@ -512,7 +564,7 @@ def bar_ends(model, rows) -> np.ndarray:
     for k in range(12):
         body = m.site_bodyid[k]
         address = m.jnt_qposadr[m.body_jntadr[body]]
-        centre, quat = rows[:, address:address + 3], rows[:, address + 3:address + 7]
+        centre, quat = rows[:, address : address + 3], rows[:, address + 3 : address + 7]
         quat = quat / np.linalg.norm(quat, axis=1, keepdims=True)
         w, axis = quat[:, :1], quat[:, 1:]
         place = np.broadcast_to(m.site_pos[k], axis.shape)

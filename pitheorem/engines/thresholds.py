@@ -43,7 +43,17 @@ from .model import EngineModel, Parameter
 from .packages import check_engine
 from .registry import registered
 
-__all__ = ["BOUNDS", "KINDS", "THRESHOLDS", "Threshold", "check", "crossed", "held_against", "mjx_parameters", "thresholds"]
+__all__ = [
+    "BOUNDS",
+    "KINDS",
+    "THRESHOLDS",
+    "Threshold",
+    "check",
+    "crossed",
+    "held_against",
+    "mjx_parameters",
+    "thresholds",
+]
 
 #: how a threshold acts: on numbers below it, above it, on numbers the engine computes as it runs (a solver's
 #: residual, a contact's separation: nothing in a model's table), or as a setting the engine does not apply
@@ -55,29 +65,38 @@ _M, _ML2, _L, _T = (Dimension.parse(d) for d in ("M", "M L^2", "L", "T"))
 KINDS: Mapping[str, tuple[str, Callable]] = {
     "mass": ("a body's or link's mass", lambda p: p.dimension == _M and p.name.endswith("_mass")),
     "inertia": ("a body's or link's inertia", lambda p: p.dimension == _ML2 and "inertia" in p.path),
-    "friction_length": ("torsional and rolling friction (MJCF friction's second and third numbers)",
-                        lambda p: p.dimension == _L and p.path.endswith("friction torsional rolling")),
-    "solref_timeconst": ("the time constant of a solref",
-                         lambda p: p.dimension == _T and p.name.endswith("timeconst")),
+    "friction_length": (
+        "torsional and rolling friction (MJCF friction's second and third numbers)",
+        lambda p: p.dimension == _L and p.path.endswith("friction torsional rolling"),
+    ),
+    "solref_timeconst": ("the time constant of a solref", lambda p: p.dimension == _T and p.name.endswith("timeconst")),
     "control_range": ("an actuator's ctrlrange", lambda p: p.name.endswith("_ctrlrange")),
-    "collision_size": ("a URDF collision geometry's size, radius or length",
-                       lambda p: p.dimension == _L and " collision #" in p.path
-                       and p.name.endswith(("_size", "_radius", "_length"))),
-    "capsule_segment": ("the half-length of a capsule (the compiled geom size's second number, or half its "
-                        "fromto's length) that collides with a sphere, capsule, box, mesh or height field: "
-                        "the collisions MJX computes with the closest point on its segment "
-                        "(mjx_parameters)",
-                        lambda p: p.dimension == _L and p.path.endswith(" capsule half-length")),
-    "cylinder_on_plane": ("the half-length of a cylinder (the compiled geom size's second number) that "
-                          "collides with a plane (mjx_parameters)",
-                          lambda p: p.dimension == _L and p.path.endswith(" cylinder half-length")),
-    "fluid_mass": ("a body's mass, with the fluid model on (mjx_parameters)",
-                   lambda p: p.dimension == _M and p.path.endswith(" mass in the fluid model")),
-    "fluid_box_moments": ("the sums I1 + I2 - I0, I0 + I2 - I1 and I0 + I1 - I2 of a body's principal moments "
-                          "of inertia, which give its equivalent box in the fluid model (mjx_parameters)",
-                          lambda p: p.dimension == _ML2 and p.path.endswith(" fluid box moments")),
-    "number": ("every number of the model, of any dimension (an engine that stores them in float32)",
-               lambda p: True),
+    "collision_size": (
+        "a URDF collision geometry's size, radius or length",
+        lambda p: p.dimension == _L and " collision #" in p.path and p.name.endswith(("_size", "_radius", "_length")),
+    ),
+    "capsule_segment": (
+        "the half-length of a capsule (the compiled geom size's second number, or half its "
+        "fromto's length) that collides with a sphere, capsule, box, mesh or height field: "
+        "the collisions MJX computes with the closest point on its segment "
+        "(mjx_parameters)",
+        lambda p: p.dimension == _L and p.path.endswith(" capsule half-length"),
+    ),
+    "cylinder_on_plane": (
+        "the half-length of a cylinder (the compiled geom size's second number) that "
+        "collides with a plane (mjx_parameters)",
+        lambda p: p.dimension == _L and p.path.endswith(" cylinder half-length"),
+    ),
+    "fluid_mass": (
+        "a body's mass, with the fluid model on (mjx_parameters)",
+        lambda p: p.dimension == _M and p.path.endswith(" mass in the fluid model"),
+    ),
+    "fluid_box_moments": (
+        "the sums I1 + I2 - I0, I0 + I2 - I1 and I0 + I1 - I2 of a body's principal moments "
+        "of inertia, which give its equivalent box in the fluid model (mjx_parameters)",
+        lambda p: p.dimension == _ML2 and p.path.endswith(" fluid box moments"),
+    ),
+    "number": ("every number of the model, of any dimension (an engine that stores them in float32)", lambda p: True),
 }
 
 #: MuJoCo's geom types (mjtGeom) that mjx_parameters reads
@@ -148,10 +167,14 @@ class Threshold:
             object.__setattr__(self, "dimension", None if self.dimension == "none" else Dimension.parse(self.dimension))
         object.__setattr__(self, "applies", tuple(self.applies))
         if self.bound not in BOUNDS:
-            raise InvalidRequestError(f"threshold {self.name!r}: unknown bound {self.bound!r}; valid: {', '.join(BOUNDS)}")
+            raise InvalidRequestError(
+                f"threshold {self.name!r}: unknown bound {self.bound!r}; valid: {', '.join(BOUNDS)}"
+            )
         unknown = [k for k in self.applies if k not in KINDS]
         if unknown:
-            raise InvalidRequestError(f"threshold {self.name!r}: unknown kind {unknown[0]!r}; valid: {', '.join(KINDS)}")
+            raise InvalidRequestError(
+                f"threshold {self.name!r}: unknown kind {unknown[0]!r}; valid: {', '.join(KINDS)}"
+            )
 
     def limit(self, parameters: Mapping[str, float] | None = None) -> float | None:
         """The threshold's value for a model: `value`, or `value` times the `relative_to` parameter.
@@ -184,8 +207,11 @@ def _read(path: Path) -> tuple[Threshold, ...]:
     """The ``[thresholds]`` tables of the catalogue file, engine by engine, in the file's order."""
     doc = tomllib.loads(path.read_text(encoding="utf-8"))
     sources = doc["sources"]
-    return tuple(Threshold(engine, **{**entry, "source": entry["source"].format_map(sources)})
-                 for engine, entries in doc["thresholds"].items() for entry in entries)
+    return tuple(
+        Threshold(engine, **{**entry, "source": entry["source"].format_map(sources)})
+        for engine, entries in doc["thresholds"].items()
+        for entry in entries
+    )
 
 
 #: every catalogued threshold, read from ``constants.toml`` beside this module
@@ -232,8 +258,9 @@ def thresholds(engine: str | None = None, *, names: Iterable[str] | None = None)
     by_name = {t.name: t for t in pool}
     for n in names:
         if n not in by_name:
-            raise InvalidRequestError(f"no threshold {n!r} of {engine or 'any engine'}; valid: {', '.join(by_name)}",
-                                      culprit=n)
+            raise InvalidRequestError(
+                f"no threshold {n!r} of {engine or 'any engine'}; valid: {', '.join(by_name)}", culprit=n
+            )
     return tuple(by_name[n] for n in names)
 
 
@@ -248,8 +275,9 @@ def _read_table(parameters) -> tuple[Parameter, ...]:
     table = tuple(parameters)
     for p in table:
         if not isinstance(p, Parameter):
-            raise InvalidRequestError(f"crossed needs a table of Parameter (EngineModel.parameters), got "
-                                      f"{type(p).__name__}", culprit=p)
+            raise InvalidRequestError(
+                f"crossed needs a table of Parameter (EngineModel.parameters), got {type(p).__name__}", culprit=p
+            )
     return table
 
 
@@ -262,13 +290,22 @@ def _read_factors(factors, names) -> dict[str, float]:
         if name not in names:
             raise InvalidRequestError(f"factors names {name!r}, which is no parameter of the table", culprit=name)
     # a scaling's own factors are positive finite floats already; anything else is read and checked
-    return {name: f if type(f) is float and 0 < f < math.inf else positive_float(f, f"the factor of {name!r}")
-            for name, f in factors.items()}
+    return {
+        name: f if type(f) is float and 0 < f < math.inf else positive_float(f, f"the factor of {name!r}")
+        for name, f in factors.items()
+    }
 
 
-def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None, *,
-            near: float = 2.0, fixed_only: bool = False, grouped: bool = False,
-            precision: str = "float32") -> tuple[Cause, ...]:
+def crossed(
+    engine: str,
+    parameters,
+    factors: Mapping[str, float] | None = None,
+    *,
+    near: float = 2.0,
+    fixed_only: bool = False,
+    grouped: bool = False,
+    precision: str = "float32",
+) -> tuple[Cause, ...]:
     """The parameters beyond or near a threshold of the engine, as causes of kind ``"threshold"``.
 
     Each parameter of a kind a threshold applies to (:data:`KINDS`) is
@@ -341,8 +378,9 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
     found = []  # (threshold, parameter, its worst number, the limit, whether beyond it)
     if precision not in ("float32", "float64"):
         raise InvalidRequestError(f"precision must be 'float32' or 'float64', got {precision!r}", culprit=precision)
-    compared = [t for t in thresholds(engine) if t.bound in ("below", "above")
-                and (not t.precision or t.precision == precision)]
+    compared = [
+        t for t in thresholds(engine) if t.bound in ("below", "above") and (not t.precision or t.precision == precision)
+    ]
     for p in table:
         if p.path.startswith("option o_"):
             continue
@@ -364,8 +402,10 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
             if beyond or close:
                 found.append((t, p, worst, limit, beyond))
     if not grouped:
-        return sorted_causes(Cause("threshold", p.name, _detail(p, t, worst, limit, near, beyond))
-                             for t, p, worst, limit, beyond in found)
+        return sorted_causes(
+            Cause("threshold", p.name, _detail(p, t, worst, limit, near, beyond))
+            for t, p, worst, limit, beyond in found
+        )
     groups: dict = {}
     for t, p, worst, limit, beyond in found:
         groups.setdefault((t.name, p.dimension_text, beyond), []).append((p.name, worst, t, p, limit))
@@ -377,8 +417,9 @@ def crossed(engine: str, parameters, factors: Mapping[str, float] | None = None,
         names = ", ".join(name for name, *_ in members[:3])
         if len(members) > 3:
             names += f" and {len(members) - 3} more"
-        out.append(Cause("threshold", names, f"{len(members)} numbers; the worst: {detail}" if len(members) > 1
-                         else detail))
+        out.append(
+            Cause("threshold", names, f"{len(members)} numbers; the worst: {detail}" if len(members) > 1 else detail)
+        )
     return sorted_causes(out)
 
 
@@ -493,8 +534,17 @@ def mjx_parameters(model) -> tuple[Parameter, ...]:
         else:
             continue
         ident, path = _label(mjmodel, "geom", g, names, "half_length")
-        out.append(Parameter(ident, f"{path} {shape} half-length", (float(mjmodel.geom_size[g][1]),), _L,
-                             "derived", "file", note="read from the compiled model"))
+        out.append(
+            Parameter(
+                ident,
+                f"{path} {shape} half-length",
+                (float(mjmodel.geom_size[g][1]),),
+                _L,
+                "derived",
+                "file",
+                note="read from the compiled model",
+            )
+        )
     opt = mjmodel.opt
     # MJX's inertia-box fluid model, on every body; a refused file's compiled masses are a probe's: left out
     fluid = opt.density > 0 or opt.viscosity > 0 or any(opt.wind)
@@ -504,12 +554,30 @@ def mjx_parameters(model) -> tuple[Parameter, ...]:
             if mass <= 0:
                 continue
             ident, path = _label(mjmodel, "body", b, names, "mass_in_fluid")
-            out.append(Parameter(ident, f"{path} mass in the fluid model", (mass,), _M, "derived", "file",
-                                 note="read from the compiled model"))
+            out.append(
+                Parameter(
+                    ident,
+                    f"{path} mass in the fluid model",
+                    (mass,),
+                    _M,
+                    "derived",
+                    "file",
+                    note="read from the compiled model",
+                )
+            )
             sums = tuple(sum(moments) - 2 * moments[i] for i in range(3))  # I1 + I2 - I0, I0 + I2 - I1, ...
             ident, path = _label(mjmodel, "body", b, names, "fluid_box_moments")
-            out.append(Parameter(ident, f"{path} fluid box moments", sums, _ML2, "derived", "file",
-                                 note="sums of the body's principal moments, read from the compiled model"))
+            out.append(
+                Parameter(
+                    ident,
+                    f"{path} fluid box moments",
+                    sums,
+                    _ML2,
+                    "derived",
+                    "file",
+                    note="sums of the body's principal moments, read from the compiled model",
+                )
+            )
     return tuple(out)
 
 
@@ -580,6 +648,12 @@ def check(model, engine: str | None = None) -> tuple[Cause, ...]:
     causes = crossed(engine, table, precision=model.settings().get("precision", "float32"))
     refusal = getattr(model._backend, "refusal", None)  # a file the engine refused to compile (read as a table)
     if refusal is not None:
-        causes = (Cause("threshold", refusal.element or Path(refusal.path).name,
-                        f"{model.engine} refuses the file: {refusal.reason}"), *causes)
+        causes = (
+            Cause(
+                "threshold",
+                refusal.element or Path(refusal.path).name,
+                f"{model.engine} refuses the file: {refusal.reason}",
+            ),
+            *causes,
+        )
     return causes

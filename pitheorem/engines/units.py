@@ -35,8 +35,20 @@ from ..errors import EngineModelError, InvalidRequestError, UnitError
 from ..exact import read_number, short_text
 from ..scaling import Scaling, float_power
 
-__all__ = ["SI", "UNITS_TEXT", "conversion", "convert", "declared_units", "factor_of", "read_units", "record",
-           "recorded", "refuse_urdf", "run_in_units", "unit_size"]
+__all__ = [
+    "SI",
+    "UNITS_TEXT",
+    "conversion",
+    "convert",
+    "declared_units",
+    "factor_of",
+    "read_units",
+    "record",
+    "recorded",
+    "refuse_urdf",
+    "run_in_units",
+    "unit_size",
+]
 
 #: the units of a file that declares none: SI (MuJoCo's and PyBullet's defaults are given in it)
 SI = {"M": "kg", "L": "m", "T": "s"}
@@ -91,8 +103,11 @@ def unit_size(base: str, unit) -> Fraction:
         quantity = None
     expected = _PINT_DIMENSION[base]
     if quantity is None or dict(quantity.dimensionality) != {expected: 1}:
-        raise UnitError(f"{unit!r} is no unit of {expected.strip('[]')} ({base}); give one such as "
-                        f"{ {'M': 'g', 'L': 'mm', 'T': 'ms'}[base]!r}", culprit=unit)
+        raise UnitError(
+            f"{unit!r} is no unit of {expected.strip('[]')} ({base}); give one such as "
+            f"{ {'M': 'g', 'L': 'mm', 'T': 'ms'}[base]!r}",
+            culprit=unit,
+        )
     size = read_number(float(quantity.magnitude), f"the size of {unit!r}")
     if size <= 0:
         raise UnitError(f"{unit!r} has no positive size", culprit=unit)
@@ -140,8 +155,11 @@ def read_units(units, what: str = "units") -> dict[str, str]:
     if units is None:
         return dict(SI)
     if not isinstance(units, Mapping):
-        raise InvalidRequestError(f"{what} must map base dimensions (M, L, T) to units, such as "
-                                  f"{{'L': 'cm', 'M': 'g'}}; got {type(units).__name__}", culprit=units)
+        raise InvalidRequestError(
+            f"{what} must map base dimensions (M, L, T) to units, such as "
+            f"{{'L': 'cm', 'M': 'g'}}; got {type(units).__name__}",
+            culprit=units,
+        )
     for base in units:
         if base not in SI:
             raise InvalidRequestError(f"{what} names {base!r}; give units for M, L and T", culprit=base)
@@ -273,9 +291,13 @@ def refuse_urdf(model, units: Mapping[str, str]) -> None:
     ...     print(str(err)[:60])
     arm.urdf: units: a URDF file is in SI units (metres, kilogra
     """
-    raise EngineModelError(model.path or "the URDF model", "units", "a URDF file is in SI units (metres, "
-                           "kilograms, seconds) by its specification, so pitheorem reads and writes none in "
-                           f"{' '.join(units.values())}; scale it with model.scaled(...) instead")
+    raise EngineModelError(
+        model.path or "the URDF model",
+        "units",
+        "a URDF file is in SI units (metres, "
+        "kilograms, seconds) by its specification, so pitheorem reads and writes none in "
+        f"{' '.join(units.values())}; scale it with model.scaled(...) instead",
+    )
 
 
 def record(spec, units: Mapping[str, str]) -> None:
@@ -323,8 +345,9 @@ def recorded(spec, path: str) -> dict[str, str] | None:
             for item in text.data.split(";"):
                 base, sep, unit = (part.strip() for part in item.partition("="))
                 if not sep or base not in SI:
-                    raise EngineModelError(path, f"text {UNITS_TEXT!r}", f"data {text.data!r} is no list of "
-                                           "units such as 'M=g; L=mm; T=s'")
+                    raise EngineModelError(
+                        path, f"text {UNITS_TEXT!r}", f"data {text.data!r} is no list of units such as 'M=g; L=mm; T=s'"
+                    )
                 units[base] = unit
             return read_units(units, f"the units {path} records")
     return None
@@ -349,8 +372,11 @@ def declared_units(model, units) -> dict[str, str]:
     found = recorded(spec, model.path) if spec is not None else None
     given = None if units is None else read_units(units)
     if found is not None and given is not None and found != given:
-        raise InvalidRequestError(f"{model.path} records its units as {found}; units={given} contradicts them "
-                                  "(leave units out to read the file in its own)", culprit=units)
+        raise InvalidRequestError(
+            f"{model.path} records its units as {found}; units={given} contradicts them "
+            "(leave units out to read the file in its own)",
+            culprit=units,
+        )
     return given or found or dict(SI)
 
 
@@ -387,8 +413,9 @@ def run_in_units(model, rows, units: Mapping[str, object]) -> np.ndarray:
     names, dims = model.coordinates()
     rows = np.asarray(rows, dtype=float)
     if rows.ndim != 2 or rows.shape[1] != len(dims):
-        raise InvalidRequestError(f"rows must have {len(dims)} columns ({', '.join(names[:4])}, ...), "
-                                  f"got shape {rows.shape}")
+        raise InvalidRequestError(
+            f"rows must have {len(dims)} columns ({', '.join(names[:4])}, ...), got shape {rows.shape}"
+        )
     factors = _factors(model.units, read_units({**model.units, **dict(units)}))
     return rows * np.array([factor_of(d, factors) for d in dims])
 

@@ -67,8 +67,11 @@ _BULLET = {c.name: c for c in hidden_constants("pybullet")}
 ENGINE_PARAMETERS = (
     ("contactSlop", "bullet_contact_slop", "allowed penetration before contacts push back"),
     ("restitutionVelocityThreshold", "bullet_restitution_velocity_threshold", "impacts slower than this do not bounce"),
-    ("solverResidualThreshold", "bullet_solver_residual_threshold",
-     "the solver stops below this squared velocity residual"),
+    (
+        "solverResidualThreshold",
+        "bullet_solver_residual_threshold",
+        "the solver stops below this squared velocity residual",
+    ),
 )
 #: the multibody damping of every link: one number acting with two dimensions, the catalogue's two
 #: constants (the same default)
@@ -118,7 +121,13 @@ class _Attr:
 
     def __init__(self, name, path, element, attr, dimension, note="", index=-1, default=None):
         self.name, self.path, self.element, self.attr, self.dimension, self.note = (
-            name, path, element, attr, dimension, note)
+            name,
+            path,
+            element,
+            attr,
+            dimension,
+            note,
+        )
         self.index, self.default = index, default
 
     def read(self):
@@ -126,8 +135,9 @@ class _Attr:
 
     def in_copy(self, elements: list) -> _Attr:
         """The same attribute in a copy of the file, whose elements in document order are `elements`."""
-        return _Attr(self.name, self.path, elements[self.index], self.attr, self.dimension, self.note,
-                     self.index, self.default)
+        return _Attr(
+            self.name, self.path, elements[self.index], self.attr, self.dimension, self.note, self.index, self.default
+        )
 
 
 def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr]:
@@ -144,8 +154,9 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
             return
         text = element.get(attr, default)
         check_numbers(path, where, attr, text, nonnegative=dimension == _M)  # a mass cannot be < 0
-        out.append(_Attr(unique_name(ident, names), where, element, attr, dimension, note, address[id(element)],
-                         default))
+        out.append(
+            _Attr(unique_name(ident, names), where, element, attr, dimension, note, address[id(element)], default)
+        )
 
     for link in root.findall("link"):
         lname = link.get("name", "")
@@ -157,9 +168,15 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
             add(f"{ident}_mass", f"{where} inertial mass", inertial.find("mass"), "value", _M)
             inertia = inertial.find("inertia")
             for a in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
-                add(f"{ident}_{a}", f"{where} inertia {a}", inertia, a, dim("M L^2"),
+                add(
+                    f"{ident}_{a}",
+                    f"{where} inertia {a}",
+                    inertia,
+                    a,
+                    dim("M L^2"),
                     note="PyBullet recomputes the inertia from the collision shapes unless "
-                         "URDF_USE_INERTIA_FROM_FILE is given")
+                    "URDF_USE_INERTIA_FROM_FILE is given",
+                )
         for kind in ("collision", "visual"):
             for k, shape in enumerate(link.findall(kind)):
                 sid = f"{ident}_{kind}{k}"
@@ -178,26 +195,52 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
                         filename = g.get("filename", "")
                         resolved = _mesh_path(filename, source_dir)
                         if resolved is None:
-                            raise EngineModelError(path, f"{swhere} mesh {filename!r}",
-                                                   "mesh file not found (relative to the URDF's folder)")
-                        add(f"{sid}_scale", f"{swhere} mesh scale", g, "scale", _L,
-                            note="a factor times the mesh file's units, a length", default="1 1 1")
+                            raise EngineModelError(
+                                path,
+                                f"{swhere} mesh {filename!r}",
+                                "mesh file not found (relative to the URDF's folder)",
+                            )
+                        add(
+                            f"{sid}_scale",
+                            f"{swhere} mesh scale",
+                            g,
+                            "scale",
+                            _L,
+                            note="a factor times the mesh file's units, a length",
+                            default="1 1 1",
+                        )
                     elif g.tag == "plane":
                         pass  # an infinite plane: nothing to scale
                     elif kind == "visual":
                         pass  # something PyBullet draws nothing from (a <material> put inside <geometry>)
                     else:
-                        raise EngineModelError(path, f"{swhere} <{g.tag}>", "unknown geometry; use box, cylinder, "
-                                               "capsule, sphere, mesh or plane")
+                        raise EngineModelError(
+                            path,
+                            f"{swhere} <{g.tag}>",
+                            "unknown geometry; use box, cylinder, capsule, sphere, mesh or plane",
+                        )
         contact = link.find("contact")
         if contact is not None:
-            for tag, d in (("rolling_friction", _L), ("spinning_friction", _L), ("stiffness", dim("M T^-2")),
-                           ("damping", dim("M T^-1"))):
+            for tag, d in (
+                ("rolling_friction", _L),
+                ("spinning_friction", _L),
+                ("stiffness", dim("M T^-2")),
+                ("damping", dim("M T^-1")),
+            ):
                 add(f"{ident}_{tag}", f"{where} contact {tag}", contact.find(tag), "value", d)
             for tag in contact:
-                if tag.tag not in ("lateral_friction", "rolling_friction", "spinning_friction", "restitution",
-                                   "stiffness", "damping", "contact_cfm", "contact_erp", "inertia_scaling",
-                                   "friction_anchor"):
+                if tag.tag not in (
+                    "lateral_friction",
+                    "rolling_friction",
+                    "spinning_friction",
+                    "restitution",
+                    "stiffness",
+                    "damping",
+                    "contact_cfm",
+                    "contact_erp",
+                    "inertia_scaling",
+                    "friction_anchor",
+                ):
                     raise EngineModelError(path, f"{where} contact <{tag.tag}>", "unknown contact parameter")
     for joint in root.findall("joint"):
         jname, jtype = joint.get("name", ""), joint.get("type", "")
@@ -208,8 +251,11 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
             continue
         kind = _joint_kind(jtype)
         if kind is None:
-            raise EngineModelError(path, f"{where} (type {jtype!r})", "joint type not supported by pitheorem's "
-                                   "scaling; use revolute, continuous, prismatic or fixed")
+            raise EngineModelError(
+                path,
+                f"{where} (type {jtype!r})",
+                "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic or fixed",
+            )
         q, force = kind.q, kind.force
         limit = joint.find("limit")
         add(f"{ident}_lower", f"{where} limit lower", limit, "lower", q)
@@ -249,9 +295,12 @@ def _compound_meshes(tree: ET.ElementTree, source_dir: Path) -> list[tuple[str, 
 def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> None:
     """Warn about each collision mesh of :func:`_compound_meshes`."""
     for link, filename, parts in _compound_meshes(tree, source_dir):
-        warn_unscalable(path, f"link {link!r} collision mesh {filename!r}",
-                        f"its {parts} convex parts load as a compound whose collision margins "
-                        "changeDynamics cannot reach; contacts of a scaled copy are off by that margin")
+        warn_unscalable(
+            path,
+            f"link {link!r} collision mesh {filename!r}",
+            f"its {parts} convex parts load as a compound whose collision margins "
+            "changeDynamics cannot reach; contacts of a scaled copy are off by that margin",
+        )
 
 
 def _link_parameter(link: str, setting: str) -> str:
@@ -282,7 +331,7 @@ def _mesh_path(filename: str, source_dir: Path) -> Path | None:
     """
     name = filename
     if name.startswith("package://"):
-        name = name[len("package://"):]
+        name = name[len("package://") :]
     candidates = [source_dir / name, Path(name)]
     if filename.startswith("package://"):
         candidates += [folder / name for folder in list(source_dir.parents)[:4]]
@@ -317,8 +366,17 @@ class UrdfBackend:
     'UrdfBackend'
     """
 
-    def __init__(self, tree: ET.ElementTree, path: str, source_dir: Path, settings: dict, *, scene: dict,
-                 info: dict | None = None, attrs: list[_Attr] | None = None):
+    def __init__(
+        self,
+        tree: ET.ElementTree,
+        path: str,
+        source_dir: Path,
+        settings: dict,
+        *,
+        scene: dict,
+        info: dict | None = None,
+        attrs: list[_Attr] | None = None,
+    ):
         self.tree = tree  # never changed once read: a copy is a new tree
         self.path = path
         self.source_dir = source_dir
@@ -356,8 +414,12 @@ class UrdfBackend:
             with os.fdopen(fd, "w") as fh:
                 fh.write(text)
             with quiet_stdout():
-                body = pb.loadURDF(tmp, basePosition=list(self.scene["base_position"]),
-                                   useFixedBase=self.scene["fixed_base"], physicsClientId=client)
+                body = pb.loadURDF(
+                    tmp,
+                    basePosition=list(self.scene["base_position"]),
+                    useFixedBase=self.scene["fixed_base"],
+                    physicsClientId=client,
+                )
         finally:
             os.unlink(tmp)
         if body < 0:
@@ -389,56 +451,153 @@ class UrdfBackend:
     def parameters(self):
         out = [Parameter(a.name, a.path, a.read(), a.dimension, "file", "file", note=a.note) for a in self._attrs]
         st = self._settings
-        out.append(Parameter("g", "setGravity (magnitude)", (st["g"],), dim("L T^-2"), "engine", "setGravity",
-                             note="PyBullet's own default is 0"))
+        out.append(
+            Parameter(
+                "g",
+                "setGravity (magnitude)",
+                (st["g"],),
+                dim("L T^-2"),
+                "engine",
+                "setGravity",
+                note="PyBullet's own default is 0",
+            )
+        )
         out.append(Parameter("timestep", "setTimeStep", (st["timestep"],), _T, "engine", "setTimeStep"))
         for name, constant, note in ENGINE_PARAMETERS:
-            out.append(Parameter(name, f"setPhysicsEngineParameter({name}=...)", (st[name],), _BULLET[constant].dimension,
-                                 "engine", f"setPhysicsEngineParameter({name}=...)", note=note))
+            out.append(
+                Parameter(
+                    name,
+                    f"setPhysicsEngineParameter({name}=...)",
+                    (st[name],),
+                    _BULLET[constant].dimension,
+                    "engine",
+                    f"setPhysicsEngineParameter({name}=...)",
+                    note=note,
+                )
+            )
         for index, lname in self._info["links"]:
             link = self._link_dynamics(index)
             if "collisionMargin" in link:
-                out.append(Parameter(_link_parameter(lname, "collision_margin"), f"link {lname!r} collision margin",
-                                     (link["collisionMargin"],), _L, "engine", "changeDynamics(collisionMargin=...)",
-                                     note="0.001 for boxes and meshes, the radius for spheres"))
+                out.append(
+                    Parameter(
+                        _link_parameter(lname, "collision_margin"),
+                        f"link {lname!r} collision margin",
+                        (link["collisionMargin"],),
+                        _L,
+                        "engine",
+                        "changeDynamics(collisionMargin=...)",
+                        note="0.001 for boxes and meshes, the radius for spheres",
+                    )
+                )
             for key in ("rollingFriction", "spinningFriction"):
-                out.append(Parameter(_link_parameter(lname, key), f"link {lname!r} {key}", (link[key],), _L, "engine",
-                                     f"changeDynamics({key}=...)", note="a torque per normal force"))
+                out.append(
+                    Parameter(
+                        _link_parameter(lname, key),
+                        f"link {lname!r} {key}",
+                        (link[key],),
+                        _L,
+                        "engine",
+                        f"changeDynamics({key}=...)",
+                        note="a torque per normal force",
+                    )
+                )
             if self._info["dynamics"][index][0] > 0:
-                out.append(Parameter(_link_parameter(lname, "inertia"), f"link {lname!r} inertia (principal)",
-                                     tuple(link["localInertiaDiagonal"]), dim("M L^2"), "derived",
-                                     "changeDynamics(localInertiaDiagonal=...)",
-                                     note="computed by Bullet from the collision shapes' bounding boxes, margins "
-                                          "included; scaled copies set it explicitly"))
+                out.append(
+                    Parameter(
+                        _link_parameter(lname, "inertia"),
+                        f"link {lname!r} inertia (principal)",
+                        tuple(link["localInertiaDiagonal"]),
+                        dim("M L^2"),
+                        "derived",
+                        "changeDynamics(localInertiaDiagonal=...)",
+                        note="computed by Bullet from the collision shapes' bounding boxes, margins "
+                        "included; scaled copies set it explicitly",
+                    )
+                )
             for key, parts in MIXED_DAMPING:
-                out.append(Parameter(_link_parameter(lname, key), f"link {lname!r} {key}", (link[key],), None,
-                                     "engine", f"changeDynamics({key}=...)",
-                                     parts=tuple((part, _BULLET[constant].dimension) for part, constant in parts),
-                                     note="Bullet multiplies m v by (d + d |v|)"))
+                out.append(
+                    Parameter(
+                        _link_parameter(lname, key),
+                        f"link {lname!r} {key}",
+                        (link[key],),
+                        None,
+                        "engine",
+                        f"changeDynamics({key}=...)",
+                        parts=tuple((part, _BULLET[constant].dimension) for part, constant in parts),
+                        note="Bullet multiplies m v by (d + d |v|)",
+                    )
+                )
         for j, jname, jtype in self._info["joints"]:
-            out.append(Parameter(_joint_speed_parameter(jname), f"joint {jname!r} maxJointVelocity",
-                                 (self._max_joint_velocity(j),), _joint_kind(jtype).q / _T, "engine",
-                                 "changeDynamics(maxJointVelocity=...)"))
+            out.append(
+                Parameter(
+                    _joint_speed_parameter(jname),
+                    f"joint {jname!r} maxJointVelocity",
+                    (self._max_joint_velocity(j),),
+                    _joint_kind(jtype).q / _T,
+                    "engine",
+                    "changeDynamics(maxJointVelocity=...)",
+                )
+            )
         for j, jname, jtype in self._info["joints"]:
             if str(j) in st["springs"]:
                 kind, (k, rest) = _joint_kind(jtype), st["springs"][str(j)]
                 stiffness, rest_name = _spring_parameters(jname)
-                out.append(Parameter(stiffness, f"joint {jname!r} spring stiffness", (k,), kind.force / kind.q,
-                                     "engine", "joint spring (a torque each step)",
-                                     note="URDF has no joint spring: pitheorem applies -k (q - q0) before every step"))
-                out.append(Parameter(rest_name, f"joint {jname!r} spring rest position", (rest,), kind.q, "engine",
-                                     "joint spring (a torque each step)"))
+                out.append(
+                    Parameter(
+                        stiffness,
+                        f"joint {jname!r} spring stiffness",
+                        (k,),
+                        kind.force / kind.q,
+                        "engine",
+                        "joint spring (a torque each step)",
+                        note="URDF has no joint spring: pitheorem applies -k (q - q0) before every step",
+                    )
+                )
+                out.append(
+                    Parameter(
+                        rest_name,
+                        f"joint {jname!r} spring rest position",
+                        (rest,),
+                        kind.q,
+                        "engine",
+                        "joint spring (a torque each step)",
+                    )
+                )
         if st["useSplitImpulse"]:
-            out.append(Parameter("splitImpulsePenetrationThreshold", "btContactSolverInfo",
-                                 (_BULLET["bullet_split_impulse_penetration_threshold"].default,), _L, "engine", "",
-                                 note="negative values cannot be set from Python; "
-                                 "setPhysicsEngineParameter(useSplitImpulse=0) removes it"))
+            out.append(
+                Parameter(
+                    "splitImpulsePenetrationThreshold",
+                    "btContactSolverInfo",
+                    (_BULLET["bullet_split_impulse_penetration_threshold"].default,),
+                    _L,
+                    "engine",
+                    "",
+                    note="negative values cannot be set from Python; "
+                    "setPhysicsEngineParameter(useSplitImpulse=0) removes it",
+                )
+            )
         if self.scene["ground"]:
-            out.append(Parameter("ground_collision_margin", "ground plane collision margin",
-                                 (st["ground_margin"],), _L, "engine", "changeDynamics(collisionMargin=...)"))
+            out.append(
+                Parameter(
+                    "ground_collision_margin",
+                    "ground plane collision margin",
+                    (st["ground_margin"],),
+                    _L,
+                    "engine",
+                    "changeDynamics(collisionMargin=...)",
+                )
+            )
         if any(self.scene["base_position"]):
-            out.append(Parameter("base_position", "loadURDF(basePosition=...)", tuple(self.scene["base_position"]),
-                                 _L, "engine", "loadURDF(basePosition=...)"))
+            out.append(
+                Parameter(
+                    "base_position",
+                    "loadURDF(basePosition=...)",
+                    tuple(self.scene["base_position"]),
+                    _L,
+                    "engine",
+                    "loadURDF(basePosition=...)",
+                )
+            )
         return out
 
     def settings(self) -> dict:
@@ -446,11 +605,15 @@ class UrdfBackend:
         return {
             "gravity": [0.0, 0.0, -st["g"]],
             "timeStep": st["timestep"],
-            "setPhysicsEngineParameter": {**{n: st[n] for n, *_ in ENGINE_PARAMETERS},
-                                          "useSplitImpulse": st["useSplitImpulse"]},
+            "setPhysicsEngineParameter": {
+                **{n: st[n] for n, *_ in ENGINE_PARAMETERS},
+                "useSplitImpulse": st["useSplitImpulse"],
+            },
             "changeDynamics": self._dynamics_calls(),
-            "jointSprings": [{"jointIndex": int(key), "stiffness": k, "restPosition": rest}
-                             for key, (k, rest) in sorted(st["springs"].items(), key=lambda item: int(item[0]))],
+            "jointSprings": [
+                {"jointIndex": int(key), "stiffness": k, "restPosition": rest}
+                for key, (k, rest) in sorted(st["springs"].items(), key=lambda item: int(item[0]))
+            ],
             "disableDefaultMotors": True,
             "loadURDF": {"basePosition": list(self.scene["base_position"]), "useFixedBase": self.scene["fixed_base"]},
             "ground": {"collisionMargin": st["ground_margin"]} if self.scene["ground"] else None,
@@ -536,17 +699,23 @@ class UrdfBackend:
         return UrdfBackend(tree, self.path, self.source_dir, st, scene=scene, info=info, attrs=attrs)
 
     #: the one line that removes every refusal of PyBullet's default scene at once
-    unscalable_remedy = ("In one go: engines.load(path, damping=0.0, split_impulse=False) (on the command line: "
-                         "--scene damping=0 split_impulse=false), the same in the original and the scaled run")
+    unscalable_remedy = (
+        "In one go: engines.load(path, damping=0.0, split_impulse=False) (on the command line: "
+        "--scene damping=0 split_impulse=false), the same in the original and the scaled run"
+    )
 
     def unscalable(self, factors) -> list[UnscalableParameterError]:
         """The settings the factors would change but no PyBullet call can: the split-impulse threshold."""
         params = {p.name for p in self.parameters()}
         if "splitImpulsePenetrationThreshold" in params and factors.get("splitImpulsePenetrationThreshold", 1) != 1:
             threshold = _BULLET["bullet_split_impulse_penetration_threshold"].default
-            return [UnscalableParameterError(
-                "splitImpulsePenetrationThreshold", f"Bullet's split-impulse threshold ({threshold:g}, a length) "
-                "cannot be set from Python; load the model with split_impulse=False (useSplitImpulse=0) in both runs")]
+            return [
+                UnscalableParameterError(
+                    "splitImpulsePenetrationThreshold",
+                    f"Bullet's split-impulse threshold ({threshold:g}, a length) "
+                    "cannot be set from Python; load the model with split_impulse=False (useSplitImpulse=0) in both runs",
+                )
+            ]
         return []
 
     def save(self, path: Path) -> None:
@@ -587,8 +756,12 @@ class UrdfBackend:
         st = self._settings
         pb.setGravity(0.0, 0.0, -st["g"], physicsClientId=client)
         pb.setTimeStep(st["timestep"], physicsClientId=client)
-        pb.setPhysicsEngineParameter(numSubSteps=0, useSplitImpulse=int(st["useSplitImpulse"]),
-                                     **{n: st[n] for n, *_ in ENGINE_PARAMETERS}, physicsClientId=client)
+        pb.setPhysicsEngineParameter(
+            numSubSteps=0,
+            useSplitImpulse=int(st["useSplitImpulse"]),
+            **{n: st[n] for n, *_ in ENGINE_PARAMETERS},
+            physicsClientId=client,
+        )
         if self.scene["ground"]:
             plane = pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=client)
             ground = pb.createMultiBody(0, plane, physicsClientId=client)
@@ -627,11 +800,16 @@ class UrdfBackend:
         as a torque); the collision margins are left to :meth:`ignored_settings`.
         """
         dyn, joints = self._held()
-        out = {f"link.{name}": np.array([np.atleast_1d(d[k]) for d in dyn], dtype=float)
-               for k, name in _DYNAMICS_FIELDS}
+        out = {
+            f"link.{name}": np.array([np.atleast_1d(d[k]) for d in dyn], dtype=float) for k, name in _DYNAMICS_FIELDS
+        }
         if joints:
-            out.update({f"joint.{name}": np.array([np.atleast_1d(info[k]) for info in joints], dtype=float)
-                        for k, name in _JOINT_FIELDS})
+            out.update(
+                {
+                    f"joint.{name}": np.array([np.atleast_1d(info[k]) for info in joints], dtype=float)
+                    for k, name in _JOINT_FIELDS
+                }
+            )
         sprung, stiffness, rest = self._springs()
         if sprung:  # not PyBullet's but the run's: the torque -k (q - q0) applied before every step
             out["spring.stiffness"], out["spring.restPosition"] = stiffness[:, None], rest[:, None]
@@ -650,11 +828,17 @@ class UrdfBackend:
         """The ``changeDynamics`` settings PyBullet does not take: each as a ``setting`` Cause."""
         from .causes import Cause
 
-        compound = [Cause("setting", f"link {link!r} collision mesh {filename!r}", f"its {parts} convex parts "
-                          "load as a compound whose collision margins changeDynamics cannot reach: they keep "
-                          "PyBullet's default margin, a length no scaling changes, so the copy's contacts are off "
-                          "by it")
-                    for link, filename, parts in _compound_meshes(self.tree, self.source_dir)]
+        compound = [
+            Cause(
+                "setting",
+                f"link {link!r} collision mesh {filename!r}",
+                f"its {parts} convex parts "
+                "load as a compound whose collision margins changeDynamics cannot reach: they keep "
+                "PyBullet's default margin, a length no scaling changes, so the copy's contacts are off "
+                "by it",
+            )
+            for link, filename, parts in _compound_meshes(self.tree, self.source_dir)
+        ]
         return tuple(compound) + self._ignored_margins()
 
     def _ignored_margins(self) -> tuple:
@@ -670,18 +854,24 @@ class UrdfBackend:
         if not missed:
             return ()
         lname, wanted, held = missed[0]
-        names = ", ".join(repr(n) for n, *_ in missed[:3]) + (f" and {len(missed) - 3} more" if len(missed) > 3
-                                                               else "")
-        return (Cause("setting", "changeDynamics(collisionMargin)", f"{len(missed)} link(s) ({names}) keep "
-                      f"another margin than the one set (link {lname!r}: set {wanted:.17g}, PyBullet keeps "
-                      f"{held:.17g}): the call does not reach these links' shapes, so their margins are not "
-                      "scaled"),)
+        names = ", ".join(repr(n) for n, *_ in missed[:3]) + (f" and {len(missed) - 3} more" if len(missed) > 3 else "")
+        return (
+            Cause(
+                "setting",
+                "changeDynamics(collisionMargin)",
+                f"{len(missed)} link(s) ({names}) keep "
+                f"another margin than the one set (link {lname!r}: set {wanted:.17g}, PyBullet keeps "
+                f"{held:.17g}): the call does not reach these links' shapes, so their margins are not "
+                "scaled",
+            ),
+        )
 
     def twin(self, seed: int) -> UrdfBackend:
         """A copy with every parameter moved by about one ulp (random signs from `seed`) and its start nudged."""
         rng = np.random.default_rng(seed)
-        factors = {p.name: 1.0 + float(rng.choice((-1.0, 1.0))) * 2.0**-52 for p in self.parameters()
-                   if p.name != "timestep"}
+        factors = {
+            p.name: 1.0 + float(rng.choice((-1.0, 1.0))) * 2.0**-52 for p in self.parameters() if p.name != "timestep"
+        }
         # the float products, not their exact decimals: a twin is never saved
         out = self.scaled(factors, None, None, info=self._info, text=_float_products)
         out.nudge_start = True
@@ -735,12 +925,12 @@ class UrdfBackend:
         joints = [j for j, _n, _t in self._info["joints"]]
         n = len(joints)
         if initial is not None:  # the row's layout: base position, orientation, velocities; q; qdot
-            pb.resetBasePositionAndOrientation(body, initial[:3].tolist(), initial[3:7].tolist(),
-                                               physicsClientId=client)
+            pb.resetBasePositionAndOrientation(
+                body, initial[:3].tolist(), initial[3:7].tolist(), physicsClientId=client
+            )
             pb.resetBaseVelocity(body, initial[7:10].tolist(), initial[10:13].tolist(), physicsClientId=client)
             for k, j in enumerate(joints):
-                pb.resetJointState(body, j, float(initial[13 + k]), float(initial[13 + n + k]),
-                                   physicsClientId=client)
+                pb.resetJointState(body, j, float(initial[13 + k]), float(initial[13 + n + k]), physicsClientId=client)
         if nudge:
             pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=client)
             pb.resetBasePositionAndOrientation(body, nudged(pos).tolist(), orn, physicsClientId=client)
@@ -769,10 +959,9 @@ class UrdfBackend:
                     u = controls(t) if callable(controls) else controls[i - 1]
                 u = np.array(u, dtype=float)
                 if sprung:  # the springs' torques from the state this step starts from
-                    q = out[i - 1, 13:13 + len(joints)]
+                    q = out[i - 1, 13 : 13 + len(joints)]
                     u[sprung] += -stiffness * (q[sprung] - rest)
-                pb.setJointMotorControlArray(body, joints, pb.TORQUE_CONTROL, forces=u.tolist(),
-                                             physicsClientId=client)
+                pb.setJointMotorControlArray(body, joints, pb.TORQUE_CONTROL, forces=u.tolist(), physicsClientId=client)
             pb.stepSimulation(physicsClientId=client)
             record(i)
         return out
@@ -781,16 +970,22 @@ class UrdfBackend:
         """The movable joints with a spring (by their place among the movable joints), stiffnesses, rests."""
         places = {str(j): place for place, (j, _n, _t) in enumerate(self._info["joints"])}
         springs = sorted((places[key], k, rest) for key, (k, rest) in self._settings["springs"].items())
-        return ([place for place, _k, _r in springs], np.array([k for _p, k, _r in springs]),
-                np.array([r for _p, _k, r in springs]))
+        return (
+            [place for place, _k, _r in springs],
+            np.array([k for _p, k, _r in springs]),
+            np.array([r for _p, _k, r in springs]),
+        )
 
     def with_settings(self, **changes) -> UrdfBackend:
         st = json.loads(json.dumps(self._settings))
         scene = dict(self.scene)
         for key, value in changes.items():
             if key not in ("split_impulse", "damping", "joint_springs", *scene):
-                raise InvalidRequestError(f"unknown setting {key!r}; use split_impulse, damping, joint_springs, "
-                                          "ground, fixed_base or base_position", culprit=key)
+                raise InvalidRequestError(
+                    f"unknown setting {key!r}; use split_impulse, damping, joint_springs, "
+                    "ground, fixed_base or base_position",
+                    culprit=key,
+                )
             if key == "split_impulse":
                 st["useSplitImpulse"] = int(scene_option(key, value))
             elif key == "damping":  # None: PyBullet's own
@@ -814,30 +1009,51 @@ class UrdfBackend:
         """``{joint name: (stiffness, rest position)}`` read into the settings' ``{joint index: [k, q0]}``."""
         movable = {name: j for j, name, _t in self._info["joints"]}
         if not isinstance(springs, dict):
-            raise InvalidRequestError(f"joint_springs maps a joint's name to (stiffness, rest position), got "
-                                      f"{springs!r}", culprit=springs)
+            raise InvalidRequestError(
+                f"joint_springs maps a joint's name to (stiffness, rest position), got {springs!r}", culprit=springs
+            )
         out = {}
         for name, spring in springs.items():
             if name not in movable:
-                raise InvalidRequestError(f"no movable joint {name!r} for a spring; the movable joints are "
-                                          f"{', '.join(sorted(movable)) or 'none'}", culprit=name)
+                raise InvalidRequestError(
+                    f"no movable joint {name!r} for a spring; the movable joints are "
+                    f"{', '.join(sorted(movable)) or 'none'}",
+                    culprit=name,
+                )
             if isinstance(spring, str | bytes) or np.ndim(spring) != 1 or len(spring) != 2:
-                raise InvalidRequestError(f"the spring of joint {name!r} is (stiffness, rest position), got "
-                                          f"{spring!r}", culprit=spring)
+                raise InvalidRequestError(
+                    f"the spring of joint {name!r} is (stiffness, rest position), got {spring!r}", culprit=spring
+                )
             stiffness = float(read_number(spring[0], f"the spring stiffness of joint {name!r}"))
             if stiffness < 0:
-                raise InvalidRequestError(f"the spring stiffness of joint {name!r} cannot be negative, got "
-                                          f"{spring[0]!r}", culprit=spring[0])
+                raise InvalidRequestError(
+                    f"the spring stiffness of joint {name!r} cannot be negative, got {spring[0]!r}", culprit=spring[0]
+                )
             out[str(movable[name])] = [stiffness, float(read_number(spring[1], f"the rest position of {name!r}"))]
         return out
 
 
 #: getDynamicsInfo's numbers (index, name), the margin (11) aside; getJointInfo's for a movable joint
-_DYNAMICS_FIELDS = ((0, "mass"), (1, "lateralFriction"), (2, "localInertiaDiagonal"), (3, "localInertialPos"),
-                    (5, "restitution"), (6, "rollingFriction"), (7, "spinningFriction"), (8, "contactDamping"),
-                    (9, "contactStiffness"))
-_JOINT_FIELDS = ((6, "damping"), (7, "friction"), (8, "lowerLimit"), (9, "upperLimit"), (10, "maxForce"),
-                 (11, "maxVelocity"), (14, "parentFramePos"))
+_DYNAMICS_FIELDS = (
+    (0, "mass"),
+    (1, "lateralFriction"),
+    (2, "localInertiaDiagonal"),
+    (3, "localInertialPos"),
+    (5, "restitution"),
+    (6, "rollingFriction"),
+    (7, "spinningFriction"),
+    (8, "contactDamping"),
+    (9, "contactStiffness"),
+)
+_JOINT_FIELDS = (
+    (6, "damping"),
+    (7, "friction"),
+    (8, "lowerLimit"),
+    (9, "upperLimit"),
+    (10, "maxForce"),
+    (11, "maxVelocity"),
+    (14, "parentFramePos"),
+)
 
 
 def _float_products(values, factor: float) -> str:
@@ -860,11 +1076,15 @@ def _snippet(name: str, settings: dict) -> str:
         f"p.setPhysicsEngineParameter(numSubSteps=0, **{settings['setPhysicsEngineParameter']!r})",
     ]
     if settings["ground"] is not None:
-        lines += ["ground = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE))",
-                  f"p.changeDynamics(ground, -1, collisionMargin={settings['ground']['collisionMargin']!r})"]
+        lines += [
+            "ground = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE))",
+            f"p.changeDynamics(ground, -1, collisionMargin={settings['ground']['collisionMargin']!r})",
+        ]
     load = settings["loadURDF"]
-    lines.append(f"body = p.loadURDF(os.path.join(here, {name!r}), basePosition={load['basePosition']!r}, "
-                 f"useFixedBase={load['useFixedBase']!r})")
+    lines.append(
+        f"body = p.loadURDF(os.path.join(here, {name!r}), basePosition={load['basePosition']!r}, "
+        f"useFixedBase={load['useFixedBase']!r})"
+    )
     lines.append(f"for call in {settings['changeDynamics']!r}:")
     lines.append("    index = call.pop('linkIndex')")
     lines.append("    for key, value in call.items():")
@@ -872,22 +1092,25 @@ def _snippet(name: str, settings: dict) -> str:
     lines.append("for j in range(p.getNumJoints(body)):  # PyBullet's default velocity motors off")
     lines.append("    p.setJointMotorControl2(body, j, p.VELOCITY_CONTROL, force=0)")
     if settings["jointSprings"]:
-        lines += ["",
-                  "# URDF has no joint spring: call apply_springs() before every p.stepSimulation()",
-                  "# (a torque of your own on a sprung joint is added to the spring's, not set instead)",
-                  f"springs = {settings['jointSprings']!r}",
-                  "",
-                  "",
-                  "def apply_springs():",
-                  "    for spring in springs:",
-                  "        q = p.getJointState(body, spring['jointIndex'])[0]",
-                  "        torque = -spring['stiffness'] * (q - spring['restPosition'])",
-                  "        p.setJointMotorControl2(body, spring['jointIndex'], p.TORQUE_CONTROL, force=torque)"]
+        lines += [
+            "",
+            "# URDF has no joint spring: call apply_springs() before every p.stepSimulation()",
+            "# (a torque of your own on a sprung joint is added to the spring's, not set instead)",
+            f"springs = {settings['jointSprings']!r}",
+            "",
+            "",
+            "def apply_springs():",
+            "    for spring in springs:",
+            "        q = p.getJointState(body, spring['jointIndex'])[0]",
+            "        torque = -spring['stiffness'] * (q - spring['restPosition'])",
+            "        p.setJointMotorControl2(body, spring['jointIndex'], p.TORQUE_CONTROL, force=torque)",
+        ]
     return "\n".join(lines) + "\n"
 
 
-def load_urdf(path, *, settings=None, base_position=None, fixed_base=None, ground=None, split_impulse=None,
-              g=None, damping=None) -> EngineModel:
+def load_urdf(
+    path, *, settings=None, base_position=None, fixed_base=None, ground=None, split_impulse=None, g=None, damping=None
+) -> EngineModel:
     """Read a URDF file through PyBullet.
 
     A file written by :meth:`~pitheorem.engines.EngineModel.save` has its
@@ -950,14 +1173,21 @@ def load_urdf(path, *, settings=None, base_position=None, fixed_base=None, groun
     10.0
     """
     path = Path(path)
-    given = {"base_position": base_position, "fixed_base": fixed_base, "ground": ground,
-             "split_impulse": split_impulse, "g": g, "damping": damping}
+    given = {
+        "base_position": base_position,
+        "fixed_base": fixed_base,
+        "ground": ground,
+        "split_impulse": split_impulse,
+        "g": g,
+        "damping": damping,
+    }
     scene = {name: value for name, value in given.items() if value is not None}  # None: not given
     saved = Path(f"{path}.settings.json") if settings is None or settings is True else settings
     if saved is not False and Path(saved).is_file():
         if scene:
-            raise InvalidRequestError(f"{saved} fixes the scene of {path.name}; drop the options {sorted(scene)} "
-                                      "or pass settings=False")
+            raise InvalidRequestError(
+                f"{saved} fixes the scene of {path.name}; drop the options {sorted(scene)} or pass settings=False"
+            )
         return _load_saved(path, Path(saved))
     if saved is not False and settings not in (None, True):
         raise EngineModelError(str(saved), "", "no such settings file")
@@ -998,8 +1228,9 @@ def scene_option(name: str, value):
     (True, 0.0, (0.0, 0.5, 1.0))
     """
     if name not in SCENE_OPTIONS:
-        raise InvalidRequestError(f"unknown scene option {name!r}; the options are {', '.join(SCENE_OPTIONS)}",
-                                  culprit=name)
+        raise InvalidRequestError(
+            f"unknown scene option {name!r}; the options are {', '.join(SCENE_OPTIONS)}", culprit=name
+        )
     kind = SCENE_OPTIONS[name][0]
     if kind == "flag":
         if not isinstance(value, bool | np.bool_):
@@ -1031,7 +1262,12 @@ def _scene_backend(path: Path, scene: dict) -> UrdfBackend:
         "timestep": _BULLET["bullet_time_step"].default,
         **{name: _BULLET[constant].default for name, constant, _note in ENGINE_PARAMETERS},
         "useSplitImpulse": int(scene["split_impulse"]),
-        "margins": {}, "friction": {}, "damping": {}, "max_joint_velocity": {}, "inertia": {}, "springs": {},
+        "margins": {},
+        "friction": {},
+        "damping": {},
+        "max_joint_velocity": {},
+        "inertia": {},
+        "springs": {},
         "ground_margin": _BULLET["bullet_collision_margin"].default,
     }
     placed = {name: scene[name] for name in ("base_position", "fixed_base", "ground")}
@@ -1058,9 +1294,13 @@ def _load_saved(path: Path, saved: Path) -> EngineModel:
     if sideways:
         raise EngineModelError(str(saved), "gravity", "pitheorem's URDF models have gravity along -z only")
     try:  # the scene's one reader, as for engines.load's options: a bad value is the settings file's fault
-        given = {"base_position": load["basePosition"], "fixed_base": load["useFixedBase"],
-                 "ground": doc["ground"] is not None, "split_impulse": bool(engine["useSplitImpulse"]),
-                 "g": -float(gravity[2])}
+        given = {
+            "base_position": load["basePosition"],
+            "fixed_base": load["useFixedBase"],
+            "ground": doc["ground"] is not None,
+            "split_impulse": bool(engine["useSplitImpulse"]),
+            "g": -float(gravity[2]),
+        }
         scene = {**{name: scene_option(name, value) for name, value in given.items()}, "damping": None}
     except (ValueError, KeyError, TypeError, IndexError) as err:
         raise malformed(err) from None

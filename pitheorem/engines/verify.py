@@ -54,9 +54,20 @@ from .model import EngineModel, check_scaling, dim, dimension_factors
 __all__ = ["EngineRunner", "smooth_controls", "verify"]
 
 
-def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None, *, controller=None,
-           scaled: EngineModel | None = None, baseline_factor: float = 10.0, ensemble: int = 3,
-           seed: int = 0, diagnose: bool = True) -> SimilarityReport:
+def verify(
+    model: EngineModel,
+    scaling,
+    s,
+    duration: float = 1.0,
+    controls=None,
+    *,
+    controller=None,
+    scaled: EngineModel | None = None,
+    baseline_factor: float = 10.0,
+    ensemble: int = 3,
+    seed: int = 0,
+    diagnose: bool = True,
+) -> SimilarityReport:
     """Run a model and its scaled copy, compare them, and say why they differ.
 
     Parameters
@@ -150,7 +161,8 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     dt = original.timestep()
     if not math.isclose(copy.timestep(), dt * f_time, rel_tol=1e-12):
         raise InvalidRequestError(
-            f"the scaled model's time step {copy.timestep()!r} is not the original's {dt!r} times {f_time!r}")
+            f"the scaled model's time step {copy.timestep()!r} is not the original's {dt!r} times {f_time!r}"
+        )
     n_steps = max(1, round(duration / dt))
     names, dims = original.coordinate_dimensions()
     if len(copy.coordinate_dimensions()[0]) != len(names):
@@ -165,8 +177,11 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
     t = np.arange(n_steps + 1) * dt
     if controller is None and type(copy) is type(original):
         # one batch: the engine runs them at once (MuJoCo's rollout spreads them over the cores, MJX vmaps them)
-        jobs = [(original, u_original, False, None), (copy, u_scaled, False, None),
-                *((twin, u_original, False, None) for twin in twins)]
+        jobs = [
+            (original, u_original, False, None),
+            (copy, u_scaled, False, None),
+            *((twin, u_original, False, None) for twin in twins),
+        ]
         run, scaled_run, *twin_runs = original.run_many(n_steps, jobs)
     else:
         run = original.run(n_steps, u_original, policy=policy(model))
@@ -177,17 +192,21 @@ def verify(model: EngineModel, scaling, s, duration: float = 1.0, controls=None,
         return Trajectory(t, rows, tuple(names))
 
     report = similarity_report(
-        trajectory(run), trajectory(scaled_run / factors), s=float(s), scaling=scaling,
+        trajectory(run),
+        trajectory(scaled_run / factors),
+        s=float(s),
+        scaling=scaling,
         exponents={n: exponent_of[d] for n, d in zip(names, dims, strict=True)},
-        twins=[trajectory(rows) for rows in twin_runs], baseline_factor=baseline_factor, method=model.engine,
+        twins=[trajectory(rows) for rows in twin_runs],
+        baseline_factor=baseline_factor,
+        method=model.engine,
     )
     exact_expected = _every_factor_a_power_of_two(model, factor)
     if not diagnose or controller is not None or (report.similar and (report.exact or not exact_expected)):
         return report
     from .diagnose import find_causes
 
-    causes = find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factors, report,
-                         exact_expected)
+    causes = find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factors, report, exact_expected)
     return dataclasses.replace(report, causes=causes)
 
 

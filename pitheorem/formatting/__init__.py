@@ -89,8 +89,9 @@ def render(value, spec: str = "text") -> str:
     """
     name = spec or "text"
     if name not in FORMATS:
-        raise InvalidRequestError(f"unknown format {spec!r}; the formats are {', '.join(FORMATS)} ('' is text)",
-                                  culprit=spec)
+        raise InvalidRequestError(
+            f"unknown format {spec!r}; the formats are {', '.join(FORMATS)} ('' is text)", culprit=spec
+        )
     renderers = import_module(f"{__name__}.{name}").RENDERERS
     for cls in type(value).__mro__:
         renderer = renderers.get(f"{cls.__module__}.{cls.__qualname__}")

@@ -66,15 +66,16 @@ def _p(inner: str) -> str:
 def _row(cells, attributes: str = "") -> str:
     """One row: the first cell a row heading, the others data (each already HTML)."""
     first, *rest = cells
-    return (f"<tr{attributes}><th {_CELL}>{first}</th>"
-            + "".join(f"<td {_CELL}>{cell}</td>" for cell in rest) + "</tr>")
+    return f"<tr{attributes}><th {_CELL}>{first}</th>" + "".join(f"<td {_CELL}>{cell}</td>" for cell in rest) + "</tr>"
 
 
 def _table(header, rows, below=()) -> str:
     """A table: a header row, rows, and `below` (the change of base units) under a rule."""
     lines = [f"<tr>{''.join(f'<th {_CELL}>{cell}</th>' for cell in header)}</tr>", *map(_row, rows)]
-    lines += [_row(cells, ' class="base-unit"' + (' style="border-top: 1px solid #999"' if k == 0 else ""))
-              for k, cells in enumerate(below)]
+    lines += [
+        _row(cells, ' class="base-unit"' + (' style="border-top: 1px solid #999"' if k == 0 else ""))
+        for k, cells in enumerate(below)
+    ]
     return f'<table style="border-collapse: collapse">{"".join(lines)}</table>'
 
 
@@ -88,8 +89,12 @@ def _span_of_latex(value) -> str:
 
 # -- dimensions, groups, scalings ------------------------------------------------------------
 
-for _name in ("pitheorem.dimensions.Dimension", "pitheorem.groups.PiGroup", "pitheorem.scaling.Scaling",
-              "pitheorem.unitfit.RangeBound"):
+for _name in (
+    "pitheorem.dimensions.Dimension",
+    "pitheorem.groups.PiGroup",
+    "pitheorem.scaling.Scaling",
+    "pitheorem.unitfit.RangeBound",
+):
     _renders(_name)(_span_of_latex)
 
 
@@ -120,12 +125,15 @@ def _search_result(result, time_remedy: str = PYTHON_TIME_REMEDY) -> str:
     head = _p(escape(explanation(result))) + notes
     if not result.feasible:
         cert = result.certificate
-        return head + _p(f"certificate: {_latex(cert)} (the request multiplies it by "
-                         f"{_math(power_latex(result.certificate_power))})")
+        return head + _p(
+            f"certificate: {_latex(cert)} (the request multiplies it by {_math(power_latex(result.certificate_power))})"
+        )
     variables, base_units = search_cells(result, _power_cell)
     rows = [[_math(latex_name(n)), f"<em>{role}</em>", *cells] for n, role, cells in variables]
-    below = [[_math(rf"[\mathrm{{{b}}}]"), "<em>base unit</em>", *(cell or "n/a" for cell in cells)]
-             for b, cells in base_units]
+    below = [
+        [_math(rf"[\mathrm{{{b}}}]"), "<em>base unit</em>", *(cell or "n/a" for cell in cells)]
+        for b, cells in base_units
+    ]
     header = ["variable", "role", *(f"#{k}" for k in range(1, result.n_scalings + 1))]
     return head + _table(header, rows, below)
 
@@ -142,8 +150,11 @@ def _dimension_report(report) -> str:
         return _p(f"consistent: dimension {_latex(report.dimension)}")
     rows = [[_math(sympy.latex(term)), _latex(got), _latex(want)] for term, got, want in report.offending]
     ties = "".join(_p(f"tie: {escape(tie)}") for tie in report.ties)
-    return (_p(f"inconsistent: {len(report.offending)} offending term(s)")
-            + _table(["term", "dimension", "expected"], rows) + ties)
+    return (
+        _p(f"inconsistent: {len(report.offending)} offending term(s)")
+        + _table(["term", "dimension", "expected"], rows)
+        + ties
+    )
 
 
 @_renders("pitheorem.equations.SymmetryReport")
@@ -151,8 +162,10 @@ def _symmetry_report(report) -> str:
     head = "".join(_p(escape(line)) for line in symmetry_head(report))
     if not report.beyond_units:
         return head
-    rows = [[f"#{k}", *(_math(rational_latex(vec.get(n, 0))) for n in report.variables)]
-            for k, vec in enumerate(report.beyond_units, 1)]
+    rows = [
+        [f"#{k}", *(_math(rational_latex(vec.get(n, 0))) for n in report.variables)]
+        for k, vec in enumerate(report.beyond_units, 1)
+    ]
     return head + _table(["symmetry", *(_math(latex_name(n)) for n in report.variables)], rows)
 
 
@@ -171,11 +184,17 @@ def _similarity_report(report) -> str:
 @_renders("pitheorem.unitfit.UnitFit")
 def _unit_fit(fit) -> str:
     units = [[_math(base_latex(b)), f"{float(f):.6g}", f"{1 / float(f):.6g}"] for b, f in fit.factors.items()]
-    rows = [[_math(latex_name(n)), f"{old:.6g}", f"{new:.6g}", *range_cells(bounds, ok, "<strong>OUT OF RANGE</strong>")]
-            for n, old, new, bounds, ok in unit_fit_rows(fit)]
-    conflict = (_p("conflicting bounds: " + "; ".join(map(_latex, fit.conflict))) if fit.conflict else "")
-    return (_p(escape(unit_fit_head(fit))) + _table(["base", "readings times", "new unit (old units)"], units)
-            + _table(["variable", "value", "new value", "range", ""], rows) + conflict)
+    rows = [
+        [_math(latex_name(n)), f"{old:.6g}", f"{new:.6g}", *range_cells(bounds, ok, "<strong>OUT OF RANGE</strong>")]
+        for n, old, new, bounds, ok in unit_fit_rows(fit)
+    ]
+    conflict = _p("conflicting bounds: " + "; ".join(map(_latex, fit.conflict))) if fit.conflict else ""
+    return (
+        _p(escape(unit_fit_head(fit)))
+        + _table(["base", "readings times", "new unit (old units)"], units)
+        + _table(["variable", "value", "new value", "range", ""], rows)
+        + conflict
+    )
 
 
 # -- engines ---------------------------------------------------------------------------------
@@ -201,16 +220,26 @@ def _hidden_constant(constant) -> str:
 @_renders("pitheorem.engines.rules.RuleVerdict")
 def _rule_verdict(verdict) -> str:
     first, *rest = render(verdict, "text").splitlines()
-    return _p(f"<strong>{escape(first)}</strong>") + "<ul>" + "".join(
-        f"<li>{escape(line.strip())}</li>" for line in rest) + "</ul>"
+    return (
+        _p(f"<strong>{escape(first)}</strong>")
+        + "<ul>"
+        + "".join(f"<li>{escape(line.strip())}</li>" for line in rest)
+        + "</ul>"
+    )
 
 
 def _parameters(name: str, model) -> str:
-    rows = [[_code(name), _latex(dimension) if dimension is not None else escape(text),
-             escape(" ".join(map(value_text, value))), escape(source), escape(path)]
-            for name, dimension, text, value, source, path in parameter_rows(model)]
-    return (_p(escape(parameters_head(name, model)))
-            + _table(["name", "dimension", "value", "source", "path"], rows))
+    rows = [
+        [
+            _code(name),
+            _latex(dimension) if dimension is not None else escape(text),
+            escape(" ".join(map(value_text, value))),
+            escape(source),
+            escape(path),
+        ]
+        for name, dimension, text, value, source, path in parameter_rows(model)
+    ]
+    return _p(escape(parameters_head(name, model))) + _table(["name", "dimension", "value", "source", "path"], rows)
 
 
 @_renders("pitheorem.engines.model.EngineModel")
@@ -224,8 +253,9 @@ def _engine_model(model) -> str:
 @_renders("pitheorem.answers.GroupsAnswer")
 def _groups_answer(answer) -> str:
     groups = answer.groups
-    head = (_p(escape(render(answer, "text").splitlines()[0]))
-            + _p("repeating variables: " + (", ".join(_math(latex_name(n)) for n in groups.repeating) or "(none)")))
+    head = _p(escape(render(answer, "text").splitlines()[0])) + _p(
+        "repeating variables: " + (", ".join(_math(latex_name(n)) for n in groups.repeating) or "(none)")
+    )
     if not len(groups):
         return head
     rows = [[_group_name(g), _math(g.latex), escape(value_text(v))] for g, v in zip(groups, answer.values, strict=True)]
@@ -249,10 +279,15 @@ def _search_answer(answer) -> str:
 @_renders("pitheorem.answers.ApplyAnswer")
 def _apply_answer(answer) -> str:
     exponents = answer.scaling.exponents
-    head = (_p(escape(render(answer, "text").splitlines()[0]))
-            + _p(_latex(answer.scaling)) + "".join(_note(n, COMMAND_LINE_TIME_REMEDY) for n in answer.result.notes))
-    rows = [[_math(latex_name(n)), _power_cell(exponents[n]), escape(value_text(v)),
-             escape(value_text(answer.scaled[n]))] for n, v in answer.values.items()]
+    head = (
+        _p(escape(render(answer, "text").splitlines()[0]))
+        + _p(_latex(answer.scaling))
+        + "".join(_note(n, COMMAND_LINE_TIME_REMEDY) for n in answer.result.notes)
+    )
+    rows = [
+        [_math(latex_name(n)), _power_cell(exponents[n]), escape(value_text(v)), escape(value_text(answer.scaled[n]))]
+        for n, v in answer.values.items()
+    ]
     wrote = _p(f"wrote {_code(answer.output)}") if answer.output else ""
     return head + _table(["variable", "factor", "value", "scaled value"], rows) + wrote
 
@@ -266,8 +301,10 @@ def _params_answer(answer) -> str:
 def _engine_apply_answer(answer) -> str:
     head = _p(escape(render(answer, "text").splitlines()[0]))
     head += _p(escape(f"{len(answer.changed)} of {answer.n_parameters} parameters change"))
-    rows = [[_code(name), _power_cell(p), escape(" ".join(map(value_text, old))), escape(" ".join(map(value_text, new)))]
-            for name, p, _, old, new in changed_rows(answer)]
+    rows = [
+        [_code(name), _power_cell(p), escape(" ".join(map(value_text, old))), escape(" ".join(map(value_text, new)))]
+        for name, p, _, old, new in changed_rows(answer)
+    ]
     wrote = _p(f"wrote {_code(answer.output)}") if answer.output else ""
     return head + _table(["parameter", "factor", "value", "scaled value"], rows) + wrote
 

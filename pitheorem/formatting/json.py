@@ -77,20 +77,31 @@ def _dimension(dim) -> dict:
 
 @_data("pitheorem.groups.PiGroup")
 def _pi_group(group) -> dict:
-    return {"name": group.name, "variable": group.variable, "expression": sympy.sstr(group.expr),
-            "latex": group.latex, "exponents": group.exponents}
+    return {
+        "name": group.name,
+        "variable": group.variable,
+        "expression": sympy.sstr(group.expr),
+        "latex": group.latex,
+        "exponents": group.exponents,
+    }
 
 
 @_data("pitheorem.groups.PiSet")
 def _pi_set(groups) -> dict:
-    return {"variables": list(groups.variables), "repeating": list(groups.repeating),
-            "groups": [_pi_group(g) for g in groups]}
+    return {
+        "variables": list(groups.variables),
+        "repeating": list(groups.repeating),
+        "groups": [_pi_group(g) for g in groups],
+    }
 
 
 @_data("pitheorem.scaling.Scaling")
 def _scaling(sc) -> dict:
-    return {"changed": list(sc.changed), "exponents": _rationals(sc.exponents),
-            "unit_change": _rationals(sc.unit_change) if sc.is_unit_change else None}
+    return {
+        "changed": list(sc.changed),
+        "exponents": _rationals(sc.exponents),
+        "unit_change": _rationals(sc.unit_change) if sc.is_unit_change else None,
+    }
 
 
 # -- search ----------------------------------------------------------------------------------
@@ -108,8 +119,12 @@ def _certificate(result):
     cert = result.certificate
     if cert is None:
         return None
-    return {"expression": sympy.sstr(cert.expr), "latex": cert.latex, "exponents": cert.exponents,
-            "power": rational_text(result.certificate_power)}
+    return {
+        "expression": sympy.sstr(cert.expr),
+        "latex": cert.latex,
+        "exponents": cert.exponents,
+        "power": rational_text(result.certificate_power),
+    }
 
 
 def _search_result(result, time_remedy: str = PYTHON_TIME_REMEDY) -> dict:
@@ -133,19 +148,27 @@ _data("pitheorem.scalesearch.SearchResult")(_search_result)
 
 @_data("pitheorem.equations.DimensionReport")
 def _dimension_report(report) -> dict:
-    return {"consistent": report.consistent, "dimension": render(report.dimension, "text"),
-            "offending": [{"term": sympy.sstr(term), "dimension": render(got, "text"),
-                           "expected": render(want, "text")} for term, got, want in report.offending],
-            "ties": list(report.ties)}
+    return {
+        "consistent": report.consistent,
+        "dimension": render(report.dimension, "text"),
+        "offending": [
+            {"term": sympy.sstr(term), "dimension": render(got, "text"), "expected": render(want, "text")}
+            for term, got, want in report.offending
+        ],
+        "ties": list(report.ties),
+    }
 
 
 @_data("pitheorem.equations.SymmetryReport")
 def _symmetry_report(report) -> dict:
-    return {"variables": list(report.variables), "n_symmetries": report.n_symmetries,
-            "basis": [_rationals(v) for v in report.basis],
-            "within_units": [_rationals(v) for v in report.within_units],
-            "beyond_units": [_rationals(v) for v in report.beyond_units],
-            "contains_units": report.contains_units}
+    return {
+        "variables": list(report.variables),
+        "n_symmetries": report.n_symmetries,
+        "basis": [_rationals(v) for v in report.basis],
+        "within_units": [_rationals(v) for v in report.within_units],
+        "beyond_units": [_rationals(v) for v in report.beyond_units],
+        "contains_units": report.contains_units,
+    }
 
 
 # -- simulations -----------------------------------------------------------------------------
@@ -153,21 +176,37 @@ def _symmetry_report(report) -> dict:
 
 @_data("pitheorem.simulation.SimilarityReport")
 def _similarity_report(report) -> dict:
-    return {"passed": report.passed, "max_deviation": report.max_deviation, "tol": report.tol,
-            "s": json_number(report.s), "is_similarity": report.is_similarity, "method": report.method,
-            "scaled_dt": report.scaled_dt, "deviation": dict(report.deviation),
-            "sensitivity": None if report.sensitivity is None else dict(report.sensitivity),
-            "baseline_factor": report.baseline_factor, "exponents": _rationals(report.exponents),
-            "exact": report.exact, "excited": report.excited, "ensemble": report.ensemble,
-            "first_divergence": None if report.first_divergence is None else list(report.first_divergence),
-            "causes": [_cause(c) for c in report.causes]}
+    return {
+        "passed": report.passed,
+        "max_deviation": report.max_deviation,
+        "tol": report.tol,
+        "s": json_number(report.s),
+        "is_similarity": report.is_similarity,
+        "method": report.method,
+        "scaled_dt": report.scaled_dt,
+        "deviation": dict(report.deviation),
+        "sensitivity": None if report.sensitivity is None else dict(report.sensitivity),
+        "baseline_factor": report.baseline_factor,
+        "exponents": _rationals(report.exponents),
+        "exact": report.exact,
+        "excited": report.excited,
+        "ensemble": report.ensemble,
+        "first_divergence": None if report.first_divergence is None else list(report.first_divergence),
+        "causes": [_cause(c) for c in report.causes],
+    }
 
 
 @_data("pitheorem.engines.rod.EngineSimilarityReport")
 def _engine_similarity_report(report) -> dict:
     ode = None if report.ode_report is None else report.ode_report.max_deviation
-    return {"engine": report.engine, **_similarity_report(report), "dt": report.dt, "dt_scaled": report.dt_scaled,
-            "engine_vs_ode": report.engine_vs_ode, "ode_max_deviation": ode}
+    return {
+        "engine": report.engine,
+        **_similarity_report(report),
+        "dt": report.dt,
+        "dt_scaled": report.dt_scaled,
+        "engine_vs_ode": report.engine_vs_ode,
+        "ode_max_deviation": ode,
+    }
 
 
 # -- unit fits -------------------------------------------------------------------------------
@@ -181,13 +220,21 @@ def _range_bound(bound) -> dict:
 @_data("pitheorem.unitfit.UnitFit")
 def _unit_fit(fit) -> dict:
     return {
-        "feasible": fit.feasible, "s": json_number(fit.s), "nice": fit.nice,
-        "unit_change": _rationals(fit.unit_change), "factors": _numbers(fit.factors),
-        "values": _numbers(fit.values), "scaled": _numbers(fit.scaled),
+        "feasible": fit.feasible,
+        "s": json_number(fit.s),
+        "nice": fit.nice,
+        "unit_change": _rationals(fit.unit_change),
+        "factors": _numbers(fit.factors),
+        "values": _numbers(fit.values),
+        "scaled": _numbers(fit.scaled),
         "ranges": [{"name": n, "low": json_number(lo), "high": json_number(hi)} for n, lo, hi in fit.ranges],
-        "satisfied": list(fit.satisfied), "violated": list(fit.violated),
-        "worst_violation": fit.worst_violation, "conflict": [_range_bound(b) for b in fit.conflict],
-        "fixed": list(fit.fixed), "fixed_units": list(fit.fixed_units), "exact": fit.exact,
+        "satisfied": list(fit.satisfied),
+        "violated": list(fit.violated),
+        "worst_violation": fit.worst_violation,
+        "conflict": [_range_bound(b) for b in fit.conflict],
+        "fixed": list(fit.fixed),
+        "fixed_units": list(fit.fixed_units),
+        "exact": fit.exact,
     }
 
 
@@ -206,8 +253,15 @@ def _audit(audit) -> dict:
 
 @_data("pitheorem.engines.constants.HiddenConstant")
 def _hidden_constant(constant) -> dict:
-    return {"engine": constant.engine, "name": constant.name, "dimension": render(constant.dimension, "text"),
-            "default": constant.default, "where": constant.where, "source": constant.source, "note": constant.note}
+    return {
+        "engine": constant.engine,
+        "name": constant.name,
+        "dimension": render(constant.dimension, "text"),
+        "default": constant.default,
+        "where": constant.where,
+        "source": constant.source,
+        "note": constant.note,
+    }
 
 
 @_data("pitheorem.engines.rules.RuleVerdict")
@@ -216,26 +270,56 @@ def _rule_verdict(verdict) -> dict:
         return rational_text(verdict.scaling.exponent_of(dimension))
 
     return {
-        "rule": verdict.rule.name, "engine": verdict.rule.engine, "is_unit_change": verdict.is_unit_change,
+        "rule": verdict.rule.name,
+        "engine": verdict.rule.engine,
+        "is_unit_change": verdict.is_unit_change,
         "complete": verdict.complete,
         "unit_change": None if verdict.unit_change is None else _rationals(verdict.unit_change),
         "certificate": None if verdict.certificate is None else _pi_group(verdict.certificate),
-        "missing": [{"name": n, "dimension": render(d, "text"), "exponent": rational_text(p)}
-                    for n, d, p in verdict.missing],
+        "missing": [
+            {"name": n, "dimension": render(d, "text"), "exponent": rational_text(p)} for n, d, p in verdict.missing
+        ],
         "unchanged": list(verdict.unchanged),
-        "broken": [{"name": c.name, "dimension": render(c.dimension, "text"), "exponent": exponent(c.dimension)}
-                   for c in verdict.broken],
+        "broken": [
+            {"name": c.name, "dimension": render(c.dimension, "text"), "exponent": exponent(c.dimension)}
+            for c in verdict.broken
+        ],
     }
 
 
 def _parameters(name: str, model) -> dict:
     if not hasattr(model, "parameters"):  # a TOML model file: each variable with its role and description
-        return {"model": name, "engine": None, "parameters": [
-            {"name": n, "path": "", "value": [json_number(v) for v in value], "dimension": text, "source": role,
-             "description": description} for n, _, text, value, role, description in parameter_rows(model)]}
-    return {"model": name, "engine": model.engine, "parameters": [
-        {"name": p.name, "path": p.path, "value": list(p.value), "dimension": p.dimension_text,
-         "source": p.source, "settable": p.settable, "note": p.note} for p in model.parameters]}
+        return {
+            "model": name,
+            "engine": None,
+            "parameters": [
+                {
+                    "name": n,
+                    "path": "",
+                    "value": [json_number(v) for v in value],
+                    "dimension": text,
+                    "source": role,
+                    "description": description,
+                }
+                for n, _, text, value, role, description in parameter_rows(model)
+            ],
+        }
+    return {
+        "model": name,
+        "engine": model.engine,
+        "parameters": [
+            {
+                "name": p.name,
+                "path": p.path,
+                "value": list(p.value),
+                "dimension": p.dimension_text,
+                "source": p.source,
+                "settable": p.settable,
+                "note": p.note,
+            }
+            for p in model.parameters
+        ],
+    }
 
 
 @_data("pitheorem.engines.model.EngineModel")
@@ -253,15 +337,21 @@ def _groups_answer(answer) -> dict:
         "variables": list(answer.system.variables),
         "rank": answer.system.rank,
         "repeating": list(answer.groups.repeating),
-        "groups": [{**_pi_group(g), "value": json_number(v)} for g, v in zip(answer.groups, answer.values,
-                                                                               strict=True)],
+        "groups": [
+            {**_pi_group(g), "value": json_number(v)} for g, v in zip(answer.groups, answer.values, strict=True)
+        ],
     }
 
 
 @_data("pitheorem.answers.BasesAnswer")
 def _bases_answer(answer) -> dict:
-    doc = {"model": answer.model, "rank": answer.rank, "exclude": list(answer.exclude),
-           "require": list(answer.require), "count": answer.n_bases}
+    doc = {
+        "model": answer.model,
+        "rank": answer.rank,
+        "exclude": list(answer.exclude),
+        "require": list(answer.require),
+        "count": answer.n_bases,
+    }
     if answer.bases is not None:
         doc["bases"] = [list(b) for b in answer.bases]
     return doc
@@ -294,21 +384,44 @@ def _params_answer(answer) -> dict:
 
 @_data("pitheorem.answers.EngineApplyAnswer")
 def _engine_apply_answer(answer) -> dict:
-    return {"model": answer.model, "s": rational_text(answer.s), "scaling": _scaling(answer.scaling),
-            "parameters": answer.n_parameters,
-            "changed": [{"name": name, "exponent": rational_text(p), "dimension": dim, "value": list(old),
-                         "scaled_value": list(new)} for name, p, dim, old, new in changed_rows(answer)],
-            "output": answer.output, "also_written": list(answer.also_written)}
+    return {
+        "model": answer.model,
+        "s": rational_text(answer.s),
+        "scaling": _scaling(answer.scaling),
+        "parameters": answer.n_parameters,
+        "changed": [
+            {
+                "name": name,
+                "exponent": rational_text(p),
+                "dimension": dim,
+                "value": list(old),
+                "scaled_value": list(new),
+            }
+            for name, p, dim, old, new in changed_rows(answer)
+        ],
+        "output": answer.output,
+        "also_written": list(answer.also_written),
+    }
 
 
 @_data("pitheorem.answers.EngineVerifyAnswer")
 def _engine_verify_answer(answer) -> dict:
     rep = answer.report
-    return {"file": answer.model, "engine": answer.engine, "s": json_number(answer.s), "duration": answer.duration,
-            "input": answer.input, "exact_expected": answer.exact_expected, "exact": rep.exact,
-            "similar": rep.similar, "excited": rep.excited, "max_deviation": rep.max_deviation,
-            "first_divergence": None if rep.first_divergence is None else list(rep.first_divergence),
-            "causes": [_cause(c) for c in rep.causes], "report": _similarity_report(rep)}
+    return {
+        "file": answer.model,
+        "engine": answer.engine,
+        "s": json_number(answer.s),
+        "duration": answer.duration,
+        "input": answer.input,
+        "exact_expected": answer.exact_expected,
+        "exact": rep.exact,
+        "similar": rep.similar,
+        "excited": rep.excited,
+        "max_deviation": rep.max_deviation,
+        "first_divergence": None if rep.first_divergence is None else list(rep.first_divergence),
+        "causes": [_cause(c) for c in rep.causes],
+        "report": _similarity_report(rep),
+    }
 
 
 #: renderer of each value type, by qualified type name: its data, dumped

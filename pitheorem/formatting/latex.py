@@ -111,7 +111,7 @@ def _scaling(sc) -> str:
     if len(parts) <= SCALING_ROW:
         return r",\quad ".join(parts) or r"\text{identity (nothing changes)}"
     # a long scaling on several centred lines, so that it fits a page's column
-    rows = [r",\quad ".join(parts[k:k + SCALING_ROW]) for k in range(0, len(parts), SCALING_ROW)]
+    rows = [r",\quad ".join(parts[k : k + SCALING_ROW]) for k in range(0, len(parts), SCALING_ROW)]
     return r"\begin{gathered} " + r", \\ ".join(rows) + r" \end{gathered}"
 
 
@@ -120,22 +120,26 @@ def _scaling(sc) -> str:
 
 @_renders("pitheorem.scalesearch.SearchNote")
 def _note(note) -> str:
-    return note_text(note, time_remedy=latex_escape(PYTHON_TIME_REMEDY),
-                     code=lambda name: rf"\texttt{{{latex_escape(name)}}}")
+    return note_text(
+        note, time_remedy=latex_escape(PYTHON_TIME_REMEDY), code=lambda name: rf"\texttt{{{latex_escape(name)}}}"
+    )
 
 
 @_renders("pitheorem.scalesearch.SearchResult")
 def _search_result(result) -> str:
     if not result.feasible:
         cert = result.certificate.latex
-        return (f"% {explanation(result)}\n"
-                rf"\[ {cert} \;\to\; {power_latex(result.certificate_power)}\,{cert} \]")
+        return (
+            f"% {explanation(result)}\n"
+            rf"\[ {cert} \;\to\; {power_latex(result.certificate_power)}\,{cert} \]"
+        )
     variables, base_units = search_cells(result, _power_cell)
     rows = [[_math(latex_name(n)), role, *cells] for n, role, cells in variables]
     rows += [[rf"$[\mathrm{{{b}}}]$", "base unit", *(cell or "n/a" for cell in cells)] for b, cells in base_units]
     n = result.n_scalings
-    return _tabular(f"ll{'c' * n}", rows, ["variable", "role", *(rf"\#{k}" for k in range(1, n + 1))],
-                    rule_before=len(variables))
+    return _tabular(
+        f"ll{'c' * n}", rows, ["variable", "role", *(rf"\#{k}" for k in range(1, n + 1))], rule_before=len(variables)
+    )
 
 
 # -- equations -------------------------------------------------------------------------------
@@ -146,8 +150,10 @@ def _dimension_report(report) -> str:
     if report.consistent:
         return f"consistent: dimension {_math(_dimension(report.dimension))}"
     head = f"inconsistent: {len(report.offending)} offending term(s)"
-    rows = [[_math(sympy.latex(term)), _math(_dimension(got)), _math(_dimension(want))]
-            for term, got, want in report.offending]
+    rows = [
+        [_math(sympy.latex(term)), _math(_dimension(got)), _math(_dimension(want))]
+        for term, got, want in report.offending
+    ]
     ties = "".join(f"\n\ntie: {latex_escape(tie)}" for tie in report.ties)
     return f"{head}\n\n{_tabular('lll', rows, ['term', 'dimension', 'expected'])}{ties}"
 
@@ -184,10 +190,15 @@ def _range_bound(bound) -> str:
 def _unit_fit(fit) -> str:
     head = latex_escape(unit_fit_head(fit))
     units = [[_math(base_latex(b)), f"{float(f):.6g}", f"{1 / float(f):.6g}"] for b, f in fit.factors.items()]
-    rows = [[_math(latex_name(n)), f"{old:.6g}", f"{new:.6g}", *range_cells(bounds, ok)]
-            for n, old, new, bounds, ok in unit_fit_rows(fit)]
-    parts = [head, _tabular("lrr", units, ["base", "readings times", "new unit (old units)"]),
-             _tabular("lrrll", rows, ["variable", "value", "new value", "range", ""])]
+    rows = [
+        [_math(latex_name(n)), f"{old:.6g}", f"{new:.6g}", *range_cells(bounds, ok)]
+        for n, old, new, bounds, ok in unit_fit_rows(fit)
+    ]
+    parts = [
+        head,
+        _tabular("lrr", units, ["base", "readings times", "new unit (old units)"]),
+        _tabular("lrrll", rows, ["variable", "value", "new value", "range", ""]),
+    ]
     if fit.conflict:
         parts.append("conflicting bounds: " + "; ".join(_math(_range_bound(c)) for c in fit.conflict))
     return "\n\n".join(parts)
@@ -211,8 +222,10 @@ def _audit(audit) -> str:
 
 @_renders("pitheorem.engines.constants.HiddenConstant")
 def _hidden_constant(constant) -> str:
-    return (rf"\texttt{{{latex_escape(constant.name)}}} [{_math(_dimension(constant.dimension))}] "
-            f"({default_text(constant.default)})")
+    return (
+        rf"\texttt{{{latex_escape(constant.name)}}} [{_math(_dimension(constant.dimension))}] "
+        f"({default_text(constant.default)})"
+    )
 
 
 @_renders("pitheorem.engines.rules.RuleVerdict")
@@ -223,8 +236,16 @@ def _rule_verdict(verdict) -> str:
 
 
 def _parameter_table(name: str, model) -> str:
-    rows = [[rf"\texttt{{{latex_escape(name)}}}", latex_escape(text), " ".join(map(_number, value)),
-             latex_escape(source), latex_escape(path)] for name, _, text, value, source, path in parameter_rows(model)]
+    rows = [
+        [
+            rf"\texttt{{{latex_escape(name)}}}",
+            latex_escape(text),
+            " ".join(map(_number, value)),
+            latex_escape(source),
+            latex_escape(path),
+        ]
+        for name, _, text, value, source, path in parameter_rows(model)
+    ]
     head = f"% {parameters_head(name, model)}"
     return f"{head}\n{_tabular('lllll', rows, ['name', 'dimension', 'value', 'source', 'path'])}"
 
@@ -259,8 +280,10 @@ def _search_answer(answer) -> str:
 @_renders("pitheorem.answers.ApplyAnswer")
 def _apply_answer(answer) -> str:
     exponents = answer.scaling.exponents
-    rows = [[_math(latex_name(n)), _power_cell(exponents[n]), _number(v), _number(answer.scaled[n])]
-            for n, v in answer.values.items()]
+    rows = [
+        [_math(latex_name(n)), _power_cell(exponents[n]), _number(v), _number(answer.scaled[n])]
+        for n, v in answer.values.items()
+    ]
     head = f"% {answer.model}: {which_scaling(answer.result, answer.solution)}, s = {answer.s}"
     return f"{head}\n{_tabular('lcll', rows, ['variable', 'factor', 'value', 'scaled value'])}"
 
@@ -272,10 +295,13 @@ def _params_answer(answer) -> str:
 
 @_renders("pitheorem.answers.EngineApplyAnswer")
 def _engine_apply_answer(answer) -> str:
-    rows = [[rf"\texttt{{{latex_escape(name)}}}", _power_cell(p), " ".join(map(_number, old)), " ".join(map(_number, new))]
-            for name, p, _, old, new in changed_rows(answer)]
-    head = (f"% {answer.model}, s = {answer.s}: {len(answer.changed)} of {answer.n_parameters} parameters change"
-            + (f"; wrote {answer.output}" if answer.output else ""))
+    rows = [
+        [rf"\texttt{{{latex_escape(name)}}}", _power_cell(p), " ".join(map(_number, old)), " ".join(map(_number, new))]
+        for name, p, _, old, new in changed_rows(answer)
+    ]
+    head = f"% {answer.model}, s = {answer.s}: {len(answer.changed)} of {answer.n_parameters} parameters change" + (
+        f"; wrote {answer.output}" if answer.output else ""
+    )
     return f"{head}\n{_tabular('lcll', rows, ['parameter', 'factor', 'value', 'scaled value'])}"
 
 

@@ -263,8 +263,18 @@ def value_text(value) -> str:
 
 # -- LaTeX -----------------------------------------------------------------------------------
 
-_LATEX_SPECIAL = {"\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "_": r"\_", "^": r"\^{}", "#": r"\#",
-                  "$": r"\$", "%": r"\%", "&": r"\&", "~": r"\textasciitilde{}"}
+_LATEX_SPECIAL = {
+    "\\": r"\textbackslash{}",
+    "{": r"\{",
+    "}": r"\}",
+    "_": r"\_",
+    "^": r"\^{}",
+    "#": r"\#",
+    "$": r"\$",
+    "%": r"\%",
+    "&": r"\&",
+    "~": r"\textasciitilde{}",
+}
 
 
 def latex_name(name: str) -> str:
@@ -664,8 +674,10 @@ def deviation_rows(report, name):
     """
     sensitivity = report.sensitivity
     header = ["state", "max deviation"] + (["one-ulp sensitivity"] if sensitivity is not None else [])
-    rows = [[name(n), f"{d:.3g}", *([f"{sensitivity[n]:.3g}"] if sensitivity is not None else [])]
-            for n, d in report.deviation.items()]
+    rows = [
+        [name(n), f"{d:.3g}", *([f"{sensitivity[n]:.3g}"] if sensitivity is not None else [])]
+        for n, d in report.deviation.items()
+    ]
     return header, rows
 
 
@@ -693,8 +705,11 @@ def unit_fit_rows(fit):
     [('l', (1.0, 10.0), True), ('t', None, None)]
     """
     ranged = {n: (float(lo), float(hi)) for n, lo, hi in fit.ranges}
-    return [(n, float(fit.values[n]), float(fit.scaled[n]), ranged.get(n), (n in fit.satisfied) if n in ranged else None)
-            for n in fit.system.variables if n in fit.values]
+    return [
+        (n, float(fit.values[n]), float(fit.scaled[n]), ranged.get(n), (n in fit.satisfied) if n in ranged else None)
+        for n in fit.system.variables
+        if n in fit.values
+    ]
 
 
 def range_cells(bounds, ok, out_of_range: str = "OUT OF RANGE") -> list[str]:
@@ -779,8 +794,17 @@ def parameter_rows(model):
     if hasattr(model, "parameters"):
         return [(p.name, p.dimension, p.dimension_text, p.value, p.source, p.path) for p in model.parameters]
     dims = model.system.dimensions
-    return [(n, dims[n], str(dims[n]), (model.values[n],) if n in model.values else (), model.roles.get(n, ""),
-             model.descriptions.get(n, "")) for n in model.system.variables]
+    return [
+        (
+            n,
+            dims[n],
+            str(dims[n]),
+            (model.values[n],) if n in model.values else (),
+            model.roles.get(n, ""),
+            model.descriptions.get(n, ""),
+        )
+        for n in model.system.variables
+    ]
 
 
 # -- plain-text columns ----------------------------------------------------------------------

@@ -149,8 +149,7 @@ def _search_summary(result) -> list[str]:
     """For a large model: each minimal scaling's change of units and how many variables it changes."""
     if len(result.system) <= SUMMARY_OVER:
         return []
-    lines = ["", "summary (the table below has a row for each of the "
-             f"{len(result.system)} variables):"]
+    lines = ["", f"summary (the table below has a row for each of the {len(result.system)} variables):"]
     for k, sc in enumerate(result.scalings, 1):
         changed = [n for n, p in sc.exponents.items() if p]
         lines.append(f"  #{k}: {unit_change_text(sc)}; changes {len(changed)} of {len(result.system)} variables")
@@ -165,8 +164,10 @@ def _search_result(result, *, time_remedy: str = PYTHON_TIME_REMEDY) -> str:
         lines += _search_summary(result)
         lines += ["", search_table(result)]
     else:
-        lines.append(f"certificate: {_pi_group(result.certificate)} (the request multiplies it by "
-                     f"{power_text(result.certificate_power)})")
+        lines.append(
+            f"certificate: {_pi_group(result.certificate)} (the request multiplies it by "
+            f"{power_text(result.certificate_power)})"
+        )
     return "\n".join(lines)
 
 
@@ -178,8 +179,10 @@ def _dimension_report(report) -> str:
     if report.consistent:
         return f"consistent: dimension {_dimension(report.dimension)}"
     lines = [f"inconsistent: {len(report.offending)} offending term(s)"]
-    lines += [f"  {sympy.sstr(term)} has dimension {_dimension(got)}, expected {_dimension(want)}"
-              for term, got, want in report.offending]
+    lines += [
+        f"  {sympy.sstr(term)} has dimension {_dimension(got)}, expected {_dimension(want)}"
+        for term, got, want in report.offending
+    ]
     lines += [f"  tie: {tie}" for tie in report.ties]
     return "\n".join(lines)
 
@@ -207,10 +210,12 @@ def symmetry_head(report) -> list[str]:
     >>> symmetry_head(pt.scaling_symmetries([sympy.Eq(x.diff(t, 2), 0)], pt.System({"x": "L", "t": "T"})))[-1]
     'no symmetries beyond changes of units'
     """
-    return [f"symmetry subspace of dimension {report.n_symmetries} over {', '.join(report.variables)}",
-            f"changes of units: dimension {len(report.within_units)}"
-            + ("" if report.contains_units else " (NOT all symmetries: the equations are inconsistent)"),
-            "symmetries beyond changes of units:" if report.beyond_units else "no symmetries beyond changes of units"]
+    return [
+        f"symmetry subspace of dimension {report.n_symmetries} over {', '.join(report.variables)}",
+        f"changes of units: dimension {len(report.within_units)}"
+        + ("" if report.contains_units else " (NOT all symmetries: the equations are inconsistent)"),
+        "symmetries beyond changes of units:" if report.beyond_units else "no symmetries beyond changes of units",
+    ]
 
 
 @_renders("pitheorem.equations.SymmetryReport")
@@ -223,8 +228,10 @@ def _symmetry_report(report) -> str:
 
 def _verdict(report) -> tuple[str, str]:
     """``PASSED``/``FAILED``, and whether the exponents are a change of units."""
-    return ("PASSED" if report.passed else "FAILED",
-            "similarity scaling" if report.is_similarity else "NOT a similarity scaling")
+    return (
+        "PASSED" if report.passed else "FAILED",
+        "similarity scaling" if report.is_similarity else "NOT a similarity scaling",
+    )
 
 
 @_renders("pitheorem.simulation.SimilarityReport")
@@ -237,8 +244,10 @@ def _similarity_report(report) -> str:
     else:
         judged = f"tol {report.tol:g}"
     head = "EXACT (bit for bit), " if report.exact and report.sensitivity is not None else ""
-    lines = [f"{head}{verdict}: max deviation {report.max_deviation:.3g} ({judged}) at s={report.s:g}, "
-             f"{kind}, method {report.method}; per state {per}"]
+    lines = [
+        f"{head}{verdict}: max deviation {report.max_deviation:.3g} ({judged}) at s={report.s:g}, "
+        f"{kind}, method {report.method}; per state {per}"
+    ]
     if report.excited is False:
         lines.append("the original run moved nothing beyond its own rounding: this verdict proves nothing")
     lines.extend(f"cause: {cause}" for cause in report.causes)
@@ -250,8 +259,10 @@ def _engine_similarity_report(report) -> str:
     verdict, kind = _verdict(report)
     ode = "" if report.ode_report is None else f"; pure ODE: {report.ode_report.max_deviation:.3g}"
     own = "" if report.engine_vs_ode is None else f"; engine vs exact ODE: {report.engine_vs_ode:.3g}"
-    return (f"{report.engine}: {verdict}, max deviation {report.max_deviation:.3g} (tol {report.tol:g}) at "
-            f"s={report.s:g}, {kind}, dt {report.dt:.6g} -> {report.dt_scaled:.6g}{ode}{own}")
+    return (
+        f"{report.engine}: {verdict}, max deviation {report.max_deviation:.3g} (tol {report.tol:g}) at "
+        f"s={report.s:g}, {kind}, dt {report.dt:.6g} -> {report.dt_scaled:.6g}{ode}{own}"
+    )
 
 
 # -- unit fits -------------------------------------------------------------------------------
@@ -281,8 +292,11 @@ def unit_fit_head(fit) -> str:
     'unit fit (factors rounded to powers of 2): every value in range'
     """
     kind = f"factors rounded to powers of {fit.nice}" if fit.nice else "continuous fit"
-    head = "every value in range" if fit.feasible else (
-        f"NOT every value fits: worst violation {fit.worst_violation:.3g} decades")
+    head = (
+        "every value in range"
+        if fit.feasible
+        else (f"NOT every value fits: worst violation {fit.worst_violation:.3g} decades")
+    )
     return f"unit fit ({kind}): {head}"
 
 
@@ -338,8 +352,10 @@ def _rule_verdict(verdict) -> str:
     if verdict.unchanged:
         lines.append(f"  not named, rightly unchanged: {', '.join(verdict.unchanged)}")
     for c in verdict.broken:
-        lines.append(f"  hidden constant left out: {_hidden_constant(c)}"
-                     f" must scale by X^{verdict.scaling.exponent_of(c.dimension)}")
+        lines.append(
+            f"  hidden constant left out: {_hidden_constant(c)}"
+            f" must scale by X^{verdict.scaling.exponent_of(c.dimension)}"
+        )
     return "\n".join(lines)
 
 
@@ -362,8 +378,10 @@ def parameter_table(model) -> str:
     ['name', 'dimension', 'value', 'source', 'path']
     """
     rows = [("name", "dimension", "value", "source", "path")]
-    rows += [(name, text, " ".join(map(value_text, value)), source, path)
-             for name, _, text, value, source, path in parameter_rows(model)]
+    rows += [
+        (name, text, " ".join(map(value_text, value)), source, path)
+        for name, _, text, value, source, path in parameter_rows(model)
+    ]
     return align(rows)
 
 
@@ -382,11 +400,15 @@ def _engine_model(model) -> str:
 @_renders("pitheorem.answers.GroupsAnswer")
 def _groups_answer(answer) -> str:
     system, groups = answer.system, answer.groups
-    lines = [f"{answer.model}: {len(system)} variables, rank {system.rank}, {system.n_groups} dimensionless groups",
-             f"repeating variables: {', '.join(groups.repeating) or '(none)'}"]
+    lines = [
+        f"{answer.model}: {len(system)} variables, rank {system.rank}, {system.n_groups} dimensionless groups",
+        f"repeating variables: {', '.join(groups.repeating) or '(none)'}",
+    ]
     if answer.passed_over:
-        lines.append("(the first valid set without time variables, variables lacking one value, and the "
-                     f"variables whose value is 0: {names_text(answer.passed_over)})")
+        lines.append(
+            "(the first valid set without time variables, variables lacking one value, and the "
+            f"variables whose value is 0: {names_text(answer.passed_over)})"
+        )
     if len(groups):
         rows = [["group", "expression", "value"]]
         rows += [[g.name, sympy.sstr(g.expr), value_text(v)] for g, v in zip(groups, answer.values, strict=True)]
@@ -420,11 +442,15 @@ def _search_answer(answer) -> str:
 @_renders("pitheorem.answers.ApplyAnswer")
 def _apply_answer(answer) -> str:
     exponents = answer.scaling.exponents
-    lines = [f"{answer.model}, s = {answer.s}: {which_scaling(answer.result, answer.solution)}", f"  {_scaling(answer.scaling)}"]
+    lines = [
+        f"{answer.model}, s = {answer.s}: {which_scaling(answer.result, answer.solution)}",
+        f"  {_scaling(answer.scaling)}",
+    ]
     lines += [note_text(note, time_remedy=COMMAND_LINE_TIME_REMEDY) for note in answer.result.notes]
     rows = [["variable", "factor", "value", "scaled value"]]
-    rows += [[n, power_text(exponents[n]), value_text(v), value_text(answer.scaled[n])]
-             for n, v in answer.values.items()]
+    rows += [
+        [n, power_text(exponents[n]), value_text(v), value_text(answer.scaled[n])] for n, v in answer.values.items()
+    ]
     lines += ["", align(rows)]
     if answer.output:
         lines += ["", f"wrote {answer.output}"]
@@ -438,18 +464,24 @@ def _params_answer(answer) -> str:
 
 @_renders("pitheorem.answers.EngineApplyAnswer")
 def _engine_apply_answer(answer) -> str:
-    lines = [f"{answer.model}, s = {answer.s}: {unit_change_text(answer.scaling)}",
-             f"{len(answer.changed)} of {answer.n_parameters} parameters change"
-             + (", by dimension:" if answer.changed else "")]
+    lines = [
+        f"{answer.model}, s = {answer.s}: {unit_change_text(answer.scaling)}",
+        f"{len(answer.changed)} of {answer.n_parameters} parameters change"
+        + (", by dimension:" if answer.changed else ""),
+    ]
     if answer.changed:
         changed = changed_rows(answer)
         rows = [["dimension", "factor", "count", "parameters"]]
-        rows += [[dim, power_text(p), str(len(names)), ", ".join(names[:2]) + (", ..." if len(names) > 2 else "")]
-                 for dim, p, names in changed_by_kind((name, p, dim) for name, p, dim, _, _ in changed)]
+        rows += [
+            [dim, power_text(p), str(len(names)), ", ".join(names[:2]) + (", ..." if len(names) > 2 else "")]
+            for dim, p, names in changed_by_kind((name, p, dim) for name, p, dim, _, _ in changed)
+        ]
         lines.append("\n".join("  " + line for line in align(rows).splitlines()))
         rows = [["parameter", "factor", "value", "scaled value"]]
-        rows += [[name, power_text(p), " ".join(map(value_text, old)), " ".join(map(value_text, new))]
-                 for name, p, _, old, new in changed]
+        rows += [
+            [name, power_text(p), " ".join(map(value_text, old)), " ".join(map(value_text, new))]
+            for name, p, _, old, new in changed
+        ]
         lines += ["", align(rows)]
     if answer.output:
         also = f" (and {', '.join(answer.also_written)})" if answer.also_written else ""
@@ -462,20 +494,26 @@ def _engine_verify_answer(answer) -> str:
     rep, s = answer.report, answer.s
     steps = len(rep.original) - 1
     if rep.exact:
-        lines = [f"exact: the scaled copy, mapped back, equals the original bit for bit at every step "
-                 f"(s = {s}, {steps} steps)"]
+        lines = [
+            f"exact: the scaled copy, mapped back, equals the original bit for bit at every step "
+            f"(s = {s}, {steps} steps)"
+        ]
     else:
         verdict = "similar" if rep.similar else "NOT similar"
         worst = max(rep.sensitivity.values(), default=0.0)
-        lines = [f"{verdict}: largest deviation {rep.max_deviation:.3g} in original units, against "
-                 f"{rep.baseline_factor:g}x the spread of {rep.ensemble} one-ulp twins of the original (largest "
-                 f"{worst:.3g}); s = {s}, {steps} steps"]
+        lines = [
+            f"{verdict}: largest deviation {rep.max_deviation:.3g} in original units, against "
+            f"{rep.baseline_factor:g}x the spread of {rep.ensemble} one-ulp twins of the original (largest "
+            f"{worst:.3g}); s = {s}, {steps} steps"
+        ]
         if rep.first_divergence is not None:
             t, name = rep.first_divergence
             lines.append(f"first difference at t = {t:.6g}, in {name}")
     if not rep.excited:
-        lines.append("the original run moved nothing beyond its own rounding: this verdict proves nothing "
-                     "(use --input smooth or another initial pose)")
+        lines.append(
+            "the original run moved nothing beyond its own rounding: this verdict proves nothing "
+            "(use --input smooth or another initial pose)"
+        )
     if rep.causes:
         lines.append("causes:")
         lines.extend(f"  {c}" for c in rep.causes)

@@ -31,8 +31,9 @@ def box(hx: float, hy: float, hz: float) -> tuple[list[Vertex], list[Face]]:
 
 def prism(radius: float, half_length: float, sides: int) -> tuple[list[Vertex], list[Face]]:
     """A regular prism along z (a low-poly cylinder): 2 * sides vertices."""
-    ring = [(radius * math.cos(2 * math.pi * k / sides), radius * math.sin(2 * math.pi * k / sides))
-            for k in range(sides)]
+    ring = [
+        (radius * math.cos(2 * math.pi * k / sides), radius * math.sin(2 * math.pi * k / sides)) for k in range(sides)
+    ]
     vertices = [(x, y, -half_length) for x, y in ring] + [(x, y, half_length) for x, y in ring]
     faces = []
     for k in range(sides):
@@ -46,11 +47,42 @@ def prism(radius: float, half_length: float, sides: int) -> tuple[list[Vertex], 
 def icosphere(radius: float, subdivisions: int) -> tuple[list[Vertex], list[Face]]:
     """An icosahedron, each face split in four `subdivisions` times, pushed onto the sphere."""
     t = (1 + math.sqrt(5)) / 2
-    vertices = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t), (0, -1, -t), (0, 1, -t),
-                (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
-    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
-             (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11),
-             (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    vertices = [
+        (-1, t, 0),
+        (1, t, 0),
+        (-1, -t, 0),
+        (1, -t, 0),
+        (0, -1, t),
+        (0, 1, t),
+        (0, -1, -t),
+        (0, 1, -t),
+        (t, 0, -1),
+        (t, 0, 1),
+        (-t, 0, -1),
+        (-t, 0, 1),
+    ]
+    faces = [
+        (0, 11, 5),
+        (0, 5, 1),
+        (0, 1, 7),
+        (0, 7, 10),
+        (0, 10, 11),
+        (1, 5, 9),
+        (5, 11, 4),
+        (11, 10, 2),
+        (10, 7, 6),
+        (7, 1, 8),
+        (3, 9, 4),
+        (3, 4, 2),
+        (3, 2, 6),
+        (3, 6, 8),
+        (3, 8, 9),
+        (4, 9, 5),
+        (2, 4, 11),
+        (6, 2, 10),
+        (8, 6, 7),
+        (9, 8, 1),
+    ]
     vertices = [tuple(float(c) for c in v) for v in vertices]
     for _ in range(subdivisions):
         middle: dict[tuple[int, int], int] = {}
@@ -87,10 +119,30 @@ def capsule(radius: float, half_length: float, sides: int) -> tuple[list[Vertex]
 def wedge(length: float, width: float, height: float) -> tuple[list[Vertex], list[Face]]:
     """A foot-like wedge: a box whose top is narrower at the front (a convex hull of 8 points)."""
     hl, hw, hh = length / 2, width / 2, height / 2
-    vertices = [(-hl, -hw, -hh), (-hl, hw, -hh), (hl, -hw, -hh), (hl, hw, -hh),
-                (-hl, -hw, hh), (-hl, hw, hh), (hl / 3, -hw * 0.75, hh), (hl / 3, hw * 0.75, hh)]
-    faces = [(0, 2, 3), (0, 3, 1), (4, 5, 7), (4, 7, 6), (0, 1, 5), (0, 5, 4), (2, 6, 7), (2, 7, 3),
-             (0, 4, 6), (0, 6, 2), (1, 3, 7), (1, 7, 5)]
+    vertices = [
+        (-hl, -hw, -hh),
+        (-hl, hw, -hh),
+        (hl, -hw, -hh),
+        (hl, hw, -hh),
+        (-hl, -hw, hh),
+        (-hl, hw, hh),
+        (hl / 3, -hw * 0.75, hh),
+        (hl / 3, hw * 0.75, hh),
+    ]
+    faces = [
+        (0, 2, 3),
+        (0, 3, 1),
+        (4, 5, 7),
+        (4, 7, 6),
+        (0, 1, 5),
+        (0, 5, 4),
+        (2, 6, 7),
+        (2, 7, 3),
+        (0, 4, 6),
+        (0, 6, 2),
+        (1, 3, 7),
+        (1, 7, 5),
+    ]
     return vertices, faces
 
 
@@ -117,8 +169,11 @@ def write_stl(path: Path, vertices: list[Vertex], faces: list[Face]) -> None:
     header = f"pitheorem test corpus: {path.stem}".encode().ljust(80, b" ")
     chunks = [header, struct.pack("<I", len(faces))]
     for a, b, c in faces:
-        chunks.append(struct.pack("<12fH", *_normal(vertices[a], vertices[b], vertices[c]),
-                                  *vertices[a], *vertices[b], *vertices[c], 0))
+        chunks.append(
+            struct.pack(
+                "<12fH", *_normal(vertices[a], vertices[b], vertices[c]), *vertices[a], *vertices[b], *vertices[c], 0
+            )
+        )
     path.write_bytes(b"".join(chunks))
 
 

@@ -50,8 +50,7 @@ CORPUS = (
     ("urdf/quadruped.urdf", {"ground": True, "base_position": (0, 0, 0.5)}),
     ("urdf/quadruped.urdf", {"ground": True, "base_position": (0, 0, 0.5), "damping": 0.0, "split_impulse": False}),
     ("urdf/gripper.urdf", {"fixed_base": True, "base_position": (0, 0, 0.5)}),
-    ("urdf/gripper.urdf", {"fixed_base": True, "base_position": (0, 0, 0.5), "damping": 0.0,
-                           "split_impulse": False}),
+    ("urdf/gripper.urdf", {"fixed_base": True, "base_position": (0, 0, 0.5), "damping": 0.0, "split_impulse": False}),
     ("urdf/arm.urdf", {"fixed_base": True}),
     ("urdf/arm.urdf", {"fixed_base": True, "damping": 0.0, "split_impulse": False}),
     ("urdf/wheeled.urdf", {"ground": True, "base_position": (0, 0, 0.081)}),
@@ -195,8 +194,10 @@ def options_text(options: dict) -> str:
 
 
 def table(rows: list[Row]) -> str:
-    head = ("| file | scene | load s | params | search s | moved | s=4 exact | s=4 similar | s=4 max dev | "
-            "s=4 sens | s=10 similar | s=10 max dev | s=10 sens | s=10 worst coordinate | saved s=4 reloads |")
+    head = (
+        "| file | scene | load s | params | search s | moved | s=4 exact | s=4 similar | s=4 max dev | "
+        "s=4 sens | s=10 similar | s=10 max dev | s=10 sens | s=10 worst coordinate | saved s=4 reloads |"
+    )
     lines = [head, "|" + "---|" * (head.count("|") - 1)]
     errors = []
     for r in rows:
@@ -204,15 +205,32 @@ def table(rows: list[Row]) -> str:
         exact = None if v4.max_deviation is None else v4.max_deviation == 0.0
         name = r.name + ("" if r.provenance == "written for pitheorem" else f" ({r.provenance})")
         reload = "-" if r.error else ("yes" if not r.reload_error else "**no**")
-        cells = [name, options_text(r.options), cell(r.load_seconds, "{:.3f}"), cell(r.parameters, "{}"),
-                 cell(r.search_seconds, "{:.3f}"), cell(r.moved), cell(exact), cell(v4.similar),
-                 cell(v4.max_deviation), cell(v4.sensitivity), cell(v10.similar), cell(v10.max_deviation),
-                 cell(v10.sensitivity), v10.worst or "-", reload]
+        cells = [
+            name,
+            options_text(r.options),
+            cell(r.load_seconds, "{:.3f}"),
+            cell(r.parameters, "{}"),
+            cell(r.search_seconds, "{:.3f}"),
+            cell(r.moved),
+            cell(exact),
+            cell(v4.similar),
+            cell(v4.max_deviation),
+            cell(v4.sensitivity),
+            cell(v10.similar),
+            cell(v10.max_deviation),
+            cell(v10.sensitivity),
+            v10.worst or "-",
+            reload,
+        ]
         if r.error:
             cells[5:14] = ["error"] * 9
         lines.append("| " + " | ".join(cells) + " |")
-        for label, text in (("load/search", r.error), ("verify s=4", v4.error), ("verify s=10", v10.error),
-                            ("save+reload", r.reload_error)):
+        for label, text in (
+            ("load/search", r.error),
+            ("verify s=4", v4.error),
+            ("verify s=10", v10.error),
+            ("save+reload", r.reload_error),
+        ):
             if text:
                 errors.append(f"- `{name}` [{options_text(r.options) or 'as is'}] {label}: {text}")
         for w in r.warnings:
@@ -264,7 +282,7 @@ def mesh_twin_deviation(path: Path) -> float | None:
 
     def larger(spec):
         for mesh in spec.meshes:
-            mesh.scale = np.asarray(mesh.scale, dtype=float) * (1 + 2.0 ** -23)
+            mesh.scale = np.asarray(mesh.scale, dtype=float) * (1 + 2.0**-23)
 
     twin = mjcf_variant(path, larger)
     controls = smooth_controls(model)
@@ -288,16 +306,21 @@ def diagnose(path: Path, name: str, s_values=(4, 10)) -> list[str]:
         "springlength explicit": explicit_springlengths,
         "springlength explicit + equalities off": lambda spec: (explicit_springlengths(spec), no_equalities(spec)),
         "tolerance 0 + springlength explicit": lambda spec: (zero_tolerance(spec), explicit_springlengths(spec)),
-        "tolerance 0 + contacts off + springlength explicit":
-            lambda spec: (zero_tolerance(spec), no_contacts(spec), explicit_springlengths(spec)),
+        "tolerance 0 + contacts off + springlength explicit": lambda spec: (
+            zero_tolerance(spec),
+            no_contacts(spec),
+            explicit_springlengths(spec),
+        ),
     }
     out = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         twin = mesh_twin_deviation(path)
         if twin is not None:
-            out.append(f"- `{name}` twin with every mesh scale times 1 + 2^-23 (one float32 ulp), not scaled: "
-                       f"deviation {twin:.3g} from the original")
+            out.append(
+                f"- `{name}` twin with every mesh scale times 1 + 2^-23 (one float32 ulp), not scaled: "
+                f"deviation {twin:.3g} from the original"
+            )
         for label, change in variants.items():
             try:
                 model = mjcf_variant(path, change)
@@ -306,8 +329,14 @@ def diagnose(path: Path, name: str, s_values=(4, 10)) -> list[str]:
                 parts = []
                 for s in s_values:
                     v = verdict(model, scaling, s, controls)
-                    parts.append(f"s={s}: " + (v.error or f"max dev {v.max_deviation:.3g} (sens {cell(v.sensitivity)}, "
-                                                           f"similar {cell(v.similar)}, worst {v.worst})"))
+                    parts.append(
+                        f"s={s}: "
+                        + (
+                            v.error
+                            or f"max dev {v.max_deviation:.3g} (sens {cell(v.sensitivity)}, "
+                            f"similar {cell(v.similar)}, worst {v.worst})"
+                        )
+                    )
                 out.append(f"- `{name}` {label}: " + "; ".join(parts))
             except Exception as err:
                 out.append(f"- `{name}` {label}: {message(err)}")
@@ -320,8 +349,9 @@ def main(argv=None) -> int:
     parser.add_argument("--diagnose", action="store_true", help="counter-runs for the MJCF files")
     parser.add_argument("--only", nargs="*", default=None, help="only these corpus files (relative names)")
     parser.add_argument("--fetched", nargs="*", default=(), help="files fetched from elsewhere (not committed)")
-    parser.add_argument("--scene", action="append", default=[],
-                        help="URDF scene options for the fetched files, e.g. ground=True")
+    parser.add_argument(
+        "--scene", action="append", default=[], help="URDF scene options for the fetched files, e.g. ground=True"
+    )
     args = parser.parse_args(argv)
     corpus = [(n, o) for n, o in CORPUS if args.only is None or n in args.only]
     if args.diagnose:
