@@ -15,7 +15,7 @@ pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pith
 
 def test_one_line_per_engine_with_one_name_and_its_module():
     names = [e.name for e in REGISTRY]
-    assert names == ["pybullet", "mujoco", "mjx"]
+    assert names == ["pybullet", "mujoco", "mjx", "warp"]
     for e in REGISTRY:
         module = REPO / "pitheorem" / "engines" / (e.module.replace(".", "/") + ".py")
         assert module.is_file(), e

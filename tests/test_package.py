@@ -261,6 +261,7 @@ def test_every_module_has_its_test_file_and_every_test_file_a_module_or_a_reason
             "runners.mjx",
             "runners.mujoco",
             "runners.pybullet",
+            "runners.warp",
             "thresholds",
             "units",
             "verdicts.audit",

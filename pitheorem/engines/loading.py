@@ -35,7 +35,7 @@ def load(path, engine=None, units=None, **options):
     engine : str, optional
         The engine to run it in: by default the file's own (MJCF in
         ``"mujoco"``, URDF in ``"pybullet"``); an MJCF file also runs in
-        ``"mjx"``.
+        ``"mjx"`` and ``"warp"`` (MuJoCo Warp).
     units : mapping of str to str, optional
         The units the file is written in, for some of ``M``, ``L`` and
         ``T`` (``{"L": "cm", "M": "g"}``); the others are SI.  Default: SI,
@@ -44,7 +44,8 @@ def load(path, engine=None, units=None, **options):
         The engine loader's options: for PyBullet those of
         ``pitheorem.engines.runners.pybullet.load_urdf`` (``settings`` and the scene);
         for MJX ``precision`` (``"float32"``, the default, or
-        ``"float64"``); MuJoCo takes none (the file holds its settings).
+        ``"float64"``); for MuJoCo Warp ``device`` (``"cpu"``,
+        ``"cuda:0"``); MuJoCo takes none (the file holds its settings).
 
     Returns
     -------
@@ -75,7 +76,7 @@ def load(path, engine=None, units=None, **options):
     ...     engines.load(engines.example_path("pendulum.xml"), engine="pybullet")
     ... except pt.InvalidRequestError as err:
     ...     print(err)
-    engine 'pybullet' does not read MJCF files; an MJCF file runs in 'mujoco' or 'mjx'
+    engine 'pybullet' does not read MJCF files; an MJCF file runs in 'mujoco', 'mjx' or 'warp'
     """
     path = Path(path)
     names = ", ".join(f"{f.title} ({' '.join(f.suffixes)})" for f in FORMATS)
@@ -87,7 +88,8 @@ def load(path, engine=None, units=None, **options):
     readers = [e for e in REGISTRY if fmt.name in e.formats]
     chosen = registered(fmt.engine if engine is None else engine)
     if chosen not in readers:
-        runs_in = " or ".join(repr(e.name) for e in readers)
+        quoted = [repr(e.name) for e in readers]
+        runs_in = f"{', '.join(quoted[:-1])} or {quoted[-1]}" if len(quoted) > 1 else quoted[0]
         article = "an" if fmt.title[0] in "AEFHILMNORSX" else "a"  # as the letters are spoken: an MJCF, a URDF
         raise InvalidRequestError(
             f"engine {chosen.name!r} does not read {fmt.title} files; {article} {fmt.title} file runs in {runs_in}",

@@ -30,7 +30,7 @@ Examples
 >>> [(f.name, f.engine) for f in FORMATS]
 [('mjcf', 'mujoco'), ('urdf', 'pybullet')]
 >>> [(e.name, e.formats) for e in REGISTRY]
-[('pybullet', ('urdf',)), ('mujoco', ('mjcf',)), ('mjx', ('mjcf',))]
+[('pybullet', ('urdf',)), ('mujoco', ('mjcf',)), ('mjx', ('mjcf',)), ('warp', ('mjcf',))]
 """
 
 from __future__ import annotations
@@ -165,6 +165,15 @@ REGISTRY: tuple[Engine, ...] = (
         base="mujoco",
         precision="float32",
     ),
+    Engine(
+        "warp",
+        "runners.warp",
+        (("mjcf", "load_warp"),),
+        ("mujoco", "warp", "mujoco_warp"),
+        extra="warp",
+        base="mujoco",
+        precision="float32",
+    ),
 )
 
 _BY_NAME = {e.name: e for e in REGISTRY}
@@ -198,7 +207,7 @@ def registered(name) -> Engine:
     ...     registered("ode")
     ... except ValueError as err:
     ...     print(err)
-    unknown engine 'ode'; use 'pybullet', 'mujoco' or 'mjx'
+    unknown engine 'ode'; use 'pybullet', 'mujoco', 'mjx' or 'warp'
     """
     name = ALIASES.get(name, name) if isinstance(name, str) else name
     if not isinstance(name, str) or name not in _BY_NAME:

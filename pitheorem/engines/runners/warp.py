@@ -1,0 +1,438 @@
+"""MJCF models in MuJoCo Warp (MJWarp), MuJoCo written in NVIDIA Warp: float32, runs batched as worlds.
+
+An MJCF file is read as for MuJoCo (:mod:`pitheorem.engines.fileformats.mjcf`
+reads it: the same parameters, scaled copies and saved files), compiled by
+MuJoCo's compiler, and put on a Warp device with ``mujoco_warp.put_model``:
+a GPU where Warp finds one, else the CPU (``device="cpu"`` asks for it).
+MJWarp computes in float32 only.  What it does not support (the PGS
+solver, some sensors, flags, plugins, the dense Jacobian beyond 60
+degrees of freedom) is refused by name when the file is loaded.
+
+The runs of a verification (the original, its scaled copy, the
+yardstick's twins) go to :meth:`WarpRunner.run_many`, which runs them as
+the *worlds* of one model: MJWarp reads each of its per-world arrays
+(a leading dimension ``"*"`` in ``mujoco_warp.Model``: masses, sizes,
+gravity, solver parameters, ...) at ``world % len``, so the models' own
+values are stacked there, one row per world.  Models whose other arrays
+differ cannot share a call: each group of equal shared arrays is one.
+A twin moves every number MJWarp holds by one float32 unit in the last
+place.
+
+The first run of a model compiles MJWarp's kernels for its sizes (on the
+CPU, minutes for the first model, seconds for the next); Warp keeps them
+in its kernel cache (``warp.config.kernel_cache_dir``, set before Warp
+initialises), and a later process loads them in seconds.
+
+MJWarp runs open loop only here: a closed-loop controller runs in
+``"mujoco"``.  Its own constants are in the catalogue
+(``engines.hidden_constants("warp")``), its thresholds are MuJoCo's and
+float32's range (``engines.thresholds("warp")``).
+
+Examples
+--------
+>>> from pitheorem.engines.registry import registered
+>>> line = registered("warp")
+>>> line.packages, line.extra, line.base, line.precision
+(('mujoco', 'warp', 'mujoco_warp'), 'warp', 'mujoco', 'float32')
+
+With MuJoCo Warp installed (``pip install "pitheorem[warp]"``)::
+
+    model = engines.load("pendulum.xml", engine="warp", device="cpu")
+    rep = engines.verify(model, scaling, s=4, duration=0.5)  # rep.exact: bit for bit
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+
+from ...errors import EngineModelError, InvalidRequestError
+from ..enginemodel import EngineModel
+from ..fileformats.mjcf import read_mjcf
+from ..packages import engine_module
+from .mujoco import MujocoRunner
+
+__all__ = ["PRECISION", "WarpRunner", "load_warp"]
+
+#: the one precision MJWarp computes in
+PRECISION = "float32"
+
+#: the prefix of MuJoCo's enum names in MJWarp's refusals, and the element each names
+_CULPRITS = (
+    ("mjSOL_", "option solver"),
+    ("mjINT_", "option integrator"),
+    ("mjCONE_", "option cone"),
+    ("mjDSBL_", "option flag"),
+    ("mjENBL_", "option flag"),
+    ("mjGEOM_", "geom"),
+    ("mjSENS_", "sensor"),
+    ("mjTRN_", "actuator"),
+    ("mjDYN_", "actuator"),
+    ("mjGAIN_", "actuator"),
+    ("mjBIAS_", "actuator"),
+    ("mjEQ_", "equality"),
+    ("mjWRAP_", "tendon"),
+    ("plugin", "plugin"),
+    ("Flex", "flex"),
+    ("flex", "flex"),
+    ("noslip", "option noslip_iterations"),
+    ("Dense", "option jacobian"),
+)
+
+
+def _warp():
+    """Warp and MJWarp, imported (the missing package named, with the extra that installs it)."""
+    mjw = engine_module("warp")
+    import warp
+
+    return warp, mjw
+
+
+class WarpRunner:
+    """An MJCF model in MJWarp: MuJoCo's reading of the file, and its ``mujoco_warp.Model`` on a Warp device.
+
+    Parameters
+    ----------
+    mjcf : MujocoRunner
+        The file as MuJoCo reads and compiles it.
+    device : str
+        The Warp device (``"cpu"``, ``"cuda:0"``).
+    moved : dict, optional
+        Arrays that replace the compiled model's (a twin's), by field.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.protocols import Runner
+    >>> from pitheorem.engines.runners.warp import WarpRunner
+    >>> all(hasattr(WarpRunner, name) for name in Runner.__dict__ if not name.startswith("_"))
+    True
+    """
+
+    precision = PRECISION
+
+    def __init__(self, mjcf: MujocoRunner, device: str, moved: dict | None = None):
+        self.mjcf = mjcf
+        self.device = device
+        self._moved = dict(moved or {})
+        self._device_model = _put(mjcf, device, self._moved)
+
+    def device_model(self):
+        """The ``mujoco_warp.Model`` this runner runs (one world)."""
+        return self._device_model
+
+    def in_units(self, units) -> WarpRunner:
+        """This model, MuJoCo's reading recording other units (the numbers are the same)."""
+        return WarpRunner(self.mjcf.in_units(units), self.device, self._moved)
+
+    # -- the table, scaled copies and files: MuJoCo's reading of the file ------------------------
+
+    def parameters(self):
+        return self.mjcf.parameters()
+
+    def settings(self) -> dict:
+        return {"precision": PRECISION, "device": self.device}
+
+    def scaled(self, factors, scaling, s) -> WarpRunner:
+        return WarpRunner(self.mjcf.scaled(factors, scaling, s), self.device)
+
+    def save(self, path: Path) -> None:
+        self.mjcf.save(path)  # an MJCF file: MuJoCo and MJWarp load it alike
+
+    def written_beside(self, path) -> tuple[str, ...]:
+        return self.mjcf.written_beside(path)
+
+    def check_units(self, units) -> None:
+        self.mjcf.check_units(units)
+
+    def recorded_units(self) -> dict[str, str] | None:
+        return self.mjcf.recorded_units()
+
+    @property
+    def refusal(self):
+        """None: MJWarp loads only what MuJoCo's compiler accepts and it supports."""
+        return None
+
+    # -- what MJWarp holds ---------------------------------------------------------------------
+
+    def stored_numbers(self) -> dict[str, np.ndarray]:
+        """Every floating-point array MJWarp holds for the model, by field (``opt.x`` for options), in float32.
+
+        A per-world array is given for its one world, laid out as MuJoCo's.
+        """
+        return {field: _one_world(array, batched) for field, array, batched in _float_arrays(self._device_model)}
+
+    def element_name(self, field: str, row: int) -> str:
+        if "." in field or not hasattr(self.mjcf.mjmodel, field):  # a field of MJWarp's own
+            return f"{field}[{row}]"
+        return self.mjcf.element_name(field, row)
+
+    def twin(self, seed: int) -> WarpRunner:
+        """A copy whose every number in MJWarp's arrays is one float32 unit in its last place off (signs from `seed`).
+
+        Zeros stay zero and the time step stays.
+        """
+        rng = np.random.default_rng(seed)
+        moved = {}
+        for field, array, _batched in _float_arrays(self._device_model):
+            if field == "opt.timestep":
+                continue
+            value = array.numpy()
+            toward = np.where(rng.random(value.shape) < 0.5, np.inf, -np.inf).astype(value.dtype)
+            moved[field] = np.where(value == 0, value, np.nextafter(value, toward))
+        return WarpRunner(self.mjcf, self.device, moved)
+
+    def variant(self, *, tolerance: float | None = None) -> WarpRunner:
+        """A copy run with another solver tolerance: a counter-run's model."""
+        return WarpRunner(self.mjcf.variant(tolerance=tolerance), self.device)
+
+    def solver_settings(self) -> dict[str, float]:
+        return {k: v for k, v in self.mjcf.solver_settings().items() if k == "tolerance"}
+
+    # -- running ------------------------------------------------------------------------------
+
+    def timestep(self) -> float:
+        return self.mjcf.timestep()
+
+    def coordinate_dimensions(self):
+        return self.mjcf.coordinate_dimensions()
+
+    def control_dimensions(self):
+        return self.mjcf.control_dimensions()
+
+    def control_ranges(self):
+        return self.mjcf.control_ranges()
+
+    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None) -> np.ndarray:
+        """Rows of (qpos, qvel, act) after 0..n_steps steps from the initial state, open loop.
+
+        Raises
+        ------
+        InvalidRequestError
+            For a closed-loop `policy` (run it in ``"mujoco"``).
+        """
+        if policy is not None:
+            raise InvalidRequestError(
+                "MuJoCo Warp runs open loop here; run a closed-loop controller in 'mujoco' (engines.load(path))"
+            )
+        return self.run_many(n_steps, [(self, controls, nudge, initial)])[0]
+
+    def run_many(self, n_steps: int, jobs) -> list[np.ndarray]:
+        """The runs of ``(runner, controls, nudge, initial)`` jobs as the worlds of one call per group.
+
+        The models must have the same sizes (a model, its scaled copies and
+        its twins do).  Their per-world arrays are stacked, one row per
+        world; jobs whose shared arrays differ run in calls of their own.
+        ``controls`` is None, rows of inputs (one per step) or
+        ``t -> inputs``; ``initial`` is None or a first row (qpos, qvel, act).
+        """
+        wp, mjw = _warp()
+        reference = jobs[0][0]
+        models = [_aligned(runner, reference) for runner, *_ in jobs]
+        groups: dict = {}
+        for i, model in enumerate(models):
+            groups.setdefault(_shared_key(model), []).append(i)
+        out: list = [None] * len(jobs)
+        m = reference.mjcf.mjmodel
+        with wp.ScopedDevice(self.device):
+            for members in groups.values():
+                batch = _worlds([models[i] for i in members], self.device)
+                starts = np.stack([_initial(jobs[i][0], jobs[i][2], jobs[i][3]) for i in members])
+                rows = np.stack([_control_rows(jobs[i][1], n_steps, m.nu, jobs[i][0].timestep()) for i in members])
+                data = mjw.make_data(m, nworld=len(members))
+                data.qpos.assign(starts[:, : m.nq])
+                data.qvel.assign(starts[:, m.nq : m.nq + m.nv])
+                if m.na:
+                    data.act.assign(starts[:, m.nq + m.nv :])
+                runs = np.empty((len(members), n_steps + 1, m.nq + m.nv + m.na), dtype=np.float32)
+                runs[:, 0] = starts
+                for step in range(n_steps):
+                    if m.nu:
+                        data.ctrl.assign(rows[:, step])
+                    mjw.step(batch, data)
+                    runs[:, step + 1, : m.nq] = data.qpos.numpy()
+                    runs[:, step + 1, m.nq : m.nq + m.nv] = data.qvel.numpy()
+                    if m.na:
+                        runs[:, step + 1, m.nq + m.nv :] = data.act.numpy()
+                for k, i in enumerate(members):
+                    out[i] = runs[k].astype(float)
+        return out
+
+
+def _put(mjcf: MujocoRunner, device: str, moved: dict):
+    """The ``mujoco_warp.Model`` of a MuJoCo model on `device`, `moved` arrays replaced; refusals by name."""
+    wp, mjw = _warp()
+    with wp.ScopedDevice(device):
+        try:
+            model = mjw.put_model(mjcf.mjmodel)
+        except (NotImplementedError, ValueError) as err:
+            reason = str(err).strip().rstrip(".") or type(err).__name__
+            raise EngineModelError(
+                mjcf.path, _unsupported(reason), f"MuJoCo Warp does not support {reason}; run the file in 'mujoco'"
+            ) from None
+        for field, value in moved.items():
+            holder, name = (model.opt, field[4:]) if field.startswith("opt.") else (model, field)
+            old = getattr(holder, name)
+            setattr(holder, name, wp.array(value, dtype=old.dtype, shape=old.shape))
+    return model
+
+
+def _unsupported(reason: str) -> str:
+    """The element MJWarp's refusal is about, as a culprit."""
+    return next((element for word, element in _CULPRITS if word in reason), "model")
+
+
+def _specs(holder) -> dict:
+    """Each array field of an MJWarp dataclass, and whether it is per-world (its spec's leading ``"*"``)."""
+    out = {}
+    for f in dataclasses.fields(holder):
+        shape = getattr(f.type, "shape", None)
+        if isinstance(shape, tuple) and shape:
+            out[f.name] = shape[0] == "*"
+    return out
+
+
+def _arrays(model):
+    """(field, array, per-world) for each Warp array of the model and of its options."""
+    wp, _ = _warp()
+    for prefix, holder in (("", model), ("opt.", model.opt)):
+        specs = _specs(holder)
+        for name, batched in specs.items():
+            value = getattr(holder, name)
+            if isinstance(value, wp.array):
+                yield prefix + name, value, batched
+
+
+def _float_arrays(model):
+    """(field, array, per-world) for each floating-point array MJWarp holds, colours left out."""
+    for field, array, batched in _arrays(model):
+        if array.size and np.dtype(array.numpy().dtype).kind == "f" and not field.endswith("rgba"):
+            yield field, array, batched
+
+
+def _one_world(array, batched: bool) -> np.ndarray:
+    value = array.numpy()
+    return np.array(value[0] if batched else value, copy=True, ndmin=1)
+
+
+def _aligned(runner: WarpRunner, reference: WarpRunner):
+    """`runner`'s device model, batchable with `reference`'s where nothing MJWarp reads tells them apart.
+
+    ``dof_length`` (a degree of freedom's length scale) is shared by the
+    worlds, not per-world, and a scaled copy changes it; MJWarp reads it
+    only to put bodies to sleep.  Without sleep the copy takes the
+    reference's, so that the original and its copy run as worlds of one
+    call.
+    """
+    model, other = runner._device_model, reference._device_model
+    sleep = int(engine_module("mujoco").mjtEnableBit.mjENBL_SLEEP)
+    if runner.mjcf.mjmodel.opt.enableflags & sleep or model.dof_length.shape != other.dof_length.shape:
+        return model
+    if np.array_equal(model.dof_length.numpy(), other.dof_length.numpy()):
+        return model
+    out = copy.copy(model)
+    out.dof_length = other.dof_length
+    return out
+
+
+def _shared_key(model) -> tuple:
+    """What the worlds of one call must share: every array that is not per-world, and the plain settings."""
+    arrays = tuple((f, a.numpy().tobytes()) for f, a, batched in _arrays(model) if not batched)
+    plain = []
+    for prefix, holder in (("", model), ("opt.", model.opt)):
+        for f in dataclasses.fields(holder):
+            value = getattr(holder, f.name)
+            if isinstance(value, bool | int | float | str):
+                plain.append((prefix + f.name, value))
+    return arrays, tuple(plain)
+
+
+def _worlds(models: list, device: str):
+    """One MJWarp model whose worlds are `models`: each per-world array that differs, stacked."""
+    wp, _ = _warp()
+    first = models[0]
+    if len(models) == 1:
+        return first
+    out = copy.copy(first)
+    out.opt = copy.copy(first.opt)
+    tables = [{f: a for f, a, _ in _arrays(m)} for m in models]
+    for field, array, batched in _arrays(first):
+        if not batched:
+            continue
+        holder, name = (out.opt, field[4:]) if field.startswith("opt.") else (out, field)
+        values = [table[field].numpy() for table in tables]
+        if all(np.array_equal(v, values[0]) for v in values[1:]):
+            continue
+        stacked = np.concatenate(values)  # each has a leading dimension of one world
+        setattr(holder, name, wp.array(stacked, dtype=array.dtype, device=device))
+    return out
+
+
+def _initial(runner: WarpRunner, nudge: bool, initial) -> np.ndarray:
+    """The first row (qpos, qvel, act) in float32: the model's reference pose at rest, or `initial`'s; nudged."""
+    m = runner.mjcf.mjmodel
+    if initial is None:
+        first = np.concatenate(
+            [_one_world(runner._device_model.qpos0, True), np.zeros(m.nv + m.na, np.float32)]
+        ).astype(np.float32)
+    else:
+        first = np.asarray(initial, dtype=np.float32).copy()
+    if nudge:  # pitheorem.simulation.nudged in float32: up one ulp, by the ulp of 1 near 0
+        x = first[: m.nq + m.nv]
+        up = np.nextafter(x, np.float32(np.inf))
+        first[: m.nq + m.nv] = np.where(np.abs(x) >= 1, up, x + np.spacing(np.float32(1)))
+    return first
+
+
+def _control_rows(controls, n_steps: int, nu: int, dt: float) -> np.ndarray:
+    """One row of inputs per step, in float32 (zeros for none)."""
+    if controls is None or not nu:
+        return np.zeros((n_steps, nu), np.float32)
+    if callable(controls):
+        controls = [controls(i * dt) for i in range(n_steps)]
+    return np.asarray(controls, dtype=float).reshape(n_steps, nu).astype(np.float32)
+
+
+def load_warp(path, *, device: str | None = None) -> EngineModel:
+    """Read an MJCF file through MuJoCo's parser and put it in MuJoCo Warp.
+
+    Parameters
+    ----------
+    path : str or Path
+    device : str, optional
+        The Warp device: ``"cpu"``, ``"cuda"`` or ``"cuda:N"``.  Default:
+        Warp's preferred device (its first GPU, else the CPU).
+
+    Returns
+    -------
+    EngineModel
+        Of engine ``"warp"``, in float32.
+
+    Raises
+    ------
+    EngineModelError
+        When MuJoCo rejects the file, or MJWarp does not support a part of
+        it (the message names it: the PGS solver, a sensor, a flag, ...).
+    InvalidRequestError
+        For a device Warp does not have.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.runners.warp import load_warp
+    >>> load_warp.__name__
+    'load_warp'
+    """
+    wp, _ = _warp()
+    try:
+        name = str(wp.get_device(device))
+    except (RuntimeError, ValueError) as err:
+        devices = ", ".join(repr(str(d)) for d in wp.get_devices())
+        raise InvalidRequestError(
+            f"Warp has no device {device!r} ({err}); its devices: {devices}", culprit=device
+        ) from None
+    reading = MujocoRunner(read_mjcf(path))
+    if reading.refusal is not None:  # MuJoCo's compiler refused it: there is no model to put in MJWarp
+        raise reading.refusal
+    return EngineModel(WarpRunner(reading, name), "warp", str(path))

@@ -1,0 +1,285 @@
+"""pitheorem.engines.runners.warp: MJCF files loaded, scaled, saved and verified in MuJoCo Warp, on Warp's CPU.
+
+Runs only where MuJoCo Warp is installed (``pip install "pitheorem[warp]"``).  Most of the time is Warp
+compiling MJWarp's kernels on the CPU (about 150 s for the first model on a loaded two-core machine, then
+20 to 25 s for each model that needs other kernels).  Warp keeps them in its kernel cache, which this
+module points at ``warp-cache`` in the Python environment (``.venv/warp-cache``, which git ignores): a
+second run loads them in seconds.  The models are loaded once per module and every verification runs
+the same duration, so that each model's kernels compile once.
+"""
+
+from __future__ import annotations
+
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pitheorem as pt
+
+pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
+warp = pytest.importorskip("warp", reason="warp-lang is not installed (pip install 'pitheorem[warp]')")
+mjw = pytest.importorskip("mujoco_warp", reason="mujoco-warp is not installed (pip install 'pitheorem[warp]')")
+
+# before Warp initialises: the kernels compiled here are kept in the environment's build folder
+warp.config.kernel_cache_dir = str(Path(sys.prefix) / "warp-cache")
+warp.config.log_level = warp.LOG_WARNING  # not a line per kernel module loaded
+
+from pitheorem import engines  # noqa: E402
+from pitheorem.engines.runners import warp as warp_runner  # noqa: E402
+
+PENDULUM = engines.example_path("pendulum.xml")
+#: every verification runs this long, so that the kernels compile once per model
+DURATION = 0.2
+gymnasium = sys.modules.get("gymnasium") or pytest.importorskip("gymnasium")
+ASSETS = Path(gymnasium.__file__).resolve().parent / "envs" / "mujoco" / "assets"
+
+
+def time_free(model):
+    return pt.search(model.system(), scale={"g": 1}, fixed=("timestep",)).scalings[0]
+
+
+def load(path):
+    with warnings.catch_warnings():  # gymnasium's custom numerics (frame_skip) have no known dimension
+        warnings.simplefilter("ignore", engines.UnscalableModelWarning)
+        model = engines.load(path, engine="warp", device="cpu")
+    if model.parameter("tolerance").value[0]:
+        model = model.with_values(tolerance=0)  # the solver's stopping rule is not scale-free (as in MuJoCo)
+    return model
+
+
+@pytest.fixture(scope="module")
+def pendulum():
+    return engines.load(PENDULUM, engine="warp", device="cpu")
+
+
+@pytest.fixture(scope="module")
+def hopper():
+    return load(ASSETS / "hopper.xml")
+
+
+def test_an_mjcf_file_loads_scales_and_saves_in_warp(pendulum, tmp_path):
+    assert pendulum.engine == "warp"
+    assert pendulum.runner.precision == "float32"
+    assert pendulum.settings() == {"precision": "float32", "device": "cpu"}
+    stored = pendulum.runner.stored_numbers()
+    assert {a.dtype for a in stored.values()} == {np.dtype(np.float32)}
+    assert stored["opt.timestep"][0] == np.float32(0.002)
+    assert stored["body_mass"].shape == pendulum.runner.mjcf.mjmodel.body_mass.shape  # one world, MuJoCo's layout
+    assert pendulum.parameters == engines.load(PENDULUM).parameters  # the table is MuJoCo's reading of the file
+    scaled = pendulum.scaled(time_free(pendulum), 4)
+    assert scaled.engine == "warp"
+    assert type(scaled.runner) is warp_runner.WarpRunner
+    assert scaled.runner.stored_numbers()["opt.gravity"][2] == np.float32(-9.81 * 4)
+    out = scaled.save(tmp_path / "pendulum_4.xml")
+    back = engines.load(out, engine="warp", device="cpu")
+    assert back.parameter("g").value == scaled.parameter("g").value == (9.81 * 4,)
+    cm = engines.load(PENDULUM, engine="warp", device="cpu", units={"L": "cm"})
+    mm = cm.converted(L="mm")
+    assert (cm.engine, mm.engine) == ("warp", "warp")
+    saved = mm.save(tmp_path / "pendulum_mm.xml")
+    assert engines.load(saved, engine="warp", device="cpu").units == {"M": "kg", "L": "mm", "T": "s"}
+
+
+def test_warp_is_listed_with_its_extra_and_precision():
+    assert "warp" in engines.backends()
+    from pitheorem.engines.registry import registered
+
+    line = registered("warp")
+    assert (line.extra, line.base, line.precision, line.formats) == ("warp", "mujoco", "float32", ("mjcf",))
+
+
+# gymnasium's hopper (contacts, margins, a free-floating base), inverted pendulum (a slider and a hinge)
+# and double pendulum; the shipped pendulum runs in the tests below
+@pytest.mark.parametrize(
+    "name", ["hopper.xml", "inverted_pendulum.xml", "inverted_double_pendulum.xml"], ids=lambda n: n
+)
+def test_s4_reproduces_the_original_bit_for_bit_in_float32(name, hopper):
+    model = hopper if name == "hopper.xml" else load(ASSETS / name)
+    rep = engines.verify(model, time_free(model), s=4, duration=DURATION, controls=engines.smooth_controls(model))
+    assert rep.exact, rep.max_deviation
+    assert rep.excited
+    assert rep.causes == ()
+
+
+def test_the_pendulum_is_exact_at_s4_and_judged_against_the_float32_yardstick_at_s10(pendulum):
+    sc = time_free(pendulum)
+    proof = engines.verify(pendulum, sc, s=4, duration=DURATION, controls=lambda t: [0.1])
+    assert proof.exact
+    assert proof.excited
+    rep = engines.verify(pendulum, sc, s=10, duration=DURATION, controls=lambda t: [0.1])
+    assert rep.similar
+    assert not rep.exact  # float32 rounds the numbers times 10
+    assert rep.causes == ()
+    assert 0 < rep.max_deviation < 1e-5
+    audit = engines.audit(pendulum, sc, s=10)  # the audit names the rounding: MJWarp keeps float32
+    assert "precision" in {c.kind for c in audit.causes}
+    assert all("float32" in c.detail for c in audit.causes if c.kind == "precision")
+
+
+def test_the_hopper_at_s10_is_similar_against_the_float32_yardstick(hopper):
+    rep = engines.verify(hopper, time_free(hopper), s=10, duration=DURATION, controls=engines.smooth_controls(hopper))
+    assert rep.similar, rep.max_deviation
+    assert not rep.exact
+    assert rep.causes == ()
+
+
+def test_the_runs_of_a_verification_are_the_worlds_of_one_call(pendulum, monkeypatch):
+    worlds = []
+    make_data = mjw.make_data
+
+    def counting(m, nworld=1, **kw):
+        worlds.append(nworld)
+        return make_data(m, nworld=nworld, **kw)
+
+    monkeypatch.setattr(mjw, "make_data", counting)
+    engines.verify(pendulum, time_free(pendulum), s=4, duration=DURATION, ensemble=3, diagnose=False)
+    assert worlds == [5]  # the original, its scaled copy and three twins, each with its own gravity and sizes
+
+
+def test_a_world_runs_as_it_runs_alone_and_runs_repeat_bit_for_bit(hopper):
+    # Warp's CPU device runs a kernel's threads one after another: a run is deterministic
+    u = engines.smooth_controls(hopper)
+    n = 50
+    alone = hopper.runner.run(n, controls=u)
+    again = hopper.runner.run(n, controls=u)
+    copy = hopper.scaled(time_free(hopper), 4).runner
+    runs = hopper.runner.run_many(n, [(copy, None, False, None), (hopper.runner, u, False, None)])
+    assert np.array_equal(alone, again)
+    assert np.array_equal(runs[1], alone)
+    assert not np.array_equal(runs[0], alone)
+
+
+def test_warp_agrees_with_c_mujoco_to_float32s_rounding(pendulum, hopper):
+    # measured over 100 steps: 1.0e-6 (pendulum), 3.8e-6 (hopper), in the coordinates' own units
+    for model, path in ((pendulum, PENDULUM), (hopper, ASSETS / "hopper.xml")):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", engines.UnscalableModelWarning)
+            in_mujoco = engines.load(path).with_values(tolerance=model.parameter("tolerance").value[0])
+        u = engines.smooth_controls(model)
+        worst = np.max(np.abs(model.runner.run(100, controls=u) - in_mujoco.runner.run(100, controls=u)))
+        assert 0 < worst < 1e-4, worst  # float32 against float64: never bit for bit, never far
+
+
+def test_twins_move_every_number_by_one_float32_ulp(pendulum):
+    before, after = pendulum.runner.stored_numbers(), pendulum.runner.twin(7).stored_numbers()
+    assert before.keys() == after.keys()
+    moved = 0
+    for field, value in before.items():
+        if field == "opt.timestep":
+            assert np.array_equal(after[field], value)
+            continue
+        nonzero = value != 0
+        step = np.abs(after[field][nonzero].astype(float) - value[nonzero].astype(float))
+        assert np.array_equal(step, np.abs(np.spacing(value[nonzero])).astype(float)) or np.all(
+            step <= 2 * np.abs(np.spacing(value[nonzero])).astype(float)
+        ), field
+        assert np.all(step > 0), field
+        assert np.all(after[field][~nonzero] == 0)
+        moved += int(nonzero.sum())
+    assert moved > 20
+
+
+def test_a_batch_starts_from_given_states_with_activations(pendulum):
+    m = pendulum.runner.mjcf.mjmodel
+    first = np.array([0.3] + [0.0] * (m.nv + m.na))
+    rows = pendulum.runner.run(5, initial=first)
+    assert rows[0, 0] == np.float32(0.3)
+    nudged = pendulum.runner.run(5, initial=first, nudge=True)
+    assert nudged[0, 0] == np.float32(0.3) + np.spacing(np.float32(1))  # below 1: up by the ulp of 1
+    assert nudged[0, 1] == np.spacing(np.float32(1))  # a zero velocity nudged by the ulp of 1
+
+
+UNSUPPORTED = {
+    "pgs": (
+        '<mujoco><option solver="PGS"/><worldbody><body><joint type="hinge"/><geom size="0.1" mass="1"/>'
+        "</body></worldbody></mujoco>",
+        "option solver",
+        "mjSOL_PGS",
+    ),
+    "override": (
+        '<mujoco><option><flag override="enable"/></option><worldbody><body><joint type="hinge"/>'
+        '<geom size="0.1" mass="1"/></body></worldbody></mujoco>',
+        "option flag",
+        "mjENBL_OVERRIDE",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", sorted(UNSUPPORTED))
+def test_what_warp_does_not_support_is_refused_by_name(case, tmp_path):
+    text, element, reason = UNSUPPORTED[case]
+    path = tmp_path / f"{case}.xml"
+    path.write_text(text)
+    with pytest.raises(engines.EngineModelError) as caught:
+        engines.load(path, engine="warp", device="cpu")
+    assert caught.value.element == element
+    assert reason in str(caught.value)
+    assert "MuJoCo Warp does not support" in str(caught.value)
+    assert "run the file in 'mujoco'" in str(caught.value)
+    assert engines.load(path).engine == "mujoco"  # MuJoCo runs it
+
+
+def test_a_device_warp_lacks_and_a_closed_loop_are_refused(pendulum):
+    with pytest.raises(pt.InvalidRequestError, match="Warp has no device 'tpu'"):
+        engines.load(PENDULUM, engine="warp", device="tpu")
+    with pytest.raises(pt.InvalidRequestError, match="MuJoCo Warp runs open loop here"):
+        pendulum.runner.run(3, policy=lambda *state: [0.0])
+    with pytest.raises(pt.InvalidRequestError, match="takes no option 'precision'"):
+        engines.load(PENDULUM, engine="warp", precision="float64")
+
+
+def test_a_file_mujoco_refuses_is_refused_with_mujocos_reason(tmp_path):
+    path = tmp_path / "bad.xml"
+    path.write_text('<mujoco><worldbody><body><joint type="hinge"/><geom size="-1"/></body></worldbody></mujoco>')
+    with pytest.raises(engines.EngineModelError):
+        engines.load(path, engine="warp", device="cpu")
+
+
+def test_audit_and_check_read_warps_own_float32_numbers(pendulum):
+    audit = engines.audit(pendulum, time_free(pendulum), s=4)
+    stored = pendulum.runner.stored_numbers()
+    assert 0.5 * sum(a.size for a in stored.values()) < audit.compared <= sum(a.size for a in stored.values())
+    assert engines.check(pendulum) == engines.check(engines.load(PENDULUM))
+
+
+@warp.kernel
+def _product(x: warp.array(dtype=float), y: warp.array(dtype=float), z: warp.array(dtype=float)):
+    i = warp.tid()
+    z[i] = x[i] * y[i]
+
+
+def test_numbers_beyond_float32s_range_are_stored_subnormal_or_infinite_and_checked(tmp_path):
+    with warp.ScopedDevice("cpu"):
+        x = warp.array(np.array([1e-40, 2e-38, 2e38], np.float32), dtype=float)
+        y = warp.array(np.array([1, 0.5, 2], np.float32), dtype=float)
+        z = warp.zeros(3, dtype=float)
+        warp.launch(_product, 3, inputs=[x, y, z])
+    product = z.numpy()
+    assert product[0] == np.float32(1e-40)  # kept subnormal, not flushed to zero
+    assert product[1] == np.float32(1e-38)
+    assert np.isinf(product[2])
+    text = PENDULUM.read_text()
+    for damping, threshold in (("1e-40", "below warp_float32_min_normal"), ("1e39", "above warp_float32_max")):
+        path = tmp_path / f"pendulum_{damping}.xml"
+        path.write_text(text.replace('damping="0.05"', f'damping="{damping}"'))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # NumPy's overflow in the cast to float32
+            model = engines.load(path, engine="warp", device="cpu")
+        held = model.runner.stored_numbers()["dof_damping"][0]
+        assert (0 < held < np.finfo(np.float32).tiny) if damping == "1e-40" else np.isinf(held)
+        said = [c.detail for c in engines.check(model) if c.element.endswith("damping")]
+        assert any(threshold in d for d in said), said
+        assert not any("warp_" in c.detail for c in engines.check(engines.load(path)))  # MuJoCo's float64
+
+
+def test_the_catalogue_has_warps_constants_and_thresholds():
+    names = [c.name for c in engines.hidden_constants("warp")]
+    assert names == ["warp_parallel_segments_regularizer", "warp_box_box_separation_slack"]
+    assert all(c.dimension == pt.Dimension.parse("1") for c in engines.hidden_constants("warp"))
+    from pitheorem.engines.thresholds import thresholds
+
+    own = [t.name for t in thresholds("warp")][len(thresholds("mujoco")) :]
+    assert own == ["warp_float32_min_normal", "warp_float32_max"]
