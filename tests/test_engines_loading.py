@@ -20,7 +20,10 @@ def test_the_file_kind_picks_the_engine_unless_engine_names_another():
     assert engines.load(PENDULUM, engine="mujoco").engine == "mujoco"
     with pytest.raises(pt.InvalidRequestError) as caught:
         engines.load(PENDULUM, engine="pybullet")
-    assert str(caught.value) == "engine 'pybullet' does not read MJCF files; an MJCF file runs in 'mujoco', 'mjx' or 'warp'"
+    assert (
+        str(caught.value)
+        == "engine 'pybullet' does not read MJCF files; an MJCF file runs in 'mujoco', 'mjx' or 'warp'"
+    )
     with pytest.raises(pt.InvalidRequestError) as caught:
         engines.load(PENDULUM, engine="genesis")
     assert str(caught.value) == "unknown engine 'genesis'; use 'pybullet', 'mujoco', 'mjx' or 'warp'"

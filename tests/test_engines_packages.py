@@ -15,12 +15,13 @@ from pitheorem.engines import (
 )
 from pitheorem.engines.packages import PACKAGES, check_engine, engine_module
 from pitheorem.engines.paper.rod import EngineUnavailableError
+from pitheorem.engines.registry import REGISTRY
 from tests.conftest import REPO
 
 
 def test_each_engine_names_its_package_in_one_place(monkeypatch):
     # the catalogue's engines are the engines with a package, and every reader of an engine name agrees
-    assert tuple(PACKAGES) == ENGINES == ("pybullet", "mujoco", "mjx")
+    assert tuple(PACKAGES) == ENGINES == tuple(e.name for e in REGISTRY)
     assert PACKAGES["pybullet"] == "pybullet"
     for call in (
         lambda: check_engine("ode"),
@@ -30,7 +31,7 @@ def test_each_engine_names_its_package_in_one_place(monkeypatch):
     ):
         with pytest.raises(pt.InvalidRequestError) as caught:
             call()
-        assert str(caught.value) == "unknown engine 'ode'; use 'pybullet', 'mujoco' or 'mjx'"
+        assert str(caught.value) == "unknown engine 'ode'; use 'pybullet', 'mujoco', 'mjx' or 'warp'"
         assert caught.value.culprit == "ode"
     with pytest.raises(pt.InvalidRequestError, match="unknown engine 3"):
         check_engine(3)
