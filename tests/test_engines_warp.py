@@ -182,7 +182,7 @@ def test_twins_move_every_number_by_one_float32_ulp(pendulum):
     assert moved > 20
 
 
-def test_a_batch_starts_from_given_states_with_activations(pendulum):
+def test_a_run_starts_from_a_given_state_nudged_by_one_float32_ulp(pendulum):
     m = pendulum.runner.mjcf.mjmodel
     first = np.array([0.3] + [0.0] * (m.nv + m.na))
     rows = pendulum.runner.run(5, initial=first)
