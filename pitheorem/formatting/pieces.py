@@ -272,9 +272,11 @@ def float_text(value) -> str:
         return str(value)
     dtype = getattr(value, "dtype", None)
     if dtype is not None and dtype.kind == "f" and dtype.itemsize < 8:
-        text = str(value)  # numpy's shortest text that reads back as this float32 (or float16)
-    else:
-        text = repr(float(value))
+        import numpy as np
+
+        # the fewest digits that read back as this float32 (or float16), then written as Python writes them
+        value = float(np.format_float_scientific(value, unique=True))
+    text = repr(float(value))
     if text.endswith(".0"):
         text = text[:-2]
         if len(text.lstrip("-")) > 6:  # 10000000000 -> 1e+10: the shortest scientific form that reads back
