@@ -227,9 +227,7 @@ def example_path(name: str) -> Path:
 
 def _cause_examples() -> tuple[str, ...]:
     """The engine models of the folder ``causes`` (the how-to on causes), as ``causes/NAME``, sorted."""
-    return tuple(
-        sorted(f"causes/{p.name}" for p in (EXAMPLES / "causes").iterdir() if p.suffix in (".xml", ".urdf"))
-    )
+    return tuple(sorted(f"causes/{p.name}" for p in (EXAMPLES / "causes").iterdir() if p.suffix in (".xml", ".urdf")))
 
 
 def examples() -> tuple[str, ...]:

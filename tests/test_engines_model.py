@@ -291,7 +291,13 @@ def test_a_models_system_is_built_once_and_holds_every_parameter():
 
 @pytest.mark.parametrize(
     "name",
-    ["causes/contact.xml", "causes/hand.xml", "causes/mesh_drop.xml", "causes/quadruped.urdf", "causes/walker_on_floor.xml"],
+    [
+        "causes/contact.xml",
+        "causes/hand.xml",
+        "causes/mesh_drop.xml",
+        "causes/quadruped.urdf",
+        "causes/walker_on_floor.xml",
+    ],
 )
 def test_the_how_to_models_ship_with_their_meshes_and_load(name):
     # docs/howto/why_not_similar.md runs these from an installed package: nothing from tests/

@@ -37,7 +37,9 @@ def test_search_chart_shows_every_minimal_scaling(rod):
     assert cells[(0, 0)] == "$s^{-2}$"  # m in the first scaling, in mathtext
     for j, scaling in enumerate(res.scalings):
         shown = [cells[(i, j)] for i in range(len(rod.variables))]
-        assert shown == ["-" if p == 0 else f"${pt.formatting.pieces.power_latex(Fraction(p))}$" for p in scaling.vector]
+        assert shown == [
+            "-" if p == 0 else f"${pt.formatting.pieces.power_latex(Fraction(p))}$" for p in scaling.vector
+        ]
     assert ax.get_title() == "g by s: 3 minimal scalings"
     # a colour bar says what the colours mean
     bar = fig.axes[1]
