@@ -51,8 +51,7 @@ def plot_search(result, ax=None):
     )
     bar = fig.colorbar(image, ax=ax, shrink=min(1.0, 4 / max(len(names), 1)) if len(names) > 4 else 1.0)
     bar.set_label("exponent of $s$")
-    bar.ax.set_title("grows", fontsize=8)
-    bar.ax.set_xlabel("shrinks", fontsize=8)
+    bar.set_ticks([-limit, 0, limit], labels=[f"{-limit:g} shrinks", "0 same", f"{limit:g} grows"])
     for i in range(len(names)):
         for j in range(len(points)):
             p = Fraction(points[j][i])
