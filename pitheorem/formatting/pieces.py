@@ -491,7 +491,7 @@ def default_text(default: float) -> str:
     >>> default_text(0.002), default_text(float("nan"))
     ('default 0.002', 'no documented default')
     """
-    return "no documented default" if default != default else f"default {default:g}"  # NaN != NaN
+    return "no documented default" if default != default else f"default {float_text(default)}"  # NaN != NaN
 
 
 def solutions_text(n: int) -> str:
@@ -786,7 +786,7 @@ def range_cells(bounds, ok, out_of_range: str = "OUT OF RANGE") -> list[str]:
     """
     if bounds is None:
         return ["", ""]
-    return [f"[{bounds[0]:g}, {bounds[1]:g}]", "ok" if ok else out_of_range]
+    return [f"[{float_text(bounds[0])}, {float_text(bounds[1])}]", "ok" if ok else out_of_range]
 
 
 def parameters_head(name: str, model) -> str:
