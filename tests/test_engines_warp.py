@@ -102,6 +102,7 @@ def test_s4_reproduces_the_original_bit_for_bit_in_float32(name, hopper):
     assert rep.exact, rep.max_deviation
     assert rep.excited
     assert rep.causes == ()
+    assert not rep.inconclusive  # the negative controls, run as worlds beside it, are caught
 
 
 def test_the_pendulum_is_exact_at_s4_and_judged_against_the_float32_yardstick_at_s10(pendulum):
@@ -136,7 +137,9 @@ def test_the_runs_of_a_verification_are_the_worlds_of_one_call(pendulum, monkeyp
 
     monkeypatch.setattr(mjw, "make_data", counting)
     engines.verify(pendulum, time_free(pendulum), s=4, duration=DURATION, ensemble=3, diagnose=False)
-    assert worlds == [5]  # the original, its scaled copy and three twins, each with its own gravity and sizes
+    # the original, its scaled copy, three twins and four negative controls (gravity off by 1e-4, 1e-2 and 1,
+    # the masses doubled), each world with its own gravity, masses and sizes: one call
+    assert worlds == [9]
 
 
 def test_a_world_runs_as_it_runs_alone_and_runs_repeat_bit_for_bit(hopper):
