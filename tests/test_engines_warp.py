@@ -286,3 +286,18 @@ def test_the_catalogue_has_warps_constants_and_thresholds():
 
     own = [t.name for t in thresholds("warp")][len(thresholds("mujoco")) :]
     assert own == ["warp_float32_min_normal", "warp_float32_max"]
+
+
+def test_each_world_starts_with_its_own_models_mocap_bodies(tmp_path):
+    path = tmp_path / "mocap.xml"
+    path.write_text(
+        '<mujoco><option gravity="0 0 -9.81"/><worldbody><body name="target" mocap="true" pos="0.3 0 1">'
+        '<geom size="0.05" contype="0" conaffinity="0"/></body><body name="bob" pos="0 0 1"><joint type="slide" '
+        'axis="1 0 0"/><geom size="0.05" mass="1" contype="0" conaffinity="0"/></body></worldbody>'
+        '<equality><connect body1="bob" body2="target" anchor="0 0 0"/></equality></mujoco>'
+    )
+    model = engines.load(path, engine="warp", device="cpu")
+    rep = engines.verify(model, time_free(model), s=4, duration=0.05)
+    assert rep.exact  # the copy's mocap body is at its own, scaled, place: the bob is pulled alike
+    rows = model.runner.run(25)
+    assert rows[-1, 0] > 0.01  # the bob moves toward the mocap target at x = 0.3

@@ -246,6 +246,9 @@ class WarpRunner:
                 data.qvel.assign(starts[:, m.nq : m.nq + m.nv])
                 if m.na:
                     data.act.assign(starts[:, m.nq + m.nv :])
+                if m.nmocap:  # each world's mocap bodies where its own model puts them, as mj_resetData does
+                    data.mocap_pos.assign(np.stack([_mocap(jobs[i][0].mjcf.mjmodel, "body_pos") for i in members]))
+                    data.mocap_quat.assign(np.stack([_mocap(jobs[i][0].mjcf.mjmodel, "body_quat") for i in members]))
                 runs = np.empty((len(members), n_steps + 1, m.nq + m.nv + m.na), dtype=np.float32)
                 runs[:, 0] = starts
                 for step in range(n_steps):
@@ -259,6 +262,13 @@ class WarpRunner:
                 for k, i in enumerate(members):
                     out[i] = runs[k].astype(float)
         return out
+
+
+def _mocap(mjmodel, field: str) -> np.ndarray:
+    """The rows of a body field (``body_pos``, ``body_quat``) of the model's mocap bodies, in mocap order."""
+    bodies = np.flatnonzero(np.asarray(mjmodel.body_mocapid) >= 0)
+    order = np.asarray(mjmodel.body_mocapid)[bodies]
+    return np.asarray(getattr(mjmodel, field))[bodies[np.argsort(order)]].astype(np.float32)
 
 
 def _put(mjcf: MujocoRunner, device: str, moved: dict):
