@@ -292,9 +292,9 @@ def test_each_world_starts_with_its_own_models_mocap_bodies(tmp_path):
     path = tmp_path / "mocap.xml"
     path.write_text(
         '<mujoco><option gravity="0 0 -9.81"/><worldbody><body name="target" mocap="true" pos="0.3 0 1">'
-        '<geom size="0.05" contype="0" conaffinity="0"/></body><body name="bob" pos="0 0 1"><joint type="slide" '
-        'axis="1 0 0"/><geom size="0.05" mass="1" contype="0" conaffinity="0"/></body></worldbody>'
-        '<equality><connect body1="bob" body2="target" anchor="0 0 0"/></equality></mujoco>'
+        '<site name="there"/></body><body name="bob" pos="0 0 1"><joint type="slide" axis="1 0 0"/>'
+        '<geom size="0.05" mass="1" contype="0" conaffinity="0"/><site name="here"/></body></worldbody>'
+        '<equality><connect site1="here" site2="there"/></equality></mujoco>'
     )
     model = engines.load(path, engine="warp", device="cpu")
     rep = engines.verify(model, time_free(model), s=4, duration=0.05)
