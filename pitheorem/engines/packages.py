@@ -55,7 +55,7 @@ def check_engine(engine) -> str:
     ...     check_engine("ode")
     ... except ValueError as err:
     ...     print(err)
-    unknown engine 'ode'; use 'pybullet', 'mujoco' or 'mjx'
+    unknown engine 'ode'; use 'pybullet', 'mujoco', 'mjx' or 'warp'
     """
     return registered(engine).name
 
