@@ -28,7 +28,7 @@ from .errors import (
     UnitError,
     UnknownVariableError,
 )
-from .exact import check_exponent, read_exponent, read_number
+from .exact import check_exponent, read_exponent
 from .groups import PiGroup, PiSet
 from .immutable import immutable
 from .linalg import integer_rref, nullspace, rank
@@ -285,7 +285,7 @@ class System:
                 if not isinstance(quantity, pint.Quantity):  # a bare number
                     quantity = registry.Quantity(quantity)
                 for unit, p in quantity.unit_items():  # pint loops forever on the root units of 'kg^nan'
-                    read_number(p, f"the exponent of {unit} in {what}")
+                    read_exponent(p, f"the exponent of {unit} in {what}")
                 dimensionality = dict(quantity.dimensionality)
                 root = dict(quantity.to_root_units().unit_items()) if angle_as_base else {}
             except PiTheoremError:
