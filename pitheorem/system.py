@@ -23,6 +23,7 @@ from .errors import (
     DuplicateVariableError,
     EmptySystemError,
     InvalidRequestError,
+    LimitError,
     PiTheoremError,
     RepeatingCountError,
     UnitError,
@@ -211,6 +212,8 @@ class System:
                 dim = _parse(spec, allowed)
             except DimensionSyntaxError as err:
                 raise DimensionSyntaxError(err.text, err.position, f"{err.reason} (dimension of {name!r})") from None
+            except LimitError as err:  # named as a syntax error is: the variable whose formula passes a limit
+                raise LimitError(err.value, f"{err.what} (dimension of {name!r})", err.limit, err.hint) from None
         elif isinstance(spec, Mapping):
             for base, power in spec.items():
                 if not isinstance(base, str):
