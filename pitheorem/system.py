@@ -204,7 +204,7 @@ class System:
     def _read_dimension(name: str, spec, allowed) -> Dimension:
         if isinstance(spec, Dimension):
             dim = spec
-            if not _within_limits(dim):  # a product or power of dimensions may pass the limits: name it
+            if not _within_limits(dim):  # a Dimension unpickled from elsewhere may pass the limits: name it
                 for base, power in dim.exponents.items():
                     check_exponent(power, f"the exponent of {base!r} in the dimension of {name!r}")
         elif isinstance(spec, str):

@@ -32,8 +32,8 @@ from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
-import sympy
 import pytest
+import sympy
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
