@@ -394,7 +394,7 @@ def accepted_or_refused_in_a_model_file(entry: str, e: Fraction):
         path.write_text(text, encoding="utf-8")
         if within(e):
             return pt.load_model_file(path)
-        with pytest.raises(pt.ModelFileError, match="variable 'x'.*exceeds the limit"):
+        with pytest.raises(pt.ModelFileError, match=r"variable 'x'.*exceeds the limit"):
             pt.load_model_file(path)
     return None
 
@@ -486,5 +486,5 @@ def test_an_irrational_exponent_is_refused_by_name_at_every_entry(power):
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "model.toml"
         path.write_text(f'[variables]\nx = {{ unit = "{unit}" }}\n', encoding="utf-8")
-        with pytest.raises(pt.ModelFileError, match="variable 'x'.*must be a rational number"):
+        with pytest.raises(pt.ModelFileError, match=r"variable 'x'.*must be a rational number"):
             pt.load_model_file(path)
