@@ -27,7 +27,7 @@ from sympy.core.function import AppliedUndef
 
 from .bases import independent_subsets
 from .dimensions import Dimension, product_of_powers
-from .errors import InvalidRequestError, UnknownVariableError
+from .errors import InvalidRequestError, LimitError, UnknownVariableError
 from .exact import read_exponent, read_rational
 from .formatting import TableDisplay
 from .immutable import immutable
@@ -60,10 +60,14 @@ def _exponent(exp) -> Fraction | None:
     return None
 
 
-def _in_dimension_of(node) -> str:
-    """Where a dimension beyond the limits comes from, for the LimitError: the term, shortened."""
-    text = sympy.sstr(node)
-    return f" in the dimension of {text if len(text) <= 40 else text[:40] + '...'}"
+def _term_product(node, factors) -> Dimension:
+    """:func:`~pitheorem.dimensions.product_of_powers` of a term's factors; beyond the limits, the term is named."""
+    try:
+        return product_of_powers(factors)
+    except LimitError as err:
+        text = sympy.sstr(node)
+        where = f" in the dimension of {text if len(text) <= 40 else text[:40] + '...'}"
+        raise LimitError(err.value, err.what + where, err.limit, err.hint) from None
 
 
 def _terms(side) -> list[sympy.Expr]:
@@ -187,16 +191,16 @@ class _DimensionWalker:
             return self.lookup(node.func.__name__)
         if isinstance(node, sympy.Derivative):
             factors = [(self.dim(node.expr), 1)] + [(self.dim(var), -int(c)) for var, c in node.variable_count]
-            return product_of_powers(factors, _in_dimension_of(node))
+            return _term_product(node, factors)
         if isinstance(node, sympy.Add):
             return self.same(node.args)
         if isinstance(node, sympy.Mul):
-            return product_of_powers([(self.dim(arg), 1) for arg in node.args], _in_dimension_of(node))
+            return _term_product(node, [(self.dim(arg), 1) for arg in node.args])
         if isinstance(node, sympy.Pow):
             base, exp = node.args
             power = _exponent(exp)
             if power is not None:
-                return product_of_powers([(self.dim(base), power)], _in_dimension_of(node))
+                return _term_product(node, [(self.dim(base), power)])
             self.dimensionless_argument(node)  # x**y needs both dimensionless
             return Dimension.dimensionless()
         if isinstance(node, _DIMENSION_PRESERVING):

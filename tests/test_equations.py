@@ -463,3 +463,17 @@ def test_symmetries_need_a_system():
 def test_scaling_symmetries_names_equations_that_are_no_list(bad):
     with pytest.raises(pt.InvalidRequestError, match="needs sympy equations"):
         pt.scaling_symmetries(bad, pt.System({"x": "L", "t": "T"}))
+
+
+def test_a_term_beyond_the_exponent_limits_is_named_and_one_within_them_is_checked():
+    # issue 33: a term's dimension is held to the limits once, as a whole
+    s = pt.System({"x": "L", "y": "L", "z": "L", "r": "1"})
+    x, y, z, r = sympy.symbols("x y z r")
+    assert str(pt.check_dimensions(x**1000 * y**1000 / z**1000, s).dimension) == "L^1000"
+    assert pt.check_dimensions(r**5000, s).dimension.is_dimensionless
+    with pytest.raises(pt.LimitError, match=r"the exponent of 'L' in the dimension of x\*\*1001 is 1001"):
+        pt.check_dimensions(x**1001 + y, s)
+    with pytest.raises(pt.LimitError, match="in the dimension of x\\*\\*600\\*y\\*\\*600"):
+        pt.check_dimensions(x**600 * y**600, s)
+    with pytest.raises(pt.NumberError, match="an exponent in the equation must be a rational number"):
+        pt.check_dimensions(x ** sympy.Float(2**0.5), s)
