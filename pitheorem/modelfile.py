@@ -206,12 +206,28 @@ def example_path(name: str) -> Path:
     >>> from pitheorem.modelfile import example_path
     >>> example_path("superball").name, example_path("superball.xml").name
     ('superball.toml', 'superball.xml')
+
+    The engine models that the how-to "Why is my scaled model not similar?"
+    runs, each showing one cause, are shipped too, in the folder ``causes``:
+
+    >>> example_path("causes/hand.xml").parent.name
+    'causes'
     """
     text = str(name)
     stem = text.removesuffix(".toml")
     if stem in (shipped := examples()) and (stem == text or not Path(stem).suffix):
         return EXAMPLES / (stem if Path(stem).suffix else f"{stem}.toml")
-    raise ModelFileError(f"example:{text}", f"no such example; the shipped examples are {', '.join(shipped)}")
+    if text in (extra := _cause_examples()):
+        return EXAMPLES / text
+    raise ModelFileError(
+        f"example:{text}",
+        f"no such example; the shipped examples are {', '.join(shipped)}; the how-to's models are {', '.join(extra)}",
+    )
+
+
+def _cause_examples() -> tuple[str, ...]:
+    """The engine models of the folder ``causes`` (the how-to on causes), as ``causes/NAME``, sorted."""
+    return tuple(sorted(f"causes/{p.name}" for p in (EXAMPLES / "causes").iterdir() if p.suffix in (".xml", ".urdf")))
 
 
 def examples() -> tuple[str, ...]:
@@ -261,21 +277,13 @@ def model_kind(path) -> str:
     """
     if str(path).startswith("example:"):  # whatever the name ends with: the command line lists the examples
         return "toml"
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix == ".urdf":
-        return "urdf"
-    if suffix == ".toml":
+    if Path(path).suffix.lower() == ".toml":
         return "toml"
-    if suffix in (".xml", ".mjcf") and path.is_file():
-        with path.open("rb") as file:  # the root element is near the top: read no more of a large model
-            head = file.read(4096).decode("utf-8", "replace")
-        if "<robot" in head and "<mujoco" not in head:
-            return "urdf"
-        return "mjcf"
-    if suffix in (".xml", ".mjcf"):
-        return "mjcf"
-    return "toml"
+    # the formats of engine model files are the engines' registry's data (it imports no engine)
+    from .engines.registry import file_format
+
+    found = file_format(path)
+    return "toml" if found is None else found.name
 
 
 def load_model_file(path) -> ModelFile:

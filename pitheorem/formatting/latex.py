@@ -207,12 +207,12 @@ def _unit_fit(fit) -> str:
 # -- engines ---------------------------------------------------------------------------------
 
 
-@_renders("pitheorem.engines.causes.Cause")
+@_renders("pitheorem.engines.verdicts.causes.Cause")
 def _cause(cause) -> str:
     return rf"\textbf{{{cause.kind}}}: \texttt{{{latex_escape(cause.element)}}}: {latex_escape(cause.detail)}"
 
 
-@_renders("pitheorem.engines.audit.Audit")
+@_renders("pitheorem.engines.verdicts.audit.Audit")
 def _audit(audit) -> str:
     first, *rest = render(audit, "text").splitlines()
     items = "".join(rf"\item {render(c, 'latex')}" + "\n" for c in audit.causes)
@@ -250,7 +250,7 @@ def _parameter_table(name: str, model) -> str:
     return f"{head}\n{_tabular('lllll', rows, ['name', 'dimension', 'value', 'source', 'path'])}"
 
 
-@_renders("pitheorem.engines.model.EngineModel")
+@_renders("pitheorem.engines.enginemodel.EngineModel")
 def _engine_model(model) -> str:
     return _parameter_table(model.path or "(unsaved)", model)
 

@@ -254,7 +254,7 @@ def _similarity_report(report) -> str:
     return "\n".join(lines)
 
 
-@_renders("pitheorem.engines.rod.EngineSimilarityReport")
+@_renders("pitheorem.engines.paper.rod.EngineSimilarityReport")
 def _engine_similarity_report(report) -> str:
     verdict, kind = _verdict(report)
     ode = "" if report.ode_report is None else f"; pure ODE: {report.ode_report.max_deviation:.3g}"
@@ -321,12 +321,12 @@ def _unit_fit(fit) -> str:
 # -- engines ---------------------------------------------------------------------------------
 
 
-@_renders("pitheorem.engines.causes.Cause")
+@_renders("pitheorem.engines.verdicts.causes.Cause")
 def _cause(cause) -> str:
     return f"{cause.kind}: {cause.element}: {cause.detail}"
 
 
-@_renders("pitheorem.engines.audit.Audit")
+@_renders("pitheorem.engines.verdicts.audit.Audit")
 def _audit(audit) -> str:
     head = f"audit at s = {audit.s:g}: {audit.compared} stored numbers compared, "
     if not audit.causes:
@@ -389,7 +389,7 @@ def _parameters(name: str, model) -> str:
     return f"{parameters_head(name, model)}\n{parameter_table(model)}"
 
 
-@_renders("pitheorem.engines.model.EngineModel")
+@_renders("pitheorem.engines.enginemodel.EngineModel")
 def _engine_model(model) -> str:
     return _parameters(model.path or "(unsaved)", model)
 

@@ -26,14 +26,16 @@ from fractions import Fraction
 
 import numpy as np
 
-from ..errors import InvalidRequestError, PiTheoremError
-from ..exact import read_scale_factor
-from ..formatting import TextDisplay
-from ..immutable import immutable
-from ..scaling import float_power, is_power_of_two
-from .backend import CounterRuns, IgnoredSettings, NamesElements
+from pitheorem.formatting.pieces import float_text
+
+from ...errors import InvalidRequestError, PiTheoremError
+from ...exact import read_scale_factor
+from ...formatting import TextDisplay
+from ...immutable import immutable
+from ...scaling import float_power, is_power_of_two
+from ..enginemodel import EngineModel, check_scaling
+from ..protocols import CounterRuns, IgnoredSettings, NamesElements
 from .causes import Cause, sorted_causes
-from .model import EngineModel, check_scaling
 
 __all__ = ["Audit", "audit"]
 
@@ -141,15 +143,15 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
         scaled = model.scaled(scaling, s)
     elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:
         raise InvalidRequestError("scaled must be an EngineModel of the same engine as model")
-    backend = model._backend
+    backend = model.runner
     causes, compared = [], 0
     original = backend.stored_numbers()
     try:
-        probe = model.scaled(scaling, PROBE)._backend.stored_numbers()
+        probe = model.scaled(scaling, PROBE).runner.stored_numbers()
         # a second probe, the other way: a number that scales by 4**k one way and not by 4**-k the other
         # is not scale-free even where each probe alone looks clean (a rotation found by an iteration
         # that stops at an absolute tolerance, say); and at s = 4 itself the first probe is the copy
-        inverse = model.scaled(scaling, Fraction(1, PROBE))._backend.stored_numbers()
+        inverse = model.scaled(scaling, Fraction(1, PROBE)).runner.stored_numbers()
     except PiTheoremError as err:  # a probe the engine refuses (a mass below its floor): no exponents
         causes.append(
             Cause(
@@ -159,7 +161,7 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
             )
         )
         original = {}
-    copy = scaled._backend.stored_numbers()
+    copy = scaled.runner.stored_numbers()
     probed = {}  # field -> (exponents, clean): pass one, for the largest number of each exponent
     scale: dict[float, float] = {}
     for field, before in original.items():
@@ -223,23 +225,23 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
             Cause(
                 "solver",
                 f"option {name}",
-                f"{value:g}: a stopping rule of no pure dimension (it "
+                f"{float_text(value)}: a stopping rule of no pure dimension (it "
                 "compares numbers of different dimensions: MuJoCo's cost is normalised by a mean of "
                 "masses and moments of inertia, Bullet's residual adds rows in m/s and rad/s), so the "
                 f"scaled run may stop after another number of iterations; with_values({name}=0) runs "
                 "every iteration",
             )
         )
-    if isinstance(scaled._backend, IgnoredSettings):
-        causes.extend(scaled._backend.ignored_settings())
+    if isinstance(scaled.runner, IgnoredSettings):
+        causes.extend(scaled.runner.ignored_settings())
     # the engine's floors and clamps (mjMINVAL, mjMINMU, ...) that a number of either model is beyond:
     # the engine runs with the fixed threshold, not with the number, so the copy is not the original scaled
     # (a threshold that is a multiple of the time step moves with it, and clamps both alike)
-    from .thresholds import crossed
+    from ..thresholds import crossed
 
-    origin = scaled._origin
+    origin = scaled.copied_from
     # float32's range binds only a model the engine computes in float32 (MJX's default)
-    how = {"near": 1.0, "fixed_only": True, "grouped": True, "precision": model.settings().get("precision", "float32")}
+    how = {"near": 1.0, "fixed_only": True, "grouped": True, "precision": model.runner.precision}
     if origin is not None and origin[0] is model and all(0 < f < math.inf for f in origin[1].values()):
         # a copy made by model.scaled: its table is the model's, each number times its factor
         causes.extend(crossed(model.engine, model.parameters, origin[1], **how))
@@ -298,7 +300,7 @@ def _not_a_power(backend, field, before, probe, mask) -> Cause:
         "unscaled",
         field,
         f"{_where(backend, field, mask)}: scaled by {PROBE} as a change of units, "
-        f"{float(before[i]):.17g} became {float(probe[i]):.17g}, no power of {PROBE}: the engine reads a "
+        f"{float_text(before[i])} became {float_text(probe[i])}, no power of {PROBE}: the engine reads a "
         "sentinel or derives this number in a way no change of units carries",
     )
 
@@ -337,6 +339,6 @@ def _mismatch(backend, field, got, expected, mask) -> Cause:
     return Cause(
         "unscaled",
         field,
-        f"{_where(backend, field, mask)}: the engine holds {float(got[i]):.17g}, the "
-        f"original times its factor is {float(expected[i]):.17g}",
+        f"{_where(backend, field, mask)}: the engine holds {float_text(got[i])}, the "
+        f"original times its factor is {float_text(expected[i])}",
     )
