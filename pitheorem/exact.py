@@ -102,7 +102,7 @@ FLOAT_DIGITS = 12
 MAX_FLOAT_DENOMINATOR = 1000
 #: the size limits, as the documentation tables them: (what, limit); beyond one, a LimitError
 LIMITS: tuple[tuple[str, str], ...] = (
-    ("magnitude of an exponent (of a base dimension, of s, or a power of a dimension)", f"{MAX_EXPONENT}"),
+    ("magnitude of an exponent (of a base dimension, of s, or a power)", f"{MAX_EXPONENT}"),
     ("denominator of an exponent", f"10^{len(str(MAX_DENOMINATOR)) - 1}"),
     ("bracket nesting in a dimension formula", f"{MAX_NESTING}"),
     ("length of a dimension formula", f"{MAX_FORMULA_LENGTH:,} characters"),
