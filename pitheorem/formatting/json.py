@@ -248,7 +248,7 @@ def _unit_fit(fit) -> dict:
 
 @_data("pitheorem.engines.verdicts.causes.Cause")
 def _cause(cause) -> dict:
-    return {"kind": cause.kind, "element": cause.element, "detail": cause.detail}
+    return {"kind": cause.kind, "element": cause.element, "detail": cause.detail, "restores": cause.restores}
 
 
 @_data("pitheorem.engines.verdicts.audit.Audit")
