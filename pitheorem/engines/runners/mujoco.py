@@ -987,7 +987,7 @@ def load_urdf(path, *, settings=None) -> EngineModel:
     --------
     >>> from pitheorem import engines
     >>> model = engines.load(engines.example_path("hinged_rod.urdf"), engine="mujoco")
-    >>> model.engine, [p.name for p in model.parameters][-1]
-    ('mujoco', 'hinge_margin')
+    >>> model.engine, [p.name for p in model.parameters if p.source == "engine"][:2]
+    ('mujoco', ['timestep', 'g'])
     """
     return EngineModel(urdf_runner(path, settings=settings), "mujoco", str(Path(path)))
