@@ -20,6 +20,7 @@ import pitheorem as pt
 from pitheorem.engines import (
     CATALOGUE,
     ENGINES,
+    HiddenConstant,
     broken_constants,
     engine_search,
     hidden_constants,
@@ -493,6 +494,7 @@ def test_mujoco_measurements_name_their_tests():
         (test,) = re.findall(r"test_engines_constants\.py, (test_\w+)\)", c.measured)
         assert callable(globals()[test]), test
         assert c.paths
+        assert c.remedy
         assert all(c in constants_for("mujoco", p) for p in c.paths)
     assert {c.name for c in constants_for("mujoco", "native_ccd")} >= {"mujoco_ccd_tolerance", "mujoco_ccd_iterations"}
     assert constants_for("pybullet", "noslip") == ()
@@ -501,3 +503,5 @@ def test_mujoco_measurements_name_their_tests():
         constants_for("mujoco", "contact")
     with pytest.raises(pt.InvalidRequestError, match="'ode'"):
         constants_for("ode", "native_ccd")
+    with pytest.raises(pt.InvalidRequestError, match=r"'contacts'.*native_ccd"):
+        HiddenConstant("mujoco", "mujoco_x", "L", 1.0, "w", "s", "n", paths=("contacts",))

@@ -78,7 +78,10 @@ class HiddenConstant(TextDisplay):
         Its effect on a scaled run, measured with a small model and the
         counter-run that removes it (the test that asserts it is named).
     paths : tuple of str, optional
-        The cause paths (:data:`CAUSE_PATHS`) on which a run meets it.
+        The cause paths (``CAUSE_PATHS`` of this module) on which a run meets it.
+    remedy : str, optional
+        What a user can do about it: the setting that keeps a scaled copy
+        clear of it, or why nothing is needed.
 
     Examples
     --------
@@ -98,6 +101,7 @@ class HiddenConstant(TextDisplay):
     location: str = ""
     measured: str = ""
     paths: tuple[str, ...] = ()
+    remedy: str = ""
 
     def __post_init__(self):
         if not isinstance(self.dimension, Dimension):
@@ -207,7 +211,7 @@ def constants_for(engine: str, path: str) -> tuple[HiddenConstant, ...]:
     ----------
     engine : {"pybullet", "mujoco", "mjx"}
     path : str
-        One of :data:`CAUSE_PATHS`.
+        One of ``CAUSE_PATHS``.
 
     Returns
     -------
