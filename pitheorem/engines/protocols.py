@@ -73,7 +73,7 @@ Job = tuple[Any, Controls, bool, Any]
 
 @runtime_checkable
 class Runs(Protocol):
-    """What :func:`~pitheorem.engines.verdicts.verify` needs of an engine to run a model.
+    """What :func:`~pitheorem.engines.verify` needs of an engine to run a model.
 
     Examples
     --------

@@ -1,10 +1,10 @@
 """Why a scaled run is not exact or not similar: causes found by counter-runs, not guessed.
 
-:func:`pitheorem.engines.verdicts.verify` calls :func:`find_causes` when a run at a
+:func:`pitheorem.engines.verify` calls :func:`find_causes` when a run at a
 power of four is not bit for bit the original, or a run is not similar.
 Each cause is established, not presumed:
 
-* the static ones by :func:`pitheorem.engines.verdicts.audit` (numbers the engine
+* the static ones by :func:`pitheorem.engines.audit` (numbers the engine
   holds that are not the original times their factor, float32 rounding,
   settings the engine ignores);
 * ``solver``: the original and the scaled copy run again with the
@@ -53,7 +53,7 @@ def find_causes(
     model, scaled : EngineModel
         The original and its scaled copy.
     scaling, s
-        As given to :func:`pitheorem.engines.verdicts.verify`.
+        As given to :func:`pitheorem.engines.verify`.
     n_steps : int
     u_original, u_scaled : ndarray or None
         The open-loop inputs of each run, one row per step.
