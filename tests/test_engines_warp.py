@@ -301,3 +301,12 @@ def test_each_world_starts_with_its_own_models_mocap_bodies(tmp_path):
     assert rep.exact  # the copy's mocap body is at its own, scaled, place: the bob is pulled alike
     rows = model.runner.run(25)
     assert rows[-1, 0] > 0.01  # the bob moves toward the mocap target at x = 0.3
+
+
+def test_a_urdf_runs_in_warp_through_mujocos_urdf_reader():
+    path = engines.example_path("hinged_rod.urdf")
+    model = engines.load(path, engine="warp", device="cpu")
+    assert model.engine == "warp"
+    assert model.parameters == engines.load(path, engine="mujoco").parameters  # MuJoCo's reading of the URDF
+    rep = engines.verify(model, time_free(model), s=4, duration=DURATION)
+    assert rep.exact, rep.max_deviation

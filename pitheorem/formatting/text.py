@@ -230,7 +230,7 @@ def _symmetry_report(report) -> str:
 def _verdict(report) -> tuple[str, str]:
     """``PASSED``/``FAILED``, and whether the exponents are a change of units."""
     return (
-        "PASSED" if report.passed else "FAILED",
+        "FAILED" if not report.passed else "INCONCLUSIVE" if report.inconclusive else "PASSED",
         "similarity scaling" if report.is_similarity else "NOT a similarity scaling",
     )
 
@@ -244,7 +244,8 @@ def _similarity_report(report) -> str:
         judged = f"within {report.baseline_factor:g}x the one-ulp sensitivity (largest {worst:.3g}) per state"
     else:
         judged = f"tol {report.tol:g}"
-    head = "EXACT (bit for bit), " if report.exact and report.sensitivity is not None else ""
+    exact = report.exact and report.sensitivity is not None
+    head = ("bit for bit, " if report.inconclusive else "EXACT (bit for bit), ") if exact else ""
     lines = [
         f"{head}{verdict}: max deviation {report.max_deviation:.3g} ({judged}) at s={report.s:g}, "
         f"{kind}, method {report.method}; per state {per}"
@@ -518,6 +519,7 @@ def _engine_verify_answer(answer) -> str:
             "(use --input smooth or another initial pose)"
         )
     lines.extend(strength_lines(rep))
+    lines.extend(f"note: {note}" for note in answer.notes)
     if rep.causes:
         lines.append("causes:")
         lines.extend(f"  {c}" for c in rep.causes)

@@ -53,9 +53,9 @@ from ...errors import EngineModelError, InvalidRequestError
 from ..enginemodel import EngineModel
 from ..fileformats.mjcf import read_mjcf
 from ..packages import engine_module
-from .mujoco import MujocoRunner
+from .mujoco import MujocoRunner, urdf_runner
 
-__all__ = ["PRECISION", "WarpRunner", "load_warp"]
+__all__ = ["PRECISION", "WarpRunner", "load_urdf", "load_warp"]
 
 #: the one precision MJWarp computes in
 PRECISION = "float32"
@@ -434,15 +434,57 @@ def load_warp(path, *, device: str | None = None) -> EngineModel:
     >>> load_warp.__name__
     'load_warp'
     """
+    name = _device(device)
+    reading = MujocoRunner(read_mjcf(path))
+    if reading.refusal is not None:  # MuJoCo's compiler refused it: there is no model to put in MJWarp
+        raise reading.refusal
+    return EngineModel(WarpRunner(reading, name), "warp", str(path))
+
+
+def load_urdf(path, *, settings=None, device: str | None = None) -> EngineModel:
+    """Read a URDF file as an MJWarp model: compiled by MuJoCo's URDF reader, put on a Warp device.
+
+    The same model as :func:`pitheorem.engines.runners.mujoco.load_urdf`'s (its
+    parameters, settings file and scaled copies), run by MJWarp.
+
+    Parameters
+    ----------
+    path : str or Path
+    settings : str, Path or bool, optional
+        The MuJoCo settings file: by default ``<path>.mujoco.json`` if it
+        exists; ``False`` ignores it.
+    device : str, optional
+        As for :func:`load_warp`.
+
+    Returns
+    -------
+    EngineModel
+        Of engine ``"warp"``, in float32.
+
+    Raises
+    ------
+    EngineModelError
+        For a file the URDF format, MuJoCo or MJWarp rejects (named).
+    InvalidRequestError
+        For a device Warp does not have.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.runners.warp import load_urdf
+    >>> load_urdf.__name__
+    'load_urdf'
+    """
+    name = _device(device)
+    return EngineModel(WarpRunner(urdf_runner(path, settings=settings), name), "warp", str(path))
+
+
+def _device(device) -> str:
+    """The name of a Warp device (Warp's preferred one for None); one Warp does not have, refused by name."""
     wp, _ = _warp()
     try:
-        name = str(wp.get_device(device))
+        return str(wp.get_device(device))
     except (RuntimeError, ValueError) as err:
         devices = ", ".join(repr(str(d)) for d in wp.get_devices())
         raise InvalidRequestError(
             f"Warp has no device {device!r} ({err}); its devices: {devices}", culprit=device
         ) from None
-    reading = MujocoRunner(read_mjcf(path))
-    if reading.refusal is not None:  # MuJoCo's compiler refused it: there is no model to put in MJWarp
-        raise reading.refusal
-    return EngineModel(WarpRunner(reading, name), "warp", str(path))
