@@ -38,7 +38,10 @@ def test_a_file_runs_only_in_an_engine_that_compiles_its_format(tmp_path):
         assert engines.load(urdf, engine=engine).engine == engine
     with pytest.raises(pt.InvalidRequestError) as caught:
         engines.load(PENDULUM, engine="pybullet")
-    assert str(caught.value) == "engine 'pybullet' does not read MJCF files; an MJCF file runs in 'mujoco' or 'mjx'"
+    assert (
+        str(caught.value)
+        == "engine 'pybullet' does not read MJCF files; an MJCF file runs in 'mujoco', 'mjx' or 'warp'"
+    )
     with pytest.raises(pt.InvalidRequestError) as caught:  # PyBullet's scene options are PyBullet's
         engines.load(urdf, engine="mujoco", fixed_base=True)
     assert str(caught.value) == (
