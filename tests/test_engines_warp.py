@@ -88,7 +88,7 @@ def test_warp_is_listed_with_its_extra_and_precision():
     from pitheorem.engines.registry import registered
 
     line = registered("warp")
-    assert (line.extra, line.base, line.precision, line.formats) == ("warp", "mujoco", "float32", ("mjcf",))
+    assert (line.extra, line.base, line.precision, line.formats) == ("warp", "mujoco", "float32", ("mjcf", "urdf"))
 
 
 # gymnasium's hopper (contacts, margins, a free-floating base), inverted pendulum (a slider and a hinge)
