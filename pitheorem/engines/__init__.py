@@ -11,6 +11,8 @@ asked for.  Install the engines with ``pip install "pitheorem[engines]"``
   a scaled copy and the file the engine loads;
 * ``pitheorem.engines.verify``: runs a model and its scaled copy in the
   engine and compares them against the model's own one-ulp sensitivity;
+* ``pitheorem.engines.sweep``: :func:`sweep`, the verification at many
+  scale factors, on every core or on a Dask cluster;
 * ``pitheorem.engines.cli``: the command line on MJCF and URDF files;
 * ``pitheorem.engines.superball``: SUPERball, the white paper's robot, as a
   MuJoCo tensegrity;
@@ -67,6 +69,7 @@ from .rules import (
     RuleVerdict,
     check_rule,
 )
+from .sweep import Sweep, SweepRow, sweep
 from .thresholds import check
 from .verify import smooth_controls, verify
 
@@ -87,6 +90,8 @@ __all__ = [
     "RuleOfThumb",
     "RuleQuantity",
     "RuleVerdict",
+    "Sweep",
+    "SweepRow",
     "UnscalableModelWarning",
     "UnscalableParameterError",
     "audit",
@@ -100,6 +105,7 @@ __all__ = [
     "load",
     "simulate_rod",
     "smooth_controls",
+    "sweep",
     "verify",
     "verify_engine_similarity",
     "with_hidden_constants",

@@ -17,6 +17,7 @@ from . import render
 from .pieces import (
     COMMAND_LINE_TIME_REMEDY,
     PYTHON_TIME_REMEDY,
+    SWEEP_HEADER,
     UNCHANGED,
     base_latex,
     changed_rows,
@@ -32,6 +33,9 @@ from .pieces import (
     rational_latex,
     registry,
     search_cells,
+    sweep_cells,
+    sweep_fit_text,
+    sweep_head,
     unit_fit_rows,
     value_text,
 )
@@ -226,6 +230,26 @@ def _rule_verdict(verdict) -> str:
         + "".join(f"<li>{escape(line.strip())}</li>" for line in rest)
         + "</ul>"
     )
+
+
+@_renders("pitheorem.engines.sweep.SweepRow")
+def _sweep_row(row) -> str:
+    return f"<span>{escape(render(row, 'text'))}</span>"
+
+
+@_renders("pitheorem.engines.sweep.Sweep")
+def _sweep(sweep) -> str:
+    rows = [[escape(cell) for cell in sweep_cells(r)] for r in sweep.rows]
+    out = _p(escape(sweep_head(sweep))) + _table(list(SWEEP_HEADER), rows)
+    caused = [r for r in sweep.rows if r.causes]
+    if caused:
+        items = "".join(
+            f"<li>s = {escape(value_text(r.s))}: " + "; ".join(render(c, "html") for c in r.causes) + "</li>"
+            for r in caused
+        )
+        out += f"<ul>{items}</ul>"
+    fit = sweep_fit_text(sweep)
+    return out + (_p(escape(fit)) if fit else "")
 
 
 def _parameters(name: str, model) -> str:

@@ -209,6 +209,39 @@ def _engine_similarity_report(report) -> dict:
     }
 
 
+# -- sweeps ----------------------------------------------------------------------------------
+
+
+@_data("pitheorem.engines.sweep.SweepRow")
+def _sweep_row(row) -> dict:
+    return {
+        "s": json_number(row.s),
+        "verdict": row.verdict,
+        "max_deviation": row.max_deviation,
+        "yardstick": row.yardstick,
+        "horizon": row.horizon,
+        "excited": row.excited,
+        "first_divergence": None if row.first_divergence is None else list(row.first_divergence),
+        "causes": [_cause(c) for c in row.causes],
+        "thresholds": list(row.thresholds),
+    }
+
+
+@_data("pitheorem.engines.sweep.Sweep")
+def _sweep(sweep) -> dict:
+    return {
+        "file": sweep.model,
+        "engine": sweep.engine,
+        "scaling": None if sweep.scaling is None else _scaling(sweep.scaling),
+        "duration": sweep.duration,
+        "baseline_factor": sweep.baseline_factor,
+        "units": dict(sweep.units),
+        "fitted_units": None if sweep.fitted_units is None else dict(sweep.fitted_units),
+        "fitted_s": sweep.fitted_s,
+        "rows": [_sweep_row(r) for r in sweep.rows],
+    }
+
+
 # -- unit fits -------------------------------------------------------------------------------
 
 

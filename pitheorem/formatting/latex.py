@@ -17,6 +17,7 @@ import sympy
 from . import render
 from .pieces import (
     PYTHON_TIME_REMEDY,
+    SWEEP_HEADER,
     UNCHANGED,
     base_latex,
     changed_rows,
@@ -33,6 +34,9 @@ from .pieces import (
     rational_latex,
     registry,
     search_cells,
+    sweep_cells,
+    sweep_fit_text,
+    sweep_head,
     unit_fit_rows,
     value_text,
     which_scaling,
@@ -233,6 +237,27 @@ def _rule_verdict(verdict) -> str:
     first, *rest = render(verdict, "text").splitlines()
     items = "".join(f"\n\\item {latex_escape(line.strip())}" for line in rest)
     return rf"\textbf{{{latex_escape(first)}}}" + "\n\\begin{itemize}" + items + "\n\\end{itemize}"
+
+
+@_renders("pitheorem.engines.sweep.SweepRow")
+def _sweep_row(row) -> str:
+    return latex_escape(render(row, "text"))
+
+
+@_renders("pitheorem.engines.sweep.Sweep")
+def _sweep(sweep) -> str:
+    rows = [[latex_escape(cell) for cell in sweep_cells(r)] for r in sweep.rows]
+    parts = [latex_escape(sweep_head(sweep)), _tabular("rlrrl", rows, list(SWEEP_HEADER))]
+    caused = [r for r in sweep.rows if r.causes]
+    if caused:
+        items = "".join(
+            rf"\item $s = {_number(r.s)}$: " + "; ".join(render(c, "latex") for c in r.causes) + "\n" for r in caused
+        )
+        parts.append("\\begin{itemize}\n" + items + "\\end{itemize}")
+    fit = sweep_fit_text(sweep)
+    if fit:
+        parts.append(latex_escape(fit))
+    return "\n\n".join(parts)
 
 
 def _parameter_table(name: str, model) -> str:

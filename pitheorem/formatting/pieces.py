@@ -27,6 +27,7 @@ __all__ = [
     "COMMAND_LINE_TIME_REMEDY",
     "NAMES_SHOWN",
     "PYTHON_TIME_REMEDY",
+    "SWEEP_HEADER",
     "UNCHANGED",
     "align",
     "base_latex",
@@ -52,6 +53,9 @@ __all__ = [
     "scale_text",
     "search_cells",
     "solutions_text",
+    "sweep_cells",
+    "sweep_fit_text",
+    "sweep_head",
     "unit_change_text",
     "unit_fit_rows",
     "value_text",
@@ -832,3 +836,99 @@ def align(rows) -> str:
     """
     widths = [max(len(r[c]) for r in rows) for c in range(len(rows[0]))]
     return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in rows)
+
+
+# -- sweeps ----------------------------------------------------------------------------------
+
+#: the columns of a sweep's table
+SWEEP_HEADER = ("s", "verdict", "deviation", "yardstick", "thresholds crossed")
+
+
+def _short(value) -> str:
+    """A deviation or yardstick in a cell: three digits, an exact zero as 0, nothing for None."""
+    if value is None:
+        return ""
+    return "0" if value == 0 else f"{value:.3g}"
+
+
+def sweep_head(sweep) -> str:
+    """A sweep's first line: the model, its engine, the scaling, the run's length and the number of rows.
+
+    Parameters
+    ----------
+    sweep : Sweep
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.engines import Sweep
+    >>> from pitheorem.formatting.pieces import sweep_head
+    >>> sweep_head(Sweep("robots/hopper.xml", "mujoco", None, 0.5, ()))
+    'sweep of hopper.xml in mujoco, 0.5 s per run, 0 scale factors'
+    """
+    name = sweep.model.replace("\\", "/").rsplit("/", 1)[-1] or "(unsaved model)"
+    scaling = "" if sweep.scaling is None else f", {unit_change_text(sweep.scaling)}"
+    time_unit = dict(sweep.units).get("T", "s")
+    return (
+        f"sweep of {name} in {sweep.engine}{scaling}, {sweep.duration:g} {time_unit} per run, "
+        f"{len(sweep.rows)} scale factors"
+    )
+
+
+def sweep_cells(row) -> list[str]:
+    """One row of a sweep's table as text cells, in the order of :data:`SWEEP_HEADER`.
+
+    Parameters
+    ----------
+    row : SweepRow
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> from pitheorem.engines import SweepRow
+    >>> from pitheorem.formatting.pieces import sweep_cells
+    >>> sweep_cells(SweepRow(0.001, "similar", 2.5e-9, 1.25e-10, None, True, None, (), ("mujoco_minmu",)))
+    ['0.001', 'similar', '2.5e-09', '1.25e-10', 'mujoco_minmu']
+    """
+    return [
+        value_text(row.s),
+        row.verdict,
+        _short(row.max_deviation),
+        _short(row.yardstick),
+        ", ".join(row.thresholds),
+    ]
+
+
+def sweep_fit_text(sweep) -> str:
+    """What :func:`pitheorem.fit_units` chooses for the sweep's engine, and where the sweep meets it ("" if not asked).
+
+    Parameters
+    ----------
+    sweep : Sweep
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.engines import Sweep
+    >>> from pitheorem.formatting.pieces import sweep_fit_text
+    >>> sweep_fit_text(Sweep("", "mujoco", None, 1.0, (), fitted_units={"M": "g", "L": "mm", "T": "s"}, fitted_s=1e-3))
+    'fit_units chooses M = g, L = mm, T = s for mujoco: this scaling reaches them at s = 0.001'
+    """
+    if sweep.fitted_units is None:
+        return ""
+    units = ", ".join(f"{b} = {u}" for b, u in sweep.fitted_units.items())
+    where = (
+        "this scaling moves none of their base units"
+        if sweep.fitted_s is None
+        else f"this scaling reaches them at s = {sweep.fitted_s:.3g}"
+    )
+    return f"fit_units chooses {units} for {sweep.engine}: {where}"

@@ -13,6 +13,7 @@ import sympy
 from .pieces import (
     COMMAND_LINE_TIME_REMEDY,
     PYTHON_TIME_REMEDY,
+    SWEEP_HEADER,
     align,
     changed_by_kind,
     changed_rows,
@@ -27,6 +28,9 @@ from .pieces import (
     request_text,
     search_cells,
     solutions_text,
+    sweep_cells,
+    sweep_fit_text,
+    sweep_head,
     unit_change_text,
     unit_fit_rows,
     value_text,
@@ -356,6 +360,31 @@ def _rule_verdict(verdict) -> str:
             f"  hidden constant left out: {_hidden_constant(c)}"
             f" must scale by X^{verdict.scaling.exponent_of(c.dimension)}"
         )
+    return "\n".join(lines)
+
+
+@_renders("pitheorem.engines.sweep.SweepRow")
+def _sweep_row(row) -> str:
+    s, verdict, deviation, yardstick, crossed = sweep_cells(row)
+    line = f"s = {s}: {verdict}"
+    if row.max_deviation is not None:
+        line += f", deviation {deviation}, yardstick {yardstick}"
+    if crossed:
+        line += f", beyond {crossed}"
+    return line
+
+
+@_renders("pitheorem.engines.sweep.Sweep")
+def _sweep(sweep) -> str:
+    lines = [sweep_head(sweep), align([list(SWEEP_HEADER)] + [sweep_cells(r) for r in sweep.rows])]
+    caused = [r for r in sweep.rows if r.causes]
+    if caused:
+        lines.append("causes:")
+        for r in caused:
+            lines.append(f"  s = {value_text(r.s)}: " + "; ".join(f"{c.kind}: {c.element}" for c in r.causes))
+    fit = sweep_fit_text(sweep)
+    if fit:
+        lines.append(fit)
     return "\n".join(lines)
 
 
