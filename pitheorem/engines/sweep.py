@@ -319,7 +319,7 @@ def sweep(
     >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     >>> sw = engines.sweep(model, sc, s=(1e-3, 1, 4, 1e3), duration=0.2, controls=lambda t: [0.1], workers=1)
     >>> print(sw)  # doctest: +ELLIPSIS
-    sweep of pendulum.xml in mujoco, units of L by s, 0.2 s per run, 4 scale factors
+    sweep of pendulum.xml in mujoco, units of M by 1/s^2, L by s, 0.2 s per run, 4 scale factors
     s      verdict  deviation  yardstick  thresholds crossed
     0.001  similar  ...mujoco_minmu
     1      exact    0          ...
