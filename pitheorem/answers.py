@@ -1,6 +1,6 @@
 """The command line's answers: what each subcommand found about one model file, as values.
 
-``pitheorem groups``, ``bases``, ``search``, ``apply``, ``params`` and ``verify``
+``pitheorem groups``, ``bases``, ``search``, ``apply``, ``params``, ``verify`` and ``sweep``
 compute one of these and print ``format(answer, FORMAT)``: its text, LaTeX,
 HTML or JSON comes from :mod:`pitheorem.formatting`, like every other
 display.  Each answer joins what one output shows: the model file's name
@@ -24,6 +24,7 @@ __all__ = [
     "GroupsAnswer",
     "ParamsAnswer",
     "SearchAnswer",
+    "SweepAnswer",
 ]
 
 
@@ -287,6 +288,38 @@ class EngineVerifyAnswer(NamedTuple):
     input: str
     exact_expected: bool
     report: object
+
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__
+
+
+class SweepAnswer(NamedTuple):
+    """``pitheorem sweep``: one sweep per model file, and with several files a table of robots by scale.
+
+    Parameters
+    ----------
+    sweeps : tuple of Sweep
+        What :func:`pitheorem.engines.sweep` found for each file, in the
+        order of the files.
+    names : tuple of str
+        Each file's name as given on the command line.
+    plots : tuple of str
+        The figures written (``--plot``), one per file; empty without.
+
+    Examples
+    --------
+    >>> from pitheorem.answers import SweepAnswer
+    >>> from pitheorem.engines import Sweep, SweepRow
+    >>> rows = (SweepRow(1, "exact", 0.0, 1e-12, None, True, None, (), ()),)
+    >>> a = SweepAnswer((Sweep("a.xml", "mujoco", None, 1.0, rows), Sweep("b.xml", "mujoco", None, 1.0, rows)),
+    ...                 ("a.xml", "b.xml"), ())
+    >>> print(str(a).splitlines()[-3:])
+    ['robot  1', 'a.xml  exact', 'b.xml  exact']
+    """
+
+    sweeps: tuple
+    names: tuple
+    plots: tuple = ()
 
     __str__ = TextDisplay.__str__
     __format__ = TextDisplay.__format__

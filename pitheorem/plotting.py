@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
-from .formatting.pieces import power_text, scale_text
+from .formatting.pieces import file_name, power_text, scale_text, unit_change_text
 
 __all__ = ["plot_search", "plot_similarity", "plot_sweep", "sweep_alt_text"]
 
@@ -179,7 +179,7 @@ def sweep_alt_text(sweep) -> str:
     'Deviation of the scaled copy and the yardstick against the scale factor s from 0.001 to 1 for robot.xml in mujoco; verdicts: s = 0.001 refused, s = 1 exact; beyond mujoco_minval_mass at s = 0.001.'
     """
     rows = sorted(sweep.rows, key=lambda r: float(r.s))
-    name = sweep.model.replace("\\", "/").rsplit("/", 1)[-1] or "the model"
+    name = file_name(sweep.model) or "the model"
     if not rows:
         return f"An empty sweep of {name}."
     verdicts = ", ".join(f"s = {float(r.s):.3g} {r.verdict}" for r in rows)
@@ -316,11 +316,11 @@ def plot_sweep(sweep, ax=None):
         ax.axvline(sweep.fitted_s, color="#bf8700", ls=":", lw=2, label=f"fit_units: {units}")
     ax.set_xlabel("scale factor s")
     unit_text = ", ".join(f"{u}" for u in dict(sweep.units).values())
-    ax.set_ylabel(f"largest deviation, original units ({unit_text}, rad)")
-    name = sweep.model.replace("\\", "/").rsplit("/", 1)[-1] or "model"
+    ax.set_ylabel(f"largest deviation of a coordinate\n(original units: {unit_text}; rad)")
+    name = file_name(sweep.model) or "model"
     title = f"{name} in {sweep.engine}"
     if sweep.scaling is not None:
-        title += f": {sweep.scaling}"
+        title += f": {unit_change_text(sweep.scaling)}"
     if everywhere:
         title += "\nbeyond at every s: " + ", ".join(everywhere)
     ax.set_title(title, fontsize=10)

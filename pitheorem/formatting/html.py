@@ -35,6 +35,7 @@ from .pieces import (
     search_cells,
     sweep_cells,
     sweep_fit_text,
+    sweep_grid,
     sweep_head,
     unit_fit_rows,
     value_text,
@@ -338,3 +339,13 @@ def _engine_verify_answer(answer) -> str:
     lines = [line for line in render(answer, "text").splitlines() if not line.startswith(("causes:", "  "))]
     items = "".join(f"<li>{render(c, 'html')}</li>" for c in answer.report.causes)
     return "".join(_p(escape(line)) for line in lines) + (f"<ul>{items}</ul>" if items else "")
+
+
+@_renders("pitheorem.answers.SweepAnswer")
+def _sweep_answer(answer) -> str:
+    out = "".join(_sweep(sw) for sw in answer.sweeps)
+    out += "".join(_p(f"wrote {_code(path)}") for path in answer.plots)
+    if len(answer.sweeps) > 1:
+        header, *rows = sweep_grid(answer)
+        out += _table([escape(cell) for cell in header], [[escape(cell) for cell in row] for row in rows])
+    return out

@@ -457,5 +457,14 @@ def _engine_verify_answer(answer) -> dict:
     }
 
 
+@_data("pitheorem.answers.SweepAnswer")
+def _sweep_answer(answer) -> dict:
+    return {
+        "files": list(answer.names),
+        "plots": list(answer.plots),
+        "sweeps": [_sweep(sw) for sw in answer.sweeps],
+    }
+
+
 #: renderer of each value type, by qualified type name: its data, dumped
 RENDERERS: dict = {name: (lambda value, data=data: dumps(data(value))) for name, data in DATA.items()}

@@ -36,6 +36,7 @@ from .pieces import (
     search_cells,
     sweep_cells,
     sweep_fit_text,
+    sweep_grid,
     sweep_head,
     unit_fit_rows,
     value_text,
@@ -336,3 +337,14 @@ def _engine_verify_answer(answer) -> str:
     items = "".join(rf"\item {render(c, 'latex')}" + "\n" for c in answer.report.causes)
     head = f"% {answer.model} in {answer.engine}, s = {answer.s}\n" + "\n\n".join(map(latex_escape, lines))
     return head + ("\n\\begin{itemize}\n" + items + "\\end{itemize}" if items else "")
+
+
+@_renders("pitheorem.answers.SweepAnswer")
+def _sweep_answer(answer) -> str:
+    parts = [_sweep(sw) for sw in answer.sweeps]
+    parts += [latex_escape(f"wrote {path}") for path in answer.plots]
+    if len(answer.sweeps) > 1:
+        header, *rows = sweep_grid(answer)
+        grid = [[latex_escape(cell) for cell in row] for row in rows]
+        parts.append(_tabular("l" * len(header), grid, [latex_escape(cell) for cell in header]))
+    return "\n\n".join(parts)

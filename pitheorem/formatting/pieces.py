@@ -35,6 +35,7 @@ __all__ = [
     "changed_rows",
     "default_text",
     "deviation_rows",
+    "file_name",
     "group_name_latex",
     "json_number",
     "latex_escape",
@@ -55,6 +56,7 @@ __all__ = [
     "solutions_text",
     "sweep_cells",
     "sweep_fit_text",
+    "sweep_grid",
     "sweep_head",
     "unit_change_text",
     "unit_fit_rows",
@@ -851,6 +853,26 @@ def _short(value) -> str:
     return "0" if value == 0 else f"{value:.3g}"
 
 
+def file_name(path: str) -> str:
+    """The last part of a file's path, as a table or a title shows it ("" for "").
+
+    Parameters
+    ----------
+    path : str
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import file_name
+    >>> file_name("robots/hopper.xml"), file_name("C:\\\\robots\\\\ant.xml"), file_name("")
+    ('hopper.xml', 'ant.xml', '')
+    """
+    return path.replace("\\", "/").rsplit("/", 1)[-1]
+
+
 def sweep_head(sweep) -> str:
     """A sweep's first line: the model, its engine, the scaling, the run's length and the number of rows.
 
@@ -869,7 +891,7 @@ def sweep_head(sweep) -> str:
     >>> sweep_head(Sweep("robots/hopper.xml", "mujoco", None, 0.5, ()))
     'sweep of hopper.xml in mujoco, 0.5 s per run, 0 scale factors'
     """
-    name = sweep.model.replace("\\", "/").rsplit("/", 1)[-1] or "(unsaved model)"
+    name = file_name(sweep.model) or "(unsaved model)"
     scaling = "" if sweep.scaling is None else f", {unit_change_text(sweep.scaling)}"
     time_unit = dict(sweep.units).get("T", "s")
     return (
@@ -932,3 +954,34 @@ def sweep_fit_text(sweep) -> str:
         else f"this scaling reaches them at s = {sweep.fitted_s:.3g}"
     )
     return f"fit_units chooses {units} for {sweep.engine}: {where}"
+
+
+def sweep_grid(answer) -> list[list[str]]:
+    """Several sweeps as one table of robots by scale: a header row of ``s``, then a row of verdicts per file.
+
+    The ``s`` of every sweep in the order of the first file's rows (the command line sweeps every file
+    at the same ``s``).
+
+    Parameters
+    ----------
+    answer : SweepAnswer
+
+    Returns
+    -------
+    list of list of str
+
+    Examples
+    --------
+    >>> from pitheorem.answers import SweepAnswer
+    >>> from pitheorem.engines import Sweep, SweepRow
+    >>> from pitheorem.formatting.pieces import sweep_grid
+    >>> rows = (SweepRow(0.5, "similar", 1e-14, 1e-12, None, True, None, (), ()),)
+    >>> sweep_grid(SweepAnswer((Sweep("a.xml", "mujoco", None, 1.0, rows),), ("a.xml",)))
+    [['robot', '0.5'], ['a.xml', 'similar']]
+    """
+    first = answer.sweeps[0].rows if answer.sweeps else ()
+    grid = [["robot", *(value_text(r.s) for r in first)]]
+    grid += [
+        [file_name(name), *(r.verdict for r in sw.rows)] for name, sw in zip(answer.names, answer.sweeps, strict=True)
+    ]
+    return grid

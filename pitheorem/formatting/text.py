@@ -30,6 +30,7 @@ from .pieces import (
     solutions_text,
     sweep_cells,
     sweep_fit_text,
+    sweep_grid,
     sweep_head,
     unit_change_text,
     unit_fit_rows,
@@ -549,3 +550,13 @@ def _engine_verify_answer(answer) -> str:
     elif not rep.similar or (not rep.exact and answer.exact_expected):
         lines.append("no cause found by the audit and the counter-runs (solver, contacts)")
     return "\n".join(lines)
+
+
+@_renders("pitheorem.answers.SweepAnswer")
+def _sweep_answer(answer) -> str:
+    parts = [_sweep(sw) for sw in answer.sweeps]
+    if answer.plots:
+        parts.append("\n".join(f"wrote {path}" for path in answer.plots))
+    if len(answer.sweeps) > 1:
+        parts.append("verdicts of every file by scale factor s:\n" + align(sweep_grid(answer)))
+    return "\n\n".join(parts)
