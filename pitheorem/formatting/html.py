@@ -241,7 +241,8 @@ def _sweep_row(row) -> str:
 @_renders("pitheorem.engines.sweep.Sweep")
 def _sweep(sweep) -> str:
     rows = [[escape(cell) for cell in sweep_cells(r)] for r in sweep.rows]
-    out = _p(escape(sweep_head(sweep))) + _table(list(SWEEP_HEADER), rows)
+    header = [_math("s"), *SWEEP_HEADER[1:]]
+    out = _p(escape(sweep_head(sweep))) + _table(header, rows)
     caused = [r for r in sweep.rows if r.causes]
     if caused:
         items = "".join(
