@@ -14,11 +14,11 @@ import pitheorem as pt
 
 pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
 
-from pitheorem import engines  # noqa: E402
-from pitheorem.cli import main  # noqa: E402
-from pitheorem.engines.cli import parse_s_values  # noqa: E402
-from pitheorem.engines.sweep import verdict  # noqa: E402
-from pitheorem.engines.thresholds import thresholds  # noqa: E402
+from pitheorem import engines
+from pitheorem.cli import main
+from pitheorem.engines.cli import parse_s_values
+from pitheorem.engines.sweep import verdict
+from pitheorem.engines.thresholds import thresholds
 
 PENDULUM = engines.example_path("pendulum.xml")
 DURATION = 0.1
@@ -93,10 +93,14 @@ def test_a_copy_the_compiler_refuses_is_a_row(pendulum, tmp_path):
         engines.verify(model, mass, 1e-17, duration=DURATION)
     sw = engines.sweep(model, mass, s=(1e-17, 1), duration=DURATION, controls=push, fit=False)
     refused, fine = sw.rows
-    assert refused.verdict == "refused" and refused.max_deviation is None and refused.yardstick is None
-    assert "mjMINVAL" in refused.causes[0].detail and refused.causes[0].kind == "threshold"
+    assert refused.verdict == "refused"
+    assert refused.max_deviation is None
+    assert refused.yardstick is None
+    assert "mjMINVAL" in refused.causes[0].detail
+    assert refused.causes[0].kind == "threshold"
     assert "mujoco_minval_mass" in refused.thresholds
-    assert fine.verdict == "exact" and fine.thresholds == ()
+    assert fine.verdict == "exact"
+    assert fine.thresholds == ()
 
 
 def test_the_thresholds_crossed_are_those_check_finds_beyond_on_the_copy(pendulum):
@@ -111,7 +115,8 @@ def test_the_thresholds_crossed_are_those_check_finds_beyond_on_the_copy(pendulu
             n for c in engines.check(model.scaled(lengths, row.s)) for n in names if f"is below {n} " in c.detail
         } | {n for c in engines.check(model.scaled(lengths, row.s)) for n in names if f"is above {n} " in c.detail}
         assert set(row.thresholds) == beyond, row
-    assert "mujoco_minmu" in sw.rows[0].thresholds and sw.rows[2].thresholds == sw.rows[3].thresholds == ()
+    assert "mujoco_minmu" in sw.rows[0].thresholds
+    assert sw.rows[2].thresholds == sw.rows[3].thresholds == ()
 
 
 def test_a_model_that_does_not_move_is_inconclusive(tmp_path):
@@ -121,7 +126,8 @@ def test_a_model_that_does_not_move_is_inconclusive(tmp_path):
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     sw = engines.sweep(model, sc, s=(10,), duration=DURATION, workers=1, fit=False)
     rep = engines.verify(model, sc, 10, duration=DURATION)
-    assert rep.excited is False and rep.similar
+    assert rep.excited is False
+    assert rep.similar
     assert sw.verdicts == ("inconclusive",) == (verdict(rep),)
 
 
@@ -145,9 +151,11 @@ def test_rows_display_in_every_format(pendulum):
     doc = json.loads(format(sw, "json"))
     assert [r["verdict"] for r in doc["rows"]] == list(sw.verdicts)
     assert [r["max_deviation"] for r in doc["rows"]] == [r.max_deviation for r in sw.rows]
-    assert doc["rows"][1]["s"] == 4 and doc["rows"][0]["thresholds"] == ["mujoco_minmu"]
+    assert doc["rows"][1]["s"] == 4
+    assert doc["rows"][0]["thresholds"] == ["mujoco_minmu"]
     text = str(sw)
-    assert "mujoco_minmu" in text.splitlines()[2] and text.splitlines()[3].split()[:2] == ["4", "exact"]
+    assert "mujoco_minmu" in text.splitlines()[2]
+    assert text.splitlines()[3].split()[:2] == ["4", "exact"]
     assert r"\begin{tabular}" in format(sw, "latex")
     assert format(sw, "html").count("<tr>") == 3
 
@@ -159,7 +167,8 @@ def test_the_figure_marks_verdicts_bands_and_the_fitted_units(pendulum):
     fig = sw.plot()
     ax = fig.axes[0]
     assert (ax.get_xscale(), ax.get_yscale()) == ("log", "log")
-    assert "original units: kg, m, s" in ax.get_ylabel() and ax.get_xlabel() == "scale factor s"
+    assert "original units: kg, m, s" in ax.get_ylabel()
+    assert ax.get_xlabel() == "scale factor s"
     assert [t.get_text() for t in ax.texts] == ["beyond mujoco_minmu"]  # crossed below 1e-2 only
     labels = ax.get_legend_handles_labels()[1]
     assert any(label.startswith("exact") for label in labels)
@@ -186,10 +195,11 @@ def test_a_cluster_worker_reads_the_model_from_its_file_as_a_user_would(pendulum
     # what a worker process elsewhere does: read the model by its recipe (an unsaved copy saved first)
     from pitheorem.engines.sweep import _recipe, _remote_outcome
 
-    model, sc = pendulum
+    model, _sc = pendulum
     copy = model.converted(L=100)
     recipe = _recipe(copy)
-    assert Path(recipe[0]).is_file() and recipe[2] == tuple(sorted(copy.units.items()))
+    assert Path(recipe[0]).is_file()
+    assert recipe[2] == tuple(sorted(copy.units.items()))
     lengths = pt.search(copy.system(), scale={"g": 1}).scalings[0]
     here = engines.sweep(copy, lengths, s=(10,), duration=DURATION, controls=push, fit=False, workers=1).rows[0]
     there = _remote_outcome(recipe, lengths, pt.exact.read_scale_factor(10), DURATION, push, {"diagnose": True})

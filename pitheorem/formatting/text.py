@@ -8,6 +8,8 @@ columns (:func:`~pitheorem.formatting.pieces.align`).
 
 from __future__ import annotations
 
+import textwrap
+
 import sympy
 
 from .pieces import (
@@ -375,17 +377,25 @@ def _sweep_row(row) -> str:
     return line
 
 
+#: the width the lines of a sweep's prose are wrapped at (its table is as wide as its columns)
+SWEEP_WIDTH = 88
+
+
 @_renders("pitheorem.engines.sweep.Sweep")
 def _sweep(sweep) -> str:
-    lines = [sweep_head(sweep), align([list(SWEEP_HEADER)] + [sweep_cells(r) for r in sweep.rows])]
+    lines = [
+        textwrap.fill(sweep_head(sweep), SWEEP_WIDTH, subsequent_indent="  "),
+        align([list(SWEEP_HEADER)] + [sweep_cells(r) for r in sweep.rows]),
+    ]
     caused = [r for r in sweep.rows if r.causes]
     if caused:
         lines.append("causes:")
         for r in caused:
-            lines.append(f"  s = {value_text(r.s)}: " + "; ".join(f"{c.kind}: {c.element}" for c in r.causes))
+            line = f"  s = {value_text(r.s)}: " + "; ".join(f"{c.kind}: {c.element}" for c in r.causes)
+            lines.append(textwrap.fill(line, SWEEP_WIDTH, subsequent_indent="    "))
     fit = sweep_fit_text(sweep)
     if fit:
-        lines.append(fit)
+        lines.append(textwrap.fill(fit, SWEEP_WIDTH, subsequent_indent="  "))
     return "\n".join(lines)
 
 
