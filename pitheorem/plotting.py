@@ -159,7 +159,7 @@ def _bands(rows):
 
 
 def sweep_alt_text(sweep) -> str:
-    """A sentence that says what the figure of a sweep shows, for a reader who cannot see it.
+    """The alt text of a sweep's figure: what it shows, in words.
 
     Parameters
     ----------
@@ -199,7 +199,7 @@ def sweep_alt_text(sweep) -> str:
 
 
 def plot_sweep(sweep, ax=None):
-    """Figure of a sweep: where along s the scaled copy stays similar, and which thresholds it crosses.
+    """Figure of a sweep: where along s the copy stays similar, and why.
 
     Deviation of the copy (mapped back) and the yardstick (the spread of
     the original's one-ulp twins) against ``s``, both axes logarithmic.

@@ -56,7 +56,9 @@ IN_PROCESS_ENGINES = ("mjx",)
 
 
 def verdict(report) -> str:
-    """The one-word verdict of a verification report (one of :data:`VERDICTS`, but ``"refused"``).
+    """The one-word verdict of a verification report.
+
+    One of :data:`VERDICTS`, but ``"refused"``.
 
     ``"inconclusive"`` when the original run moved nothing beyond its own
     rounding (``report.excited`` is False) and the copy stayed within the
@@ -96,7 +98,7 @@ def verdict(report) -> str:
 @immutable
 @dataclass(frozen=True, slots=True)
 class SweepRow(TextDisplay):
-    """One scale factor of a :class:`Sweep`: what :func:`~pitheorem.engines.verify` says there.
+    """One scale factor of a :class:`Sweep`: what verify says there.
 
     Attributes
     ----------
@@ -223,7 +225,7 @@ class Sweep(TableDisplay):
         return tuple(row.verdict for row in self.rows)
 
     def plot(self, ax=None):
-        """Deviation and yardstick against ``s`` on log axes, the verdicts as markers, thresholds as bands.
+        """Deviation and yardstick against ``s``, verdicts and thresholds.
 
         See :func:`pitheorem.plotting.plot_sweep`.
 
@@ -265,7 +267,7 @@ def sweep(
     seed: int = 0,
     diagnose: bool = True,
 ) -> Sweep:
-    """Verify a scaling of a model at each of many scale factors: where does similarity hold?
+    """Verify a scaling at many scale factors: where similarity holds.
 
     Parameters
     ----------
@@ -319,7 +321,7 @@ def sweep(
     >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     >>> sw = engines.sweep(model, sc, s=(1e-3, 1, 4, 1e3), duration=0.2, controls=lambda t: [0.1], workers=1)
     >>> print(sw)  # doctest: +ELLIPSIS
-    sweep of pendulum.xml in mujoco, units of M by 1/s^2, L by s, 0.2 s per run, 4 scale factors
+    pendulum.xml in mujoco, units of M by 1/s^2, L by s: 4 scale factors, 0.2 s each
     s      verdict  deviation  yardstick  thresholds crossed
     0.001  similar  ...mujoco_minmu
     1      exact    0          ...

@@ -889,15 +889,12 @@ def sweep_head(sweep) -> str:
     >>> from pitheorem.engines import Sweep
     >>> from pitheorem.formatting.pieces import sweep_head
     >>> sweep_head(Sweep("robots/hopper.xml", "mujoco", None, 0.5, ()))
-    'sweep of hopper.xml in mujoco, 0.5 s per run, 0 scale factors'
+    'hopper.xml in mujoco: 0 scale factors, 0.5 s each'
     """
     name = file_name(sweep.model) or "(unsaved model)"
     scaling = "" if sweep.scaling is None else f", {unit_change_text(sweep.scaling)}"
     time_unit = dict(sweep.units).get("T", "s")
-    return (
-        f"sweep of {name} in {sweep.engine}{scaling}, {sweep.duration:g} {time_unit} per run, "
-        f"{len(sweep.rows)} scale factors"
-    )
+    return f"{name} in {sweep.engine}{scaling}: {len(sweep.rows)} scale factors, {sweep.duration:g} {time_unit} each"
 
 
 def sweep_cells(row) -> list[str]:
