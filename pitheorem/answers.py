@@ -298,11 +298,11 @@ class SweepAnswer(NamedTuple):
 
     Parameters
     ----------
+    model : tuple of str
+        Each file's name as given on the command line.
     sweeps : tuple of Sweep
         What :func:`pitheorem.engines.sweep` found for each file, in the
         order of the files.
-    names : tuple of str
-        Each file's name as given on the command line.
     plots : tuple of str
         The figures written (``--plot``), one per file; empty without.
 
@@ -311,15 +311,15 @@ class SweepAnswer(NamedTuple):
     >>> from pitheorem.answers import SweepAnswer
     >>> from pitheorem.engines import Sweep, SweepRow
     >>> rows = (SweepRow(1, "exact", 0.0, 1e-12, None, True, None, (), ()),)
-    >>> a = SweepAnswer((Sweep("a.xml", "mujoco", None, 1.0, rows), Sweep("b.xml", "mujoco", None, 1.0, rows)),
-    ...                 ("a.xml", "b.xml"), ())
+    >>> a = SweepAnswer(("a.xml", "b.xml"), (Sweep("a.xml", "mujoco", None, 1.0, rows),
+    ...                                      Sweep("b.xml", "mujoco", None, 1.0, rows)), ())
     >>> print(str(a).splitlines()[-3:])
     ['robot  1', 'a.xml  exact', 'b.xml  exact']
     """
 
+    model: tuple
     sweeps: tuple
-    names: tuple
-    plots: tuple = ()
+    plots: tuple
 
     __str__ = TextDisplay.__str__
     __format__ = TextDisplay.__format__

@@ -203,7 +203,7 @@ SAMPLES = {
     "engine_verify_answer": _engine_verify_answer,
     "sweep": _sweep,
     "sweep_row": lambda: _sweep().rows[2],
-    "sweep_answer": lambda: SweepAnswer((_sweep(), _sweep()), ("a_&_b.xml", "c.xml"), ("s.png",)),
+    "sweep_answer": lambda: SweepAnswer(("a_&_b.xml", "c.xml"), (_sweep(), _sweep()), ("s.png",)),
 }
 
 

@@ -575,7 +575,7 @@ def sweep_engine(
         for name, sw in zip(names, sweeps, strict=True):
             out = Path(plot) if len(sweeps) == 1 else Path(plot).with_stem(f"{Path(plot).stem}_{Path(name).stem}")
             plots.append(str(_save_figure(sw, out)))
-    return SweepAnswer(tuple(sweeps), tuple(names), tuple(plots))
+    return SweepAnswer(tuple(names), tuple(sweeps), tuple(plots))
 
 
 def _progress_bar(total: int):

@@ -33,6 +33,7 @@ import math
 import os
 import sys
 import tempfile
+import warnings
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -448,11 +449,16 @@ def _on_this_machine(job: tuple, factors: tuple, workers: int | None, report) ->
     key = id(job)
     _SHARED[key] = job
     try:
-        with ProcessPoolExecutor(max_workers=n, mp_context=multiprocessing.get_context("fork")) as pool:
-            futures = [pool.submit(_shared_outcome, key, f) for f in factors]
-            for done, _ in enumerate(as_completed(futures), 1):
-                report(done, total)
-            return [f.result() for f in futures]
+        with warnings.catch_warnings():
+            # Python 3.12 and later warn that a fork beside other threads (a notebook's, a test runner's)
+            # may deadlock: the workers only verify, in MuJoCo thread pools they make afresh, and take no
+            # lock another thread of this process may hold
+            warnings.simplefilter("ignore", DeprecationWarning)
+            with ProcessPoolExecutor(max_workers=n, mp_context=multiprocessing.get_context("fork")) as pool:
+                futures = [pool.submit(_shared_outcome, key, f) for f in factors]
+                for done, _ in enumerate(as_completed(futures), 1):
+                    report(done, total)
+                return [f.result() for f in futures]
     finally:
         del _SHARED[key]
 

@@ -460,7 +460,7 @@ def _engine_verify_answer(answer) -> dict:
 @_data("pitheorem.answers.SweepAnswer")
 def _sweep_answer(answer) -> dict:
     return {
-        "files": list(answer.names),
+        "files": list(answer.model),
         "plots": list(answer.plots),
         "sweeps": [_sweep(sw) for sw in answer.sweeps],
     }

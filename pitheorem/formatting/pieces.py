@@ -973,12 +973,12 @@ def sweep_grid(answer) -> list[list[str]]:
     >>> from pitheorem.engines import Sweep, SweepRow
     >>> from pitheorem.formatting.pieces import sweep_grid
     >>> rows = (SweepRow(0.5, "similar", 1e-14, 1e-12, None, True, None, (), ()),)
-    >>> sweep_grid(SweepAnswer((Sweep("a.xml", "mujoco", None, 1.0, rows),), ("a.xml",)))
+    >>> sweep_grid(SweepAnswer(("a.xml",), (Sweep("a.xml", "mujoco", None, 1.0, rows),), ()))
     [['robot', '0.5'], ['a.xml', 'similar']]
     """
     first = answer.sweeps[0].rows if answer.sweeps else ()
     grid = [["robot", *(value_text(r.s) for r in first)]]
     grid += [
-        [file_name(name), *(r.verdict for r in sw.rows)] for name, sw in zip(answer.names, answer.sweeps, strict=True)
+        [file_name(name), *(r.verdict for r in sw.rows)] for name, sw in zip(answer.model, answer.sweeps, strict=True)
     ]
     return grid
