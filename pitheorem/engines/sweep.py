@@ -107,7 +107,7 @@ class SweepRow(TextDisplay):
         The scale factor, as :func:`pitheorem.exact.read_scale_factor`
         reads it.
     verdict : str
-        One of :data:`VERDICTS`.
+        One of ``pitheorem.engines.sweep.VERDICTS``.
     max_deviation : float or None
         The largest deviation of the copy, mapped back, from the original,
         in original units; None for a refused copy.
@@ -124,7 +124,7 @@ class SweepRow(TextDisplay):
     causes : tuple of Cause
         The report's causes; for a refused copy, the refusal.
     thresholds : tuple of str
-        The engine thresholds (:func:`pitheorem.engines.thresholds.thresholds`)
+        The engine thresholds (``pitheorem.engines.thresholds.thresholds``)
         that a number of the copy is beyond, by name.
 
     Examples
