@@ -30,6 +30,19 @@ from pitheorem import engines
 from pitheorem.engines.sweep import verdict
 
 
+def cpu_seconds(fn) -> float:
+    """Processor seconds one call of `fn` takes, in this process and its worker processes."""
+    import resource
+
+    def used():
+        mine, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+        return mine.ru_utime + mine.ru_stime + children.ru_utime + children.ru_stime
+
+    start = used()
+    fn()
+    return used() - start
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--model", default="hopper.xml", help="a file of gymnasium's MuJoCo assets")
@@ -57,10 +70,12 @@ def main() -> None:
     assert [verdict(r) for r in reports] == list(sweep.verdicts), "the sweep's verdicts are not verify's"
     baseline = best_of(one_after_another, args.repeats)
     parallel = best_of(swept, args.repeats)
+    load = os.getloadavg()[0]
     print(f"{args.model}: 13 scale factors from 1e-3 to 1e3, {args.duration:g} s each, {os.cpu_count()} cores")
     print(f"  verdicts: {', '.join(sweep.verdicts)}")
-    print(f"  verify one after another  {baseline:8.2f} s")
+    print(f"  verify one after another  {baseline:8.2f} s   (processor time {cpu_seconds(one_after_another):.2f} s)")
     print(f"  engines.sweep (processes) {parallel:8.2f} s   ratio {parallel / baseline:.2f} (goal <= 0.65)")
+    print(f"  (load average {load:.1f} on {os.cpu_count()} cores: other work on the machine shrinks any gain)")
     if args.dask:
         from distributed import Client, LocalCluster
 
