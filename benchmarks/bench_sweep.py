@@ -27,7 +27,7 @@ from _timing import best_of, timed
 
 import pitheorem as pt
 from pitheorem import engines
-from pitheorem.engines.sweep import verdict
+from pitheorem.engines.verdicts.sweep import verdict
 
 
 def cpu_seconds(fn) -> float:

@@ -118,8 +118,8 @@ def _engine_path(path: str) -> str | None:
                 f"{path}: no such example; the shipped examples are {', '.join(examples())}", culprit=path
             )
         shipped = example_path(name)
-        return str(shipped) if model_kind(shipped) in ("mjcf", "urdf") else None
-    return path if model_kind(path) in ("mjcf", "urdf") else None
+        return str(shipped) if model_kind(shipped) != "toml" else None
+    return path if model_kind(path) != "toml" else None
 
 
 def _load(path: str, scene: list[str] | None = None) -> ModelFile:
@@ -498,7 +498,7 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
 class _Help(argparse.HelpFormatter):
     """Argparse's help, with ``--scene``'s options listed from the engines' own list.
 
-    The list (``pitheorem.engines.urdf.SCENE_OPTIONS``) is read only when
+    The list (:func:`pitheorem.engines.loading.scene_options`) is read only when
     help is shown: building the parser must not import the engines.
     """
 

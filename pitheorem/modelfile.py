@@ -261,21 +261,13 @@ def model_kind(path) -> str:
     """
     if str(path).startswith("example:"):  # whatever the name ends with: the command line lists the examples
         return "toml"
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix == ".urdf":
-        return "urdf"
-    if suffix == ".toml":
+    if Path(path).suffix.lower() == ".toml":
         return "toml"
-    if suffix in (".xml", ".mjcf") and path.is_file():
-        with path.open("rb") as file:  # the root element is near the top: read no more of a large model
-            head = file.read(4096).decode("utf-8", "replace")
-        if "<robot" in head and "<mujoco" not in head:
-            return "urdf"
-        return "mjcf"
-    if suffix in (".xml", ".mjcf"):
-        return "mjcf"
-    return "toml"
+    # the formats of engine model files are the engines' registry's data (it imports no engine)
+    from .engines.registry import file_format
+
+    found = file_format(path)
+    return "toml" if found is None else found.name
 
 
 def load_model_file(path) -> ModelFile:

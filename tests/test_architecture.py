@@ -49,6 +49,8 @@ LAYERS = {
 UPWARD = {
     ("", "engines.fitting"): "pt.fit_units(engine=...) reads that engine's thresholds, imported inside the "
     "function only when an engine or an engine model is given",
+    ("modelfile", "engines.registry"): "a file's format is the engines' registry's data (which imports no engine): "
+    "model_kind asks it, so that a new format is one registry line",
     ("cli", "engines.cli"): "the command line reads MJCF and URDF files through the optional engines, "
     "imported inside the function that handles such a file",
 }
@@ -126,23 +128,35 @@ def test_the_page_lists_every_module_in_its_layer():
     for module, layer in LAYERS.items():
         if module and layer < 6:  # the engines' row names each engines.* module
             assert module in rows[layer], (module, layer)
-    engine_modules = {
-        f"engines.{_module(p).split('.')[-1]}" for p in (PACKAGE / "engines").glob("*.py") if p.name != "__init__.py"
-    }
+    engine_modules = {_module(p) for p in (PACKAGE / "engines").rglob("*.py") if p.name != "__init__.py"}
     assert engine_modules == rows[6]
 
 
-#: the Python packages of the engines: only a backend module (and engines.packages, which imports them by
-#: name for the backends) may import one or ask engine_module for one
-ENGINE_PACKAGES = ("mujoco", "pybullet", "pybullet_data", "jax", "jaxlib")
+#: the Python packages of the engines: only a runner module (and engines.packages, which imports them by
+#: name for the runners) may import one or ask engine_module for one, with one exception below
+ENGINE_PACKAGES = ("mujoco", "pybullet", "pybullet_data", "jax", "jaxlib", "warp", "mujoco_warp")
+
+#: the modules besides the runners that use an engine's package, and why
+PARSERS = {
+    "engines.fileformats.mjcf": "MJCF's reference parser is MuJoCo's MjSpec (defaults, includes, compiled masses): "
+    "the format reads and writes through it and never steps a model",
+}
+
+
+def _registered() -> tuple[set[str], set[str], dict[str, str]]:
+    """The runner modules, the format modules, and each engine's runner module, from the registry."""
+    from pitheorem.engines.registry import FORMATS, REGISTRY
+
+    runners = {f"engines.{e.module}" for e in REGISTRY}
+    formats = {f"engines.{f.module}" for f in FORMATS}
+    return runners, formats, {e.name: f"engines.{e.module}" for e in REGISTRY}
 
 
 def _graph() -> dict[str, set[str]]:
-    """Each module's imports of package modules; the loader imports each registered backend by name."""
-    from pitheorem.engines.registry import REGISTRY
-
+    """Each module's imports of package modules; the loader imports each registered runner by name."""
+    runners, _formats, _of = _registered()
     graph = {_module(p): _imports(p) - {_module(p)} for p in sorted(PACKAGE.rglob("*.py"))}
-    graph["engines.loading"] |= {f"engines.{e.module}" for e in REGISTRY}
+    graph["engines.loading"] |= runners
     return graph
 
 
@@ -181,24 +195,27 @@ def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
 
 def test_no_import_circle_anywhere():
     assert _cycles(_graph()) == []
-    # the check finds one: the circle that load's if-chain in engines.model once closed with the backends
+    # the check finds one: the circle that load's if-chain in the model's module once closed with the backends
     graph = _graph()
-    graph["engines.model"] = graph["engines.model"] | {"engines.mjcf"}
-    assert ["engines.mjcf", "engines.model"] in [
-        [m for m in c if m in ("engines.mjcf", "engines.model")] for c in _cycles(graph)
+    graph["engines.enginemodel"] = graph["engines.enginemodel"] | {"engines.runners.mujoco"}
+    assert ["engines.enginemodel", "engines.runners.mujoco"] in [
+        [m for m in c if m in ("engines.enginemodel", "engines.runners.mujoco")] for c in _cycles(graph)
     ]
 
 
-def test_no_backend_imports_another_engines_backend():
-    # a backend may build on the one engine its registry line names as its base (MJX on MuJoCo's reading)
+def test_runners_and_formats_keep_apart():
+    # a runner imports no other runner but the one its registry line builds on (MJX on MuJoCo's compilation);
+    # a format imports no runner and no verdict: it reads and writes files, whoever runs them
     from pitheorem.engines.registry import REGISTRY
 
-    module_of = {e.name: f"engines.{e.module}" for e in REGISTRY}
+    runners, formats, module_of = _registered()
     graph = _graph()
     for e in REGISTRY:
-        others = set(module_of.values()) - {module_of[e.name], module_of.get(e.base)}
+        others = runners - {module_of[e.name], module_of.get(e.base)}
         assert not graph[module_of[e.name]] & others, e.name
-    assert graph["engines.mjx"] & set(module_of.values()) == {"engines.mjcf"}
+    assert graph["engines.runners.mjx"] & runners == {"engines.runners.mujoco"}
+    for fmt in formats:
+        assert not {m for m in graph[fmt] if m.startswith(("engines.runners", "engines.verdicts"))}, fmt
 
 
 def _engine_users(path: Path) -> bool:
@@ -218,25 +235,13 @@ def _engine_users(path: Path) -> bool:
     return False
 
 
-def test_only_backends_import_an_engine():
-    from pitheorem.engines.registry import REGISTRY
-
-    backends = {f"engines.{e.module}" for e in REGISTRY}
+def test_only_runners_import_an_engine():
+    runners, _formats, _of = _registered()
     users = {_module(p) for p in sorted(PACKAGE.rglob("*.py")) if _engine_users(p)}
-    # the paper's rod and SUPERball run through the backends too: no module runs an engine by hand
-    assert users <= backends | {"engines.packages"}, users - backends
-    assert backends <= users  # each backend runs its engine
-    # the model, the registry, the loader, verify, audit and diagnose run engines only through backends
-    for module in (
-        "engines.model",
-        "engines.registry",
-        "engines.loading",
-        "engines.verify",
-        "engines.audit",
-        "engines.diagnose",
-        "engines.backend",
-    ):
-        assert module not in users
+    # the paper's rod and SUPERball run through the runners too: no module runs an engine by hand
+    assert users <= runners | set(PARSERS) | {"engines.packages"}, users - runners
+    assert runners <= users  # each runner runs its engine
+    assert set(PARSERS) <= users  # no stale exception
 
 
 def test_the_engine_check_sees_a_statement_and_a_call(tmp_path):
@@ -247,3 +252,104 @@ def test_the_engine_check_sees_a_statement_and_a_call(tmp_path):
     assert _engine_users(sample)
     sample.write_text("from .packages import quiet_stdout\n")
     assert not _engine_users(sample)
+
+
+#: the modules that may name an engine in their code (not only in docstrings), and why; everything else of
+#: pitheorem.engines (the analysis: verdicts, thresholds, fitting, units, the model, the loader, the command
+#: line) reaches an engine only through the registry and the runner protocols
+NAMES_ENGINES = {
+    "engines.registry": "the one table of the engines' names",
+    "engines.rules": "the engines' published rules of thumb, each its engine's",
+    "engines.paper.rod": "the paper's rod is shipped as one file per engine",
+    "engines.paper.superball": "SUPERball is shipped as a MuJoCo file",
+    **PARSERS,
+}
+
+
+def _names_an_engine(path: Path) -> list[tuple[int, str]]:
+    """The engine names in a module's string constants (its docstrings left out): (line, name) each."""
+    from pitheorem.engines.registry import ALIASES, REGISTRY
+
+    names = {e.name for e in REGISTRY} | set(ALIASES)
+    tree = ast.parse(path.read_text())
+    docstrings = {
+        id(node.body[0].value)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Module | ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef)
+        and node.body
+        and isinstance(node.body[0], ast.Expr)
+        and isinstance(node.body[0].value, ast.Constant)
+    }
+    return [
+        (node.lineno, word)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in docstrings
+        for word in sorted(set(re.findall(r"[a-z_]+", node.value)) & names)
+    ]
+
+
+#: private attributes of other libraries' objects that have no public name, and why they are read
+FOREIGN_PRIVATE = {"_prec": "sympy.Float's binary precision (exact.read_number reads a Float as the double it holds)"}
+
+
+def _reads_a_private_attribute(path: Path) -> list[tuple[int, str]]:
+    """``obj._name`` where `obj` is not self or cls and no code of the module defines ``_name``: (line, name) each."""
+    tree = ast.parse(path.read_text())
+    defined = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+            defined.add(node.name)
+        elif isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Store):
+            defined.add(node.attr)
+        elif isinstance(node, ast.Constant) and isinstance(node.value, str):
+            defined.add(node.value)  # __slots__ and object.__setattr__(self, "_name", ...)
+    return [
+        (node.lineno, node.attr)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Attribute)
+        and node.attr.startswith("_")
+        and not node.attr.startswith("__")
+        and not (isinstance(node.value, ast.Name) and node.value.id in ("self", "cls"))
+        and node.attr not in defined
+        and node.attr not in FOREIGN_PRIVATE
+    ]
+
+
+def test_no_module_outside_a_runner_names_an_engine():
+    runners, _formats, _of = _registered()
+    found = {}
+    for path in sorted((PACKAGE / "engines").rglob("*.py")):
+        module = _module(path)
+        if module not in runners and module not in NAMES_ENGINES and (named := _names_an_engine(path)):
+            found[module] = named
+    assert found == {}
+    assert all(
+        _names_an_engine(PACKAGE / Path(*m.split("."))).__len__() or m.startswith("engines.paper") for m in ()
+    )  # (nothing more: a stale exception is caught below)
+    stale = [m for m in NAMES_ENGINES if not _names_an_engine((PACKAGE / Path(*m.split("."))).with_suffix(".py"))]
+    assert stale == []
+
+
+def test_no_module_reads_a_private_attribute_of_another_modules_object():
+    found = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if reads := _reads_a_private_attribute(path):
+            found[_module(path)] = reads
+    assert found == {}
+
+
+def test_the_two_checks_find_what_they_look_for(tmp_path):
+    sample = tmp_path / "sample.py"
+    sample.write_text(
+        '"""Runs in mujoco (a docstring may say so)."""\n\ndef f(model):\n    if model.engine == "mjx":\n'
+        "        return model._runner\n    return model.runner\n"
+    )
+    assert _names_an_engine(sample) == [(4, "mjx")]
+    assert _reads_a_private_attribute(sample) == [(5, "_runner")]
+    sample.write_text(
+        "class A:\n    def __init__(self):\n        self._x = 1\n\n    def same(self, other):\n"
+        "        return other._x + self._x\n"
+    )
+    assert _reads_a_private_attribute(sample) == []  # its own class's attribute, on another instance
+    sample.write_text('x = "bulleted list, a mujocoid"\n')
+    assert _names_an_engine(sample) == []  # whole words only

@@ -76,8 +76,8 @@ def test_a_tendon_rest_length_left_to_mujoco_stays_a_sentinel():
     assert p.source == "derived"
     assert p.value[0] > 0
     scaled = model.scaled(sc, 10)
-    assert scaled._backend.spec.tendons[0].springlength[0] == -1  # the file still asks MuJoCo to compute it
-    assert scaled._backend.mjmodel.tendon_lengthspring[0][0] == pytest.approx(10 * p.value[0], rel=1e-14)
+    assert scaled.runner.spec.tendons[0].springlength[0] == -1  # the file still asks MuJoCo to compute it
+    assert scaled.runner.mjmodel.tendon_lengthspring[0][0] == pytest.approx(10 * p.value[0], rel=1e-14)
     assert engines.audit(model, sc, 10).causes == ()
 
 
@@ -154,7 +154,7 @@ def test_a_vertex_that_is_the_rounding_residue_of_zero_is_held_to_nothing():
     """The hand's meshes have vertices near 1e-9 beside vertices of 0.1: no exponent to hold them to."""
     hand = Path(__file__).resolve().parent / "robots" / "mjcf" / "hand.xml"
     model, sc = searched(hand, tolerance=0)
-    vertices = model._backend.mjmodel.mesh_vert
+    vertices = model.runner.mjmodel.mesh_vert
     tiny = (vertices != 0) & (abs(vertices) < 1e-6)
     assert tiny.any()  # the case: nonzero residues of the compiler's centring, independent of the audit
     assert engines.audit(model, sc, 4).causes == ()

@@ -5,7 +5,7 @@ import dataclasses
 import pytest
 
 from pitheorem.engines import CAUSE_KINDS, Cause
-from pitheorem.engines.causes import sorted_causes
+from pitheorem.engines.verdicts.causes import sorted_causes
 from pitheorem.errors import InvalidRequestError, PiTheoremError
 
 

@@ -122,7 +122,7 @@ def test_scene_options_have_one_list_that_the_loader_parser_and_help_use(capsys)
 
     import pitheorem as pt
     from pitheorem.engines.cli import parse_scene
-    from pitheorem.engines.urdf import SCENE_OPTIONS, load_urdf
+    from pitheorem.engines.runners.pybullet import SCENE_OPTIONS, load_urdf
 
     names = tuple(SCENE_OPTIONS)
     assert names == ("fixed_base", "ground", "split_impulse", "g", "damping", "base_position")
@@ -381,7 +381,7 @@ def test_verify_says_when_a_run_moved_nothing_and_expects_bits_where_every_facto
 
     import pitheorem as pt
     from pitheorem.cli import main
-    from pitheorem.engines.verify import exact_in_binary
+    from pitheorem.engines.verdicts.verify import exact_in_binary
 
     hanging = str(Path(__file__).parent / "data" / "engines" / "hanging.xml")
     assert main(["verify", hanging, "--scale", "g=1", "--s", "10", "--input", "zero"]) == 0

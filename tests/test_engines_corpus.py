@@ -99,7 +99,7 @@ def reloaded(name: str, solver: str | None, folder: Path, s):
 @cache
 def verified(name: str, solver: str | None, folder: Path, s, controls: bool):
     model, res = searched(name, solver, folder)
-    nu = model._backend.mjmodel.nu
+    nu = model.runner.mjmodel.nu
     return engines.verify(
         model,
         res.scalings[0],
@@ -202,7 +202,7 @@ def urdf_saved(name: str, folder: Path, s):
 def urdf_verified(name: str, folder: Path, s, controls: bool):
     model, sc = urdf_searched(name)
     again = load_quiet(urdf_saved(name, folder, s))  # the saved settings beside the file set up the scaled scene
-    nj = len(model._backend.control_dimensions())
+    nj = len(model.runner.control_dimensions())
     return again, engines.verify(
         model, sc, s, duration=1.0, controls=smooth(nj) if controls and nj else None, scaled=again
     )

@@ -35,18 +35,18 @@ def searched(path):
 
 def moves_apart(a, b, u, n=200) -> bool:
     """Whether two models' runs differ beyond 1e-6: MuJoCo's own runs, not verify's."""
-    rows = None if u is None else np.array([u(i * a._backend.timestep()) for i in range(n)])
-    return bool(np.max(np.abs(a._backend.run(n, rows) - b._backend.run(n, rows))) > 1e-6)
+    rows = None if u is None else np.array([u(i * a.runner.timestep()) for i in range(n)])
+    return bool(np.max(np.abs(a.runner.run(n, rows) - b.runner.run(n, rows))) > 1e-6)
 
 
 def limb_left_unscaled(model, right, sc):
     """``right`` with the density or mass of one geom of a moving body put back to the original's."""
-    m = right._backend.mjmodel
+    m = right.runner.mjmodel
     for p in model.parameters:
         if not (p.name.startswith("geom") and p.name.endswith(("_density", "_mass")) and p.value[0] > 0):
             continue
         wrong = right.multiplied(**{p.name: 1 / p.factor(sc, 10)})
-        changed = np.nonzero(wrong._backend.mjmodel.body_mass != m.body_mass)[0]
+        changed = np.nonzero(wrong.runner.mjmodel.body_mass != m.body_mass)[0]
         if any(m.body_dofnum[b] > 0 for b in changed):
             return wrong
     raise AssertionError("no geom of a moving body")
@@ -120,7 +120,7 @@ def touching_after_one_step(m) -> set:
 def test_a_contact_that_starts_at_another_step_is_named_and_goes_with_contacts():
     """The foot starts on the floor: scaled by 10, rounding puts it 7.8e-16 into it, a contact the original lacks."""
     model, sc = searched(DATA / "walker_on_floor.xml")
-    start = [touching_after_one_step(m._backend.mjmodel) for m in (model, model.scaled(sc, 10))]
+    start = [touching_after_one_step(m.runner.mjmodel) for m in (model, model.scaled(sc, 10))]
     assert start[0] != start[1]  # independent of verify: MuJoCo's own contact list after one step
     rep = engines.verify(model, sc, 10, duration=1.0, controls=engines.smooth_controls(model), baseline_factor=1e-9)
     assert not rep.similar
@@ -134,8 +134,8 @@ def test_a_contact_that_starts_at_another_step_is_named_and_goes_with_contacts()
 
 def test_the_twins_move_every_stored_number_by_one_ulp_and_zeros_not_at_all():
     model, _ = searched(DATA / "mesh_drop.xml")
-    before = model._backend.stored_numbers()
-    after = model._backend.twin(7).stored_numbers()
+    before = model.runner.stored_numbers()
+    after = model.runner.twin(7).stored_numbers()
     moved = 0
     for field, a in before.items():
         b = after[field]
@@ -148,7 +148,7 @@ def test_the_twins_move_every_stored_number_by_one_ulp_and_zeros_not_at_all():
         assert np.all(gap == np.abs(np.spacing(a[live]))) or np.all(gap <= np.abs(np.spacing(a[live]))), field
         moved += int(live.sum())
     assert moved > 100
-    assert model._backend.twin(7).stored_numbers()["mesh_vert"].dtype == np.float32
+    assert model.runner.twin(7).stored_numbers()["mesh_vert"].dtype == np.float32
 
 
 def test_an_ensemble_of_one_is_the_least_and_the_seed_is_checked():
@@ -302,10 +302,10 @@ def test_an_equality_constraint_that_is_not_scale_free_is_named_by_its_counter_r
     assert "agree (largest deviation 0 instead of" in named[0].detail
     # independent of verify: the weld inactive in both MuJoCo models, and the runs are the same bits
     copy = hand.scaled(sc, 4)
-    weld = hand._backend.equality_names().index("equality 'badge_weld'")
-    _, dims = hand._backend.coordinate_dimensions()
+    weld = hand.runner.equality_names().index("equality 'badge_weld'")
+    _, dims = hand.runner.coordinate_dimensions()
     exponents = np.array([sc.exponent_of(d) for d in dims], dtype=float)
-    a, b = hand._backend.variant(inactive_equalities=(weld,)), copy._backend.variant(inactive_equalities=(weld,))
+    a, b = hand.runner.variant(inactive_equalities=(weld,)), copy.runner.variant(inactive_equalities=(weld,))
     first, second = a.run(200), b.run(200)
     assert np.array_equal(first, second / 4.0**exponents)
 
@@ -319,12 +319,12 @@ def test_contacts_that_touch_alike_are_no_cause_beside_the_solver_that_iterates_
     rep = engines.verify(model, sc, 4, duration=0.4)
     assert not rep.exact
     assert [c.kind for c in rep.causes] == ["solver", "solver"]
-    box = model._backend.variant(contacts=False)  # independent of verify: with contacts off they agree bit for bit
-    copy = model.scaled(sc, 4)._backend.variant(contacts=False)
+    box = model.runner.variant(contacts=False)  # independent of verify: with contacts off they agree bit for bit
+    copy = model.scaled(sc, 4).runner.variant(contacts=False)
     assert np.array_equal(
         box.run(200),
         copy.run(200)
-        / 4 ** np.array([sc.exponent_of(d) for d in model._backend.coordinate_dimensions()[1]], dtype=float),
+        / 4 ** np.array([sc.exponent_of(d) for d in model.runner.coordinate_dimensions()[1]], dtype=float),
     )
 
 
@@ -334,7 +334,7 @@ def test_a_model_whose_coordinates_are_all_angles_is_not_held_to_bits_at_s_10():
     yardstick, not against bit-for-bit equality."""
     pybullet_data = pytest.importorskip("pybullet_data")
     model, sc = searched(Path(pybullet_data.getDataPath()) / "mjcf" / "humanoid.xml")
-    assert all(sc.exponent_of(d) == 0 for d in model._backend.coordinate_dimensions()[1])  # the case
+    assert all(sc.exponent_of(d) == 0 for d in model.runner.coordinate_dimensions()[1])  # the case
     rep = engines.verify(model, sc, 10, duration=1.0, controls=engines.smooth_controls(model))
     assert not rep.similar
     assert [c.element for c in rep.causes] == ["option solver = PGS"]

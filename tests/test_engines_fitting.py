@@ -74,7 +74,7 @@ def test_superball_at_a_millimetre_is_clamped_and_fitted_units_clear_it(s):
     assert units["M"] == "kg"
     fitted = tiny.converted(**units)
     assert engines.check(fitted) == ()
-    assert np.isfinite(fitted._backend.run(200)).all()
+    assert np.isfinite(fitted.runner.run(200)).all()
     ((scaling, factor),) = conversion(tiny.system(), tiny.units, read_units(units))
     assert engines.verify(tiny, scaling, factor, duration=0.2).similar
 
@@ -86,7 +86,7 @@ def test_a_model_whose_numbers_are_too_large_is_fitted_into_smaller_units():
     fitted = big.converted(**fitted_units(big, fit))
     assert fit.feasible
     assert engines.check(fitted) == ()
-    assert np.isfinite(fitted._backend.run(100)).all()
+    assert np.isfinite(fitted.runner.run(100)).all()
 
 
 def test_fit_units_on_a_system_reads_each_numbers_kind_from_its_name():
@@ -142,6 +142,6 @@ def test_superball_a_thousand_times_larger_at_the_same_density_is_fitted_and_ver
     units = fitted_units(big, pt.fit_units(big))
     fitted = big.converted(**units)
     assert engines.check(fitted) == ()
-    assert np.isfinite(fitted._backend.run(200)).all()
+    assert np.isfinite(fitted.runner.run(200)).all()
     ((scaling, factor),) = conversion(big.system(), big.units, read_units(units))
     assert engines.verify(big, scaling, factor, duration=0.2).similar

@@ -40,8 +40,8 @@ def test_options_an_engine_does_not_take_are_refused_by_name():
     with pytest.raises(pt.InvalidRequestError) as caught:
         engines.load(PENDULUM, fixed_base=True)
     assert str(caught.value) == (
-        "engine 'mujoco' takes no option 'fixed_base' (its options: none, an MJCF file "
-        "holds its settings); 'fixed_base' is for URDF files in 'pybullet'"
+        "engine 'mujoco' takes no option 'fixed_base' (its options: none, MJCF files in 'mujoco' "
+        "take no options); 'fixed_base' is for URDF files in 'pybullet'"
     )
     assert caught.value.culprit == "fixed_base"
 
@@ -63,5 +63,5 @@ def test_a_missing_or_foreign_file_is_refused(tmp_path):
         engines.load(tmp_path / "missing.xml")
     toml = tmp_path / "model.toml"
     toml.write_text("[variables]\n")
-    with pytest.raises(engines.EngineModelError, match="no engine reads this kind of file"):
+    with pytest.raises(engines.EngineModelError, match="no format read here has this suffix; the formats: MJCF"):
         engines.load(toml)

@@ -54,7 +54,7 @@ def test_control_dimensions_follow_the_actuator_kind():
     assert d["actuator_servo_biasprm_length"] == "M L^2 T^-2"  # kp of a hinge servo: torque per radian
     assert d["actuator_speed_gainprm_gain"] == "M T^-1"  # kv of a slide velocity servo: force per speed
     assert d["actuator_filtered_dynprm_timeconst"] == "T"
-    controls = [str(x) for x in model._backend.control_dimensions()]
+    controls = [str(x) for x in model.runner.control_dimensions()]
     assert controls == ["M L T^-2", "1", "L T^-1", "T^-1", "1", "M L T^-2"]
 
 
@@ -98,7 +98,7 @@ def test_a_servos_damping_ratio_is_dimensionless_and_its_compiled_kv_follows_the
 
 def test_values_are_the_engines_own():
     model = load("tendon_actuators.xml")
-    compiled = model._backend.mjmodel
+    compiled = model.runner.mjmodel
     cart = mujoco.mj_name2id(compiled, mujoco.mjtObj.mjOBJ_BODY, "cart")
     assert model.parameter("body_cart_mass").value == (1.5,)
     mujoco.mj_name2id(compiled, mujoco.mjtObj.mjOBJ_BODY, "arm")
@@ -148,7 +148,7 @@ def test_scaled_model_compiles_to_the_scaled_numbers(tmp_path):
     sc = pt.Scaling.from_unit_change(model.system(), {"M": 1, "L": 1, "T": 1})
     s = 2
     scaled = model.scaled(sc, s)
-    a, b = model._backend.mjmodel, scaled._backend.mjmodel
+    a, b = model.runner.mjmodel, scaled.runner.mjmodel
     # oracle: MuJoCo's compiled arrays, each times s to the power of its dimension, worked out by hand
     assert np.array_equal(b.body_mass, a.body_mass * 2)  # M
     assert np.array_equal(b.body_inertia, a.body_inertia * 2 * 4)  # M L^2
@@ -164,7 +164,7 @@ def test_scaled_model_compiles_to_the_scaled_numbers(tmp_path):
     assert np.array_equal(b.tendon_lengthspring, a.tendon_lengthspring * np.array([[1, 1], [2, 2]]))
     # saved, reloaded: the same numbers (full precision)
     out = scaled.save(tmp_path / "scaled.xml")
-    again = engines.load(out)._backend.mjmodel
+    again = engines.load(out).runner.mjmodel
     for field in (
         "body_mass",
         "body_inertia",
@@ -183,7 +183,7 @@ def test_keyframes_scale_with_the_coordinates():
     model = load("contact.xml")
     sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
     scaled = model.scaled(sc, 10)
-    a, b = model._backend.mjmodel, scaled._backend.mjmodel
+    a, b = model.runner.mjmodel, scaled.runner.mjmodel
     # ball: free joint (x y z of length, quaternion), box likewise, then two hinges
     assert b.key_qpos[0][:3].tolist() == [0, 0, 5.0]
     assert b.key_qpos[0][3:7].tolist() == a.key_qpos[0][3:7].tolist()
@@ -201,7 +201,7 @@ def test_keyframes_of_a_model_with_activations_scale_velocity_and_activation_apa
       <keyframe><key time="0.5" qpos="0.25" qvel="0.5" ctrl="0.75" act="1"/></keyframe></mujoco>""")
     model = engines.load(path)
     sc = pt.Scaling.from_unit_change(model.system(), {"M": 1, "L": 1})
-    b = model.scaled(sc, 2)._backend.mjmodel
+    b = model.scaled(sc, 2).runner.mjmodel
     # oracle by hand, mass and length units times 2: qpos a length (s), qvel L T^-1 (s), time T (1); ctrl
     # and act are the filtered force's input, a force M L T^-2 (s^2)
     assert b.key_qpos[0].tolist() == [0.5]
@@ -399,7 +399,7 @@ def test_a_composed_scene_saves_with_every_models_meshes_found(tmp_path):
     for s in (1, 4):
         again = engines.load(model.scaled(sc, s).save(tmp_path / f"scene_{s}.xml"))
         assert [p.name for p in again.parameters] == [p.name for p in model.parameters]
-    files = {m.name: Path(m.file) for m in again._backend.spec.meshes}
+    files = {m.name: Path(m.file) for m in again.runner.spec.meshes}
     assert files["g_palm"].parent.name == "gripper_parts"  # the gripper's folder, not the arm's
     assert files["base"].parent.name == "arm_parts"
     assert all(f.is_absolute() and f.is_file() for f in files.values())
@@ -489,7 +489,7 @@ def test_a_file_refused_for_a_threshold_loads_as_a_table_and_converts_into_units
     with pytest.raises(ValueError, match="mjMINVAL"):  # independent of pitheorem: MuJoCo refuses the file
         mujoco.MjModel.from_xml_path(str(path))
     worm = engines.load(path)
-    assert type(worm._backend).__name__ == "RefusedMjcfBackend"
+    assert type(worm.runner.document).__name__ == "RefusedMjcfDocument"
     # the table's masses are the file's own: density times volume, not the probe's
     radius, length = 5e-5, 2e-4
     volume = np.pi * radius**2 * length + 4 / 3 * np.pi * radius**3
@@ -499,13 +499,13 @@ def test_a_file_refused_for_a_threshold_loads_as_a_table_and_converts_into_units
     causes = {c.element: c.detail for c in found}
     assert "mujoco_minval_mass" in causes["body_s1_inertia"]
     with pytest.raises(engines.EngineModelError, match="MuJoCo does not run it"):
-        worm._backend.run(10)
+        worm.runner.run(10)
     from pitheorem.engines.fitting import fitted_units
 
     units = fitted_units(worm, pt.fit_units(worm))
     fitted = worm.converted(**units)
     assert engines.check(fitted) == ()
-    assert np.isfinite(fitted._backend.run(200)).all()
+    assert np.isfinite(fitted.runner.run(200)).all()
     mm = worm.converted(L="mm", M="mg")  # by hand: also clear
     assert mm.parameter("body_s1_mass").value[0] == pytest.approx(1050 * volume * 1e6, rel=1e-12)
 
@@ -534,7 +534,7 @@ def test_a_muscle_is_read_with_its_dimensions_and_its_found_length_range_is_stat
     saved = engines.load(model.scaled(sc, 4).save(tmp_path / "muscle_4.xml"))
     import mujoco
 
-    lengths = saved._backend.mjmodel.actuator_lengthrange[0]
+    lengths = saved.runner.mjmodel.actuator_lengthrange[0]
     assert list(lengths) == [4 * v for v in found.value]  # stated, not found again by a simulation
     excite = engines.verify(model, sc, 4, duration=1.0, scaled=saved, controls=lambda t: [0.5 + 0.4 * np.sin(6 * t)])
     assert excite.exact

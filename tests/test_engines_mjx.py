@@ -1,4 +1,4 @@
-"""pitheorem.engines.mjx: MJCF files loaded, scaled, saved and verified in MJX (float32 by default).
+"""pitheorem.engines.runners.mjx: MJCF files loaded, scaled, saved and verified in MJX (float32 by default).
 
 Runs only where MJX is installed (``pip install "pitheorem[mjx]"``).  The runs are kept short (the
 pendulum and gymnasium's hopper, 0.2 s each): on the CPU most of the time is JAX compiling the
@@ -22,7 +22,7 @@ jax = pytest.importorskip("jax", reason="jax is not installed (pip install 'pith
 pytest.importorskip("mujoco.mjx", reason="mujoco-mjx is not installed (pip install 'pitheorem[mjx]')")
 
 from pitheorem import engines  # noqa: E402
-from pitheorem.engines import mjx as mjx_backend  # noqa: E402
+from pitheorem.engines.runners import mjx as mjx_backend  # noqa: E402
 
 PENDULUM = engines.example_path("pendulum.xml")
 #: every verification of a model runs this long: the same number of steps and batch, so that JAX compiles
@@ -43,16 +43,16 @@ def pendulum():
 
 def test_an_mjcf_file_loads_scales_and_saves_in_mjx(pendulum, tmp_path):
     assert pendulum.engine == "mjx"
-    assert pendulum._backend.precision == "float32"
+    assert pendulum.runner.precision == "float32"
     assert pendulum.settings() == {"precision": "float32"}
-    stored = pendulum._backend.stored_numbers()
+    stored = pendulum.runner.stored_numbers()
     assert {a.dtype for a in stored.values()} == {np.dtype(np.float32)}
     assert stored["opt.timestep"][0] == np.float32(0.002)
     # the table is MuJoCo's reading of the file
     assert pendulum.parameters == engines.load(PENDULUM).parameters
     scaled = pendulum.scaled(time_free(pendulum), 4)
     assert scaled.engine == "mjx"
-    assert type(scaled._backend) is mjx_backend.MjxBackend
+    assert type(scaled.runner) is mjx_backend.MjxBackend
     out = scaled.save(tmp_path / "pendulum_4.xml")
     back = engines.load(out, engine="mjx")
     assert back.parameter("g").value == scaled.parameter("g").value == (9.81 * 4,)
@@ -69,8 +69,8 @@ def test_an_mjcf_file_loads_scales_and_saves_in_mjx(pendulum, tmp_path):
 def test_float64_on_request_and_jax_left_as_it_was():
     before = jax.config.jax_enable_x64
     model = engines.load(PENDULUM, engine="mjx", precision="float64")
-    assert {a.dtype for a in model._backend.stored_numbers().values()} == {np.dtype(np.float64)}
-    rows = model._backend.run(10, controls=lambda t: [0.1])
+    assert {a.dtype for a in model.runner.stored_numbers().values()} == {np.dtype(np.float64)}
+    rows = model.runner.run(10, controls=lambda t: [0.1])
     assert rows.shape == (11, 2)
     assert jax.config.jax_enable_x64 == before
     with pytest.raises(pt.InvalidRequestError, match="precision must be 'float32' or 'float64'"):
@@ -119,7 +119,7 @@ def test_the_runs_of_a_verification_are_one_vmapped_call(pendulum, monkeypatch):
 
 
 def test_twins_move_every_number_by_one_float32_ulp(pendulum):
-    before, after = pendulum._backend.stored_numbers(), pendulum._backend.twin(7).stored_numbers()
+    before, after = pendulum.runner.stored_numbers(), pendulum.runner.twin(7).stored_numbers()
     moved = 0
     for field, value in before.items():
         ulp = np.abs(after[field].astype(float) - value.astype(float))
@@ -186,7 +186,7 @@ def test_what_mjx_does_not_support_is_refused_by_name(case, tmp_path):
 def test_audit_and_check_read_mjxs_own_float32_numbers(pendulum):
     sc = time_free(pendulum)
     audit = engines.audit(pendulum, sc, s=4)
-    stored = pendulum._backend.stored_numbers()
+    stored = pendulum.runner.stored_numbers()
     assert 0.9 * sum(a.size for a in stored.values()) < audit.compared <= sum(a.size for a in stored.values())
     assert [c.kind for c in audit.causes] == ["solver"]  # the file's tolerance: no scale-free stopping rule
     assert engines.check(pendulum) == engines.check(engines.load(PENDULUM))
@@ -194,7 +194,7 @@ def test_audit_and_check_read_mjxs_own_float32_numbers(pendulum):
 
 def test_a_closed_loop_controller_is_refused(pendulum):
     with pytest.raises(pt.InvalidRequestError, match="MJX runs open loop here"):
-        pendulum._backend.run(3, policy=lambda *state: [0.0])
+        pendulum.runner.run(3, policy=lambda *state: [0.0])
 
 
 def test_mjx_segment_regularizer_is_measured_as_catalogued():
@@ -281,7 +281,7 @@ def test_numbers_beyond_float32s_range_are_flushed_or_infinite_and_checked(tmp_p
     )
     with pytest.warns(RuntimeWarning, match="overflow encountered in cast"):  # JAX, putting 1e39 in float32
         model = engines.load(path, engine="mjx")
-    damping = model._backend.stored_numbers()["dof_damping"]
+    damping = model.runner.stored_numbers()["dof_damping"]
     assert 0 < abs(damping[0]) < np.finfo(np.float32).tiny
     assert damping[1] == np.inf
     said = {c.element: c.detail for c in engines.check(model)}
@@ -451,7 +451,7 @@ def test_the_pairs_thresholds_reads_are_mjxs_own(name):
     import mujoco
     from mujoco.mjx._src.collision_driver import geom_pairs
 
-    from pitheorem.engines.thresholds import _FILTERPARENT, _collision_pairs
+    from pitheorem.engines.runners.mjx import _FILTERPARENT, _collision_pairs
 
     assert mujoco.mjtDisableBit.mjDSBL_FILTERPARENT == _FILTERPARENT
     m = (
@@ -478,13 +478,13 @@ def test_a_scaled_copy_is_one_program_with_its_original(name):
         warnings.simplefilter("ignore", engines.UnscalableModelWarning)
         model = engines.load(ASSETS / name, engine="mjx")
     copy = model.scaled(time_free(model), 4)
-    assert not np.array_equal(copy._backend._device.body_margin, model._backend._device.body_margin)
-    aligned = mjx_backend._aligned(copy._backend, model._backend)
+    assert not np.array_equal(copy.runner._device.body_margin, model.runner._device.body_margin)
+    aligned = mjx_backend._aligned(copy.runner, model.runner)
     structure = jax.tree_util.tree_structure
-    assert structure(aligned) == structure(model._backend._device)
+    assert structure(aligned) == structure(model.runner._device)
     # the arrays MJX traces are the copy's own
-    assert np.array_equal(aligned.geom_size, copy._backend._device.geom_size)
-    assert not np.array_equal(aligned.geom_size, model._backend._device.geom_size)
+    assert np.array_equal(aligned.geom_size, copy.runner._device.geom_size)
+    assert not np.array_equal(aligned.geom_size, model.runner._device.geom_size)
 
 
 def test_the_static_arrays_taken_from_the_original_are_never_read_by_mjx():
@@ -506,18 +506,18 @@ def test_a_file_mujoco_refuses_is_refused_with_mujocos_reason(tmp_path):
     )
     with pytest.raises(engines.EngineModelError, match="mass and inertia of moving bodies") as caught:
         engines.load(speck, engine="mjx")
-    assert str(caught.value) == str(engines.load(speck)._backend.refusal)  # as MuJoCo's loader has it
+    assert str(caught.value) == str(engines.load(speck).runner.refusal)  # as MuJoCo's loader has it
 
 
 def test_a_scaled_copy_shares_the_batch_unless_a_heightfield_reads_its_bounds(pendulum, tmp_path):
     # the pendulum's copy runs with the original's geom_rbound_hfield (never read without a heightfield)
-    copy = pendulum.scaled(time_free(pendulum), 4)._backend
+    copy = pendulum.scaled(time_free(pendulum), 4).runner
     mine, theirs = (
         copy.device_model()._impl.geom_rbound_hfield,
-        pendulum._backend.device_model()._impl.geom_rbound_hfield,
+        pendulum.runner.device_model()._impl.geom_rbound_hfield,
     )
     assert not np.array_equal(mine, theirs)
-    aligned = mjx_backend._aligned(copy, pendulum._backend)
+    aligned = mjx_backend._aligned(copy, pendulum.runner)
     assert np.array_equal(aligned._impl.geom_rbound_hfield, theirs)
     assert np.array_equal(aligned.opt.gravity, copy.device_model().opt.gravity)  # the rest is the copy's own
     # with a heightfield the bounds size its collision patch: the copy keeps its own
@@ -528,14 +528,14 @@ def test_a_scaled_copy_shares_the_batch_unless_a_heightfield_reads_its_bounds(pe
         '<body pos="0 0 1"><freejoint/><geom type="sphere" size="0.1"/></body></worldbody></mujoco>'
     )
     ground = engines.load(terrain, engine="mjx")
-    scaled_ground = ground.scaled(time_free(ground), 4)._backend
-    assert mjx_backend._aligned(scaled_ground, ground._backend) is scaled_ground.device_model()
+    scaled_ground = ground.scaled(time_free(ground), 4).runner
+    assert mjx_backend._aligned(scaled_ground, ground.runner) is scaled_ground.device_model()
     # and a model of other sizes is not aligned with the pendulum
-    assert mjx_backend._aligned(ground._backend, pendulum._backend) is ground._backend.device_model()
+    assert mjx_backend._aligned(ground.runner, pendulum.runner) is ground.runner.device_model()
 
 
 def test_a_batch_starts_from_given_states_nudged_by_one_float32_ulp(pendulum):
-    b = pendulum._backend
+    b = pendulum.runner
     n = round(DURATION / b.timestep())  # the batch size and length of the verifications above: compiled once
     given = np.array([0.5, -0.25])  # a first row: qpos, qvel (the pendulum has no activation)
     inputs = np.full((n, 1), 0.1)
@@ -574,11 +574,11 @@ def test_a_batch_starts_from_given_states_nudged_by_one_float32_ulp(pendulum):
 
 
 def test_a_variant_changes_the_solver_tolerance_only(pendulum):
-    variant = pendulum._backend.variant(tolerance=1e-3)
+    variant = pendulum.runner.variant(tolerance=1e-3)
     assert variant.solver_settings() == {"tolerance": 1e-3}
-    assert pendulum._backend.solver_settings() == {"tolerance": pendulum.parameter("tolerance").value[0]}
+    assert pendulum.runner.solver_settings() == {"tolerance": pendulum.parameter("tolerance").value[0]}
     assert float(variant.device_model().opt.tolerance) == pytest.approx(1e-3)
-    assert variant.precision == pendulum._backend.precision
+    assert variant.precision == pendulum.runner.precision
 
 
 def test_a_start_with_activations_is_refused_by_name(tmp_path):

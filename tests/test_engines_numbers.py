@@ -1,4 +1,4 @@
-"""pitheorem.engines.numbers: the checks of a model file's numbers, on XML written here.
+"""pitheorem.engines.fileformats.numbers: the checks of a model file's numbers, on XML written here.
 
 The loaders' use of them (the files of issue 23) is tested in test_engines_mjcf and test_engines_urdf.
 """
@@ -10,7 +10,7 @@ import pickle
 import pytest
 
 from pitheorem.engines import EngineModelError
-from pitheorem.engines.numbers import check_model_file, check_numbers
+from pitheorem.engines.fileformats.numbers import check_model_file, check_numbers
 
 
 def write(tmp_path, text, name="m.xml"):

@@ -14,7 +14,7 @@ from pitheorem.engines import (
     simulate_rod,
 )
 from pitheorem.engines.packages import PACKAGES, check_engine, engine_module
-from pitheorem.engines.rod import EngineUnavailableError
+from pitheorem.engines.paper.rod import EngineUnavailableError
 from tests.conftest import REPO
 
 

@@ -7,7 +7,7 @@ import sys
 import pytest
 
 from pitheorem import engines
-from pitheorem.engines.registry import REGISTRY, Engine, registered
+from pitheorem.engines.registry import FORMATS, REGISTRY, Engine, file_format, formats, registered
 from tests.conftest import REPO
 
 pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
@@ -17,14 +17,32 @@ def test_one_line_per_engine_with_one_name_and_its_module():
     names = [e.name for e in REGISTRY]
     assert names == ["pybullet", "mujoco", "mjx"]
     for e in REGISTRY:
-        module = REPO / "pitheorem" / "engines" / f"{e.module}.py"
+        module = REPO / "pitheorem" / "engines" / (e.module.replace(".", "/") + ".py")
         assert module.is_file(), e
-        assert f"def {e.loader}(" in module.read_text()
+        assert e.module.startswith("runners."), e  # an engine's module is a runner
+        for fmt in e.formats:
+            assert f"def {e.loader(fmt)}(" in module.read_text()
+            assert fmt in formats()
         assert e.base in ("", *names)
         assert e.base != e.name
-    # each file kind has exactly one engine it loads in by default
-    for kind in {k for e in REGISTRY for k in e.kinds}:
-        assert sum(e.default for e in REGISTRY if kind in e.kinds) == 1, kind
+        assert e.precision in ("float64", "float32")
+    # each format has one default engine, which compiles it
+    for f in FORMATS:
+        assert f.name in registered(f.engine).formats, f
+        assert (REPO / "pitheorem" / "engines" / (f.module.replace(".", "/") + ".py")).is_file(), f
+        assert f.module.startswith("fileformats."), f
+
+
+def test_a_files_format_is_its_suffix_and_where_formats_share_one_its_root_element(tmp_path):
+    assert file_format("arm.URDF").name == "urdf"
+    assert file_format("model.toml") is None
+    assert file_format("robot.sdf") is None
+    robot = tmp_path / "robot.xml"
+    robot.write_text('<?xml version="1.0"?>\n<robot name="r"><link name="a"/></robot>')
+    assert file_format(robot).name == "urdf"
+    robot.write_text("<mujoco><worldbody/></mujoco>")
+    assert file_format(robot).name == "mjcf"
+    assert file_format(tmp_path / "absent.xml").name == "mjcf"  # no file to read: the suffix's first format
 
 
 def test_backends_lists_the_installed_engines_sorted(monkeypatch):
@@ -48,6 +66,6 @@ def _importable(name: str) -> bool:
 
 
 def test_installed_is_false_for_a_module_that_cannot_be_found():
-    assert not Engine("x", "x", "x", (), ("no_such_module_here",)).installed()
-    assert not Engine("x", "x", "x", (), ("no_such_module_here.sub",)).installed()
+    assert not Engine("x", "x", (), ("no_such_module_here",)).installed()
+    assert not Engine("x", "x", (), ("no_such_module_here.sub",)).installed()
     assert registered("bullet") is registered("pybullet")

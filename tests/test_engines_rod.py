@@ -1,4 +1,4 @@
-"""pitheorem.engines.rod: the paper's hinged rod in PyBullet and MuJoCo, against the exact ODE.
+"""pitheorem.engines.paper.rod: the paper's hinged rod in PyBullet and MuJoCo, against the exact ODE.
 
 A similarity scaling reproduces the engine's own run to rounding error when
 the engine's time step is scaled with time; the paper's Figure 3 scaling
@@ -17,7 +17,7 @@ from pitheorem.engines import (
     verify_engine_similarity,
 )
 from pitheorem.engines.packages import PACKAGES
-from pitheorem.engines.rod import DEFAULT_TIME_STEP, ROD_FILES, rod_file_numbers, rod_model
+from pitheorem.engines.paper.rod import DEFAULT_TIME_STEP, ROD_FILES, rod_file_numbers, rod_model
 from tests.conftest import FIG5, HINGED_ROD, TIME_FREE
 
 #: the forum rule "scale length with gravity": g and l both by s, nothing else (not a similarity
@@ -49,7 +49,7 @@ def test_the_rods_default_time_steps_are_the_catalogues_and_the_files():
 
 def _mujoco_numbers(model):
     """What MuJoCo compiled from the rod's file: the oracle is the engine, not the file's table."""
-    m = model._backend.mjmodel
+    m = model.runner.mjmodel
     return {
         "m": m.body_mass[1],
         "com": tuple(m.body_ipos[1]),
@@ -63,7 +63,7 @@ def _mujoco_numbers(model):
 
 def _bullet_numbers(model):
     """What PyBullet holds once the rod is loaded and set, and the spring the settings file gives."""
-    dyn, joints = model._backend._held()
+    dyn, joints = model.runner._held()
     spring = model.settings()["jointSprings"][0]
     return {
         "m": dyn[1][0],

@@ -10,9 +10,9 @@ import pitheorem as pt
 
 mujoco = pytest.importorskip("mujoco", reason="the engines extra (mujoco) is not installed")
 
-from pitheorem.engines import superball as sb  # noqa: E402
+from pitheorem.engines.paper import superball as sb  # noqa: E402
 
-SHIPPED = Path(sb.__file__).resolve().parent.parent / "examples" / "superball.xml"
+SHIPPED = Path(sb.__file__).resolve().parents[2] / "examples" / "superball.xml"
 DURATION = 2.0  # a drop (about 0.5 s), a landing, and a second of controlled motion
 
 
@@ -176,7 +176,7 @@ def engine_scaling(engine_model):
 
 
 def test_engines_load_reads_six_bars_twenty_four_cables_and_the_controller(engine_model):
-    m = engine_model._backend.mjmodel
+    m = engine_model.runner.mjmodel
     assert (m.nbody - 1, m.ntendon, m.nu) == (6, 24, 24)
     names = {p.name for p in engine_model.parameters}
     assert {f"tendon_cable{i}_springlength" for i in range(24)} <= names

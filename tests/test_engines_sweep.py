@@ -17,8 +17,8 @@ pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pith
 from pitheorem import engines
 from pitheorem.cli import main
 from pitheorem.engines.cli import parse_s_values
-from pitheorem.engines.sweep import verdict
 from pitheorem.engines.thresholds import thresholds
+from pitheorem.engines.verdicts.sweep import verdict
 
 PENDULUM = engines.example_path("pendulum.xml")
 DURATION = 0.1
@@ -193,7 +193,7 @@ def test_on_a_dask_cluster_the_rows_are_the_same(pendulum):
 
 def test_a_cluster_worker_reads_the_model_from_its_file_as_a_user_would(pendulum, tmp_path):
     # what a worker process elsewhere does: read the model by its recipe (an unsaved copy saved first)
-    from pitheorem.engines.sweep import _recipe, _remote_outcome
+    from pitheorem.engines.verdicts.sweep import _recipe, _remote_outcome
 
     model, _sc = pendulum
     copy = model.converted(L=100)

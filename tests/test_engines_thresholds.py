@@ -28,10 +28,11 @@ from pitheorem.engines.thresholds import (
     Threshold,
     crossed,
     held_against,
-    mjx_parameters,
     thresholds,
 )
 from tests.conftest import REPO
+
+mjx_parameters = pytest.importorskip("pitheorem.engines.runners.mjx").mjx_parameters
 
 mujoco = pytest.importorskip("mujoco")
 pb = pytest.importorskip("pybullet")
@@ -622,5 +623,5 @@ def test_the_fluid_models_numbers_join_only_with_a_fluid_and_a_compiled_mass(tmp
     assert found["body_s_fluid_box_moments"].value == pytest.approx((moment,) * 3, rel=1e-12)
     assert mjx_parameters(speck(0.01, 'density="0"')) == ()  # no fluid
     refused = speck(1e-6, 'density="1.2"')  # MuJoCo refuses it; its compiled masses are a probe's
-    assert type(refused._backend).__name__ == "RefusedMjcfBackend"
+    assert type(refused.runner.document).__name__ == "RefusedMjcfDocument"
     assert mjx_parameters(refused) == ()

@@ -197,12 +197,12 @@ def test_a_run_of_the_converted_copy_maps_back_onto_the_original(tmp_path):
     model = engines.load(path)
     ms = model.converted(T="ms", L="mm")
     assert ms.parameter("timestep").value == (1.0,)
-    key = ms._backend.mjmodel
+    key = ms.runner.mjmodel
     assert key.key_time[0] == 500.0
     assert key.key_qvel[0][0] == pytest.approx(2e-3)
-    rows = ms._backend.run(100)
+    rows = ms.runner.run(100)
     back = run_in_units(ms, rows, model.units)
-    assert ulps(back, model._backend.run(100)) <= 64
+    assert ulps(back, model.runner.run(100)) <= 64
     with pytest.raises(pt.InvalidRequestError, match="columns"):
         run_in_units(ms, rows[:, :1], model.units)
 
@@ -231,8 +231,8 @@ def test_a_springdamper_is_read_as_a_time_constant_and_scaled_with_time(tmp_path
     ms = model.converted(T="ms", M="g", L="mm")
     assert ms.parameter("joint_j_springdamper_time").value == (200.0,)
     # the compiler's stiffness and damping (M L^2 T^-2 and M L^2 T^-1) follow from it
-    k0, k1 = model._backend.mjmodel.jnt_stiffness[0], ms._backend.mjmodel.jnt_stiffness[0]
-    d0, d1 = model._backend.mjmodel.dof_damping[0], ms._backend.mjmodel.dof_damping[0]
+    k0, k1 = model.runner.mjmodel.jnt_stiffness[0], ms.runner.mjmodel.jnt_stiffness[0]
+    d0, d1 = model.runner.mjmodel.dof_damping[0], ms.runner.mjmodel.dof_damping[0]
     assert k1 == pytest.approx(k0 * 1e3 * 1e6 * 1e-6)
     assert d1 == pytest.approx(d0 * 1e3 * 1e6 * 1e-3)
 

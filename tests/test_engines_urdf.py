@@ -1,14 +1,10 @@
-"""URDF models through PyBullet: dimensions by joint type, engine settings, scaled files with their settings."""
+"""pitheorem.engines.fileformats.urdf: every number a URDF file states, with its name, place and dimension; copies by address."""
 
 from __future__ import annotations
 
-import json
 import pickle
-import subprocess
-import sys
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 import pitheorem as pt
@@ -16,9 +12,41 @@ import pitheorem as pt
 pytest.importorskip("pybullet", reason="pybullet is not installed (pip install 'pitheorem[engines]')")
 
 from pitheorem import engines
-from pitheorem.engines import EngineModelError, UnscalableParameterError
+from pitheorem.engines import EngineModelError
 
 ARM = Path(__file__).resolve().parent / "data" / "engines" / "slider_arm.urdf"
+
+
+_ARM_TEXT = ARM.read_text()
+
+_EVERY_NUMBER = """<robot name="r">
+  <link name="base">
+    <inertial><origin xyz="0 0 0.1"/><mass value="2"/>
+      <inertia ixx="1" ixy="0.5" ixz="0.25" iyy="2" iyz="0.125" izz="3"/></inertial>
+    <collision><origin xyz="0.5 0 0"/><geometry><box size="1 2 3"/></geometry></collision>
+    <collision><geometry><cylinder radius="0.1" length="0.4"/></geometry></collision>
+    <collision><geometry><mesh filename="part.stl"/></geometry></collision>
+    <collision><geometry><plane normal="0 0 1"/></geometry></collision>
+    <collision><origin xyz="0 0 9"/></collision>
+    <collision><origin xyz="0 0 8"/><geometry><sphere radius="0.3"/></geometry></collision>
+    <visual><geometry><sphere radius="0.2"/></geometry></visual>
+    <visual><geometry><material name="red"/></geometry></visual>
+    <visual><geometry><mesh filename="part.stl" scale="2 2 2"/></geometry></visual>
+    <contact><lateral_friction value="0.9"/><rolling_friction value="0.01"/><spinning_friction value="0.02"/>
+      <stiffness value="3000"/><damping value="40"/><restitution value="0.5"/><contact_cfm value="0"/>
+      <contact_erp value="0.2"/><inertia_scaling value="1"/><friction_anchor/></contact>
+  </link>
+  <link><collision><geometry><capsule radius="0.05" length="0.3"/></geometry></collision></link>
+  <link name="tip"/>
+  <joint name="weld" type="fixed"><origin xyz="1 0 0"/></joint>
+  <joint name="slide" type="prismatic"><origin xyz="0 1 0"/>
+    <limit lower="-0.5" upper="0.5" effort="10" velocity="2"/><dynamics damping="0.3" friction="0.4"/></joint>
+  <joint name="swing" type="revolute"><limit lower="-1" upper="1" effort="5" velocity="3"/></joint>
+  <joint name="spin" type="continuous"><dynamics damping="0.7"/></joint>
+</robot>
+"""
+
+_INERTIA_NOTE = "PyBullet recomputes the inertia from the collision shapes unless URDF_USE_INERTIA_FROM_FILE is given"
 
 
 def test_dimensions_follow_the_joint_type():
@@ -38,103 +66,7 @@ def test_dimensions_follow_the_joint_type():
     assert d["contactSlop"] == "L"
     assert d["solverResidualThreshold"] == "1"  # no pure dimension: no change of units scales it
     assert d["link_cart_linearDamping"] == "T^-1 (rate) | L^-1 (per_length)"
-    assert [str(x) for x in model._backend.control_dimensions()] == ["M L T^-2", "M L^2 T^-2"]
-
-
-def test_engine_defaults_are_pybullets_own():
-    import pybullet as pb
-
-    model = engines.load(ARM)
-    client = pb.connect(pb.DIRECT)
-    try:
-        body = pb.loadURDF(str(ARM), physicsClientId=client)
-        # oracle: PyBullet's reports, read here directly; margins 0.001 for box and cylinder, the radius for spheres
-        assert model.parameter("link_base_collision_margin").value == (pb.getDynamicsInfo(body, -1)[11],) == (0.001,)
-        assert model.parameter("link_arm_collision_margin").value == (pb.getDynamicsInfo(body, 1)[11],)
-        import pybullet_data
-
-        sphere = engines.load(Path(pybullet_data.getDataPath()) / "sphere2.urdf")
-        assert sphere.parameter("link_baseLink_collision_margin").value == (0.5,)  # a lone sphere: its radius
-        assert model.parameter("link_cart_rollingFriction").value == (pytest.approx(0.01),)
-        assert (
-            pb.getPhysicsEngineParameters(physicsClientId=client)["fixedTimeStep"]
-            == model.parameter("timestep").value[0]
-        )
-    finally:
-        pb.disconnect(client)
-
-
-def test_engine_settings_default_to_the_hidden_constant_catalogue():
-    model = engines.load(ARM)  # PyBullet's own settings: split impulse on, multibody damping 0.04
-    catalogue = {c.name: c for c in engines.hidden_constants("bullet")}
-    pairs = {
-        "timestep": "bullet_time_step",
-        "contactSlop": "bullet_contact_slop",
-        "restitutionVelocityThreshold": "bullet_restitution_velocity_threshold",
-        "solverResidualThreshold": "bullet_solver_residual_threshold",
-        "splitImpulsePenetrationThreshold": "bullet_split_impulse_penetration_threshold",
-        "joint_slide_maxJointVelocity": "bullet_max_joint_velocity",
-        "joint_swing_maxJointVelocity": "bullet_max_joint_velocity",
-    }
-    for name, constant in pairs.items():
-        assert model.parameter(name).value == (catalogue[constant].default,)
-    for name in ("timestep", "contactSlop", "restitutionVelocityThreshold", "solverResidualThreshold"):
-        assert model.parameter(name).dimension == catalogue[pairs[name]].dimension
-    # the values bullet3 and the PyBullet guide state, written out (an oracle apart from the catalogue)
-    assert [model.parameter(name).value[0] for name in pairs] == [1 / 240, 1e-5, 0.2, 1e-7, -0.04, 100.0, 100.0]
-    damping = model.parameter("link_cart_angularDamping")
-    assert damping.value == (0.04,)
-    assert damping.parts == (("rate", pt.Dimension.parse("T^-1")), ("per_radian", pt.Dimension.parse("1")))
-    assert dict(damping.parts) == {
-        "rate": catalogue["bullet_angular_damping_k1"].dimension,
-        "per_radian": catalogue["bullet_angular_damping_k2"].dimension,
-    }
-    calls = engines.load(ARM, ground=True).settings()
-    assert calls["ground"] == {"collisionMargin": 0.001}
-    assert [call["maxJointVelocity"] for call in calls["changeDynamics"] if "maxJointVelocity" in call] == [100.0] * 2
-
-
-def test_mixed_damping_is_refused_until_switched_off():
-    model = engines.load(ARM)
-    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    with pytest.raises(UnscalableParameterError, match="linearDamping"):
-        model.scaled(sc, 2)
-    with pytest.raises(UnscalableParameterError, match="split"):
-        engines.load(ARM, damping=0.0).scaled(sc, 2)
-    scaled = engines.load(ARM, damping=0.0, split_impulse=False).scaled(sc, 2)
-    assert scaled.parameter("joint_slide_velocity").value == (4.0,)
-    assert scaled.parameter("joint_swing_velocity").value == (10.0,)
-
-
-def test_scaled_run_is_similar_and_a_broken_setting_is_not(tmp_path):
-    model = engines.load(ARM, fixed_base=True, damping=0.0, split_impulse=False)
-    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    rep = engines.verify(model, sc, 10, duration=1.0, controls=lambda t: [np.sin(t), 0.1 * np.cos(t)])
-    assert rep.similar, str(rep)
-    # the joint damping of the slide left unscaled in the saved file
-    out = model.scaled(sc, 10).save(tmp_path / "scaled.urdf")
-    text = out.read_text()
-    scaled_damping = 0.3 * 10.0 ** float(sc.exponent_of("M T^-1"))
-    assert f'damping="{scaled_damping!r}"' in text
-    out.write_text(text.replace(f'damping="{scaled_damping!r}"', 'damping="0.3"'))
-    broken = engines.load(out)  # with the scaled settings saved beside it
-    rep = engines.verify(model, sc, 10, duration=1.0, controls=lambda t: [np.sin(t), 0.1 * np.cos(t)], scaled=broken)
-    assert not rep.similar
-
-
-def test_saved_settings_snippet_runs(tmp_path):
-    model = engines.load(ARM, ground=True, damping=0.0, split_impulse=False)
-    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    out = model.scaled(sc, 10).save(tmp_path / "arm10.urdf")
-    snippet = Path(f"{out}.settings.py")
-    import json
-
-    settings = json.loads(Path(f"{out}.settings.json").read_text())
-    assert settings["gravity"][2] == pytest.approx(-98.1, rel=1e-15)
-    assert settings == model.scaled(sc, 10).settings()
-    assert "p.setGravity(" in snippet.read_text()
-    done = subprocess.run([sys.executable, str(snippet)], capture_output=True, text=True, timeout=60)
-    assert done.returncode == 0, done.stderr
+    assert [str(x) for x in model.runner.control_dimensions()] == ["M L T^-2", "M L^2 T^-2"]
 
 
 @pytest.mark.parametrize(
@@ -171,154 +103,6 @@ def test_bad_urdf_files_name_the_element(tmp_path, text, culprit):
     assert str(pickle.loads(pickle.dumps(caught.value))) == message
 
 
-def _pd_controller(numbers_from):
-    """A PD law on both joints whose gains and set points come from a model's own numbers."""
-
-    def controller(run_model):
-        source = run_model if numbers_from is None else numbers_from
-        p = {
-            n: source.parameter(n).value
-            for n in ("joint_slide_effort", "joint_slide_upper", "link_arm_mass", "link_arm_com", "g")
-        }
-        k_slide = p["joint_slide_effort"][0] / p["joint_slide_upper"][0]  # M T^-2
-        k_swing = 20 * p["link_arm_mass"][0] * p["g"][0] * p["link_arm_com"][2]  # M L^2 T^-2 per radian
-        reach = p["joint_slide_upper"][0]
-
-        def policy(client, body, t):
-            import pybullet as pb
-
-            (q_slide, _), (q_swing, _) = [s[:2] for s in pb.getJointStates(body, [0, 1], physicsClientId=client)]
-            return [k_slide * (0.4 * reach * np.sin(3 * t) - q_slide), k_swing * (0.3 * np.sin(2 * t) - q_swing)]
-
-        return policy
-
-    return controller
-
-
-def test_closed_loop_controller_in_pybullet_is_similar_only_with_its_numbers_scaled():
-    model = engines.load(ARM, fixed_base=True, damping=0.0, split_impulse=False)
-    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    rep = engines.verify(model, sc, 10, duration=1.0, controller=_pd_controller(None))
-    assert rep.similar, str(rep)
-    assert np.ptp(rep.original["q[swing]"]) > 0.3  # it moves the arm through the set point's swing
-    # the same law with its numbers frozen at the original model's: Section 6 of the paper
-    frozen = engines.verify(model, sc, 10, duration=1.0, controller=_pd_controller(model))
-    assert not frozen.similar
-    assert frozen.max_deviation > 1e-3
-
-
-def test_saved_model_reloads_with_its_settings_and_only_so(tmp_path):
-    model = engines.load(ARM, ground=True, damping=0.0, split_impulse=False, base_position=(0, 0, 0.3))
-    # the solver's residual threshold has no pure dimension (no scaling carries it): exact only at 0
-    model = model.with_values(solverResidualThreshold=0.0)
-    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    scaled = model.scaled(sc, 10)
-    out = scaled.save(tmp_path / "arm10.urdf")
-    again = engines.load(out)
-    assert again.settings() == scaled.settings()
-    expected = {p.name: p.value for p in scaled.parameters}
-    assert [p.name for p in again.parameters] == list(expected)
-    for p in again.parameters:  # the file's numbers are written as repr, so they read back as they were
-        assert p.value == pytest.approx(expected[p.name], rel=1e-15), p.name
-    assert engines.verify(model, sc, 10, duration=0.5, scaled=again).similar
-    # the settings fix the scene: options beside them are refused, settings=False reads the bare file
-    with pytest.raises(pt.InvalidRequestError, match="fixes the scene"):
-        engines.load(out, ground=True)
-    bare = engines.load(out, settings=False)
-    assert bare.parameter("g").value == (9.81,)
-    Path(f"{out}.settings.json").write_text('{"gravity": [0, 0, -9.81]}')
-    with pytest.raises(engines.EngineModelError, match=r"arm10\.urdf\.settings\.json.*'loadURDF'"):
-        engines.load(out)
-    with pytest.raises(engines.EngineModelError, match="no such settings file"):
-        engines.load(out, settings=tmp_path / "absent.json")
-    # with good settings, a broken URDF is blamed on the URDF, not on its settings file
-    Path(f"{out}.settings.json").write_text(json.dumps(scaled.settings()))
-    out.write_text("<robot")
-    with pytest.raises(engines.EngineModelError, match="not well-formed XML") as caught:
-        engines.load(out)
-    assert "settings" not in str(caught.value)
-
-
-@pytest.mark.parametrize(
-    ("where", "bad", "says"),
-    [
-        (("gravity",), [0, 0, 9.81], "gravity along -z only"),
-        (("loadURDF", "basePosition"), [0, 0, "x"], "base_position must be a finite real number"),
-        (("loadURDF", "basePosition"), [0, 0], "base_position takes three numbers"),
-        (("loadURDF", "useFixedBase"), "no", "fixed_base is true or false, got 'no'"),
-        (
-            ("jointSprings",),
-            [{"jointIndex": 7, "stiffness": 1.0, "restPosition": 0.0}],
-            "jointSprings: joint 7 is not a movable joint",
-        ),
-        (("jointSprings",), [{"jointIndex": 0, "stiffness": 1.0}], "key 'restPosition'"),
-    ],
-)
-def test_a_saved_settings_file_with_a_bad_scene_is_named(tmp_path, where, bad, says):
-    model = engines.load(ARM, damping=0.0, split_impulse=False)
-    out = model.scaled(pt.search(model.system(), scale={"g": 1}).scalings[0], 2).save(tmp_path / "arm2.urdf")
-    settings = Path(f"{out}.settings.json")
-    doc = json.loads(settings.read_text())
-    *parents, key = where
-    place = doc
-    for parent in parents:
-        place = place[parent]
-    place[key] = bad
-    settings.write_text(json.dumps(doc))
-    with pytest.raises(engines.EngineModelError, match=r"arm2\.urdf\.settings\.json") as caught:
-        engines.load(out)
-    assert says in str(caught.value)
-
-
-@pytest.mark.parametrize(
-    ("options", "error", "says"),
-    [
-        ({"g": -9.81}, pt.InvalidRequestError, "g cannot be negative, got -9.81"),
-        ({"damping": -1e-9}, pt.InvalidRequestError, "damping cannot be negative"),
-        ({"damping": "x"}, pt.NumberError, "damping must be a finite real number"),
-        ({"ground": "yes"}, pt.InvalidRequestError, "ground is true or false, got 'yes'"),
-        ({"fixed_base": 1}, pt.InvalidRequestError, "fixed_base is true or false, got 1"),
-        ({"base_position": (0, 1)}, pt.InvalidRequestError, "base_position takes three numbers"),
-        ({"base_position": "001"}, pt.InvalidRequestError, "base_position takes three numbers"),
-        ({"base_position": (0, 0, float("inf"))}, pt.NumberError, "base_position must be a finite real number"),
-    ],
-)
-def test_the_loader_reads_its_scene_as_the_command_line_does(options, error, says):
-    # one reader for the keyword options, --scene and with_settings: the same refusals everywhere
-    with pytest.raises(error) as caught:
-        engines.load(ARM, **options)
-    assert says in str(caught.value)
-    name = next(iter(options))
-    if name in ("ground", "fixed_base", "base_position"):
-        with pytest.raises(error, match=says.split(",")[0]):
-            engines.load(ARM).with_settings(**options)
-
-
-def test_scene_values_are_read_exactly_once_into_floats_and_flags():
-    from pitheorem.engines.urdf import scene_option
-
-    model = engines.load(ARM, g="9.8", damping=0, base_position=("0", 0, "1/2"), ground=np.True_)
-    settings = model.settings()
-    assert settings["gravity"] == [0.0, 0.0, -9.8]
-    assert settings["loadURDF"]["basePosition"] == [0.0, 0.0, 0.5]
-    assert settings["ground"] is not None
-    moved = model.with_settings(base_position=(1, 2, 3), split_impulse=False)
-    assert moved.settings()["loadURDF"]["basePosition"] == [1.0, 2.0, 3.0]
-    assert moved.settings()["setPhysicsEngineParameter"]["useSplitImpulse"] == 0
-    with pytest.raises(pt.InvalidRequestError, match="split_impulse is true or false, got 'no'"):
-        model.with_settings(split_impulse="no")
-    assert scene_option("split_impulse", False) is False
-    assert scene_option("g", 2) == 2.0
-    assert type(scene_option("g", 2)) is float
-    with pytest.raises(pt.InvalidRequestError, match="unknown scene option 'gravity'"):
-        scene_option("gravity", 1)
-
-
-# -- bad numbers in the file (issue 23): refused by name, never written into a scaled copy
-
-_ARM_TEXT = ARM.read_text()
-
-
 @pytest.mark.parametrize(
     ("old", "new", "says"),
     [
@@ -347,158 +131,15 @@ def test_bad_numbers_are_refused_by_element_and_attribute(tmp_path, old, new, sa
     assert "\n" not in message
 
 
-def test_params_on_a_urdf_with_a_word_for_a_mass_is_one_line(tmp_path, capsys):
-    from pitheorem.cli import main
-
-    path = tmp_path / "heavy.urdf"
-    path.write_text(_ARM_TEXT.replace('<mass value="2.0"', '<mass value="heavy"', 1))
-    assert main(["params", str(path)]) == 2
-    err = capsys.readouterr().err
-    assert err.startswith("pitheorem: error: ")
-    assert err.count("\n") == 1
-    assert "'heavy'" in err
-
-
-def test_the_default_scene_names_every_unscalable_number_at_once_with_one_remedy():
-    """PyBullet's default scene fails in two ways (link damping, split impulses): both in one error."""
-    robot = Path(__file__).resolve().parent / "robots" / "urdf" / "quadruped.urdf"
-    model = engines.load(robot, ground=True, base_position=(0, 0, 0.5))
-    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    with pytest.raises(engines.UnscalableParameterError) as caught:
-        model.scaled(sc, 4)
-    message = str(caught.value)
-    assert "linearDamping" in message
-    assert "split-impulse" in message
-    assert "damping=0.0, split_impulse=False" in message
-    fixed = engines.load(robot, ground=True, base_position=(0, 0, 0.5), damping=0.0, split_impulse=False)
-    remedied = fixed.scaled(pt.search(fixed.system(), scale={"g": 1}).scalings[0], 4)  # the remedy suffices
-    assert remedied.parameter("g").value == (4 * model.parameter("g").value[0],)
-
-
-def test_runs_in_one_client_equal_the_runs_each_in_its_own():
-    """run_many resets one client's world between runs: each run is what a fresh client gives, bit for bit."""
-    pybullet_data = pytest.importorskip("pybullet_data")
-    model = engines.load(
-        Path(pybullet_data.getDataPath()) / "r2d2.urdf",
-        base_position=(0, 0, 1),
-        ground=True,
-        damping=0.0,
-        split_impulse=False,
-    )  # wheels on the ground: contacts from the first steps
-    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    b, copy = model._backend, model.scaled(sc, 10)._backend
-    u = engines.smooth_controls(model)
-    jobs = [(b, u, False, None), (copy, None, False, None), (b.twin(0), u, False, None), (b, u, True, None)]
-    one_by_one = [backend.run(120, controls, nudge) for backend, controls, nudge, _ in jobs]
-    together = b.run_many(120, jobs)
-    assert all(np.array_equal(x, y) for x, y in zip(one_by_one, together, strict=True))
-    assert not np.array_equal(one_by_one[0], one_by_one[3])  # the nudged run differs: not a vacuous equality
-
-
-def test_a_scaled_copy_reads_as_its_saved_file_does(tmp_path):
-    """The copy shares its original's reading of the links; the saved file is read by PyBullet afresh."""
-    pybullet_data = pytest.importorskip("pybullet_data")
-    model = engines.load(
-        Path(pybullet_data.getDataPath()) / "r2d2.urdf",
-        base_position=(0, 0, 1),
-        ground=True,
-        damping=0.0,
-        split_impulse=False,
-    )
-    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    copy = model.scaled(sc, 10)
-    reread = engines.load(copy.save(tmp_path / "r2d2_10.urdf"))
-    assert [(p.name, p.value) for p in copy.parameters] == [(p.name, p.value) for p in reread.parameters]
-    assert copy.parameter("g").value[0] == 10 * model.parameter("g").value[0]  # scaled: not a vacuous equality
-
-
-def test_no_file_is_written_into_the_users_folder_and_meshes_still_load(tmp_path, monkeypatch):
-    """The robot's meshes are named by absolute paths in a copy in the system's temporary folder."""
-    import shutil
-    import tempfile
-
-    robot = tmp_path / "robot"
-    shutil.copytree(Path(__file__).resolve().parent / "robots" / "urdf", robot)
-    written = []
-    real = tempfile.mkstemp
-
-    def recording(*args, **kwargs):
-        fd, name = real(*args, **kwargs)
-        written.append(Path(name).parent)
-        return fd, name
-
-    monkeypatch.setattr(tempfile, "mkstemp", recording)
-    before = sorted(p.name for p in robot.rglob("*"))
-    model = engines.load(robot / "arm.urdf", fixed_base=True, damping=0.0, split_impulse=False)
-    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    assert engines.verify(model, sc, 4, duration=0.2, controls=engines.smooth_controls(model)).exact
-    assert written  # PyBullet read copies ...
-    assert all(folder != robot for folder in written)  # ... none of them in the user's folder
-    assert sorted(p.name for p in robot.rglob("*")) == before
-    assert any(
-        shape[4].endswith(b".obj") or shape[4].endswith(b".stl")
-        for shapes in model._backend._info["shapes"].values()
-        for shape in shapes
-    )  # meshes were loaded
-
-
-def test_a_compound_collision_mesh_is_named_as_a_setting_cause_and_matters_only_in_contact():
-    """pybullet_data's duck: five convex parts whose margins no changeDynamics reaches."""
-    pybullet_data = pytest.importorskip("pybullet_data")
-    duck = Path(pybullet_data.getDataPath()) / "duck_vhacd.urdf"
-
-    def judged(ground):
-        with pytest.warns(engines.UnscalableModelWarning, match="convex parts"):
-            model = engines.load(duck, base_position=(0, 0, 0.2), ground=ground, damping=0.0, split_impulse=False)
-        model = model.with_values(solverResidualThreshold=0.0)
-        sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-        return engines.verify(model, sc, 4, duration=0.5)
-
-    on_the_ground = judged(True)
-    assert not on_the_ground.exact
-    assert [c.element for c in on_the_ground.causes] == ["link 'baseLink' collision mesh 'duck_vhacd.obj'"]
-    assert on_the_ground.causes[0].kind == "setting"
-    assert judged(False).exact  # the counter-run: with nothing to touch, the margins play no part
-
-
-def test_a_file_pybullet_reads_despite_blank_lines_a_nul_or_a_material_inside_a_visual_geometry(tmp_path):
-    """pybullet_data's biped, humanoid and racecar files have each of these; PyBullet's reader shrugs them off."""
-    text = ARM.read_text()
-    body = text[text.index("<robot") :]
-    odd = tmp_path / "odd.urdf"
-    odd.write_text(
-        "\n\n"
-        + '<?xml version="1.0"?>\n'
-        + body.replace(
-            "</robot>",
-            '<link name="decor"><visual><geometry><box size="0.1 0.1 0.1"/><material name="grey"/>'
-            '</geometry></visual></link><joint name="decor_fixed" type="fixed"><parent link="base"/>'
-            '<child link="decor"/></joint></robot>',
-        )
-        + "\x00"
-    )
-    model = engines.load(odd)
-    assert model.parameter("link_decor_visual0_size").value == (0.1, 0.1, 0.1)
-    bad = tmp_path / "bad.urdf"  # the same in a collision: refused, for it would change the dynamics
-    bad.write_text(
-        body.replace(
-            "</robot>",
-            '<link name="decor"><collision><geometry><material name="grey"/></geometry></collision></link></robot>',
-        )
-    )
-    with pytest.raises(EngineModelError, match="unknown geometry"):
-        engines.load(bad)
-
-
 def test_reading_changes_nothing_and_a_copy_is_written_by_address(tmp_path, monkeypatch):
     """The parsed file stays as written (no mesh scale added); a scaled copy is not walked again."""
     import xml.etree.ElementTree as ET
 
-    from pitheorem.engines import urdf
+    from pitheorem.engines.fileformats import urdf
 
     path = Path(__file__).resolve().parent / "robots" / "urdf" / "arm.urdf"
     model = engines.load(path, fixed_base=True, damping=0.0, split_impulse=False)
-    tree = model._backend.tree
+    tree = model.runner.tree
     assert ET.tostring(tree.getroot()) == ET.tostring(ET.parse(path).getroot())  # read, not changed
     scales = [p for p in model.parameters if p.name.endswith("_scale")]
     assert scales
@@ -523,42 +164,10 @@ def test_reading_changes_nothing_and_a_copy_is_written_by_address(tmp_path, monk
     }
 
 
-# -- the reader: every dimensional number of a URDF, by element and attribute -------------------------
-
-_EVERY_NUMBER = """<robot name="r">
-  <link name="base">
-    <inertial><origin xyz="0 0 0.1"/><mass value="2"/>
-      <inertia ixx="1" ixy="0.5" ixz="0.25" iyy="2" iyz="0.125" izz="3"/></inertial>
-    <collision><origin xyz="0.5 0 0"/><geometry><box size="1 2 3"/></geometry></collision>
-    <collision><geometry><cylinder radius="0.1" length="0.4"/></geometry></collision>
-    <collision><geometry><mesh filename="part.stl"/></geometry></collision>
-    <collision><geometry><plane normal="0 0 1"/></geometry></collision>
-    <collision><origin xyz="0 0 9"/></collision>
-    <collision><origin xyz="0 0 8"/><geometry><sphere radius="0.3"/></geometry></collision>
-    <visual><geometry><sphere radius="0.2"/></geometry></visual>
-    <visual><geometry><material name="red"/></geometry></visual>
-    <visual><geometry><mesh filename="part.stl" scale="2 2 2"/></geometry></visual>
-    <contact><lateral_friction value="0.9"/><rolling_friction value="0.01"/><spinning_friction value="0.02"/>
-      <stiffness value="3000"/><damping value="40"/><restitution value="0.5"/><contact_cfm value="0"/>
-      <contact_erp value="0.2"/><inertia_scaling value="1"/><friction_anchor/></contact>
-  </link>
-  <link><collision><geometry><capsule radius="0.05" length="0.3"/></geometry></collision></link>
-  <link name="tip"/>
-  <joint name="weld" type="fixed"><origin xyz="1 0 0"/></joint>
-  <joint name="slide" type="prismatic"><origin xyz="0 1 0"/>
-    <limit lower="-0.5" upper="0.5" effort="10" velocity="2"/><dynamics damping="0.3" friction="0.4"/></joint>
-  <joint name="swing" type="revolute"><limit lower="-1" upper="1" effort="5" velocity="3"/></joint>
-  <joint name="spin" type="continuous"><dynamics damping="0.7"/></joint>
-</robot>
-"""
-
-_INERTIA_NOTE = "PyBullet recomputes the inertia from the collision shapes unless URDF_USE_INERTIA_FROM_FILE is given"
-
-
 def test_the_reader_finds_every_number_with_its_name_place_dimension_and_note(tmp_path):
     import xml.etree.ElementTree as ET
 
-    from pitheorem.engines.urdf import _attributes
+    from pitheorem.engines.fileformats.urdf import _attributes
 
     (tmp_path / "part.stl").write_text("solid part\nendsolid part\n")
     tree = ET.ElementTree(ET.fromstring(_EVERY_NUMBER))
@@ -648,7 +257,7 @@ def test_the_reader_finds_every_number_with_its_name_place_dimension_and_note(tm
 def test_the_reader_refuses_what_it_cannot_read_in_full_words(tmp_path, text, element, reason):
     import xml.etree.ElementTree as ET
 
-    from pitheorem.engines.urdf import _attributes
+    from pitheorem.engines.fileformats.urdf import _attributes
 
     with pytest.raises(EngineModelError) as caught:
         _attributes(ET.ElementTree(ET.fromstring(text)), "bad.urdf", tmp_path)
@@ -658,8 +267,9 @@ def test_the_reader_refuses_what_it_cannot_read_in_full_words(tmp_path, text, el
 def test_the_reader_reads_a_nameless_joint_and_every_joint_type(tmp_path):
     import xml.etree.ElementTree as ET
 
-    from pitheorem.engines.model import JointKind
-    from pitheorem.engines.urdf import _attributes, _joint_kind
+    from pitheorem.engines.fileformats.urdf import _attributes
+    from pitheorem.engines.fileformats.urdf import joint_kind as _joint_kind
+    from pitheorem.engines.parameters import JointKind
 
     assert [_joint_kind(t) for t in ("prismatic", "revolute", "continuous", "fixed", "planar", "Revolute", "")] == [
         JointKind.SLIDE,
@@ -690,83 +300,3 @@ def test_a_scaled_copy_keeps_each_file_numbers_name_place_dimension_and_note():
 
     assert described(copy) == described(model)
     assert any(note for *_, note in described(model))  # the inertia's note among them: not only empty notes
-
-
-def test_joint_springs_have_the_dimension_of_their_joint_and_scale_save_and_reload(tmp_path):
-    model = engines.load(ARM, fixed_base=True, damping=0.0, split_impulse=False).with_settings(
-        joint_springs={"slide": (40, "0.1"), "swing": (2.5, -0.2)}
-    )
-    dims = {p.name: str(p.dimension) for p in model.parameters if "spring" in p.name}
-    assert dims == {
-        "joint_slide_spring_stiffness": "M T^-2",
-        "joint_slide_spring_rest": "L",
-        "joint_swing_spring_stiffness": "M L^2 T^-2",
-        "joint_swing_spring_rest": "1",
-    }
-    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
-    scaled = model.scaled(sc, 4)
-    springs = {s["jointIndex"]: (s["stiffness"], s["restPosition"]) for s in scaled.settings()["jointSprings"]}
-    assert springs == {0: (40.0, 0.1 * 4), 1: (2.5 * 16, -0.2)}  # M T^-2 keeps, M L^2 T^-2 by s^2
-    again = engines.load(scaled.save(tmp_path / "arm4.urdf"))
-    assert again.settings() == scaled.settings()
-    snippet = Path(tmp_path / "arm4.urdf.settings.py").read_text()
-    assert "def apply_springs():" in snippet
-    rep = engines.verify(model, sc, 4, duration=0.5, ensemble=1)
-    assert rep.exact, str(rep)
-    assert rep.excited
-
-
-def test_a_joint_spring_pulls_its_joint_as_the_torque_minus_k_q_minus_q0():
-    """The spring's run against the same run with its torque given as a closed-loop policy, bit for bit."""
-    plain = engines.load(ARM, fixed_base=True, damping=0.0, split_impulse=False)
-    sprung = plain.with_settings(joint_springs={"swing": (2.5, 0.3)})
-    names = plain.coordinates()[0]
-    q = names.index("q[swing]")
-
-    def by_hand(client, body, t):
-        import pybullet
-
-        angle = pybullet.getJointState(body, 1, physicsClientId=client)[0]
-        return [0.0, -2.5 * (angle - 0.3)]
-
-    ours = sprung.run(200)
-    theirs = plain.run(200, policy=by_hand)
-    assert np.array_equal(ours, theirs)
-    assert np.ptp(ours[:, q]) > 0.1  # it swung
-
-
-@pytest.mark.parametrize(
-    ("springs", "says"),
-    [
-        ({"elbow": (1, 0)}, "no movable joint 'elbow' for a spring; the movable joints are slide, swing"),
-        ({"swing": (-1, 0)}, "the spring stiffness of joint 'swing' cannot be negative"),
-        ({"swing": 3}, "the spring of joint 'swing' is (stiffness, rest position)"),
-        ([("swing", 1, 0)], "joint_springs maps a joint's name to (stiffness, rest position)"),
-        ({"swing": ("stiff", 0)}, "stiff"),
-    ],
-)
-def test_bad_joint_springs_are_named(springs, says):
-    model = engines.load(ARM, fixed_base=True)
-    with pytest.raises(pt.PiTheoremError) as err:
-        model.with_settings(joint_springs=springs)
-    assert says in str(err.value)
-
-
-def test_with_settings_sets_the_multibody_damping_and_back_to_pybullets_own():
-    model = engines.load(ARM, fixed_base=True)
-    off = model.with_settings(damping=0)
-    assert {p.value for p in off.parameters if p.name.endswith("Damping")} == {(0.0,)}
-    back = off.with_settings(damping=None)
-    assert back.settings() == model.settings()
-    with pytest.raises(pt.InvalidRequestError, match="unknown setting 'gravity'"):
-        model.with_settings(gravity=1)
-
-
-def test_a_run_starts_from_a_given_first_row():
-    model = engines.load(ARM, fixed_base=True, damping=0.0, split_impulse=False)
-    names = model.coordinates()[0]
-    first = model.run(0)[0]
-    first[names.index("q[swing]")], first[names.index("qdot[slide]")] = 0.4, -0.3
-    rows = model.run(3, initial=first)
-    assert np.array_equal(rows[0], first)
-    assert not np.array_equal(rows, model.run(3))

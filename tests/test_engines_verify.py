@@ -26,7 +26,7 @@ def smooth(n):
 def test_own_models_are_similar_under_gravity_times_s(name, s):
     model = engines.load(DATA / name)
     sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
-    nu = model._backend.mjmodel.nu
+    nu = model.runner.mjmodel.nu
     rep = engines.verify(model, sc, s, duration=1.0, controls=smooth(nu) if nu else None)
     assert rep.similar, str(rep)
     assert set(rep.sensitivity) == set(rep.deviation)
@@ -48,16 +48,16 @@ def test_a_scaling_that_leaves_a_parameter_behind_is_caught():
 def test_controls_are_converted_by_input_dimension():
     model = engines.load(DATA / "tendon_actuators.xml")
     sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
-    nu = model._backend.mjmodel.nu
+    nu = model.runner.mjmodel.nu
     rep = engines.verify(model, sc, 10, duration=0.5, controls=lambda t: np.full(nu, 0.2))
     assert rep.similar
     # by hand: inputs of dimension M L T^-2, 1, L T^-1, T^-1, 1, M L T^-2 at lengths times 10
     by_hand = np.array([10, 1, 10, 1, 1, 10.0])
-    _names, dims = model._backend.coordinate_dimensions()
+    _names, dims = model.runner.coordinate_dimensions()
     back = np.array([10.0 ** sc.exponent_of(d) for d in dims])
-    scaled = model.scaled(sc, 10)._backend
+    scaled = model.scaled(sc, 10).runner
     n = 250
-    original = model._backend.run(n, lambda t: np.full(nu, 0.2))
+    original = model.runner.run(n, lambda t: np.full(nu, 0.2))
     converted = scaled.run(n, lambda t: np.full(nu, 0.2) * by_hand) / back
     unconverted = scaled.run(n, lambda t: np.full(nu, 0.2)) / back
     assert np.abs(converted - original).max() < 1e-12
@@ -78,7 +78,7 @@ def test_controls_are_called_at_original_times():
     engines.verify(model, sc, 4, duration=0.01, controls=controls)
     # once per step, at the start of each step of the original run: the nudged and the scaled run
     # get the same inputs (the scaled run's step i starts at 4 i dt, which is i dt in original time)
-    dt = model._backend.timestep()
+    dt = model.runner.timestep()
     assert seen == [i * dt for i in range(10)]
 
 
@@ -101,16 +101,16 @@ def test_scaled_time_step_is_checked_and_duration_validated():
 
 def test_a_policy_that_returns_the_controls_runs_exactly_as_the_controls():
     model = engines.load(DATA / "tendon_actuators.xml")
-    nu = model._backend.mjmodel.nu
-    dt = model._backend.timestep()
+    nu = model.runner.mjmodel.nu
+    dt = model.runner.timestep()
     rows = np.array([smooth(nu)(i * dt) for i in range(200)])
     step = iter(range(200))
-    open_loop = model._backend.run(200, rows)
-    closed_loop = model._backend.run(200, policy=lambda m, d: rows[next(step)])
+    open_loop = model.runner.run(200, rows)
+    closed_loop = model.runner.run(200, policy=lambda m, d: rows[next(step)])
     # MuJoCo's rollout (open loop, in C) and the Python loop of a policy take the very same steps
     assert np.array_equal(open_loop, closed_loop)
-    assert np.array_equal(open_loop, model._backend.run(200, smooth(nu)))  # called at t = i dt
-    assert np.abs(open_loop - model._backend.run(200)).max() > 1e-6  # the inputs act
+    assert np.array_equal(open_loop, model.runner.run(200, smooth(nu)))  # called at t = i dt
+    assert np.abs(open_loop - model.runner.run(200)).max() > 1e-6  # the inputs act
 
 
 def test_controller_is_built_once_per_run_from_that_runs_model():
@@ -131,7 +131,7 @@ def test_controller_is_built_once_per_run_from_that_runs_model():
 def test_controller_misuse_is_named():
     model = engines.load(DATA / "tendon_actuators.xml")
     sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
-    nu = model._backend.mjmodel.nu
+    nu = model.runner.mjmodel.nu
     with pytest.raises(pt.InvalidRequestError, match="not both"):
         engines.verify(model, sc, 2, duration=0.01, controls=smooth(nu), controller=lambda m: None)
     with pytest.raises(pt.InvalidRequestError, match="must be callable"):
@@ -145,8 +145,8 @@ def test_controller_misuse_is_named():
 def test_runs_in_one_batch_equal_the_runs_one_by_one():
     model = engines.load(DATA / "contact.xml")  # contacts, the solver's default tolerance: warm starts matter
     sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
-    scaled = model.scaled(sc, 10)._backend
-    b = model._backend
+    scaled = model.scaled(sc, 10).runner
+    b = model.runner
     n, nu = 300, b.mjmodel.nu
     rows = np.array([smooth(nu)(0.01 * i) for i in range(n)]) if nu else None
     jobs = [(b, rows, False, None), (b, rows, True, None), (scaled, rows, False, None), (b, rows, False, None)]
@@ -156,7 +156,7 @@ def test_runs_in_one_batch_equal_the_runs_one_by_one():
         assert all(np.array_equal(a, c) for a, c in zip(one_by_one, batch, strict=True))
     assert np.abs(one_by_one[0] - one_by_one[2] / 10).max() > 0  # different models: not a vacuous equality
     # the datas kept from those batches fit this model's sizes only: a batch of another model gets its own
-    other = engines.load(engines.example_path("pendulum.xml"))._backend
+    other = engines.load(engines.example_path("pendulum.xml")).runner
     assert np.array_equal(b.run_many(5, [(other, None, False, None)])[0], other.run(5))
 
 
@@ -175,18 +175,6 @@ def test_smooth_controls_and_controls_refuse_what_they_cannot_use():
     assert float(u(0.5)[0]) == pytest.approx(0.5 * np.sin(np.pi / 2))  # the sine at a quarter period
 
 
-def test_a_batch_while_the_kept_thread_pool_is_busy_runs_on_a_pool_of_its_own():
-    from pitheorem.engines import mjcf
-
-    b = engines.load(DATA / "contact.xml")._backend
-    jobs = [(b, None, False, None), (b, None, True, None)]
-    alone = b.run_many(50, jobs)
-    with mjcf._thread_pool(2):  # the kept two-thread pool is taken, as by a batch on another Python thread
-        busy = b.run_many(50, jobs)
-    assert all(np.array_equal(x, y) for x, y in zip(alone, busy, strict=True))
-    assert not np.array_equal(alone[0], alone[1])  # the nudged run differs: not a vacuous equality
-
-
 def test_a_batch_run_inherits_nothing_from_the_run_before_it_on_its_thread(tmp_path):
     """Rollout sets only the physics state between runs: inputs and active constraints must not carry over."""
     chain = tmp_path / "chain.xml"
@@ -198,7 +186,7 @@ def test_a_batch_run_inherits_nothing_from_the_run_before_it_on_its_thread(tmp_p
         '<equality><joint joint1="ja" joint2="jb"/></equality>'
         '<actuator><motor joint="ja" gear="1"/></actuator></mujoco>'
     )
-    b = engines.load(chain)._backend
+    b = engines.load(chain).runner
     free = b.variant(inactive_equalities=(0,))
     u = np.full((80, 1), 0.5)
     # more jobs than threads: each thread runs a constrained and a free run, driven and undriven, in turn
@@ -221,12 +209,12 @@ def test_what_verify_cannot_compare_is_refused_by_name():
     sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
     with pytest.raises(pt.InvalidRequestError, match=r"verify needs an EngineModel .*, got str"):
         engines.verify(str(DATA / "hanging.xml"), sc, 2, duration=0.01)
-    for scaled in ("copy.xml", model._backend):
+    for scaled in ("copy.xml", model.runner):
         with pytest.raises(pt.InvalidRequestError, match="scaled must be an EngineModel of the same engine"):
             engines.verify(model, sc, 2, duration=0.01, scaled=scaled)
     # the same engine and time step, other coordinates (a ball and a box against one hinge)
     other = engines.load(DATA / "contact.xml")
-    assert other._backend.timestep() == model._backend.timestep()
+    assert other.runner.timestep() == model.runner.timestep()
     with pytest.raises(pt.InvalidRequestError, match="other coordinates than the original"):
         engines.verify(model, sc, 2, duration=0.01, scaled=other)
     assert engines.verify(model, sc, 2, duration=0.01).similar  # its own scaled copy: no refusal
@@ -255,14 +243,14 @@ def test_a_model_or_copy_mujoco_refuses_is_verified_into_mujocos_refusal(tmp_pat
         return engines.load(path)
 
     speck, ball = body("1e-6"), body("0.01")
-    assert type(speck._backend).__name__ == "RefusedMjcfBackend"
+    assert speck.runner.refusal is not None
     sc = pt.Scaling.from_unit_change(speck.system(), {"M": 1})
     s = 2**60  # a heavier mass unit: the copy's mass clears MuJoCo's threshold, the original's does not
-    assert speck.scaled(sc, s)._backend.run(3).shape == (4, 13)
+    assert speck.scaled(sc, s).runner.run(3).shape == (4, 13)
     with pytest.raises(engines.EngineModelError, match="mass and inertia of moving bodies") as caught:
         engines.verify(speck, sc, s, duration=0.01)
     assert "MuJoCo does not run it" in str(caught.value)
     # a copy of another backend type (given by hand): the original runs, then the copy raises its refusal
     with pytest.raises(engines.EngineModelError, match="mass and inertia of moving bodies") as caught:
         engines.verify(ball, sc, 1, duration=0.01, scaled=speck)
-    assert caught.value.path == speck._backend.path
+    assert caught.value.path == speck.runner.path

@@ -13,7 +13,7 @@ import pytest
 import sympy
 
 import pitheorem as pt
-from pitheorem.engines.rod import EngineUnavailableError
+from pitheorem.engines.paper.rod import EngineUnavailableError
 from tests.conftest import ROD
 
 

@@ -5,20 +5,20 @@ nothing here imports an engine until a model is read or a simulation is
 asked for.  Install the engines with ``pip install "pitheorem[engines]"``
 (``pybullet`` and ``mujoco``).
 
-* ``pitheorem.engines.model``, ``mjcf`` and ``urdf``: ``load`` reads an
+* ``pitheorem.engines.enginemodel``, ``mjcf`` and ``urdf``: ``load`` reads an
   MJCF (MuJoCo) or URDF (PyBullet) file as an ``EngineModel``, every
   dimensional number a ``Parameter`` with its dimension; its system,
   a scaled copy and the file the engine loads;
-* ``pitheorem.engines.verify``: runs a model and its scaled copy in the
+* ``pitheorem.engines.verdicts.verify``: runs a model and its scaled copy in the
   engine and compares them against the model's own one-ulp sensitivity;
-* ``pitheorem.engines.sweep``: :func:`sweep`, the verification at many
+* ``pitheorem.engines.verdicts.sweep``: :func:`sweep`, the verification at many
   scale factors, on every core or on a Dask cluster;
 * ``pitheorem.engines.cli``: the command line on MJCF and URDF files;
-* ``pitheorem.engines.superball``: SUPERball, the white paper's robot, as a
+* ``pitheorem.engines.paper.superball``: SUPERball, the white paper's robot, as a
   MuJoCo tensegrity;
 * ``pitheorem.engines.constants``: the catalogue of each engine's
   built-in dimensional constants and searches that hold them fixed;
-* ``pitheorem.engines.rod``: the hinged rod of the white paper built in
+* ``pitheorem.engines.paper.rod``: the hinged rod of the white paper built in
   each engine, run, and compared after a similarity scaling;
 * ``pitheorem.engines.rules``: the engines' published rules for scaling
   the world, checked as changes of units;
@@ -38,8 +38,6 @@ Examples
 ['bullet_time_step']
 """
 
-from .audit import Audit, audit
-from .causes import CAUSE_KINDS, Cause
 from .constants import (
     CATALOGUE,
     ENGINES,
@@ -49,17 +47,11 @@ from .constants import (
     hidden_constants,
     with_hidden_constants,
 )
+from .enginemodel import EngineModel, EngineModelError, UnscalableParameterError, example_path
 from .loading import load
-from .model import (
-    EngineModel,
-    EngineModelError,
-    Parameter,
-    UnscalableModelWarning,
-    UnscalableParameterError,
-    example_path,
-)
-from .registry import backends
-from .rod import EngineSimilarityReport, simulate_rod, verify_engine_similarity
+from .paper.rod import EngineSimilarityReport, simulate_rod, verify_engine_similarity
+from .parameters import Parameter, UnscalableModelWarning
+from .registry import backends, formats
 from .rules import (
     BULLET_SCALE_THE_WORLD,
     MUJOCO_FRAME_SIMILAR,
@@ -69,9 +61,11 @@ from .rules import (
     RuleVerdict,
     check_rule,
 )
-from .sweep import Sweep, SweepRow, sweep
 from .thresholds import check
-from .verify import smooth_controls, verify
+from .verdicts.audit import Audit, audit
+from .verdicts.causes import CAUSE_KINDS, Cause
+from .verdicts.sweep import Sweep, SweepRow, sweep
+from .verdicts.verify import smooth_controls, verify
 
 __all__ = [
     "BULLET_SCALE_THE_WORLD",
@@ -101,6 +95,7 @@ __all__ = [
     "check_rule",
     "engine_search",
     "example_path",
+    "formats",
     "hidden_constants",
     "load",
     "simulate_rod",

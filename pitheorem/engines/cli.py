@@ -17,9 +17,9 @@ from pathlib import Path
 from ..answers import EngineApplyAnswer, EngineVerifyAnswer, ParamsAnswer, SweepAnswer
 from ..errors import InvalidRequestError
 from ..modelfile import ModelFile
-from .loading import load
-from .model import EngineModel, UnscalableParameterError
-from .urdf import SCENE_OPTIONS, scene_option
+from .enginemodel import EngineModel, UnscalableParameterError
+from .loading import load, scene_options
+from .protocols import RefusesScalings
 
 __all__ = [
     "apply_engine",
@@ -43,7 +43,7 @@ _SCENE_VALUES = {"flag": "true|false", "number": "X", "point": "X,Y,Z"}
 
 
 def scene_help() -> str:
-    """The command line's help for ``--scene``: every name of ``SCENE_OPTIONS`` with what it takes.
+    """The command line's help for ``--scene``: every runner's scene options with what each takes.
 
     Returns
     -------
@@ -53,10 +53,12 @@ def scene_help() -> str:
     --------
     >>> from pitheorem.engines.cli import scene_help
     >>> print(scene_help())
-    URDF files: PyBullet's scene and settings, any of fixed_base=true|false ground=true|false split_impulse=true|false g=X damping=X base_position=X,Y,Z (X a number)
+    in pybullet: any of fixed_base=true|false ground=true|false split_impulse=true|false g=X damping=X base_position=X,Y,Z (X a number)
     """
-    options = " ".join(f"{name}={_SCENE_VALUES[kind]}" for name, (kind, _default) in SCENE_OPTIONS.items())
-    return f"URDF files: PyBullet's scene and settings, any of {options} (X a number)"
+    by_engine: dict[str, list[str]] = {}
+    for name, (engine, kind, _default, _read) in scene_options().items():
+        by_engine.setdefault(engine, []).append(f"{name}={_SCENE_VALUES[kind]}")
+    return "; ".join(f"in {engine}: any of {' '.join(names)}" for engine, names in by_engine.items()) + " (X a number)"
 
 
 def parse_scene(items: list[str] | None) -> dict:
@@ -65,7 +67,7 @@ def parse_scene(items: list[str] | None) -> dict:
     Parameters
     ----------
     items : list of str or None
-        Names of ``pitheorem.engines.urdf.SCENE_OPTIONS``: ``fixed_base``,
+        Names of :func:`pitheorem.engines.loading.scene_options`: ``fixed_base``,
         ``ground`` and ``split_impulse`` take true/false; ``g`` and
         ``damping`` a number; ``base_position`` three numbers separated by
         commas.
@@ -89,11 +91,12 @@ def parse_scene(items: list[str] | None) -> dict:
     for item in items or ():
         name, sep, text = item.partition("=")
         name, text = name.strip(), text.strip()
-        if not sep or name not in SCENE_OPTIONS:
-            raise InvalidRequestError(f"--scene {item!r}: write NAME=VALUE with NAME one of {', '.join(SCENE_OPTIONS)}")
+        known = scene_options()
+        if not sep or name not in known:
+            raise InvalidRequestError(f"--scene {item!r}: write NAME=VALUE with NAME one of {', '.join(known)}")
         if name in options:
             raise InvalidRequestError(f"--scene sets {name!r} twice")
-        kind = SCENE_OPTIONS[name][0]
+        _engine, kind, _default, read = known[name]
         if kind == "flag":
             if text.lower() not in _TRUTH:
                 raise InvalidRequestError(f"--scene {item!r}: {name} is true or false")
@@ -107,7 +110,7 @@ def parse_scene(items: list[str] | None) -> dict:
                 )
             value = parts if kind == "point" else parts[0]
         try:
-            options[name] = scene_option(name, value)
+            options[name] = read(name, value)
         except InvalidRequestError as err:
             raise InvalidRequestError(f"--scene {item!r}: {err}", culprit=err.culprit) from None
     return options
@@ -204,8 +207,11 @@ def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None)
     try:
         scaled = model.scaled(scaling, s)
     except UnscalableParameterError as err:
-        if model.engine == "pybullet" and err.name.endswith("Damping") and "damping" not in (scene or {}):
-            raise InvalidRequestError(f"{err}; on the command line: --scene damping=0") from None
+        option, flags = (
+            model.runner.command_line_remedy(err.name) if isinstance(model.runner, RefusesScalings) else ("", "")
+        )
+        if option and option not in (scene or {}):
+            raise InvalidRequestError(f"{err}; on the command line: {flags}") from None
         raise
     exponents = (
         (p, scaling.exponent_of(p.dimension)) for p in model.parameters if not p.mixed and any(v != 0 for v in p.value)
@@ -220,7 +226,7 @@ def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None)
             raise InvalidRequestError(f"--output {output!r} is the input file; choose another name")
         scaled.save(out)
         written = str(out)
-        beside = (f"{out}.settings.json", f"{out}.settings.py") if model.engine == "pybullet" else ()
+        beside = scaled.runner.written_beside(out)
     return EngineApplyAnswer(
         Path(model.path).name, s, scaling, changed, len(model.parameters), written, beside, details
     )
@@ -255,7 +261,7 @@ def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str =
     exact: the scaled copy, mapped back, equals the original bit for bit at every step (s = 4, 250 steps)
     True
     """
-    from .verify import exact_in_binary, smooth_controls, verify
+    from .verdicts.verify import exact_in_binary, smooth_controls, verify
 
     controls = smooth_controls(model) if inputs == "smooth" and len(model.inputs()[0]) else None
     rep = verify(model, scaling, s, duration=duration, controls=controls)
@@ -552,8 +558,8 @@ def sweep_engine(
     >>> answer.sweeps[0].verdicts
     ('exact', 'exact')
     """
-    from .sweep import sweep
-    from .verify import smooth_controls
+    from .verdicts.sweep import sweep
+    from .verdicts.verify import smooth_controls
 
     bar = _progress_bar(len(models) * len(s)) if progress else None
     sweeps, plots = [], []

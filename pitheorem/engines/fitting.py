@@ -28,15 +28,16 @@ from ..errors import InvalidRequestError
 from ..simulation import positive_float
 from ..system import System
 from ..unitfit import fit_units
-from .model import Parameter, exact_product
 from .packages import check_engine
+from .parameters import Parameter, exact_product
+from .registry import REGISTRY
 from .thresholds import KINDS, held_against, thresholds
 from .units import SI, unit_size
 
 __all__ = ["FLOAT32_ENGINES", "FLOAT32_RANGE", "OPEN", "engine_fit", "engine_ranges", "fitted_units", "unit_name"]
 
-#: engines that compute in single precision
-FLOAT32_ENGINES = ("mjx",)
+#: engines that compute in single precision (by default): each registry line says its precision
+FLOAT32_ENGINES = tuple(e.name for e in REGISTRY if e.precision == "float32")
 #: where float32 computes comfortably: products and squares of such numbers keep seven digits clear of
 #: float32's smallest normal number (1.2e-38) and its largest (3.4e38)
 FLOAT32_RANGE = (1e-6, 1e6)

@@ -1,22 +1,35 @@
-"""The engines by name: which module reads which files, and which engines are installed.
+"""The file formats and the engines by name: which module reads which file, which runs it, what is installed.
 
-Each engine is one line of :data:`REGISTRY`: its name (the one name it
-has everywhere: ``EngineModel.engine``, the catalogue, the command line),
-its backend module under ``pitheorem.engines`` and that module's loader,
-the file kinds it reads (as :func:`pitheorem.modelfile.model_kind` names
-them), the Python modules it needs, the ``pip`` extra that installs them,
-and, for an engine built on another's reading of a file, that engine.
-:func:`pitheorem.engines.loading.load` finds the engine of a file here,
-imports its backend module and calls its loader.
+Two tables of data, one line per format and one per engine:
 
-The registry is data: it imports no backend module and no engine's
-package (the backends reach it through :mod:`pitheorem.engines.packages`,
-so a registry that imported them would close a circle).
+* :data:`FORMATS`: each file format (``"mjcf"``, ``"urdf"``): its module
+  under ``pitheorem.engines.fileformats``, how its files are recognised (their
+  suffixes and root element) and the engine its files run in by default;
+* :data:`REGISTRY`: each engine (its one name everywhere:
+  ``EngineModel.engine``, the catalogue, the command line): its runner
+  module under ``pitheorem.engines.runners``, the loader of that module for
+  each format it compiles, the Python modules it needs, the ``pip`` extra
+  that installs them, and, for an engine built on another's compilation
+  (MJX on MuJoCo's), that engine.
+
+:func:`pitheorem.engines.loading.load` finds a file's format here
+(:func:`file_format`), its engine (the format's default, or the one
+asked for), imports that engine's runner module and calls its loader for
+the format.  Adding a format is one line of :data:`FORMATS` and its
+module; adding an engine is one line of :data:`REGISTRY` and its runner
+module (``docs/explanation/architecture.md`` has both recipes).
+
+The registry is data: it imports no format or runner module and no
+engine's package (the runners reach it through
+:mod:`pitheorem.engines.packages`, so a registry that imported them would
+close a circle).
 
 Examples
 --------
->>> from pitheorem.engines.registry import REGISTRY
->>> [(e.name, e.kinds) for e in REGISTRY]
+>>> from pitheorem.engines.registry import FORMATS, REGISTRY
+>>> [(f.name, f.engine) for f in FORMATS]
+[('mjcf', 'mujoco'), ('urdf', 'pybullet')]
+>>> [(e.name, e.formats) for e in REGISTRY]
 [('pybullet', ('urdf',)), ('mujoco', ('mjcf',)), ('mjx', ('mjcf',))]
 """
 
@@ -24,52 +37,96 @@ from __future__ import annotations
 
 import importlib.util
 from dataclasses import dataclass
+from pathlib import Path
 from types import MappingProxyType
 
 from ..errors import InvalidRequestError
 
-__all__ = ["ALIASES", "REGISTRY", "Engine", "backends", "registered"]
+__all__ = ["ALIASES", "FORMATS", "REGISTRY", "Engine", "Format", "backends", "file_format", "formats", "registered"]
+
+
+@dataclass(frozen=True, slots=True)
+class Format:
+    """One file format: its module, how its files are recognised, the engine they run in by default.
+
+    Parameters
+    ----------
+    name : str
+        The format's one name (``"mjcf"``).
+    module : str
+        Its module, under ``pitheorem.engines``.
+    title : str
+        How the text names it (``"MJCF"``).
+    suffixes : tuple of str
+        The file suffixes it reads, lower case.
+    root : str
+        The root element of its files, which tells it from another format
+        of the same suffix (an ``.xml`` file may be MJCF or URDF).
+    engine : str
+        The engine its files load in when ``load`` names none.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.registry import FORMATS
+    >>> FORMATS[1].title, FORMATS[1].suffixes
+    ('URDF', ('.urdf', '.xml'))
+    """
+
+    name: str
+    module: str
+    title: str
+    suffixes: tuple[str, ...]
+    root: str
+    engine: str
 
 
 @dataclass(frozen=True, slots=True)
 class Engine:
-    """One engine: its backend module and loader, the files it reads, the packages it needs.
+    """One engine: its runner module and a loader for each format it compiles, the packages it needs.
 
     Parameters
     ----------
     name : str
         The engine's one name.
     module : str
-        Its backend module, under ``pitheorem.engines``.
-    loader : str
-        The function of that module that reads a file: ``loader(path, **options)``.
-    kinds : tuple of str
-        The file kinds it reads (``"mjcf"``, ``"urdf"``).
+        Its runner module, under ``pitheorem.engines``.
+    loaders : tuple of (str, str)
+        Each format it compiles, and the function of the runner module that
+        loads a file of that format: ``loader(path, **options)``.
     packages : tuple of str
         The Python modules it imports to run; the last is the engine's own
         (the module ``pitheorem.engines.packages.engine_module`` returns).
     extra : str
         The extra of ``pip install "pitheorem[extra]"`` that installs them.
-    default : bool
-        Whether a file of its kinds loads in it when ``load`` names no engine.
     base : str
-        The engine whose backend module this one builds on (``""``: none).
+        The engine whose runner module this one builds on (``""``: none).
+    precision : {"float64", "float32"}
+        The precision it computes in by default (MJX's can be asked for
+        float64; a model's runner says its own).
 
     Examples
     --------
     >>> from pitheorem.engines.registry import registered
-    >>> registered("mjx").base, registered("mjx").extra
-    ('mujoco', 'mjx')
+    >>> registered("mjx").base, registered("mjx").extra, registered("mjx").loader("mjcf")
+    ('mujoco', 'mjx', 'load_mjx')
     """
 
     name: str
     module: str
-    loader: str
-    kinds: tuple[str, ...]
+    loaders: tuple[tuple[str, str], ...]
     packages: tuple[str, ...]
     extra: str = "engines"
-    default: bool = True
     base: str = ""
+    precision: str = "float64"
+
+    @property
+    def formats(self) -> tuple[str, ...]:
+        """The formats this engine compiles."""
+        return tuple(fmt for fmt, _loader in self.loaders)
+
+    def loader(self, fmt: str) -> str:
+        """The name of the runner module's function that loads a file of format `fmt`."""
+        return dict(self.loaders)[fmt]
 
     def installed(self) -> bool:
         """Whether every Python module the engine needs can be imported here (none is imported).
@@ -89,12 +146,24 @@ class Engine:
         return True
 
 
-#: every engine pitheorem knows, one line each
+#: every file format pitheorem reads, one line each
+FORMATS: tuple[Format, ...] = (
+    Format("mjcf", "fileformats.mjcf", "MJCF", (".xml", ".mjcf"), "mujoco", "mujoco"),
+    Format("urdf", "fileformats.urdf", "URDF", (".urdf", ".xml"), "robot", "pybullet"),
+)
+
+#: every engine pitheorem runs, one line each
 REGISTRY: tuple[Engine, ...] = (
-    Engine("pybullet", "urdf", "load_urdf", ("urdf",), ("pybullet",)),
-    Engine("mujoco", "mjcf", "load_mjcf", ("mjcf",), ("mujoco",)),
+    Engine("pybullet", "runners.pybullet", (("urdf", "load_urdf"),), ("pybullet",)),
+    Engine("mujoco", "runners.mujoco", (("mjcf", "load_mjcf"),), ("mujoco",)),
     Engine(
-        "mjx", "mjx", "load_mjx", ("mjcf",), ("mujoco", "jax", "mujoco.mjx"), extra="mjx", default=False, base="mujoco"
+        "mjx",
+        "runners.mjx",
+        (("mjcf", "load_mjx"),),
+        ("mujoco", "jax", "mujoco.mjx"),
+        extra="mjx",
+        base="mujoco",
+        precision="float32",
     ),
 )
 
@@ -136,6 +205,56 @@ def registered(name) -> Engine:
         names = [repr(e.name) for e in REGISTRY]
         raise InvalidRequestError(f"unknown engine {name!r}; use {', '.join(names[:-1])} or {names[-1]}", culprit=name)
     return _BY_NAME[name]
+
+
+def formats() -> tuple[str, ...]:
+    """The file formats read here, in the registry's order.
+
+    Returns
+    -------
+    tuple of str
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> engines.formats()
+    ('mjcf', 'urdf')
+    """
+    return tuple(f.name for f in FORMATS)
+
+
+def file_format(path) -> Format | None:
+    """The format of a model file, by its suffix and, where formats share one, its root element.
+
+    Only the first few kilobytes of a file are read (a root element is
+    near the top of a large model); a file that does not exist is judged
+    by its suffix alone.
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    Format or None
+        None when no format reads files of this suffix.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.registry import file_format
+    >>> file_format("robot.urdf").name, file_format("hopper.xml").name, file_format("model.toml")
+    ('urdf', 'mjcf', None)
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    candidates = [f for f in FORMATS if suffix in f.suffixes]
+    if len(candidates) > 1 and path.is_file():
+        with path.open("rb") as file:  # the root element is near the top: read no more of a large model
+            head = file.read(4096).decode("utf-8", "replace")
+        roots = [f for f in candidates if f"<{f.root}" in head]
+        if len(roots) == 1:
+            return roots[0]
+    return candidates[0] if candidates else None
 
 
 def backends() -> tuple[str, ...]:

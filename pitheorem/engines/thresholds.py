@@ -32,16 +32,16 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-
 from ..dimensions import Dimension
 from ..errors import InvalidRequestError
 from ..immutable import immutable
 from ..simulation import positive_float
-from .causes import Cause, sorted_causes
-from .model import EngineModel, Parameter
+from .enginemodel import EngineModel
+from .loading import runner_module
 from .packages import check_engine
+from .parameters import Parameter
 from .registry import registered
+from .verdicts.causes import Cause, sorted_causes
 
 __all__ = [
     "BOUNDS",
@@ -51,7 +51,6 @@ __all__ = [
     "check",
     "crossed",
     "held_against",
-    "mjx_parameters",
     "thresholds",
 ]
 
@@ -98,14 +97,6 @@ KINDS: Mapping[str, tuple[str, Callable]] = {
     ),
     "number": ("every number of the model, of any dimension (an engine that stores them in float32)", lambda p: True),
 }
-
-#: MuJoCo's geom types (mjtGeom) that mjx_parameters reads
-_PLANE, _HFIELD, _SPHERE, _CAPSULE, _CYLINDER, _BOX, _MESH = 0, 1, 2, 3, 5, 6, 7
-#: MuJoCo's flag that keeps a body's geoms colliding with its parent's (mjtDisableBit.mjDSBL_FILTERPARENT)
-_FILTERPARENT = 1024
-#: the geom types a capsule collides with through the closest point on its segment in MJX
-#: (collision_primitive sphere_capsule and capsule_capsule, collision_convex capsule_convex and hfield_capsule)
-_SEGMENT_PARTNERS = frozenset({_HFIELD, _SPHERE, _CAPSULE, _BOX, _MESH})
 
 
 @immutable
@@ -436,151 +427,6 @@ def _detail(p, t: Threshold, worst: float, limit: float, near: float, beyond: bo
     return f"{p.path} = {worst!r} {where} {t.name} ({limit!r}{of}): {t.effect}; {remedy}"
 
 
-def _compiled(model):
-    """The model's compiled MjModel (MuJoCo's or MJX's reading of the file), or None."""
-    backend = model._backend
-    return getattr(backend, "mjmodel", None) or getattr(getattr(backend, "mjcf", None), "mjmodel", None)
-
-
-def _collision_pairs(m) -> list[tuple[int, int]]:
-    """The geom pairs a compiled MjModel collides (MuJoCo's filter, MJX's too).
-
-    The explicit ``<pair>`` elements, and every two geoms whose contype
-    and conaffinity share a bit, except geoms of bodies welded together,
-    of a body and its parent (both other than the world, unless the
-    filterparent flag is disabled) and of excluded body pairs.  (Read from
-    the model's arrays: no engine is imported here.)
-    """
-    out = {(int(min(a, b)), int(max(a, b))) for a, b in zip(m.pair_geom1, m.pair_geom2, strict=True)}
-    n = m.ngeom
-    if n < 2:
-        return sorted(out)
-    contype, conaffinity = np.asarray(m.geom_contype), np.asarray(m.geom_conaffinity)
-    weld = np.asarray(m.body_weldid)[np.asarray(m.geom_bodyid)]  # each geom's weld body
-    parent = np.asarray(m.body_weldid)[np.asarray(m.body_parentid)][weld]  # the weld body of its parent
-    body = np.asarray(m.geom_bodyid)
-    ok = ((contype[:, None] & conaffinity[None, :]) | (contype[None, :] & conaffinity[:, None])) != 0
-    ok &= weld[:, None] != weld[None, :]
-    if not m.opt.disableflags & _FILTERPARENT:
-        family = (weld[:, None] == parent[None, :]) | (parent[:, None] == weld[None, :])
-        ok &= ~(family & (weld[:, None] != 0) & (weld[None, :] != 0))
-    lo, hi = np.minimum(body[:, None], body[None, :]), np.maximum(body[:, None], body[None, :])
-    ok &= ~np.isin((lo.astype(np.int64) << 16) + hi, np.asarray(m.exclude_signature, dtype=np.int64))
-    first, second = np.nonzero(np.triu(ok, 1))
-    out.update(zip(first.tolist(), second.tolist(), strict=True))
-    return sorted(out)
-
-
-def _label(mjmodel, kind: str, index: int, names: set[str], suffix: str) -> tuple[str, str]:
-    """A derived parameter's name and the start of its path, for a geom or a body."""
-    label = getattr(mjmodel, kind)(index).name
-    ident = f"{kind}_{label}_{suffix}" if label else f"{kind}{index}_{suffix}"
-    if ident in names or not ident.isidentifier():
-        ident = f"{kind}{index}_{suffix}"
-    names.add(ident)
-    return ident, f"{kind} {label!r}" if label else f"{kind} #{index}"
-
-
-def mjx_parameters(model) -> tuple[Parameter, ...]:
-    """The numbers MJX's own constants are held against, from the compiled model.
-
-    MJX finds the closest point on a capsule's segment with a constant
-    of its own added to the segment's squared length (the threshold
-    ``mjx_segment_regularizer_float32``), and takes a cylinder whose
-    axis, times its half-length, leans less than 1 mm from a plane as
-    lying on it (``mjx_cylinder_plane_parallel``): the half-lengths of
-    the geoms in a pair MJX collides through such a function (kinds
-    ``capsule_segment`` and ``cylinder_on_plane``).  With the fluid
-    model on (the option's density, viscosity or wind), MJX floors each
-    body's mass and the sums of its principal moments that give the
-    body's equivalent box (``I1 + I2 - I0`` and its turns) at 1e-12
-    (``mjx_fluid_*``): those masses and sums (kinds ``fluid_mass`` and
-    ``fluid_box_moments``).  None of these numbers is in the file's table
-    as such (a capsule's ``fromto`` holds its ends).
-
-    Parameters
-    ----------
-    model : EngineModel
-        An MJCF model (in MuJoCo or MJX).
-
-    Returns
-    -------
-    tuple of Parameter
-        Source ``"derived"``, geoms then bodies; ``()`` for a model with no
-        such number or no compiled model (a URDF).  A file MuJoCo refuses
-        (read from a probe in another mass unit) has its half-lengths only.
-
-    Examples
-    --------
-    >>> from pitheorem import engines
-    >>> from pitheorem.engines.thresholds import mjx_parameters
-    >>> mjx_parameters(engines.load(engines.example_path("pendulum.xml")))  # its rod touches nothing
-    ()
-    """
-    mjmodel = _compiled(model)
-    if mjmodel is None:
-        return ()
-    partners: dict[int, set[int]] = {}
-    for a, b in _collision_pairs(mjmodel):
-        partners.setdefault(a, set()).add(int(mjmodel.geom_type[b]))
-        partners.setdefault(b, set()).add(int(mjmodel.geom_type[a]))
-    out, names = [], set()
-    for g in sorted(partners):
-        kind = int(mjmodel.geom_type[g])
-        if kind == _CAPSULE and partners[g] & _SEGMENT_PARTNERS:
-            shape = "capsule"
-        elif kind == _CYLINDER and _PLANE in partners[g]:
-            shape = "cylinder"
-        else:
-            continue
-        ident, path = _label(mjmodel, "geom", g, names, "half_length")
-        out.append(
-            Parameter(
-                ident,
-                f"{path} {shape} half-length",
-                (float(mjmodel.geom_size[g][1]),),
-                _L,
-                "derived",
-                "file",
-                note="read from the compiled model",
-            )
-        )
-    opt = mjmodel.opt
-    # MJX's inertia-box fluid model, on every body; a refused file's compiled masses are a probe's: left out
-    fluid = opt.density > 0 or opt.viscosity > 0 or any(opt.wind)
-    if fluid and getattr(model._backend, "refusal", None) is None:
-        for b in range(1, mjmodel.nbody):
-            mass, moments = float(mjmodel.body_mass[b]), [float(i) for i in mjmodel.body_inertia[b]]
-            if mass <= 0:
-                continue
-            ident, path = _label(mjmodel, "body", b, names, "mass_in_fluid")
-            out.append(
-                Parameter(
-                    ident,
-                    f"{path} mass in the fluid model",
-                    (mass,),
-                    _M,
-                    "derived",
-                    "file",
-                    note="read from the compiled model",
-                )
-            )
-            sums = tuple(sum(moments) - 2 * moments[i] for i in range(3))  # I1 + I2 - I0, I0 + I2 - I1, ...
-            ident, path = _label(mjmodel, "body", b, names, "fluid_box_moments")
-            out.append(
-                Parameter(
-                    ident,
-                    f"{path} fluid box moments",
-                    sums,
-                    _ML2,
-                    "derived",
-                    "file",
-                    note="sums of the body's principal moments, read from the compiled model",
-                )
-            )
-    return tuple(out)
-
-
 def held_against(model, engine: str) -> tuple[Parameter, ...]:
     """The numbers of `model` that `engine`'s thresholds are held against (:func:`check`, the fit).
 
@@ -597,7 +443,8 @@ def held_against(model, engine: str) -> tuple[Parameter, ...]:
     True
     """
     table = tuple(model.parameters)
-    return (*table, *mjx_parameters(model)) if check_engine(engine) == "mjx" else table
+    own = getattr(runner_module(check_engine(engine)), "threshold_numbers", None)  # a runner's optional hook
+    return table if own is None else (*table, *own(model))
 
 
 def check(model, engine: str | None = None) -> tuple[Cause, ...]:
@@ -644,9 +491,10 @@ def check(model, engine: str | None = None) -> tuple[Cause, ...]:
         raise InvalidRequestError(f"check needs an EngineModel (from engines.load), got {type(model).__name__}")
     engine = model.engine if engine is None else check_engine(engine)
     table = held_against(model, engine)
-    # an MJX model says its precision; a MuJoCo model held against MJX's thresholds gets MJX's default
-    causes = crossed(engine, table, precision=model.settings().get("precision", "float32"))
-    refusal = getattr(model._backend, "refusal", None)  # a file the engine refused to compile (read as a table)
+    # a model says its precision; one held against another engine's thresholds gets that engine's default
+    precision = model.runner.precision if engine == model.engine else registered(engine).precision
+    causes = crossed(engine, table, precision=precision)
+    refusal = model.runner.refusal  # a file the engine refused to compile (read as a table)
     if refusal is not None:
         causes = (
             Cause(

@@ -31,21 +31,17 @@ from fractions import Fraction
 
 import numpy as np
 
-from ..errors import EngineModelError, InvalidRequestError, UnitError
+from ..errors import InvalidRequestError, UnitError
 from ..exact import read_number, short_text
 from ..scaling import Scaling, float_power
 
 __all__ = [
     "SI",
-    "UNITS_TEXT",
     "conversion",
     "convert",
     "declared_units",
     "factor_of",
     "read_units",
-    "record",
-    "recorded",
-    "refuse_urdf",
     "run_in_units",
     "unit_size",
 ]
@@ -53,7 +49,6 @@ __all__ = [
 #: the units of a file that declares none: SI (MuJoCo's and PyBullet's defaults are given in it)
 SI = {"M": "kg", "L": "m", "T": "s"}
 #: the name of the MJCF custom text element that records the units pitheorem wrote a file in
-UNITS_TEXT = "pitheorem:units"
 #: pint's name of each base dimension
 _PINT_DIMENSION = {"M": "[mass]", "L": "[length]", "T": "[time]"}
 
@@ -268,89 +263,11 @@ def convert(model, units: Mapping[str, object]):
     """
     old = model.units
     new = read_units({**old, **dict(units)}, "the new units")
-    if model.engine == "pybullet" and new != SI:
-        refuse_urdf(model, new)
+    model.runner.check_units(new)  # a format fixed in its units (URDF: SI) refuses others, by name
     out = model
     for scaling, s in conversion(model.system(), old, new):
         out = out.scaled(scaling, s)
     return out.in_units(new)
-
-
-def refuse_urdf(model, units: Mapping[str, str]) -> None:
-    """Refuse units other than SI for a URDF model, by name (an :class:`~pitheorem.errors.EngineModelError`).
-
-    Examples
-    --------
-    >>> from pitheorem import engines
-    >>> from pitheorem.engines.units import refuse_urdf
-    >>> class Urdf:
-    ...     path = "arm.urdf"
-    >>> try:
-    ...     refuse_urdf(Urdf(), {"M": "g", "L": "cm", "T": "s"})
-    ... except engines.EngineModelError as err:
-    ...     print(str(err)[:60])
-    arm.urdf: units: a URDF file is in SI units (metres, kilogra
-    """
-    raise EngineModelError(
-        model.path or "the URDF model",
-        "units",
-        "a URDF file is in SI units (metres, "
-        "kilograms, seconds) by its specification, so pitheorem reads and writes none in "
-        f"{' '.join(units.values())}; scale it with model.scaled(...) instead",
-    )
-
-
-def record(spec, units: Mapping[str, str]) -> None:
-    """Write the units into an MJCF spec as its ``pitheorem:units`` custom text (replacing an older one).
-
-    Examples
-    --------
-    >>> import mujoco
-    >>> from pitheorem.engines.units import record, recorded
-    >>> spec = mujoco.MjSpec()
-    >>> record(spec, {"M": "g", "L": "mm", "T": "s"})
-    >>> [(t.name, t.data) for t in spec.texts]
-    [('pitheorem:units', 'M=g; L=mm; T=s')]
-    """
-    data = "; ".join(f"{b}={u}" for b, u in units.items())
-    for text in spec.texts:
-        if text.name == UNITS_TEXT:
-            text.data = data
-            return
-    spec.add_text(name=UNITS_TEXT, data=data)
-
-
-def recorded(spec, path: str) -> dict[str, str] | None:
-    """The units an MJCF spec records (a file pitheorem wrote), or None.
-
-    Raises
-    ------
-    EngineModelError
-        For a record that is no list of ``BASE=UNIT`` items.
-
-    Examples
-    --------
-    >>> import mujoco
-    >>> from pitheorem.engines.units import recorded
-    >>> spec = mujoco.MjSpec()
-    >>> recorded(spec, "a.xml") is None
-    True
-    >>> _ = spec.add_text(name="pitheorem:units", data="L=cm; M=g")
-    >>> recorded(spec, "a.xml")
-    {'M': 'g', 'L': 'cm', 'T': 's'}
-    """
-    for text in spec.texts:
-        if text.name == UNITS_TEXT:
-            units = {}
-            for item in text.data.split(";"):
-                base, sep, unit = (part.strip() for part in item.partition("="))
-                if not sep or base not in SI:
-                    raise EngineModelError(
-                        path, f"text {UNITS_TEXT!r}", f"data {text.data!r} is no list of units such as 'M=g; L=mm; T=s'"
-                    )
-                units[base] = unit
-            return read_units(units, f"the units {path} records")
-    return None
 
 
 def declared_units(model, units) -> dict[str, str]:
@@ -368,8 +285,7 @@ def declared_units(model, units) -> dict[str, str]:
     >>> declared_units(engines.load(engines.example_path("pendulum.xml")), {"L": "cm"})
     {'M': 'kg', 'L': 'cm', 'T': 's'}
     """
-    spec = getattr(model._backend, "spec", None)
-    found = recorded(spec, model.path) if spec is not None else None
+    found = model.runner.recorded_units()
     given = None if units is None else read_units(units)
     if found is not None and given is not None and found != given:
         raise InvalidRequestError(

@@ -205,12 +205,12 @@ def _unit_fit(fit) -> str:
 # -- engines ---------------------------------------------------------------------------------
 
 
-@_renders("pitheorem.engines.causes.Cause")
+@_renders("pitheorem.engines.verdicts.causes.Cause")
 def _cause(cause) -> str:
     return f"<span><strong>{escape(cause.kind)}</strong>: {_code(cause.element)}: {escape(cause.detail)}</span>"
 
 
-@_renders("pitheorem.engines.audit.Audit")
+@_renders("pitheorem.engines.verdicts.audit.Audit")
 def _audit(audit) -> str:
     first = render(audit, "text").splitlines()[0]
     items = "".join(f"<li>{render(c, 'html')}</li>" for c in audit.causes)
@@ -233,12 +233,12 @@ def _rule_verdict(verdict) -> str:
     )
 
 
-@_renders("pitheorem.engines.sweep.SweepRow")
+@_renders("pitheorem.engines.verdicts.sweep.SweepRow")
 def _sweep_row(row) -> str:
     return f"<span>{escape(render(row, 'text'))}</span>"
 
 
-@_renders("pitheorem.engines.sweep.Sweep")
+@_renders("pitheorem.engines.verdicts.sweep.Sweep")
 def _sweep(sweep) -> str:
     rows = [[escape(cell) for cell in sweep_cells(r)] for r in sweep.rows]
     header = [_math("s"), *SWEEP_HEADER[1:]]
@@ -268,7 +268,7 @@ def _parameters(name: str, model) -> str:
     return _p(escape(parameters_head(name, model))) + _table(["name", "dimension", "value", "source", "path"], rows)
 
 
-@_renders("pitheorem.engines.model.EngineModel")
+@_renders("pitheorem.engines.enginemodel.EngineModel")
 def _engine_model(model) -> str:
     return _parameters(model.path or "(unsaved)", model)
 

@@ -196,7 +196,7 @@ def _similarity_report(report) -> dict:
     }
 
 
-@_data("pitheorem.engines.rod.EngineSimilarityReport")
+@_data("pitheorem.engines.paper.rod.EngineSimilarityReport")
 def _engine_similarity_report(report) -> dict:
     ode = None if report.ode_report is None else report.ode_report.max_deviation
     return {
@@ -212,7 +212,7 @@ def _engine_similarity_report(report) -> dict:
 # -- sweeps ----------------------------------------------------------------------------------
 
 
-@_data("pitheorem.engines.sweep.SweepRow")
+@_data("pitheorem.engines.verdicts.sweep.SweepRow")
 def _sweep_row(row) -> dict:
     return {
         "s": json_number(row.s),
@@ -227,7 +227,7 @@ def _sweep_row(row) -> dict:
     }
 
 
-@_data("pitheorem.engines.sweep.Sweep")
+@_data("pitheorem.engines.verdicts.sweep.Sweep")
 def _sweep(sweep) -> dict:
     return {
         "file": sweep.model,
@@ -274,12 +274,12 @@ def _unit_fit(fit) -> dict:
 # -- engines ---------------------------------------------------------------------------------
 
 
-@_data("pitheorem.engines.causes.Cause")
+@_data("pitheorem.engines.verdicts.causes.Cause")
 def _cause(cause) -> dict:
     return {"kind": cause.kind, "element": cause.element, "detail": cause.detail}
 
 
-@_data("pitheorem.engines.audit.Audit")
+@_data("pitheorem.engines.verdicts.audit.Audit")
 def _audit(audit) -> dict:
     return {"s": audit.s, "compared": audit.compared, "causes": [_cause(c) for c in audit.causes]}
 
@@ -355,7 +355,7 @@ def _parameters(name: str, model) -> dict:
     }
 
 
-@_data("pitheorem.engines.model.EngineModel")
+@_data("pitheorem.engines.enginemodel.EngineModel")
 def _engine_model(model) -> dict:
     return _parameters(model.path, model)
 

@@ -212,12 +212,12 @@ def _unit_fit(fit) -> str:
 # -- engines ---------------------------------------------------------------------------------
 
 
-@_renders("pitheorem.engines.causes.Cause")
+@_renders("pitheorem.engines.verdicts.causes.Cause")
 def _cause(cause) -> str:
     return rf"\textbf{{{cause.kind}}}: \texttt{{{latex_escape(cause.element)}}}: {latex_escape(cause.detail)}"
 
 
-@_renders("pitheorem.engines.audit.Audit")
+@_renders("pitheorem.engines.verdicts.audit.Audit")
 def _audit(audit) -> str:
     first, *rest = render(audit, "text").splitlines()
     items = "".join(rf"\item {render(c, 'latex')}" + "\n" for c in audit.causes)
@@ -240,12 +240,12 @@ def _rule_verdict(verdict) -> str:
     return rf"\textbf{{{latex_escape(first)}}}" + "\n\\begin{itemize}" + items + "\n\\end{itemize}"
 
 
-@_renders("pitheorem.engines.sweep.SweepRow")
+@_renders("pitheorem.engines.verdicts.sweep.SweepRow")
 def _sweep_row(row) -> str:
     return latex_escape(render(row, "text"))
 
 
-@_renders("pitheorem.engines.sweep.Sweep")
+@_renders("pitheorem.engines.verdicts.sweep.Sweep")
 def _sweep(sweep) -> str:
     rows = [[latex_escape(cell) for cell in sweep_cells(r)] for r in sweep.rows]
     parts = [latex_escape(sweep_head(sweep)), _tabular("rlrrl", rows, list(SWEEP_HEADER))]
@@ -276,7 +276,7 @@ def _parameter_table(name: str, model) -> str:
     return f"{head}\n{_tabular('lllll', rows, ['name', 'dimension', 'value', 'source', 'path'])}"
 
 
-@_renders("pitheorem.engines.model.EngineModel")
+@_renders("pitheorem.engines.enginemodel.EngineModel")
 def _engine_model(model) -> str:
     return _parameter_table(model.path or "(unsaved)", model)
 

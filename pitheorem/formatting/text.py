@@ -261,7 +261,7 @@ def _similarity_report(report) -> str:
     return "\n".join(lines)
 
 
-@_renders("pitheorem.engines.rod.EngineSimilarityReport")
+@_renders("pitheorem.engines.paper.rod.EngineSimilarityReport")
 def _engine_similarity_report(report) -> str:
     verdict, kind = _verdict(report)
     ode = "" if report.ode_report is None else f"; pure ODE: {report.ode_report.max_deviation:.3g}"
@@ -328,12 +328,12 @@ def _unit_fit(fit) -> str:
 # -- engines ---------------------------------------------------------------------------------
 
 
-@_renders("pitheorem.engines.causes.Cause")
+@_renders("pitheorem.engines.verdicts.causes.Cause")
 def _cause(cause) -> str:
     return f"{cause.kind}: {cause.element}: {cause.detail}"
 
 
-@_renders("pitheorem.engines.audit.Audit")
+@_renders("pitheorem.engines.verdicts.audit.Audit")
 def _audit(audit) -> str:
     head = f"audit at s = {audit.s:g}: {audit.compared} stored numbers compared, "
     if not audit.causes:
@@ -366,7 +366,7 @@ def _rule_verdict(verdict) -> str:
     return "\n".join(lines)
 
 
-@_renders("pitheorem.engines.sweep.SweepRow")
+@_renders("pitheorem.engines.verdicts.sweep.SweepRow")
 def _sweep_row(row) -> str:
     s, verdict, deviation, yardstick, crossed = sweep_cells(row)
     line = f"s = {s}: {verdict}"
@@ -381,7 +381,7 @@ def _sweep_row(row) -> str:
 SWEEP_WIDTH = 88
 
 
-@_renders("pitheorem.engines.sweep.Sweep")
+@_renders("pitheorem.engines.verdicts.sweep.Sweep")
 def _sweep(sweep) -> str:
     lines = [
         textwrap.fill(sweep_head(sweep), SWEEP_WIDTH, subsequent_indent="  "),
@@ -429,7 +429,7 @@ def _parameters(name: str, model) -> str:
     return f"{parameters_head(name, model)}\n{parameter_table(model)}"
 
 
-@_renders("pitheorem.engines.model.EngineModel")
+@_renders("pitheorem.engines.enginemodel.EngineModel")
 def _engine_model(model) -> str:
     return _parameters(model.path or "(unsaved)", model)
 

@@ -91,8 +91,8 @@ def smooth_controls(model):
     """The small sinusoidal input of the module docstring, for `model`'s inputs; None for a model without any."""
     if model.engine == "pybullet":
         efforts = []
-        for _j, jname, _jtype in model._backend._info["joints"]:
-            name = f"{engines.model.identifier(f'joint_{jname}')}_effort"
+        for _j, jname, _jtype in model.runner._info["joints"]:
+            name = f"{engines.parameters.identifier(f'joint_{jname}')}_effort"
             try:
                 efforts.append(model.parameter(name).value[0])
             except pt.PiTheoremError:
@@ -100,7 +100,7 @@ def smooth_controls(model):
         amplitude = 0.05 * np.array(efforts)
         centre = np.zeros_like(amplitude)
     else:
-        m = model._backend.mjmodel
+        m = model.runner.mjmodel
         if not m.nu:
             return None
         lo, hi = m.actuator_ctrlrange[:, 0], m.actuator_ctrlrange[:, 1]
@@ -154,9 +154,9 @@ def survey(path: Path, options: dict, name: str, provenance: str = "written for 
         return row
     controls = smooth_controls(model)
     try:
-        n = max(1, round(DURATION / model._backend.timestep()))
-        u = None if controls is None else np.array([controls(i * model._backend.timestep()) for i in range(n)])
-        run = model._backend.run(n, u)
+        n = max(1, round(DURATION / model.runner.timestep()))
+        u = None if controls is None else np.array([controls(i * model.runner.timestep()) for i in range(n)])
+        run = model.runner.run(n, u)
         row.moved = float(np.max(np.abs(run - run[0])))
     except Exception as err:
         row.moved = None
@@ -245,11 +245,14 @@ def mjcf_variant(path: Path, change) -> engines.EngineModel:
     """The MJCF model at `path` with `change(spec)` applied before it is compiled (nothing written to disk)."""
     import mujoco
 
-    from pitheorem.engines.mjcf import MjcfBackend
+    from pitheorem.engines.fileformats.mjcf import MjcfDocument
+    from pitheorem.engines.runners.mujoco import MujocoRunner
 
     spec = mujoco.MjSpec.from_file(str(path))
     change(spec)
-    return engines.EngineModel(MjcfBackend(spec, str(path), path.resolve().parent, warn=False), "mujoco", str(path))
+    return engines.EngineModel(
+        MujocoRunner(MjcfDocument(spec, str(path), path.resolve().parent, warn=False)), "mujoco", str(path)
+    )
 
 
 def no_contacts(spec):
@@ -277,7 +280,7 @@ def mesh_twin_deviation(path: Path) -> float | None:
     their size; this twin shows what a rounding of that size does to the run, with no scaling at all.
     """
     model = mjcf_variant(path, lambda spec: None)
-    if not model._backend.mjmodel.nmesh:
+    if not model.runner.mjmodel.nmesh:
         return None
 
     def larger(spec):
@@ -286,10 +289,10 @@ def mesh_twin_deviation(path: Path) -> float | None:
 
     twin = mjcf_variant(path, larger)
     controls = smooth_controls(model)
-    dt = model._backend.timestep()
+    dt = model.runner.timestep()
     n = max(1, round(DURATION / dt))
     u = None if controls is None else np.array([controls(i * dt) for i in range(n)])
-    return float(np.max(np.abs(model._backend.run(n, u) - twin._backend.run(n, u))))
+    return float(np.max(np.abs(model.runner.run(n, u) - twin.runner.run(n, u))))
 
 
 def no_equalities(spec):

@@ -26,14 +26,14 @@ from fractions import Fraction
 
 import numpy as np
 
-from ..errors import InvalidRequestError, PiTheoremError
-from ..exact import read_scale_factor
-from ..formatting import TextDisplay
-from ..immutable import immutable
-from ..scaling import float_power, is_power_of_two
-from .backend import CounterRuns, IgnoredSettings, NamesElements
+from ...errors import InvalidRequestError, PiTheoremError
+from ...exact import read_scale_factor
+from ...formatting import TextDisplay
+from ...immutable import immutable
+from ...scaling import float_power, is_power_of_two
+from ..enginemodel import EngineModel, check_scaling
+from ..protocols import CounterRuns, IgnoredSettings, NamesElements
 from .causes import Cause, sorted_causes
-from .model import EngineModel, check_scaling
 
 __all__ = ["Audit", "audit"]
 
@@ -141,15 +141,15 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
         scaled = model.scaled(scaling, s)
     elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:
         raise InvalidRequestError("scaled must be an EngineModel of the same engine as model")
-    backend = model._backend
+    backend = model.runner
     causes, compared = [], 0
     original = backend.stored_numbers()
     try:
-        probe = model.scaled(scaling, PROBE)._backend.stored_numbers()
+        probe = model.scaled(scaling, PROBE).runner.stored_numbers()
         # a second probe, the other way: a number that scales by 4**k one way and not by 4**-k the other
         # is not scale-free even where each probe alone looks clean (a rotation found by an iteration
         # that stops at an absolute tolerance, say); and at s = 4 itself the first probe is the copy
-        inverse = model.scaled(scaling, Fraction(1, PROBE))._backend.stored_numbers()
+        inverse = model.scaled(scaling, Fraction(1, PROBE)).runner.stored_numbers()
     except PiTheoremError as err:  # a probe the engine refuses (a mass below its floor): no exponents
         causes.append(
             Cause(
@@ -159,7 +159,7 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
             )
         )
         original = {}
-    copy = scaled._backend.stored_numbers()
+    copy = scaled.runner.stored_numbers()
     probed = {}  # field -> (exponents, clean): pass one, for the largest number of each exponent
     scale: dict[float, float] = {}
     for field, before in original.items():
@@ -230,16 +230,16 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
                 "every iteration",
             )
         )
-    if isinstance(scaled._backend, IgnoredSettings):
-        causes.extend(scaled._backend.ignored_settings())
+    if isinstance(scaled.runner, IgnoredSettings):
+        causes.extend(scaled.runner.ignored_settings())
     # the engine's floors and clamps (mjMINVAL, mjMINMU, ...) that a number of either model is beyond:
     # the engine runs with the fixed threshold, not with the number, so the copy is not the original scaled
     # (a threshold that is a multiple of the time step moves with it, and clamps both alike)
-    from .thresholds import crossed
+    from ..thresholds import crossed
 
-    origin = scaled._origin
+    origin = scaled.copied_from
     # float32's range binds only a model the engine computes in float32 (MJX's default)
-    how = {"near": 1.0, "fixed_only": True, "grouped": True, "precision": model.settings().get("precision", "float32")}
+    how = {"near": 1.0, "fixed_only": True, "grouped": True, "precision": model.runner.precision}
     if origin is not None and origin[0] is model and all(0 < f < math.inf for f in origin[1].values()):
         # a copy made by model.scaled: its table is the model's, each number times its factor
         causes.extend(crossed(model.engine, model.parameters, origin[1], **how))

@@ -40,10 +40,10 @@ from types import MappingProxyType
 
 import numpy as np
 
-from ..errors import EngineUnavailableError, InvalidRequestError
-from ..modelfile import example_path
-from ..models import hinged_rod
-from ..simulation import (
+from ...errors import EngineUnavailableError, InvalidRequestError
+from ...modelfile import example_path
+from ...models import hinged_rod
+from ...simulation import (
     ModelScaling,
     SimilarityReport,
     Trajectory,
@@ -52,11 +52,11 @@ from ..simulation import (
     similarity_report,
     verify_similarity,
 )
-from ..simulation import simulate as simulate_ode
-from .constants import hidden_constants
-from .loading import load
-from .model import EngineModel
-from .packages import check_engine
+from ...simulation import simulate as simulate_ode
+from ..constants import hidden_constants
+from ..enginemodel import EngineModel
+from ..loading import load
+from ..packages import check_engine
 
 #: the paper's rod, built once: solving and compiling its equations costs more than a short engine run
 _rod_model = functools.cache(hinged_rod)
@@ -137,7 +137,7 @@ def rod_file_numbers(engine: str, params: Mapping[str, float]) -> dict[str, tupl
     Examples
     --------
     >>> import pitheorem as pt
-    >>> from pitheorem.engines.rod import rod_file_numbers
+    >>> from pitheorem.engines.paper.rod import rod_file_numbers
     >>> numbers = rod_file_numbers("mujoco", pt.models.hinged_rod().defaults)
     >>> numbers["body_rod_ipos"], numbers["body_rod_inertia"]
     ((1.0, 0.0, 0.0), (0.5, 0.5, 0.5))
@@ -228,7 +228,7 @@ def rod_model(
 
     Examples
     --------
-    >>> from pitheorem.engines.rod import rod_model
+    >>> from pitheorem.engines.paper.rod import rod_model
     >>> model = rod_model("mujoco", {"l": 1.0})
     >>> model.parameter("body_rod_ipos").value
     (0.5, 0.0, 0.0)
@@ -252,7 +252,7 @@ def rod_model(
         numbers["joint_hinge_maxJointVelocity"] = (cap,)
     model = _with_numbers(model, numbers)
     if integrator not in (None, "Euler"):
-        model = EngineModel(model._backend.variant(integrator=integrator), model.engine, "", model.units)
+        model = EngineModel(model.runner.variant(integrator=integrator), model.engine, "", model.units)
     return model
 
 
@@ -279,7 +279,7 @@ def simulate_rod(
     t_final : float
         End time; the run takes ``t_final / dt`` steps (rounded up).
     dt, integrator, engine_defaults
-        As in :func:`~pitheorem.engines.rod.rod_model`.
+        As in :func:`~pitheorem.engines.paper.rod.rod_model`.
 
     Returns
     -------
@@ -320,7 +320,7 @@ class EngineSimilarityReport(SimilarityReport):
 
     A :class:`pitheorem.SimilarityReport` and more.  The comparison itself is ``pitheorem.simulation.similarity_report``,
     shared with :func:`pitheorem.verify_similarity` and
-    :func:`pitheorem.engines.verify`; this subclass only adds what the
+    :func:`pitheorem.engines.verdicts.verify`; this subclass only adds what the
     rod's engine runs know besides.
 
     Attributes

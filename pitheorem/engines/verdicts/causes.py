@@ -2,7 +2,7 @@
 
 A verdict of "not similar" helps nobody unless it says why.  Every check of
 the engines layer that finds something a scaling cannot carry
-(:func:`pitheorem.engines.verify`, :func:`pitheorem.engines.audit`,
+(:func:`pitheorem.engines.verdicts.verify`, :func:`pitheorem.engines.verdicts.audit`,
 :func:`pitheorem.engines.check`) answers with ``Cause`` records of six kinds:
 
 ``precision``
@@ -27,9 +27,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..errors import InvalidRequestError
-from ..formatting import TextDisplay
-from ..immutable import immutable
+from ...errors import InvalidRequestError
+from ...formatting import TextDisplay
+from ...immutable import immutable
 
 __all__ = ["CAUSE_KINDS", "Cause"]
 
@@ -93,7 +93,7 @@ def sorted_causes(causes) -> tuple[Cause, ...]:
 
     Examples
     --------
-    >>> from pitheorem.engines.causes import Cause, sorted_causes
+    >>> from pitheorem.engines.verdicts.causes import Cause, sorted_causes
     >>> [c.kind for c in sorted_causes([Cause("contact", "a", ""), Cause("unscaled", "b", ""),
     ...                                 Cause("contact", "a", "")])]
     ['unscaled', 'contact']

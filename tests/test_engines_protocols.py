@@ -1,4 +1,4 @@
-"""pitheorem.engines.backend: every backend provides the protocol, and the optional parts are what they say."""
+"""pitheorem.engines.protocols: every backend provides the protocol, and the optional parts are what they say."""
 
 from __future__ import annotations
 
@@ -7,16 +7,16 @@ import ast
 import pytest
 
 from pitheorem import engines
-from pitheorem.engines.backend import (
+from pitheorem.engines.protocols import (
     OPTIONAL,
     REQUIRED,
     CounterRuns,
-    EngineBackend,
-    EngineRunner,
     HasSceneSettings,
     IgnoredSettings,
     NamesElements,
     RefusesScalings,
+    Runner,
+    Runs,
     SolverDiagnosis,
 )
 from tests.conftest import REPO
@@ -40,16 +40,22 @@ def test_the_required_methods_are_the_runner_and_the_model_file():
         "scaled",
         "save",
         "stored_numbers",
+        "precision",
+        "refusal",
+        "check_units",
+        "in_units",
+        "recorded_units",
+        "written_beside",
     }
-    assert OPTIONAL["RefusesScalings"] == ("unscalable", "unscalable_remedy")
+    assert OPTIONAL["RefusesScalings"] == ("command_line_remedy", "unscalable", "unscalable_remedy")
     assert OPTIONAL["CounterRuns"] == ("solver_settings", "variant")
     optional = {m for members in OPTIONAL.values() for m in members}
     assert not optional & set(REQUIRED)
 
 
 def test_mujocos_backend_has_every_part_but_the_scene_and_the_refusals():
-    backend = engines.load(engines.example_path("pendulum.xml"))._backend
-    for protocol in (EngineRunner, EngineBackend, CounterRuns, SolverDiagnosis, NamesElements):
+    backend = engines.load(engines.example_path("pendulum.xml")).runner
+    for protocol in (Runs, Runner, CounterRuns, SolverDiagnosis, NamesElements):
         assert isinstance(backend, protocol), protocol
     for protocol in (HasSceneSettings, RefusesScalings, IgnoredSettings):
         assert not isinstance(backend, protocol), protocol
@@ -62,8 +68,8 @@ def test_pybullets_backend_has_the_scene_the_refusals_and_no_solver_diagnosis(tm
         '<robot name="box"><link name="base"><inertial><mass value="1"/>'
         '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>'
     )
-    backend = engines.load(urdf)._backend
-    for protocol in (EngineBackend, HasSceneSettings, RefusesScalings, IgnoredSettings, CounterRuns, NamesElements):
+    backend = engines.load(urdf).runner
+    for protocol in (Runner, HasSceneSettings, RefusesScalings, IgnoredSettings, CounterRuns, NamesElements):
         assert isinstance(backend, protocol), protocol
     assert not isinstance(backend, SolverDiagnosis)
 
@@ -72,8 +78,16 @@ def test_every_optional_method_is_asked_for_through_its_protocol_not_hasattr():
     # the rest of the package asks a backend for an optional part with isinstance(backend, Protocol):
     # no hasattr or getattr with a default on a backend in the modules that use one
     optional = {m for members in OPTIONAL.values() for m in members}
-    for name in ("model.py", "verify.py", "audit.py", "diagnose.py"):
-        for node in ast.walk(ast.parse((ENGINES / name).read_text())):
+    analysis = [
+        ENGINES / "enginemodel.py",
+        *(ENGINES / "verdicts").glob("*.py"),
+        ENGINES / "thresholds.py",
+        ENGINES / "fitting.py",
+        ENGINES / "units.py",
+        ENGINES / "cli.py",
+    ]
+    for name in analysis:
+        for node in ast.walk(ast.parse(name.read_text())):
             if isinstance(node, ast.Call) and getattr(node.func, "id", "") in ("hasattr", "getattr"):
                 args = node.args
                 probed = args[1].value if len(args) > 1 and isinstance(args[1], ast.Constant) else None

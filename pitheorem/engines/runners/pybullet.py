@@ -1,11 +1,8 @@
-"""URDF models through PyBullet: the file's numbers, PyBullet's settings, scaled copies, runs.
+"""PyBullet as a runner: a URDF document with the settings PyBullet runs it with, scaled copies, runs.
 
 The file is loaded by PyBullet itself (so its defaults apply: inertia
-computed from the collision shapes, default collision margins) and read
-with :mod:`xml.etree.ElementTree` for the numbers it states.  Dimensions
-follow the joint type: a revolute or continuous joint has coordinate ``q``
-= 1 and generalised force ``Q`` = M L^2 T^-2, a prismatic one ``q`` = L and
-``Q`` = M L T^-2.
+computed from the collision shapes, default collision margins); the
+numbers it states are the URDF format's (:mod:`pitheorem.engines.fileformats.urdf`).
 
 What a URDF cannot hold goes into :meth:`~pitheorem.engines.EngineModel.settings`:
 gravity (PyBullet's own default is 0; the model runs with 9.81 m s^-2
@@ -32,30 +29,20 @@ from __future__ import annotations
 import copy
 import json
 import math
-import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import InvalidRequestError, UnscalableParameterError
-from ..exact import read_number
-from ..simulation import nudged
-from .constants import hidden_constants
-from .model import (
-    EngineModel,
-    EngineModelError,
-    JointKind,
-    Parameter,
-    attribute_text,
-    dim,
-    identifier,
-    unique_name,
-    warn_unscalable,
-)
-from .numbers import check_model_file, check_numbers
-from .packages import engine_module, quiet_stdout
+from ...errors import InvalidRequestError, UnscalableParameterError
+from ...exact import read_number
+from ...simulation import nudged
+from ..constants import hidden_constants
+from ..enginemodel import EngineModel, EngineModelError
+from ..fileformats.urdf import UrdfDocument, joint_kind, read_urdf, refuse_units
+from ..packages import engine_module, quiet_stdout
+from ..parameters import Parameter, attribute_text, dim, identifier
 
-__all__ = ["SCENE_OPTIONS", "UrdfBackend", "load_urdf", "scene_option"]
+__all__ = ["SCENE_OPTIONS", "PybulletRunner", "load_urdf", "scene_option"]
 
 _ONE, _L, _T, _M = dim("1"), dim("L"), dim("T"), dim("M")
 
@@ -98,211 +85,6 @@ def _pybullet():
     return engine_module("pybullet")
 
 
-def _floats(text: str | None) -> list[float]:
-    return [float(v) for v in (text or "").split()]
-
-
-def _joint_kind(jtype: str) -> JointKind | None:
-    if jtype == "prismatic":
-        return JointKind.SLIDE
-    if jtype in ("revolute", "continuous"):
-        return JointKind.HINGE
-    return None
-
-
-class _Attr:
-    """One dimensional attribute of one URDF element (its ``value`` attribute or another one).
-
-    ``index`` is the element's address: its place in the document's order
-    (``root.iter()``), the same in every copy of the parsed file.
-    ``default`` is the text the engine reads when the attribute is absent
-    (a mesh's scale), so that reading a file never adds anything to it.
-    """
-
-    def __init__(self, name, path, element, attr, dimension, note="", index=-1, default=None):
-        self.name, self.path, self.element, self.attr, self.dimension, self.note = (
-            name,
-            path,
-            element,
-            attr,
-            dimension,
-            note,
-        )
-        self.index, self.default = index, default
-
-    def read(self):
-        return tuple(_floats(self.element.get(self.attr, self.default)))
-
-    def in_copy(self, elements: list) -> _Attr:
-        """The same attribute in a copy of the file, whose elements in document order are `elements`."""
-        return _Attr(
-            self.name, self.path, elements[self.index], self.attr, self.dimension, self.note, self.index, self.default
-        )
-
-
-def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr]:
-    """Every dimensional number the URDF states, in document order."""
-    root = tree.getroot()
-    if root.tag != "robot":
-        raise EngineModelError(path, f"<{root.tag}>", "a URDF file's root element must be <robot>")
-    out: list[_Attr] = []
-    names: set[str] = set()
-    address = {id(element): i for i, element in enumerate(root.iter())}
-
-    def add(ident, where, element, attr, dimension, note="", default=None):
-        if element is None or element.get(attr, default) is None:
-            return
-        text = element.get(attr, default)
-        check_numbers(path, where, attr, text, nonnegative=dimension == _M)  # a mass cannot be < 0
-        out.append(
-            _Attr(unique_name(ident, names), where, element, attr, dimension, note, address[id(element)], default)
-        )
-
-    for link in root.findall("link"):
-        lname = link.get("name", "")
-        ident = identifier(f"link_{lname}")
-        where = f"link {lname!r}"
-        inertial = link.find("inertial")
-        if inertial is not None:
-            add(f"{ident}_com", f"{where} inertial origin xyz", inertial.find("origin"), "xyz", _L)
-            add(f"{ident}_mass", f"{where} inertial mass", inertial.find("mass"), "value", _M)
-            inertia = inertial.find("inertia")
-            for a in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
-                add(
-                    f"{ident}_{a}",
-                    f"{where} inertia {a}",
-                    inertia,
-                    a,
-                    dim("M L^2"),
-                    note="PyBullet recomputes the inertia from the collision shapes unless "
-                    "URDF_USE_INERTIA_FROM_FILE is given",
-                )
-        for kind in ("collision", "visual"):
-            for k, shape in enumerate(link.findall(kind)):
-                sid = f"{ident}_{kind}{k}"
-                swhere = f"{where} {kind} #{k}"
-                add(f"{sid}_xyz", f"{swhere} origin xyz", shape.find("origin"), "xyz", _L)
-                geometry = shape.find("geometry")
-                if geometry is None:
-                    continue
-                for g in geometry:
-                    if g.tag == "box":
-                        add(f"{sid}_size", f"{swhere} box size", g, "size", _L)
-                    elif g.tag in ("cylinder", "capsule", "sphere"):
-                        add(f"{sid}_radius", f"{swhere} {g.tag} radius", g, "radius", _L)
-                        add(f"{sid}_length", f"{swhere} {g.tag} length", g, "length", _L)
-                    elif g.tag == "mesh":
-                        filename = g.get("filename", "")
-                        resolved = _mesh_path(filename, source_dir)
-                        if resolved is None:
-                            raise EngineModelError(
-                                path,
-                                f"{swhere} mesh {filename!r}",
-                                "mesh file not found (relative to the URDF's folder)",
-                            )
-                        add(
-                            f"{sid}_scale",
-                            f"{swhere} mesh scale",
-                            g,
-                            "scale",
-                            _L,
-                            note="a factor times the mesh file's units, a length",
-                            default="1 1 1",
-                        )
-                    elif g.tag == "plane":
-                        pass  # an infinite plane: nothing to scale
-                    elif kind == "visual":
-                        pass  # something PyBullet draws nothing from (a <material> put inside <geometry>)
-                    else:
-                        raise EngineModelError(
-                            path,
-                            f"{swhere} <{g.tag}>",
-                            "unknown geometry; use box, cylinder, capsule, sphere, mesh or plane",
-                        )
-        contact = link.find("contact")
-        if contact is not None:
-            for tag, d in (
-                ("rolling_friction", _L),
-                ("spinning_friction", _L),
-                ("stiffness", dim("M T^-2")),
-                ("damping", dim("M T^-1")),
-            ):
-                add(f"{ident}_{tag}", f"{where} contact {tag}", contact.find(tag), "value", d)
-            for tag in contact:
-                if tag.tag not in (
-                    "lateral_friction",
-                    "rolling_friction",
-                    "spinning_friction",
-                    "restitution",
-                    "stiffness",
-                    "damping",
-                    "contact_cfm",
-                    "contact_erp",
-                    "inertia_scaling",
-                    "friction_anchor",
-                ):
-                    raise EngineModelError(path, f"{where} contact <{tag.tag}>", "unknown contact parameter")
-    for joint in root.findall("joint"):
-        jname, jtype = joint.get("name", ""), joint.get("type", "")
-        ident = identifier(f"joint_{jname}")
-        where = f"joint {jname!r}"
-        add(f"{ident}_xyz", f"{where} origin xyz", joint.find("origin"), "xyz", _L)
-        if jtype == "fixed":
-            continue
-        kind = _joint_kind(jtype)
-        if kind is None:
-            raise EngineModelError(
-                path,
-                f"{where} (type {jtype!r})",
-                "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic or fixed",
-            )
-        q, force = kind.q, kind.force
-        limit = joint.find("limit")
-        add(f"{ident}_lower", f"{where} limit lower", limit, "lower", q)
-        add(f"{ident}_upper", f"{where} limit upper", limit, "upper", q)
-        add(f"{ident}_effort", f"{where} limit effort", limit, "effort", force)
-        add(f"{ident}_velocity", f"{where} limit velocity", limit, "velocity", q / _T)
-        dynamics = joint.find("dynamics")
-        add(f"{ident}_damping", f"{where} dynamics damping", dynamics, "damping", force * _T / q)
-        add(f"{ident}_friction", f"{where} dynamics friction", dynamics, "friction", force)
-    return out
-
-
-def _compound_meshes(tree: ET.ElementTree, source_dir: Path) -> list[tuple[str, str, int]]:
-    """The OBJ collision meshes of several objects (convex decompositions such as V-HACD's).
-
-    PyBullet loads such a mesh as a compound of convex hulls, and
-    ``changeDynamics(collisionMargin=...)`` does not reach the parts: a margin
-    of 0.05 moves pybullet_data's duck at rest by 8e-5 m, not 0.05 m.  The
-    parts keep their default margin, a length no scaling can change, so the
-    contacts of a scaled copy are off by it.  Returns (link, file, parts) each.
-    """
-    found = []
-    for link in tree.getroot().iter("link"):
-        for collision in link.findall("collision"):
-            for mesh in collision.iter("mesh"):
-                filename = mesh.get("filename", "")
-                resolved = _mesh_path(filename, source_dir)
-                if resolved is None or resolved.suffix.lower() != ".obj":
-                    continue
-                with open(resolved, encoding="utf-8", errors="replace") as lines:
-                    parts = sum(1 for line in lines if line.startswith("o "))
-                if parts > 1:
-                    found.append((link.get("name"), filename, parts))
-    return found
-
-
-def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> None:
-    """Warn about each collision mesh of :func:`_compound_meshes`."""
-    for link, filename, parts in _compound_meshes(tree, source_dir):
-        warn_unscalable(
-            path,
-            f"link {link!r} collision mesh {filename!r}",
-            f"its {parts} convex parts load as a compound whose collision margins "
-            "changeDynamics cannot reach; contacts of a scaled copy are off by that margin",
-        )
-
-
 def _link_parameter(link: str, setting: str) -> str:
     """The parameter name of a link's ``changeDynamics`` setting, as the table and a scaled copy know it."""
     return f"{identifier(f'link_{link}')}_{setting}"
@@ -318,71 +100,25 @@ def _spring_parameters(joint: str) -> tuple[str, str]:
     return identifier(f"joint_{joint}_spring_stiffness"), identifier(f"joint_{joint}_spring_rest")
 
 
-def _xml_text(tree: ET.ElementTree) -> str:
-    return ET.tostring(tree.getroot(), encoding="unicode")
-
-
-def _mesh_path(filename: str, source_dir: Path) -> Path | None:
-    """The file a URDF's mesh or texture names, searched as PyBullet does; None if there is none.
-
-    A relative name is relative to the URDF's folder; ``package://NAME/REST`` is looked for as
-    ``NAME/REST`` in that folder and the folders above it (a ROS package's meshes sit beside its
-    ``urdf`` folder).
-    """
-    name = filename
-    if name.startswith("package://"):
-        name = name[len("package://") :]
-    candidates = [source_dir / name, Path(name)]
-    if filename.startswith("package://"):
-        candidates += [folder / name for folder in list(source_dir.parents)[:4]]
-    for c in candidates:
-        if c.is_file():
-            return c
-    return None
-
-
-def _portable_text(tree: ET.ElementTree, source_dir: Path) -> str | None:
-    """The URDF's text with every mesh and texture file named by its absolute path, to load from any folder.
-
-    None when one of them cannot be found (PyBullet may still find it from the file's own folder).
-    """
-    tree = copy.deepcopy(tree)
-    for element in tree.getroot().iter():
-        if element.tag in ("mesh", "texture") and element.get("filename"):
-            found = _mesh_path(element.get("filename"), source_dir)
-            if found is None:
-                return None
-            element.set("filename", str(found.resolve()))
-    return _xml_text(tree)
-
-
-class UrdfBackend:
+class PybulletRunner:
     """A URDF file with the PyBullet settings it runs with.
 
     Examples
     --------
-    >>> from pitheorem.engines.urdf import UrdfBackend
-    >>> UrdfBackend.__name__
-    'UrdfBackend'
+    >>> from pitheorem.engines.runners.pybullet import PybulletRunner
+    >>> PybulletRunner.__name__
+    'PybulletRunner'
     """
 
-    def __init__(
-        self,
-        tree: ET.ElementTree,
-        path: str,
-        source_dir: Path,
-        settings: dict,
-        *,
-        scene: dict,
-        info: dict | None = None,
-        attrs: list[_Attr] | None = None,
-    ):
-        self.tree = tree  # never changed once read: a copy is a new tree
-        self.path = path
-        self.source_dir = source_dir
+    #: PyBullet computes in double precision
+    precision = "float64"
+    #: PyBullet runs every file it loads
+    refusal = None
+
+    def __init__(self, document: UrdfDocument, settings: dict, *, scene: dict, info: dict | None = None):
+        self.document = document  # the file's numbers; never changed once read (a copy is a new document)
+        self.tree, self.path, self.source_dir = document.tree, document.path, document.source_dir
         self.scene = scene  # base position, fixed base, ground plane
-        # a copy gets its attributes by address from its original's: the file is not walked again
-        self._attrs = _attributes(tree, path, source_dir) if attrs is None else attrs
         self._settings = settings
         # PyBullet's reading of the links and joints; a twin (the same file, every number one ulp off)
         # shares its original's instead of loading the file again
@@ -407,8 +143,8 @@ class UrdfBackend:
         import tempfile
 
         if "_portable" not in self.__dict__:  # the tree never changes: its text is made once
-            self._portable = _portable_text(self.tree, self.source_dir)
-        text = self._portable if self._portable is not None else _xml_text(self.tree)
+            self._portable = self.document.portable_text()
+        text = self._portable if self._portable is not None else self.document.text()
         fd, tmp = tempfile.mkstemp(suffix=".urdf", dir=None if self._portable is not None else self.source_dir)
         try:
             with os.fdopen(fd, "w") as fh:
@@ -449,7 +185,7 @@ class UrdfBackend:
             pb.disconnect(physicsClientId=client)
 
     def parameters(self):
-        out = [Parameter(a.name, a.path, a.read(), a.dimension, "file", "file", note=a.note) for a in self._attrs]
+        out = self.document.parameters()
         st = self._settings
         out.append(
             Parameter(
@@ -533,14 +269,14 @@ class UrdfBackend:
                     _joint_speed_parameter(jname),
                     f"joint {jname!r} maxJointVelocity",
                     (self._max_joint_velocity(j),),
-                    _joint_kind(jtype).q / _T,
+                    joint_kind(jtype).q / _T,
                     "engine",
                     "changeDynamics(maxJointVelocity=...)",
                 )
             )
         for j, jname, jtype in self._info["joints"]:
             if str(j) in st["springs"]:
-                kind, (k, rest) = _joint_kind(jtype), st["springs"][str(j)]
+                kind, (k, rest) = joint_kind(jtype), st["springs"][str(j)]
                 stiffness, rest_name = _spring_parameters(jname)
                 out.append(
                     Parameter(
@@ -652,14 +388,8 @@ class UrdfBackend:
 
     # -- scaling --------------------------------------------------------------------------------
 
-    def scaled(self, factors, scaling, s, *, info: dict | None = None, text=attribute_text) -> UrdfBackend:
-        tree = copy.deepcopy(self.tree)
-        elements = list(tree.getroot().iter())
-        attrs = [a.in_copy(elements) for a in self._attrs]
-        for a in attrs:
-            f = factors.get(a.name, 1.0)
-            if f != 1.0:
-                a.element.set(a.attr, text(a.read(), f))  # by default the exact decimal product
+    def scaled(self, factors, scaling, s, *, info: dict | None = None, text=attribute_text) -> PybulletRunner:
+        document = self.document.scaled(factors, text=text)  # by default the exact decimal products
         st = json.loads(json.dumps(self._settings))
         st["g"] *= factors.get("g", 1.0)
         st["timestep"] *= factors.get("timestep", 1.0)
@@ -696,13 +426,21 @@ class UrdfBackend:
             # this file serves the copy (every dynamics value the copy runs with is set above, none falls
             # back to the load's), and the copy is not loaded once more just to be read
             info = self._info
-        return UrdfBackend(tree, self.path, self.source_dir, st, scene=scene, info=info, attrs=attrs)
+        return PybulletRunner(document, st, scene=scene, info=info)
 
     #: the one line that removes every refusal of PyBullet's default scene at once
     unscalable_remedy = (
         "In one go: engines.load(path, damping=0.0, split_impulse=False) (on the command line: "
         "--scene damping=0 split_impulse=false), the same in the original and the scaled run"
     )
+
+    def command_line_remedy(self, name: str) -> tuple[str, str]:
+        """The ``--scene`` option that removes the refusal of `name`, and its flag (("", "") for none)."""
+        if name.endswith("Damping"):
+            return "damping", "--scene damping=0"
+        if name.startswith("splitImpulse"):
+            return "split_impulse", "--scene split_impulse=false"
+        return "", ""
 
     def unscalable(self, factors) -> list[UnscalableParameterError]:
         """The settings the factors would change but no PyBullet call can: the split-impulse threshold."""
@@ -718,14 +456,26 @@ class UrdfBackend:
             ]
         return []
 
+    def check_units(self, units) -> None:
+        """Refuse units other than SI: a URDF file is in SI units by its specification."""
+        if dict(units) != dict(self.document.fixed_units):
+            refuse_units(self.path, units)
+
+    def in_units(self, units) -> PybulletRunner:
+        self.check_units(units)
+        return self
+
+    def recorded_units(self) -> dict[str, str] | None:
+        """None: a URDF file records no units (it is in SI)."""
+        return None
+
+    def written_beside(self, path) -> tuple[str, ...]:
+        """The settings :meth:`save` writes beside the file: a JSON file and a script that applies it."""
+        return (f"{path}.settings.json", f"{path}.settings.py")
+
     def save(self, path: Path) -> None:
         path = Path(path)
-        tree = copy.deepcopy(self.tree)
-        for g in tree.getroot().iter("mesh"):  # absolute mesh paths: the copy loads from any folder
-            resolved = _mesh_path(g.get("filename", ""), self.source_dir)
-            if resolved is not None:
-                g.set("filename", str(resolved.resolve()))
-        path.write_text(_xml_text(tree))
+        self.document.save(path)
         settings = self.settings()
         Path(f"{path}.settings.json").write_text(json.dumps(settings, indent=2))
         Path(f"{path}.settings.py").write_text(_snippet(path.name, settings))
@@ -742,14 +492,14 @@ class UrdfBackend:
             dims.append(d)
         for _j, jname, jtype in self._info["joints"]:
             names.append(f"q[{jname}]")
-            dims.append(_joint_kind(jtype).q)
+            dims.append(joint_kind(jtype).q)
         for _j, jname, jtype in self._info["joints"]:
             names.append(f"qdot[{jname}]")
-            dims.append(_joint_kind(jtype).q / _T)
+            dims.append(joint_kind(jtype).q / _T)
         return names, dims
 
     def control_dimensions(self):
-        return [_joint_kind(jtype).force for _j, _n, jtype in self._info["joints"]]
+        return [joint_kind(jtype).force for _j, _n, jtype in self._info["joints"]]
 
     def _setup(self, pb, client) -> int:
         """The scene, the robot and every setting, as a run starts them; the robot's body id."""
@@ -826,7 +576,7 @@ class UrdfBackend:
 
     def ignored_settings(self) -> tuple:
         """The ``changeDynamics`` settings PyBullet does not take: each as a ``setting`` Cause."""
-        from .causes import Cause
+        from ..verdicts.causes import Cause
 
         compound = [
             Cause(
@@ -837,13 +587,13 @@ class UrdfBackend:
                 "PyBullet's default margin, a length no scaling changes, so the copy's contacts are off "
                 "by it",
             )
-            for link, filename, parts in _compound_meshes(self.tree, self.source_dir)
+            for link, filename, parts in self.document.compound_meshes()
         ]
         return tuple(compound) + self._ignored_margins()
 
     def _ignored_margins(self) -> tuple:
         """The links whose margin PyBullet keeps other than the one set."""
-        from .causes import Cause
+        from ..verdicts.causes import Cause
 
         dynamics, _ = self._held()
         missed = []
@@ -866,7 +616,7 @@ class UrdfBackend:
             ),
         )
 
-    def twin(self, seed: int) -> UrdfBackend:
+    def twin(self, seed: int) -> PybulletRunner:
         """A copy with every parameter moved by about one ulp (random signs from `seed`) and its start nudged."""
         rng = np.random.default_rng(seed)
         factors = {
@@ -882,7 +632,7 @@ class UrdfBackend:
         value = float(self._settings["solverResidualThreshold"])
         return {"solverResidualThreshold": value} if value else {}
 
-    def variant(self, *, tolerance: float | None = None) -> UrdfBackend:
+    def variant(self, *, tolerance: float | None = None) -> PybulletRunner:
         """A copy run with another residual threshold: a counter-run's model."""
         out = copy.copy(self)
         if tolerance is not None:
@@ -976,7 +726,7 @@ class UrdfBackend:
             np.array([r for _p, _k, r in springs]),
         )
 
-    def with_settings(self, **changes) -> UrdfBackend:
+    def with_settings(self, **changes) -> PybulletRunner:
         st = json.loads(json.dumps(self._settings))
         scene = dict(self.scene)
         for key, value in changes.items():
@@ -997,7 +747,7 @@ class UrdfBackend:
         # the same file (a tree is never changed once read), other settings
         # the same links and joints unless the scene moved or fixed the base: PyBullet's reading is kept
         info = self._info if scene == self.scene else None
-        return UrdfBackend(self.tree, self.path, self.source_dir, st, scene=scene, attrs=self._attrs, info=info)
+        return PybulletRunner(self.document, st, scene=scene, info=info)
 
     def _damping(self, value: float | None) -> dict:
         """The settings' multibody damping: `value` for both numbers of every link, or {} (PyBullet's own)."""
@@ -1155,7 +905,7 @@ def load_urdf(
     Examples
     --------
     >>> import pybullet_data, os
-    >>> from pitheorem.engines.urdf import load_urdf
+    >>> from pitheorem.engines.runners.pybullet import load_urdf
     >>> model = load_urdf(os.path.join(pybullet_data.getDataPath(), "cartpole.urdf"))
     >>> str(model.parameter("joint_slider_to_cart_velocity").dimension)
     'L T^-1'
@@ -1223,7 +973,7 @@ def scene_option(name: str, value):
 
     Examples
     --------
-    >>> from pitheorem.engines.urdf import scene_option
+    >>> from pitheorem.engines.runners.pybullet import scene_option
     >>> scene_option("ground", True), scene_option("damping", "0"), scene_option("base_position", (0, "0.5", 1))
     (True, 0.0, (0.0, 0.5, 1.0))
     """
@@ -1246,17 +996,10 @@ def scene_option(name: str, value):
     return number
 
 
-def _scene_backend(path: Path, scene: dict) -> UrdfBackend:
+def _scene_backend(path: Path, scene: dict) -> PybulletRunner:
     """The backend of a URDF in a scene: each of :data:`SCENE_OPTIONS` given (``damping`` may be None)."""
     scene = {name: None if value is None else scene_option(name, value) for name, value in scene.items()}
-    root = check_model_file(path)  # the file parsed once, its numbers checked
-    if root is not None:
-        tree = ET.ElementTree(root)
-    else:  # not well-formed: parse it again for the line of the fault
-        try:
-            tree = ET.parse(path)
-        except ET.ParseError as err:
-            raise EngineModelError(str(path), f"line {err.position[0]}", f"not well-formed XML ({err})") from None
+    document = read_urdf(path)
     settings = {
         "g": scene["g"],
         "timestep": _BULLET["bullet_time_step"].default,
@@ -1271,14 +1014,14 @@ def _scene_backend(path: Path, scene: dict) -> UrdfBackend:
         "ground_margin": _BULLET["bullet_collision_margin"].default,
     }
     placed = {name: scene[name] for name in ("base_position", "fixed_base", "ground")}
-    backend = UrdfBackend(tree, str(path), path.resolve().parent, settings, scene=placed)
-    _warn_compound_meshes(tree, str(path), path.resolve().parent)
+    backend = PybulletRunner(document, settings, scene=placed)
+    document.warn_compound_meshes()
     backend._settings["damping"] = backend._damping(scene["damping"])
     return backend
 
 
 def _load_saved(path: Path, saved: Path) -> EngineModel:
-    """The model of a saved URDF with the settings :meth:`UrdfBackend.save` wrote beside it."""
+    """The model of a saved URDF with the settings :meth:`PybulletRunner.save` wrote beside it."""
 
     def malformed(err) -> EngineModelError:
         what = f"key {err}" if isinstance(err, KeyError) else str(err).splitlines()[0]

@@ -1,4 +1,4 @@
-"""MJCF models through MuJoCo: every attribute with its dimension, scaled copies, runs.
+"""The MJCF format: every attribute with its dimension, read through MuJoCo's parser, and written back by address.
 
 The file is read with MuJoCo's own ``MjSpec`` parser, so default classes,
 includes and units (``compiler angle``) resolve as MuJoCo resolves them,
@@ -28,22 +28,20 @@ precision.
 
 from __future__ import annotations
 
-import atexit
 import math
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ..dimensions import Dimension
-from ..errors import PiTheoremError, UnscalableParameterError
-from ..simulation import nudged
-from .model import (
-    EngineModel,
-    EngineModelError,
+from ...dimensions import Dimension
+from ...errors import PiTheoremError, UnscalableParameterError
+from ..enginemodel import EngineModelError
+from ..packages import engine_module
+from ..parameters import (
     JointKind,
     Parameter,
     dim,
@@ -54,9 +52,8 @@ from .model import (
     warn_unscalable,
 )
 from .numbers import check_model_file
-from .packages import engine_module
 
-__all__ = ["MjcfBackend", "RefusedMjcfBackend", "load_mjcf"]
+__all__ = ["UNITS_TEXT", "MjcfDocument", "RefusedMjcfDocument", "read_mjcf", "record_units", "recorded_units"]
 
 #: a custom ``<text>`` element named this prefix plus a numeric's name declares that numeric's dimension
 DIMENSION_TEXT = "dimension:"
@@ -991,17 +988,24 @@ def _builtin_defaults(mj) -> dict:
     return _DEFAULTS_CACHE
 
 
-# -- the backend ------------------------------------------------------------------------------
+# -- the document ------------------------------------------------------------------------------
 
 
-class MjcfBackend:
-    """An MJCF model held as MuJoCo's ``MjSpec`` with its compiled ``MjModel``.
+class MjcfDocument:
+    """An MJCF file read through MuJoCo's parser: its spec, the numbers MuJoCo's compiler derives, its table.
+
+    The format's half of a MuJoCo model: it reads the file (``MjSpec``),
+    compiles it once for the numbers the compiler derives (masses and
+    inertias from geoms, a tendon's rest length), lists every dimensional
+    number with its address (:meth:`parameters`), writes a scaled copy by
+    address (:meth:`scaled`) and saves it (:meth:`save`).  It never steps
+    the model: :class:`pitheorem.engines.runners.mujoco.MujocoRunner` runs it.
 
     Examples
     --------
     >>> from pitheorem import engines
-    >>> model = engines.load(engines.example_path("pendulum.xml"))
-    >>> model._backend.mjmodel.nq
+    >>> from pitheorem.engines.fileformats.mjcf import read_mjcf
+    >>> read_mjcf(engines.example_path("pendulum.xml")).mjmodel.nq
     1
     """
 
@@ -1035,8 +1039,6 @@ class MjcfBackend:
             self._walked = self._walk()
         return self._walked
 
-    # -- table --------------------------------------------------------------------------------
-
     def parameters(self):
         return [
             Parameter(s.name, s.path, s.read(), s.dimension, s.source, "file", s.parts, s.note) for s in self._slots
@@ -1045,9 +1047,7 @@ class MjcfBackend:
     def settings(self) -> dict:
         return {}
 
-    # -- scaling ------------------------------------------------------------------------------
-
-    def scaled(self, factors, scaling, s) -> MjcfBackend:
+    def scaled(self, factors, scaling, s) -> MjcfDocument:
         spec = self._portable_spec()
         elements = _Elements(spec)
         for slot in self._slots:
@@ -1056,12 +1056,24 @@ class MjcfBackend:
                 slot.write_on(elements.get(slot.where), factor)
         if scaling is not None:
             self._scale_keyframes(spec, scaling, s)
-        copy = MjcfBackend(spec, "", self.source_dir, warn=False, asset_dirs=self.asset_dirs)
+        copy = MjcfDocument(spec, "", self.source_dir, warn=False, asset_dirs=self.asset_dirs)
         copy._scaled_from = (self, factors)  # for save's exact decimals, read only if the copy is saved
-        copy._field_names = self._fields()  # the same elements: the same stored fields
         copy._inputs = self._actuator_inputs()  # the same actuators and joints: the same dimensions
         copy._coordinates = self.coordinate_dimensions()
         return copy
+
+    def in_units(self, units) -> MjcfDocument:
+        """A copy whose spec records `units`, so that a saved file declares them (its numbers unchanged)."""
+        import copy
+
+        out = copy.copy(self)
+        out.spec = self.spec.copy()
+        record_units(out.spec, units)
+        return out
+
+    def recorded_units(self) -> dict[str, str] | None:
+        """The units the file records (one pitheorem wrote), or None."""
+        return recorded_units(self.spec, self.path)
 
     def save(self, path: Path) -> None:
         spec = self._portable_spec()
@@ -1159,178 +1171,6 @@ class MjcfBackend:
             if len(key.act) and model.na and len(fa) == len(key.act):
                 key.act = np.asarray(key.act) * fa
 
-    # -- what the engine holds: the audit's numbers, the yardstick's twins ----------------------
-
-    def stored_numbers(self) -> dict[str, np.ndarray]:
-        """Every floating-point number the compiled model holds, by field: a copy, in its own precision.
-
-        The arrays of ``MjModel`` (mesh vertices in float32 where MuJoCo keeps them so) and the
-        floating-point fields of ``opt`` and ``stat``; colours are left out (they draw, not move).
-        """
-        m, out = self.mjmodel, {}
-        for field in self._fields():
-            holder, attr = _holder(m, field)
-            out[field] = np.array(getattr(holder, attr), copy=True, ndmin=1)
-        return out
-
-    def twin(self, seed: int) -> MjcfBackend:
-        """A copy whose every stored number is one unit in its own last place off, the signs drawn from `seed`.
-
-        Zeros stay zero (a scaled copy keeps them exactly); the time step stays, for it is the grid
-        the runs are compared on.  The model is copied, not compiled again.
-        """
-        fields, up, down = self._neighbours()
-        chosen = np.where(np.random.default_rng(seed).random(up.size) < 0.5, up, down)
-        twin = self._with_model_copy()
-        m = twin.mjmodel
-        for field, start, stop, shape, dtype in fields:  # one draw, then each field written in place
-            holder, attr = _holder(m, field)
-            moved = chosen[start:stop].astype(dtype).reshape(shape)
-            if shape == ():
-                setattr(holder, attr, moved.item())
-            else:
-                getattr(holder, attr)[...] = moved
-        return twin
-
-    def _neighbours(self):
-        """Every stored number's neighbours one ulp up and one down (zeros kept), found once per model.
-
-        Returns the fields as ``(name, start, stop, shape, dtype)`` and the two neighbour arrays, all
-        fields end to end, each number stepped in its own precision (float32 where MuJoCo keeps it so)
-        and then held as a double, which represents it exactly.
-        """
-        if getattr(self, "_neighbour_table", None) is None:
-            fields, ups, downs, start = [], [], [], 0
-            for field in self._fields():
-                if field == "opt.timestep":
-                    continue
-                holder, attr = _holder(self.mjmodel, field)
-                value = np.asarray(getattr(holder, attr))
-                flat = value.reshape(-1)
-                zero = flat == 0
-                ups.append(np.where(zero, flat, np.nextafter(flat, np.array(np.inf, flat.dtype))).astype(float))
-                downs.append(np.where(zero, flat, np.nextafter(flat, np.array(-np.inf, flat.dtype))).astype(float))
-                fields.append((field, start, start + flat.size, value.shape, value.dtype))
-                start += flat.size
-            self._neighbour_table = (tuple(fields), np.concatenate(ups), np.concatenate(downs))
-        return self._neighbour_table
-
-    def _with_model_copy(self) -> MjcfBackend:
-        """This backend over a copy of its compiled model (copied, not compiled again), to change and run."""
-        import copy
-
-        out = copy.copy(self)
-        out.mjmodel = copy.copy(self.mjmodel)
-        return out
-
-    def _fields(self) -> list[str]:
-        """The stored floating-point fields of this backend's model, found once (a copy has the same)."""
-        if getattr(self, "_field_names", None) is None:
-            self._field_names = _stored_fields(self.mjmodel)
-        return self._field_names
-
-    def variant(
-        self,
-        *,
-        tolerance: float | None = None,
-        contacts: bool = True,
-        solver: str | None = None,
-        inactive_equalities: tuple[int, ...] = (),
-        integrator: str | None = None,
-    ) -> MjcfBackend:
-        """A copy run with another solver, tolerance or integrator, with contacts switched off, or with some
-        equality constraints inactive: a counter-run's model (or the rod's, in another integrator)."""
-        mj = _mujoco()
-        out = self._with_model_copy()
-        m = out.mjmodel
-        if integrator is not None:
-            m.opt.integrator = int(getattr(mj.mjtIntegrator, f"mjINT_{integrator.upper()}"))
-        for i in inactive_equalities:
-            m.eq_active0[i] = 0
-        if solver is not None:
-            m.opt.solver = int(getattr(mj.mjtSolver, f"mjSOL_{solver.upper()}"))
-        if tolerance is not None:
-            m.opt.tolerance = tolerance
-            m.opt.noslip_tolerance = tolerance
-        if not contacts:
-            m.opt.disableflags |= int(mj.mjtDisableBit.mjDSBL_CONTACT)
-        return out
-
-    def control_ranges(self) -> tuple[np.ndarray, np.ndarray]:
-        """Each actuator's control range where the file limits it; -inf and inf where it does not."""
-        m = self.mjmodel
-        limited = np.asarray(m.actuator_ctrllimited, dtype=bool)
-        low = np.where(limited, m.actuator_ctrlrange[:, 0], -np.inf)
-        high = np.where(limited, m.actuator_ctrlrange[:, 1], np.inf)
-        return low, high
-
-    def solver_settings(self) -> dict[str, float]:
-        """The solver's stopping rules that have no pure dimension, nonzero ones only."""
-        opt = self.mjmodel.opt
-        return {
-            name: float(getattr(opt, name))
-            for name in ("tolerance", "noslip_tolerance")
-            if getattr(opt, name) != 0 and (name == "tolerance" or opt.noslip_iterations > 0)
-        }
-
-    def equality_names(self) -> list[str]:
-        """Each equality constraint, named as the reports name it."""
-        return [self.element_name("eq_data", i) for i in range(self.mjmodel.neq)]
-
-    def solver_name(self) -> str:
-        """The constraint solver: ``"PGS"``, ``"CG"`` or ``"Newton"``."""
-        return {0: "PGS", 1: "CG", 2: "Newton"}.get(int(self.mjmodel.opt.solver), str(self.mjmodel.opt.solver))
-
-    def first_contact_difference(self, other: MjcfBackend, n_steps: int, controls=None, other_controls=None):
-        """The first step after which other geom pairs touch in `other`'s run than in this one's.
-
-        Both run open loop, step by step side by side, and stop at the first difference: returns
-        ``(step, pairs only in other's run, pairs only in this one's)``, pairs named and sorted, or
-        None when the same pairs touch after every step.  `other` has the same geoms (a scaled copy).
-        """
-        mj = _mujoco()
-        runs = [
-            (self, self._start(False, None)[0], self._control_rows(controls, n_steps)),
-            (other, other._start(False, None)[0], other._control_rows(other_controls, n_steps)),
-        ]
-        for i in range(n_steps):
-            touching = []
-            for backend, data, rows in runs:
-                if rows is not None:
-                    data.ctrl[:] = rows[i]
-                mj.mj_step(backend.mjmodel, data)
-                touching.append(_touching(data))
-            mine, theirs = touching
-            if mine != theirs:
-
-                def named(pairs):
-                    return sorted((self._geom_name(a), self._geom_name(b)) for a, b in pairs)
-
-                return i + 1, named(theirs - mine), named(mine - theirs)
-        return None
-
-    def element_name(self, field: str, row: int) -> str:
-        """A row of a stored field, named by its element where the field has one row per element."""
-        mj, m = _mujoco(), self.mjmodel
-        prefix = field.split("_", 1)[0]
-        kind = _FIELD_OBJECTS.get(prefix)
-        rows = np.asarray(getattr(m, field)).shape[0] if "." not in field else 0
-        if prefix == "dof" and rows == m.nv:
-            kind, row = "joint", int(m.dof_jntid[row])
-        elif prefix == "mesh" and rows == m.nmeshvert and m.nmesh:
-            kind, row = "mesh", int(np.searchsorted(m.mesh_vertadr, row, side="right") - 1)
-        elif kind is None or rows != getattr(m, _COUNTS.get(kind, f"n{kind}"), -1):
-            return f"{field}[{row}]"
-        name = mj.mj_id2name(m, getattr(mj.mjtObj, f"mjOBJ_{kind.upper()}"), row)
-        return f"{kind} {name!r}" if name else f"{kind} #{row}"
-
-    def _geom_name(self, index: int) -> str:
-        mj = _mujoco()
-        name = mj.mj_id2name(self.mjmodel, mj.mjtObj.mjOBJ_GEOM, int(index))
-        return f"geom {name!r}" if name else f"geom #{index}"
-
-    # -- running ------------------------------------------------------------------------------
-
     def coordinate_dimensions(self):
         """Names and dimensions of qpos and qvel entries, and of the activations (found once)."""
         if getattr(self, "_coordinates", None) is None:
@@ -1375,243 +1215,6 @@ class MjcfBackend:
     def timestep(self) -> float:
         return float(self.mjmodel.opt.timestep)
 
-    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None):
-        """Step the model ``n_steps`` times from its initial state; rows of (qpos, qvel, act).
-
-        ``controls`` is None, an array of ``data.ctrl`` rows (one per step)
-        or a callable of the step's start time ``i * dt`` giving one row;
-        ``policy`` is None or a closed-loop ``policy(mjmodel, mjdata)``
-        giving ``data.ctrl``; ``nudge`` moves every initial coordinate by
-        one ulp; ``initial`` is a first row, (qpos, qvel, act) laid out as
-        the rows returned.
-
-        Open-loop runs step in MuJoCo's own ``rollout`` (the loop in C,
-        bit for bit the same steps as ``mj_step`` in Python); a policy
-        needs Python between the steps.
-        """
-        if policy is not None and self.mjmodel.nu:
-            data, first = self._start(nudge, initial)
-            return self._run_closed_loop(n_steps, data, policy, first)
-        return self.run_many(n_steps, [(self, controls, nudge, initial)])[0]
-
-    def run_many(self, n_steps: int, jobs) -> list[np.ndarray]:
-        """Several open-loop runs in one call of MuJoCo's rollout, spread over the processor's cores.
-
-        ``jobs`` holds ``(backend, controls, nudge, initial)`` tuples, as the
-        arguments of :meth:`run`; the backends' models must have the same
-        sizes (a model and its scaled copies do).  Returns the runs' rows.
-        """
-        import os
-
-        mj = _mujoco()  # names a missing MuJoCo before its submodule is imported
-        physics, user = mj.mjtState.mjSTATE_FULLPHYSICS, mj.mjtState.mjSTATE_USER
-        models, initial, inputs, firsts = [], [], [], []
-        threads = max(1, min(len(jobs), os.cpu_count() or 1))
-        # The jobs' models have the same sizes: one data per thread serves them all, and the first also
-        # finds each job's initial state.  A thread's data runs several jobs, and rollout sets only the
-        # full-physics state between them: each job therefore also gets, at every step, every input a
-        # reset leaves in a data (the controls, applied forces, which equality constraints are active,
-        # mocap poses, user data), and a zero warm start, so that no run inherits another's.
-        datas = [mj.MjData(jobs[0][0].mjmodel) for _ in range(threads)]
-        for backend, controls, nudge, row in jobs:
-            m = backend.mjmodel
-            data, first = backend._start(nudge, row, datas[0])
-            x0, u0 = np.empty(mj.mj_stateSize(m, physics)), np.empty(mj.mj_stateSize(m, user))
-            mj.mj_getState(m, data, x0, physics)
-            mj.mj_getState(m, data, u0, user)
-            rows = np.tile(u0, (n_steps, 1))
-            ctrl = backend._control_rows(controls, n_steps)
-            if ctrl is not None:  # the user state starts with the controls
-                rows[:, : m.nu] = ctrl
-            models.append(m)
-            initial.append(x0)
-            inputs.append(rows)
-            firsts.append(first)
-        if n_steps == 0:
-            return [first[None, :] for first in firsts]
-        with _thread_pool(threads) as pool:
-            states, _ = pool.rollout(
-                models,
-                datas,
-                np.array(initial),
-                np.array(inputs),
-                control_spec=user,
-                initial_warmstart=np.zeros((len(jobs), models[0].nv)),
-                nstep=n_steps,
-            )
-        # the full-physics state is laid out by component: time, then qpos, qvel, act
-        out = []
-        for m, first, rows in zip(models, firsts, states, strict=True):
-            start = mj.mj_stateSize(m, mj.mjtState.mjSTATE_TIME)
-            out.append(np.concatenate([first[None, :], rows[:, start : start + m.nq + m.nv + m.na]]))
-        return out
-
-    def _start(self, nudge: bool, initial, data=None):
-        """The initial data (a new one, or `data` reset to this model) and its first row of coordinates.
-
-        `initial` is None (the model's reference pose at rest) or a first row: qpos, qvel, act.
-        """
-        mj, m = _mujoco(), self.mjmodel
-        if data is None:
-            data = mj.MjData(m)
-        else:
-            mj.mj_resetData(m, data)
-        if initial is not None:
-            data.qpos[:], data.qvel[:] = initial[: m.nq], initial[m.nq : m.nq + m.nv]
-            data.act[:] = initial[m.nq + m.nv :]
-        if nudge:
-            data.qpos[:] = nudged(data.qpos)
-            data.qvel[:] = nudged(data.qvel)
-        return data, np.concatenate([data.qpos, data.qvel, data.act])
-
-    def _control_rows(self, controls, n_steps: int):
-        m = self.mjmodel
-        if controls is None or not m.nu or n_steps == 0:
-            return None
-        if callable(controls):
-            dt = float(m.opt.timestep)
-            rows = np.array([controls(i * dt) for i in range(n_steps)], dtype=float)
-        else:
-            rows = np.asarray(controls, dtype=float)
-        return rows.reshape(n_steps, m.nu)
-
-    def _run_closed_loop(self, n_steps, data, policy, first):
-        mj, m = _mujoco(), self.mjmodel
-        nq, nv = m.nq, m.nv
-        out = np.empty((n_steps + 1, nq + nv + m.na))
-        out[0] = first
-        qpos, qvel, act = out[:, :nq], out[:, nq : nq + nv], out[:, nq + nv :]
-        # The policy must see the state it acts on: after mj_step, data's positions and velocities are the
-        # new ones but everything computed from them (site and body poses, tendon lengths, sensors) is
-        # still the last step's.  mj_step1 computes them first, mj_step2 finishes the step: together the
-        # same step as mj_step, except for RK4, which mj_step2 does not take (there mj_forward goes first).
-        split = int(m.opt.integrator) != int(mj.mjtIntegrator.mjINT_RK4)
-        for i in range(1, n_steps + 1):
-            if split:
-                mj.mj_step1(m, data)
-                data.ctrl[:] = policy(m, data)
-                mj.mj_step2(m, data)
-            else:
-                mj.mj_forward(m, data)
-                data.ctrl[:] = policy(m, data)
-                mj.mj_step(m, data)
-            qpos[i], qvel[i], act[i] = data.qpos, data.qvel, data.act
-        return out
-
-
-#: the element each prefix of a compiled field belongs to, and the count of that element where not n<kind>
-_FIELD_OBJECTS = {
-    "body": "body",
-    "geom": "geom",
-    "jnt": "joint",
-    "site": "site",
-    "cam": "camera",
-    "light": "light",
-    "mesh": "mesh",
-    "tendon": "tendon",
-    "actuator": "actuator",
-    "sensor": "sensor",
-    "eq": "equality",
-    "pair": "pair",
-    "key": "key",
-    "hfield": "hfield",
-    "numeric": "numeric",
-    "mat": "material",
-}
-_COUNTS = {"joint": "njnt", "camera": "ncam", "actuator": "nu", "equality": "neq", "material": "nmat"}
-
-_STRUCT_FIELDS = {
-    "opt": (
-        "timestep",
-        "gravity",
-        "wind",
-        "magnetic",
-        "density",
-        "viscosity",
-        "impratio",
-        "tolerance",
-        "ls_tolerance",
-        "noslip_tolerance",
-        "ccd_tolerance",
-        "sleep_tolerance",
-        "o_margin",
-        "o_solref",
-        "o_solimp",
-        "o_friction",
-    ),
-    "stat": ("meaninertia", "meanmass", "meansize", "extent", "center"),
-}
-
-
-def _stored_fields(m) -> list[str]:
-    """The names of the floating-point fields of a compiled model, in a fixed order (``opt.x`` for structs)."""
-    fields = []
-    for attr in sorted(dir(m)):
-        if attr.startswith("_") or attr.endswith("rgba"):
-            continue
-        value = getattr(m, attr, None)
-        if isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.size:
-            fields.append(attr)
-    for struct, attrs in _STRUCT_FIELDS.items():
-        holder = getattr(m, struct)
-        fields.extend(f"{struct}.{a}" for a in attrs if hasattr(holder, a))
-    return fields
-
-
-#: the rollout thread pools kept between batches: (process id, thread count) -> (pool, lock)
-_POOLS: dict = {}
-
-
-@contextmanager
-def _thread_pool(threads: int):
-    """A MuJoCo rollout pool of `threads` threads, kept for the next batch.
-
-    Starting and stopping the threads costs about as much as a small model's whole batch, so the
-    pool is kept.  A batch from a second Python thread while the pool is busy gets a pool of its
-    own; a process forked after the pool started (whose copy of it has no threads) keeps its own.
-    """
-    import os
-    import threading
-
-    from mujoco import rollout
-
-    key = (os.getpid(), threads)
-    if key not in _POOLS:
-        _POOLS[key] = rollout.Rollout(nthread=threads), threading.Lock()
-    pool, lock = _POOLS[key]
-    if not lock.acquire(blocking=False):
-        with rollout.Rollout(nthread=threads) as own:
-            yield own
-        return
-    try:
-        yield pool
-    finally:
-        lock.release()
-
-
-@atexit.register
-def _close_pools() -> None:
-    """Stop the kept pools' threads before the interpreter stops."""
-    import os
-
-    for (pid, _threads), (pool, _lock) in list(_POOLS.items()):
-        if pid == os.getpid():
-            pool.close()
-    _POOLS.clear()
-
-
-def _touching(data) -> frozenset:
-    """The geom pairs (ids) of a data's contacts."""
-    return frozenset(map(tuple, data.contact.geom[: data.ncon].tolist()))
-
-
-def _holder(m, field: str):
-    """The object and attribute name of a field of :func:`_stored_fields`."""
-    if "." in field:
-        struct, attr = field.split(".")
-        return getattr(m, struct), attr
-    return m, field
-
 
 @contextmanager
 def _muted():
@@ -1646,49 +1249,6 @@ def _culprit(text: str, spec=None) -> str:
     return ""
 
 
-def load_mjcf(path) -> EngineModel:
-    """Read an MJCF file through MuJoCo's parser and compiler.
-
-    Parameters
-    ----------
-    path : str or Path
-
-    Returns
-    -------
-    EngineModel
-        Of engine ``"mujoco"``.
-
-    Raises
-    ------
-    EngineModelError
-        When MuJoCo rejects the file (the message names its element), or
-        an element cannot be scaled.
-
-    Examples
-    --------
-    >>> from pitheorem import engines
-    >>> from pitheorem.engines.mjcf import load_mjcf
-    >>> load_mjcf(engines.example_path("pendulum.xml")).engine
-    'mujoco'
-    """
-    mj = _mujoco()
-    path = Path(path)
-    root = check_model_file(path)  # MuJoCo drops damping="nan" and keeps "inf"; a non-UTF-8 byte breaks its names
-    try:
-        spec = mj.MjSpec.from_file(str(path))
-    except ValueError as err:
-        raise _rejected(str(path), err) from None
-    asset_dirs = _attached_asset_dirs(mj, path, root)
-    try:
-        backend = MjcfBackend(spec, str(path), path.resolve().parent, asset_dirs=asset_dirs)
-    except EngineModelError as err:
-        if "mjMINVAL" not in err.reason:
-            raise
-        # refused for a threshold that units decide: still a table, so check, fit and convert can repair it
-        backend = RefusedMjcfBackend(spec, str(path), path.resolve().parent, err, asset_dirs=asset_dirs)
-    return EngineModel(backend, "mujoco", str(path))
-
-
 #: the mass attributes of a spec that decide the masses and inertias MuJoCo's compiler checks
 _MASS_ATTRIBUTES = {"bodies": ("mass", "inertia", "fullinertia"), "geoms": ("mass", "density")}
 
@@ -1703,7 +1263,7 @@ class _Unprobed:
         return getattr(self._probe, name)
 
 
-class RefusedMjcfBackend(MjcfBackend):
+class RefusedMjcfDocument(MjcfDocument):
     """An MJCF model MuJoCo refuses for a threshold (masses below ``mjMINVAL``), held as its parameter table.
 
     The table is read from a probe: a copy of the spec whose masses and
@@ -1719,9 +1279,10 @@ class RefusedMjcfBackend(MjcfBackend):
     >>> speck = pathlib.Path(tempfile.mkdtemp()) / "speck.xml"
     >>> _ = speck.write_text('<mujoco><worldbody><body><freejoint/><geom size="1e-6" density="1000"/>'
     ...                      '</body></worldbody></mujoco>')
-    >>> model = engines.load(speck)
-    >>> type(model._backend).__name__, model.parameter("body1_mass").value
-    ('RefusedMjcfBackend', (4.18879020478639e-15,))
+    >>> from pitheorem.engines.fileformats.mjcf import read_mjcf
+    >>> document = read_mjcf(speck)
+    >>> type(document).__name__, next(p.value for p in document.parameters() if p.name == "body1_mass")
+    ('RefusedMjcfDocument', (4.18879020478639e-15,))
     """
 
     def __init__(self, spec, path: str, source_dir, refusal: EngineModelError, *, asset_dirs=None):
@@ -1750,21 +1311,6 @@ class RefusedMjcfBackend(MjcfBackend):
             raise refusal
         walker = _Walker(mj, spec, _Unprobed(self.mjmodel, 2.0**power), path, warn=True)
         self._walked, self._inputs = walker.walk(), walker.inputs
-
-    def run_many(self, n_steps: int, jobs):
-        raise EngineModelError(
-            self.path,
-            self.refusal.element,
-            f"{self.refusal.reason}; MuJoCo does not run it. "
-            "Convert it to units clear of the threshold (pitheorem.fit_units(model), "
-            "model.converted(...), or pitheorem convert FILE --fit mujoco)",
-        )
-
-    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None):
-        return self.run_many(n_steps, [])
-
-    def twin(self, seed: int):
-        return self.run_many(0, [])
 
 
 def _attached_asset_dirs(mj, path: Path, root=None) -> dict:
@@ -1799,3 +1345,107 @@ def _attached_asset_dirs(mj, path: Path, root=None) -> dict:
                 base = nested.get((kind, item.name), child_path.parent / (folders[kind] or ""))
                 out[(kind, prefix + item.name)] = base
     return out
+
+
+#: the custom text in which a file pitheorem wrote records its units
+UNITS_TEXT = "pitheorem:units"
+
+
+def record_units(spec, units: Mapping[str, str]) -> None:
+    """Write the units into an MJCF spec as its ``pitheorem:units`` custom text (replacing an older one).
+
+    Examples
+    --------
+    >>> import mujoco
+    >>> from pitheorem.engines.fileformats.mjcf import record_units, recorded_units
+    >>> spec = mujoco.MjSpec()
+    >>> record_units(spec, {"M": "g", "L": "mm", "T": "s"})
+    >>> [(t.name, t.data) for t in spec.texts]
+    [('pitheorem:units', 'M=g; L=mm; T=s')]
+    """
+    data = "; ".join(f"{b}={u}" for b, u in units.items())
+    for text in spec.texts:
+        if text.name == UNITS_TEXT:
+            text.data = data
+            return
+    spec.add_text(name=UNITS_TEXT, data=data)
+
+
+def recorded_units(spec, path: str) -> dict[str, str] | None:
+    """The units an MJCF spec records (a file pitheorem wrote), or None.
+
+    Raises
+    ------
+    EngineModelError
+        For a record that is no list of ``BASE=UNIT`` items.
+
+    Examples
+    --------
+    >>> import mujoco
+    >>> from pitheorem.engines.fileformats.mjcf import recorded_units
+    >>> spec = mujoco.MjSpec()
+    >>> recorded_units(spec, "a.xml") is None
+    True
+    >>> _ = spec.add_text(name="pitheorem:units", data="L=cm; M=g")
+    >>> recorded_units(spec, "a.xml")
+    {'M': 'g', 'L': 'cm', 'T': 's'}
+    """
+    for text in spec.texts:
+        if text.name == UNITS_TEXT:
+            units = {}
+            for item in text.data.split(";"):
+                base, sep, unit = (part.strip() for part in item.partition("="))
+                if not sep or base not in ("M", "L", "T"):
+                    raise EngineModelError(
+                        path, f"text {UNITS_TEXT!r}", f"data {text.data!r} is no list of units such as 'M=g; L=mm; T=s'"
+                    )
+                units[base] = unit
+            from ..units import read_units
+
+            return read_units(units, f"the units {path} records")
+    return None
+
+
+def read_mjcf(path) -> MjcfDocument:
+    """Read an MJCF file through MuJoCo's parser and compiler: its document.
+
+    A file MuJoCo refuses for a threshold that units decide (masses below
+    ``mjMINVAL``) is still read, as a :class:`RefusedMjcfDocument`, so that
+    check, fit and convert can repair it.
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    MjcfDocument
+
+    Raises
+    ------
+    EngineModelError
+        When MuJoCo rejects the file (the message names its element), or
+        an element cannot be scaled.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.fileformats.mjcf import read_mjcf
+    >>> [p.name for p in read_mjcf(engines.example_path("pendulum.xml")).parameters()][:2]
+    ['timestep', 'g']
+    """
+    mj = _mujoco()
+    path = Path(path)
+    root = check_model_file(path)  # MuJoCo drops damping="nan" and keeps "inf"; a non-UTF-8 byte breaks its names
+    try:
+        spec = mj.MjSpec.from_file(str(path))
+    except ValueError as err:
+        raise _rejected(str(path), err) from None
+    asset_dirs = _attached_asset_dirs(mj, path, root)
+    try:
+        return MjcfDocument(spec, str(path), path.resolve().parent, asset_dirs=asset_dirs)
+    except EngineModelError as err:
+        if "mjMINVAL" not in err.reason:
+            raise
+        # refused for a threshold that units decide: still a table, so check, fit and convert can repair it
+        return RefusedMjcfDocument(spec, str(path), path.resolve().parent, err, asset_dirs=asset_dirs)

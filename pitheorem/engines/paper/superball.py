@@ -19,7 +19,7 @@ engine, together with the closed-loop controller that Section 6 warns about.
   their dimensions beside them), so scaling the file scales the controller;
 * :func:`superball_system` is the dimensional analysis of all of it, and
   :func:`write_superball` regenerates ``pitheorem/examples/superball.xml``
-  (``python -m pitheorem.engines.superball``).
+  (``python -m pitheorem.engines.paper.superball``).
 
 The file is an ordinary MJCF model: :func:`pitheorem.engines.load` reads it
 (the controller's numbers with their declared dimensions among its
@@ -31,7 +31,7 @@ from its own file.
 Examples
 --------
 >>> from fractions import Fraction
->>> from pitheorem.engines.superball import superball_system, PAPER_SCALING
+>>> from pitheorem.engines.paper.superball import superball_system, PAPER_SCALING
 >>> import pitheorem as pt
 >>> res = pt.search(superball_system(), scale={"g": 1})
 >>> PAPER_SCALING in [{n: Fraction(e) for n, e in sc.exponents.items()} for sc in res.scalings]
@@ -48,12 +48,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ..dimensions import Dimension
-from ..errors import InvalidRequestError
-from ..immutable import immutable
-from ..modelfile import EXAMPLES
-from ..system import System
-from .model import EngineModel, attribute_text, dim
+from ...dimensions import Dimension
+from ...errors import InvalidRequestError
+from ...immutable import immutable
+from ...modelfile import EXAMPLES
+from ...system import System
+from ..enginemodel import EngineModel
+from ..parameters import attribute_text, dim
 
 __all__ = [
     "PAPER_SCALING",
@@ -91,7 +92,7 @@ class SuperballParameter:
 
     Examples
     --------
-    >>> from pitheorem.engines.superball import PARAMETERS
+    >>> from pitheorem.engines.paper.superball import PARAMETERS
     >>> PARAMETERS[0].name, PARAMETERS[0].dimension
     ('g', Dimension.parse('L T^-2'))
     """
@@ -209,7 +210,7 @@ def superball_parameters() -> dict[str, float]:
 
     Examples
     --------
-    >>> from pitheorem.engines.superball import superball_parameters
+    >>> from pitheorem.engines.paper.superball import superball_parameters
     >>> p = superball_parameters()
     >>> round(p["x_r"], 4), p["k"]
     (0.7313, 613.0)
@@ -229,7 +230,7 @@ def superball_system() -> System:
 
     Examples
     --------
-    >>> from pitheorem.engines.superball import superball_system
+    >>> from pitheorem.engines.paper.superball import superball_system
     >>> sb = superball_system()
     >>> sb.rank, len(sb.variables)
     (3, 22)
@@ -256,7 +257,7 @@ def bar_nodes(a: float, l: float) -> list[tuple[np.ndarray, np.ndarray]]:  # noq
 
     Examples
     --------
-    >>> from pitheorem.engines.superball import bar_nodes
+    >>> from pitheorem.engines.paper.superball import bar_nodes
     >>> [tuple(float(x) for x in end) for end in bar_nodes(1.0, 4.0)[0]]
     [(1.0, -2.0, 0.0), (1.0, 2.0, 0.0)]
     """
@@ -291,7 +292,7 @@ def cable_pairs(a: float, l: float) -> tuple[list[tuple[tuple[int, int], tuple[i
 
     Examples
     --------
-    >>> from pitheorem.engines.superball import cable_pairs
+    >>> from pitheorem.engines.paper.superball import cable_pairs
     >>> pairs, span = cable_pairs(0.75, 1.684)
     >>> len(pairs), round(span, 4)
     (24, 1.1313)
@@ -342,7 +343,7 @@ def superball_mjcf(params=None) -> str:
     Examples
     --------
     >>> import mujoco
-    >>> from pitheorem.engines.superball import superball_mjcf
+    >>> from pitheorem.engines.paper.superball import superball_mjcf
     >>> m = mujoco.MjModel.from_xml_string(superball_mjcf())
     >>> m.nbody - 1, m.ntendon, m.nu
     (6, 24, 24)
@@ -409,7 +410,7 @@ def _dimension(name: str) -> str:
 
 def _compiled(model):
     """The compiled MuJoCo model: an EngineModel's, or `model` itself (a ``mujoco.MjModel``)."""
-    return model._backend.mjmodel if isinstance(model, EngineModel) else model
+    return model.runner.mjmodel if isinstance(model, EngineModel) else model
 
 
 class CableController:
@@ -438,7 +439,7 @@ class CableController:
     Examples
     --------
     >>> import mujoco
-    >>> from pitheorem.engines.superball import CableController, superball_mjcf
+    >>> from pitheorem.engines.paper.superball import CableController, superball_mjcf
     >>> m = mujoco.MjModel.from_xml_string(superball_mjcf())
     >>> d = mujoco.MjData(m)
     >>> control = CableController(m)
@@ -483,7 +484,7 @@ class CableController:
         Examples
         --------
         >>> import mujoco
-        >>> from pitheorem.engines.superball import CableController, superball_mjcf
+        >>> from pitheorem.engines.paper.superball import CableController, superball_mjcf
         >>> m = mujoco.MjModel.from_xml_string(superball_mjcf())
         >>> d = mujoco.MjData(m); mujoco.mj_forward(m, d)
         >>> CableController(m).targets(d).shape
@@ -551,7 +552,7 @@ def bar_ends(model, rows) -> np.ndarray:
     Examples
     --------
     >>> from pitheorem import engines
-    >>> from pitheorem.engines.superball import CableController, bar_ends
+    >>> from pitheorem.engines.paper.superball import CableController, bar_ends
     >>> model = engines.load(engines.example_path("superball.xml"))
     >>> rows = model.run(500, policy=CableController(model))
     >>> ends = bar_ends(model, rows)
@@ -598,7 +599,7 @@ def draw_superball(ends, ax=None, *, a: float | None = None, l: float | None = N
     >>> import matplotlib
     >>> matplotlib.use("Agg")
     >>> from pitheorem import engines
-    >>> from pitheorem.engines.superball import bar_ends, draw_superball
+    >>> from pitheorem.engines.paper.superball import bar_ends, draw_superball
     >>> model = engines.load(engines.example_path("superball.xml"))
     >>> ax = draw_superball(bar_ends(model, model.run(0))[0])
     >>> len(ax.lines)    # 6 bars and 24 cables
@@ -637,7 +638,7 @@ def write_superball(path=None) -> Path:
     Examples
     --------
     >>> import tempfile, pathlib
-    >>> from pitheorem.engines.superball import write_superball, superball_mjcf
+    >>> from pitheorem.engines.paper.superball import write_superball, superball_mjcf
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     written = write_superball(pathlib.Path(folder) / "sb.xml")
     ...     written.read_text() == superball_mjcf()

@@ -17,7 +17,7 @@ bouncing ball, a walker falling over) moves that far on its own.
 At ``s`` a power of four every factor is exact in binary, so a faithful
 engine reproduces the original bit for bit (``rep.exact``): a proof.
 When a run is not exact where it should be, or not similar, ``verify``
-finds out why (``rep.causes``): :func:`pitheorem.engines.audit` holds
+finds out why (``rep.causes``): :func:`pitheorem.engines.verdicts.audit` holds
 every stored number against the original times its factor, and
 counter-runs test the dynamic causes: contacts switched off, the
 solver's tolerance set to 0.
@@ -30,7 +30,7 @@ model (an MJCF custom numeric with a declared dimension, say), so a scaled
 file carries a scaled controller, and a gain the scaling leaves alone
 shows up as a broken similarity (Section 6 of the white paper).
 
-A backend provides what :class:`~pitheorem.engines.backend.EngineRunner`
+A backend provides what :class:`~pitheorem.engines.protocols.Runs`
 names (``timestep()``, ``coordinate_dimensions()``, ``control_dimensions()``,
 ``run``, ``run_many`` and ``twin``): the open-loop runs of a verification
 go to ``run_many`` in one batch, which MuJoCo spreads over the cores and
@@ -44,14 +44,15 @@ import math
 
 import numpy as np
 
-from ..errors import InvalidRequestError
-from ..exact import read_count, read_scale_factor
-from ..scaling import is_power_of_two
-from ..simulation import SimilarityReport, Trajectory, positive_float, similarity_report
-from .backend import EngineRunner
-from .model import EngineModel, check_scaling, dim, dimension_factors
+from ...errors import InvalidRequestError
+from ...exact import read_count, read_scale_factor
+from ...scaling import is_power_of_two
+from ...simulation import SimilarityReport, Trajectory, positive_float, similarity_report
+from ..enginemodel import EngineModel, check_scaling
+from ..parameters import dim, dimension_factors
+from ..protocols import Runs
 
-__all__ = ["EngineRunner", "smooth_controls", "verify"]
+__all__ = ["Runs", "smooth_controls", "verify"]
 
 
 def verify(
@@ -154,7 +155,7 @@ def verify(
         raise InvalidRequestError("give controls (open loop, a function of time) or controller (closed loop), not both")
     if controller is not None and not callable(controller):
         raise InvalidRequestError(f"controller must be callable (run_model -> policy), got {type(controller).__name__}")
-    original, copy = model._backend, scaled._backend
+    original, copy = model.runner, scaled.runner
     factor, exponent_of = dimension_factors(scaling, s)
 
     f_time = factor(dim("T"))
@@ -231,7 +232,7 @@ def exact_in_binary(model: EngineModel, scaling, s) -> bool:
     --------
     >>> import pitheorem as pt
     >>> from pitheorem import engines
-    >>> from pitheorem.engines.verify import exact_in_binary
+    >>> from pitheorem.engines.verdicts.verify import exact_in_binary
     >>> model = engines.load(engines.example_path("pendulum.xml"))
     >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     >>> exact_in_binary(model, sc, 4), exact_in_binary(model, sc, 10), exact_in_binary(model, sc, 3)
@@ -242,7 +243,7 @@ def exact_in_binary(model: EngineModel, scaling, s) -> bool:
 
 def _every_factor_a_power_of_two(model: EngineModel, factor) -> bool:
     """:func:`exact_in_binary` with the factors of a scaling already at hand (``factor(dimension)``)."""
-    by_dimension, mixed = model._by_dimension()
+    by_dimension, mixed = model.by_dimension()
     dimensions = [d for d, _names in by_dimension] + [d for p in mixed for _part, d in p.parts]
     _names, coordinates = model.coordinates()
     return all(is_power_of_two(factor(d)) for d in (*dimensions, *coordinates, dim("T")))

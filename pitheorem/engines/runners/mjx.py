@@ -1,6 +1,6 @@
 """MJCF models in MJX, MuJoCo's engine written in JAX: float32 by default, runs batched.
 
-An MJCF file is read as for MuJoCo (:mod:`pitheorem.engines.mjcf` reads
+An MJCF file is read as for MuJoCo (:mod:`pitheorem.engines.fileformats.mjcf` reads
 it: the same parameters, scaled copies and saved files) and put on JAX's
 device with ``mujoco.mjx.put_model``.  MJX computes in float32 unless
 asked for float64 (``precision="float64"``, JAX's x64 mode, switched on
@@ -24,7 +24,7 @@ catalogue (``engines.hidden_constants("mjx")``).
 
 Examples
 --------
->>> from pitheorem.engines.mjx import PRECISIONS
+>>> from pitheorem.engines.runners.mjx import PRECISIONS
 >>> from pitheorem.engines.registry import registered
 >>> PRECISIONS, registered("mjx").packages
 (('float32', 'float64'), ('mujoco', 'jax', 'mujoco.mjx'))
@@ -37,18 +37,21 @@ With MJX installed (``pip install "pitheorem[mjx]"``)::
 
 from __future__ import annotations
 
-import copy
 import dataclasses
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import EngineModelError, InvalidRequestError
-from .mjcf import MjcfBackend, RefusedMjcfBackend, load_mjcf
-from .model import EngineModel
-from .packages import engine_module
+from ...errors import EngineModelError, InvalidRequestError
+from ..enginemodel import EngineModel
+from ..fileformats.mjcf import read_mjcf
+from ..packages import engine_module
+from ..parameters import Parameter, dim
+from .mujoco import MujocoRunner
 
-__all__ = ["PRECISIONS", "MjxBackend", "load_mjx"]
+__all__ = ["PRECISIONS", "MjxBackend", "load_mjx", "mjx_parameters", "threshold_numbers"]
+
+_M, _ML2, _L = dim("M"), dim("M L^2"), dim("L")
 
 #: the precisions MJX computes in: JAX's float32 (its default) or float64 (its x64 mode)
 PRECISIONS = ("float32", "float64")
@@ -69,19 +72,19 @@ class MjxBackend:
 
     Parameters
     ----------
-    mjcf : MjcfBackend
-        The file as MuJoCo reads it.
+    mjcf : MujocoRunner
+        The file as MuJoCo reads and compiles it.
     precision : {"float32", "float64"}
 
     Examples
     --------
-    >>> from pitheorem.engines.backend import EngineBackend
-    >>> from pitheorem.engines.mjx import MjxBackend
-    >>> all(hasattr(MjxBackend, name) for name in EngineBackend.__dict__ if not name.startswith("_"))
+    >>> from pitheorem.engines.protocols import Runner
+    >>> from pitheorem.engines.runners.mjx import MjxBackend
+    >>> all(hasattr(MjxBackend, name) for name in Runner.__dict__ if not name.startswith("_"))
     True
     """
 
-    def __init__(self, mjcf: MjcfBackend, precision: str = "float32", device_model=None):
+    def __init__(self, mjcf: MujocoRunner, precision: str = "float32", device_model=None):
         self.mjcf = mjcf
         self.precision = precision
         self._device = device_model if device_model is not None else _put(mjcf, precision)
@@ -95,11 +98,9 @@ class MjxBackend:
         """MuJoCo's ``MjSpec`` of the file (where a file written by pitheorem records its units)."""
         return self.mjcf.spec
 
-    @spec.setter
-    def spec(self, value) -> None:
-        # EngineModel.in_units gives a copy of this backend another spec: the reading is copied, not changed
-        self.mjcf = copy.copy(self.mjcf)
-        self.mjcf.spec = value
+    def in_units(self, units) -> MjxBackend:
+        """This model, MuJoCo's reading recording other units (the device model is the same)."""
+        return MjxBackend(self.mjcf.in_units(units), self.precision, self._device)
 
     # -- the table, scaled copies and files: MuJoCo's reading of the file ------------------------
 
@@ -114,6 +115,20 @@ class MjxBackend:
 
     def save(self, path: Path) -> None:
         self.mjcf.save(path)  # an MJCF file: MuJoCo and MJX load it alike
+
+    def written_beside(self, path) -> tuple[str, ...]:
+        return self.mjcf.written_beside(path)
+
+    def check_units(self, units) -> None:
+        self.mjcf.check_units(units)
+
+    def recorded_units(self) -> dict[str, str] | None:
+        return self.mjcf.recorded_units()
+
+    @property
+    def refusal(self):
+        """None: MJX loads only what MuJoCo's compiler accepts."""
+        return None
 
     # -- what MJX holds ------------------------------------------------------------------------
 
@@ -249,7 +264,7 @@ def _aligned(backend: MjxBackend, reference: MjxBackend):
     return device
 
 
-def _put(mjcf: MjcfBackend, precision: str):
+def _put(mjcf: MujocoRunner, precision: str):
     """The ``mjx.Model`` of a MuJoCo model, in `precision`; what MJX does not support, refused by name."""
     jax = _jax()
     mjx = engine_module("mjx")
@@ -353,6 +368,170 @@ def _runner(jax, precision: str):
     return _RUNNERS[precision]
 
 
+#: MuJoCo's geom types (mjtGeom) that mjx_parameters reads
+_PLANE, _HFIELD, _SPHERE, _CAPSULE, _CYLINDER, _BOX, _MESH = 0, 1, 2, 3, 5, 6, 7
+
+
+#: MuJoCo's flag that keeps a body's geoms colliding with its parent's (mjtDisableBit.mjDSBL_FILTERPARENT)
+_FILTERPARENT = 1024
+
+
+#: the geom types a capsule collides with through the closest point on its segment in MJX
+#: (collision_primitive sphere_capsule and capsule_capsule, collision_convex capsule_convex and hfield_capsule)
+_SEGMENT_PARTNERS = frozenset({_HFIELD, _SPHERE, _CAPSULE, _BOX, _MESH})
+
+
+def _compiled(model):
+    """The model's compiled MjModel (MuJoCo's or MJX's compilation of the file), or None (another engine's)."""
+    runner = model.runner
+    if isinstance(runner, MjxBackend):
+        return runner.mjcf.mjmodel
+    return runner.mjmodel if isinstance(runner, MujocoRunner) else None
+
+
+def _collision_pairs(m) -> list[tuple[int, int]]:
+    """The geom pairs a compiled MjModel collides (MuJoCo's filter, MJX's too).
+
+    The explicit ``<pair>`` elements, and every two geoms whose contype
+    and conaffinity share a bit, except geoms of bodies welded together,
+    of a body and its parent (both other than the world, unless the
+    filterparent flag is disabled) and of excluded body pairs.  (Read from
+    the model's arrays.)
+    """
+    out = {(int(min(a, b)), int(max(a, b))) for a, b in zip(m.pair_geom1, m.pair_geom2, strict=True)}
+    n = m.ngeom
+    if n < 2:
+        return sorted(out)
+    contype, conaffinity = np.asarray(m.geom_contype), np.asarray(m.geom_conaffinity)
+    weld = np.asarray(m.body_weldid)[np.asarray(m.geom_bodyid)]  # each geom's weld body
+    parent = np.asarray(m.body_weldid)[np.asarray(m.body_parentid)][weld]  # the weld body of its parent
+    body = np.asarray(m.geom_bodyid)
+    ok = ((contype[:, None] & conaffinity[None, :]) | (contype[None, :] & conaffinity[:, None])) != 0
+    ok &= weld[:, None] != weld[None, :]
+    if not m.opt.disableflags & _FILTERPARENT:
+        family = (weld[:, None] == parent[None, :]) | (parent[:, None] == weld[None, :])
+        ok &= ~(family & (weld[:, None] != 0) & (weld[None, :] != 0))
+    lo, hi = np.minimum(body[:, None], body[None, :]), np.maximum(body[:, None], body[None, :])
+    ok &= ~np.isin((lo.astype(np.int64) << 16) + hi, np.asarray(m.exclude_signature, dtype=np.int64))
+    first, second = np.nonzero(np.triu(ok, 1))
+    out.update(zip(first.tolist(), second.tolist(), strict=True))
+    return sorted(out)
+
+
+def _label(mjmodel, kind: str, index: int, names: set[str], suffix: str) -> tuple[str, str]:
+    """A derived parameter's name and the start of its path, for a geom or a body."""
+    label = getattr(mjmodel, kind)(index).name
+    ident = f"{kind}_{label}_{suffix}" if label else f"{kind}{index}_{suffix}"
+    if ident in names or not ident.isidentifier():
+        ident = f"{kind}{index}_{suffix}"
+    names.add(ident)
+    return ident, f"{kind} {label!r}" if label else f"{kind} #{index}"
+
+
+def mjx_parameters(model) -> tuple[Parameter, ...]:
+    """The numbers MJX's own constants are held against, from the compiled model.
+
+    MJX finds the closest point on a capsule's segment with a constant
+    of its own added to the segment's squared length (the threshold
+    ``mjx_segment_regularizer_float32``), and takes a cylinder whose
+    axis, times its half-length, leans less than 1 mm from a plane as
+    lying on it (``mjx_cylinder_plane_parallel``): the half-lengths of
+    the geoms in a pair MJX collides through such a function (kinds
+    ``capsule_segment`` and ``cylinder_on_plane``).  With the fluid
+    model on (the option's density, viscosity or wind), MJX floors each
+    body's mass and the sums of its principal moments that give the
+    body's equivalent box (``I1 + I2 - I0`` and its turns) at 1e-12
+    (``mjx_fluid_*``): those masses and sums (kinds ``fluid_mass`` and
+    ``fluid_box_moments``).  None of these numbers is in the file's table
+    as such (a capsule's ``fromto`` holds its ends).
+
+    Parameters
+    ----------
+    model : EngineModel
+        An MJCF model (in MuJoCo or MJX).
+
+    Returns
+    -------
+    tuple of Parameter
+        Source ``"derived"``, geoms then bodies; ``()`` for a model with no
+        such number or no compiled model (a URDF).  A file MuJoCo refuses
+        (read from a probe in another mass unit) has its half-lengths only.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.runners.mjx import mjx_parameters
+    >>> mjx_parameters(engines.load(engines.example_path("pendulum.xml")))  # its rod touches nothing
+    ()
+    """
+    mjmodel = _compiled(model)
+    if mjmodel is None:
+        return ()
+    partners: dict[int, set[int]] = {}
+    for a, b in _collision_pairs(mjmodel):
+        partners.setdefault(a, set()).add(int(mjmodel.geom_type[b]))
+        partners.setdefault(b, set()).add(int(mjmodel.geom_type[a]))
+    out, names = [], set()
+    for g in sorted(partners):
+        kind = int(mjmodel.geom_type[g])
+        if kind == _CAPSULE and partners[g] & _SEGMENT_PARTNERS:
+            shape = "capsule"
+        elif kind == _CYLINDER and _PLANE in partners[g]:
+            shape = "cylinder"
+        else:
+            continue
+        ident, path = _label(mjmodel, "geom", g, names, "half_length")
+        out.append(
+            Parameter(
+                ident,
+                f"{path} {shape} half-length",
+                (float(mjmodel.geom_size[g][1]),),
+                _L,
+                "derived",
+                "file",
+                note="read from the compiled model",
+            )
+        )
+    opt = mjmodel.opt
+    # MJX's inertia-box fluid model, on every body; a refused file's compiled masses are a probe's: left out
+    fluid = opt.density > 0 or opt.viscosity > 0 or any(opt.wind)
+    if fluid and model.runner.refusal is None:
+        for b in range(1, mjmodel.nbody):
+            mass, moments = float(mjmodel.body_mass[b]), [float(i) for i in mjmodel.body_inertia[b]]
+            if mass <= 0:
+                continue
+            ident, path = _label(mjmodel, "body", b, names, "mass_in_fluid")
+            out.append(
+                Parameter(
+                    ident,
+                    f"{path} mass in the fluid model",
+                    (mass,),
+                    _M,
+                    "derived",
+                    "file",
+                    note="read from the compiled model",
+                )
+            )
+            sums = tuple(sum(moments) - 2 * moments[i] for i in range(3))  # I1 + I2 - I0, I0 + I2 - I1, ...
+            ident, path = _label(mjmodel, "body", b, names, "fluid_box_moments")
+            out.append(
+                Parameter(
+                    ident,
+                    f"{path} fluid box moments",
+                    sums,
+                    _ML2,
+                    "derived",
+                    "file",
+                    note="sums of the body's principal moments, read from the compiled model",
+                )
+            )
+    return tuple(out)
+
+
+#: the numbers MJX's own thresholds are held against, beside a model's table (``thresholds.held_against``)
+threshold_numbers = mjx_parameters
+
+
 def load_mjx(path, *, precision: str = "float32") -> EngineModel:
     """Read an MJCF file through MuJoCo's parser and put it in MJX.
 
@@ -380,7 +559,7 @@ def load_mjx(path, *, precision: str = "float32") -> EngineModel:
     --------
     >>> import pitheorem as pt
     >>> from pitheorem import engines
-    >>> from pitheorem.engines.mjx import load_mjx
+    >>> from pitheorem.engines.runners.mjx import load_mjx
     >>> try:
     ...     load_mjx(engines.example_path("pendulum.xml"), precision="float16")
     ... except pt.InvalidRequestError as err:
@@ -389,7 +568,7 @@ def load_mjx(path, *, precision: str = "float32") -> EngineModel:
     """
     if precision not in PRECISIONS:
         raise InvalidRequestError(f"precision must be 'float32' or 'float64', got {precision!r}", culprit=precision)
-    reading = load_mjcf(path)._backend
-    if isinstance(reading, RefusedMjcfBackend):  # MuJoCo's compiler refused it: there is no model to put in MJX
+    reading = MujocoRunner(read_mjcf(path))
+    if reading.refusal is not None:  # MuJoCo's compiler refused it: there is no model to put in MJX
         raise reading.refusal
     return EngineModel(MjxBackend(reading, precision), "mjx", str(path))

@@ -1,10 +1,10 @@
 """Why a scaled run is not exact or not similar: causes found by counter-runs, not guessed.
 
-:func:`pitheorem.engines.verify` calls :func:`find_causes` when a run at a
+:func:`pitheorem.engines.verdicts.verify` calls :func:`find_causes` when a run at a
 power of four is not bit for bit the original, or a run is not similar.
 Each cause is established, not presumed:
 
-* the static ones by :func:`pitheorem.engines.audit` (numbers the engine
+* the static ones by :func:`pitheorem.engines.verdicts.audit` (numbers the engine
   holds that are not the original times their factor, float32 rounding,
   settings the engine ignores);
 * ``solver``: the original and the scaled copy run again with the
@@ -27,9 +27,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..simulation import allowed_deviation
+from ...simulation import allowed_deviation
+from ..protocols import CounterRuns, SolverDiagnosis
 from .audit import audit
-from .backend import CounterRuns, SolverDiagnosis
 from .causes import Cause, sorted_causes
 
 __all__ = ["find_causes"]
@@ -45,7 +45,7 @@ def find_causes(
     model, scaled : EngineModel
         The original and its scaled copy.
     scaling, s
-        As given to :func:`pitheorem.engines.verify`.
+        As given to :func:`pitheorem.engines.verdicts.verify`.
     n_steps : int
     u_original, u_scaled : ndarray or None
         The open-loop inputs of each run, one row per step.
@@ -70,7 +70,7 @@ def find_causes(
     >>> rep.exact, [c.kind for c in rep.causes]
     (True, [])
     """
-    original, copy = model._backend, scaled._backend
+    original, copy = model.runner, scaled.runner
     causes = [c for c in audit(model, scaling, s, scaled=scaled).causes if c.kind != "solver"]
     limits = allowed_deviation(report.original, report.sensitivity, report.baseline_factor)
 
@@ -120,15 +120,15 @@ def find_causes(
     if not isinstance(original, CounterRuns):
         return sorted_causes(causes)
     solver = original.solver_settings()
-    mujoco_like = isinstance(original, SolverDiagnosis)  # PyBullet: no solver to switch, no contact list
+    diagnosable = isinstance(original, SolverDiagnosis)  # a runner without: no solver to switch, no contact list
     # every counter-run a cause may need, in one batch (MuJoCo's rollout spreads them over the cores)
     variants = {}
     if solver:
         variants["tolerance"] = {"tolerance": 0.0}
-    equalities = original.equality_names() if mujoco_like else ()
-    if mujoco_like:
-        if original.solver_name() != "Newton":
-            variants["newton"] = {"solver": "Newton"}
+    equalities = original.equality_names() if diagnosable else ()
+    if diagnosable:
+        if original.solver_name() != original.scale_free_solver:
+            variants["newton"] = {"solver": original.scale_free_solver}
         if equalities:
             variants["equalities"] = {"inactive_equalities": tuple(range(len(equalities)))}
         variants["contacts"] = {"contacts": False}
@@ -145,21 +145,21 @@ def find_causes(
                 f"with_values({', '.join(f'{k}=0' for k in solver)})",
             )
         )
-    if not mujoco_like:
+    if not diagnosable:
         return sorted_causes(causes)
-    newton, remedy = results.get("newton"), '<option solver="Newton"/>'
+    newton, remedy = results.get("newton"), original.solver_remedy(tolerance_zero=False)
     if newton is not None and not (newton.exact or (newton.shows and not exact_expected)):
         # Newton's own stopping rule may stop it at another iteration too: with it at 0, bit for bit at s = 4
-        stopped = counters({"solver": "Newton", "tolerance": 0.0})[0]
+        stopped = counters({"solver": original.scale_free_solver, "tolerance": 0.0})[0]
         if stopped.exact or (stopped.shows and not newton.shows):
-            newton, remedy = stopped, '<option solver="Newton" tolerance="0"/>'
+            newton, remedy = stopped, original.solver_remedy(tolerance_zero=True)
     if newton is not None and newton.shows:
         causes.append(
             Cause(
                 "solver",
                 f"option solver = {original.solver_name()}",
                 "this solver's iterations are "
-                f"not scale-free; with Newton's in both runs {shown(newton)}: load the file with "
+                f"not scale-free; with {original.scale_free_solver}'s in both runs {shown(newton)}: "
                 f"{remedy} to scale it",
             )
         )

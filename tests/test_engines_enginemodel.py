@@ -1,4 +1,4 @@
-"""pitheorem.engines.model: EngineModel, the one type every engine file loads into.
+"""pitheorem.engines.enginemodel: EngineModel, the one type every engine file loads into.
 
 What a model does whatever its engine: it cannot be changed, it reads s and
 every value through the one number reader, takes a change of units over M,
@@ -10,43 +10,13 @@ and test_engines_urdf.
 from __future__ import annotations
 
 import math
-from decimal import Decimal, localcontext
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
 
 import pitheorem as pt
 from pitheorem import engines
-from pitheorem.engines import Parameter
-from pitheorem.engines.model import dim, dimension_factor
 from pitheorem.modelfile import ModelFileError
-
-
-def test_a_parameter_stands_for_one_variable_or_one_per_part():
-    mass = Parameter("body_torso_mass", "body 'torso' mass", (3.5,), dim("M"), "derived", "file")
-    assert (mass.mixed, mass.variables()) == (False, {"body_torso_mass": dim("M")})
-    parts = (("lin", dim("M T^-1")), ("rot", dim("M L^2 T^-1")))
-    damping = Parameter("joint_root_damping", "joint 'root' damping", (0.5,), None, "file", "file", parts=parts)
-    assert damping.mixed
-    assert damping.variables() == {"joint_root_damping_lin": dim("M T^-1"), "joint_root_damping_rot": dim("M L^2 T^-1")}
-    assert dim("M L T^-2") == pt.Dimension({"M": 1, "L": 1, "T": -2})
-
-
-@pytest.mark.parametrize(
-    ("unit_change", "dimension", "factor"),
-    [
-        ({"L": 1}, "L T^-2", 10.0),  # gravity with lengths
-        ({"L": 1, "T": 1}, "L T^-2", 0.1),  # s / s^2
-        ({"M": 1, "L": 2}, "M L^2", 10.0**5),  # an inertia
-        ({"T": -1}, "1", 1.0),  # a number without dimension never moves
-    ],
-)
-def test_dimension_factor_is_s_to_the_dimensions_exponent(unit_change, dimension, factor):
-    sc = pt.Scaling.from_unit_change(pt.System({"m": "M", "l": "L", "t": "T"}), unit_change)
-    assert dimension_factor(sc, 10, dim(dimension)) == factor
-
 
 mujoco = pytest.importorskip("mujoco", reason="the models below are MuJoCo's (pip install 'pitheorem[engines]')")
 
@@ -120,40 +90,6 @@ def test_a_model_runs_in_its_engine_without_handing_out_the_engine_object():
     assert np.array_equal(model.run(20, policy=lambda m, d: [0.3]), rows)
 
 
-def test_a_run_starts_from_a_given_first_row_as_mujoco_steps_it():
-    mujoco = pytest.importorskip("mujoco")
-    path = engines.example_path("pendulum.xml")
-    model = engines.load(path)
-    rows = model.run(5, controls=lambda t: [0.2], initial=(0.5, -0.25))
-    native = mujoco.MjModel.from_xml_path(str(path))
-    data = mujoco.MjData(native)
-    data.qpos[0], data.qvel[0] = 0.5, -0.25
-    assert rows[0].tolist() == [0.5, -0.25]
-    for step in range(5):
-        data.ctrl[:] = 0.2
-        mujoco.mj_step(native, data)
-        assert rows[step + 1].tolist() == [*data.qpos, *data.qvel], step
-    closed = model.run(5, policy=lambda m, d: [0.2], initial=(0.5, -0.25))
-    assert np.array_equal(closed, rows)
-
-
-def test_a_run_starts_from_a_given_activation_as_mujoco_steps_it(tmp_path):
-    mujoco = pytest.importorskip("mujoco")
-    path = tmp_path / "filtered.xml"
-    path.write_text(
-        '<mujoco><worldbody><body><joint name="j" type="hinge"/><geom size="0.1" mass="1"/></body>'
-        '</worldbody><actuator><general joint="j" dyntype="filter" dynprm="0.1"/></actuator></mujoco>'
-    )
-    rows = engines.load(path).run(3, initial=(0.2, 0.0, 0.5))
-    native = mujoco.MjModel.from_xml_path(str(path))
-    data = mujoco.MjData(native)
-    data.qpos[0], data.act[0] = 0.2, 0.5
-    for step in range(3):
-        mujoco.mj_step(native, data)
-        assert rows[step + 1].tolist() == [*data.qpos, *data.qvel, *data.act], step
-    assert rows[0].tolist() == [0.2, 0.0, 0.5]
-
-
 @pytest.mark.parametrize(
     ("n_steps", "initial", "says"),
     [
@@ -171,31 +107,6 @@ def test_a_bad_run_is_refused_by_name(n_steps, initial, says):
     with pytest.raises(pt.InvalidRequestError) as err:
         model.run(n_steps, initial=initial)
     assert says in str(err.value)
-
-
-@pytest.mark.parametrize("integrator", ["Euler", "RK4", "implicitfast"])
-def test_a_policy_sees_everything_computed_for_the_state_it_acts_on(integrator, tmp_path):
-    """Sensors, site poses and tendon lengths are the current state's when the policy is called, not the last step's."""
-    pytest.importorskip("mujoco")
-    (tmp_path / "arm.xml").write_text(
-        f'<mujoco><option integrator="{integrator}"/><worldbody><body><joint name="j" type="hinge" axis="0 1 0"/>'
-        '<geom type="capsule" fromto="0 0 0 1 0 0" size="0.05"/><site name="tip" pos="1 0 0"/></body></worldbody>'
-        '<actuator><motor joint="j"/></actuator><sensor><jointpos joint="j"/></sensor></mujoco>'
-    )
-    model = engines.load(tmp_path / "arm.xml")
-    seen = []
-
-    def policy(m, d):
-        # the tip of a unit arm turned by q about y sits at (cos q, 0, -sin q)
-        seen.append((d.qpos[0], d.sensordata[0], d.site_xpos[0][0], -d.site_xpos[0][2]))
-        return [0.0]
-
-    model.run(30, policy=policy)
-    q, sensed, x, z = np.array(seen).T
-    assert np.ptp(q) > 0.01  # the arm fell: the state moved
-    assert np.array_equal(sensed, q)
-    assert np.allclose(x, np.cos(q), rtol=0, atol=1e-12)
-    assert np.allclose(z, np.sin(q), rtol=0, atol=1e-12)
 
 
 def test_an_unknown_example_names_the_shipped_ones():
@@ -239,7 +150,7 @@ def test_engines_read_s_and_every_number_through_the_one_reader():
 
 
 def test_an_engine_takes_a_change_of_units_over_m_l_and_t():
-    from pitheorem.engines.model import check_scaling
+    from pitheorem.engines.enginemodel import check_scaling
 
     model = engines.load(engines.example_path("pendulum.xml"))
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
@@ -253,29 +164,6 @@ def test_an_engine_takes_a_change_of_units_over_m_l_and_t():
         with pytest.raises(pt.InvalidRequestError) as caught:
             call()
         assert str(caught.value) == "the scaling's system has no base dimension 'M'; search on model.system()"
-
-
-@settings(max_examples=200, deadline=None)
-@given(digits=st.integers(-(10**6), 10**6), places=st.integers(0, 6), factor=st.sampled_from([10, 0.1, 2, 0.5, 1e3, 3]))
-def test_attribute_text_writes_the_exact_decimal_product(digits, places, factor):
-    from pitheorem.engines.model import attribute_text, exact_product
-
-    value = float(f"{digits}e-{places}")  # a decimal as a file writes it, e.g. 9.81
-    # oracle: the product of the two decimals in decimal arithmetic wide enough to be exact, rounded once
-    with localcontext() as ctx:
-        ctx.prec = 60
-        expected = float(Decimal(repr(value)) * Decimal(repr(float(factor))))
-    assert exact_product(value, factor) == expected
-    assert attribute_text([value, value], factor) == f"{expected!r} {expected!r}"
-    assert attribute_text([value]) == repr(value)
-
-
-def test_attribute_text_writes_98_1_for_9_81_times_10():
-    from pitheorem.engines.model import attribute_text
-
-    assert 9.81 * 10 != 98.1  # the float product rounds twice
-    assert attribute_text([0, 0, -9.81], 10) == "0.0 0.0 -98.1"
-    assert attribute_text([math.inf], 2) == "inf"
 
 
 def test_a_models_system_is_built_once_and_holds_every_parameter():

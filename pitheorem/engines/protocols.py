@@ -1,19 +1,22 @@
-"""What an engine backend provides: the one protocol every engine module implements.
+"""What a runner provides: the protocols between the analysis and the engines.
 
-An engine is a backend module (``pitheorem.engines.mjcf`` for MuJoCo,
-``urdf`` for PyBullet, ``mjx`` for MJX) with one line in
-:mod:`pitheorem.engines.registry`.  Its loader reads a file into an
-:class:`~pitheorem.engines.EngineModel`, which holds a backend object.
-Everything the rest of the package asks of that object is named here:
+A format (``pitheorem.engines.fileformats``) reads a file into a *document*:
+the file's numbers with their dimensions and addresses, written back by
+address.  A runner (``pitheorem.engines.runners``) compiles a document in
+its engine and runs it; each runner module has one line in
+:mod:`pitheorem.engines.registry`.  An :class:`~pitheorem.engines.EngineModel`
+holds a runner (:attr:`~pitheorem.engines.EngineModel.runner`), and
+everything the analysis (verify, audit, diagnose, check, fit) asks of it
+is named here:
 
-* :class:`EngineRunner`: what :func:`~pitheorem.engines.verify` needs
+* :class:`Runs`: what :func:`~pitheorem.engines.verify` needs
   to run a model and its scaled copy (a time step, the recorded
   coordinates and inputs with their dimensions, open-loop and closed-loop
   runs, a batch of runs, the yardstick's twins);
-* :class:`EngineBackend`: all of that, and the parameter table, scaled
+* :class:`Runner`: all of that, and the parameter table, scaled
   copies, saved files, the numbers the engine stores (for
-  :func:`~pitheorem.engines.audit`) and the engine settings a file cannot
-  hold;
+  :func:`~pitheorem.engines.audit`), the engine settings a file cannot
+  hold, the precision it computes in, the units its format allows;
 * optional capabilities, each its own small protocol, checked with
   ``isinstance`` where they are used: :class:`RefusesScalings` (numbers a
   scaling cannot reach, named before a copy is made),
@@ -31,11 +34,11 @@ closed-loop law the engine calls with its live state.
 Examples
 --------
 >>> from pitheorem import engines
->>> from pitheorem.engines.backend import CounterRuns, EngineBackend, HasSceneSettings
->>> backend = engines.load(engines.example_path("pendulum.xml"))._backend
->>> isinstance(backend, EngineBackend), isinstance(backend, CounterRuns)
+>>> from pitheorem.engines.protocols import CounterRuns, Runner, HasSceneSettings
+>>> runner = engines.load(engines.example_path("pendulum.xml")).runner
+>>> isinstance(runner, Runner), isinstance(runner, CounterRuns)
 (True, True)
->>> isinstance(backend, HasSceneSettings)
+>>> isinstance(runner, HasSceneSettings)
 False
 """
 
@@ -52,12 +55,12 @@ __all__ = [
     "REQUIRED",
     "Controls",
     "CounterRuns",
-    "EngineBackend",
-    "EngineRunner",
     "HasSceneSettings",
     "IgnoredSettings",
     "NamesElements",
     "RefusesScalings",
+    "Runner",
+    "Runs",
     "SolverDiagnosis",
 ]
 
@@ -69,14 +72,14 @@ Job = tuple[Any, Controls, bool, Any]
 
 
 @runtime_checkable
-class EngineRunner(Protocol):
-    """What :func:`~pitheorem.engines.verify` needs of an engine to run a model.
+class Runs(Protocol):
+    """What :func:`~pitheorem.engines.verdicts.verify` needs of an engine to run a model.
 
     Examples
     --------
     >>> from pitheorem import engines
-    >>> from pitheorem.engines.backend import EngineRunner
-    >>> isinstance(engines.load(engines.example_path("pendulum.xml"))._backend, EngineRunner)
+    >>> from pitheorem.engines.protocols import Runs
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, Runs)
     True
     """
 
@@ -108,19 +111,19 @@ class EngineRunner(Protocol):
     def run_many(self, n_steps: int, jobs: Sequence[Job]) -> list[np.ndarray]:
         """Several open-loop runs of models of the same sizes at once: the rows of each."""
 
-    def twin(self, seed: int) -> EngineRunner:
+    def twin(self, seed: int) -> Runs:
         """A copy whose every stored number is one unit in its own last place off (signs from `seed`)."""
 
 
 @runtime_checkable
-class EngineBackend(EngineRunner, Protocol):
-    """Everything an engine backend provides that the rest of the package calls.
+class Runner(Runs, Protocol):
+    """Everything a runner provides that the rest of the package calls.
 
     Examples
     --------
     >>> from pitheorem import engines
-    >>> from pitheorem.engines.backend import EngineBackend
-    >>> isinstance(engines.load(engines.example_path("pendulum.xml"))._backend, EngineBackend)
+    >>> from pitheorem.engines.protocols import Runner
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, Runner)
     True
     """
 
@@ -130,7 +133,7 @@ class EngineBackend(EngineRunner, Protocol):
     def settings(self) -> dict:
         """The engine settings the file cannot hold, as data (empty where the file holds them all)."""
 
-    def scaled(self, factors: dict[str, float], scaling, s) -> EngineBackend:
+    def scaled(self, factors: dict[str, float], scaling, s) -> Runner:
         """A copy with each parameter multiplied by its factor (`scaling` and `s` None for a plain product)."""
 
     def save(self, path: Path) -> None:
@@ -138,6 +141,24 @@ class EngineBackend(EngineRunner, Protocol):
 
     def stored_numbers(self) -> dict[str, np.ndarray]:
         """Every floating-point number the engine holds for the model, by field, in its own precision."""
+
+    #: ``"float64"`` or ``"float32"``: the precision the engine computes this model in
+    precision: str
+
+    #: None, or the EngineModelError of a file the engine refuses to run (read as a table only)
+    refusal: Any
+
+    def check_units(self, units: dict[str, str]) -> None:
+        """Refuse, by name, units the format does not allow (a URDF file is in SI)."""
+
+    def in_units(self, units: dict[str, str]) -> Runner:
+        """This model declared in other units (its numbers unchanged; a saved file records them)."""
+
+    def recorded_units(self) -> dict[str, str] | None:
+        """The units the file records (one pitheorem wrote), or None."""
+
+    def written_beside(self, path) -> tuple[str, ...]:
+        """The files :meth:`save` writes beside `path` (settings a format cannot hold)."""
 
 
 @runtime_checkable
@@ -147,12 +168,15 @@ class RefusesScalings(Protocol):
     Examples
     --------
     >>> from pitheorem import engines
-    >>> from pitheorem.engines.backend import RefusesScalings
-    >>> isinstance(engines.load(engines.example_path("pendulum.xml"))._backend, RefusesScalings)
+    >>> from pitheorem.engines.protocols import RefusesScalings
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, RefusesScalings)
     False
     """
 
     unscalable_remedy: str
+
+    def command_line_remedy(self, name: str) -> tuple[str, str]:
+        """The command line's option that removes the refusal of parameter `name`, and the flag that sets it."""
 
     def unscalable(self, factors: dict[str, float]) -> list:
         """An UnscalableParameterError for each number the factors would need changed and no call can."""
@@ -164,7 +188,7 @@ class HasSceneSettings(Protocol):
 
     Examples
     --------
-    >>> from pitheorem.engines.backend import HasSceneSettings
+    >>> from pitheorem.engines.protocols import HasSceneSettings
     >>> HasSceneSettings.__name__
     'HasSceneSettings'
     """
@@ -179,7 +203,7 @@ class CounterRuns(Protocol):
 
     Examples
     --------
-    >>> from pitheorem.engines.backend import CounterRuns
+    >>> from pitheorem.engines.protocols import CounterRuns
     >>> CounterRuns.__name__
     'CounterRuns'
     """
@@ -197,10 +221,16 @@ class SolverDiagnosis(Protocol):
 
     Examples
     --------
-    >>> from pitheorem.engines.backend import SolverDiagnosis
+    >>> from pitheorem.engines.protocols import SolverDiagnosis
     >>> SolverDiagnosis.__name__
     'SolverDiagnosis'
     """
+
+    #: the solver whose iterations are scale-free, by name
+    scale_free_solver: str
+
+    def solver_remedy(self, *, tolerance_zero: bool) -> str:
+        """How a user runs a model with the scale-free solver (with its tolerance at 0), in the format's words."""
 
     def solver_name(self) -> str:
         """The constraint solver's name (``"Newton"``, ...)."""
@@ -218,7 +248,7 @@ class NamesElements(Protocol):
 
     Examples
     --------
-    >>> from pitheorem.engines.backend import NamesElements
+    >>> from pitheorem.engines.protocols import NamesElements
     >>> NamesElements.__name__
     'NamesElements'
     """
@@ -233,7 +263,7 @@ class IgnoredSettings(Protocol):
 
     Examples
     --------
-    >>> from pitheorem.engines.backend import IgnoredSettings
+    >>> from pitheorem.engines.protocols import IgnoredSettings
     >>> IgnoredSettings.__name__
     'IgnoredSettings'
     """
@@ -249,7 +279,7 @@ def _members(protocol) -> tuple[str, ...]:
 
 
 #: the methods every backend has
-REQUIRED = tuple(sorted({*_members(EngineRunner), *_members(EngineBackend)}))
+REQUIRED = tuple(sorted({*_members(Runs), *_members(Runner)}))
 
 #: the optional capabilities: protocol -> its members
 OPTIONAL = {

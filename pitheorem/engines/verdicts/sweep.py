@@ -20,11 +20,11 @@ read the model from its file (a copy without one is saved to a temporary
 file first), so the file must be readable there, and the controls must
 pickle (Dask pickles closures and lambdas with cloudpickle).
 
-A model of an engine that batches its runs itself (MJX, float32: one
-vectorised call per verification, compiled once for the model's shapes
-and reused for every scaled copy) and JAX in general do not fork: such
+An engine built on JAX (MJX, float32: one vectorised call per
+verification, compiled once for the model's shapes and reused for every
+scaled copy), and any process that has loaded JAX, does not fork: such
 sweeps run one ``s`` after another in this process unless a cluster is
-given.
+given (:data:`NO_FORK_PACKAGES`).
 """
 
 from __future__ import annotations
@@ -39,21 +39,22 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
 
-from ..errors import EngineModelError, InvalidRequestError
-from ..exact import read_count, read_scale_factor
-from ..formatting import TableDisplay, TextDisplay
-from ..immutable import immutable
-from ..simulation import positive_float
+from ...errors import EngineModelError, InvalidRequestError
+from ...exact import read_count, read_scale_factor
+from ...formatting import TableDisplay, TextDisplay
+from ...immutable import immutable
+from ...simulation import positive_float
+from ..enginemodel import EngineModel, check_scaling
 from .causes import Cause
-from .model import EngineModel, check_scaling
 
-__all__ = ["VERDICTS", "Sweep", "SweepRow", "sweep", "verdict"]
+__all__ = ["NO_FORK_PACKAGES", "VERDICTS", "Sweep", "SweepRow", "sweep", "verdict"]
 
 #: the verdicts of a row, from the strongest to a refusal
 VERDICTS = ("exact", "similar", "not similar", "inconclusive", "refused")
 
-#: engines whose model is not handed to forked processes (JAX is multithreaded and does not survive a fork)
-IN_PROCESS_ENGINES = ("mjx",)
+#: the Python packages that do not survive a fork (JAX is multithreaded): an engine that needs one, or a
+#: process that has loaded one, runs its sweep in this process
+NO_FORK_PACKAGES = ("jax",)
 
 
 def verdict(report) -> str:
@@ -80,7 +81,7 @@ def verdict(report) -> str:
     --------
     >>> import pitheorem as pt
     >>> from pitheorem import engines
-    >>> from pitheorem.engines.sweep import verdict
+    >>> from pitheorem.engines.verdicts.sweep import verdict
     >>> model = engines.load(engines.example_path("pendulum.xml"))
     >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     >>> u = lambda t: [0.1]
@@ -107,7 +108,7 @@ class SweepRow(TextDisplay):
         The scale factor, as :func:`pitheorem.exact.read_scale_factor`
         reads it.
     verdict : str
-        One of ``pitheorem.engines.sweep.VERDICTS``.
+        One of ``pitheorem.engines.verdicts.sweep.VERDICTS``.
     max_deviation : float or None
         The largest deviation of the copy, mapped back, from the original,
         in original units; None for a refused copy.
@@ -246,7 +247,7 @@ class Sweep(TableDisplay):
         >>> fig.axes[0].get_xscale(), fig.axes[0].get_yscale()
         ('log', 'log')
         """
-        from ..plotting import plot_sweep
+        from ...plotting import plot_sweep
 
         return plot_sweep(self, ax=ax)
 
@@ -336,7 +337,7 @@ def sweep(
     if engine is not None and engine != model.engine:
         if not model.path:
             raise InvalidRequestError("engine= reads the model's file again; this model has none (save it first)")
-        from .loading import load
+        from ..loading import load
 
         model = load(model.path, engine=engine, units=model.units)
     factors = _read_factors(s)
@@ -427,10 +428,11 @@ def _forks(model: EngineModel) -> bool:
     """Whether this process may fork workers that inherit the model (POSIX, and no JAX loaded)."""
     import multiprocessing
 
-    return (
-        "fork" in multiprocessing.get_all_start_methods()
-        and model.engine not in IN_PROCESS_ENGINES
-        and "jax" not in sys.modules
+    from ..registry import registered
+
+    needs = registered(model.engine).packages
+    return "fork" in multiprocessing.get_all_start_methods() and not any(
+        p in needs or p in sys.modules for p in NO_FORK_PACKAGES
     )
 
 
@@ -471,12 +473,16 @@ _READ: dict[tuple, EngineModel] = {}
 
 def _recipe(model: EngineModel) -> tuple:
     """How a worker elsewhere reads the same model: its file (saved first if it has none), engine, units."""
+    from ..registry import FORMATS, registered
+
     path = model.path
     if not path:
         folder = tempfile.mkdtemp(prefix="pitheorem-sweep-")
-        suffix = ".urdf" if model.engine == "pybullet" else ".xml"
+        written = registered(model.engine).formats[0]  # the format a model of this engine saves as
+        suffix = next(f.suffixes[0] for f in FORMATS if f.name == written)
         path = str(model.save(Path(folder) / f"model{suffix}"))
-    options = {"precision": model.settings()["precision"]} if model.engine == "mjx" else {}
+    settings = model.settings()
+    options = {"precision": settings["precision"]} if "precision" in settings else {}
     return path, model.engine, tuple(sorted(model.units.items())), tuple(sorted(options.items()))
 
 
@@ -484,7 +490,7 @@ def _remote_outcome(recipe: tuple, scaling, s, duration: float, controls, option
     """On a cluster worker: read the model by its recipe (once per worker) and verify it at ``s``."""
     model = _READ.get(recipe)
     if model is None:
-        from .loading import load
+        from ..loading import load
 
         path, engine, units, engine_options = recipe
         model = _READ[recipe] = load(path, engine=engine, units=dict(units), **dict(engine_options))
@@ -495,8 +501,8 @@ def _on_cluster(client, job: tuple, factors: tuple, report) -> list:
     try:
         from distributed import Client, as_completed
     except ImportError:
-        from ..errors import EngineUnavailableError
-        from .registry import backends
+        from ...errors import EngineUnavailableError
+        from ..registry import backends
 
         raise EngineUnavailableError("dask cluster", "distributed", "cluster", backends()) from None
     if not isinstance(client, Client):
@@ -520,7 +526,7 @@ def _thresholds_crossed(model: EngineModel, scaling, factors: tuple) -> list[tup
     The copy's numbers are the original's times their factors (what ``model.scaled`` writes), so a copy
     the compiler refuses has its crossings too.
     """
-    from .thresholds import crossed, held_against, thresholds
+    from ..thresholds import crossed, held_against, thresholds
 
     table = held_against(model, model.engine)
     precision = model.settings().get("precision", "float32")
@@ -540,8 +546,8 @@ def _thresholds_crossed(model: EngineModel, scaling, factors: tuple) -> list[tup
 
 def _fit(model: EngineModel, scaling) -> tuple[dict | None, float | None]:
     """The units ``pitheorem.fit_units(model, engine=...)`` picks for the model's engine, and the ``s`` that reaches them."""
-    from ..errors import PiTheoremError
-    from .fitting import engine_fit, fitted_units
+    from ...errors import PiTheoremError
+    from ..fitting import engine_fit, fitted_units
 
     try:
         fitted = engine_fit(model, engine=model.engine, nice=10)

@@ -20,7 +20,7 @@ import math
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from ..errors import EngineModelError
+from ...errors import EngineModelError
 
 __all__ = ["check_model_file", "check_numbers"]
 
@@ -113,7 +113,7 @@ def check_model_file(path) -> ET.Element | None:
     Examples
     --------
     >>> import tempfile, pathlib
-    >>> from pitheorem.engines.numbers import check_model_file
+    >>> from pitheorem.engines.fileformats.numbers import check_model_file
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "m.xml"
     >>> _ = path.write_text('<mujoco><option timestep="nan"/></mujoco>')
     >>> try:
@@ -180,7 +180,7 @@ def check_numbers(path, element: str, attr: str, text: str | None, *, nonnegativ
 
     Examples
     --------
-    >>> from pitheorem.engines.numbers import check_numbers
+    >>> from pitheorem.engines.fileformats.numbers import check_numbers
     >>> check_numbers("r.urdf", "link 'a' inertial mass", "value", "2.5")
     >>> try:
     ...     check_numbers("r.urdf", "link 'a' inertial mass", "value", "heavy", nonnegative=True)

@@ -1,0 +1,410 @@
+"""The URDF format: every number a URDF file states, with its dimension and its address; written back by address.
+
+Read with :mod:`xml.etree.ElementTree`, by the URDF specification (SI
+units: metres, kilograms, seconds, radians).  Dimensions follow the joint
+type: a revolute or continuous joint has coordinate ``q`` = 1 and
+generalised force ``Q`` = M L^2 T^-2, a prismatic one ``q`` = L and ``Q``
+= M L T^-2.  A scaled copy is the parsed file with each number rewritten
+at its address (its element's place in document order), never walked
+again.  What a URDF cannot hold (gravity, the time step, contact and
+solver settings) is the runner's: :mod:`pitheorem.engines.runners.pybullet`
+keeps PyBullet's beside the file.  Nothing here imports an engine.
+"""
+
+from __future__ import annotations
+
+import copy
+import xml.etree.ElementTree as ET
+from collections.abc import Mapping
+from pathlib import Path
+
+from ..enginemodel import EngineModelError
+from ..parameters import JointKind, Parameter, attribute_text, dim, identifier, unique_name, warn_unscalable
+from .numbers import check_model_file, check_numbers
+
+__all__ = ["SI", "UrdfDocument", "joint_kind", "read_urdf", "refuse_units"]
+
+_ONE, _L, _T, _M = dim("1"), dim("L"), dim("T"), dim("M")
+
+#: the units of every URDF file, by its specification
+SI = {"M": "kg", "L": "m", "T": "s"}
+
+
+def _floats(text: str | None) -> list[float]:
+    return [float(v) for v in (text or "").split()]
+
+
+def joint_kind(jtype: str) -> JointKind | None:
+    """The coordinate and force of a URDF joint type: None for a fixed (or unknown) joint.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.fileformats.urdf import joint_kind
+    >>> str(joint_kind("prismatic").force), joint_kind("fixed")
+    ('M L T^-2', None)
+    """
+    if jtype == "prismatic":
+        return JointKind.SLIDE
+    if jtype in ("revolute", "continuous"):
+        return JointKind.HINGE
+    return None
+
+
+class _Attr:
+    """One dimensional attribute of one URDF element (its ``value`` attribute or another one).
+
+    ``index`` is the element's address: its place in the document's order
+    (``root.iter()``), the same in every copy of the parsed file.
+    ``default`` is the text the engine reads when the attribute is absent
+    (a mesh's scale), so that reading a file never adds anything to it.
+    """
+
+    def __init__(self, name, path, element, attr, dimension, note="", index=-1, default=None):
+        self.name, self.path, self.element, self.attr, self.dimension, self.note = (
+            name,
+            path,
+            element,
+            attr,
+            dimension,
+            note,
+        )
+        self.index, self.default = index, default
+
+    def read(self):
+        return tuple(_floats(self.element.get(self.attr, self.default)))
+
+    def in_copy(self, elements: list) -> _Attr:
+        """The same attribute in a copy of the file, whose elements in document order are `elements`."""
+        return _Attr(
+            self.name, self.path, elements[self.index], self.attr, self.dimension, self.note, self.index, self.default
+        )
+
+
+def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr]:
+    """Every dimensional number the URDF states, in document order."""
+    root = tree.getroot()
+    if root.tag != "robot":
+        raise EngineModelError(path, f"<{root.tag}>", "a URDF file's root element must be <robot>")
+    out: list[_Attr] = []
+    names: set[str] = set()
+    address = {id(element): i for i, element in enumerate(root.iter())}
+
+    def add(ident, where, element, attr, dimension, note="", default=None):
+        if element is None or element.get(attr, default) is None:
+            return
+        text = element.get(attr, default)
+        check_numbers(path, where, attr, text, nonnegative=dimension == _M)  # a mass cannot be < 0
+        out.append(
+            _Attr(unique_name(ident, names), where, element, attr, dimension, note, address[id(element)], default)
+        )
+
+    for link in root.findall("link"):
+        lname = link.get("name", "")
+        ident = identifier(f"link_{lname}")
+        where = f"link {lname!r}"
+        inertial = link.find("inertial")
+        if inertial is not None:
+            add(f"{ident}_com", f"{where} inertial origin xyz", inertial.find("origin"), "xyz", _L)
+            add(f"{ident}_mass", f"{where} inertial mass", inertial.find("mass"), "value", _M)
+            inertia = inertial.find("inertia")
+            for a in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
+                add(
+                    f"{ident}_{a}",
+                    f"{where} inertia {a}",
+                    inertia,
+                    a,
+                    dim("M L^2"),
+                    note="PyBullet recomputes the inertia from the collision shapes unless "
+                    "URDF_USE_INERTIA_FROM_FILE is given",
+                )
+        for kind in ("collision", "visual"):
+            for k, shape in enumerate(link.findall(kind)):
+                sid = f"{ident}_{kind}{k}"
+                swhere = f"{where} {kind} #{k}"
+                add(f"{sid}_xyz", f"{swhere} origin xyz", shape.find("origin"), "xyz", _L)
+                geometry = shape.find("geometry")
+                if geometry is None:
+                    continue
+                for g in geometry:
+                    if g.tag == "box":
+                        add(f"{sid}_size", f"{swhere} box size", g, "size", _L)
+                    elif g.tag in ("cylinder", "capsule", "sphere"):
+                        add(f"{sid}_radius", f"{swhere} {g.tag} radius", g, "radius", _L)
+                        add(f"{sid}_length", f"{swhere} {g.tag} length", g, "length", _L)
+                    elif g.tag == "mesh":
+                        filename = g.get("filename", "")
+                        resolved = _mesh_path(filename, source_dir)
+                        if resolved is None:
+                            raise EngineModelError(
+                                path,
+                                f"{swhere} mesh {filename!r}",
+                                "mesh file not found (relative to the URDF's folder)",
+                            )
+                        add(
+                            f"{sid}_scale",
+                            f"{swhere} mesh scale",
+                            g,
+                            "scale",
+                            _L,
+                            note="a factor times the mesh file's units, a length",
+                            default="1 1 1",
+                        )
+                    elif g.tag == "plane":
+                        pass  # an infinite plane: nothing to scale
+                    elif kind == "visual":
+                        pass  # something PyBullet draws nothing from (a <material> put inside <geometry>)
+                    else:
+                        raise EngineModelError(
+                            path,
+                            f"{swhere} <{g.tag}>",
+                            "unknown geometry; use box, cylinder, capsule, sphere, mesh or plane",
+                        )
+        contact = link.find("contact")
+        if contact is not None:
+            for tag, d in (
+                ("rolling_friction", _L),
+                ("spinning_friction", _L),
+                ("stiffness", dim("M T^-2")),
+                ("damping", dim("M T^-1")),
+            ):
+                add(f"{ident}_{tag}", f"{where} contact {tag}", contact.find(tag), "value", d)
+            for tag in contact:
+                if tag.tag not in (
+                    "lateral_friction",
+                    "rolling_friction",
+                    "spinning_friction",
+                    "restitution",
+                    "stiffness",
+                    "damping",
+                    "contact_cfm",
+                    "contact_erp",
+                    "inertia_scaling",
+                    "friction_anchor",
+                ):
+                    raise EngineModelError(path, f"{where} contact <{tag.tag}>", "unknown contact parameter")
+    for joint in root.findall("joint"):
+        jname, jtype = joint.get("name", ""), joint.get("type", "")
+        ident = identifier(f"joint_{jname}")
+        where = f"joint {jname!r}"
+        add(f"{ident}_xyz", f"{where} origin xyz", joint.find("origin"), "xyz", _L)
+        if jtype == "fixed":
+            continue
+        kind = joint_kind(jtype)
+        if kind is None:
+            raise EngineModelError(
+                path,
+                f"{where} (type {jtype!r})",
+                "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic or fixed",
+            )
+        q, force = kind.q, kind.force
+        limit = joint.find("limit")
+        add(f"{ident}_lower", f"{where} limit lower", limit, "lower", q)
+        add(f"{ident}_upper", f"{where} limit upper", limit, "upper", q)
+        add(f"{ident}_effort", f"{where} limit effort", limit, "effort", force)
+        add(f"{ident}_velocity", f"{where} limit velocity", limit, "velocity", q / _T)
+        dynamics = joint.find("dynamics")
+        add(f"{ident}_damping", f"{where} dynamics damping", dynamics, "damping", force * _T / q)
+        add(f"{ident}_friction", f"{where} dynamics friction", dynamics, "friction", force)
+    return out
+
+
+def _compound_meshes(tree: ET.ElementTree, source_dir: Path) -> list[tuple[str, str, int]]:
+    """The OBJ collision meshes of several objects (convex decompositions such as V-HACD's).
+
+    PyBullet loads such a mesh as a compound of convex hulls, and
+    ``changeDynamics(collisionMargin=...)`` does not reach the parts: a margin
+    of 0.05 moves pybullet_data's duck at rest by 8e-5 m, not 0.05 m.  The
+    parts keep their default margin, a length no scaling can change, so the
+    contacts of a scaled copy are off by it.  Returns (link, file, parts) each.
+    """
+    found = []
+    for link in tree.getroot().iter("link"):
+        for collision in link.findall("collision"):
+            for mesh in collision.iter("mesh"):
+                filename = mesh.get("filename", "")
+                resolved = _mesh_path(filename, source_dir)
+                if resolved is None or resolved.suffix.lower() != ".obj":
+                    continue
+                with open(resolved, encoding="utf-8", errors="replace") as lines:
+                    parts = sum(1 for line in lines if line.startswith("o "))
+                if parts > 1:
+                    found.append((link.get("name"), filename, parts))
+    return found
+
+
+def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> None:
+    """Warn about each collision mesh of :func:`_compound_meshes`."""
+    for link, filename, parts in _compound_meshes(tree, source_dir):
+        warn_unscalable(
+            path,
+            f"link {link!r} collision mesh {filename!r}",
+            f"its {parts} convex parts load as a compound whose collision margins "
+            "changeDynamics cannot reach; contacts of a scaled copy are off by that margin",
+        )
+
+
+def _xml_text(tree: ET.ElementTree) -> str:
+    return ET.tostring(tree.getroot(), encoding="unicode")
+
+
+def _mesh_path(filename: str, source_dir: Path) -> Path | None:
+    """The file a URDF's mesh or texture names, searched as PyBullet does; None if there is none.
+
+    A relative name is relative to the URDF's folder; ``package://NAME/REST`` is looked for as
+    ``NAME/REST`` in that folder and the folders above it (a ROS package's meshes sit beside its
+    ``urdf`` folder).
+    """
+    name = filename
+    if name.startswith("package://"):
+        name = name[len("package://") :]
+    candidates = [source_dir / name, Path(name)]
+    if filename.startswith("package://"):
+        candidates += [folder / name for folder in list(source_dir.parents)[:4]]
+    for c in candidates:
+        if c.is_file():
+            return c
+    return None
+
+
+def _portable_text(tree: ET.ElementTree, source_dir: Path) -> str | None:
+    """The URDF's text with every mesh and texture file named by its absolute path, to load from any folder.
+
+    None when one of them cannot be found (PyBullet may still find it from the file's own folder).
+    """
+    tree = copy.deepcopy(tree)
+    for element in tree.getroot().iter():
+        if element.tag in ("mesh", "texture") and element.get("filename"):
+            found = _mesh_path(element.get("filename"), source_dir)
+            if found is None:
+                return None
+            element.set("filename", str(found.resolve()))
+    return _xml_text(tree)
+
+
+class UrdfDocument:
+    """A URDF file: its parsed tree and every number it states, each with its address.
+
+    Parameters
+    ----------
+    tree : xml.etree.ElementTree.ElementTree
+        The parsed file; never changed (a scaled copy is a new tree).
+    path : str
+        The file it was read from.
+    source_dir : Path
+        The folder its mesh and texture files are relative to.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.fileformats.urdf import read_urdf
+    >>> document = read_urdf(engines.example_path("hinged_rod.urdf"))
+    >>> [p.name for p in document.parameters()][:2]
+    ['link_base_mass', 'link_base_ixx']
+    """
+
+    #: the units a URDF file is in, whatever a caller declares (its specification's)
+    fixed_units = SI
+
+    def __init__(self, tree: ET.ElementTree, path: str, source_dir: Path, *, attrs: list[_Attr] | None = None):
+        self.tree, self.path, self.source_dir = tree, path, source_dir
+        # a copy gets its attributes by address from its original's: the file is not walked again
+        self.attrs = _attributes(tree, path, source_dir) if attrs is None else attrs
+
+    def parameters(self) -> list[Parameter]:
+        """Every dimensional number the file states, in document order."""
+        return [Parameter(a.name, a.path, a.read(), a.dimension, "file", "file", note=a.note) for a in self.attrs]
+
+    def scaled(self, factors: Mapping[str, float], *, text=attribute_text) -> UrdfDocument:
+        """A copy with each number multiplied by its factor, written as `text` writes it (the exact decimal product)."""
+        tree = copy.deepcopy(self.tree)
+        elements = list(tree.getroot().iter())
+        attrs = [a.in_copy(elements) for a in self.attrs]
+        for a in attrs:
+            f = factors.get(a.name, 1.0)
+            if f != 1.0:
+                a.element.set(a.attr, text(a.read(), f))
+        return UrdfDocument(tree, self.path, self.source_dir, attrs=attrs)
+
+    def text(self) -> str:
+        """The file's text as it stands."""
+        return _xml_text(self.tree)
+
+    def portable_text(self) -> str | None:
+        """The file's text with every mesh and texture named by its absolute path (None: one is missing)."""
+        return _portable_text(self.tree, self.source_dir)
+
+    def compound_meshes(self) -> list[tuple[str, str, int]]:
+        """The OBJ collision meshes of several convex parts: (link, file, parts) each."""
+        return _compound_meshes(self.tree, self.source_dir)
+
+    def warn_compound_meshes(self) -> None:
+        """Warn about each collision mesh of several convex parts, whose margins no call reaches."""
+        _warn_compound_meshes(self.tree, self.path, self.source_dir)
+
+    def save(self, path) -> None:
+        """Write the file, its meshes named by absolute paths so that the copy loads from any folder."""
+        tree = copy.deepcopy(self.tree)
+        for g in tree.getroot().iter("mesh"):
+            resolved = _mesh_path(g.get("filename", ""), self.source_dir)
+            if resolved is not None:
+                g.set("filename", str(resolved.resolve()))
+        Path(path).write_text(_xml_text(tree))
+
+
+def read_urdf(path) -> UrdfDocument:
+    """Read a URDF file: its tree and every number it states.
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    UrdfDocument
+
+    Raises
+    ------
+    EngineModelError
+        For a file that is no URDF (the root must be ``<robot>``), a number
+        that is not finite or a negative mass, a missing mesh, an unknown
+        geometry, contact parameter or joint type.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.fileformats.urdf import read_urdf
+    >>> read_urdf(engines.example_path("hinged_rod.urdf")).path.endswith("hinged_rod.urdf")
+    True
+    """
+    path = Path(path)
+    root = check_model_file(path)  # the file parsed once, its numbers checked
+    if root is not None:
+        tree = ET.ElementTree(root)
+    else:  # not well-formed: parse it again for the line of the fault
+        try:
+            tree = ET.parse(path)
+        except ET.ParseError as err:
+            raise EngineModelError(str(path), f"line {err.position[0]}", f"not well-formed XML ({err})") from None
+    return UrdfDocument(tree, str(path), path.resolve().parent)
+
+
+def refuse_units(path: str, units: Mapping[str, str]) -> None:
+    """Refuse units other than SI for a URDF file, by name (an :class:`~pitheorem.errors.EngineModelError`).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.fileformats.urdf import refuse_units
+    >>> try:
+    ...     refuse_units("arm.urdf", {"M": "g", "L": "cm", "T": "s"})
+    ... except engines.EngineModelError as err:
+    ...     print(str(err)[:60])
+    arm.urdf: units: a URDF file is in SI units (metres, kilogra
+    """
+    raise EngineModelError(
+        path or "the URDF model",
+        "units",
+        "a URDF file is in SI units (metres, "
+        "kilograms, seconds) by its specification, so pitheorem reads and writes none in "
+        f"{' '.join(units.values())}; scale it with model.scaled(...) instead",
+    )

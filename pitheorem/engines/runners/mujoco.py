@@ -1,0 +1,570 @@
+"""MuJoCo as a runner: a format's document compiled, stepped in MuJoCo's rollout, copied one ulp off.
+
+:class:`MujocoRunner` runs what a format read (an MJCF file's
+:class:`~pitheorem.engines.fileformats.mjcf.MjcfDocument`): open loop in
+MuJoCo's own ``rollout`` (the loop in C, spread over the cores), closed
+loop step by step, a batch of runs at once; it copies the compiled model
+one ulp off for the yardstick's twins and with another solver, tolerance,
+contacts or equality constraints for the diagnosis' counter-runs, and
+says what MuJoCo stores, which contacts a run makes and which solver it
+uses.  :func:`load_mjcf` is the registry's loader for ``"mujoco"``.
+"""
+
+from __future__ import annotations
+
+import atexit
+from contextlib import contextmanager
+from pathlib import Path
+
+import numpy as np
+
+from ...errors import EngineModelError
+from ...simulation import nudged
+from ..enginemodel import EngineModel
+from ..fileformats.mjcf import read_mjcf
+from ..packages import engine_module
+
+__all__ = ["MujocoRunner", "load_mjcf"]
+
+
+def _mujoco():
+    return engine_module("mujoco")
+
+
+class MujocoRunner:
+    """A model run by MuJoCo: a format's document, compiled, stepped, copied one ulp off, and run again.
+
+    The document (an MJCF file's, :class:`~pitheorem.engines.fileformats.mjcf.MjcfDocument`)
+    holds the file's numbers and writes them back; the runner holds the
+    compiled ``MjModel`` it steps (its own copy for twins and counter-runs)
+    and everything MuJoCo says of a run: the numbers it stores, its
+    contacts, its solver.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.runners.mujoco import MujocoRunner, load_mjcf
+    >>> runner = MujocoRunner(load_mjcf(engines.example_path("pendulum.xml")).runner.document)
+    >>> runner.mjmodel.nq, runner.run(2).shape
+    (1, (3, 2))
+    """
+
+    #: MuJoCo computes in double precision
+    precision = "float64"
+
+    def __init__(self, document):
+        self.document = document
+        self.mjmodel = document.mjmodel  # this runner's own copy once a twin or a counter-run changes it
+        self.refusal = getattr(document, "refusal", None)
+
+    # -- the document's table, copies and files -------------------------------------------------
+
+    @property
+    def spec(self):
+        """The document's ``MjSpec``."""
+        return self.document.spec
+
+    @property
+    def path(self) -> str:
+        return self.document.path
+
+    def parameters(self):
+        return self.document.parameters()
+
+    def settings(self) -> dict:
+        return self.document.settings()
+
+    def scaled(self, factors, scaling, s) -> MujocoRunner:
+        copy = MujocoRunner(self.document.scaled(factors, scaling, s))
+        copy._field_names = self._fields()  # the same elements: the same stored fields
+        return copy
+
+    def in_units(self, units) -> MujocoRunner:
+        """This model, its document recording other units (a saved file then says so)."""
+        return MujocoRunner(self.document.in_units(units))
+
+    def check_units(self, units) -> None:
+        """Nothing to refuse: an MJCF file may be in any units, and records them when saved."""
+
+    def recorded_units(self) -> dict[str, str] | None:
+        return self.document.recorded_units()
+
+    def save(self, path) -> None:
+        self.document.save(path)
+
+    def written_beside(self, path) -> tuple[str, ...]:
+        """The files :meth:`save` writes beside `path`: none (an MJCF file holds every setting)."""
+        return ()
+
+    def coordinate_dimensions(self):
+        return self.document.coordinate_dimensions()
+
+    def control_dimensions(self):
+        return self.document.control_dimensions()
+
+    def activation_dimensions(self):
+        return self.document.activation_dimensions()
+
+    def timestep(self) -> float:
+        return float(self.mjmodel.opt.timestep)
+
+    def _refuse(self):
+        raise EngineModelError(
+            self.path,
+            self.refusal.element,
+            f"{self.refusal.reason}; MuJoCo does not run it. "
+            "Convert it to units clear of the threshold (pitheorem.fit_units(model), "
+            "model.converted(...), or pitheorem convert FILE --fit mujoco)",
+        )
+
+    # -- what the engine holds and how it runs ---------------------------------------------------
+
+    def stored_numbers(self) -> dict[str, np.ndarray]:
+        """Every floating-point number the compiled model holds, by field: a copy, in its own precision.
+
+        The arrays of ``MjModel`` (mesh vertices in float32 where MuJoCo keeps them so) and the
+        floating-point fields of ``opt`` and ``stat``; colours are left out (they draw, not move).
+        """
+        m, out = self.mjmodel, {}
+        for field in self._fields():
+            holder, attr = _holder(m, field)
+            out[field] = np.array(getattr(holder, attr), copy=True, ndmin=1)
+        return out
+
+    def twin(self, seed: int) -> MujocoRunner:
+        """A copy whose every stored number is one unit in its own last place off, the signs drawn from `seed`.
+
+        Zeros stay zero (a scaled copy keeps them exactly); the time step stays, for it is the grid
+        the runs are compared on.  The model is copied, not compiled again.
+        """
+        if self.refusal is not None:
+            self._refuse()
+        fields, up, down = self._neighbours()
+        chosen = np.where(np.random.default_rng(seed).random(up.size) < 0.5, up, down)
+        twin = self._with_model_copy()
+        m = twin.mjmodel
+        for field, start, stop, shape, dtype in fields:  # one draw, then each field written in place
+            holder, attr = _holder(m, field)
+            moved = chosen[start:stop].astype(dtype).reshape(shape)
+            if shape == ():
+                setattr(holder, attr, moved.item())
+            else:
+                getattr(holder, attr)[...] = moved
+        return twin
+
+    def _neighbours(self):
+        """Every stored number's neighbours one ulp up and one down (zeros kept), found once per model.
+
+        Returns the fields as ``(name, start, stop, shape, dtype)`` and the two neighbour arrays, all
+        fields end to end, each number stepped in its own precision (float32 where MuJoCo keeps it so)
+        and then held as a double, which represents it exactly.
+        """
+        if getattr(self, "_neighbour_table", None) is None:
+            fields, ups, downs, start = [], [], [], 0
+            for field in self._fields():
+                if field == "opt.timestep":
+                    continue
+                holder, attr = _holder(self.mjmodel, field)
+                value = np.asarray(getattr(holder, attr))
+                flat = value.reshape(-1)
+                zero = flat == 0
+                ups.append(np.where(zero, flat, np.nextafter(flat, np.array(np.inf, flat.dtype))).astype(float))
+                downs.append(np.where(zero, flat, np.nextafter(flat, np.array(-np.inf, flat.dtype))).astype(float))
+                fields.append((field, start, start + flat.size, value.shape, value.dtype))
+                start += flat.size
+            self._neighbour_table = (tuple(fields), np.concatenate(ups), np.concatenate(downs))
+        return self._neighbour_table
+
+    def _with_model_copy(self) -> MujocoRunner:
+        """This backend over a copy of its compiled model (copied, not compiled again), to change and run."""
+        import copy
+
+        out = copy.copy(self)
+        out.mjmodel = copy.copy(self.mjmodel)
+        return out
+
+    def _fields(self) -> list[str]:
+        """The stored floating-point fields of this backend's model, found once (a copy has the same)."""
+        if getattr(self, "_field_names", None) is None:
+            self._field_names = _stored_fields(self.mjmodel)
+        return self._field_names
+
+    def variant(
+        self,
+        *,
+        tolerance: float | None = None,
+        contacts: bool = True,
+        solver: str | None = None,
+        inactive_equalities: tuple[int, ...] = (),
+        integrator: str | None = None,
+    ) -> MujocoRunner:
+        """A copy run with another solver, tolerance or integrator, with contacts switched off, or with some
+        equality constraints inactive: a counter-run's model (or the rod's, in another integrator)."""
+        mj = _mujoco()
+        out = self._with_model_copy()
+        m = out.mjmodel
+        if integrator is not None:
+            m.opt.integrator = int(getattr(mj.mjtIntegrator, f"mjINT_{integrator.upper()}"))
+        for i in inactive_equalities:
+            m.eq_active0[i] = 0
+        if solver is not None:
+            m.opt.solver = int(getattr(mj.mjtSolver, f"mjSOL_{solver.upper()}"))
+        if tolerance is not None:
+            m.opt.tolerance = tolerance
+            m.opt.noslip_tolerance = tolerance
+        if not contacts:
+            m.opt.disableflags |= int(mj.mjtDisableBit.mjDSBL_CONTACT)
+        return out
+
+    def control_ranges(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each actuator's control range where the file limits it; -inf and inf where it does not."""
+        m = self.mjmodel
+        limited = np.asarray(m.actuator_ctrllimited, dtype=bool)
+        low = np.where(limited, m.actuator_ctrlrange[:, 0], -np.inf)
+        high = np.where(limited, m.actuator_ctrlrange[:, 1], np.inf)
+        return low, high
+
+    def solver_settings(self) -> dict[str, float]:
+        """The solver's stopping rules that have no pure dimension, nonzero ones only."""
+        opt = self.mjmodel.opt
+        return {
+            name: float(getattr(opt, name))
+            for name in ("tolerance", "noslip_tolerance")
+            if getattr(opt, name) != 0 and (name == "tolerance" or opt.noslip_iterations > 0)
+        }
+
+    def equality_names(self) -> list[str]:
+        """Each equality constraint, named as the reports name it."""
+        return [self.element_name("eq_data", i) for i in range(self.mjmodel.neq)]
+
+    #: the solver whose iterations are scale-free (its line search is exact in any units)
+    scale_free_solver = "Newton"
+
+    def solver_remedy(self, *, tolerance_zero: bool) -> str:
+        """How a user runs both models with the scale-free solver (its tolerance at 0 where that is needed)."""
+        tolerance = ' tolerance="0"' if tolerance_zero else ""
+        return f'load the file with <option solver="Newton"{tolerance}/>'
+
+    def solver_name(self) -> str:
+        """The constraint solver: ``"PGS"``, ``"CG"`` or ``"Newton"``."""
+        return {0: "PGS", 1: "CG", 2: "Newton"}.get(int(self.mjmodel.opt.solver), str(self.mjmodel.opt.solver))
+
+    def first_contact_difference(self, other: MujocoRunner, n_steps: int, controls=None, other_controls=None):
+        """The first step after which other geom pairs touch in `other`'s run than in this one's.
+
+        Both run open loop, step by step side by side, and stop at the first difference: returns
+        ``(step, pairs only in other's run, pairs only in this one's)``, pairs named and sorted, or
+        None when the same pairs touch after every step.  `other` has the same geoms (a scaled copy).
+        """
+        mj = _mujoco()
+        runs = [
+            (self, self._start(False, None)[0], self._control_rows(controls, n_steps)),
+            (other, other._start(False, None)[0], other._control_rows(other_controls, n_steps)),
+        ]
+        for i in range(n_steps):
+            touching = []
+            for backend, data, rows in runs:
+                if rows is not None:
+                    data.ctrl[:] = rows[i]
+                mj.mj_step(backend.mjmodel, data)
+                touching.append(_touching(data))
+            mine, theirs = touching
+            if mine != theirs:
+
+                def named(pairs):
+                    return sorted((self._geom_name(a), self._geom_name(b)) for a, b in pairs)
+
+                return i + 1, named(theirs - mine), named(mine - theirs)
+        return None
+
+    def element_name(self, field: str, row: int) -> str:
+        """A row of a stored field, named by its element where the field has one row per element."""
+        mj, m = _mujoco(), self.mjmodel
+        prefix = field.split("_", 1)[0]
+        kind = _FIELD_OBJECTS.get(prefix)
+        rows = np.asarray(getattr(m, field)).shape[0] if "." not in field else 0
+        if prefix == "dof" and rows == m.nv:
+            kind, row = "joint", int(m.dof_jntid[row])
+        elif prefix == "mesh" and rows == m.nmeshvert and m.nmesh:
+            kind, row = "mesh", int(np.searchsorted(m.mesh_vertadr, row, side="right") - 1)
+        elif kind is None or rows != getattr(m, _COUNTS.get(kind, f"n{kind}"), -1):
+            return f"{field}[{row}]"
+        name = mj.mj_id2name(m, getattr(mj.mjtObj, f"mjOBJ_{kind.upper()}"), row)
+        return f"{kind} {name!r}" if name else f"{kind} #{row}"
+
+    def _geom_name(self, index: int) -> str:
+        mj = _mujoco()
+        name = mj.mj_id2name(self.mjmodel, mj.mjtObj.mjOBJ_GEOM, int(index))
+        return f"geom {name!r}" if name else f"geom #{index}"
+
+    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None):
+        """Step the model ``n_steps`` times from its initial state; rows of (qpos, qvel, act).
+
+        ``controls`` is None, an array of ``data.ctrl`` rows (one per step)
+        or a callable of the step's start time ``i * dt`` giving one row;
+        ``policy`` is None or a closed-loop ``policy(mjmodel, mjdata)``
+        giving ``data.ctrl``; ``nudge`` moves every initial coordinate by
+        one ulp; ``initial`` is a first row, (qpos, qvel, act) laid out as
+        the rows returned.
+
+        Open-loop runs step in MuJoCo's own ``rollout`` (the loop in C,
+        bit for bit the same steps as ``mj_step`` in Python); a policy
+        needs Python between the steps.
+        """
+        if self.refusal is not None:
+            self._refuse()
+        if policy is not None and self.mjmodel.nu:
+            data, first = self._start(nudge, initial)
+            return self._run_closed_loop(n_steps, data, policy, first)
+        return self.run_many(n_steps, [(self, controls, nudge, initial)])[0]
+
+    def run_many(self, n_steps: int, jobs) -> list[np.ndarray]:
+        """Several open-loop runs in one call of MuJoCo's rollout, spread over the processor's cores.
+
+        ``jobs`` holds ``(backend, controls, nudge, initial)`` tuples, as the
+        arguments of :meth:`run`; the backends' models must have the same
+        sizes (a model and its scaled copies do).  Returns the runs' rows.
+        """
+        import os
+
+        if self.refusal is not None or any(job[0].refusal is not None for job in jobs):
+            (self if self.refusal is not None else next(j[0] for j in jobs if j[0].refusal is not None))._refuse()
+        mj = _mujoco()  # names a missing MuJoCo before its submodule is imported
+        physics, user = mj.mjtState.mjSTATE_FULLPHYSICS, mj.mjtState.mjSTATE_USER
+        models, initial, inputs, firsts = [], [], [], []
+        threads = max(1, min(len(jobs), os.cpu_count() or 1))
+        # The jobs' models have the same sizes: one data per thread serves them all, and the first also
+        # finds each job's initial state.  A thread's data runs several jobs, and rollout sets only the
+        # full-physics state between them: each job therefore also gets, at every step, every input a
+        # reset leaves in a data (the controls, applied forces, which equality constraints are active,
+        # mocap poses, user data), and a zero warm start, so that no run inherits another's.
+        datas = [mj.MjData(jobs[0][0].mjmodel) for _ in range(threads)]
+        for backend, controls, nudge, row in jobs:
+            m = backend.mjmodel
+            data, first = backend._start(nudge, row, datas[0])
+            x0, u0 = np.empty(mj.mj_stateSize(m, physics)), np.empty(mj.mj_stateSize(m, user))
+            mj.mj_getState(m, data, x0, physics)
+            mj.mj_getState(m, data, u0, user)
+            rows = np.tile(u0, (n_steps, 1))
+            ctrl = backend._control_rows(controls, n_steps)
+            if ctrl is not None:  # the user state starts with the controls
+                rows[:, : m.nu] = ctrl
+            models.append(m)
+            initial.append(x0)
+            inputs.append(rows)
+            firsts.append(first)
+        if n_steps == 0:
+            return [first[None, :] for first in firsts]
+        with _thread_pool(threads) as pool:
+            states, _ = pool.rollout(
+                models,
+                datas,
+                np.array(initial),
+                np.array(inputs),
+                control_spec=user,
+                initial_warmstart=np.zeros((len(jobs), models[0].nv)),
+                nstep=n_steps,
+            )
+        # the full-physics state is laid out by component: time, then qpos, qvel, act
+        out = []
+        for m, first, rows in zip(models, firsts, states, strict=True):
+            start = mj.mj_stateSize(m, mj.mjtState.mjSTATE_TIME)
+            out.append(np.concatenate([first[None, :], rows[:, start : start + m.nq + m.nv + m.na]]))
+        return out
+
+    def _start(self, nudge: bool, initial, data=None):
+        """The initial data (a new one, or `data` reset to this model) and its first row of coordinates.
+
+        `initial` is None (the model's reference pose at rest) or a first row: qpos, qvel, act.
+        """
+        mj, m = _mujoco(), self.mjmodel
+        if data is None:
+            data = mj.MjData(m)
+        else:
+            mj.mj_resetData(m, data)
+        if initial is not None:
+            data.qpos[:], data.qvel[:] = initial[: m.nq], initial[m.nq : m.nq + m.nv]
+            data.act[:] = initial[m.nq + m.nv :]
+        if nudge:
+            data.qpos[:] = nudged(data.qpos)
+            data.qvel[:] = nudged(data.qvel)
+        return data, np.concatenate([data.qpos, data.qvel, data.act])
+
+    def _control_rows(self, controls, n_steps: int):
+        m = self.mjmodel
+        if controls is None or not m.nu or n_steps == 0:
+            return None
+        if callable(controls):
+            dt = float(m.opt.timestep)
+            rows = np.array([controls(i * dt) for i in range(n_steps)], dtype=float)
+        else:
+            rows = np.asarray(controls, dtype=float)
+        return rows.reshape(n_steps, m.nu)
+
+    def _run_closed_loop(self, n_steps, data, policy, first):
+        mj, m = _mujoco(), self.mjmodel
+        nq, nv = m.nq, m.nv
+        out = np.empty((n_steps + 1, nq + nv + m.na))
+        out[0] = first
+        qpos, qvel, act = out[:, :nq], out[:, nq : nq + nv], out[:, nq + nv :]
+        # The policy must see the state it acts on: after mj_step, data's positions and velocities are the
+        # new ones but everything computed from them (site and body poses, tendon lengths, sensors) is
+        # still the last step's.  mj_step1 computes them first, mj_step2 finishes the step: together the
+        # same step as mj_step, except for RK4, which mj_step2 does not take (there mj_forward goes first).
+        split = int(m.opt.integrator) != int(mj.mjtIntegrator.mjINT_RK4)
+        for i in range(1, n_steps + 1):
+            if split:
+                mj.mj_step1(m, data)
+                data.ctrl[:] = policy(m, data)
+                mj.mj_step2(m, data)
+            else:
+                mj.mj_forward(m, data)
+                data.ctrl[:] = policy(m, data)
+                mj.mj_step(m, data)
+            qpos[i], qvel[i], act[i] = data.qpos, data.qvel, data.act
+        return out
+
+
+#: the element each prefix of a compiled field belongs to, and the count of that element where not n<kind>
+_FIELD_OBJECTS = {
+    "body": "body",
+    "geom": "geom",
+    "jnt": "joint",
+    "site": "site",
+    "cam": "camera",
+    "light": "light",
+    "mesh": "mesh",
+    "tendon": "tendon",
+    "actuator": "actuator",
+    "sensor": "sensor",
+    "eq": "equality",
+    "pair": "pair",
+    "key": "key",
+    "hfield": "hfield",
+    "numeric": "numeric",
+    "mat": "material",
+}
+
+
+_COUNTS = {"joint": "njnt", "camera": "ncam", "actuator": "nu", "equality": "neq", "material": "nmat"}
+
+
+_STRUCT_FIELDS = {
+    "opt": (
+        "timestep",
+        "gravity",
+        "wind",
+        "magnetic",
+        "density",
+        "viscosity",
+        "impratio",
+        "tolerance",
+        "ls_tolerance",
+        "noslip_tolerance",
+        "ccd_tolerance",
+        "sleep_tolerance",
+        "o_margin",
+        "o_solref",
+        "o_solimp",
+        "o_friction",
+    ),
+    "stat": ("meaninertia", "meanmass", "meansize", "extent", "center"),
+}
+
+
+def _stored_fields(m) -> list[str]:
+    """The names of the floating-point fields of a compiled model, in a fixed order (``opt.x`` for structs)."""
+    fields = []
+    for attr in sorted(dir(m)):
+        if attr.startswith("_") or attr.endswith("rgba"):
+            continue
+        value = getattr(m, attr, None)
+        if isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.size:
+            fields.append(attr)
+    for struct, attrs in _STRUCT_FIELDS.items():
+        holder = getattr(m, struct)
+        fields.extend(f"{struct}.{a}" for a in attrs if hasattr(holder, a))
+    return fields
+
+
+#: the rollout thread pools kept between batches: (process id, thread count) -> (pool, lock)
+_POOLS: dict = {}
+
+
+@contextmanager
+def _thread_pool(threads: int):
+    """A MuJoCo rollout pool of `threads` threads, kept for the next batch.
+
+    Starting and stopping the threads costs about as much as a small model's whole batch, so the
+    pool is kept.  A batch from a second Python thread while the pool is busy gets a pool of its
+    own; a process forked after the pool started (whose copy of it has no threads) keeps its own.
+    """
+    import os
+    import threading
+
+    from mujoco import rollout
+
+    key = (os.getpid(), threads)
+    if key not in _POOLS:
+        _POOLS[key] = rollout.Rollout(nthread=threads), threading.Lock()
+    pool, lock = _POOLS[key]
+    if not lock.acquire(blocking=False):
+        with rollout.Rollout(nthread=threads) as own:
+            yield own
+        return
+    try:
+        yield pool
+    finally:
+        lock.release()
+
+
+@atexit.register
+def _close_pools() -> None:
+    """Stop the kept pools' threads before the interpreter stops."""
+    import os
+
+    for (pid, _threads), (pool, _lock) in list(_POOLS.items()):
+        if pid == os.getpid():
+            pool.close()
+    _POOLS.clear()
+
+
+def _touching(data) -> frozenset:
+    """The geom pairs (ids) of a data's contacts."""
+    return frozenset(map(tuple, data.contact.geom[: data.ncon].tolist()))
+
+
+def _holder(m, field: str):
+    """The object and attribute name of a field of :func:`_stored_fields`."""
+    if "." in field:
+        struct, attr = field.split(".")
+        return getattr(m, struct), attr
+    return m, field
+
+
+def load_mjcf(path) -> EngineModel:
+    """Read an MJCF file as a MuJoCo model: its document (the MJCF format), run by MuJoCo.
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    EngineModel
+        Of engine ``"mujoco"``.
+
+    Raises
+    ------
+    EngineModelError
+        When MuJoCo rejects the file (the message names its element), or
+        an element cannot be scaled.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.runners.mujoco import load_mjcf
+    >>> load_mjcf(engines.example_path("pendulum.xml")).engine
+    'mujoco'
+    """
+    return EngineModel(MujocoRunner(read_mjcf(path)), "mujoco", str(Path(path)))

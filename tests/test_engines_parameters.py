@@ -1,0 +1,61 @@
+"""pitheorem.engines.parameters: a parameter's variables, the factor of a dimension, a number written back exactly."""
+
+from __future__ import annotations
+
+import math
+from decimal import Decimal, localcontext
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import pitheorem as pt
+from pitheorem.engines import Parameter
+from pitheorem.engines.parameters import dim, dimension_factor
+
+
+def test_a_parameter_stands_for_one_variable_or_one_per_part():
+    mass = Parameter("body_torso_mass", "body 'torso' mass", (3.5,), dim("M"), "derived", "file")
+    assert (mass.mixed, mass.variables()) == (False, {"body_torso_mass": dim("M")})
+    parts = (("lin", dim("M T^-1")), ("rot", dim("M L^2 T^-1")))
+    damping = Parameter("joint_root_damping", "joint 'root' damping", (0.5,), None, "file", "file", parts=parts)
+    assert damping.mixed
+    assert damping.variables() == {"joint_root_damping_lin": dim("M T^-1"), "joint_root_damping_rot": dim("M L^2 T^-1")}
+    assert dim("M L T^-2") == pt.Dimension({"M": 1, "L": 1, "T": -2})
+
+
+@pytest.mark.parametrize(
+    ("unit_change", "dimension", "factor"),
+    [
+        ({"L": 1}, "L T^-2", 10.0),  # gravity with lengths
+        ({"L": 1, "T": 1}, "L T^-2", 0.1),  # s / s^2
+        ({"M": 1, "L": 2}, "M L^2", 10.0**5),  # an inertia
+        ({"T": -1}, "1", 1.0),  # a number without dimension never moves
+    ],
+)
+def test_dimension_factor_is_s_to_the_dimensions_exponent(unit_change, dimension, factor):
+    sc = pt.Scaling.from_unit_change(pt.System({"m": "M", "l": "L", "t": "T"}), unit_change)
+    assert dimension_factor(sc, 10, dim(dimension)) == factor
+
+
+@settings(max_examples=200, deadline=None)
+@given(digits=st.integers(-(10**6), 10**6), places=st.integers(0, 6), factor=st.sampled_from([10, 0.1, 2, 0.5, 1e3, 3]))
+def test_attribute_text_writes_the_exact_decimal_product(digits, places, factor):
+    from pitheorem.engines.parameters import attribute_text, exact_product
+
+    value = float(f"{digits}e-{places}")  # a decimal as a file writes it, e.g. 9.81
+    # oracle: the product of the two decimals in decimal arithmetic wide enough to be exact, rounded once
+    with localcontext() as ctx:
+        ctx.prec = 60
+        expected = float(Decimal(repr(value)) * Decimal(repr(float(factor))))
+    assert exact_product(value, factor) == expected
+    assert attribute_text([value, value], factor) == f"{expected!r} {expected!r}"
+    assert attribute_text([value]) == repr(value)
+
+
+def test_attribute_text_writes_98_1_for_9_81_times_10():
+    from pitheorem.engines.parameters import attribute_text
+
+    assert 9.81 * 10 != 98.1  # the float product rounds twice
+    assert attribute_text([0, 0, -9.81], 10) == "0.0 0.0 -98.1"
+    assert attribute_text([math.inf], 2) == "inf"
