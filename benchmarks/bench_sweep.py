@@ -27,7 +27,6 @@ from _timing import best_of, timed
 
 import pitheorem as pt
 from pitheorem import engines
-from pitheorem.engines.verdicts.sweep import verdict
 
 
 def cpu_seconds(fn) -> float:
@@ -67,7 +66,7 @@ def main() -> None:
 
     reports = one_after_another()  # warm: MuJoCo's first compile, imports
     sweep = swept()
-    assert [verdict(r) for r in reports] == list(sweep.verdicts), "the sweep's verdicts are not verify's"
+    assert [r.verdict for r in reports] == list(sweep.verdicts), "the sweep's verdicts are not verify's"
     baseline = best_of(one_after_another, args.repeats)
     parallel = best_of(swept, args.repeats)
     load = os.getloadavg()[0]

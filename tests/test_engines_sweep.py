@@ -18,7 +18,6 @@ from pitheorem import engines
 from pitheorem.cli import main
 from pitheorem.engines.cli import parse_s_values
 from pitheorem.engines.thresholds import thresholds
-from pitheorem.engines.verdicts.sweep import verdict
 
 PENDULUM = engines.example_path("pendulum.xml")
 DURATION = 0.1
@@ -41,12 +40,12 @@ def pendulum():
 
 
 def expected_verdict(rep) -> str:
-    """The verdict read off a report's fields, written out apart from the module's own rule."""
-    if rep.exact and rep.excited:
-        return "exact"
-    if rep.similar:
-        return "similar" if rep.excited else "inconclusive"
-    return "not similar"
+    """The verdict read off a report's fields (passed, inconclusive, exact), as verify's report defines it."""
+    if not rep.passed:
+        return "not similar"
+    if rep.inconclusive:
+        return "inconclusive"
+    return "exact" if rep.exact else "similar"
 
 
 def verify_alone(model, sc, s, controls=push):
@@ -65,7 +64,8 @@ def test_every_row_is_what_verify_says_alone_at_that_s(pendulum):
     assert sw.s == tuple(pt.exact.read_scale_factor(v) for v in s)  # the order asked
     for row in sw.rows:
         rep = verify_alone(model, sc, row.s)
-        assert row.verdict == expected_verdict(rep)
+        assert row.verdict == expected_verdict(rep) == rep.verdict
+        assert row.horizon == rep.horizon
         assert row.max_deviation == rep.max_deviation
         assert row.yardstick == max(rep.sensitivity.values())
         assert row.causes == rep.causes
@@ -127,8 +127,8 @@ def test_a_model_that_does_not_move_is_inconclusive(tmp_path):
     sw = engines.sweep(model, sc, s=(10,), duration=DURATION, workers=1, fit=False)
     rep = engines.verify(model, sc, 10, duration=DURATION)
     assert rep.excited is False
-    assert rep.similar
-    assert sw.verdicts == ("inconclusive",) == (verdict(rep),)
+    assert rep.inconclusive
+    assert sw.verdicts == ("inconclusive",) == (rep.verdict,)
 
 
 def test_units_fit_units_would_choose_are_placed_on_the_sweep(pendulum):

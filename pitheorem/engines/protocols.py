@@ -235,6 +235,9 @@ class SolverDiagnosis(Protocol):
     def solver_name(self) -> str:
         """The constraint solver's name (``"Newton"``, ...)."""
 
+    def uses_native_ccd(self) -> bool:
+        """Whether convex pairs collide through the engine's own convex collision (``variant(native_ccd=False)``)."""
+
     def equality_names(self) -> list[str]:
         """Each equality constraint, named as the reports name it."""
 

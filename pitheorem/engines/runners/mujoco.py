@@ -197,6 +197,7 @@ class MujocoRunner:
         solver: str | None = None,
         inactive_equalities: tuple[int, ...] = (),
         integrator: str | None = None,
+        native_ccd: bool = True,
     ) -> MujocoRunner:
         """A copy run with another solver, tolerance or integrator, with contacts switched off, or with some
         equality constraints inactive: a counter-run's model (or the rod's, in another integrator)."""
@@ -214,7 +215,13 @@ class MujocoRunner:
             m.opt.noslip_tolerance = tolerance
         if not contacts:
             m.opt.disableflags |= int(mj.mjtDisableBit.mjDSBL_CONTACT)
+        if not native_ccd:  # convex pairs through MuJoCo's older libccd path instead of its native GJK/EPA
+            m.opt.disableflags |= int(mj.mjtDisableBit.mjDSBL_NATIVECCD)
         return out
+
+    def uses_native_ccd(self) -> bool:
+        """Whether convex geom pairs (meshes, boxes against meshes, ...) collide through MuJoCo's native CCD."""
+        return not int(self.mjmodel.opt.disableflags) & int(_mujoco().mjtDisableBit.mjDSBL_NATIVECCD)
 
     def control_ranges(self) -> tuple[np.ndarray, np.ndarray]:
         """Each actuator's control range where the file limits it; -inf and inf where it does not."""

@@ -47,54 +47,14 @@ from ...simulation import positive_float
 from ..enginemodel import EngineModel, check_scaling
 from .causes import Cause
 
-__all__ = ["NO_FORK_PACKAGES", "VERDICTS", "Sweep", "SweepRow", "sweep", "verdict"]
+__all__ = ["NO_FORK_PACKAGES", "VERDICTS", "Sweep", "SweepRow", "sweep"]
 
-#: the verdicts of a row, from the strongest to a refusal
+#: the verdicts of a row: a report's own (``SimilarityReport.verdict``), or a refusal of the copy
 VERDICTS = ("exact", "similar", "not similar", "inconclusive", "refused")
 
 #: the Python packages that do not survive a fork (JAX is multithreaded): an engine that needs one, or a
 #: process that has loaded one, runs its sweep in this process
 NO_FORK_PACKAGES = ("jax",)
-
-
-def verdict(report) -> str:
-    """The one-word verdict of a verification report.
-
-    One of :data:`VERDICTS`, but ``"refused"``.
-
-    ``"inconclusive"`` when the original run moved nothing beyond its own
-    rounding (``report.excited`` is False) and the copy stayed within the
-    yardstick: such a run would not have caught an error.  A copy that
-    left the yardstick is ``"not similar"`` whether or not the original
-    moved.
-
-    Parameters
-    ----------
-    report : SimilarityReport
-        From :func:`pitheorem.engines.verify`.
-
-    Returns
-    -------
-    str
-
-    Examples
-    --------
-    >>> import pitheorem as pt
-    >>> from pitheorem import engines
-    >>> from pitheorem.engines.verdicts.sweep import verdict
-    >>> model = engines.load(engines.example_path("pendulum.xml"))
-    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    >>> u = lambda t: [0.1]
-    >>> verdict(engines.verify(model, sc, 4, duration=0.2, controls=u))
-    'exact'
-    >>> verdict(engines.verify(model, sc, 10, duration=0.2, controls=u))
-    'similar'
-    """
-    if not report.similar:
-        return "not similar"
-    if report.excited is False:
-        return "inconclusive"
-    return "exact" if report.exact else "similar"
 
 
 @immutable
@@ -398,9 +358,9 @@ def _outcome(model: EngineModel, scaling, s, duration: float, controls, options:
         return "refused", None, None, None, None, None, (cause,)
     rep = verify(model, scaling, s, duration=duration, controls=controls, scaled=copy, **options)
     yardstick = max(rep.sensitivity.values(), default=0.0) if rep.sensitivity else 0.0
-    horizon = getattr(rep, "horizon", None)  # a report that measures it says it
+    horizon = rep.horizon
     return (
-        verdict(rep),
+        rep.verdict,
         float(rep.max_deviation),
         float(yardstick),
         None if horizon is None else float(horizon),
