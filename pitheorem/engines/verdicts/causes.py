@@ -2,7 +2,7 @@
 
 A verdict of "not similar" helps nobody unless it says why.  Every check of
 the engines layer that finds something a scaling cannot carry
-(:func:`pitheorem.engines.verdicts.verify`, :func:`pitheorem.engines.verdicts.audit`,
+(:func:`pitheorem.engines.verify`, :func:`pitheorem.engines.audit`,
 :func:`pitheorem.engines.check`) answers with ``Cause`` records of seven kinds:
 
 ``precision``

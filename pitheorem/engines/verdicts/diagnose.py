@@ -1,10 +1,10 @@
 """Why a scaled run is not exact or not similar: causes found by counter-runs, not guessed.
 
-:func:`pitheorem.engines.verdicts.verify` calls :func:`find_causes` when a run at a
+:func:`pitheorem.engines.verify` calls :func:`find_causes` when a run at a
 power of four is not bit for bit the original, or a run is not similar.
 Each cause is established, not presumed:
 
-* the static ones by :func:`pitheorem.engines.verdicts.audit` (numbers the engine
+* the static ones by :func:`pitheorem.engines.audit` (numbers the engine
   holds that are not the original times their factor, float32 rounding,
   settings the engine ignores);
 * ``solver``: the original and the scaled copy run again with the
@@ -53,7 +53,7 @@ def find_causes(
     model, scaled : EngineModel
         The original and its scaled copy.
     scaling, s
-        As given to :func:`pitheorem.engines.verdicts.verify`.
+        As given to :func:`pitheorem.engines.verify`.
     n_steps : int
     u_original, u_scaled : ndarray or None
         The open-loop inputs of each run, one row per step.
@@ -214,6 +214,7 @@ def find_causes(
                 )
             )
         found.extend(_contact_causes(original, copy, results, shown, n_steps, verdict_parts, u_original, u_scaled, t))
+    found = [(_with_constants(c, o, model.engine), o) for c, o in found]
     static = bool(causes)  # the audit's: numbers the copy holds wrong, which no counter-run removes
     return sorted_causes([*causes, *_restoring(found, counters, report, verdict_parts, bits, list(variants), static)])
 
@@ -260,6 +261,22 @@ def _restoring(found, counters, report, verdict_parts, bits, tried, static: bool
             if counters(_merged(o for _c, o in trial))[0].restores:
                 kept = trial
     return [_marked(c, True) for c, _o in kept]
+
+
+#: the catalogue's cause path (``engines.constants.CAUSE_PATHS``) of each counter-run's option
+_PATHS = {"native_ccd": "native_ccd", "tolerance": "solver_tolerance", "inactive_equalities": "equality"}
+
+
+def _with_constants(cause: Cause, options: dict, engine: str) -> Cause:
+    """The cause with the engine's fixed constants its counter-run's path meets, from the catalogue."""
+    from ..constants import constants_for
+
+    paths = [_PATHS[key] for key in options if key in _PATHS]
+    names = list(dict.fromkeys(c.name for p in paths for c in constants_for(engine, p)))
+    if not names:
+        return cause
+    shown = ", ".join(names[:4]) + (f" and {len(names) - 4} more" if len(names) > 4 else "")
+    return Cause(cause.kind, cause.element, f"{cause.detail}; the engine's constants on this path: {shown}")
 
 
 def _merged(options) -> dict:
