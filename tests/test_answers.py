@@ -29,6 +29,7 @@ def test_every_answer_is_a_named_tuple_with_the_text_display():
         "GroupsAnswer",
         "ParamsAnswer",
         "SearchAnswer",
+        "SweepAnswer",
     ]
     for cls in ANSWERS:
         assert issubclass(cls, tuple)
