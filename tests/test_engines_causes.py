@@ -1,4 +1,4 @@
-"""The Cause record: the six kinds, validation, a deterministic order."""
+"""The Cause record: the seven kinds, validation, a deterministic order."""
 
 import dataclasses
 
@@ -9,8 +9,9 @@ from pitheorem.engines.verdicts.causes import sorted_causes
 from pitheorem.errors import InvalidRequestError, PiTheoremError
 
 
-def test_the_six_kinds_of_the_design():
-    assert set(CAUSE_KINDS) == {"precision", "solver", "contact", "threshold", "setting", "unscaled"}
+def test_the_seven_kinds_of_the_design():
+    # the design's six, and "dimension" (a stored number whose power of s is not its dimension's; issue 33)
+    assert set(CAUSE_KINDS) == {"dimension", "precision", "solver", "contact", "threshold", "setting", "unscaled"}
 
 
 @pytest.mark.parametrize("kind", ["", "Contact", "contacts", None])

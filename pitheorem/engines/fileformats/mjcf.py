@@ -58,6 +58,7 @@ __all__ = [
     "AttributeDimension",
     "MjcfDocument",
     "RefusedMjcfDocument",
+    "StoredCopy",
     "read_mjcf",
     "record_units",
     "recorded_units",
@@ -1055,6 +1056,102 @@ _KINDS = {
 }
 
 
+#: (element kind, spec attribute) -> where MuJoCo's compiled model stores its entries: (first entry, how
+#: many, compiled field, the field's column of the first entry) each
+_STORED = {
+    **{
+        ("joint", a): ((0, 6, f"jnt_{b}", 0),)
+        for a, b in (
+            ("pos", "pos"),
+            ("range", "range"),
+            ("margin", "margin"),
+            ("solref_limit", "solref"),
+            ("solimp_limit", "solimp"),
+            ("actfrcrange", "actfrcrange"),
+        )
+    },
+    ("joint", "stiffness"): ((0, 1, "jnt_stiffness", 0), (1, 2, "jnt_stiffnesspoly", 0)),
+    **{
+        ("geom", a): ((0, 6, f"geom_{a}", 0),)
+        for a in ("size", "pos", "margin", "gap", "friction", "solref", "solimp", "surfacevel", "adhesion")
+    },
+    ("site", "pos"): ((0, 3, "site_pos", 0),),
+    ("site", "size"): ((0, 3, "site_size", 0),),
+    **{("body", a): ((0, 3, f"body_{a}", 0),) for a in ("pos", "mass", "ipos", "inertia")},
+    **{
+        ("tendon", a): ((0, 5, f"tendon_{b}", 0),)
+        for a, b in (
+            ("range", "range"),
+            ("margin", "margin"),
+            ("solref_limit", "solref_lim"),
+            ("solimp_limit", "solimp_lim"),
+            ("solref_friction", "solref_fri"),
+            ("solimp_friction", "solimp_fri"),
+            ("frictionloss", "frictionloss"),
+            ("armature", "armature"),
+            ("actfrcrange", "actfrcrange"),
+            ("width", "width"),
+            ("springlength", "lengthspring"),
+        )
+    },
+    ("tendon", "stiffness"): ((0, 1, "tendon_stiffness", 0), (1, 2, "tendon_stiffnesspoly", 0)),
+    ("tendon", "damping"): ((0, 1, "tendon_damping", 0), (1, 2, "tendon_dampingpoly", 0)),
+    **{
+        ("actuator", a): ((0, 10, f"actuator_{a}", 0),)
+        for a in (
+            "gainprm",
+            "biasprm",
+            "dynprm",
+            "ctrlrange",
+            "forcerange",
+            "actrange",
+            "lengthrange",
+            "gear",
+            "cranklength",
+            "delay",
+        )
+    },
+    ("equality", "data"): ((0, 11, "eq_data", 0),),
+    ("equality", "solref"): ((0, 2, "eq_solref", 0),),
+    ("equality", "solimp"): ((0, 5, "eq_solimp", 0),),
+    **{
+        ("pair", a): ((0, 5, f"pair_{a}", 0),)
+        for a in ("friction", "margin", "gap", "solref", "solreffriction", "solimp", "adhesion")
+    },
+    **{("sensor", a): ((0, 2, f"sensor_{a}", 0),) for a in ("noise", "cutoff", "delay", "interval")},
+    ("camera", "pos"): ((0, 3, "cam_pos", 0),),
+    ("camera", "sensor_size"): ((0, 2, "cam_sensorsize", 0),),
+    ("light", "pos"): ((0, 3, "light_pos", 0),),
+    ("light", "attenuation"): ((0, 3, "light_attenuation", 0),),
+    ("hfield", "size"): ((0, 4, "hfield_size", 0),),
+    **{
+        ("option", a): ((0, 5, f"opt.{a}", 0),)
+        for a in ("timestep", "wind", "density", "viscosity", "o_margin", "o_solref", "o_solimp", "o_friction")
+    },
+}
+
+
+#: numbers MuJoCo's compiler computes from the file's, each of one dimension whatever the file: held against
+#: the probe, they show a wrong dimension of the numbers they are computed from (a geom's size, density)
+_COMPUTED = {
+    "body_subtreemass": ("body", _M),
+    "geom_rbound": ("geom", _L),
+}
+
+
+@dataclass(frozen=True)
+class StoredCopy:
+    """One number MuJoCo stores: the parameter it copies ("" for a number the compiler computes), its
+    element and attribute, the compiled field, the flat index in that field, and its dimension."""
+
+    parameter: str
+    element: str
+    attribute: str
+    field: str
+    index: int
+    dimension: object
+
+
 @dataclass(frozen=True)
 class AttributeDimension:
     """One attribute's entries as the reader lists them: element kind and name, spec attribute, entries,
@@ -1123,6 +1220,55 @@ class MjcfDocument:
 
     def settings(self) -> dict:
         return {}
+
+    def stored_copies(self) -> list[StoredCopy]:
+        """The numbers MuJoCo's compiled model stores as they are in the file: each with its parameter.
+
+        An entry of an attribute the reader lists is matched with the entry of the compiled field
+        that holds it (:data:`_STORED`) where the compiled number equals the file's (the compiler
+        changed nothing: no ``fromto``, no ``dampratio``), or where the reader took the number from
+        the compiled model itself (a body's mass and inertia computed from its geoms).  A probe
+        copy of the model shows which power of the scale factor each stored number took, to be
+        held against the parameter's dimension (:mod:`pitheorem.engines.verdicts.probes`).
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> from pitheorem.engines.fileformats.mjcf import read_mjcf
+        >>> copies = read_mjcf(engines.example_path("pendulum.xml")).stored_copies()
+        >>> [(c.parameter, c.field, c.index) for c in copies if c.attribute == "mass"]
+        [('body_arm_mass', 'body_mass', 1)]
+        """
+        elements, model, out = _Elements(self.spec), self.mjmodel, []
+        slots = {slot.name: slot for slot in self._slots}
+        for entry in self.attribute_dimensions():
+            slot = slots[entry.parameter]
+            element = elements.get(slot.where)
+            values = _floats(getattr(element, entry.attribute))
+            row = None if len(slot.where) == 1 else getattr(element, "id", -1)
+            label = f"{entry.kind} {entry.element!r}" if entry.element else entry.kind
+            for first, count, field, column in _STORED.get((entry.kind, entry.attribute), ()):
+                holder, name = (model.opt, field[4:]) if field.startswith("opt.") else (model, field)
+                stored = np.asarray(getattr(holder, name, ()), dtype=float)
+                if stored.size == 0 or (row is not None and not 0 <= row < stored.shape[0]):
+                    continue
+                width = stored.size if row is None else stored[0].size
+                for i in entry.entries:
+                    col = i - first + column
+                    if not first <= i < first + count or col >= width:
+                        continue
+                    flat = col if row is None else row * width + col
+                    if slot.source == "derived" or stored.ravel()[flat] == values[i]:
+                        out.append(StoredCopy(entry.parameter, label, entry.attribute, field, flat, slot.dimension))
+        mj = _mujoco()
+        for field, (kind, dimension) in _COMPUTED.items():  # numbers the compiler computes, of a fixed dimension
+            stored = np.asarray(getattr(model, field), dtype=float)
+            for row in range(stored.shape[0]):
+                name = mj.mj_id2name(model, getattr(mj.mjtObj, f"mjOBJ_{kind.upper()}"), row)
+                label = f"{kind} {name!r}" if name else f"{kind} #{row}"
+                width = stored[0].size
+                out.extend(StoredCopy("", label, field, field, row * width + col, dimension) for col in range(width))
+        return out
 
     def attribute_dimensions(self) -> list[AttributeDimension]:
         """The dimension the reader gives each entry of each spec attribute it lists, element by element.

@@ -131,6 +131,10 @@ class MujocoRunner:
             out[field] = np.array(getattr(holder, attr), copy=True, ndmin=1)
         return out
 
+    def stored_copies(self) -> list:
+        """The stored numbers that are the file's numbers, each with its parameter (the document's)."""
+        return self.document.stored_copies()
+
     def twin(self, seed: int) -> MujocoRunner:
         """A copy whose every stored number is one unit in its own last place off, the signs drawn from `seed`.
 

@@ -3,8 +3,13 @@
 A verdict of "not similar" helps nobody unless it says why.  Every check of
 the engines layer that finds something a scaling cannot carry
 (:func:`pitheorem.engines.verdicts.verify`, :func:`pitheorem.engines.verdicts.audit`,
-:func:`pitheorem.engines.check`) answers with ``Cause`` records of six kinds:
+:func:`pitheorem.engines.check`) answers with ``Cause`` records of seven kinds:
 
+``dimension``
+    a number the engine stores from the file that took another power of
+    the scale factor than the dimension the reader gave it
+    (:mod:`pitheorem.engines.verdicts.probes`): the reader's dimension, or
+    the engine's use of the number, is not what the table says.
 ``precision``
     a number the engine stores in lower precision than the scaling needs
     (MuJoCo keeps mesh vertices in float32): rounded differently at another
@@ -34,7 +39,7 @@ from ...immutable import immutable
 __all__ = ["CAUSE_KINDS", "Cause"]
 
 #: the kinds of cause, in the order reports list them
-CAUSE_KINDS = ("unscaled", "setting", "threshold", "solver", "precision", "contact")
+CAUSE_KINDS = ("dimension", "unscaled", "setting", "threshold", "solver", "precision", "contact")
 
 
 @immutable
@@ -44,7 +49,7 @@ class Cause(TextDisplay):
 
     Parameters
     ----------
-    kind : {"precision", "solver", "contact", "threshold", "setting", "unscaled"}
+    kind : {"dimension", "precision", "solver", "contact", "threshold", "setting", "unscaled"}
         What sort of reason (see the module's documentation).
     element : str
         What it concerns: a parameter, a geom pair, an engine constant.
@@ -62,7 +67,7 @@ class Cause(TextDisplay):
     ...     Cause("luck", "x", "")
     ... except pt.InvalidRequestError as err:
     ...     print(err)
-    unknown cause kind 'luck'; valid: unscaled, setting, threshold, solver, precision, contact
+    unknown cause kind 'luck'; valid: dimension, unscaled, setting, threshold, solver, precision, contact
     """
 
     kind: str
