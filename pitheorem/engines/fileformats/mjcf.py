@@ -1225,7 +1225,7 @@ class MjcfDocument:
         """The numbers MuJoCo's compiled model stores as they are in the file: each with its parameter.
 
         An entry of an attribute the reader lists is matched with the entry of the compiled field
-        that holds it (:data:`_STORED`) where the compiled number equals the file's (the compiler
+        that holds it (the table ``_STORED``) where the compiled number equals the file's (the compiler
         changed nothing: no ``fromto``, no ``dampratio``), or where the reader took the number from
         the compiled model itself (a body's mass and inertia computed from its geoms).  A probe
         copy of the model shows which power of the scale factor each stored number took, to be
