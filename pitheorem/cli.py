@@ -75,7 +75,7 @@ from pathlib import Path
 from . import __version__
 from .errors import CommandLineError, InvalidRequestError, LimitError, PiTheoremError
 from .formatting import FORMATS, render
-from .modelfile import ModelFile, example_path, examples, load_model_file, model_kind, write_model_file
+from .modelfile import EXAMPLES, ModelFile, example_path, examples, load_model_file, model_kind, write_model_file
 
 # The answers, the search and the exact readers load when a command needs them (start-up time)
 
@@ -103,6 +103,19 @@ _SCALE_HELP = (
 
 
 # -- helpers ---------------------------------------------------------------------------------
+
+
+def _as_named(text) -> str:
+    """Text as the user wrote its files: a shipped example's installed path becomes ``example:NAME``.
+
+    The engines read a shipped example by its path inside the installed
+    package; the command line shows it by the name the user gave.
+    """
+    text = str(text).replace(str(EXAMPLES) + os.sep, "example:")
+    for name in examples():
+        if not Path(name).suffix:  # a TOML model file is named without its suffix
+            text = text.replace(f"example:{name}.toml", f"example:{name}")
+    return text
 
 
 def _engine_path(path: str) -> str | None:
@@ -235,7 +248,7 @@ def _run_search(model: ModelFile, args):
 
 
 def _print(answer, args) -> None:
-    print(render(answer, args.format))
+    print(_as_named(render(answer, args.format)))
 
 
 def _zero_valued(model: ModelFile) -> tuple[str, ...]:
@@ -403,7 +416,7 @@ def _cmd_check(args) -> int:
     text, clean = check_engine_model(
         path, from_units=parse_units(args.from_units, "--from"), engine=args.engine, fmt=args.format
     )
-    print(text)
+    print(_as_named(text))
     return EXIT_OK if clean else EXIT_INFEASIBLE
 
 
@@ -419,7 +432,7 @@ def _cmd_convert(args) -> int:
         output=args.output,
         fmt=args.format,
     )
-    print(text)
+    print(_as_named(text))
     return EXIT_INFEASIBLE if "no units keep every number clear" in text or '"feasible": false' in text else EXIT_OK
 
 
@@ -441,7 +454,7 @@ def _cmd_params(args) -> int:
 
 def _one_line_warning(message, category, filename, lineno, file=None, line=None) -> None:
     """A warning as the command line shows it: ``pitheorem: warning: ...``, never Python's source line."""
-    print(f"pitheorem: warning: {message}", file=sys.stderr if file is None else file)
+    print(f"pitheorem: warning: {_as_named(message)}", file=sys.stderr if file is None else file)
 
 
 class _Help(argparse.HelpFormatter):
@@ -706,18 +719,20 @@ def main(argv: Sequence[str] | None = None) -> int:
             return args.run(args)
     except PiTheoremError as err:
         message = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
-        print(f"pitheorem: error: {message}", file=sys.stderr)
+        print(f"pitheorem: error: {_as_named(message)}", file=sys.stderr)
         return EXIT_ERROR
     except BrokenPipeError:  # e.g. `pitheorem bases FILE | head`: the reader has gone, stay quiet
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return EXIT_OK
     except OSError as err:
-        print(f"pitheorem: error: {err.filename!r}: {err.strerror or err}", file=sys.stderr)
+        print(f"pitheorem: error: {_as_named(repr(err.filename))}: {err.strerror or err}", file=sys.stderr)
         return EXIT_ERROR
     except (ValueError, TypeError, ArithmeticError, RecursionError, MemoryError) as err:
         # last resort: a bad input that slipped past validation must still give one line and
         # exit code 2, never a traceback and never 1 (which means "no scaling exists")
         message = str(err).strip().splitlines()[0] if str(err).strip() else ""
-        print(f"pitheorem: error: {type(err).__name__}: {message} (please report this input)", file=sys.stderr)
+        print(
+            f"pitheorem: error: {type(err).__name__}: {_as_named(message)} (please report this input)", file=sys.stderr
+        )
         return EXIT_ERROR

@@ -12,7 +12,7 @@ pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pith
 
 from pitheorem import engines
 from pitheorem.cli import BASES_SHOWN, main
-from pitheorem.modelfile import examples
+from pitheorem.modelfile import EXAMPLES, examples
 
 DATA = Path(__file__).resolve().parent / "data" / "engines"
 PENDULUM = str(engines.example_path("pendulum.xml"))
@@ -281,6 +281,7 @@ def test_every_command_succeeds_on_every_shipped_and_gymnasium_model(capsys, mod
         assert code == 0, (verb, err)
         assert "Traceback" not in err
         assert all(line.startswith("pitheorem: warning: ") for line in err.splitlines())
+        assert str(EXAMPLES) not in out + err  # a shipped file by the name the user gave, example:NAME
         # a summary first: the first lines name the model and fit on a screen whatever its size
         assert all(len(line) < 400 for line in out.splitlines()[:3]), (verb, out[:800])
     assert len(MODELS) >= 4 + (14 if _gymnasium_models() else 0)
@@ -329,6 +330,19 @@ def test_shipped_engine_models_are_named_like_the_others(capsys):
     assert (
         "example:NAME, NAME one of hinged_rod, hinged_rod.urdf, hinged_rod.xml, pendulum.xml, superball, superball.xml"
     ) in " ".join(help_text.split())
+
+
+def test_shipped_files_are_shown_by_their_example_name_never_their_installed_path(capsys):
+    # an error, a JSON document and a check's text: each names example:NAME, as the user wrote it
+    assert main(["convert", "example:hinged_rod.urdf", "--units", "L=mm"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("pitheorem: error: example:hinged_rod.urdf: units:")
+    assert main(["check", "example:pendulum.xml", "--format", "json"]) == 0
+    assert json.loads(capsys.readouterr().out)["file"] == "example:pendulum.xml"
+    assert main(["params", PENDULUM]) == 0  # the installed path typed out: the same file, the same name
+    out = capsys.readouterr().out
+    assert out.startswith("example:pendulum.xml: mujoco model, ")
+    assert str(EXAMPLES) not in out
 
 
 def test_bases_of_a_large_model_lists_the_first_sets_after_their_count(capsys):

@@ -4,6 +4,8 @@ r"""The pieces every format shares, each written once.
   and :func:`power_latex` (``s^{2}``, ``s^{-1}``);
 * exact numbers: :func:`rational_text` for an exponent, :func:`json_number`
   and :func:`value_text` for a value (a float, or an exact Fraction);
+* a number in a message or a cause: :func:`float_text`, the shortest text
+  that reads back as the same number (``0.004``, ``200``, ``1e+10``);
 * names and text in LaTeX: :func:`latex_name` (``k_theta`` as
   ``k_{\theta}``) and :func:`latex_escape`;
 * how a search's notes and request are phrased: :func:`note_text`,
@@ -34,6 +36,7 @@ __all__ = [
     "changed_rows",
     "default_text",
     "deviation_rows",
+    "float_text",
     "group_name_latex",
     "json_number",
     "latex_escape",
@@ -234,6 +237,53 @@ def json_number(value):
     if isinstance(value, Fraction):
         return int(value) if value.denominator == 1 else str(value)
     return value
+
+
+def float_text(value) -> str:
+    """A number in a message: the shortest text that reads back as the same number.
+
+    Python's ``repr`` of a float is its shortest round-trip text; a float
+    with an integer value drops its ``.0``, and a large one with trailing
+    zeros is written in scientific form when that is shorter.  A float32
+    (from an engine's arrays) is written as the shortest text that reads
+    back as that float32.  Exact numbers (int, Fraction) are written in
+    full.  Only the printing is shortened: ``float(float_text(x)) == x``
+    for every finite float ``x``.
+
+    Parameters
+    ----------
+    value : float, numpy floating, int or Fraction
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from fractions import Fraction
+    >>> from pitheorem.formatting.pieces import float_text
+    >>> float_text(0.004), float_text(200.0), float_text(1e10), float_text(199.99999999999994)
+    ('0.004', '200', '1e+10', '199.99999999999994')
+    >>> float_text(np.float32(0.004)), float_text(np.float64(-2.5e-7)), float_text(Fraction(1, 3))
+    ('0.004', '-2.5e-07', '1/3')
+    """
+    if isinstance(value, (int, Fraction)) and not isinstance(value, bool):
+        return str(value)
+    dtype = getattr(value, "dtype", None)
+    if dtype is not None and dtype.kind == "f" and dtype.itemsize < 8:
+        import numpy as np
+
+        # the fewest digits that read back as this float32 (or float16), then written as Python writes them
+        value = float(np.format_float_scientific(value, unique=True))
+    text = repr(float(value))
+    if text.endswith(".0"):
+        text = text[:-2]
+        if len(text.lstrip("-")) > 6:  # 10000000000 -> 1e+10: the shortest scientific form that reads back
+            digits = len(text.lstrip("-").rstrip("0"))
+            scientific = f"{float(value):.{max(digits - 1, 0)}e}"
+            text = scientific if len(scientific) < len(text) else text
+    return text
 
 
 def value_text(value) -> str:
@@ -441,7 +491,7 @@ def default_text(default: float) -> str:
     >>> default_text(0.002), default_text(float("nan"))
     ('default 0.002', 'no documented default')
     """
-    return "no documented default" if default != default else f"default {default:g}"  # NaN != NaN
+    return "no documented default" if default != default else f"default {float_text(default)}"  # NaN != NaN
 
 
 def solutions_text(n: int) -> str:
@@ -736,7 +786,7 @@ def range_cells(bounds, ok, out_of_range: str = "OUT OF RANGE") -> list[str]:
     """
     if bounds is None:
         return ["", ""]
-    return [f"[{bounds[0]:g}, {bounds[1]:g}]", "ok" if ok else out_of_range]
+    return [f"[{float_text(bounds[0])}, {float_text(bounds[1])}]", "ok" if ok else out_of_range]
 
 
 def parameters_head(name: str, model) -> str:
