@@ -6,7 +6,7 @@ Usage::
 
 Reads the installed MuJoCo's ``doc/XMLunits.rst``, checks every attribute it lists with
 :func:`pitheorem.engines.fileformats.mjcfunits.check_attribute` (the same check as
-``tests/test_mjcf_units_table.py``), and writes the page with the date and the versions, to be
+``tests/test_engines_mjcfunits.py``), and writes the page with the date and the versions, to be
 committed. The Sphinx build only shows the page; it does not run this script.
 """
 
@@ -48,7 +48,7 @@ def main() -> None:
         "schema, as `doc/XMLunits.rst` in its wheel. pitheorem's MJCF reader is held against that table:",
         "for every attribute it lists, a model that sets the attribute, nonzero, on one element is",
         "generated from the table itself and read, and the dimension the reader gives each component is",
-        "compared with the table's (`tests/test_mjcf_units_table.py`; the check is",
+        "compared with the table's (`tests/test_engines_mjcfunits.py`; the check is",
         "`pitheorem.engines.fileformats.mjcfunits.check_attribute`). Angles (`A`) are dimensionless, as",
         "radians are everywhere in pitheorem; `Q` and `F`, a joint's coordinate and generalised force,",
         "are tried for a hinge and for a slide joint.",

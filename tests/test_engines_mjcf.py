@@ -553,3 +553,18 @@ def test_a_muscle_whose_peak_force_mujoco_derives_is_refused_by_name(tmp_path):
     path.write_text(MUSCLE.replace("FORCE", ""))
     with pytest.raises(engines.EngineModelError, match="give its force explicitly"):
         engines.load(path)
+
+
+def test_a_joint_equalitys_polynomial_coefficients_are_read_one_by_one(tmp_path):
+    # q1 = c0 + c1 q2 + c2 q2^2 + ... between slide joints: c_i is a length to the power 1 - i
+    path = tmp_path / "coupled.xml"
+    path.write_text(
+        '<mujoco><worldbody><body><joint name="a" type="slide"/><geom size=".1"/></body>'
+        '<body><joint name="b" type="slide"/><geom size=".1"/></body></worldbody>'
+        '<equality><joint name="couple" joint1="a" joint2="b" polycoef="0.1 0.2 0.3 0.4 0.5"/></equality></mujoco>'
+    )
+    params = {p.name: p for p in engines.load(path).parameters}
+    for i in range(5):
+        p = params[f"equality_couple_data_polycoef{i}"]
+        assert p.value == (pytest.approx(0.1 * (i + 1)),)
+        assert p.dimension == pt.Dimension.parse("L") ** (1 - i)

@@ -247,6 +247,7 @@ def test_every_module_has_its_test_file_and_every_test_file_a_module_or_a_reason
             "constants",
             "enginemodel",
             "fileformats.mjcf",
+            "fileformats.mjcfunits",
             "fileformats.numbers",
             "fileformats.urdf",
             "fitting",
@@ -266,6 +267,7 @@ def test_every_module_has_its_test_file_and_every_test_file_a_module_or_a_reason
             "verdicts.audit",
             "verdicts.causes",
             "verdicts.diagnose",
+            "verdicts.probes",
             "verdicts.verify",
         )
     }
