@@ -265,7 +265,7 @@ class EngineVerifyAnswer(NamedTuple):
         Whether every factor is exact in binary (``s`` a power of four), so
         that the scaled run should equal the original bit for bit.
     report : SimilarityReport
-        What :func:`pitheorem.engines.verdicts.verify` found.
+        What :func:`pitheorem.engines.verify` found.
 
     Examples
     --------

@@ -50,7 +50,8 @@ Exit codes
     The request is valid but no similarity scaling meets it: ``search``
     prints the certificate of impossibility, ``apply`` writes nothing.
     (Like ``grep``, which exits 1 when nothing matches.)  ``verify``: the
-    copy is not similar; ``check``: a number is beyond or near one of the
+    copy is not similar, or the verdict is inconclusive (the run cannot
+    show an error: negative controls pass unnoticed); ``check``: a number is beyond or near one of the
     engine's thresholds; ``convert --fit``: no units clear every
     threshold (the closest are used).
 2

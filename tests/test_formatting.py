@@ -250,7 +250,7 @@ JSON_NUMBERS = {
         _exact_map(doc["unit_change"]) == dict(v.unit_change) and _value_numbers(v.values, doc["values"]) is None
     ),
     "RangeBound": lambda v, doc: _exact(doc["bound"]) == v.bound,
-    "Cause": lambda v, doc: doc == {"kind": v.kind, "element": v.element, "detail": v.detail},
+    "Cause": lambda v, doc: doc == {"kind": v.kind, "element": v.element, "detail": v.detail, "restores": v.restores},
     "Audit": lambda v, doc: doc["compared"] == v.compared and len(doc["causes"]) == len(v.causes),
     "HiddenConstant": lambda v, doc: pt.Dimension.parse(doc["dimension"]) == v.dimension,
     "RuleVerdict": lambda v, doc: (

@@ -9,7 +9,7 @@ asked for.  Install the engines with ``pip install "pitheorem[engines]"``
   MJCF (MuJoCo) or URDF (PyBullet) file as an ``EngineModel``, every
   dimensional number a ``Parameter`` with its dimension; its system,
   a scaled copy and the file the engine loads;
-* ``pitheorem.engines.verdicts.verify``: runs a model and its scaled copy in the
+* ``pitheorem.engines.verify``: runs a model and its scaled copy in the
   engine and compares them against the model's own one-ulp sensitivity;
 * ``pitheorem.engines.cli``: the command line on MJCF and URDF files;
 * ``pitheorem.engines.paper.superball``: SUPERball, the white paper's robot, as a

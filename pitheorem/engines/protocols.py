@@ -76,7 +76,7 @@ Job = tuple[Any, Controls, bool, Any]
 
 @runtime_checkable
 class Runs(Protocol):
-    """What :func:`~pitheorem.engines.verdicts.verify` needs of an engine to run a model.
+    """What :func:`~pitheorem.engines.verify` needs of an engine to run a model.
 
     Examples
     --------
@@ -237,6 +237,9 @@ class SolverDiagnosis(Protocol):
 
     def solver_name(self) -> str:
         """The constraint solver's name (``"Newton"``, ...)."""
+
+    def uses_native_ccd(self) -> bool:
+        """Whether convex pairs collide through the engine's own convex collision (``variant(native_ccd=False)``)."""
 
     def equality_names(self) -> list[str]:
         """Each equality constraint, named as the reports name it."""

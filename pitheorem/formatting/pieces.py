@@ -731,6 +731,66 @@ def deviation_rows(report, name):
     return header, rows
 
 
+def strength_lines(report) -> list[str]:
+    """What a report says of its own strength: inconclusive, weak, gravity unseen, past the horizon.
+
+    Empty for a report without twins or controls (an ODE verdict against
+    a tolerance).
+
+    Parameters
+    ----------
+    report : SimilarityReport
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> from pitheorem.formatting.pieces import strength_lines
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    >>> rep = engines.verify(model, sc, s=10, duration=0.5, controls=lambda t: [0.1])
+    >>> strength_lines(rep)
+    ['strength: an error of 0.0001 in gravity or the masses is caught; the twins stay together to the end (t = 0.5)']
+    """
+    if report.horizon is None and not report.controls:
+        return []
+    lines = []
+    if report.inconclusive:
+        lines.append(
+            "INCONCLUSIVE: not even gravity or the masses doubled change this run beyond its yardstick, "
+            "so it cannot show an error in the scaling"
+        )
+    gravity = [c for c in report.controls if c.group == "g"]
+    if gravity and not any(c.caught for c in gravity):
+        lines.append(
+            "gravity cannot act on this run's motion (compensated or balanced): a gravity error cannot be seen"
+        )
+    parts = []
+    if report.detection_limit is not None:
+        parts.append(f"an error of {float_text(report.detection_limit)} in gravity or the masses is caught")
+    end = float(report.original.t[-1]) if len(report.original) else 0.0
+    if report.horizon is not None:
+        if report.horizon < end:
+            parts.append(
+                f"the twins part by 1% of the motion at t = {report.horizon:.6g} of {end:.6g}: "
+                "past it the comparison says little"
+            )
+        else:
+            parts.append(f"the twins stay together to the end (t = {end:.6g})")
+    if parts:
+        lines.append("strength: " + "; ".join(parts))
+    if report.passed and report.detection_limit is not None and report.detection_limit > 1e-2:
+        lines.append(
+            f"weak evidence: an error smaller than {float_text(report.detection_limit)} in a dimensionless "
+            "group would pass unnoticed"
+        )
+    return lines
+
+
 def unit_fit_rows(fit):
     """Each variable of a unit fit that has a value: its name, value, new value, range and verdict.
 

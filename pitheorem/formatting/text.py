@@ -27,6 +27,7 @@ from .pieces import (
     request_text,
     search_cells,
     solutions_text,
+    strength_lines,
     unit_change_text,
     unit_fit_rows,
     value_text,
@@ -229,7 +230,7 @@ def _symmetry_report(report) -> str:
 def _verdict(report) -> tuple[str, str]:
     """``PASSED``/``FAILED``, and whether the exponents are a change of units."""
     return (
-        "PASSED" if report.passed else "FAILED",
+        "FAILED" if not report.passed else "INCONCLUSIVE" if report.inconclusive else "PASSED",
         "similarity scaling" if report.is_similarity else "NOT a similarity scaling",
     )
 
@@ -243,13 +244,15 @@ def _similarity_report(report) -> str:
         judged = f"within {report.baseline_factor:g}x the one-ulp sensitivity (largest {worst:.3g}) per state"
     else:
         judged = f"tol {report.tol:g}"
-    head = "EXACT (bit for bit), " if report.exact and report.sensitivity is not None else ""
+    exact = report.exact and report.sensitivity is not None
+    head = ("bit for bit, " if report.inconclusive else "EXACT (bit for bit), ") if exact else ""
     lines = [
         f"{head}{verdict}: max deviation {report.max_deviation:.3g} ({judged}) at s={report.s:g}, "
         f"{kind}, method {report.method}; per state {per}"
     ]
     if report.excited is False:
         lines.append("the original run moved nothing beyond its own rounding: this verdict proves nothing")
+    lines.extend(strength_lines(report))
     lines.extend(f"cause: {cause}" for cause in report.causes)
     return "\n".join(lines)
 
@@ -494,12 +497,13 @@ def _engine_verify_answer(answer) -> str:
     rep, s = answer.report, answer.s
     steps = len(rep.original) - 1
     if rep.exact:
+        head, tail = ("inconclusive", ", but so do copies made wrong on purpose") if rep.inconclusive else ("exact", "")
         lines = [
-            f"exact: the scaled copy, mapped back, equals the original bit for bit at every step "
-            f"(s = {s}, {steps} steps)"
+            f"{head}: the scaled copy, mapped back, equals the original bit for bit at every step "
+            f"(s = {s}, {steps} steps){tail}"
         ]
     else:
-        verdict = "similar" if rep.similar else "NOT similar"
+        verdict = {"similar": "similar", "inconclusive": "inconclusive", "not similar": "NOT similar"}[rep.verdict]
         worst = max(rep.sensitivity.values(), default=0.0)
         lines = [
             f"{verdict}: largest deviation {rep.max_deviation:.3g} in original units, against "
@@ -514,6 +518,7 @@ def _engine_verify_answer(answer) -> str:
             "the original run moved nothing beyond its own rounding: this verdict proves nothing "
             "(use --input smooth or another initial pose)"
         )
+    lines.extend(strength_lines(rep))
     if rep.causes:
         lines.append("causes:")
         lines.extend(f"  {c}" for c in rep.causes)

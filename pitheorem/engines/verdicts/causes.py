@@ -2,13 +2,13 @@
 
 A verdict of "not similar" helps nobody unless it says why.  Every check of
 the engines layer that finds something a scaling cannot carry
-(:func:`pitheorem.engines.verdicts.verify`, :func:`pitheorem.engines.verdicts.audit`,
-:func:`pitheorem.engines.check`) answers with ``Cause`` records of seven kinds:
+(:func:`pitheorem.engines.verify`, :func:`pitheorem.engines.audit`,
+:func:`pitheorem.engines.check`) answers with ``Cause`` records of eight kinds:
 
 ``dimension``
     a number the engine stores from the file that took another power of
     the scale factor than the dimension the reader gave it
-    (:mod:`pitheorem.engines.verdicts.probes`): the reader's dimension, or
+    (``pitheorem.engines.verdicts.probes``): the reader's dimension, or
     the engine's use of the number, is not what the table says.
 ``precision``
     a number the engine stores in lower precision than the scaling needs
@@ -26,6 +26,9 @@ the engines layer that finds something a scaling cannot carry
 ``unscaled``
     a number the engine holds that is not the original times its factor
     (a sentinel such as ``-1`` for "compute it", a value derived at load).
+``unknown``
+    the runs part and no counter-run removes the difference: the step and
+    the coordinate where they part, and what was tried.
 """
 
 from __future__ import annotations
@@ -39,7 +42,7 @@ from ...immutable import immutable
 __all__ = ["CAUSE_KINDS", "Cause"]
 
 #: the kinds of cause, in the order reports list them
-CAUSE_KINDS = ("dimension", "unscaled", "setting", "threshold", "solver", "precision", "contact")
+CAUSE_KINDS = ("dimension", "unscaled", "setting", "threshold", "solver", "precision", "contact", "unknown")
 
 
 @immutable
@@ -49,12 +52,18 @@ class Cause(TextDisplay):
 
     Parameters
     ----------
-    kind : {"dimension", "precision", "solver", "contact", "threshold", "setting", "unscaled"}
+    kind : {"dimension", "precision", "solver", "contact", "threshold", "setting", "unscaled", "unknown"}
         What sort of reason (see the module's documentation).
     element : str
         What it concerns: a parameter, a geom pair, an engine constant.
     detail : str
         The numbers behind it, and what would remove it.
+    restores : bool or None
+        For a cause found by a counter-run: whether that counter-run, with
+        the other causes named removed too, reproduces the original (bit
+        for bit where every factor is a power of two, else within the
+        yardstick).  None for a cause no run tests (a number the audit
+        finds unscaled, a threshold crossed).
 
     Examples
     --------
@@ -67,12 +76,13 @@ class Cause(TextDisplay):
     ...     Cause("luck", "x", "")
     ... except pt.InvalidRequestError as err:
     ...     print(err)
-    unknown cause kind 'luck'; valid: dimension, unscaled, setting, threshold, solver, precision, contact
+    unknown cause kind 'luck'; valid: dimension, unscaled, setting, threshold, solver, precision, contact, unknown
     """
 
     kind: str
     element: str
     detail: str
+    restores: bool | None = None
 
     def __post_init__(self) -> None:
         if self.kind not in CAUSE_KINDS:
@@ -90,7 +100,7 @@ class Cause(TextDisplay):
         >>> Cause("contact", "geom 'foot' / geom 'floor'", "starts at step 3").to_dict()["kind"]
         'contact'
         """
-        return {"kind": self.kind, "element": self.element, "detail": self.detail}
+        return {"kind": self.kind, "element": self.element, "detail": self.detail, "restores": self.restores}
 
 
 def sorted_causes(causes) -> tuple[Cause, ...]:
