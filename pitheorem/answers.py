@@ -266,6 +266,9 @@ class EngineVerifyAnswer(NamedTuple):
         that the scaled run should equal the original bit for bit.
     report : SimilarityReport
         What :func:`pitheorem.engines.verify` found.
+    notes : tuple of str
+        The engine's notes on this model (``EngineNotes``): a known bug of
+        the installed version that can touch the verdict.
 
     Examples
     --------
@@ -278,6 +281,7 @@ class EngineVerifyAnswer(NamedTuple):
     >>> rep = engines.verify(model, sc, 4, duration=0.5, controls=lambda t: [0.1])
     >>> print(EngineVerifyAnswer("pendulum.xml", "mujoco", Fraction(4), 0.5, "smooth", True, rep))
     exact: the scaled copy, mapped back, equals the original bit for bit at every step (s = 4, 250 steps)
+    strength: an error of 0.0001 in gravity or the masses is caught; the twins stay together to the end (t = 0.5)
     """
 
     model: str
@@ -287,6 +291,8 @@ class EngineVerifyAnswer(NamedTuple):
     input: str
     exact_expected: bool
     report: object
+    #: what the engine's runner says of itself that can touch this verdict (a known bug of its version)
+    notes: tuple = ()
 
     __str__ = TextDisplay.__str__
     __format__ = TextDisplay.__format__

@@ -233,3 +233,27 @@ def test_bad_mujoco_settings_of_a_urdf_are_refused_by_name(tmp_path):
         engines.load(source, engine="mujoco", units={"M": "g", "L": "cm", "T": "s"})
     with pytest.raises(engines.EngineModelError, match="MuJoCo's compiler"):  # MuJoCo's own refusal
         engines.load(PYBULLET_DATA / "cube_no_rotation.urdf", engine="mujoco")
+
+
+def test_mujoco_4_0_0s_sparse_cholesky_bug_is_noted_where_a_model_meets_it(tmp_path, capsys):
+    """Issue 35 item 4: the Newton solver with sparse Jacobians, in MuJoCo 4.0.0 (fixed in 4.0.1, MuJoCo #3767)."""
+    import mujoco
+
+    from pitheorem.cli import main
+
+    text = (DATA / "contact.xml").read_text()
+    sparse, dense = tmp_path / "sparse.xml", tmp_path / "dense.xml"
+    sparse.write_text(text.replace('<option timestep="0.002"', '<option jacobian="sparse" timestep="0.002"'))
+    dense.write_text(text.replace('<option timestep="0.002"', '<option jacobian="dense" timestep="0.002"'))
+    noted = engines.load(sparse).runner.engine_notes()
+    assert engines.load(dense).runner.engine_notes() == ()
+    if mujoco.__version__ != "4.0.0":
+        assert noted == ()
+        return
+    assert len(noted) == 1
+    assert "#3767" in noted[0]
+    assert "4.0.1" in noted[0]
+    main(["check", str(sparse)])
+    assert "note: MuJoCo 4.0.0's Newton solver has a sparse Cholesky bug" in capsys.readouterr().out
+    main(["verify", str(sparse), "--scale", "g=1", "--s", "4", "--duration", "0.1"])
+    assert "note: MuJoCo 4.0.0's Newton solver" in capsys.readouterr().out

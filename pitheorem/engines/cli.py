@@ -19,7 +19,7 @@ from ..errors import InvalidRequestError
 from ..modelfile import ModelFile
 from .enginemodel import EngineModel, UnscalableParameterError
 from .loading import load, scene_options
-from .protocols import RefusesScalings
+from .protocols import EngineNotes, RefusesScalings
 
 __all__ = [
     "apply_engine",
@@ -264,8 +264,9 @@ def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str =
 
     controls = smooth_controls(model) if inputs == "smooth" and len(model.inputs()[0]) else None
     rep = verify(model, scaling, s, duration=duration, controls=controls)
+    notes = model.runner.engine_notes() if isinstance(model.runner, EngineNotes) else ()
     return EngineVerifyAnswer(
-        model.path, model.engine, Fraction(s), duration, inputs, exact_in_binary(model, scaling, s), rep
+        model.path, model.engine, Fraction(s), duration, inputs, exact_in_binary(model, scaling, s), rep, notes
     )
 
 
@@ -452,9 +453,13 @@ def check_engine_model(path: str, *, from_units=None, engine: str | None = None,
             {"file": path, "engine": engine, "units": model.units, "causes": [c.to_dict() for c in causes]}, indent=2
         ), not causes
     name = Path(path).name
+    notes = model.runner.engine_notes() if isinstance(model.runner, EngineNotes) else ()
     if not causes:
-        return f"{name}: clear of every catalogued threshold of {engine}", True
+        return "\n".join(
+            [f"{name}: clear of every catalogued threshold of {engine}", *(f"note: {n}" for n in notes)]
+        ), True
     lines = [f"{name}: {len(causes)} number(s) beyond or near a threshold of {engine}"]
     lines.extend(f"  {c}" for c in causes)
     lines.append(f"units clear of them: pitheorem convert {name} --fit {engine} --output OUT")
+    lines.extend(f"note: {n}" for n in notes)
     return "\n".join(lines), False

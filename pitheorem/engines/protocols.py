@@ -57,6 +57,7 @@ __all__ = [
     "REQUIRED",
     "Controls",
     "CounterRuns",
+    "EngineNotes",
     "HasSceneSettings",
     "IgnoredSettings",
     "NamesElements",
@@ -293,6 +294,22 @@ class IgnoredSettings(Protocol):
         """A Cause for each setting the engine ignores."""
 
 
+@runtime_checkable
+class EngineNotes(Protocol):
+    """Optional: what the engine says of itself that can touch a verdict on this model (a known bug).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.protocols import EngineNotes
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, EngineNotes)
+    True
+    """
+
+    def engine_notes(self) -> tuple[str, ...]:
+        """One sentence per note, empty where none applies to this model."""
+
+
 def _members(protocol) -> tuple[str, ...]:
     own = [name for name in vars(protocol) if not name.startswith("_")]
     own.extend(vars(protocol).get("__annotations__", {}))
@@ -313,5 +330,6 @@ OPTIONAL = {
         NamesElements,
         StoresCopies,
         IgnoredSettings,
+        EngineNotes,
     )
 }

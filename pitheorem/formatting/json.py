@@ -428,6 +428,7 @@ def _engine_verify_answer(answer) -> dict:
         "max_deviation": rep.max_deviation,
         "first_divergence": None if rep.first_divergence is None else list(rep.first_divergence),
         "causes": [_cause(c) for c in rep.causes],
+        "notes": list(answer.notes),
         "report": _similarity_report(rep),
     }
 

@@ -519,6 +519,7 @@ def _engine_verify_answer(answer) -> str:
             "(use --input smooth or another initial pose)"
         )
     lines.extend(strength_lines(rep))
+    lines.extend(f"note: {note}" for note in answer.notes)
     if rep.causes:
         lines.append("causes:")
         lines.extend(f"  {c}" for c in rep.causes)

@@ -272,6 +272,29 @@ class MujocoRunner:
         """Each equality constraint, named as the reports name it."""
         return [self.element_name("eq_data", i) for i in range(self.mjmodel.neq)]
 
+    def engine_notes(self) -> tuple[str, ...]:
+        """Known bugs of the installed MuJoCo that can touch a verdict on this model.
+
+        MuJoCo 4.0.0's Newton solver has a bug in its sparse Cholesky
+        factorisation, fixed in 4.0.1 (MuJoCo issue #3767); it touches a
+        model that uses the Newton solver with sparse Jacobians (the
+        ``jacobian`` option sparse, or auto on a model of 60 or more degrees
+        of freedom).  The package index served only 4.0.0 when this was
+        written.
+        """
+        mj, m = _mujoco(), self.mjmodel
+        newton = int(m.opt.solver) == int(mj.mjtSolver.mjSOL_NEWTON)
+        jacobian = int(m.opt.jacobian)
+        sparse = jacobian == int(mj.mjtJacobian.mjJAC_SPARSE) or (
+            jacobian == int(mj.mjtJacobian.mjJAC_AUTO) and m.nv >= 60
+        )
+        if mj.__version__ == "4.0.0" and newton and sparse:
+            return (
+                "MuJoCo 4.0.0's Newton solver has a sparse Cholesky bug, fixed in 4.0.1 (MuJoCo #3767), "
+                "which this model meets (Newton, sparse Jacobians): a verdict may change with 4.0.1",
+            )
+        return ()
+
     #: the solver whose iterations are scale-free (its line search is exact in any units)
     scale_free_solver = "Newton"
 
