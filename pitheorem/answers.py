@@ -1,6 +1,6 @@
 """The command line's answers: what each subcommand found about one model file, as values.
 
-``pitheorem groups``, ``bases``, ``search``, ``apply``, ``params`` and ``verify``
+``pitheorem groups``, ``bases``, ``search``, ``apply``, ``params``, ``verify`` and ``sweep``
 compute one of these and print ``format(answer, FORMAT)``: its text, LaTeX,
 HTML or JSON comes from :mod:`pitheorem.formatting`, like every other
 display.  Each answer joins what one output shows: the model file's name
@@ -24,6 +24,7 @@ __all__ = [
     "GroupsAnswer",
     "ParamsAnswer",
     "SearchAnswer",
+    "SweepAnswer",
 ]
 
 
@@ -293,6 +294,38 @@ class EngineVerifyAnswer(NamedTuple):
     report: object
     #: what the engine's runner says of itself that can touch this verdict (a known bug of its version)
     notes: tuple = ()
+
+    __str__ = TextDisplay.__str__
+    __format__ = TextDisplay.__format__
+
+
+class SweepAnswer(NamedTuple):
+    """``pitheorem sweep``: one sweep per model file, and with several files a table of robots by scale.
+
+    Parameters
+    ----------
+    model : tuple of str
+        Each file's name as given on the command line.
+    sweeps : tuple of Sweep
+        What :func:`pitheorem.engines.sweep` found for each file, in the
+        order of the files.
+    plots : tuple of str
+        The figures written (``--plot``), one per file; empty without.
+
+    Examples
+    --------
+    >>> from pitheorem.answers import SweepAnswer
+    >>> from pitheorem.engines import Sweep, SweepRow
+    >>> rows = (SweepRow(1, "exact", 0.0, 1e-12, None, True, None, (), ()),)
+    >>> a = SweepAnswer(("a.xml", "b.xml"), (Sweep("a.xml", "mujoco", None, 1.0, rows),
+    ...                                      Sweep("b.xml", "mujoco", None, 1.0, rows)), ())
+    >>> print(str(a).splitlines()[-3:])
+    ['robot  1', 'a.xml  exact', 'b.xml  exact']
+    """
+
+    model: tuple
+    sweeps: tuple
+    plots: tuple
 
     __str__ = TextDisplay.__str__
     __format__ = TextDisplay.__format__

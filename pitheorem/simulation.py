@@ -742,7 +742,7 @@ class SimilarityReport(TableDisplay):
 
     @property
     def similar(self) -> bool:
-        """The verdict: :attr:`passed`, unless the run could not tell (:attr:`inconclusive`).
+        """The verdict: passed, unless the run could not tell (inconclusive).
 
         Examples
         --------
@@ -756,7 +756,7 @@ class SimilarityReport(TableDisplay):
 
     @property
     def verdict(self) -> str:
-        """``"exact"``, ``"similar"``, ``"inconclusive"`` or ``"not similar"``: the verdict in one word.
+        """The verdict in one word: exact, similar, inconclusive or not similar.
 
         Examples
         --------

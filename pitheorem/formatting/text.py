@@ -8,11 +8,14 @@ columns (:func:`~pitheorem.formatting.pieces.align`).
 
 from __future__ import annotations
 
+import textwrap
+
 import sympy
 
 from .pieces import (
     COMMAND_LINE_TIME_REMEDY,
     PYTHON_TIME_REMEDY,
+    SWEEP_HEADER,
     align,
     changed_by_kind,
     changed_rows,
@@ -28,6 +31,10 @@ from .pieces import (
     search_cells,
     solutions_text,
     strength_lines,
+    sweep_cells,
+    sweep_fit_text,
+    sweep_grid,
+    sweep_head,
     unit_change_text,
     unit_fit_rows,
     value_text,
@@ -362,6 +369,39 @@ def _rule_verdict(verdict) -> str:
     return "\n".join(lines)
 
 
+@_renders("pitheorem.engines.verdicts.sweep.SweepRow")
+def _sweep_row(row) -> str:
+    s, verdict, deviation, yardstick, crossed = sweep_cells(row)
+    line = f"s = {s}: {verdict}"
+    if row.max_deviation is not None:
+        line += f", deviation {deviation}, yardstick {yardstick}"
+    if crossed:
+        line += f", beyond {crossed}"
+    return line
+
+
+#: the width the lines of a sweep's prose are wrapped at (its table is as wide as its columns)
+SWEEP_WIDTH = 88
+
+
+@_renders("pitheorem.engines.verdicts.sweep.Sweep")
+def _sweep(sweep) -> str:
+    lines = [
+        textwrap.fill(sweep_head(sweep), SWEEP_WIDTH, subsequent_indent="  "),
+        align([list(SWEEP_HEADER)] + [sweep_cells(r) for r in sweep.rows]),
+    ]
+    caused = [r for r in sweep.rows if r.causes]
+    if caused:
+        lines.append("causes:")
+        for r in caused:
+            line = f"  s = {value_text(r.s)}: " + "; ".join(f"{c.kind}: {c.element}" for c in r.causes)
+            lines.append(textwrap.fill(line, SWEEP_WIDTH, subsequent_indent="    "))
+    fit = sweep_fit_text(sweep)
+    if fit:
+        lines.append(textwrap.fill(fit, SWEEP_WIDTH, subsequent_indent="  "))
+    return "\n".join(lines)
+
+
 def parameter_table(model) -> str:
     """An engine model's parameters as aligned columns: name, dimension, value, source, path.
 
@@ -526,3 +566,13 @@ def _engine_verify_answer(answer) -> str:
     elif not rep.similar or (not rep.exact and answer.exact_expected):
         lines.append("no cause found by the audit and the counter-runs (solver, contacts)")
     return "\n".join(lines)
+
+
+@_renders("pitheorem.answers.SweepAnswer")
+def _sweep_answer(answer) -> str:
+    parts = [_sweep(sw) for sw in answer.sweeps]
+    if answer.plots:
+        parts.append("\n".join(f"wrote {path}" for path in answer.plots))
+    if len(answer.sweeps) > 1:
+        parts.append("verdicts of every file by scale factor s:\n" + align(sweep_grid(answer)))
+    return "\n\n".join(parts)
