@@ -262,6 +262,8 @@ NAMES_ENGINES = {
     "engines.rules": "the engines' published rules of thumb, each its engine's",
     "engines.paper.rod": "the paper's rod is shipped as one file per engine",
     "engines.paper.superball": "SUPERball is shipped as a MuJoCo file",
+    "engines.fileformats.mjcfunits": "the MJCF format's table of units is MuJoCo's own, and the models it "
+    "generates to hold the reader against it are MJCF files (a <mujoco> root); it imports no engine",
     **PARSERS,
 }
 

@@ -1,4 +1,4 @@
-"""The Cause record: the six kinds, validation, a deterministic order."""
+"""The Cause record: the eight kinds, validation, a deterministic order."""
 
 import dataclasses
 
@@ -9,8 +9,18 @@ from pitheorem.engines.verdicts.causes import sorted_causes
 from pitheorem.errors import InvalidRequestError, PiTheoremError
 
 
-def test_the_seven_kinds_of_the_design():
-    assert set(CAUSE_KINDS) == {"precision", "solver", "contact", "threshold", "setting", "unscaled", "unknown"}
+def test_the_eight_kinds_of_the_design():
+    # and "dimension" (a stored number whose power of s is not its dimension's; issue 33)
+    assert set(CAUSE_KINDS) == {
+        "dimension",
+        "precision",
+        "solver",
+        "contact",
+        "threshold",
+        "setting",
+        "unscaled",
+        "unknown",
+    }
 
 
 def test_a_cause_says_whether_its_counter_run_restores_the_run():

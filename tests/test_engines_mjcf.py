@@ -555,6 +555,52 @@ def test_a_muscle_whose_peak_force_mujoco_derives_is_refused_by_name(tmp_path):
         engines.load(path)
 
 
+def test_a_joint_equalitys_polynomial_coefficients_are_read_one_by_one(tmp_path):
+    # q1 = c0 + c1 q2 + c2 q2^2 + ... between slide joints: c_i is a length to the power 1 - i
+    path = tmp_path / "coupled.xml"
+    path.write_text(
+        '<mujoco><worldbody><body><joint name="a" type="slide"/><geom size=".1"/></body>'
+        '<body><joint name="b" type="slide"/><geom size=".1"/></body></worldbody>'
+        '<equality><joint name="couple" joint1="a" joint2="b" polycoef="0.1 0.2 0.3 0.4 0.5"/></equality></mujoco>'
+    )
+    params = {p.name: p for p in engines.load(path).parameters}
+    for i in range(5):
+        p = params[f"equality_couple_data_polycoef{i}"]
+        assert p.value == (pytest.approx(0.1 * (i + 1)),)
+        assert p.dimension == pt.Dimension.parse("L") ** (1 - i)
+
+
+def test_an_actuators_default_ctrlrange_is_named_default_and_an_affine_gain_by_its_actuator(tmp_path):
+    path = tmp_path / "affine.xml"
+    path.write_text(
+        '<mujoco><worldbody><body><joint name="j" type="slide"/><geom size=".1"/></body></worldbody>'
+        '<actuator><general name="a" joint="j" gaintype="affine" gainprm="2 3 4" ctrlrange="0 1"/>'
+        '<motor name="m" joint="j"/></actuator></mujoco>'
+    )
+    params = {p.name: p for p in engines.load(path).parameters}
+    assert params["actuator_m_ctrlrange"].source == "default"  # MuJoCo's own 0 0, left unset
+    assert params["actuator_a_ctrlrange"].source == "file"
+    assert params["actuator_a_gainprm_gain"].dimension == pt.Dimension.parse("M L T^-2")
+    assert params["actuator_a_gainprm_gain"].value == (2.0,)
+
+
+def test_the_readers_names_paths_and_sources_of_plain_attributes(tmp_path):
+    path = tmp_path / "plain.xml"
+    path.write_text(
+        '<mujoco><worldbody><body name="b" pos="0 0 1"><joint name="j" type="slide"/>'
+        '<geom name="g" size=".1" mass="1"/></body></worldbody></mujoco>'
+    )
+    params = {p.name: p for p in engines.load(path).parameters}
+    assert params["timestep"].path == "option timestep"
+    assert params["o_friction_torsional_rolling"].path == "option o_friction torsional rolling"
+    assert params["geom_g_solimp_width"].path == "geom 'g' solimp width"
+    assert params["body_b_ipos"].path == "body 'b' ipos"
+    # left at MuJoCo's own defaults: named so (the kind of element decides which default applies)
+    assert params["joint_j_frictionloss"].source == "default"
+    assert params["geom_g_pos"].source == "default"
+    assert params["body_b_pos"].source == "file"
+
+
 # -- large files (issue 33): the spec's elements listed in linear time, the collector paused while reading
 
 

@@ -18,6 +18,7 @@ from pitheorem.engines.protocols import (
     Runner,
     Runs,
     SolverDiagnosis,
+    StoresCopies,
 )
 from tests.conftest import REPO
 
@@ -55,7 +56,7 @@ def test_the_required_methods_are_the_runner_and_the_model_file():
 
 def test_mujocos_backend_has_every_part_but_the_scene_and_the_refusals():
     backend = engines.load(engines.example_path("pendulum.xml")).runner
-    for protocol in (Runs, Runner, CounterRuns, SolverDiagnosis, NamesElements):
+    for protocol in (Runs, Runner, CounterRuns, SolverDiagnosis, NamesElements, StoresCopies):
         assert isinstance(backend, protocol), protocol
     for protocol in (HasSceneSettings, RefusesScalings, IgnoredSettings):
         assert not isinstance(backend, protocol), protocol

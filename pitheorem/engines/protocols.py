@@ -24,8 +24,10 @@ is named here:
   ``with_settings``), :class:`CounterRuns` (copies run with another
   solver tolerance, for the diagnosis), :class:`SolverDiagnosis`
   (solver, equality constraints and contacts, named),
-  :class:`NamesElements` (a stored number's element) and
-  :class:`IgnoredSettings` (settings the engine does not apply).
+  :class:`NamesElements` (a stored number's element),
+  :class:`StoresCopies` (the stored numbers that are the file's, with
+  their parameters) and :class:`IgnoredSettings` (settings the engine
+  does not apply).
 
 ``controls`` is ``None`` (zero input), an array of inputs with one row
 per step, or a callable of the step's start time; ``policy`` is a
@@ -63,6 +65,7 @@ __all__ = [
     "Runner",
     "Runs",
     "SolverDiagnosis",
+    "StoresCopies",
 ]
 
 #: open-loop inputs: None (zero input), rows of inputs (one per step) or ``t -> inputs``
@@ -262,6 +265,21 @@ class NamesElements(Protocol):
 
 
 @runtime_checkable
+class StoresCopies(Protocol):
+    """Optional: which stored numbers are the file's numbers, each with the parameter it belongs to.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.protocols import StoresCopies
+    >>> StoresCopies.__name__
+    'StoresCopies'
+    """
+
+    def stored_copies(self) -> list:
+        """Records with ``parameter``, ``element``, ``attribute``, ``field`` and ``index`` (flat, in the field)."""
+
+
+@runtime_checkable
 class IgnoredSettings(Protocol):
     """Optional: settings the engine keeps but does not apply, as causes (PyBullet's).
 
@@ -310,6 +328,7 @@ OPTIONAL = {
         CounterRuns,
         SolverDiagnosis,
         NamesElements,
+        StoresCopies,
         IgnoredSettings,
         EngineNotes,
     )

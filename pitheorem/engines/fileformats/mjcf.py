@@ -56,7 +56,16 @@ from ..parameters import (
 )
 from .numbers import check_model_file
 
-__all__ = ["UNITS_TEXT", "MjcfDocument", "RefusedMjcfDocument", "read_mjcf", "record_units", "recorded_units"]
+__all__ = [
+    "UNITS_TEXT",
+    "AttributeDimension",
+    "MjcfDocument",
+    "RefusedMjcfDocument",
+    "StoredCopy",
+    "read_mjcf",
+    "record_units",
+    "recorded_units",
+]
 
 #: a custom ``<text>`` element named this prefix plus a numeric's name declares that numeric's dimension
 DIMENSION_TEXT = "dimension:"
@@ -259,6 +268,12 @@ class _Walker:
             )
         )
 
+    def add_set(self, kind, elem, ident, path, attr, dimension, index=slice(None), suffix="", note=""):
+        """:meth:`add` where the entries are set (nonzero): an attribute most files leave at zero, kept out
+        of their tables."""
+        if np.any(np.asarray(_floats(getattr(elem, attr))[index]) != 0):
+            self.add(kind, elem, ident, path, attr, dimension, index, suffix, note=note)
+
     def add_solref(self, kind, elem, ident, path, attr):
         ref = np.asarray(getattr(elem, attr), dtype=float)
         if ref[0] >= 0:  # time constant and damping ratio
@@ -317,6 +332,8 @@ class _Walker:
             # scale one of the two, never both (inline vertices scaled and scale scaled: s^2)
             if len(mesh.uservert):
                 self.add("mesh", mesh, ident, path, "uservert", _L)
+                # subtracted from the vertices before scale multiplies them: in the vertices' units
+                self.add("mesh", mesh, ident, path, "refpos", _L)
             else:
                 self.add(
                     "mesh",
@@ -327,7 +344,7 @@ class _Walker:
                     _L,
                     note="a dimensionless factor times the file's vertex units, a length",
                 )
-            self.add("mesh", mesh, ident, path, "refpos", _L)
+                # refpos is then in the file's vertex units, before scale: dimensionless, copied
         for i, hfield in enumerate(lists["hfields"]):
             ident, path = self.label("hfield", hfield, i)
             self.add("hfield", hfield, ident, path, "size", _L)
@@ -335,7 +352,7 @@ class _Walker:
             self.body(body, i)
         for i, geom in enumerate(lists["geoms"]):
             self.geom(geom, i)
-        # frames, sites, cameras and lights: positions (and a site's size) are lengths
+        # frames, sites, cameras and lights: positions (and a site's size, a camera's sensor) are lengths
         for kind, items, attrs in (
             ("frame", lists["frames"], ("pos",)),
             ("site", lists["sites"], ("pos", "size", "fromto")),
@@ -347,6 +364,12 @@ class _Walker:
                 for attr in attrs:
                     if hasattr(item, attr):
                         self.add(kind, item, ident, path, attr, _L)
+                if kind == "light":  # 1 / (a0 + a1 d + a2 d^2): a1 per length, a2 per area
+                    self.add_set(kind, item, ident, path, "attenuation", _L**-1, slice(1, 2), "_linear")
+                    self.add_set(kind, item, ident, path, "attenuation", _L**-2, slice(2, 3), "_quadratic")
+                if kind == "camera":  # the sensor of a camera given by its intrinsics (camprojection reads it)
+                    for attr in ("focal_length", "principal_length", "sensor_size"):
+                        self.add_set(kind, item, ident, path, attr, _L)
         for i, joint in enumerate(lists["joints"]):
             self.joint(joint, i)
         for i, tendon in enumerate(lists["tendons"]):
@@ -363,6 +386,7 @@ class _Walker:
             self.add_solref("pair", pair, ident, path, "solref")
             self.add_solref("pair", pair, ident, path, "solreffriction")
             self.add_solimp("pair", pair, ident, path, "solimp", _L)
+            self.add_set("pair", pair, ident, path, "adhesion", _FORCE)
         for i, sensor in enumerate(lists["sensors"]):
             self.sensor(sensor, i)
         for kind, items in (("flex", spec.flexes), ("skin", spec.skins), ("plugin", spec.plugins)):
@@ -470,7 +494,7 @@ class _Walker:
             note="compared with velocities of every joint type (mixed); sleeping is off unless enabled",
         )
         stat = self.spec.stat
-        for attr, d in (("meanmass", _M), ("meansize", _L), ("extent", _L)):
+        for attr, d in (("meanmass", _M), ("meaninertia", dim("M L^2")), ("meansize", _L), ("extent", _L)):
             if not math.isnan(getattr(stat, attr)):
                 self.add("stat", stat, "stat", "statistic", attr, d)
         if not math.isnan(stat.center[0]):
@@ -544,8 +568,10 @@ class _Walker:
         self.add("geom", geom, ident, path, "gap", _L)
         self.add_solref("geom", geom, ident, path, "solref")
         self.add_solimp("geom", geom, ident, path, "solimp", _L)
-        if np.any(np.asarray(geom.surfacevel) != 0):
-            self.add("geom", geom, ident, path, "surfacevel", dim("L T^-1"))
+        if np.any(np.asarray(geom.surfacevel) != 0):  # a linear velocity, then an angular one
+            self.add("geom", geom, ident, path, "surfacevel", dim("L T^-1"), slice(0, 3), "_linear")
+            self.add("geom", geom, ident, path, "surfacevel", _T**-1, slice(3, 6), "_angular")
+        self.add_set("geom", geom, ident, path, "adhesion", _FORCE)
 
     def joint(self, joint, index):
         mj = self.mj
@@ -725,7 +751,7 @@ class _Walker:
         elif gain == mj.mjtGain.mjGAIN_MUSCLE:
             ctrl = _ONE  # a muscle's excitation, between 0 and 1
         else:
-            self.fail(path, f"gain type {gain.name} (user) is not supported by pitheorem's scaling")
+            self.fail(path, f"gain type {gain.name} is not supported by pitheorem's scaling")
         muscle = gain == mj.mjtGain.mjGAIN_MUSCLE
         if bias not in (mj.mjtBias.mjBIAS_NONE, mj.mjtBias.mjBIAS_AFFINE) and not (
             muscle and bias == mj.mjtBias.mjBIAS_MUSCLE
@@ -761,6 +787,7 @@ class _Walker:
         self.add("actuator", act, ident, path, "forcerange", force)
         self.add("actuator", act, ident, path, "actrange", act_dim)
         self.lengthrange(act, index, ident, path, length)
+        self.add_set("actuator", act, ident, path, "delay", _T)
         if act.dyntype in (mj.mjtDyn.mjDYN_FILTER, mj.mjtDyn.mjDYN_FILTEREXACT):
             self.add("actuator", act, ident, path, "dynprm", _T, slice(0, 1), "_timeconst")
         if act.gaintype == mj.mjtGain.mjGAIN_MUSCLE:
@@ -788,7 +815,7 @@ class _Walker:
                 )
             else:
                 self.add("actuator", act, ident, path, "biasprm", force * _T / length, slice(2, 3), "_velocity")
-        self.refuse(act, path, ("damping", "armature", "delay", "ffrange", "velrange"))
+        self.refuse(act, path, ("damping", "armature", "ffrange", "velrange"))
 
     def lengthrange(self, act, index, ident, path, length) -> None:
         """The actuator's length range: as the file gives it, or as MuJoCo's compiler found it.
@@ -920,6 +947,11 @@ class _Walker:
             S.mjSENS_SUBTREEANGMOM: dim("M L^2 T^-1"),
             S.mjSENS_BALLQUAT: _ONE,
             S.mjSENS_BALLANGVEL: dim("T^-1"),
+            S.mjSENS_GEOMDIST: _L,
+            S.mjSENS_GEOMFROMTO: _L,
+            S.mjSENS_E_POTENTIAL: _TORQUE,
+            S.mjSENS_E_KINETIC: _TORQUE,
+            S.mjSENS_CLOCK: _T,
         }
         if sensor.type in table:
             return table[sensor.type]
@@ -941,10 +973,24 @@ class _Walker:
                     S.mjSENS_JOINTLIMITFRC: kind.force,
                     S.mjSENS_JOINTACTFRC: kind.force,
                 }[sensor.type]
+        tendons = (S.mjSENS_TENDONPOS, S.mjSENS_TENDONLIMITPOS, S.mjSENS_TENDONVEL, S.mjSENS_TENDONLIMITVEL)
+        if sensor.type in (*tendons, S.mjSENS_TENDONLIMITFRC, S.mjSENS_TENDONACTFRC):
+            tendon = self.spec.tendon(sensor.objname)
+            if tendon is not None:
+                kind = self.tendon_kind(tendon, path)
+                rate = 1 if sensor.type in tendons[2:] else 0
+                return kind.force if sensor.type not in tendons else kind.q / _T**rate
+        if sensor.type in (S.mjSENS_ACTUATORPOS, S.mjSENS_ACTUATORVEL, S.mjSENS_ACTUATORFRC):
+            act = self.spec.actuator(sensor.objname)
+            if act is not None:
+                length, force = self.actuator_target(act, path)
+                return {S.mjSENS_ACTUATORPOS: length, S.mjSENS_ACTUATORVEL: length / _T}.get(sensor.type, force)
         return None
 
     def sensor(self, sensor, index):
         ident, path = self.label("sensor", sensor, index)
+        self.add_set("sensor", sensor, ident, path, "delay", _T)
+        self.add_set("sensor", sensor, ident, path, "interval", _T, note="the sampling period and its phase")
         d = self.sensor_dimension(sensor, path)
         busy = sensor.cutoff != 0 or np.any(np.asarray(sensor.noise) != 0)
         if d is None:
@@ -1021,6 +1067,134 @@ def _builtin_defaults(mj) -> dict:
 
 # -- the document ------------------------------------------------------------------------------
 
+#: the kind of element each collection of a spec holds
+_KINDS = {
+    "meshes": "mesh",
+    "hfields": "hfield",
+    "bodies": "body",
+    "geoms": "geom",
+    "frames": "frame",
+    "sites": "site",
+    "cameras": "camera",
+    "lights": "light",
+    "joints": "joint",
+    "tendons": "tendon",
+    "actuators": "actuator",
+    "equalities": "equality",
+    "pairs": "pair",
+    "sensors": "sensor",
+    "numerics": "numeric",
+}
+
+
+#: (element kind, spec attribute) -> where MuJoCo's compiled model stores its entries: (first entry, how
+#: many, compiled field, the field's column of the first entry) each
+_STORED = {
+    **{
+        ("joint", a): ((0, 6, f"jnt_{b}", 0),)
+        for a, b in (
+            ("pos", "pos"),
+            ("range", "range"),
+            ("margin", "margin"),
+            ("solref_limit", "solref"),
+            ("solimp_limit", "solimp"),
+            ("actfrcrange", "actfrcrange"),
+        )
+    },
+    ("joint", "stiffness"): ((0, 1, "jnt_stiffness", 0), (1, 2, "jnt_stiffnesspoly", 0)),
+    **{
+        ("geom", a): ((0, 6, f"geom_{a}", 0),)
+        for a in ("size", "pos", "margin", "gap", "friction", "solref", "solimp", "surfacevel", "adhesion")
+    },
+    ("site", "pos"): ((0, 3, "site_pos", 0),),
+    ("site", "size"): ((0, 3, "site_size", 0),),
+    **{("body", a): ((0, 3, f"body_{a}", 0),) for a in ("pos", "mass", "ipos", "inertia")},
+    **{
+        ("tendon", a): ((0, 5, f"tendon_{b}", 0),)
+        for a, b in (
+            ("range", "range"),
+            ("margin", "margin"),
+            ("solref_limit", "solref_lim"),
+            ("solimp_limit", "solimp_lim"),
+            ("solref_friction", "solref_fri"),
+            ("solimp_friction", "solimp_fri"),
+            ("frictionloss", "frictionloss"),
+            ("armature", "armature"),
+            ("actfrcrange", "actfrcrange"),
+            ("width", "width"),
+            ("springlength", "lengthspring"),
+        )
+    },
+    ("tendon", "stiffness"): ((0, 1, "tendon_stiffness", 0), (1, 2, "tendon_stiffnesspoly", 0)),
+    ("tendon", "damping"): ((0, 1, "tendon_damping", 0), (1, 2, "tendon_dampingpoly", 0)),
+    **{
+        ("actuator", a): ((0, 10, f"actuator_{a}", 0),)
+        for a in (
+            "gainprm",
+            "biasprm",
+            "dynprm",
+            "ctrlrange",
+            "forcerange",
+            "actrange",
+            "lengthrange",
+            "gear",
+            "cranklength",
+            "delay",
+        )
+    },
+    ("equality", "data"): ((0, 11, "eq_data", 0),),
+    ("equality", "solref"): ((0, 2, "eq_solref", 0),),
+    ("equality", "solimp"): ((0, 5, "eq_solimp", 0),),
+    **{
+        ("pair", a): ((0, 5, f"pair_{a}", 0),)
+        for a in ("friction", "margin", "gap", "solref", "solreffriction", "solimp", "adhesion")
+    },
+    **{("sensor", a): ((0, 2, f"sensor_{a}", 0),) for a in ("noise", "cutoff", "delay", "interval")},
+    ("camera", "pos"): ((0, 3, "cam_pos", 0),),
+    ("camera", "sensor_size"): ((0, 2, "cam_sensorsize", 0),),
+    ("light", "pos"): ((0, 3, "light_pos", 0),),
+    ("light", "attenuation"): ((0, 3, "light_attenuation", 0),),
+    ("hfield", "size"): ((0, 4, "hfield_size", 0),),
+    **{
+        ("option", a): ((0, 5, f"opt.{a}", 0),)
+        for a in ("timestep", "wind", "density", "viscosity", "o_margin", "o_solref", "o_solimp", "o_friction")
+    },
+}
+
+
+#: numbers MuJoCo's compiler computes from the file's, each of one dimension whatever the file: held against
+#: the probe, they show a wrong dimension of the numbers they are computed from (a geom's size, density)
+_COMPUTED = {
+    "body_subtreemass": ("body", _M),
+    "geom_rbound": ("geom", _L),
+}
+
+
+@dataclass(frozen=True)
+class StoredCopy:
+    """One number MuJoCo stores: the parameter it copies ("" for a number the compiler computes), its
+    element and attribute, the compiled field, the flat index in that field, and its dimension."""
+
+    parameter: str
+    element: str
+    attribute: str
+    field: str
+    index: int
+    dimension: object
+
+
+@dataclass(frozen=True)
+class AttributeDimension:
+    """One attribute's entries as the reader lists them: element kind and name, spec attribute, entries,
+    their dimension (None: mixed), and the parameter's name."""
+
+    kind: str
+    element: str
+    attribute: str
+    entries: tuple[int, ...]
+    dimension: object
+    parameter: str
+
 
 class MjcfDocument:
     """An MJCF file read through MuJoCo's parser: its spec, the numbers MuJoCo's compiler derives, its table.
@@ -1078,6 +1252,82 @@ class MjcfDocument:
 
     def settings(self) -> dict:
         return {}
+
+    def stored_copies(self) -> list[StoredCopy]:
+        """The numbers MuJoCo's compiled model stores as they are in the file: each with its parameter.
+
+        An entry of an attribute the reader lists is matched with the entry of the compiled field
+        that holds it (the table ``_STORED``) where the compiled number equals the file's (the compiler
+        changed nothing: no ``fromto``, no ``dampratio``), or where the reader took the number from
+        the compiled model itself (a body's mass and inertia computed from its geoms).  A probe
+        copy of the model shows which power of the scale factor each stored number took, to be
+        held against the parameter's dimension (:mod:`pitheorem.engines.verdicts.probes`).
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> from pitheorem.engines.fileformats.mjcf import read_mjcf
+        >>> copies = read_mjcf(engines.example_path("pendulum.xml")).stored_copies()
+        >>> [(c.parameter, c.field, c.index) for c in copies if c.attribute == "mass"]
+        [('body_arm_mass', 'body_mass', 1)]
+        """
+        elements, model, out = _Elements(self.spec), self.mjmodel, []
+        slots = {slot.name: slot for slot in self._slots}
+        for entry in self.attribute_dimensions():
+            slot = slots[entry.parameter]
+            element = elements.get(slot.where)
+            values = _floats(getattr(element, entry.attribute))
+            row = None if len(slot.where) == 1 else getattr(element, "id", -1)
+            label = f"{entry.kind} {entry.element!r}" if entry.element else entry.kind
+            for first, count, field, column in _STORED.get((entry.kind, entry.attribute), ()):
+                holder, name = (model.opt, field[4:]) if field.startswith("opt.") else (model, field)
+                stored = np.asarray(getattr(holder, name, ()), dtype=float)
+                if stored.size == 0 or (row is not None and not 0 <= row < stored.shape[0]):
+                    continue
+                width = stored.size if row is None else stored[0].size
+                for i in entry.entries:
+                    col = i - first + column
+                    if not first <= i < first + count or col >= width:
+                        continue
+                    flat = col if row is None else row * width + col
+                    if slot.source == "derived" or stored.ravel()[flat] == values[i]:
+                        out.append(StoredCopy(entry.parameter, label, entry.attribute, field, flat, slot.dimension))
+        mj = _mujoco()
+        for field, (kind, dimension) in _COMPUTED.items():  # numbers the compiler computes, of a fixed dimension
+            stored = np.asarray(getattr(model, field), dtype=float)
+            for row in range(stored.shape[0]):
+                name = mj.mj_id2name(model, getattr(mj.mjtObj, f"mjOBJ_{kind.upper()}"), row)
+                label = f"{kind} {name!r}" if name else f"{kind} #{row}"
+                width = stored[0].size
+                out.extend(StoredCopy("", label, field, field, row * width + col, dimension) for col in range(width))
+        return out
+
+    def attribute_dimensions(self) -> list[AttributeDimension]:
+        """The dimension the reader gives each entry of each spec attribute it lists, element by element.
+
+        Only slots that are entries of an attribute (not a number MuJoCo's compiler found and a copy
+        states, nor a fixed tendon's coefficient) are listed.
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> from pitheorem.engines.fileformats.mjcf import read_mjcf
+        >>> entry = read_mjcf(engines.example_path("pendulum.xml")).attribute_dimensions()[0]
+        >>> entry.kind, entry.attribute, entry.entries, str(entry.dimension)
+        ('option', 'timestep', (0,), 'T')
+        """
+        elements, out = _Elements(self.spec), []
+        for slot in self._slots:
+            if not slot.attrs:
+                continue
+            element = elements.get(slot.where)
+            kind = _KINDS.get(slot.where[0], slot.where[0])
+            name = getattr(element, "name", "") or ""
+            for attr, index in slot.attrs:
+                size = len(_floats(getattr(element, attr)))
+                entries = tuple(range(size)[index]) if isinstance(index, slice) else (int(index),)
+                out.append(AttributeDimension(kind, name, attr, entries, slot.dimension, slot.name))
+        return out
 
     def scaled(self, factors, scaling, s) -> MjcfDocument:
         spec = self._portable_spec()

@@ -155,6 +155,12 @@ class MujocoRunner:
             out[field] = np.array(getattr(holder, attr), copy=True, ndmin=1)
         return out
 
+    def stored_copies(self) -> list:
+        """The stored numbers that are the file's numbers, each with its parameter (the document's; none for a
+        document that does not list them, a URDF file read through MuJoCo)."""
+        listed = getattr(self.document, "stored_copies", None)
+        return listed() if listed is not None else []
+
     def twin(self, seed: int) -> MujocoRunner:
         """A copy whose every stored number is one unit in its own last place off, the signs drawn from `seed`.
 

@@ -36,6 +36,7 @@ from ...scaling import float_power, is_power_of_two
 from ..enginemodel import EngineModel, check_scaling
 from ..protocols import CounterRuns, IgnoredSettings, NamesElements
 from .causes import Cause, sorted_causes
+from .probes import dimension_causes
 
 __all__ = ["Audit", "audit", "held_otherwise"]
 
@@ -75,7 +76,9 @@ class Audit(TextDisplay):
     Attributes
     ----------
     causes : tuple of Cause
-        Every number the engine holds that is not the original times its
+        Every stored copy of a file's number whose power of s in the probe
+        is not the one its dimension says (kind ``"dimension"``), every
+        number the engine holds that is not the original times its
         factor, every float32 number rounded, every solver setting of no
         pure dimension, every setting the engine does not apply and every
         engine threshold a number of either model is beyond.
@@ -161,6 +164,8 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
             )
         )
         original = {}
+    if original:  # each stored copy of a file's number against the dimension the reader gave it
+        causes.extend(dimension_causes(model, scaling, original, probe, PROBE))
     copy = scaled.runner.stored_numbers()
     probed = {}  # field -> (exponents, clean): pass one, for the largest number of each exponent
     scale: dict[float, float] = {}

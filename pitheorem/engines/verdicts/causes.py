@@ -3,8 +3,13 @@
 A verdict of "not similar" helps nobody unless it says why.  Every check of
 the engines layer that finds something a scaling cannot carry
 (:func:`pitheorem.engines.verify`, :func:`pitheorem.engines.audit`,
-:func:`pitheorem.engines.check`) answers with ``Cause`` records of seven kinds:
+:func:`pitheorem.engines.check`) answers with ``Cause`` records of eight kinds:
 
+``dimension``
+    a number the engine stores from the file that took another power of
+    the scale factor than the dimension the reader gave it
+    (``pitheorem.engines.verdicts.probes``): the reader's dimension, or
+    the engine's use of the number, is not what the table says.
 ``precision``
     a number the engine stores in lower precision than the scaling needs
     (MuJoCo keeps mesh vertices in float32): rounded differently at another
@@ -37,7 +42,7 @@ from ...immutable import immutable
 __all__ = ["CAUSE_KINDS", "Cause"]
 
 #: the kinds of cause, in the order reports list them
-CAUSE_KINDS = ("unscaled", "setting", "threshold", "solver", "precision", "contact", "unknown")
+CAUSE_KINDS = ("dimension", "unscaled", "setting", "threshold", "solver", "precision", "contact", "unknown")
 
 
 @immutable
@@ -47,7 +52,7 @@ class Cause(TextDisplay):
 
     Parameters
     ----------
-    kind : {"precision", "solver", "contact", "threshold", "setting", "unscaled", "unknown"}
+    kind : {"dimension", "precision", "solver", "contact", "threshold", "setting", "unscaled", "unknown"}
         What sort of reason (see the module's documentation).
     element : str
         What it concerns: a parameter, a geom pair, an engine constant.
@@ -71,7 +76,7 @@ class Cause(TextDisplay):
     ...     Cause("luck", "x", "")
     ... except pt.InvalidRequestError as err:
     ...     print(err)
-    unknown cause kind 'luck'; valid: unscaled, setting, threshold, solver, precision, contact, unknown
+    unknown cause kind 'luck'; valid: dimension, unscaled, setting, threshold, solver, precision, contact, unknown
     """
 
     kind: str
