@@ -125,14 +125,19 @@ def _load(path: str, scene: list[str] | None = None) -> ModelFile:
     return _load_with_engine(path, scene)[0]
 
 
-def _load_with_engine(path: str, scene: list[str] | None = None, engine: str | None = None) -> tuple[ModelFile, object]:
-    """The model file and, for MJCF or URDF, the engine's model it was read from (else None)."""
+def _load_with_engine(
+    path: str, scene: list[str] | None = None, engine: str | None = None, added: dict | None = None
+) -> tuple[ModelFile, object]:
+    """The model file and, for MJCF or URDF, the engine's model it was read from (else None).
+
+    `added` holds scene options the command line chose itself (:func:`_scaled_scene`).
+    """
     engine_path = _engine_path(path)
     if engine_path is not None:  # MJCF or URDF: its system and scalar values, through the engine
         from .engines.cli import engine_model_file, parse_scene
 
         options = {} if engine is None else {"engine": engine}  # the file's own engine unless one is named
-        return engine_model_file(engine_path, **parse_scene(scene), **options)
+        return engine_model_file(engine_path, **parse_scene(scene), **(added or {}), **options)
     if scene:
         raise _CommandError(f"--scene sets up URDF models; {path} is no URDF file")
     try:
@@ -333,6 +338,32 @@ def _chosen_scaling(result, k: int):
     return result.scalings[k - 1]
 
 
+def _scaled_scene(args, model, engine_model, result, s, engine=None):
+    """The model, its engine model, search result and scaling, in a scene the scaling can follow.
+
+    When the engine's default scene refuses the chosen scaling (PyBullet's link
+    damping and split impulse) and the user set none of the remedy's options,
+    the file is loaded once more in the remedy scene, used by both runs, and
+    one line on stderr says which scene and how to choose another.
+    """
+    from .engines.cli import automatic_scene, parse_scene, scene_refusal, scene_text
+
+    sc = _chosen_scaling(result, args.solution)
+    added = automatic_scene(engine_model, sc, s, parse_scene(args.scene))
+    if not added:
+        return model, engine_model, result, sc
+    chosen = _load_with_engine(args.file, args.scene, engine, added)
+    chosen_result = _run_search(chosen[0], args)
+    chosen_sc = _chosen_scaling(chosen_result, args.solution)
+    if automatic_scene(chosen[1], chosen_sc, s):  # the user's own options still refuse it: one short line
+        raise _CommandError(f"{Path(args.file).name}: {scene_refusal(engine_model, sc, s)}")
+    print(
+        f"pitheorem: note: scene {scene_text(added)} in both runs (the default refuses this scaling; --scene sets it)",
+        file=sys.stderr,
+    )
+    return (*chosen, chosen_result, chosen_sc)
+
+
 def _cmd_apply(args) -> int:
     from .answers import ApplyAnswer
     from .exact import read_positive
@@ -352,6 +383,7 @@ def _cmd_apply(args) -> int:
     if engine_model is not None:  # write the scaled file the engine loads
         from .engines.cli import apply_engine, parse_scene
 
+        model, engine_model, result, sc = _scaled_scene(args, model, engine_model, result, s)
         _print(apply_engine(engine_model, sc, s, args.output, scene=parse_scene(args.scene)), args)
         return EXIT_OK
     scaled_model = model.with_values(_scaled_values(sc, model.values, s), name=f"{model.name}, scaled with s = {s}")
@@ -383,7 +415,8 @@ def _cmd_verify(args) -> int:
         return EXIT_ERROR
     from .engines.cli import verify_engine
 
-    answer = verify_engine(engine_model, _chosen_scaling(result, args.solution), s, float(duration), args.input)
+    model, engine_model, result, sc = _scaled_scene(args, model, engine_model, result, s, args.engine)
+    answer = verify_engine(engine_model, sc, s, float(duration), args.input)
     _print(answer, args)
     return EXIT_OK if answer.report.similar else EXIT_INFEASIBLE
 

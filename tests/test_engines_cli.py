@@ -64,13 +64,33 @@ def test_apply_loads_the_engine_file_once(tmp_path, capsys, monkeypatch):
     assert f"wrote {out}" in capsys.readouterr().out
 
 
-def test_apply_urdf_writes_settings_or_names_the_mixed_damping(tmp_path, capsys):
+def test_apply_and_verify_choose_the_scene_a_urdf_scaling_needs_and_say_so_in_one_line(tmp_path, capsys):
     urdf = str(DATA / "slider_arm.urdf")
-    # PyBullet's multibody damping mixes a rate and an inverse length: scaling lengths cannot keep it
-    assert main(["apply", urdf, "--scale", "g=1", "--s", "2", "--output", str(tmp_path / "a.urdf")]) == 2
-    err = capsys.readouterr().err
-    assert "linearDamping" in err
-    assert "--scene damping=0" in err
+    # PyBullet's multibody damping mixes a rate and an inverse length, and its split-impulse threshold (a
+    # length) cannot be set: the command line runs both runs without them, and says so once
+    out = tmp_path / "a.urdf"
+    assert main(["apply", urdf, "--scale", "g=1", "--s", "2", "--output", str(out)]) == 0
+    err = capsys.readouterr().err.splitlines()
+    notes = [line for line in err if line.startswith("pitheorem: note: ")]
+    assert notes == [
+        "pitheorem: note: scene damping=0 split_impulse=false in both runs (the default refuses this scaling; "
+        "--scene sets it)"
+    ]
+    written = json.loads(Path(f"{out}.settings.json").read_text())
+    assert written["setPhysicsEngineParameter"]["useSplitImpulse"] == 0
+    assert {call["linearDamping"] for call in written["changeDynamics"] if "linearDamping" in call} == {0.0}
+    assert main(["verify", urdf, "--scale", "g=1", "--s", "2", "--duration", "0.2"]) == 0
+    assert capsys.readouterr().err.splitlines() == notes
+    # a scaling of masses alone needs no other scene: nothing is said
+    assert main(["apply", urdf, "--scale", "link_base_mass=1", "--s", "4"]) == 0
+    assert "note" not in capsys.readouterr().err
+    # the user's own scene stands; where it refuses the scaling, one short line gives the flags
+    for scene in (["damping=0.1"], ["split_impulse=true"]):
+        assert main(["verify", urdf, "--scale", "g=1", "--s", "2", "--scene", *scene]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1, err
+        assert len(err) < 200, err
+        assert err.rstrip().endswith("give --scene damping=0 split_impulse=false"), err
     # the search itself is fine: the damping's two parts are two variables of the system
     assert main(["search", urdf, "--scale", "g=1", "--format", "json"]) == 0
     doc = json.loads(capsys.readouterr().out)

@@ -11,6 +11,7 @@ line prints in the format asked for.
 
 from __future__ import annotations
 
+import re
 from fractions import Fraction
 from pathlib import Path
 
@@ -23,6 +24,7 @@ from .protocols import RefusesScalings
 
 __all__ = [
     "apply_engine",
+    "automatic_scene",
     "check_engine_model",
     "convert_engine",
     "engine_model_file",
@@ -30,6 +32,7 @@ __all__ = [
     "parse_scene",
     "parse_units",
     "scene_help",
+    "scene_text",
     "verify_engine",
 ]
 
@@ -133,6 +136,101 @@ def engine_model_file(path: str, **options) -> tuple[ModelFile, EngineModel]:
     return ModelFile(
         name=name, description=f"{model.engine} model {name}", system=system, values=values, roles=roles, path=str(path)
     ), model
+
+
+def automatic_scene(model: EngineModel, scaling, s, scene: dict | None = None) -> dict:
+    """The scene options the command line adds so that the engine's default scene follows `scaling`.
+
+    PyBullet's default scene has link damping (one number acting as a rate
+    and per length, which no scaling that changes lengths can follow) and
+    split impulse (whose threshold, a length, cannot be set from Python).
+    When the scaling is refused for them and the user set neither, the
+    command line loads the model in the runner's remedy scene instead, in
+    both runs, and says so in one line (:func:`scene_text`).
+
+    Parameters
+    ----------
+    model : EngineModel
+        The model as loaded with the user's scene.
+    scaling : Scaling
+    s : Fraction
+    scene : dict, optional
+        The scene options the user gave (:func:`parse_scene`); none of them
+        is overridden.
+
+    Returns
+    -------
+    dict
+        The options to add (empty when the scaling is accepted, when the
+        runner refuses nothing, or when the user set every remedy option).
+
+    Examples
+    --------
+    >>> import os, pybullet_data
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.cli import automatic_scene
+    >>> model = engines.load(os.path.join(pybullet_data.getDataPath(), "cartpole.urdf"))
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[1]
+    >>> automatic_scene(model, sc, 4)
+    {'damping': 0.0, 'split_impulse': False}
+    >>> automatic_scene(model, sc, 4, {"damping": 0.0, "split_impulse": False})
+    {}
+    """
+    if not isinstance(model.runner, RefusesScalings):
+        return {}
+    try:
+        model.scaled(scaling, s)
+    except UnscalableParameterError:
+        return {k: v for k, v in model.runner.remedy_scene.items() if k not in (scene or {})}
+    return {}
+
+
+def scene_refusal(model: EngineModel, scaling, s) -> str | None:
+    """One short line when the model's scene refuses `scaling` and a scene option removes it, else None.
+
+    Examples
+    --------
+    >>> import os, pybullet_data
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.cli import scene_refusal
+    >>> model = engines.load(os.path.join(pybullet_data.getDataPath(), "cartpole.urdf"), damping=0.1)
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[1]
+    >>> print(scene_refusal(model, sc, 4))
+    the scene refuses this scaling (4 numbers, the first 'link_slideBar_linearDamping'); give --scene damping=0 split_impulse=false
+    """
+    if not isinstance(model.runner, RefusesScalings):
+        return None
+    try:
+        model.scaled(scaling, s)
+    except UnscalableParameterError as err:
+        many = re.match(r"(\d+) numbers cannot follow", err.reason)
+        many = f"{many.group(1)} numbers, the first " if many else ""
+        return (
+            f"the scene refuses this scaling ({many}{err.name!r}); give --scene {scene_text(model.runner.remedy_scene)}"
+        )
+    return None
+
+
+def scene_text(options: dict) -> str:
+    """Scene options as ``--scene`` writes them: ``damping=0 split_impulse=false``.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.cli import scene_text
+    >>> scene_text({"damping": 0.0, "split_impulse": False, "base_position": (0.0, 0.0, 1.5)})
+    'damping=0 split_impulse=false base_position=0,0,1.5'
+    """
+
+    def one(value) -> str:
+        if isinstance(value, bool):
+            return "true" if value else "false"
+        if isinstance(value, (tuple, list)):
+            return ",".join(one(v) for v in value)
+        return f"{value:g}" if float(value) == int(value) else repr(float(value))
+
+    return " ".join(f"{name}={one(value)}" for name, value in options.items())
 
 
 def params_answer(path: str, *, name: str | None = None, **options) -> ParamsAnswer:

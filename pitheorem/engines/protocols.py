@@ -44,7 +44,7 @@ False
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
 
@@ -174,6 +174,10 @@ class RefusesScalings(Protocol):
     """
 
     unscalable_remedy: str
+
+    #: the scene options (:func:`pitheorem.engines.loading.scene_options`) that remove every refusal
+    #: at once, chosen by the command line when the user set none of them
+    remedy_scene: Mapping[str, object]
 
     def command_line_remedy(self, name: str) -> tuple[str, str]:
         """The command line's option that removes the refusal of parameter `name`, and the flag that sets it."""
