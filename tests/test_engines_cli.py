@@ -442,6 +442,28 @@ def test_convert_writes_the_same_model_in_other_units_and_check_reads_it(tmp_pat
     assert json.loads(capsys.readouterr().out)["causes"] == []
 
 
+def test_convert_fit_that_changes_nothing_says_so_and_writes_nothing(tmp_path, capsys):
+    out = tmp_path / "same.xml"
+    assert main(["convert", PENDULUM, "--fit", "mujoco", "--output", str(out)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines == ["pendulum.xml: its units (M=kg L=m T=s) are those --fit mujoco chooses; nothing to convert"]
+    assert not out.exists()
+
+
+def test_check_says_first_that_another_engine_refuses_the_file(tmp_path, capsys):
+    pytest.importorskip("mujoco.mjx", reason="mujoco-mjx is not installed (pip install 'pitheorem[mjx]')")
+    path = tmp_path / "pgs.xml"
+    path.write_text(
+        '<mujoco><option solver="PGS"/><worldbody><body><joint type="hinge"/>'
+        '<geom size=".1" mass="1"/></body></worldbody></mujoco>'
+    )
+    assert main(["check", str(path)]) == 0  # MuJoCo runs it
+    capsys.readouterr()
+    assert main(["check", str(path), "--engine", "mjx"]) == 1
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith("pgs.xml: mjx refuses the file (option solver: MJX does not support the PGS solver")
+
+
 def test_check_exits_0_on_a_clean_model_and_reads_the_units_given(capsys):
     assert main(["check", "example:pendulum.xml"]) == 0
     assert "clear of every catalogued threshold of mujoco" in capsys.readouterr().out

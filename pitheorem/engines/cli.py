@@ -18,9 +18,10 @@ from pathlib import Path
 from ..answers import EngineApplyAnswer, EngineVerifyAnswer, ParamsAnswer
 from ..errors import InvalidRequestError
 from ..modelfile import ModelFile
-from .enginemodel import EngineModel, UnscalableParameterError
+from .enginemodel import EngineModel, EngineModelError, UnscalableParameterError
 from .loading import load, scene_options
 from .protocols import RefusesScalings
+from .verdicts.causes import Cause
 
 __all__ = [
     "apply_engine",
@@ -456,15 +457,18 @@ def convert_engine(
     new = read_units({**model.units, **units})
     converted = model.converted(**new)
     factors = _factors_text(model.units, new)
+    unchanged = all(f == "1" for f in factors.values())
     written = None
-    if output:
+    if output and not (fit and unchanged):  # a fit that changes nothing writes no copy of the file
         out = Path(output)
         if out.exists() and out.resolve() == Path(path).resolve():
             raise InvalidRequestError(f"--output {output!r} is the input file; choose another name")
         converted.save(out)
         written = str(out)
     steps = len(conversion(model.system(), model.units, new))
-    crossings = tuple(str(c) for c in _check(converted, fit or None))
+    from .thresholds import check_summary
+
+    crossings = tuple(f"{c.element}: {c.detail}" for c in check_summary(converted, fit or None)[0])
     if fmt == "json":
         return json.dumps(
             {
@@ -481,15 +485,21 @@ def convert_engine(
             indent=2,
         )
     name = Path(path).name
-    lines = [
-        f"{name}: {_units_text(model.units)} -> {_units_text(new)} (factors "
-        + ", ".join(f"{b} {f}" for b, f in factors.items())
-        + ")"
-    ]
+    if fit and unchanged:
+        lines = [f"{name}: its units ({_units_text(model.units)}) are those --fit {fit} chooses; nothing to convert"]
+    else:
+        lines = [
+            f"{name}: {_units_text(model.units)} -> {_units_text(new)} (factors "
+            + ", ".join(f"{b} {f}" for b, f in factors.items())
+            + ")"
+        ]
     if fitted is not None and not fitted.feasible:
         lines.append(f"no units keep every number clear of {fit}'s thresholds; these are the closest")
     lines.extend(f"  {c}" for c in crossings)
-    lines.append(f"wrote {written}" if written else "nothing written (give --output OUT)")
+    if written:
+        lines.append(f"wrote {written}")
+    elif not (fit and unchanged):
+        lines.append("nothing written (give --output OUT)")
     return "\n".join(lines)
 
 
@@ -502,12 +512,6 @@ def _factors_text(old, new) -> dict[str, str]:
     from .units import unit_size
 
     return {b: short_text(unit_size(b, old[b]) / unit_size(b, new[b])) for b in old}
-
-
-def _check(model, engine: str | None = None):
-    from .thresholds import check
-
-    return check(model, engine)
 
 
 def check_engine_model(path: str, *, from_units=None, engine: str | None = None, fmt: str = "text") -> tuple[str, bool]:
@@ -540,10 +544,18 @@ def check_engine_model(path: str, *, from_units=None, engine: str | None = None,
     import json
 
     from .packages import check_engine
+    from .thresholds import check_summary
 
     model = load(path, units=from_units or None)
     engine = model.engine if engine is None else check_engine(engine)
-    causes = _check(model, engine)
+    causes, units_help = check_summary(model, engine)
+    refused = None
+    if engine != model.engine:  # another engine that compiles the file its own way (MJX) may refuse it: said first
+        try:
+            load(path, units=from_units or None, engine=engine)
+        except EngineModelError as err:
+            refused = str(err).strip().splitlines()[0].removeprefix(f"{path}: ")
+            causes = (Cause("threshold", "file", f"{engine} refuses the file: {refused}"), *causes)
     if fmt == "json":
         return json.dumps(
             {"file": path, "engine": engine, "units": model.units, "causes": [c.to_dict() for c in causes]}, indent=2
@@ -551,7 +563,14 @@ def check_engine_model(path: str, *, from_units=None, engine: str | None = None,
     name = Path(path).name
     if not causes:
         return f"{name}: clear of every catalogued threshold of {engine}", True
-    lines = [f"{name}: {len(causes)} number(s) beyond or near a threshold of {engine}"]
-    lines.extend(f"  {c}" for c in causes)
-    lines.append(f"units clear of them: pitheorem convert {name} --fit {engine} --output OUT")
+    count = sum(int(c.element.split(" ", 1)[0]) for c in causes if c.element.split(" ", 1)[0].isdigit())
+    lines = [f"{name}: {count} number(s) at, beyond or near {len(causes)} threshold(s) of {engine}"]
+    if refused is not None:
+        lines[0] = f"{name}: {engine} refuses the file ({refused})"
+        causes = causes[1:]
+        if causes:
+            lines.append(f"and {count} number(s) at, beyond or near {len(causes)} threshold(s) of {engine}:")
+    lines.extend(f"  {c.element}: {c.detail}" for c in causes)
+    if units_help:
+        lines.append(f"units clear of them: pitheorem convert {name} --fit {engine} --output OUT")
     return "\n".join(lines), False

@@ -58,6 +58,7 @@ __all__ = [
     "HasSceneSettings",
     "IgnoredSettings",
     "NamesElements",
+    "ReadsSomeNumbers",
     "RefusesScalings",
     "Runner",
     "Runs",
@@ -184,6 +185,22 @@ class RefusesScalings(Protocol):
 
     def unscalable(self, factors: dict[str, float]) -> list:
         """An UnscalableParameterError for each number the factors would need changed and no call can."""
+
+
+@runtime_checkable
+class ReadsSomeNumbers(Protocol):
+    """Optional: numbers of the file the engine never reads (MuJoCo's contact numbers of geoms that never collide).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.protocols import ReadsSomeNumbers
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, ReadsSomeNumbers)
+    True
+    """
+
+    def unread(self) -> frozenset[str]:
+        """The names of the parameters the engine holds but never reads in a run."""
 
 
 @runtime_checkable
