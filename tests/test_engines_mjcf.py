@@ -553,3 +553,55 @@ def test_a_muscle_whose_peak_force_mujoco_derives_is_refused_by_name(tmp_path):
     path.write_text(MUSCLE.replace("FORCE", ""))
     with pytest.raises(engines.EngineModelError, match="give its force explicitly"):
         engines.load(path)
+
+
+def _skin_file(path: Path, verts, faces, bones) -> None:
+    """A binary ``.skn`` file as MuJoCo's documentation of ``<skin file>`` lays it out.
+
+    Four int32 counts (vertices, texture coordinates, faces, bones), the vertex positions (float32), the
+    faces (int32), then per bone: its body's name in 40 bytes, bind position (3 float32), bind quaternion
+    (4 float32), vertex count (int32), vertex ids (int32) and weights (float32).
+    """
+    import struct
+
+    out = struct.pack("4i", len(verts), 0, len(faces), len(bones))
+    out += struct.pack(f"{3 * len(verts)}f", *(c for v in verts for c in v))
+    out += struct.pack(f"{3 * len(faces)}i", *(i for f in faces for i in f))
+    for name, pos, ids, weights in bones:
+        out += name.encode().ljust(40, b"\0") + struct.pack("3f", *pos) + struct.pack("4f", 1, 0, 0, 0)
+        out += struct.pack("i", len(ids)) + struct.pack(f"{len(ids)}i", *ids) + struct.pack(f"{len(ids)}f", *weights)
+    path.write_bytes(out)
+
+
+@pytest.mark.parametrize("inline", [True, False], ids=["inline", "file"])
+def test_a_skin_is_scaled_as_lengths_and_written_back(tmp_path, inline):
+    # a render-only mesh bound to a body: its vertices and bind positions are lengths, as in dm_control's dog
+    verts = [(0.0, 0.0, 0.0), (0.5, 0.0, 0.0), (0.0, 0.25, 0.0), (0.0, 0.0, 0.125)]
+    faces = [(0, 1, 2), (0, 2, 3), (0, 3, 1), (1, 3, 2)]
+    bone = ("arm", (0.0, 0.0, 0.5), [0, 1, 2, 3], [1.0, 1.0, 1.0, 1.0])
+    if inline:
+        skin = (
+            '<skin name="hide" inflate="0.01" vertex="{}" face="{}">'
+            '<bone body="arm" bindpos="0 0 0.5" bindquat="1 0 0 0" vertid="0 1 2 3" vertweight="1 1 1 1"/></skin>'
+        ).format(" ".join(f"{c:g}" for v in verts for c in v), " ".join(str(i) for f in faces for i in f))
+    else:
+        _skin_file(tmp_path / "hide.skn", verts, faces, [bone])
+        skin = '<skin name="hide" file="hide.skn"/>'
+    path = tmp_path / "skinned.xml"
+    path.write_text(
+        f"<mujoco><asset>{skin}</asset><worldbody><body name='arm' pos='0 0 0.5'><joint type='hinge'/>"
+        "<geom size='0.1' mass='1'/></body></worldbody></mujoco>"
+    )
+    model = engines.load(path)
+    lengths = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    out = tmp_path / "moved" / "skinned4.xml"
+    out.parent.mkdir()
+    model.scaled(lengths, 4).save(out)
+    original, scaled = mujoco.MjModel.from_xml_path(str(path)), mujoco.MjModel.from_xml_path(str(out))
+    # every vertex, bind position and the inflation four times as long; the faces and bodies as they were
+    np.testing.assert_array_equal(scaled.skin_vert, 4 * original.skin_vert)
+    np.testing.assert_array_equal(scaled.skin_bonebindpos, 4 * original.skin_bonebindpos)
+    np.testing.assert_array_equal(scaled.skin_inflate, 4 * original.skin_inflate)
+    np.testing.assert_array_equal(scaled.skin_face, original.skin_face)
+    np.testing.assert_array_equal(scaled.skin_bonebodyid, original.skin_bonebodyid)
+    assert np.asarray(original.skin_vert).tolist() == [list(v) for v in verts]

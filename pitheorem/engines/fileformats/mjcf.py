@@ -136,6 +136,7 @@ _COLLECTIONS = (
     "pairs",
     "sensors",
     "numerics",
+    "skins",
 )
 #: the spec's single elements, addressed by their kind
 _SINGLES = ("option", "compiler", "stat")
@@ -334,7 +335,11 @@ class _Walker:
             self.add_solimp("pair", pair, ident, path, "solimp", _L)
         for i, sensor in enumerate(lists["sensors"]):
             self.sensor(sensor, i)
-        for kind, items in (("flex", spec.flexes), ("skin", spec.skins), ("plugin", spec.plugins)):
+        for i, skin in enumerate(self.lists["skins"]):  # render-only: its vertices and bind positions are lengths
+            ident, path = self.label("skin", skin, i)
+            for attr in ("vert", "bindpos", "inflate"):
+                self.add("skin", skin, ident, path, attr, _L)
+        for kind, items in (("flex", spec.flexes), ("plugin", spec.plugins)):
             for i, item in enumerate(items):
                 _, path = self.label(kind, item, i)
                 self.fail(path, f"{kind} elements cannot be scaled by pitheorem yet; remove it or scale it by hand")
@@ -1019,6 +1024,8 @@ class MjcfDocument:
         try:
             with _muted():
                 self.mjmodel = spec.compile()
+                if _inline_skins(spec, self.mjmodel):  # a skin's file written into the model: scaled as lengths
+                    self.mjmodel = spec.compile()
         except ValueError as err:
             raise _rejected(path, err, spec) from None
         # warn once, when the file is read; not again for each scaled copy, whose table is read only when
@@ -1404,6 +1411,39 @@ def recorded_units(spec, path: str) -> dict[str, str] | None:
 
             return read_units(units, f"the units {path} records")
     return None
+
+
+def _inline_skins(spec, m) -> bool:
+    """Write each skin read from a file (``<skin file="dog.skn">``) into the spec, as MuJoCo compiled it.
+
+    A skin is a render-only mesh bound to bodies; its vertices, bind
+    positions and inflation are lengths.  MuJoCo's spec holds none of them
+    for a skin read from a file (they are read when it compiles), so they are
+    taken from the compiled model `m` and the file is no longer needed: the
+    scaled copy holds them scaled, and travels without the ``.skn`` file.
+    Returns whether any skin was read from a file.
+    """
+    inlined = False
+    for i, skin in enumerate(spec.skins):
+        if not skin.file:
+            continue
+        va, vn = m.skin_vertadr[i], m.skin_vertnum[i]
+        skin.vert = m.skin_vert[va : va + vn].ravel().tolist()
+        if m.skin_texcoordadr[i] >= 0:
+            ta = m.skin_texcoordadr[i]
+            skin.texcoord = m.skin_texcoord[ta : ta + vn].ravel().tolist()
+        fa, fn = m.skin_faceadr[i], m.skin_facenum[i]
+        skin.face = m.skin_face[fa : fa + fn].ravel().tolist()
+        ba, bn = m.skin_boneadr[i], m.skin_bonenum[i]
+        skin.bodyname = [m.body(int(b)).name for b in m.skin_bonebodyid[ba : ba + bn]]
+        skin.bindpos = m.skin_bonebindpos[ba : ba + bn].ravel().tolist()
+        skin.bindquat = m.skin_bonebindquat[ba : ba + bn].ravel().tolist()
+        starts, counts = m.skin_bonevertadr[ba : ba + bn], m.skin_bonevertnum[ba : ba + bn]
+        skin.vertid = [m.skin_bonevertid[a : a + n].tolist() for a, n in zip(starts, counts, strict=True)]
+        skin.vertweight = [m.skin_bonevertweight[a : a + n].tolist() for a, n in zip(starts, counts, strict=True)]
+        skin.file = ""
+        inlined = True
+    return inlined
 
 
 def read_mjcf(path) -> MjcfDocument:
