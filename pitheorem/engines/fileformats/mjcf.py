@@ -29,11 +29,13 @@ precision.
 from __future__ import annotations
 
 import math
+import os
 import warnings
 from collections.abc import Callable, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
+from xml.sax.saxutils import escape
 
 import numpy as np
 
@@ -1083,6 +1085,13 @@ class MjcfDocument:
         return recorded_units(self.spec, self.path)
 
     def save(self, path: Path) -> None:
+        """Write the model to `path`; its mesh, texture and height-field files named relative to it.
+
+        A saved file and its assets move together: each asset is named by its
+        path relative to the written file's folder (the file's ``meshdir`` and
+        ``texturedir`` then name nothing), so copying the folder that holds both
+        keeps the copy loading.
+        """
         spec = self._portable_spec()
         # each scaled number as the decimal a person would write: the exact product of the original's
         # decimal and the factor's, rounded once (9.81 times 10 is 98.1, where the float product is
@@ -1100,10 +1109,11 @@ class MjcfDocument:
         # quaternions and radians); the uncompiled output keeps every value at full precision
         spec.compiler.savecompiled = False
         spec.compiler.savecanonical = False
+        spec.meshdir = spec.texturedir = ""  # every asset's path is whole: no folder is put before it
         with _muted():
             spec.compile()
             text = spec.to_xml()
-        Path(path).write_text(text)
+        Path(path).write_text(_relative_assets(spec, text, Path(os.path.abspath(path)).parent))
 
     def _written(self) -> list:
         """What :meth:`scaled` multiplied: (address, attribute, entries, the original's values, factor) each.
@@ -1146,7 +1156,9 @@ class MjcfDocument:
                 base = self.asset_dirs.get((kind, item.name))
                 if base is None:
                     base = self.source_dir / (getattr(self.spec, folders[kind], "") or "")
-                item.file = str((base / file).resolve())
+                # the folder as MuJoCo reads it: a model opened through a symbolic link finds its assets
+                # beside the link, not beside the link's target
+                item.file = os.path.normpath(os.path.abspath(base / file))
         return spec
 
     def _scale_keyframes(self, spec, scaling, s) -> None:
@@ -1413,6 +1425,27 @@ def recorded_units(spec, path: str) -> dict[str, str] | None:
     return None
 
 
+def _folder(path: Path) -> Path:
+    """The folder MuJoCo reads a file's assets from: the file's own, a symbolic link not followed."""
+    return Path(os.path.abspath(path)).parent
+
+
+def _relative_assets(spec, text: str, folder: Path) -> str:
+    """`text`, the XML of `spec`, with each asset's absolute path made relative to `folder`.
+
+    The spec's asset paths are absolute (:meth:`MjcfDocument._portable_spec`); in the written
+    file each is relative to the file's folder, so that the folder holding the file and its
+    assets can move.
+    """
+    for items in (spec.meshes, spec.hfields, spec.textures):
+        for item in items:
+            file = getattr(item, "file", "") or ""
+            if file and Path(file).is_absolute():
+                relative = Path(os.path.relpath(file, folder)).as_posix()
+                text = text.replace(f'file="{escape(file)}"', f'file="{escape(relative)}"')
+    return text
+
+
 def _inline_skins(spec, m) -> bool:
     """Write each skin read from a file (``<skin file="dog.skn">``) into the spec, as MuJoCo compiled it.
 
@@ -1483,9 +1516,9 @@ def read_mjcf(path) -> MjcfDocument:
         raise _rejected(str(path), err) from None
     asset_dirs = _attached_asset_dirs(mj, path, root)
     try:
-        return MjcfDocument(spec, str(path), path.resolve().parent, asset_dirs=asset_dirs)
+        return MjcfDocument(spec, str(path), _folder(path), asset_dirs=asset_dirs)
     except EngineModelError as err:
         if "mjMINVAL" not in err.reason:
             raise
         # refused for a threshold that units decide: still a table, so check, fit and convert can repair it
-        return RefusedMjcfDocument(spec, str(path), path.resolve().parent, err, asset_dirs=asset_dirs)
+        return RefusedMjcfDocument(spec, str(path), _folder(path), err, asset_dirs=asset_dirs)
