@@ -71,7 +71,7 @@ def test_apply_and_verify_choose_the_scene_a_urdf_scaling_needs_and_say_so_in_on
     out = tmp_path / "a.urdf"
     assert main(["apply", urdf, "--scale", "g=1", "--s", "2", "--output", str(out)]) == 0
     err = capsys.readouterr().err.splitlines()
-    notes = [line for line in err if line.startswith("pitheorem: note: ")]
+    notes = [line for line in err if line.startswith("pitheorem: note: scene")]
     assert notes == [
         "pitheorem: note: scene damping=0 split_impulse=false in both runs (the default refuses this scaling; "
         "--scene sets it)"
@@ -80,10 +80,13 @@ def test_apply_and_verify_choose_the_scene_a_urdf_scaling_needs_and_say_so_in_on
     assert written["setPhysicsEngineParameter"]["useSplitImpulse"] == 0
     assert {call["linearDamping"] for call in written["changeDynamics"] if "linearDamping" in call} == {0.0}
     assert main(["verify", urdf, "--scale", "g=1", "--s", "2", "--duration", "0.2"]) == 0
-    assert capsys.readouterr().err.splitlines() == notes
+    err = capsys.readouterr().err.splitlines()
+    assert [line for line in err if line.startswith("pitheorem: note: scene")] == notes
+    # and which of the minimal scalings it used, and how to pick another
+    assert "pitheorem: note: minimal scaling #1 of 3; --solution K picks another (pitheorem search lists them)" in err
     # a scaling of masses alone needs no other scene: nothing is said
     assert main(["apply", urdf, "--scale", "link_base_mass=1", "--s", "4"]) == 0
-    assert "note" not in capsys.readouterr().err
+    assert "note: scene" not in capsys.readouterr().err
     # the user's own scene stands; where it refuses the scaling, one short line gives the flags
     for scene in (["damping=0.1"], ["split_impulse=true"]):
         assert main(["verify", urdf, "--scale", "g=1", "--s", "2", "--scene", *scene]) == 2
@@ -300,7 +303,8 @@ def test_every_command_succeeds_on_every_shipped_and_gymnasium_model(capsys, mod
         out, err = capsys.readouterr()
         assert code == 0, (verb, err)
         assert "Traceback" not in err
-        assert all(line.startswith("pitheorem: warning: ") for line in err.splitlines())
+        assert all(line.startswith(("pitheorem: warning: ", "pitheorem: note: ")) for line in err.splitlines())
+        assert len(set(err.splitlines())) == len(err.splitlines()), err  # every warning once
         # a summary first: the first lines name the model and fit on a screen whatever its size
         assert all(len(line) < 400 for line in out.splitlines()[:3]), (verb, out[:800])
     assert len(MODELS) >= 4 + (14 if _gymnasium_models() else 0)
@@ -369,8 +373,10 @@ def test_search_on_a_large_model_opens_with_a_short_summary(capsys):
     times = model.system().time_variables
     assert len(times) > 10
     # the long list of time variables held fixed is shortened with a count, in the first line and the note
-    assert f"and {len(times) - 6} more ({len(times)} in all) fixed: " in lines[0]
-    assert len(lines[0]) < 300
+    assert lines[0].startswith(
+        f"Scaling g by s with {times[0]} and {len(times) - 1} more ({len(times)} in all) fixed: "
+    )
+    assert len(lines[0]) < 120
     n = int(lines[0].split(" fixed: ")[1].split()[0])
     start = lines.index(f"summary (the table below has a row for each of the {len(model.system())} variables):")
     assert [line.split(":")[0].strip() for line in lines[start + 1 : start + n + 1]] == [
@@ -522,3 +528,50 @@ def test_verify_runs_a_file_in_the_engine_named(capsys):
     )
     doc = json.loads(capsys.readouterr().out)  # nothing but the answer: not MJX's note on a missing warp
     assert (doc["engine"], doc["exact"]) == ("mjx", True)
+
+
+# -- issue 32's rules on a sample of the corpus (tests/robots/cli_corpus.py runs them on the whole) -----
+
+
+def _corpus_rules():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("cli_corpus", Path(__file__).parent / "robots" / "cli_corpus.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+#: the four pybullet_data robots a newcomer tried first (issue 32)
+URDF_SAMPLE = ("r2d2.urdf", "cartpole.urdf", "kuka_iiwa/model.urdf", "teddy_vhacd.urdf")
+
+
+@pytest.mark.parametrize("name", URDF_SAMPLE)
+def test_every_command_keeps_the_rules_on_pybullet_datas_robots_with_the_defaults(name):
+    pybullet_data = pytest.importorskip("pybullet_data", reason="pybullet_data is not installed")
+    rules = _corpus_rules()
+    path = str(Path(pybullet_data.getDataPath()) / name)
+    assert rules.pybullet_loads(Path(path))
+    for argv in rules.commands(path):
+        assert rules.problems(argv) == [], argv
+    # apply and verify at s = 4 with the defaults: exit 0, and verify finds the copy exact
+    code, out, _err = rules.run(["verify", path, "--scale", "g=1", "--s", "4", "--duration", "0.2"])
+    assert code == 0
+    assert out.startswith("exact: ")
+
+
+def test_the_corpus_rules_catch_what_they_name(tmp_path, monkeypatch):
+    # a long first line, a repeated line and an undocumented exit code are each found
+    rules = _corpus_rules()
+    monkeypatch.setattr(rules, "run", lambda argv: (2, "x" * 130 + "\nsame\nsame\n", ""))
+    found = rules.problems(["params", "model.xml"])
+    assert [text.split(" ")[0] for text in found] == ["exit", "first", "stdout"]
+
+
+def test_check_on_dm_controls_dog_prints_at_most_ten_lines(capsys):
+    dm_control = pytest.importorskip("dm_control", reason="dm-control is not installed (it ships the dog)")
+    dog = Path(dm_control.__file__).parent / "suite" / "dog.xml"
+    assert main(["check", str(dog)]) in (0, 1)
+    lines = capsys.readouterr().out.splitlines()
+    assert 1 <= len(lines) <= 10
+    assert len(lines[0]) < 120

@@ -455,8 +455,21 @@ def convert_engine(
         fitted = engine_fit(model, engine=fit)
         units = fitted_units(model, fitted)
     new = read_units({**model.units, **units})
-    converted = model.converted(**new)
     factors = _factors_text(model.units, new)
+    try:
+        converted = model.converted(**new)
+    except EngineModelError:
+        if fitted is None:
+            raise
+        # the file's format holds one set of units (a URDF file is in SI): the fit's cannot be written
+        text = (
+            f"{Path(path).name}: no units keep every number clear of {fit}'s thresholds: its format holds only "
+            f"{_units_text(model.units)}\n{_units_text(new)} would; a similarity scaling (pitheorem apply) "
+            "changes its numbers instead"
+        )
+        if fmt == "json":
+            return json.dumps({"file": path, "fit": fit, "feasible": False, "written": None, "reason": text}, indent=2)
+        return text
     unchanged = all(f == "1" for f in factors.values())
     written = None
     if output and not (fit and unchanged):  # a fit that changes nothing writes no copy of the file
