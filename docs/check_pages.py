@@ -24,7 +24,13 @@ BUILD_DIR defaults to ``docs/_build/html`` next to this file. The script reads e
   ``custom.css``.) Such a line is fixed where it is made: a shorter code line, or output
   wrapped or shortened by the code that prints it. The examples of docstrings
   (``div.doctest``, on the API reference pages) are exempt: they follow the code's line
-  length, and ``custom.css`` wraps them at every width.
+  length, and ``custom.css`` wraps them at every width;
+* a machine's path anywhere in a page's text (:data:`MACHINE_PATHS`: ``/root/``,
+  ``/usr/``, ``site-packages``, ``/work/``, ``/tmp/``): the build machine's installation
+  or temporary folders mean nothing to a reader; show a file by its name;
+* a raw Python repr in the output of an executed cell (:data:`RAW_REPRS`): a dict
+  printed as ``{'m': ...}`` or a ``Fraction(1, 2)`` inside a container or on its own.
+  Print such values readably (a line per item, a table, ``str()`` of each number).
 
 Then, where a headless Chromium is installed (``chromium``, ``chromium-browser`` or
 ``google-chrome`` on the path; ``--no-browser`` skips it), every page is laid out at
@@ -44,6 +50,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import re
 import shutil
 import subprocess
 import sys
@@ -51,7 +58,18 @@ import tempfile
 from html.parser import HTMLParser
 from pathlib import Path
 
-__all__ = ["MAX_LINE", "MIN_FIGURES", "PHONE_WIDTH", "PageScan", "browser", "check_page", "layout_problems", "main"]
+__all__ = [
+    "MACHINE_PATHS",
+    "MAX_LINE",
+    "MIN_FIGURES",
+    "PHONE_WIDTH",
+    "RAW_REPRS",
+    "PageScan",
+    "browser",
+    "check_page",
+    "layout_problems",
+    "main",
+]
 
 #: the window width, in px, at which pages are laid out and measured (a phone's)
 PHONE_WIDTH = 390
@@ -111,6 +129,15 @@ run();
 #: longest line, in characters, that a code or output block may hold (see the module docstring)
 MAX_LINE = 88
 
+#: a machine's path in a page's text: the build machine's home, system, package or work folders
+MACHINE_PATHS = re.compile(r"/root/|/usr/|site-packages|/work/|/tmp/")
+
+#: a raw repr in a cell's output: a dict literal with a quoted key (Python's quotes: JSON's
+#: double quotes pass), or a Fraction's repr inside a
+#: container (after a bracket, a comma, a colon or an equals sign) or at the start of a line. A
+#: message that advises "such as Fraction(1, 3)" is prose and passes.
+RAW_REPRS = re.compile(r"\{'[^'\n]*': |(?:^|[\[{(,:=]\s*)Fraction\(-?\d+, \d+\)", re.MULTILINE)
+
 #: pages whose executed cells draw figures, and how many each shows at least
 MIN_FIGURES = {
     "tutorials/00_getting_started.html": 1,
@@ -138,6 +165,7 @@ class PageScan(HTMLParser):
         self.has_math = False
         self.text: list[str] = []
         self.outputs: list[list[str]] = []
+        self.output_text: list[str] = []  # the text of every cell output, one string a cell
         self.blocks: list[str] = []
         self._div_depth = 0
         self._output_depth: int | None = None  # div depth of the open cell output, if any
@@ -154,6 +182,7 @@ class PageScan(HTMLParser):
             if "cell_output" in classes and self._output_depth is None:
                 self._output_depth = self._div_depth
                 self.outputs.append([])
+                self.output_text.append("")
             if "doctest" in classes and self._doctest_depth is None:
                 self._doctest_depth = self._div_depth
         if tag == "img" and attrs.get("src"):
@@ -186,6 +215,8 @@ class PageScan(HTMLParser):
 
     def handle_data(self, data):
         self.text.append(data)
+        if self._output_depth is not None:
+            self.output_text[-1] += data
         if self._pre is not None:
             self._pre.append(data)
         if self._eqno is not None:
@@ -206,8 +237,15 @@ def check_page(page: Path, root: Path) -> list[str]:
     scan.feed(page.read_text(encoding="utf-8"))
     rel = page.relative_to(root).as_posix()
     problems = []
-    if "Traceback" in "".join(scan.text):
+    text = "".join(scan.text)
+    if "Traceback" in text:
         problems.append("shows a Traceback")
+    for found in dict.fromkeys(m.group(0) for m in MACHINE_PATHS.finditer(text)):
+        at = text.find(found)
+        problems.append(f"shows a machine's path ({found}): {text[max(0, at - 40) : at + 40]!r}")
+    for output in scan.output_text:
+        lines = (output[output.rfind("\n", 0, m.start()) + 1 :].split("\n", 1)[0] for m in RAW_REPRS.finditer(output))
+        problems.extend(f"a cell's output shows a raw repr: {line[:70]!r}" for line in dict.fromkeys(lines))
     want = MIN_FIGURES.get(rel, 0)
     if len(scan.images) < want:
         problems.append(f"shows {len(scan.images)} image(s), expected at least {want}")

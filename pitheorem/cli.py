@@ -50,7 +50,8 @@ Exit codes
     The request is valid but no similarity scaling meets it: ``search``
     prints the certificate of impossibility, ``apply`` writes nothing.
     (Like ``grep``, which exits 1 when nothing matches.)  ``verify``: the
-    copy is not similar; ``check``: a number is beyond or near one of the
+    copy is not similar, or the verdict is inconclusive (the run cannot
+    show an error: negative controls pass unnoticed); ``check``: a number is beyond or near one of the
     engine's thresholds; ``convert --fit``: no units clear every
     threshold (the closest are used).
 2
@@ -75,7 +76,7 @@ from pathlib import Path
 from . import __version__
 from .errors import CommandLineError, InvalidRequestError, LimitError, PiTheoremError
 from .formatting import FORMATS, render
-from .modelfile import ModelFile, example_path, examples, load_model_file, model_kind, write_model_file
+from .modelfile import EXAMPLES, ModelFile, example_path, examples, load_model_file, model_kind, write_model_file
 
 # The answers, the search and the exact readers load when a command needs them (start-up time)
 
@@ -105,6 +106,19 @@ _SCALE_HELP = (
 
 
 # -- helpers ---------------------------------------------------------------------------------
+
+
+def _as_named(text) -> str:
+    """Text as the user wrote its files: a shipped example's installed path becomes ``example:NAME``.
+
+    The engines read a shipped example by its path inside the installed
+    package; the command line shows it by the name the user gave.
+    """
+    text = str(text).replace(str(EXAMPLES) + os.sep, "example:")
+    for name in examples():
+        if not Path(name).suffix:  # a TOML model file is named without its suffix
+            text = text.replace(f"example:{name}.toml", f"example:{name}")
+    return text
 
 
 def _engine_path(path: str) -> str | None:
@@ -242,7 +256,7 @@ def _run_search(model: ModelFile, args):
 
 
 def _print(answer, args) -> None:
-    print(render(answer, args.format))
+    print(_as_named(render(answer, args.format)))
 
 
 def _zero_valued(model: ModelFile) -> tuple[str, ...]:
@@ -450,7 +464,7 @@ def _cmd_check(args) -> int:
     text, clean = check_engine_model(
         path, from_units=parse_units(args.from_units, "--from"), engine=args.engine, fmt=args.format
     )
-    print(text)
+    print(_as_named(text))
     return EXIT_OK if clean else EXIT_INFEASIBLE
 
 
@@ -466,7 +480,7 @@ def _cmd_convert(args) -> int:
         output=args.output,
         fmt=args.format,
     )
-    print(text)
+    print(_as_named(text))
     return EXIT_INFEASIBLE if "no units keep every number clear" in text or '"feasible": false' in text else EXIT_OK
 
 
@@ -494,7 +508,7 @@ _SHOWN: set[str] = set()
 
 def _one_line_warning(message, category, filename, lineno, file=None, line=None) -> None:
     """A warning as the command line shows it: ``pitheorem: warning: ...``, never Python's source line; once."""
-    text = f"pitheorem: warning: {message}"
+    text = f"pitheorem: warning: {_as_named(message)}"
     if text in _SHOWN:
         return
     _SHOWN.add(text)
@@ -775,18 +789,20 @@ def main(argv: Sequence[str] | None = None) -> int:
             return args.run(args)
     except PiTheoremError as err:
         message = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
-        print(f"pitheorem: error: {message}", file=sys.stderr)
+        print(f"pitheorem: error: {_as_named(message)}", file=sys.stderr)
         return EXIT_ERROR
     except BrokenPipeError:  # e.g. `pitheorem bases FILE | head`: the reader has gone, stay quiet
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return EXIT_OK
     except OSError as err:
-        print(f"pitheorem: error: {err.filename!r}: {err.strerror or err}", file=sys.stderr)
+        print(f"pitheorem: error: {_as_named(repr(err.filename))}: {err.strerror or err}", file=sys.stderr)
         return EXIT_ERROR
     except (ValueError, TypeError, ArithmeticError, RecursionError, MemoryError) as err:
         # last resort: a bad input that slipped past validation must still give one line and
         # exit code 2, never a traceback and never 1 (which means "no scaling exists")
         message = str(err).strip().splitlines()[0] if str(err).strip() else ""
-        print(f"pitheorem: error: {type(err).__name__}: {message} (please report this input)", file=sys.stderr)
+        print(
+            f"pitheorem: error: {type(err).__name__}: {_as_named(message)} (please report this input)", file=sys.stderr
+        )
         return EXIT_ERROR

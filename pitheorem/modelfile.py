@@ -206,12 +206,28 @@ def example_path(name: str) -> Path:
     >>> from pitheorem.modelfile import example_path
     >>> example_path("superball").name, example_path("superball.xml").name
     ('superball.toml', 'superball.xml')
+
+    The engine models that the how-to "Why is my scaled model not similar?"
+    runs, each showing one cause, are shipped too, in the folder ``causes``:
+
+    >>> example_path("causes/hand.xml").parent.name
+    'causes'
     """
     text = str(name)
     stem = text.removesuffix(".toml")
     if stem in (shipped := examples()) and (stem == text or not Path(stem).suffix):
         return EXAMPLES / (stem if Path(stem).suffix else f"{stem}.toml")
-    raise ModelFileError(f"example:{text}", f"no such example; the shipped examples are {', '.join(shipped)}")
+    if text in (extra := _cause_examples()):
+        return EXAMPLES / text
+    raise ModelFileError(
+        f"example:{text}",
+        f"no such example; the shipped examples are {', '.join(shipped)}; the how-to's models are {', '.join(extra)}",
+    )
+
+
+def _cause_examples() -> tuple[str, ...]:
+    """The engine models of the folder ``causes`` (the how-to on causes), as ``causes/NAME``, sorted."""
+    return tuple(sorted(f"causes/{p.name}" for p in (EXAMPLES / "causes").iterdir() if p.suffix in (".xml", ".urdf")))
 
 
 def examples() -> tuple[str, ...]:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
-from .formatting.pieces import power_text, scale_text
+from .formatting.pieces import UNCHANGED, power_latex, scale_text
 
 __all__ = ["plot_search", "plot_similarity"]
 
@@ -14,7 +14,9 @@ def plot_search(result, ax=None):
     """Chart of a search result: variables down, minimal solutions across.
 
     Each cell is coloured by the exponent of ``s`` (blue shrinks, red
-    grows, white unchanged) and labelled with it.
+    grows, white unchanged; the colour bar beside the chart says so) and
+    labelled with the power of ``s`` in mathtext (:math:`s^{2}`), or ``-``
+    where the variable is unchanged.
 
     Parameters
     ----------
@@ -30,8 +32,8 @@ def plot_search(result, ax=None):
     >>> import pitheorem as pt
     >>> s = pt.System({"l": "L", "g": "L T^-2", "t": "T"})
     >>> fig = pt.plotting.plot_search(pt.search(s, scale={"g": 1}))
-    >>> fig.axes[0].get_xlabel()
-    'minimal scaling'
+    >>> fig.axes[0].get_xlabel(), fig.axes[0].get_title(), fig.axes[1].get_ylabel()
+    ('minimal scaling', 'g by s: 1 minimal scaling', 'exponent of $s$')
     """
     import matplotlib.pyplot as plt
     import numpy as np
@@ -44,18 +46,24 @@ def plot_search(result, ax=None):
     else:
         fig = ax.figure
     limit = max(1.0, float(np.abs(data).max()) if data.size else 1.0)
-    ax.imshow(data if data.size else np.zeros((len(names), 1)), cmap="RdBu_r", vmin=-limit, vmax=limit, aspect="auto")
+    image = ax.imshow(
+        data if data.size else np.zeros((len(names), 1)), cmap="RdBu_r", vmin=-limit, vmax=limit, aspect="auto"
+    )
+    bar = fig.colorbar(image, ax=ax, shrink=min(1.0, 4 / max(len(names), 1)) if len(names) > 4 else 1.0)
+    bar.set_label("exponent of $s$")
+    bar.set_ticks([-limit, 0, limit], labels=[f"{-limit:g} shrinks", "0 same", f"{limit:g} grows"])
     for i in range(len(names)):
         for j in range(len(points)):
             p = Fraction(points[j][i])
             dark = abs(float(p)) > 0.6 * limit
-            ax.text(j, i, power_text(p), ha="center", va="center", fontsize=10, color="white" if dark else "black")
+            label = UNCHANGED if p == 0 else f"${power_latex(p)}$"
+            ax.text(j, i, label, ha="center", va="center", fontsize=10, color="white" if dark else "black")
     ax.set_yticks(range(len(names)), [n if role == "free" else f"{n} ({role})" for n, role in result.roles.items()])
     ax.set_xticks(range(len(points)), [f"#{k + 1}" for k in range(len(points))])
     ax.set_xlabel("minimal scaling")
     request = scale_text(result)
     if result.feasible:
-        title = f"{request}: {len(points)} minimal scaling(s)"
+        title = f"{request}: {len(points)} minimal scaling{'' if len(points) == 1 else 's'}"
     else:
         title = f"{request}: impossible, {result.certificate.expr} would change"
     ax.set_title(title, fontsize=10)

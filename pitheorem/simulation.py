@@ -691,6 +691,19 @@ class SimilarityReport(TableDisplay):
         found out (:func:`pitheorem.engines.verdicts.verify`).
     ensemble : int
         How many twins made the yardstick.
+    horizon : float or None
+        How long the twins stay within 1% of the original's motion
+        (``pitheorem.engines.verdicts.strength``); past it the run is
+        chaotic and the comparison says little.  None without twins.
+    detection_limit : float or None
+        The smallest relative error in a dimensionless group (gravity
+        times ``1 + e``) that the negative controls run beside the copy
+        were caught at; None when none was run or none was caught.
+    controls : tuple of Control
+        The negative controls and whether each was caught.
+    inconclusive : bool
+        Controls were run and none was caught: the run cannot show an
+        error in the scaling, so the verdict is not "similar".
 
     Examples
     --------
@@ -722,10 +735,14 @@ class SimilarityReport(TableDisplay):
     excited: bool | None = None
     causes: tuple = ()
     ensemble: int = 0
+    horizon: float | None = None
+    detection_limit: float | None = None
+    controls: tuple = ()
+    inconclusive: bool = False
 
     @property
     def similar(self) -> bool:
-        """The verdict: :attr:`passed` under another name (the engines' word).
+        """The verdict: :attr:`passed`, unless the run could not tell (:attr:`inconclusive`).
 
         Examples
         --------
@@ -735,7 +752,25 @@ class SimilarityReport(TableDisplay):
         >>> pt.verify_similarity(smd, sc, s=2, t_final=0.2).similar
         True
         """
-        return self.passed
+        return self.passed and not self.inconclusive
+
+    @property
+    def verdict(self) -> str:
+        """``"exact"``, ``"similar"``, ``"inconclusive"`` or ``"not similar"``: the verdict in one word.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> smd = pt.models.spring_mass_damper()
+        >>> sc = pt.Scaling.from_unit_change(smd.system, {"L": 1})
+        >>> pt.verify_similarity(smd, sc, s=3, t_final=0.2).verdict, pt.verify_similarity(smd, sc, s=2, t_final=0.2).verdict
+        ('similar', 'exact')
+        """
+        if not self.passed:
+            return "not similar"
+        if self.inconclusive:
+            return "inconclusive"
+        return "exact" if self.exact else "similar"
 
     @property
     def difference(self) -> np.ndarray:

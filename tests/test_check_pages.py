@@ -88,6 +88,69 @@ def test_main_reports_and_fails(site, capsys):
     assert "same figure twice" in capsys.readouterr().out
 
 
+@pytest.mark.parametrize(
+    "path",
+    [
+        "/root/.cache/x.xml",
+        "/usr/lib/python3/dist-packages/x.xml",
+        "/opt/venv/lib/python3.12/site-packages/gymnasium/envs/mujoco/assets/ant.xml",
+        "/work/checkout/pitheorem/examples/pendulum.xml",
+        "/tmp/tmpab12cd/fly_mm.xml",
+    ],
+)
+def test_a_machine_path_anywhere_on_a_page_fails(site, path):
+    # in a cell's output, in prose and in a code block alike
+    for body in (_cell(text=f"wrote {path}"), f"<p>see {path}</p>", f"<pre>open({path!r})</pre>"):
+        found = _problems(site, body)
+        assert len(found) == 1, body
+        assert "machine's path" in found[0]
+
+
+def test_a_file_named_by_its_name_or_example_name_passes(site):
+    assert _problems(site, _cell(text="wrote fly_mm.xml\nexample:pendulum.xml: mujoco model")) == []
+
+
+@pytest.mark.parametrize(
+    "output",
+    [
+        "{'M': '0', 'L': '1', 'T': '0'}",
+        "unit change: {'M': Fraction(0, 1), 'L': Fraction(1, 1)}",
+        "Fraction(1, 2)",
+        "[Fraction(-1, 2), Fraction(1, 3)]",
+        "exponent = Fraction(3, 4)",
+        "System({'m': 'M', 'l': 'L'})",
+    ],
+)
+def test_a_raw_dict_or_fraction_repr_in_a_cell_output_fails(site, output):
+    found = _problems(site, _cell(text=output))
+    assert len(found) == 1
+    assert "raw repr" in found[0]
+
+
+@pytest.mark.parametrize(
+    "output",
+    [
+        "M: s^0  L: s^1  T: s^0",
+        '{"m": "-2", "l": "1"}',  # JSON, which a page may show on purpose
+        "pass an exact exponent such as Fraction(1, 3) or '1/3'",  # advice, not a repr
+        "m = 2 (Fraction), l = 3.0 (float)",
+    ],
+)
+def test_readable_output_passes(site, output):
+    assert _problems(site, _cell(text=output)) == []
+
+
+def test_a_raw_repr_outside_cell_outputs_passes(site):
+    # a code block may write a dict literal: only what executed cells print is checked
+    assert _problems(site, "<div class=\"highlight\"><pre>units = {'L': 'mm'}</pre></div>") == []
+
+
+def test_main_fails_on_a_page_with_a_machine_path(site, capsys):
+    (site / "page.html").write_text(f"<html><body>{_cell(text='/tmp/x/fly.xml')}</body></html>", encoding="utf-8")
+    assert check_pages.main([str(site), "--no-browser"]) == 1
+    assert "machine's path" in capsys.readouterr().out
+
+
 def test_docstring_examples_are_exempt_from_the_line_limit(site):
     # docstring examples wrap in the page (custom.css), so a long line there is no problem
     long = "w" * (check_pages.MAX_LINE + 10)

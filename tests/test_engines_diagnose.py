@@ -102,11 +102,17 @@ def test_a_run_that_moves_nothing_proves_nothing():
     model, sc = searched(DATA / "hanging.xml")
     wrong = model.scaled(sc, 10).multiplied(g=0.1)
     still = engines.verify(model, sc, 10, duration=0.5, scaled=wrong)
-    assert still.similar
+    assert still.passed  # within the yardstick: nothing moves, so gravity off by 10 does not show
     assert still.excited is False
+    assert still.inconclusive  # and the controls say so: none of them is caught, so it is never "similar"
+    assert not still.similar
+    assert still.verdict == "inconclusive"
+    assert still.detection_limit is None
+    assert [c.caught for c in still.controls] == [False, False, False, False]
     moved = engines.verify(model, sc, 10, duration=0.5, scaled=wrong, controls=engines.smooth_controls(model))
     assert moved.excited
     assert not moved.similar
+    assert moved.verdict == "not similar"
 
 
 def touching_after_one_step(m) -> set:

@@ -115,7 +115,7 @@ def test_the_runs_of_a_verification_are_one_vmapped_call(pendulum, monkeypatch):
 
     monkeypatch.setitem(mjx_backend._RUNNERS, "float32", counting)
     engines.verify(pendulum, time_free(pendulum), s=4, duration=DURATION, ensemble=3, diagnose=False)
-    assert batches == [5]  # original, scaled copy and three twins
+    assert batches == [9]  # original, scaled copy, three twins and four negative controls: one call
 
 
 def test_twins_move_every_number_by_one_float32_ulp(pendulum):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -488,3 +489,18 @@ def test_a_run_starts_from_a_given_first_row():
     rows = model.run(3, initial=first)
     assert np.array_equal(rows[0], first)
     assert not np.array_equal(rows, model.run(3))
+
+
+def test_a_compound_mesh_cause_names_the_file_never_a_machine_path(tmp_path):
+    """A mesh written as an absolute path (a saved copy's) is named by its file name alone."""
+    pybullet_data = pytest.importorskip("pybullet_data")
+    data = Path(pybullet_data.getDataPath())
+    text = (data / "duck_vhacd.urdf").read_text()
+    assert 'filename="duck_vhacd.obj"' in text
+    copy = tmp_path / "duck.urdf"
+    copy.write_text(re.sub(r'filename="([^"/]+)"', lambda m: f'filename="{data / m.group(1)}"', text))
+    with pytest.warns(engines.UnscalableModelWarning, match="convex parts"):
+        model = engines.load(copy, base_position=(0, 0, 0.2), ground=True)
+    causes = [c for c in model.runner.ignored_settings() if "collision mesh" in c.element]
+    assert [c.element for c in causes] == ["link 'baseLink' collision mesh 'duck_vhacd.obj'"]
+    assert str(data) not in causes[0].detail

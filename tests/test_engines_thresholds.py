@@ -576,8 +576,8 @@ def test_mjx_parameters_are_the_half_lengths_mjxs_collisions_hold_against_its_co
     assert engines.check(model) == ()
     said = {c.element: c.detail for c in engines.check(model, "mjx")}
     assert set(said) == {"geom_arm_half_length", "geom3_half_length"}
-    assert "below mjx_segment_regularizer_float32 (2.0)" in said["geom_arm_half_length"]
-    assert "by 16 clears it" in said["geom_arm_half_length"]  # to twice 2.0: 4 / 0.25
+    assert "below mjx_segment_regularizer_float32 (2)" in said["geom_arm_half_length"]  # 2.0 in its shortest text
+    assert "by 16 clears it" in said["geom_arm_half_length"]  # to twice 2: 4 / 0.25
     assert "below mjx_cylinder_plane_parallel (0.001)" in said["geom3_half_length"]
     assert "by 5 clears it" in said["geom3_half_length"]  # to twice 1e-3: 2e-3 / 4e-4
     assert engines.check(model.converted(L="mm"), "mjx") == ()  # 250 and 0.4 mm

@@ -125,7 +125,10 @@ def test_controller_is_built_once_per_run_from_that_runs_model():
     rep = engines.verify(model, sc, 10, duration=0.05, controller=controller, ensemble=2)
     assert rep.similar
     g = model.parameter("g").value[0]
-    assert seen == [g, pytest.approx(10 * g, rel=1e-15), g, g]  # the original, the scaled copy, two twins
+    # the original, the scaled copy, two twins, then the negative controls: the copy with gravity off by 1e-4,
+    # 1e-2 and 1, and with its masses doubled
+    ten = pytest.approx(10 * g, rel=1e-15)
+    assert seen == [g, ten, g, g, *(pytest.approx(10 * g * (1 + e), rel=1e-15) for e in (1e-4, 1e-2, 1.0)), ten]
 
 
 def test_controller_misuse_is_named():
@@ -217,7 +220,7 @@ def test_what_verify_cannot_compare_is_refused_by_name():
     assert other.runner.timestep() == model.runner.timestep()
     with pytest.raises(pt.InvalidRequestError, match="other coordinates than the original"):
         engines.verify(model, sc, 2, duration=0.01, scaled=other)
-    assert engines.verify(model, sc, 2, duration=0.01).similar  # its own scaled copy: no refusal
+    assert engines.verify(model, sc, 2, duration=0.01).passed  # its own scaled copy: no refusal
     # ensemble and seed: whole numbers, at least 1 and at least 0
     for what, bad, least in (
         ("ensemble", 0, 1),
@@ -229,7 +232,7 @@ def test_what_verify_cannot_compare_is_refused_by_name():
         with pytest.raises(pt.InvalidRequestError) as caught:
             engines.verify(model, sc, 2, duration=0.01, **{what: bad})
         assert str(caught.value) == f"{what} must be a whole number of at least {least}, got {bad!r}"
-    assert engines.verify(model, sc, 2, duration=0.01, ensemble=np.int64(1), seed=0).similar
+    assert engines.verify(model, sc, 2, duration=0.01, ensemble=np.int64(1), seed=0).passed
 
 
 def test_a_model_or_copy_mujoco_refuses_is_verified_into_mujocos_refusal(tmp_path):

@@ -24,6 +24,7 @@ from functools import cache
 from html.parser import HTMLParser
 from pathlib import Path
 
+import numpy as np
 import pytest
 import sympy
 from hypothesis import given
@@ -858,3 +859,39 @@ def test_html_without_symmetries_beyond_units_or_groups_has_no_table():
     html = _plain(format(answer, "html"))
     assert "<table" not in html
     assert html.endswith("<p>repeating variables: $l$</p>")
+
+
+# -- numbers in messages ---------------------------------------------------------------------
+
+
+@given(st.floats(allow_nan=False, allow_infinity=False))
+def test_float_text_reads_back_as_the_same_float_and_is_never_longer_than_repr(x):
+    from pitheorem.formatting.pieces import float_text
+
+    text = float_text(x)
+    assert float(text) == x  # only the printing is shortened, never the value
+    assert len(text) <= len(repr(x))
+    assert not text.endswith(".0")
+
+
+@given(st.floats(width=32, allow_nan=False, allow_infinity=False))
+def test_float_text_of_a_float32_reads_back_as_that_float32(x):
+    from pitheorem.formatting.pieces import float_text
+
+    value = np.float32(x)
+    assert np.float32(float_text(value)) == value
+    assert len(float_text(value)) <= len(repr(float(value)))
+
+
+def test_float_text_writes_the_shortest_decimal_not_seventeen_digits():
+    from pitheorem.formatting.pieces import float_text
+
+    assert f"{0.004:.17g}" == "0.0040000000000000001"  # what the causes printed before
+    assert float_text(0.004) == "0.004"
+    assert float_text(200.0) == "200"
+    assert float_text(199.99999999999994) == "199.99999999999994"  # another number: never rounded to 200
+    assert float_text(1e10) == "1e+10"
+    assert float_text(123456789.0) == "123456789"
+    assert float_text(-0.0) == "-0"
+    assert float_text(Fraction(-3, 4)) == "-3/4"
+    assert float_text(np.float32(1e-5)) == "1e-05"

@@ -88,7 +88,9 @@ def test_unknown_example(name):
         example_path(name)
     assert str(caught.value) == (
         f"example:{name}: no such example; the shipped examples are "
-        "hinged_rod, hinged_rod.urdf, hinged_rod.xml, pendulum.xml, superball, superball.xml"
+        "hinged_rod, hinged_rod.urdf, hinged_rod.xml, pendulum.xml, superball, superball.xml; "
+        "the how-to's models are causes/contact.xml, causes/hand.xml, causes/mesh_drop.xml, "
+        "causes/quadruped.urdf, causes/walker_on_floor.xml"
     )
     assert caught.value.culprit == f"example:{name}"
 

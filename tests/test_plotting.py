@@ -34,11 +34,17 @@ def test_search_chart_shows_every_minimal_scaling(rod):
     assert (labels[rod.index("g")], labels[rod.index("t")], labels[rod.index("m")]) == ("g (scale)", "t (fixed)", "m")
     cells = {(round(text.get_position()[1]), round(text.get_position()[0])): text.get_text() for text in ax.texts}
     assert len(cells) == len(rod.variables) * 3
-    assert cells[(0, 0)] == "1/s^2"  # m in the first scaling, as the table prints it
+    assert cells[(0, 0)] == "$s^{-2}$"  # m in the first scaling, in mathtext
     for j, scaling in enumerate(res.scalings):
         shown = [cells[(i, j)] for i in range(len(rod.variables))]
-        assert shown == [pt.formatting.pieces.power_text(Fraction(p)) for p in scaling.vector]
-    assert ax.get_title() == "g by s: 3 minimal scaling(s)"
+        assert shown == [
+            "-" if p == 0 else f"${pt.formatting.pieces.power_latex(Fraction(p))}$" for p in scaling.vector
+        ]
+    assert ax.get_title() == "g by s: 3 minimal scalings"
+    # a colour bar says what the colours mean
+    bar = fig.axes[1]
+    assert bar.get_ylabel() == "exponent of $s$"
+    assert [t.get_text() for t in bar.get_yticklabels()] == ["-2 shrinks", "0 same", "2 grows"]
     infeasible = pt.search(rod, scale={"g": 1}, fixed=("t", "m", "k_theta"))
     assert "impossible" in infeasible.plot().axes[0].get_title()
     assert len(infeasible.plot().axes[0].texts) == 0

@@ -514,7 +514,8 @@ def test_search_plot_draws_into_the_given_axes():
     fig, ax = plt.subplots()
     try:
         assert res.plot(ax=ax) is fig
-        assert ax.get_title() == f"g by s: {len(res.scalings)} minimal scaling(s)"
+        assert len(res.scalings) == 1
+        assert ax.get_title() == "g by s: 1 minimal scaling"  # one scaling, no plural
         own = res.plot()
         assert own is not fig
         assert own.axes[0].get_title() == ax.get_title()

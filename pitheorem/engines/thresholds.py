@@ -32,6 +32,8 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
+from pitheorem.formatting.pieces import float_text
+
 from ..dimensions import Dimension
 from ..errors import InvalidRequestError
 from ..immutable import immutable
@@ -425,14 +427,14 @@ def _crossings(engine, table, factors, near, fixed_only, precision) -> list:
 def _detail(p, t: Threshold, worst: float, limit: float, near: float, beyond: bool) -> str:
     """What a cause says: the number, the threshold, what the engine does, and the way out."""
     where = f"is {t.bound}" if beyond else f"is within a factor {near:g} of"
-    of = f" = {t.value!r} {t.relative_to}" if t.relative_to else ""
+    of = f" = {float_text(t.value)} {t.relative_to}" if t.relative_to else ""
     # the factor that puts the number a factor `near` clear of the threshold
     need = limit * near / worst if t.bound == "below" else limit / (near * worst)
     if t.relative_to:  # a multiple of another number of the same dimension: units move both alike
         remedy = f"no change of units clears it; change it or {t.relative_to} by a factor {need:.3g}"
     else:
         remedy = f"a change of units that multiplies numbers of dimension {p.dimension_text} by {need:.3g} clears it"
-    return f"{p.path} = {worst!r} {where} {t.name} ({limit!r}{of}): {t.effect}; {remedy}"
+    return f"{p.path} = {float_text(worst)} {where} {t.name} ({float_text(limit)}{of}): {t.effect}; {remedy}"
 
 
 def held_against(model, engine: str) -> tuple[Parameter, ...]:

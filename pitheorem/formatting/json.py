@@ -193,6 +193,11 @@ def _similarity_report(report) -> dict:
         "ensemble": report.ensemble,
         "first_divergence": None if report.first_divergence is None else list(report.first_divergence),
         "causes": [_cause(c) for c in report.causes],
+        "verdict": report.verdict,
+        "horizon": report.horizon,
+        "detection_limit": report.detection_limit,
+        "inconclusive": report.inconclusive,
+        "controls": [{"group": c.group, "error": c.error, "caught": c.caught} for c in report.controls],
     }
 
 
@@ -416,6 +421,9 @@ def _engine_verify_answer(answer) -> dict:
         "exact_expected": answer.exact_expected,
         "exact": rep.exact,
         "similar": rep.similar,
+        "verdict": rep.verdict,
+        "horizon": rep.horizon,
+        "detection_limit": rep.detection_limit,
         "excited": rep.excited,
         "max_deviation": rep.max_deviation,
         "first_divergence": None if rep.first_divergence is None else list(rep.first_divergence),

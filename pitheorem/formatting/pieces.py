@@ -4,6 +4,8 @@ r"""The pieces every format shares, each written once.
   and :func:`power_latex` (``s^{2}``, ``s^{-1}``);
 * exact numbers: :func:`rational_text` for an exponent, :func:`json_number`
   and :func:`value_text` for a value (a float, or an exact Fraction);
+* a number in a message or a cause: :func:`float_text`, the shortest text
+  that reads back as the same number (``0.004``, ``200``, ``1e+10``);
 * names and text in LaTeX: :func:`latex_name` (``k_theta`` as
   ``k_{\theta}``) and :func:`latex_escape`;
 * how a search's notes and request are phrased: :func:`note_text`,
@@ -34,6 +36,7 @@ __all__ = [
     "changed_rows",
     "default_text",
     "deviation_rows",
+    "float_text",
     "group_name_latex",
     "json_number",
     "latex_escape",
@@ -234,6 +237,53 @@ def json_number(value):
     if isinstance(value, Fraction):
         return int(value) if value.denominator == 1 else str(value)
     return value
+
+
+def float_text(value) -> str:
+    """A number in a message: the shortest text that reads back as the same number.
+
+    Python's ``repr`` of a float is its shortest round-trip text; a float
+    with an integer value drops its ``.0``, and a large one with trailing
+    zeros is written in scientific form when that is shorter.  A float32
+    (from an engine's arrays) is written as the shortest text that reads
+    back as that float32.  Exact numbers (int, Fraction) are written in
+    full.  Only the printing is shortened: ``float(float_text(x)) == x``
+    for every finite float ``x``.
+
+    Parameters
+    ----------
+    value : float, numpy floating, int or Fraction
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from fractions import Fraction
+    >>> from pitheorem.formatting.pieces import float_text
+    >>> float_text(0.004), float_text(200.0), float_text(1e10), float_text(199.99999999999994)
+    ('0.004', '200', '1e+10', '199.99999999999994')
+    >>> float_text(np.float32(0.004)), float_text(np.float64(-2.5e-7)), float_text(Fraction(1, 3))
+    ('0.004', '-2.5e-07', '1/3')
+    """
+    if isinstance(value, (int, Fraction)) and not isinstance(value, bool):
+        return str(value)
+    dtype = getattr(value, "dtype", None)
+    if dtype is not None and dtype.kind == "f" and dtype.itemsize < 8:
+        import numpy as np
+
+        # the fewest digits that read back as this float32 (or float16), then written as Python writes them
+        value = float(np.format_float_scientific(value, unique=True))
+    text = repr(float(value))
+    if text.endswith(".0"):
+        text = text[:-2]
+        if len(text.lstrip("-")) > 6:  # 10000000000 -> 1e+10: the shortest scientific form that reads back
+            digits = len(text.lstrip("-").rstrip("0"))
+            scientific = f"{float(value):.{max(digits - 1, 0)}e}"
+            text = scientific if len(scientific) < len(text) else text
+    return text
 
 
 def value_text(value) -> str:
@@ -444,7 +494,7 @@ def default_text(default: float) -> str:
     >>> default_text(0.002), default_text(float("nan"))
     ('default 0.002', 'no documented default')
     """
-    return "no documented default" if default != default else f"default {default:g}"  # NaN != NaN
+    return "no documented default" if default != default else f"default {float_text(default)}"  # NaN != NaN
 
 
 def solutions_text(n: int) -> str:
@@ -684,6 +734,66 @@ def deviation_rows(report, name):
     return header, rows
 
 
+def strength_lines(report) -> list[str]:
+    """What a report says of its own strength: inconclusive, weak, gravity unseen, past the horizon.
+
+    Empty for a report without twins or controls (an ODE verdict against
+    a tolerance).
+
+    Parameters
+    ----------
+    report : SimilarityReport
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> from pitheorem.formatting.pieces import strength_lines
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    >>> rep = engines.verify(model, sc, s=10, duration=0.5, controls=lambda t: [0.1])
+    >>> strength_lines(rep)
+    ['strength: an error of 0.0001 in gravity or the masses is caught; the twins stay together to the end (t = 0.5)']
+    """
+    if report.horizon is None and not report.controls:
+        return []
+    lines = []
+    if report.inconclusive:
+        lines.append(
+            "INCONCLUSIVE: not even gravity or the masses doubled change this run beyond its yardstick, "
+            "so it cannot show an error in the scaling"
+        )
+    gravity = [c for c in report.controls if c.group == "g"]
+    if gravity and not any(c.caught for c in gravity):
+        lines.append(
+            "gravity cannot act on this run's motion (compensated or balanced): a gravity error cannot be seen"
+        )
+    parts = []
+    if report.detection_limit is not None:
+        parts.append(f"an error of {float_text(report.detection_limit)} in gravity or the masses is caught")
+    end = float(report.original.t[-1]) if len(report.original) else 0.0
+    if report.horizon is not None:
+        if report.horizon < end:
+            parts.append(
+                f"the twins part by 1% of the motion at t = {report.horizon:.6g} of {end:.6g}: "
+                "past it the comparison says little"
+            )
+        else:
+            parts.append(f"the twins stay together to the end (t = {end:.6g})")
+    if parts:
+        lines.append("strength: " + "; ".join(parts))
+    if report.passed and report.detection_limit is not None and report.detection_limit > 1e-2:
+        lines.append(
+            f"weak evidence: an error smaller than {float_text(report.detection_limit)} in a dimensionless "
+            "group would pass unnoticed"
+        )
+    return lines
+
+
 def unit_fit_rows(fit):
     """Each variable of a unit fit that has a value: its name, value, new value, range and verdict.
 
@@ -739,7 +849,7 @@ def range_cells(bounds, ok, out_of_range: str = "OUT OF RANGE") -> list[str]:
     """
     if bounds is None:
         return ["", ""]
-    return [f"[{bounds[0]:g}, {bounds[1]:g}]", "ok" if ok else out_of_range]
+    return [f"[{float_text(bounds[0])}, {float_text(bounds[1])}]", "ok" if ok else out_of_range]
 
 
 def parameters_head(name: str, model) -> str:

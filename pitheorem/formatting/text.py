@@ -27,6 +27,7 @@ from .pieces import (
     request_text,
     search_cells,
     solutions_text,
+    strength_lines,
     unit_change_text,
     unit_fit_rows,
     value_text,
@@ -250,6 +251,7 @@ def _similarity_report(report) -> str:
     ]
     if report.excited is False:
         lines.append("the original run moved nothing beyond its own rounding: this verdict proves nothing")
+    lines.extend(strength_lines(report))
     lines.extend(f"cause: {cause}" for cause in report.causes)
     return "\n".join(lines)
 
@@ -494,12 +496,13 @@ def _engine_verify_answer(answer) -> str:
     rep, s = answer.report, answer.s
     steps = len(rep.original) - 1
     if rep.exact:
+        head, tail = ("inconclusive", ", but so do copies made wrong on purpose") if rep.inconclusive else ("exact", "")
         lines = [
-            f"exact: the scaled copy, mapped back, equals the original bit for bit at every step "
-            f"(s = {s}, {steps} steps)"
+            f"{head}: the scaled copy, mapped back, equals the original bit for bit at every step "
+            f"(s = {s}, {steps} steps){tail}"
         ]
     else:
-        verdict = "similar" if rep.similar else "NOT similar"
+        verdict = {"similar": "similar", "inconclusive": "inconclusive", "not similar": "NOT similar"}[rep.verdict]
         worst = max(rep.sensitivity.values(), default=0.0)
         lines = [
             f"{verdict}: deviation {rep.max_deviation:.3g} (original units) against {rep.baseline_factor:g}x the "
@@ -513,6 +516,7 @@ def _engine_verify_answer(answer) -> str:
             "the original run moved nothing beyond its own rounding: this verdict proves nothing "
             "(use --input smooth or another initial pose)"
         )
+    lines.extend(strength_lines(rep))
     if rep.causes:
         lines.append("causes:")
         lines.extend(f"  {c}" for c in rep.causes)

@@ -39,6 +39,8 @@ from xml.sax.saxutils import escape
 
 import numpy as np
 
+from pitheorem.formatting.pieces import float_text
+
 from ...dimensions import Dimension
 from ...errors import PiTheoremError, UnscalableParameterError
 from ..enginemodel import EngineModelError
@@ -814,7 +816,7 @@ class _Walker:
                 self.fail(
                     path,
                     f"a muscle whose peak force MuJoCo derives from scale and acc0 ({attr}[2] = "
-                    f'{prm[2]:g}) cannot be scaled: give its force explicitly (force="...")',
+                    f'{float_text(prm[2])}) cannot be scaled: give its force explicitly (force="...")',
                 )
             self.add("actuator", act, ident, path, attr, force, slice(2, 3), "_peak_force")
             self.add(

@@ -34,6 +34,8 @@ from types import MappingProxyType
 
 import numpy as np
 
+from pitheorem.formatting.pieces import float_text
+
 from ...errors import InvalidRequestError, UnscalableParameterError
 from ...exact import read_number
 from ...simulation import nudged
@@ -455,7 +457,7 @@ class PybulletRunner:
             return [
                 UnscalableParameterError(
                     "splitImpulsePenetrationThreshold",
-                    f"Bullet's split-impulse threshold ({threshold:g}, a length) "
+                    f"Bullet's split-impulse threshold ({float_text(threshold)}, a length) "
                     "cannot be set from Python; load the model with split_impulse=False (useSplitImpulse=0) in both runs",
                 )
             ]
@@ -586,7 +588,7 @@ class PybulletRunner:
         compound = [
             Cause(
                 "setting",
-                f"link {link!r} collision mesh {filename!r}",
+                f"link {link!r} collision mesh {Path(filename).name!r}",  # its name: no machine's path
                 f"its {parts} convex parts "
                 "load as a compound whose collision margins changeDynamics cannot reach: they keep "
                 "PyBullet's default margin, a length no scaling changes, so the copy's contacts are off "
@@ -615,8 +617,8 @@ class PybulletRunner:
                 "setting",
                 "changeDynamics(collisionMargin)",
                 f"{len(missed)} link(s) ({names}) keep "
-                f"another margin than the one set (link {lname!r}: set {wanted:.17g}, PyBullet keeps "
-                f"{held:.17g}): the call does not reach these links' shapes, so their margins are not "
+                f"another margin than the one set (link {lname!r}: set {float_text(wanted)}, PyBullet keeps "
+                f"{float_text(held)}): the call does not reach these links' shapes, so their margins are not "
                 "scaled",
             ),
         )

@@ -26,6 +26,8 @@ from fractions import Fraction
 
 import numpy as np
 
+from pitheorem.formatting.pieces import float_text
+
 from ...errors import InvalidRequestError, PiTheoremError
 from ...exact import read_scale_factor
 from ...formatting import TextDisplay
@@ -223,7 +225,7 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
             Cause(
                 "solver",
                 f"option {name}",
-                f"{value:g}: a stopping rule of no pure dimension (it "
+                f"{float_text(value)}: a stopping rule of no pure dimension (it "
                 "compares numbers of different dimensions: MuJoCo's cost is normalised by a mean of "
                 "masses and moments of inertia, Bullet's residual adds rows in m/s and rad/s), so the "
                 f"scaled run may stop after another number of iterations; with_values({name}=0) runs "
@@ -298,7 +300,7 @@ def _not_a_power(backend, field, before, probe, mask) -> Cause:
         "unscaled",
         field,
         f"{_where(backend, field, mask)}: scaled by {PROBE} as a change of units, "
-        f"{float(before[i]):.17g} became {float(probe[i]):.17g}, no power of {PROBE}: the engine reads a "
+        f"{float_text(before[i])} became {float_text(probe[i])}, no power of {PROBE}: the engine reads a "
         "sentinel or derives this number in a way no change of units carries",
     )
 
@@ -337,6 +339,6 @@ def _mismatch(backend, field, got, expected, mask) -> Cause:
     return Cause(
         "unscaled",
         field,
-        f"{_where(backend, field, mask)}: the engine holds {float(got[i]):.17g}, the "
-        f"original times its factor is {float(expected[i]):.17g}",
+        f"{_where(backend, field, mask)}: the engine holds {float_text(got[i])}, the "
+        f"original times its factor is {float_text(expected[i])}",
     )

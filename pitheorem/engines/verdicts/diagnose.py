@@ -27,6 +27,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from pitheorem.formatting.pieces import float_text
+
 from ...simulation import allowed_deviation
 from ..protocols import CounterRuns, SolverDiagnosis
 from .audit import audit
@@ -135,7 +137,7 @@ def find_causes(
     results = dict(zip(variants, counters(*variants.values()), strict=True)) if variants else {}
 
     if "tolerance" in results and results["tolerance"].shows:
-        names = ", ".join(f"option {k} = {v:g}" for k, v in solver.items())
+        names = ", ".join(f"option {k} = {float_text(v)}" for k, v in solver.items())
         causes.append(
             Cause(
                 "solver",

@@ -47,10 +47,11 @@ import numpy as np
 from ...errors import InvalidRequestError
 from ...exact import read_count, read_scale_factor
 from ...scaling import is_power_of_two
-from ...simulation import SimilarityReport, Trajectory, positive_float, similarity_report
+from ...simulation import SimilarityReport, Trajectory, allowed_deviation, positive_float, similarity_report
 from ..enginemodel import EngineModel, check_scaling
 from ..parameters import dim, dimension_factors
 from ..protocols import Runs
+from .strength import Control, caught, control_factors, horizon
 
 __all__ = ["Runs", "smooth_controls", "verify"]
 
@@ -68,6 +69,7 @@ def verify(
     ensemble: int = 3,
     seed: int = 0,
     diagnose: bool = True,
+    strength: bool = True,
 ) -> SimilarityReport:
     """Run a model and its scaled copy, compare them, and say why they differ.
 
@@ -113,6 +115,13 @@ def verify(
     diagnose : bool
         Look for causes when the runs are not exact at a power of four or
         not similar (default True).
+    strength : bool
+        Say how strong the verdict is (default True): the twins'
+        ``horizon`` and the ``detection_limit`` of negative controls run in
+        the same batch (the copy with gravity times 1 + e for e = 1e-4,
+        1e-2 and 1, and with every mass doubled; see
+        ``pitheorem.engines.verdicts.strength``).  A verdict none of whose
+        controls is caught is ``inconclusive``, never similar.
 
     Returns
     -------
@@ -139,6 +148,8 @@ def verify(
     >>> rep = engines.verify(model, sc, s=10, duration=0.5, controls=lambda t: [0.1])
     >>> rep.exact, rep.similar, rep.causes
     (False, True, ())
+    >>> rep.verdict, rep.detection_limit, rep.horizon
+    ('similar', 0.0001, 0.5)
     """
     if not isinstance(model, EngineModel):
         raise InvalidRequestError(f"verify needs an EngineModel (engines.load(...)), got {type(model).__name__}")
@@ -175,19 +186,25 @@ def verify(
     policy = _policies(controller, control_factors.size)
 
     twins = [original.twin(seed + k) for k in range(ensemble)]
+    # the negative controls: the copy with one group wrong by a known error, judged like the copy itself
+    # (none for a file the engine refuses to run: the runs below say so)
+    wrong = _negative_controls(model, scaled) if strength and original.refusal is None and copy.refusal is None else []
     t = np.arange(n_steps + 1) * dt
-    if controller is None and type(copy) is type(original):
+    if controller is None and all(type(c.runner) is type(original) for c in (scaled, *(w for *_, w in wrong))):
         # one batch: the engine runs them at once (MuJoCo's rollout spreads them over the cores, MJX vmaps them)
         jobs = [
             (original, u_original, False, None),
             (copy, u_scaled, False, None),
             *((twin, u_original, False, None) for twin in twins),
+            *((w.runner, u_scaled, False, None) for *_, w in wrong),
         ]
-        run, scaled_run, *twin_runs = original.run_many(n_steps, jobs)
+        run, scaled_run, *rest = original.run_many(n_steps, jobs)
+        twin_runs, control_runs = rest[: len(twins)], rest[len(twins) :]
     else:
         run = original.run(n_steps, u_original, policy=policy(model))
         scaled_run = copy.run(n_steps, u_scaled, policy=policy(scaled))
         twin_runs = [twin.run(n_steps, u_original, policy=policy(model)) for twin in twins]
+        control_runs = [w.runner.run(n_steps, u_scaled, policy=policy(w)) for *_, w in wrong]
 
     def trajectory(rows):
         return Trajectory(t, rows, tuple(names))
@@ -203,12 +220,46 @@ def verify(
         method=model.engine,
     )
     exact_expected = _every_factor_a_power_of_two(model, factor)
+    limits = allowed_deviation(report.original, report.sensitivity, baseline_factor)
+    controls = tuple(
+        Control(group, error, caught(run, rows / factors, limits, bits=exact_expected))
+        for (group, error, _w), rows in zip(wrong, control_runs, strict=True)
+    )
+    seen = [c.error for c in controls if c.caught]
+    report = dataclasses.replace(
+        report,
+        horizon=horizon(t, run, twin_runs) if strength else None,
+        detection_limit=min(seen) if seen else None,
+        controls=controls,
+        inconclusive=bool(controls) and not seen,
+    )
     if not diagnose or controller is not None or (report.similar and (report.exact or not exact_expected)):
         return report
     from .diagnose import find_causes
 
     causes = find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factors, report, exact_expected)
     return dataclasses.replace(report, causes=causes)
+
+
+def _negative_controls(model: EngineModel, scaled: EngineModel) -> list:
+    """The negative controls of a verification: ``(group, error, wrong copy)`` each.
+
+    Each wrong copy is the scaled copy with one group times ``1 + e``: made
+    from the original with the copy's factors (one compilation each) where
+    the copy is ``model.scaled(...)``, else from the copy itself.
+    """
+    out = []
+    origin = scaled.copied_from
+    for group, error, wrong in control_factors(model):
+        if origin is not None and origin[0] is model:
+            factors = dict(origin[1])
+            for name, f in wrong.items():
+                factors[name] = factors.get(name, 1.0) * f
+            copy = model.multiplied(**factors)
+        else:
+            copy = scaled.multiplied(**wrong)
+        out.append((group, error, copy))
+    return out
 
 
 def exact_in_binary(model: EngineModel, scaling, s) -> bool:

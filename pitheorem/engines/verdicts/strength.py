@@ -1,0 +1,173 @@
+"""How strong a verdict is: the horizon of the twins, and negative controls that measure what a run can see.
+
+A verdict of "similar" says that the scaled run stayed within the
+yardstick of the original.  It says little in two cases, and a report
+says which:
+
+* **Past its horizon.** A chaotic run (a walker falling over, a hand
+  closing on an object) parts from its own one-ulp twins: once they are
+  far apart, any copy is "within the yardstick" of the original.
+  :func:`horizon` is the time until the twins part by
+  :data:`HORIZON_FRACTION` of the original's motion, coordinate by
+  coordinate; past it the comparison says little.
+* **An error the run cannot show.** A gravity-compensated arm moves the
+  same whatever gravity is; a copy with gravity left unscaled is then
+  "similar" and proves nothing about gravity.  A *negative control* is the
+  scaled copy with one group deliberately wrong by a known relative error
+  ``e`` (gravity times ``1 + e``; every mass and density times ``1 + e``),
+  run in the same batch and judged by the same rule as the copy itself
+  (bit for bit where every factor is a power of two, else against the
+  yardstick).  The smallest ``e`` a control is caught at is the run's
+  :attr:`detection_limit`: a relative error in a dimensionless group
+  smaller than it would pass unnoticed.  When no control is caught, not
+  even gravity or the masses doubled, the verdict is *inconclusive*, never
+  *similar*.
+
+The margin of the yardstick (a copy may deviate 10 times as far as the
+twins) is what the controls calibrate: the detection limit is what that
+margin lets through on this run, stated in every report.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...immutable import immutable
+
+__all__ = ["CONTROL_ERRORS", "HORIZON_FRACTION", "Control", "caught", "control_factors", "horizon"]
+
+#: the twins' spread, as a fraction of each coordinate's range over the run, that ends the horizon
+HORIZON_FRACTION = 0.01
+
+#: the relative errors of the negative controls (gravity times 1 + e); the masses are doubled
+CONTROL_ERRORS = (1e-4, 1e-2, 1.0)
+
+#: "similar" with a detection limit above this is weak evidence, and the report says so
+WEAK_LIMIT = 1e-2
+
+
+@immutable
+@dataclass(frozen=True, slots=True)
+class Control:
+    """One negative control: the scaled copy with one group wrong by a known relative error.
+
+    Parameters
+    ----------
+    group : str
+        What is wrong: ``"g"`` (gravity) or ``"masses"`` (every mass and
+        density).
+    error : float
+        The relative error ``e``: the group is times ``1 + e``.
+    caught : bool
+        Whether the run saw it: not bit for bit where that was expected,
+        else beyond the yardstick.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.verdicts.strength import Control
+    >>> Control("g", 0.01, True).caught
+    True
+    """
+
+    group: str
+    error: float
+    caught: bool
+
+
+def horizon(t: np.ndarray, original: np.ndarray, twins) -> float:
+    """How long the original's twins stay within :data:`HORIZON_FRACTION` of its motion, in its time unit.
+
+    Each coordinate's spread (the largest distance of any twin from the
+    original) is taken relative to the coordinate's range over the run; a
+    coordinate that does not move has no spread.  The horizon is the last
+    time before the largest relative spread first exceeds the fraction, or
+    the run's end when it never does.
+
+    Parameters
+    ----------
+    t : array of shape (n,)
+    original : array of shape (n, k)
+    twins : sequence of arrays of shape (n, k)
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pitheorem.engines.verdicts.strength import horizon
+    >>> t = np.arange(4.0)
+    >>> run = np.array([[0.0], [1.0], [2.0], [3.0]])
+    >>> horizon(t, run, [run + [[0.0], [0.0], [0.01], [0.5]]])  # 0.5 of a range of 3 parts at t = 3
+    2.0
+    >>> horizon(t, run, [run])
+    3.0
+    """
+    t = np.asarray(t, dtype=float)
+    original = np.asarray(original, dtype=float)
+    if not len(twins) or original.size == 0:
+        return float(t[-1]) if len(t) else 0.0
+    span = np.ptp(original, axis=0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        spread = np.max([np.abs(np.asarray(twin, dtype=float) - original) for twin in twins], axis=0)
+        relative = np.where(span > 0, spread / np.where(span > 0, span, 1.0), 0.0)
+    parted = ~(np.max(relative, axis=1) <= HORIZON_FRACTION)  # a NaN parts too
+    rows = np.nonzero(parted)[0]
+    if not rows.size:
+        return float(t[-1])
+    return float(t[max(int(rows[0]) - 1, 0)])
+
+
+def control_factors(model) -> list[tuple[str, float, dict[str, float]]]:
+    """The negative controls a model takes: ``(group, error, factors for EngineModel.multiplied)`` each.
+
+    Gravity at each of :data:`CONTROL_ERRORS` where the model has a
+    nonzero gravity; the masses (every parameter of dimension M or
+    M L^-3 that is not zero) doubled.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.verdicts.strength import control_factors
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> [(group, error) for group, error, _ in control_factors(model)]
+    [('g', 0.0001), ('g', 0.01), ('g', 1.0), ('masses', 1.0)]
+    """
+    from ...dimensions import Dimension
+
+    out = []
+    names = {p.name: p for p in model.parameters}
+    gravity = names.get("g")
+    if gravity is not None and any(v != 0 for v in gravity.value):
+        out.extend(("g", e, {"g": 1.0 + e}) for e in CONTROL_ERRORS)
+    mass, density = Dimension.parse("M"), Dimension.parse("M L^-3")
+    masses = {
+        p.name: 2.0
+        for p in model.parameters
+        if p.dimension in (mass, density) and p.source != "derived" and any(v != 0 for v in p.value)
+    }
+    if masses:
+        out.append(("masses", 1.0, masses))
+    return out
+
+
+def caught(original: np.ndarray, back: np.ndarray, limits: np.ndarray, bits: bool) -> bool:
+    """Whether a run mapped back (`back`) is told apart from the original: by any bit, or beyond `limits`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pitheorem.engines.verdicts.strength import caught
+    >>> a = np.array([[1.0, 2.0]])
+    >>> caught(a, a + 1e-17, np.array([1e-9, 1e-9]), bits=True), caught(a, a + 1e-12, np.array([1e-9, 1e-9]), bits=False)
+    (False, False)
+    >>> caught(a, np.nextafter(a, 3.0), np.array([1e-9, 1e-9]), bits=True)
+    True
+    """
+    if bits:
+        return not np.array_equal(original, back)
+    with np.errstate(invalid="ignore"):
+        return bool(np.any(~(np.abs(back - original) <= limits)))
