@@ -494,7 +494,8 @@ def _cmd_params(args) -> int:
     from .engines.cli import params_answer, parse_scene
 
     # the file by its name (a shipped one as example:NAME): the first line stays short whatever its folder
-    name = args.file if args.file.startswith("example:") else Path(args.file).name
+    named = _as_named(args.file)
+    name = named if named.startswith("example:") else Path(args.file).name
     _print(params_answer(engine_path, **parse_scene(args.scene), name=name), args)
     return EXIT_OK
 
