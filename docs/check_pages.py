@@ -146,6 +146,7 @@ MIN_FIGURES = {
     "tutorials/05_linear_systems.html": 2,
     "tutorials/06_similarity_in_physics_engines.html": 1,
     "tutorials/07_scaling_your_own_mujoco_model.html": 1,
+    "tutorials/10_where_similarity_holds.html": 4,
     "explanation/errata.html": 1,
     "howto/compare_scaled_simulation.html": 1,
 }

@@ -15,6 +15,7 @@ an MJCF (MuJoCo) or a URDF (PyBullet) file, or a shipped example
     pitheorem verify FILE --scale g=1 --s 4 [--duration 1]          (MJCF and URDF)
     pitheorem check  FILE [--from L=cm M=g] [--engine mujoco]        (MJCF and URDF)
     pitheorem convert FILE [--from L=cm M=g] --units L=mm | --fit mujoco [--output OUT]
+    pitheorem sweep  FILE [FILE ...] --scale g=1 --s 1e-3:1e3:13 [--plot sweep.png] [--dask ADDRESS]
 
 ``groups`` without ``--repeating`` takes the first valid set of repeating
 variables without time variables; if one of them has the value 0 (which
@@ -449,6 +450,56 @@ def _cmd_verify(args) -> int:
     return EXIT_OK if answer.report.similar else EXIT_INFEASIBLE
 
 
+def _cmd_sweep(args) -> int:
+    from .exact import read_positive
+
+    paths = [_engine_path(f) for f in args.file]
+    if None in paths:
+        culprit = args.file[paths.index(None)]
+        raise _CommandError(f"{culprit}: sweep runs MJCF (.xml) or URDF (.urdf) model files in their engine")
+    from .engines.cli import parse_s_values, sweep_engine
+
+    s = parse_s_values(args.s)
+    duration = read_positive(args.duration, "--duration")
+    models, scalings = [], []
+    for name in args.file:
+        model, engine_model = _load_with_engine(name, args.scene, args.engine)
+        result = _run_search(model, args)
+        if not result.feasible:
+            print(f"pitheorem: {name}: {result.explanation()} Nothing swept.", file=sys.stderr)
+            return EXIT_ERROR
+        models.append(engine_model)
+        scalings.append(_chosen_scaling(result, args.solution))
+    client = _dask_client(args.dask) if args.dask else None
+    show = args.format != "json" and sys.stderr.isatty()
+    answer = sweep_engine(
+        models,
+        scalings,
+        s,
+        float(duration),
+        names=args.file,
+        inputs=args.input,
+        client=client,
+        plot=args.plot,
+        progress=show,
+    )
+    _print(answer, args)
+    failed = any(v in ("not similar", "refused") for sw in answer.sweeps for v in sw.verdicts)
+    return EXIT_INFEASIBLE if failed else EXIT_OK
+
+
+def _dask_client(address: str):
+    """A Dask client of the scheduler at `address`, or a one-line error naming the extra."""
+    try:
+        from distributed import Client
+    except ImportError:
+        raise _CommandError('--dask needs Dask: pip install "pitheorem[cluster]"') from None
+    try:
+        return Client(address, timeout=30)
+    except (OSError, TimeoutError) as err:
+        raise _CommandError(f"--dask {address!r}: cannot reach the scheduler ({err})", culprit=address) from None
+
+
 def _engine_file(args, command: str) -> str:
     """The MJCF or URDF file of ``check`` and ``convert`` (a shipped one by its path), or a one-line error."""
     path = _engine_path(args.file)
@@ -693,6 +744,41 @@ def build_parser() -> argparse.ArgumentParser:
         "--engine", metavar="ENGINE", help="run the file in this engine instead of its own (an MJCF file in mjx, say)"
     )
     p.set_defaults(run=_cmd_verify)
+
+    p = sub.add_parser(
+        "sweep",
+        parents=[request],
+        **options,
+        help="verify MJCF or URDF models at many scale factors: where similarity holds",
+        description="Verify each model at every scale factor (as verify does at one), in parallel on "
+        "this machine's cores or on a Dask cluster (--dask); a table per file, and with several "
+        "files a table of verdicts by scale. Exit codes: 0 every copy exact or similar (or "
+        "inconclusive), 1 some copy not similar or refused, 2 bad input.",
+    )
+    p.add_argument(
+        "file", nargs="+", metavar="FILE", help=f"MJCF (.xml) or URDF (.urdf) model files, or {_EXAMPLES_TEXT}"
+    )
+    p.add_argument("--format", choices=FORMATS, default="text", help="output format (default: text)")
+    p.add_argument("--scene", nargs="+", metavar="NAME=VALUE", help="URDF files: PyBullet's scene")
+    p.add_argument(
+        "--s",
+        nargs="+",
+        required=True,
+        metavar="S",
+        help="scale factors: numbers (4, 1/4) and ranges A:B:N, N factors from A to B evenly spaced in log s",
+    )
+    p.add_argument("--duration", default="1", metavar="T", help="simulated time of each original run (default 1)")
+    p.add_argument(
+        "--input",
+        choices=("smooth", "zero"),
+        default="smooth",
+        help="actuator inputs: a smooth sine per actuator (default), or none",
+    )
+    p.add_argument("--solution", type=int, default=1, metavar="K", help="use the K-th minimal scaling (default 1)")
+    p.add_argument("--engine", metavar="ENGINE", help="run the files in this engine instead of their own")
+    p.add_argument("--plot", metavar="PNG", help="write the figure (with several files, one per file: PNG_stem.png)")
+    p.add_argument("--dask", metavar="ADDRESS", help="run on the Dask cluster of this scheduler (tcp://host:8786)")
+    p.set_defaults(run=_cmd_sweep)
 
     units = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
     units.add_argument(

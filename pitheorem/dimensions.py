@@ -21,7 +21,15 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from .errors import DimensionSyntaxError, InvalidRequestError, LimitError
-from .exact import MAX_DENOMINATOR, MAX_FORMULA_LENGTH, MAX_NESTING, check_exponent, read_number, short_text
+from .exact import (
+    MAX_DENOMINATOR,
+    MAX_EXPONENT,
+    MAX_FORMULA_LENGTH,
+    MAX_NESTING,
+    check_exponent,
+    read_exponent,
+    read_rational,
+)
 from .formatting import MathDisplay, render
 from .immutable import immutable
 
@@ -91,7 +99,12 @@ class Dimension(MathDisplay):
     """An exact product of base dimensions, such as ``M L^2 T^-2``.
 
     Immutable and hashable.  Zero exponents are dropped, so two dimensions
-    are equal exactly when they are the same physical dimension.
+    are equal exactly when they are the same physical dimension.  Every
+    Dimension lies within the exponent limits of :mod:`pitheorem.exact`
+    (magnitude 1000, denominator 10^12): the constructor, the parser and
+    ``*``, ``/`` and ``**`` refuse anything beyond them with a
+    :class:`~pitheorem.LimitError`, and an irrational power with a
+    :class:`~pitheorem.NumberError`.
 
     Parameters
     ----------
@@ -112,6 +125,12 @@ class Dimension(MathDisplay):
     True
     >>> Dimension.parse("1").is_dimensionless
     True
+    >>> from pitheorem import LimitError
+    >>> try:
+    ...     Dimension.parse("L^999") * Dimension.parse("L^2")
+    ... except LimitError as err:
+    ...     print(err)
+    the exponent of 'L' is 1001: its magnitude exceeds the limit 1000
     """
 
     # (base, exponent) pairs with nonzero exponents, in display order
@@ -124,21 +143,18 @@ class Dimension(MathDisplay):
                 raise InvalidRequestError(
                     f"base dimension names must be identifiers such as 'L' or 'Theta', got {base!r}", culprit=base
                 )
-            total[base] = total.get(base, Fraction(0)) + read_number(p, f"the exponent of {base!r}")
-        # the limits hold for the total, however it was reached: many small terms, or a power of a power
-        for base, p in total.items():
-            check_exponent(p, f"the exponent of {base!r}")
+            total[base] = total.get(base, Fraction(0)) + read_rational(p, f"the exponent of {base!r}")
         object.__setattr__(self, "_exponents", _clean(total))
+        # the limits hold for the total, however it was reached: many small terms, or a power of a power
+        self._within_limits()
 
     @classmethod
     def _combined(cls, pairs: Iterable[tuple[str, Fraction]]) -> Dimension:
-        """The product of exact (base, exponent) pairs of valid dimensions, unchecked.
+        """The product of exact (base, exponent) pairs, unchecked: callers check the total.
 
-        The algebra's own constructor: a product or a power of valid
-        dimensions may pass the exponent limits (the dimension of a term of
-        an equation, of a Pi group), as exact arithmetic allows; a formula
-        and a mapping are checked here, and a System checks every dimension
-        that enters it.
+        The algebra's own constructor; every public way to a Dimension
+        ends in :meth:`_within_limits`, so that each Dimension lies within
+        the limits of :mod:`pitheorem.exact`.
         """
         total: dict[str, Fraction] = {}
         for base, p in pairs:
@@ -147,10 +163,11 @@ class Dimension(MathDisplay):
         object.__setattr__(dim, "_exponents", _clean(total))
         return dim
 
-    def _within_limits(self) -> Dimension:
-        """This dimension, if every exponent lies within the limits; else LimitError."""
+    def _within_limits(self, where: str = "") -> Dimension:
+        """This dimension, if every exponent lies within the limits; else LimitError (`where`: of what)."""
         for base, p in self._exponents:
-            check_exponent(p, f"the exponent of {base!r}")
+            if abs(p) > MAX_EXPONENT or p.denominator > MAX_DENOMINATOR:
+                check_exponent(p, f"the exponent of {base!r}{where}")
         return self
 
     # -- construction -----------------------------------------------------
@@ -270,24 +287,17 @@ class Dimension(MathDisplay):
     def __mul__(self, other: Dimension) -> Dimension:
         if not isinstance(other, Dimension):
             return NotImplemented
-        return Dimension._combined(self._exponents + other._exponents)
+        return Dimension._combined(self._exponents + other._exponents)._within_limits()
 
     def __truediv__(self, other: Dimension) -> Dimension:
         if not isinstance(other, Dimension):
             return NotImplemented
-        return Dimension._combined(self._exponents + tuple((b, -p) for b, p in other._exponents))
+        return Dimension._combined(self._exponents + tuple((b, -p) for b, p in other._exponents))._within_limits()
 
     def __pow__(self, exponent) -> Dimension:
-        # algebra, as exact as * and / (a Pi group's dimension takes integer powers beyond MAX_EXPONENT); a
-        # System checks the limits of what enters it.  The power's size is bounded so that results stay printable
-        e = read_number(exponent, "the power of a dimension")
-        if max(abs(e.numerator), e.denominator) > MAX_DENOMINATOR:
-            raise LimitError(
-                short_text(e),
-                "the power of a dimension",
-                f"its numerator and denominator may not exceed {MAX_DENOMINATOR} in magnitude",
-            )
-        return Dimension._combined((b, p * e) for b, p in self._exponents)
+        # the power is an exponent as written in a formula, under the same rule and limits; so is the result
+        e = read_exponent(exponent, "the power of a dimension")
+        return Dimension._combined((b, p * e) for b, p in self._exponents)._within_limits()
 
     # -- display (text, LaTeX and the rest: pitheorem.formatting) -----------
     def __repr__(self) -> str:
@@ -304,6 +314,24 @@ class Dimension(MathDisplay):
         '\\mathsf{L}\\,\\mathsf{T}^{-2}'
         """
         return render(self, "latex")
+
+
+def product_of_powers(factors: Iterable[tuple[Dimension, Fraction]], where: str = "") -> Dimension:
+    """The product of dimensions raised to exact powers, held to the limits once, at the end.
+
+    For the dimension of a term of an equation: ``x**1000 * y**1000 / z**1000``
+    lies within the limits though its first two factors together do not.
+    `where` names the term in the LimitError (``" in the dimension of x**1001"``).
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from pitheorem.dimensions import Dimension, product_of_powers
+    >>> L = Dimension.parse("L")
+    >>> product_of_powers([(L, 1000), (L, 1000), (L, -1000)])
+    Dimension.parse('L^1000')
+    """
+    return Dimension._combined((b, p * Fraction(e)) for d, e in factors for b, p in d._exponents)._within_limits(where)
 
 
 def _clean(total: dict[str, Fraction]) -> tuple[tuple[str, Fraction], ...]:
@@ -334,6 +362,7 @@ class _Parser:
     def __init__(self, text: str, allowed: tuple[str, ...]):
         self.text, self.allowed = text, allowed
         self.depth = 0
+        self.where = f" in {text!r}" if len(text) <= 40 else ""  # for a total beyond the limits
         if len(text) > MAX_FORMULA_LENGTH:
             raise LimitError(
                 f"{text[:20]}...",
@@ -379,26 +408,26 @@ class _Parser:
         return dim
 
     def product(self) -> Dimension:
+        # each product is held to the limits: the total of a formula, not only each exponent ("L^1000 L^1000")
         dim = self.power()
         while True:
             kind, value, _ = self.peek()
             if value == "*":
                 self.take()
-                dim = dim * self.power()
+                dim = product_of_powers([(dim, 1), (self.power(), 1)], self.where)
             elif value == "/":
                 self.take()
-                dim = dim / self.power()
+                dim = product_of_powers([(dim, 1), (self.power(), -1)], self.where)
             elif kind in ("name", "number") or value == "(":
-                dim = dim * self.power()  # juxtaposition: "M L^2"
+                dim = product_of_powers([(dim, 1), (self.power(), 1)], self.where)  # juxtaposition: "M L^2"
             else:
                 return dim
-            dim._within_limits()  # the total of a formula, not only each exponent: "L^1000 L^1000"
 
     def power(self) -> Dimension:
         dim = self.atom()
         if self.peek()[1] in ("^", "**"):
             self.take()
-            dim = dim ** self.exponent()
+            dim = product_of_powers([(dim, self.exponent())], self.where)  # "(L^1000)^1000" is beyond
         return dim
 
     def atom(self) -> Dimension:

@@ -26,9 +26,9 @@ import sympy
 from sympy.core.function import AppliedUndef
 
 from .bases import independent_subsets
-from .dimensions import Dimension
-from .errors import InvalidRequestError, UnknownVariableError
-from .exact import read_exponent, read_number
+from .dimensions import Dimension, product_of_powers
+from .errors import InvalidRequestError, LimitError, UnknownVariableError
+from .exact import read_exponent, read_rational
 from .formatting import TableDisplay
 from .immutable import immutable
 from .linalg import nullspace, primitive_integer_vector, rank, row_space_basis, solve
@@ -56,8 +56,18 @@ _DEFAULT_TIME = "t"
 def _exponent(exp) -> Fraction | None:
     """A numeric exponent as an exact Fraction (a float by the float rule of pitheorem.exact), else None."""
     if exp.is_Rational or exp.is_Float:
-        return read_number(exp, "an exponent in the equation")
+        return read_rational(exp, "an exponent in the equation")
     return None
+
+
+def _term_product(node, factors) -> Dimension:
+    """:func:`~pitheorem.dimensions.product_of_powers` of a term's factors; beyond the limits, the term is named."""
+    try:
+        return product_of_powers(factors)
+    except LimitError as err:
+        text = sympy.sstr(node)
+        where = f" in the dimension of {text if len(text) <= 40 else text[:40] + '...'}"
+        raise LimitError(err.value, err.what + where, err.limit, err.hint) from None
 
 
 def _terms(side) -> list[sympy.Expr]:
@@ -180,22 +190,17 @@ class _DimensionWalker:
                 self.dim(arg)
             return self.lookup(node.func.__name__)
         if isinstance(node, sympy.Derivative):
-            d = self.dim(node.expr)
-            for var, count in node.variable_count:
-                d = d / self.dim(var) ** int(count)
-            return d
+            factors = [(self.dim(node.expr), 1)] + [(self.dim(var), -int(c)) for var, c in node.variable_count]
+            return _term_product(node, factors)
         if isinstance(node, sympy.Add):
             return self.same(node.args)
         if isinstance(node, sympy.Mul):
-            d = Dimension.dimensionless()
-            for arg in node.args:
-                d = d * self.dim(arg)
-            return d
+            return _term_product(node, [(self.dim(arg), 1) for arg in node.args])
         if isinstance(node, sympy.Pow):
             base, exp = node.args
             power = _exponent(exp)
             if power is not None:
-                return self.dim(base) ** power
+                return _term_product(node, [(self.dim(base), power)])
             self.dimensionless_argument(node)  # x**y needs both dimensionless
             return Dimension.dimensionless()
         if isinstance(node, _DIMENSION_PRESERVING):

@@ -29,13 +29,28 @@ positive number, :func:`read_scale_factor` for the scale factor ``s``, and
 :func:`read_value` for a parameter value; the last two keep a float a float
 (float in, float out) and make any other number exact.
 
-Exponents (of base dimensions, and of the scale factor ``s``) must also lie
-within :data:`MAX_EXPONENT` in magnitude with a denominator of at most
-:data:`MAX_DENOMINATOR`; formulas may nest brackets :data:`MAX_NESTING`
-deep and be :data:`MAX_FORMULA_LENGTH` characters long.  Beyond that a
-:class:`~pitheorem.errors.LimitError` states the limit.  No physical model
-comes near these limits; they keep exact arithmetic fast and every result
-printable.
+The size limits, stated here and nowhere else (:data:`LIMITS` lists
+them for the documentation):
+
+* an exponent -- of a base dimension, of the scale factor ``s``, or a
+  power a dimension is raised to -- lies within :data:`MAX_EXPONENT`
+  (1000) in magnitude, with a denominator of at most
+  :data:`MAX_DENOMINATOR` (10^12); its numerator is whatever these two
+  allow (up to 10^15);
+* a dimension formula nests brackets at most :data:`MAX_NESTING` (100)
+  deep and is at most :data:`MAX_FORMULA_LENGTH` (10,000) characters long.
+
+They are enforced wherever an exponent enters: a formula
+(``Dimension.parse``, a model file's ``dimension``), a mapping
+(``Dimension({...})``, ``System({...})``), a power or product of
+dimensions (``Dimension ** p``, ``*``, ``/``: every
+:class:`~pitheorem.Dimension` lies within them), a unit string
+(``System.from_units``, a model file's ``unit``), and the exponents of a
+scaling or a search.  The limits hold for totals (``"L^1000 L^1000"``,
+``(L^1000)^1000``), not only for each number written.  Beyond them a
+:class:`~pitheorem.errors.LimitError` states the limit; within them
+nothing is refused.  No physical model comes near these limits; they keep
+exact arithmetic fast and every result printable.
 """
 
 from __future__ import annotations
@@ -53,8 +68,10 @@ from .errors import InvalidRequestError, LimitError, NumberError
 
 __all__ = [
     "FLOAT_DIGITS",
+    "LIMITS",
     "MAX_DENOMINATOR",
     "MAX_EXPONENT",
+    "MAX_FLOAT_DENOMINATOR",
     "MAX_FORMULA_LENGTH",
     "MAX_NESTING",
     "is_float",
@@ -62,6 +79,7 @@ __all__ = [
     "read_exponent",
     "read_number",
     "read_positive",
+    "read_rational",
     "read_scale_factor",
     "read_value",
     "short_text",
@@ -78,6 +96,17 @@ MAX_NESTING = 100
 MAX_FORMULA_LENGTH = 10_000
 #: most significant digits of a float's shortest decimal form that is read as that decimal
 FLOAT_DIGITS = 12
+#: largest denominator of an exponent read from a computed float (one of more than FLOAT_DIGITS digits): the
+#: float of every such fraction within the exponent limits reads back as that fraction, and the float of an
+#: irrational number almost never does (the chance is about 1e-7 at worst, for exponents near 1000)
+MAX_FLOAT_DENOMINATOR = 1000
+#: the size limits, as the documentation tables them: (what, limit); beyond one, a LimitError
+LIMITS: tuple[tuple[str, str], ...] = (
+    ("magnitude of an exponent (of a base dimension, of s, or a power)", f"{MAX_EXPONENT}"),
+    ("denominator of an exponent", f"10^{len(str(MAX_DENOMINATOR)) - 1}"),
+    ("bracket nesting in a dimension formula", f"{MAX_NESTING}"),
+    ("length of a dimension formula", f"{MAX_FORMULA_LENGTH:,} characters"),
+)
 #: largest power of ten written in a number string (``"1e400"`` is fine, ``"1e99999999"`` is not)
 _MAX_DECIMAL_EXPONENT = 10_000
 _MAX_STRING_LENGTH = 1_000
@@ -353,10 +382,8 @@ def _from_float(value, what: str) -> Fraction:
         return _from_text(str(value), value, what)
     if not math.isfinite(value):
         raise NumberError(value, what, _EXPECTED)
-    text = repr(float(value))  # np.float64 is a float too; its repr is numpy's
-    digits = text.lstrip("-").split("e")[0].replace(".", "").strip("0")
-    if len(digits) <= FLOAT_DIGITS:
-        return _from_text(text, value, what)
+    if not _is_computed_float(value):
+        return _from_text(repr(float(value)), value, what)  # np.float64 is a float too; its repr is numpy's
     return simplest_fraction_rounding_to(float(value))
 
 
@@ -458,8 +485,71 @@ def check_exponent(exponent: Fraction, what: str, *, shown: object = None) -> Fr
     return exponent
 
 
+def read_rational(value, what: str) -> Fraction:
+    """Read a number that must be rational, such as an exponent.
+
+    :func:`read_number`, and one rule more for a computed float (one of
+    more than :data:`FLOAT_DIGITS` significant digits): the simplest
+    fraction that rounds to it must have a denominator of at most
+    :data:`MAX_FLOAT_DENOMINATOR`.  ``1/3`` passes as 1/3; ``2**0.5``,
+    whose simplest fraction is 131836323/93222358, is the float of an
+    irrational number and is refused.  No limit on the size is applied
+    (:func:`read_exponent` applies them).
+
+    Parameters
+    ----------
+    value : number or str
+        As for :func:`read_number`.
+    what : str
+        What the number is, for the error message.
+
+    Returns
+    -------
+    Fraction
+        The exact number read.
+
+    Raises
+    ------
+    NumberError
+        For anything that is not a rational number, naming the value.
+
+    Examples
+    --------
+    >>> from pitheorem.exact import read_rational
+    >>> read_rational(1 / 3, "the power"), read_rational(0.1 + 0.6, "the power")
+    (Fraction(1, 3), Fraction(7, 10))
+    >>> from pitheorem import NumberError
+    >>> try:
+    ...     read_rational(2**0.5, "the power")
+    ... except NumberError as err:
+    ...     print(err.culprit)
+    1.4142135623730951
+    """
+    number = read_number(value, what)
+    if number.denominator > MAX_FLOAT_DENOMINATOR and _is_computed_float(value):
+        raise NumberError(
+            value,
+            what,
+            f"a rational number: a float of more than {FLOAT_DIGITS} digits is read as the simplest fraction that "
+            f"rounds to it, here {short_text(number)}, and the denominator of an exponent read so may not exceed "
+            f"{MAX_FLOAT_DENOMINATOR} (the float of an irrational number, such as a square root, has no simpler "
+            "one); give the exponent exactly, as a Fraction, a string such as '1/3', or a formula such as 'L^(1/3)'",
+        )
+    return number
+
+
+def _is_computed_float(value) -> bool:
+    """Whether `value` is a double that the float rule reads as a computed float (more than FLOAT_DIGITS digits)."""
+    if isinstance(value, sympy.Float) and value._prec <= 53:
+        value = float(value)
+    if not isinstance(value, float):  # np.float64 is a float; float32 and Decimal are read as the decimal they print
+        return False
+    digits = repr(float(value)).lstrip("-").split("e")[0].replace(".", "").strip("0")
+    return len(digits) > FLOAT_DIGITS
+
+
 def read_exponent(value, what: str) -> Fraction:
-    """Read an exponent: :func:`read_number`, then the exponent limits.
+    """Read an exponent: :func:`read_rational`, then the exponent limits.
 
     Examples
     --------
@@ -473,7 +563,7 @@ def read_exponent(value, what: str) -> Fraction:
     ...     print(err.limit)
     its denominator 10000000000000 exceeds the limit 1000000000000
     """
-    return check_exponent(read_number(value, what), what, shown=value)
+    return check_exponent(read_rational(value, what), what, shown=value)
 
 
 def short_text(value: Fraction) -> str:

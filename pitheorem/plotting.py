@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
-from .formatting.pieces import UNCHANGED, power_latex, scale_text
+from .formatting.pieces import UNCHANGED, file_name, power_latex, scale_text, unit_change_text
 
-__all__ = ["plot_search", "plot_similarity"]
+__all__ = ["plot_search", "plot_similarity", "plot_sweep", "sweep_alt_text"]
 
 
 def plot_search(result, ax=None):
@@ -137,4 +137,202 @@ def plot_similarity(report, states=None, units=None):
     bottom.set_xlabel(_unit_label(report.original.time, report, units))
     bottom.set_ylabel(f"|difference|: {quantities}")
     bottom.legend(loc="best", fontsize="small")
+    return fig
+
+
+#: how each verdict of a sweep is drawn: marker, colour, whether filled
+_VERDICT_STYLE = {
+    "exact": ("o", "#1a7f37", True),
+    "similar": ("o", "#0550ae", True),
+    "not similar": ("X", "#cf222e", True),
+    "inconclusive": ("s", "#6e7781", False),
+    "refused": ("v", "#000000", True),
+}
+
+
+def _bands(rows):
+    """Per threshold: the runs of consecutive rows (sorted by s) beyond it, as (first, last) indices."""
+    out = {}
+    for name in dict.fromkeys(n for r in rows for n in r.thresholds):
+        inside = [name in r.thresholds for r in rows]
+        runs, start = [], None
+        for k, flag in enumerate([*inside, False]):
+            if flag and start is None:
+                start = k
+            elif not flag and start is not None:
+                runs.append((start, k - 1))
+                start = None
+        out[name] = runs
+    return out
+
+
+def sweep_alt_text(sweep) -> str:
+    """The alt text of a sweep's figure: what it shows, in words.
+
+    Parameters
+    ----------
+    sweep : Sweep
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.engines import Sweep, SweepRow
+    >>> rows = (SweepRow(0.001, "refused", None, None, None, None, None, (), ("mujoco_minval_mass",)),
+    ...         SweepRow(1, "exact", 0.0, 1e-12, None, True, None, (), ()))
+    >>> from pitheorem.plotting import sweep_alt_text
+    >>> sweep_alt_text(Sweep("robot.xml", "mujoco", None, 1.0, rows))
+    'Deviation of the scaled copy and the yardstick against the scale factor s from 0.001 to 1 for robot.xml in mujoco; verdicts: s = 0.001 refused, s = 1 exact; beyond mujoco_minval_mass at s = 0.001.'
+    """
+    rows = sorted(sweep.rows, key=lambda r: float(r.s))
+    name = file_name(sweep.model) or "the model"
+    if not rows:
+        return f"An empty sweep of {name}."
+    verdicts = ", ".join(f"s = {float(r.s):.3g} {r.verdict}" for r in rows)
+    text = (
+        f"Deviation of the scaled copy and the yardstick against the scale factor s from {float(rows[0].s):.3g} "
+        f"to {float(rows[-1].s):.3g} for {name} in {sweep.engine}; verdicts: {verdicts}"
+    )
+    for threshold, runs in _bands(rows).items():
+        where = ", ".join(
+            f"s = {float(rows[a].s):.3g}" if a == b else f"s = {float(rows[a].s):.3g} to {float(rows[b].s):.3g}"
+            for a, b in runs
+        )
+        text += f"; beyond {threshold} at {where}"
+    if sweep.fitted_s is not None:
+        text += f"; the units fit_units chooses lie at s = {sweep.fitted_s:.3g}"
+    return text + "."
+
+
+def plot_sweep(sweep, ax=None):
+    """Figure of a sweep: where along s the copy stays similar, and why.
+
+    Deviation of the copy (mapped back) and the yardstick (the spread of
+    the original's one-ulp twins) against ``s``, both axes logarithmic.
+    Each row's verdict is its marker (an exact row, deviation 0, is drawn
+    at the bottom of the axes; a refused copy at the top); each engine
+    threshold crossed over part of the range is a labelled band; the ``s``
+    at which the scaling reaches the units :func:`pitheorem.fit_units`
+    chooses is a dotted line.  The figure's label (``fig.get_label()``) is
+    its alt text (:func:`sweep_alt_text`).
+
+    Parameters
+    ----------
+    sweep : Sweep
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem.engines import Sweep, SweepRow
+    >>> rows = (SweepRow(0.01, "not similar", 1e-3, 1e-9, None, True, None, (), ("mujoco_minmu",)),
+    ...         SweepRow(1, "exact", 0.0, 1e-12, None, True, None, (), ()),
+    ...         SweepRow(100, "similar", 1e-11, 1e-12, None, True, None, (), ()))
+    >>> fig = pt.plotting.plot_sweep(Sweep("robot.xml", "mujoco", None, 1.0, rows))
+    >>> ax = fig.axes[0]
+    >>> ax.get_xscale(), ax.get_xlabel()
+    ('log', 'scale factor s')
+    >>> [t.get_text() for t in ax.texts]
+    ['beyond mujoco_minmu']
+    """
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    rows = sorted(sweep.rows, key=lambda r: float(r.s))
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(5.6, 5.0), layout="constrained")
+    else:
+        fig = ax.figure
+    s = np.array([float(r.s) for r in rows])
+    positive = [v for r in rows for v in (r.max_deviation, r.yardstick) if v]
+    low = min(positive) / 30 if positive else 1e-17
+    high = max(positive) * 30 if positive else 1.0
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_ylim(low, high)
+    measured = [(float(r.s), r.yardstick) for r in rows if r.yardstick]
+    if measured:
+        xs, ys = zip(*measured, strict=True)
+        ax.plot(xs, ys, "-", color="#8250df", lw=1.5, label="yardstick (spread of one-ulp twins)")
+        ax.plot(
+            xs,
+            [sweep.baseline_factor * y for y in ys],
+            "--",
+            color="#8250df",
+            lw=1,
+            label=f"{sweep.baseline_factor:g} x yardstick (margin)",
+        )
+    deviations = [(float(r.s), r.max_deviation) for r in rows if r.max_deviation]
+    if deviations:
+        ax.plot(*zip(*deviations, strict=True), "-", color="0.6", lw=1, zorder=1)
+    for v, (marker, colour, filled) in _VERDICT_STYLE.items():
+        mine = [r for r in rows if r.verdict == v]
+        if not mine:
+            continue
+        if v == "refused":
+            y = [high / 2] * len(mine)
+        else:
+            y = [r.max_deviation if r.max_deviation else low * 2 for r in mine]
+        label = {"exact": "exact (bit for bit; drawn at the bottom)", "refused": "refused by the compiler (top)"}.get(
+            v, v
+        )
+        ax.scatter(
+            [float(r.s) for r in mine],
+            y,
+            marker=marker,
+            s=70,
+            zorder=3,
+            facecolors=colour if filled else "white",
+            edgecolors=colour,
+            linewidths=1.5,
+            label=label,
+        )
+    colours = plt.get_cmap("tab10").colors
+    edges = np.sqrt(s[:-1] * s[1:]) if len(s) > 1 else np.array([])
+    left = s[0] / 2 if len(s) else 1.0
+    right = s[-1] * 2 if len(s) else 1.0
+    ax.set_xlim(left, right)
+    everywhere = []
+    for k, (name, runs) in enumerate(_bands(rows).items()):
+        if runs == [(0, len(rows) - 1)]:
+            everywhere.append(name)
+            continue
+        colour = colours[k % len(colours)]
+        for j, (a, b) in enumerate(runs):
+            x0 = left if a == 0 else edges[a - 1]
+            x1 = right if b == len(rows) - 1 else edges[b]
+            ax.axvspan(x0, x1, color=colour, alpha=0.13, lw=0, zorder=0)
+            if j == 0:
+                ax.text(
+                    math.sqrt(x0 * x1),
+                    math.sqrt(low * high),
+                    f"beyond {name}",
+                    rotation=90,
+                    ha="center",
+                    va="center",
+                    fontsize=9,
+                    color=colour,
+                )
+    if sweep.fitted_s is not None and left <= sweep.fitted_s <= right:
+        units = ", ".join(f"{b} = {u}" for b, u in (sweep.fitted_units or {}).items())
+        ax.axvline(sweep.fitted_s, color="#bf8700", ls=":", lw=2, label=f"fit_units: {units}")
+    ax.set_xlabel("scale factor s")
+    unit_text = ", ".join(f"{u}" for u in dict(sweep.units).values())
+    ax.set_ylabel(f"largest deviation of a coordinate\n(original units: {unit_text}; rad)")
+    name = file_name(sweep.model) or "model"
+    title = f"{name} in {sweep.engine}"
+    if sweep.scaling is not None:
+        title += f": {unit_change_text(sweep.scaling)}"
+    if everywhere:
+        title += "\nbeyond at every s: " + ", ".join(everywhere)
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="major", alpha=0.3)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, fontsize=8.5, frameon=False)
+    fig.set_label(sweep_alt_text(sweep))
     return fig

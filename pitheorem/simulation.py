@@ -14,7 +14,7 @@ What every simulator of the package shares lives here too, public, for
 model's inputs and mapped back from its run), :func:`similarity_report`
 (the one comparison and verdict), :func:`nudged` (the one-ulp baseline),
 :func:`fixed_steps` (the step count of Euler and of the paper's rod in an
-engine; :func:`pitheorem.engines.verdicts.verify` takes ``round(duration / dt)``
+engine; :func:`pitheorem.engines.verify` takes ``round(duration / dt)``
 steps of the model's own time step) and
 :func:`positive_float` (the check of a time, a step, a tolerance or ``s``).
 """
@@ -688,7 +688,7 @@ class SimilarityReport(TableDisplay):
         run that moved nothing proves nothing.  None without a yardstick.
     causes : tuple of Cause
         Why the runs are not exact or not similar, where an engine check
-        found out (:func:`pitheorem.engines.verdicts.verify`).
+        found out (:func:`pitheorem.engines.verify`).
     ensemble : int
         How many twins made the yardstick.
     horizon : float or None
@@ -742,7 +742,7 @@ class SimilarityReport(TableDisplay):
 
     @property
     def similar(self) -> bool:
-        """The verdict: :attr:`passed`, unless the run could not tell (:attr:`inconclusive`).
+        """The verdict: passed, unless the run could not tell (inconclusive).
 
         Examples
         --------
@@ -756,7 +756,7 @@ class SimilarityReport(TableDisplay):
 
     @property
     def verdict(self) -> str:
-        """``"exact"``, ``"similar"``, ``"inconclusive"`` or ``"not similar"``: the verdict in one word.
+        """The verdict in one word: exact, similar, inconclusive or not similar.
 
         Examples
         --------
@@ -882,7 +882,7 @@ def verify_similarity(
     baseline : bool
         Also run the original with every initial state nudged by one ulp
         (``pitheorem.simulation.nudged``) and judge each state's deviation against that
-        run's, as :func:`pitheorem.engines.verdicts.verify` does, instead of `tol`.
+        run's, as :func:`pitheorem.engines.verify` does, instead of `tol`.
 
     Returns
     -------
@@ -1026,7 +1026,7 @@ def similarity_report(
     """Compare an original run with a scaled run mapped back: the one verdict of every simulator.
 
     :func:`verify_similarity` (scipy or Euler) and
-    :func:`pitheorem.engines.verdicts.verify` (MuJoCo, PyBullet) both end here.  The
+    :func:`pitheorem.engines.verify` (MuJoCo, PyBullet) both end here.  The
     verdict is either absolute, ``max_deviation <= tol``, or, given a run
     `nudged` whose initial state moved by one ulp, relative to the model's
     own sensitivity: each state's deviation must stay within

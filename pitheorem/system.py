@@ -23,12 +23,13 @@ from .errors import (
     DuplicateVariableError,
     EmptySystemError,
     InvalidRequestError,
+    LimitError,
     PiTheoremError,
     RepeatingCountError,
     UnitError,
     UnknownVariableError,
 )
-from .exact import check_exponent, read_exponent, read_number
+from .exact import check_exponent, read_exponent
 from .groups import PiGroup, PiSet
 from .immutable import immutable
 from .linalg import integer_rref, nullspace, rank
@@ -203,7 +204,7 @@ class System:
     def _read_dimension(name: str, spec, allowed) -> Dimension:
         if isinstance(spec, Dimension):
             dim = spec
-            if not _within_limits(dim):  # a product or power of dimensions may pass the limits: name it
+            if not _within_limits(dim):  # a Dimension unpickled from elsewhere may pass the limits: name it
                 for base, power in dim.exponents.items():
                     check_exponent(power, f"the exponent of {base!r} in the dimension of {name!r}")
         elif isinstance(spec, str):
@@ -211,6 +212,8 @@ class System:
                 dim = _parse(spec, allowed)
             except DimensionSyntaxError as err:
                 raise DimensionSyntaxError(err.text, err.position, f"{err.reason} (dimension of {name!r})") from None
+            except LimitError as err:  # named as a syntax error is: the variable whose formula passes a limit
+                raise LimitError(err.value, f"{err.what} (dimension of {name!r})", err.limit, err.hint) from None
         elif isinstance(spec, Mapping):
             for base, power in spec.items():
                 if not isinstance(base, str):
@@ -285,7 +288,7 @@ class System:
                 if not isinstance(quantity, pint.Quantity):  # a bare number
                     quantity = registry.Quantity(quantity)
                 for unit, p in quantity.unit_items():  # pint loops forever on the root units of 'kg^nan'
-                    read_number(p, f"the exponent of {unit} in {what}")
+                    read_exponent(p, f"the exponent of {unit} in {what}")
                 dimensionality = dict(quantity.dimensionality)
                 root = dict(quantity.to_root_units().unit_items()) if angle_as_base else {}
             except PiTheoremError:

@@ -47,7 +47,7 @@ from scipy.optimize import Bounds, LinearConstraint, linprog, milp
 
 from .dimensions import Dimension
 from .errors import DimensionSyntaxError, DuplicateVariableError, InvalidRequestError, LimitError
-from .exact import MAX_DENOMINATOR, read_number, read_value, short_text
+from .exact import MAX_DENOMINATOR, MAX_EXPONENT, read_number, read_value, short_text
 from .formatting import MathDisplay, TableDisplay
 from .immutable import immutable
 from .linalg import nullspace
@@ -541,7 +541,7 @@ def _snap(problem: _Problem, v: np.ndarray, t_star: float) -> list[Fraction]:
         return max(0.0, float(viol.max()))
 
     def within_limits(exponents) -> bool:  # a unit's exponent is held to the package's size limits
-        return all(e.denominator <= MAX_DENOMINATOR and abs(e.numerator) <= MAX_DENOMINATOR for e in exponents)
+        return all(e.denominator <= MAX_DENOMINATOR and abs(e) <= MAX_EXPONENT for e in exponents)
 
     finest = None
     for digits in (3, 6, 9, 12):

@@ -257,12 +257,17 @@ def systems(draw, exponent=None, max_vars=8, max_bases=4):
     return pt.System({f"x{j}": pt.Dimension(zip(BASES[:k], col, strict=True)) for j, col in enumerate(columns)})
 
 
-def dimension_of_group(system: pt.System, group: pt.PiGroup) -> pt.Dimension:
-    """The dimension of a group's product, multiplied out from its variables' dimensions."""
-    total = pt.Dimension.dimensionless()
+def dimension_of_group(system: pt.System, group: pt.PiGroup) -> dict[str, Fraction]:
+    """The nonzero base exponents of a group's product, multiplied out here with Fractions.
+
+    Not with Dimension's own algebra: that is code under test, and a group's exponents times its
+    variables' may pass the exponent limits that every Dimension is held to (issue 33).
+    """
+    total: dict[str, Fraction] = {}
     for name, power in group.exponents.items():
-        total = total * system.dimension(name) ** power
-    return total
+        for base, p in system.dimension(name).exponents.items():
+            total[base] = total.get(base, Fraction(0)) + p * power
+    return {base: p for base, p in total.items() if p != 0}
 
 
 def loaded_after(code: str, watch=("numpy", "scipy", "matplotlib")) -> set[str]:

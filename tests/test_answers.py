@@ -29,6 +29,7 @@ def test_every_answer_is_a_named_tuple_with_the_text_display():
         "GroupsAnswer",
         "ParamsAnswer",
         "SearchAnswer",
+        "SweepAnswer",
     ]
     for cls in ANSWERS:
         assert issubclass(cls, tuple)
@@ -54,7 +55,8 @@ def test_optional_fields_default_to_nothing():
     # an engine apply names no other file and no values by default; groups pass over no variable
     assert answers.EngineApplyAnswer._field_defaults == {"also_written": (), "details": ()}
     assert answers.GroupsAnswer._field_defaults == {"passed_over": ()}
-    others = (answers.EngineApplyAnswer, answers.GroupsAnswer)
+    assert answers.EngineVerifyAnswer._field_defaults == {"notes": ()}  # the engine's notes: none by default
+    others = (answers.EngineApplyAnswer, answers.GroupsAnswer, answers.EngineVerifyAnswer)
     assert all(not cls._field_defaults for cls in ANSWERS if cls not in others)
 
 

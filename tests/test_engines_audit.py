@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import pitheorem as pt
@@ -184,3 +185,19 @@ def test_the_copys_thresholds_are_the_same_whether_it_is_made_here_or_read_from_
     threshold = [c for c in made.causes if c.kind == "threshold"]
     assert any("mujoco_minmu" in c.detail for c in threshold)
     assert threshold == [c for c in read.causes if c.kind == "threshold"]
+
+
+def test_a_number_of_no_power_is_a_cause_only_where_the_copy_holds_it_otherwise():
+    """Issue 31: polygon normals the probes could not give an exponent, held bit for bit alike in the copy, were
+    named 'unscaled'; only entries the copy changes can change a run."""
+    from pitheorem.engines.verdicts.audit import held_otherwise
+
+    before = np.array([[1.0, 0.0, 0.0], [0.0, 0.6, 0.8]])
+    unclean = np.zeros_like(before, dtype=bool)  # every entry without an exponent
+    assert not held_otherwise(before, before.copy(), unclean).any()
+    moved = before.copy()
+    moved[1, 1] = 0.61
+    assert held_otherwise(before, moved, unclean).tolist() == [[False] * 3, [False, True, False]]
+    assert not held_otherwise(before, moved, ~unclean).any()  # entries with an exponent are judged elsewhere
+    nan = np.array([np.nan])
+    assert not held_otherwise(nan, nan.copy(), np.array([False])).any()

@@ -9,8 +9,18 @@ from pitheorem.engines.verdicts.causes import sorted_causes
 from pitheorem.errors import InvalidRequestError, PiTheoremError
 
 
-def test_the_six_kinds_of_the_design():
-    assert set(CAUSE_KINDS) == {"precision", "solver", "contact", "threshold", "setting", "unscaled"}
+def test_the_seven_kinds_of_the_design():
+    assert set(CAUSE_KINDS) == {"precision", "solver", "contact", "threshold", "setting", "unscaled", "unknown"}
+
+
+def test_a_cause_says_whether_its_counter_run_restores_the_run():
+    assert Cause("solver", "x", "y").restores is None  # no run tests it (an audit's cause)
+    assert Cause("contact", "a / b", "z", restores=True).to_dict() == {
+        "kind": "contact",
+        "element": "a / b",
+        "detail": "z",
+        "restores": True,
+    }
 
 
 @pytest.mark.parametrize("kind", ["", "Contact", "contacts", None])

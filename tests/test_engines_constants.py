@@ -9,6 +9,7 @@ of treating a constant keeps a scaled run exact.
 from __future__ import annotations
 
 import math
+import re
 from fractions import Fraction
 from types import SimpleNamespace
 
@@ -19,6 +20,7 @@ import pitheorem as pt
 from pitheorem.engines import (
     CATALOGUE,
     ENGINES,
+    HiddenConstant,
     broken_constants,
     engine_search,
     hidden_constants,
@@ -75,7 +77,7 @@ def test_catalogue_is_read_whole_and_exactly_from_its_data_file():
     # the file's order: engine by engine
     assert [c.engine for c in CATALOGUE] == [e for e in ENGINES for c in CATALOGUE if c.engine == e]
     assert len(hidden_constants("pybullet")) == 23
-    assert len(hidden_constants("mujoco")) == 18
+    assert len(hidden_constants("mujoco")) == 27
     assert len(hidden_constants("mjx")) == 5
     assert hidden_constants(names=["mjx_segment_regularizer"])[0].dimension == pt.Dimension.parse("L^2")
     assert hidden_constants(names=["bullet_time_step"])[0].default == 1 / 240
@@ -177,6 +179,10 @@ def test_mujoco_defaults_match_the_engine():
     assert opt.tolerance == default("mujoco_tolerance")
     assert opt.sleep_tolerance == default("mujoco_sleep_tolerance")
     assert opt.iterations == default("mujoco_iterations")
+    assert opt.ccd_iterations == default("mujoco_ccd_iterations")
+    assert opt.ls_tolerance == default("mujoco_ls_tolerance")
+    assert opt.noslip_tolerance == default("mujoco_noslip_tolerance")
+    assert opt.impratio == default("mujoco_impratio")
     assert geom.solref[0] == default("mujoco_solref_timeconst")
     assert geom.solref[1] == default("mujoco_solref_dampratio")
     assert geom.solimp[0] == default("mujoco_solimp_dmin")
@@ -289,3 +295,213 @@ def test_every_model_names_its_engine_as_the_catalogue_does(tmp_path):
         constants = hidden_constants(model.engine)
         assert constants
         assert {c.engine for c in constants} == {model.engine}
+
+
+# -- MuJoCo's own constants, measured ---------------------------------------------------------------
+# Each catalogued constant read from MuJoCo's C source is shown here by a small model at two scales
+# (every length by 4: a power of two, so that without the constant the copy is the original bit for
+# bit) and by the smallest change of the model or its options that moves the quantity away from the
+# constant.  The source locations are MuJoCo main of 2026-08-22 (a7255075b); the runs are the
+# installed mujoco 4.0.0.
+
+
+def compiled(xml: str):
+    mujoco = pytest.importorskip("mujoco")
+    return mujoco, mujoco.MjModel.from_xml_string(xml)
+
+
+def contacts(xml: str) -> list[tuple[float, np.ndarray, np.ndarray]]:
+    """(depth, point, frame) of every contact of a model at its initial pose."""
+    mujoco, m = compiled(xml)
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    return [(float(c.dist), c.pos.copy(), c.frame.copy()) for c in d.contact[: d.ncon]]
+
+
+def ellipsoids(s: float, ccd_tolerance: float = 1e-6, ccd_iterations: int = 35) -> str:
+    """Two penetrating ellipsoids, every length times s: a pair that native CCD (GJK and EPA) handles."""
+    return f"""<mujoco><option ccd_tolerance="{ccd_tolerance!r}" ccd_iterations="{ccd_iterations}"/><worldbody>
+      <body><freejoint/><geom type="ellipsoid" size="{0.1 * s} {0.07 * s} {0.05 * s}" euler="10 20 30"/></body>
+      <body><freejoint/><geom type="ellipsoid" size="{0.08 * s} {0.06 * s} {0.05 * s}"
+        pos="{0.12 * s} {0.01 * s} {0.01 * s}" euler="-15 5 40"/></body></worldbody></mujoco>"""
+
+
+def gaps(original, copy, s: float) -> tuple[float, float, float]:
+    """Largest differences of the copy's contacts from the original's scaled: depth, point, frame."""
+    assert len(original) == len(copy) > 0
+    return (
+        max(abs(s * a[0] - b[0]) for a, b in zip(original, copy, strict=True)),
+        max(float(np.abs(s * a[1] - b[1]).max()) for a, b in zip(original, copy, strict=True)),
+        max(float(np.abs(a[2] - b[2]).max()) for a, b in zip(original, copy, strict=True)),
+    )
+
+
+def test_ccd_tolerance():
+    # engine_collision_convex.c mjc_penetration: config.tolerance = opt.ccd_tolerance;
+    # engine_collision_gjk.c gjk (min_norm) and epa (upper - lower < tolerance)
+    original = contacts(ellipsoids(1))
+    depth, _, frame = gaps(original, contacts(ellipsoids(4)), 4)
+    assert 1e-7 < depth < 1e-5  # measured: 1.1e-6
+    assert frame > 1e-4  # measured: 1.3e-3
+    # the tolerance scaled with the lengths: the copy is the original bit for bit
+    assert gaps(original, contacts(ellipsoids(4, ccd_tolerance=4e-6)), 4) == (0, 0, 0)
+
+
+def test_ccd_iterations_is_a_count():
+    # engine_collision_convex.c mjc_penetration: config.max_iterations = opt.ccd_iterations; EPA stopped by
+    # the count before it meets the tolerance runs the same in the copy, the tolerance left unscaled
+    original = contacts(ellipsoids(1, ccd_iterations=10))
+    assert gaps(original, contacts(ellipsoids(4, ccd_iterations=10)), 4) == (0, 0, 0)
+    assert gaps(contacts(ellipsoids(1)), contacts(ellipsoids(4)), 4)[0] > 0
+
+
+def box_vertices(a: float, b: float, c: float) -> str:
+    """The eight corners of a box of half extents a, b, c, as an MJCF mesh's vertex list."""
+    return " ".join(f"{x!r} {y!r} {z!r}" for x in (-a, a) for y in (-b, b) for z in (-c, c))
+
+
+def box_meshes(s: float, ccd_tolerance: float = 1e-6) -> str:
+    return f"""<mujoco><option ccd_tolerance="{ccd_tolerance!r}"/><asset>
+      <mesh name="a" vertex="{box_vertices(0.1 * s, 0.07 * s, 0.05 * s)}"/>
+      <mesh name="b" vertex="{box_vertices(0.08 * s, 0.06 * s, 0.05 * s)}"/></asset><worldbody>
+      <body><freejoint/><geom type="mesh" mesh="a" euler="10 20 30"/></body>
+      <body><freejoint/><geom type="mesh" mesh="b" pos="{0.15 * s} {0.01 * s} {0.01 * s}" euler="-15 5 40"/></body>
+      </worldbody></mujoco>"""
+
+
+def test_ccd_polytopes_scale():
+    # engine_collision_gjk.c gjk: min_norm = mjMINVAL for two discrete geoms; epa: tolerance = mjMINEPATOL;
+    # the option's ccd_tolerance is not used for two polytopes, and mjMINVAL is far below their lengths
+    original = contacts(box_meshes(1))
+    assert len(original) == 4
+    assert gaps(original, contacts(box_meshes(4)), 4) == (0, 0, 0)
+    assert gaps(original, contacts(box_meshes(4, ccd_tolerance=4e-6)), 4) == (0, 0, 0)
+
+
+def touching_spheres(s: float, offset: float) -> str:
+    """Two spheres of radius s whose centres are `offset` apart along y."""
+    return f"""<mujoco><worldbody><body><freejoint/><geom type="sphere" size="{s}"/></body>
+      <body pos="0 {offset!r} 0"><freejoint/><geom type="sphere" size="{s}"/></body></worldbody></mujoco>"""
+
+
+def test_minval_normal():
+    # engine_collision_primitive.c mjraw_SphereSphere: if (len < mjMINVAL) the normal is the cross product of
+    # the z axes, (1, 0, 0) where they are parallel
+    def normal(s, offset):
+        ((_, _, frame),) = contacts(touching_spheres(s, offset))
+        return tuple(frame[:3])
+
+    # 4e-16 apart in the original, 1.6e-15 in the copy: the constant lies between them
+    assert normal(1, 4e-16) == (1, 0, 0)
+    assert normal(4, 1.6e-15) == (0, 1, 0)
+    # moved away from it: 4e-15 and 1.6e-14 apart, the normal is the same
+    assert normal(1, 4e-15) == normal(4, 1.6e-14) == (0, 1, 0)
+
+
+def sphere_drop(dmin: float, dmax: float, steps: int = 200) -> np.ndarray:
+    """A sphere resting on a plane, every geom with solimp (dmin, dmax, 0.001): its heights."""
+    mujoco, m = compiled(f"""<mujoco><default><geom solimp="{dmin!r} {dmax!r} 0.001"/></default><worldbody>
+      <geom type="plane" size="1 1 .1"/><body pos="0 0 0.1"><freejoint/><geom type="sphere" size="0.1"/></body>
+      </worldbody></mujoco>""")
+    d = mujoco.MjData(m)
+    out = []
+    for _ in range(steps):
+        mujoco.mj_step(m, d)
+        out.append(d.qpos[2])
+    return np.array(out)
+
+
+@pytest.mark.parametrize(("beyond", "at", "inside"), [(1e-6, 1e-4, 2e-4), (0.99999, 0.9999, 0.9998)])
+def test_impedance_clamps(beyond, at, inside):
+    # engine_core_constraint.c getsolparam: solimp[0], solimp[1] = min(mjMAXIMP, max(mjMINIMP, .))
+    clamped = sphere_drop(at, at)
+    assert np.array_equal(sphere_drop(beyond, beyond), clamped)
+    assert np.abs(sphere_drop(inside, inside) - clamped).max() > 1e-8  # measured: 3.9e-7
+
+
+def thrown(s: float, options: str = "", steps: int = 300) -> np.ndarray:
+    """A box and a capsule thrown onto a plane, every length and gravity times s (masses kept, time kept).
+
+    The positions of the copy come back divided by s (quaternions as they are): the original's, bit for
+    bit, wherever the engine holds no constant against the scaled numbers.
+    """
+    mujoco, m = compiled(f"""<mujoco><option gravity="0 0 {-9.81 * s}" {options}/>
+      <default><geom solimp="0.9 0.95 {0.001 * s} 0.5 2" friction="1 {0.005 * s} {0.0001 * s}"/></default>
+      <worldbody><geom type="plane" size="{10 * s} {10 * s} {0.1 * s}"/>
+      <body pos="0 0 {0.12 * s}" euler="5 3 0"><freejoint/>
+        <inertial pos="0 0 0" mass="2" diaginertia="{0.01 * s * s} {0.02 * s * s} {0.015 * s * s}"/>
+        <geom type="box" size="{0.1 * s} {0.08 * s} {0.05 * s}"/></body>
+      <body pos="{0.5 * s} 0 {0.2 * s}"><freejoint/>
+        <inertial pos="0 0 0" mass="0.5" diaginertia="{0.003 * s * s} {0.003 * s * s} {0.002 * s * s}"/>
+        <geom type="capsule" size="{0.04 * s} {0.1 * s}" euler="80 0 10"/></body></worldbody></mujoco>""")
+    d = mujoco.MjData(m)
+    d.qvel[:] = [0.3 * s, 0.1 * s, 0, 0.5, 0.2, 1.0, -0.2 * s, 0, 0, 0, 1, 0]
+    lengths = np.array([1 / s] * 3 + [1] * 4 + [1 / s] * 3 + [1] * 4)
+    out = []
+    for _ in range(steps):
+        mujoco.mj_step(m, d)
+        out.append(d.qpos * lengths)
+    return np.array(out)
+
+
+def parting(options: str, copy_options: str | None = None) -> float:
+    """How far the copy by 4 parts from the original (in the original's units)."""
+    return float(np.abs(thrown(1, options) - thrown(4, options if copy_options is None else copy_options)).max())
+
+
+def test_solver_tolerance():
+    # engine_solver.c solPGS: improvement * scale < opt.tolerance, scale = 1 / (meaninertia max(1, nv));
+    # mj_solPrimal likewise for CG and Newton
+    assert parting('solver="PGS"') > 1e-9  # measured: 1.1e-7
+    assert parting('solver="PGS" tolerance="0"') == 0
+
+
+def test_noslip_tolerance():
+    # engine_solver.c solNoSlip: improvement * scale < opt.noslip_tolerance
+    default = parting('tolerance="0" noslip_iterations="5"')
+    zero = parting('tolerance="0" noslip_iterations="5" noslip_tolerance="0"')
+    assert default > 1e-10  # measured: 8.1e-9
+    # with it 0 in both runs the copy comes within 1e-16, but not bit for bit (measured: 6.9e-18)
+    assert 0 < zero < 1e-16
+
+
+def test_cg_eta():
+    # engine_solver.c mj_solPrimal, Hager-Zhang update: eta = 0.01, eta_k = -1 / (|d| min(eta, |grad|))
+    assert parting('solver="CG" tolerance="0" iterations="5"') > 1e-6  # measured: 3.2e-5
+    assert parting('solver="CG" tolerance="0"') > 0  # measured: 2.3e-13
+    # the other solvers, with the same tolerance and iterations: Newton within 1e-15 (measured: 4.3e-19, a
+    # remainder the catalogue does not explain), PGS bit for bit
+    assert parting('solver="Newton" tolerance="0" iterations="5"') < 1e-15
+    assert parting('solver="PGS" tolerance="0" iterations="5"') == 0
+
+
+@pytest.mark.parametrize("options", ['ls_tolerance="0.01"', 'ls_tolerance="0.1"', 'impratio="10"'])
+def test_dimensionless_settings_scale(options):
+    # engine_solver.c PrimalSearch: gtol = tolerance * ls_tolerance * |search| / scale (0 with tolerance 0);
+    # engine_core_constraint.c mj_makeImpedance: R of friction rows = R / impratio
+    assert parting(f'tolerance="0" {options}') == 0
+
+
+def test_mujoco_measurements_name_their_tests():
+    # every measured effect in the catalogue names a test of this module that asserts it, and each constant
+    # read from the source names where; constants_for finds each by its paths
+    from pitheorem.engines.constants import CAUSE_PATHS, constants_for
+
+    measured = [c for c in hidden_constants("mujoco") if c.measured]
+    assert len(measured) >= 10
+    for c in measured:
+        assert "a7255075b" in c.location
+        (test,) = re.findall(r"test_engines_constants\.py, (test_\w+)\)", c.measured)
+        assert callable(globals()[test]), test
+        assert c.paths
+        assert c.remedy
+        assert all(c in constants_for("mujoco", p) for p in c.paths)
+    assert {c.name for c in constants_for("mujoco", "native_ccd")} >= {"mujoco_ccd_tolerance", "mujoco_ccd_iterations"}
+    assert constants_for("pybullet", "noslip") == ()
+    assert set(CAUSE_PATHS) == {p for c in CATALOGUE for p in c.paths}
+    with pytest.raises(pt.InvalidRequestError, match=r"'contact'.*native_ccd"):
+        constants_for("mujoco", "contact")
+    with pytest.raises(pt.InvalidRequestError, match="'ode'"):
+        constants_for("ode", "native_ccd")
+    with pytest.raises(pt.InvalidRequestError, match=r"'contacts'.*native_ccd"):
+        HiddenConstant("mujoco", "mujoco_x", "L", 1.0, "w", "s", "n", paths=("contacts",))

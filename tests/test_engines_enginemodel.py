@@ -181,6 +181,7 @@ def test_a_models_system_is_built_once_and_holds_every_parameter():
     "name",
     [
         "causes/contact.xml",
+        "causes/hanging.xml",
         "causes/hand.xml",
         "causes/mesh_drop.xml",
         "causes/quadruped.urdf",

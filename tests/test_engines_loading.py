@@ -27,13 +27,21 @@ def test_the_file_kind_picks_the_engine_unless_engine_names_another():
     assert caught.value.culprit == "genesis"
 
 
-def test_a_urdf_file_does_not_run_in_an_mjcf_engine(tmp_path):
+def test_a_file_runs_only_in_an_engine_that_compiles_its_format(tmp_path):
+    # MuJoCo and MJX compile URDF files too (MuJoCo's own URDF reader); PyBullet reads no MJCF
     urdf = tmp_path / "box.urdf"
     urdf.write_text('<robot name="box"><link name="base"/></robot>')
     for engine in ("mujoco", "mjx"):
-        with pytest.raises(pt.InvalidRequestError) as caught:
-            engines.load(urdf, engine=engine)
-        assert str(caught.value) == f"engine {engine!r} does not read URDF files; a URDF file runs in 'pybullet'"
+        assert engines.load(urdf, engine=engine).engine == engine
+    with pytest.raises(pt.InvalidRequestError) as caught:
+        engines.load(PENDULUM, engine="pybullet")
+    assert str(caught.value) == "engine 'pybullet' does not read MJCF files; an MJCF file runs in 'mujoco' or 'mjx'"
+    with pytest.raises(pt.InvalidRequestError) as caught:  # PyBullet's scene options are PyBullet's
+        engines.load(urdf, engine="mujoco", fixed_base=True)
+    assert str(caught.value) == (
+        "engine 'mujoco' takes no option 'fixed_base' (its options: settings); 'fixed_base' is for URDF files "
+        "in 'pybullet'"
+    )
 
 
 def test_options_an_engine_does_not_take_are_refused_by_name():

@@ -659,3 +659,74 @@ def test_a_model_opened_through_a_symbolic_link_finds_its_meshes_where_mujoco_do
     model.scaled(lengths, 4).save(out)
     assert 'file="parts/crate.stl"' in out.read_text()
     assert mujoco.MjModel.from_xml_path(str(out)).nmesh == 1
+
+
+# -- large files (issue 33): the spec's elements listed in linear time, the collector paused while reading
+
+
+def _corpus_files() -> list[Path]:
+    robots = Path(__file__).resolve().parent / "robots" / "mjcf"
+    files = sorted(robots.glob("**/*.xml")) + sorted(DATA.glob("*.xml"))
+    try:
+        import gymnasium
+    except ImportError:
+        return files
+    return files + sorted((Path(gymnasium.__file__).resolve().parent / "envs" / "mujoco" / "assets").glob("*.xml"))
+
+
+FRAMES = """<mujoco><worldbody>
+<frame name="F0" pos="1 0 0"><geom size="0.1"/><frame><site/><body name="B0"><geom size="1"/></body></frame></frame>
+<body name="A"><frame pos="0 1 0"><geom size=".1"/><body><joint/><geom size=".1"/>
+<frame name="F3"><joint axis="1 0 0"/><camera/><light/></frame></body></frame><geom size=".1"/>
+<body><freejoint/><geom size=".1"/></body></body><geom name="last" size=".1"/></worldbody></mujoco>"""
+
+
+def test_the_walk_of_the_body_tree_lists_each_collection_as_mujoco_does():
+    # the oracle is MuJoCo's own (quadratic) listing: each element it lists is marked through that
+    # listing, and the marks must come back in the same order through the tree walk
+    from pitheorem.engines.fileformats.mjcf import _COLLECTIONS, _listed
+
+    specs = [(str(f), mujoco.MjSpec.from_file(str(f))) for f in _corpus_files() if _compiles(f)]
+    specs.append(("frames", mujoco.MjSpec.from_string(FRAMES)))
+    assert len(specs) > 10
+    for label, spec in specs:
+        for collection in _COLLECTIONS:
+            theirs = list(getattr(spec, collection))
+            for i, element in enumerate(theirs):
+                if not (collection == "bodies" and i == 0):  # the world keeps its name
+                    element.name = f"mark_{collection}_{i}"
+            assert [e.name for e in _listed(spec, collection)] == [e.name for e in theirs], (label, collection)
+
+
+def _compiles(path: Path) -> bool:
+    try:
+        mujoco.MjSpec.from_file(str(path))
+    except ValueError:
+        return False
+    return True
+
+
+def test_reading_a_file_pauses_the_collector_and_gives_it_back_as_it_was():
+    import gc
+
+    from pitheorem.engines.fileformats.mjcf import _collection_paused
+
+    seen = []
+    with _collection_paused():
+        seen.append(gc.isenabled())
+        with _collection_paused():
+            seen.append(gc.isenabled())
+        seen.append(gc.isenabled())
+    assert seen == [False, False, False]
+    assert gc.isenabled()
+    engines.load(engines.example_path("pendulum.xml"))
+    assert gc.isenabled()
+    gc.disable()
+    try:
+        engines.load(engines.example_path("pendulum.xml")).parameters  # noqa: B018
+        assert not gc.isenabled()  # a collector the caller disabled stays disabled
+    finally:
+        gc.enable()
+    with pytest.raises(ZeroDivisionError), _collection_paused():
+        1 / 0  # noqa: B018
+    assert gc.isenabled()

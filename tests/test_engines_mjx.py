@@ -591,3 +591,15 @@ def test_a_start_with_activations_is_refused_by_name(tmp_path):
     assert model.coordinates()[0] == ["qpos[j]", "qvel[j]", "act[0]"]
     with pytest.raises(pt.InvalidRequestError, match="MJX runs start with every activation at zero"):
         model.run(2, initial=[0.1, 0.0, 0.5])
+
+
+def test_a_urdf_in_mjx_is_mujocos_urdf_model_with_its_settings_file(tmp_path):
+    path = engines.example_path("hinged_rod.urdf")
+    in_mjx, in_mujoco = engines.load(path, engine="mjx"), engines.load(path, engine="mujoco")
+    assert [(p.name, p.value) for p in in_mjx.parameters] == [(p.name, p.value) for p in in_mujoco.parameters]
+    sc = pt.Scaling.from_unit_change(in_mjx.system(), {"L": 1, "T": -1})
+    out = in_mjx.scaled(sc, 4).save(tmp_path / "rod.urdf")
+    assert (tmp_path / "rod.urdf.mujoco.json").is_file()
+    assert engines.load(out, engine="mjx").timestep() == in_mjx.timestep() / 4
+    with pytest.raises(pt.InvalidRequestError, match="precision"):
+        engines.load(path, engine="mjx", precision="float16")

@@ -101,6 +101,16 @@ def test_shipped_models_are_consistent(model):
         assert pt.check_dimensions(eq, mdl.system).consistent
 
 
+def _beyond_the_limits(term, system) -> bool:
+    """Whether a power in a monomial term, or the term, has a base exponent beyond 1000, multiplied out here."""
+    powers = [(str(s), int(p)) for s, p in term.as_powers_dict().items() if isinstance(s, sympy.Symbol)]
+    for b in system.base_dimensions:
+        each = [p * system.dimension(n).exponent_of(b) for n, p in powers]
+        if any(abs(e) > 1000 for e in each) or abs(sum(each)) > 1000:
+            return True
+    return False
+
+
 @settings(max_examples=60, deadline=None)
 @given(systems(max_vars=6), st.integers(0, 2**32 - 1))
 def test_random_consistent_equations_pass_and_perturbed_fail(system, seed):
@@ -121,11 +131,20 @@ def test_random_consistent_equations_pass_and_perturbed_fail(system, seed):
             vec = [a + coef * b for a, b in zip(vec, nv, strict=True)]
         terms.append(rng.randint(1, 5) * monomial(vec))
     equation = sympy.Eq(monomial(base), sympy.Add(*terms), evaluate=False)
+    # a term whose dimension passes the limits (|e| <= 1000, issue 33) is refused by name
+    if any(_beyond_the_limits(term, system) for term in (monomial(base), *terms)):
+        with pytest.raises(pt.LimitError, match="in the dimension of"):
+            pt.check_dimensions(equation, system, time=None)
+        return
     assert pt.check_dimensions(equation, system, time=None).consistent
     dimensional = [s for s in symbols if not system.dimension(s.name).is_dimensionless]
     if dimensional:
         culprit = rng.choice(dimensional)
         perturbed = sympy.Eq(monomial(base), sympy.Add(*terms[1:]) + terms[0] * culprit, evaluate=False)
+        if _beyond_the_limits(terms[0] * culprit, system):
+            with pytest.raises(pt.LimitError, match="in the dimension of"):
+                pt.check_dimensions(perturbed, system, time=None)
+            return
         report = pt.check_dimensions(perturbed, system, time=None)
         assert not report.consistent
         assert all(got != want for _, got, want in report.offending)
@@ -444,3 +463,17 @@ def test_symmetries_need_a_system():
 def test_scaling_symmetries_names_equations_that_are_no_list(bad):
     with pytest.raises(pt.InvalidRequestError, match="needs sympy equations"):
         pt.scaling_symmetries(bad, pt.System({"x": "L", "t": "T"}))
+
+
+def test_a_term_beyond_the_exponent_limits_is_named_and_one_within_them_is_checked():
+    # issue 33: a term's dimension is held to the limits once, as a whole
+    s = pt.System({"x": "L", "y": "L", "z": "L", "r": "1"})
+    x, y, z, r = sympy.symbols("x y z r")
+    assert str(pt.check_dimensions(x**1000 * y**1000 / z**1000, s).dimension) == "L^1000"
+    assert pt.check_dimensions(r**5000, s).dimension.is_dimensionless
+    with pytest.raises(pt.LimitError, match=r"the exponent of 'L' in the dimension of x\*\*1001 is 1001"):
+        pt.check_dimensions(x**1001 + y, s)
+    with pytest.raises(pt.LimitError, match="in the dimension of x\\*\\*600\\*y\\*\\*600"):
+        pt.check_dimensions(x**600 * y**600, s)
+    with pytest.raises(pt.NumberError, match="an exponent in the equation must be a rational number"):
+        pt.check_dimensions(x ** sympy.Float(2**0.5), s)

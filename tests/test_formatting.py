@@ -40,6 +40,7 @@ from pitheorem.answers import (
     GroupsAnswer,
     ParamsAnswer,
     SearchAnswer,
+    SweepAnswer,
 )
 from pitheorem.formatting import FORMATS, MathDisplay, TableDisplay, TextDisplay
 from pitheorem.formatting.pieces import power_latex, power_text
@@ -111,6 +112,18 @@ def _engine_verify_answer():
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     rep = engines.verify(model, sc, 4, duration=0.4)
     return EngineVerifyAnswer("pgs.xml", "mujoco", Fraction(4), 0.4, "zero", True, rep)
+
+
+def _sweep():
+    model = _engine_model()
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    cause = engines.Cause("threshold", "body_arm_mass", "mujoco refuses the copy: mass & inertia < mjMINVAL")
+    rows = (
+        engines.SweepRow(1e-20, "refused", None, None, None, None, None, (cause,), ("mujoco_minval_mass",)),
+        engines.SweepRow(Fraction(1, 4), "exact", 0.0, 5e-15, None, True, None, (), ()),
+        engines.SweepRow(10.0**0.5, "similar", 2.5e-16, 5e-15, 1.5, True, (0.002, "hinge"), (), ()),
+    )
+    return engines.Sweep(model.path, "mujoco", sc, 0.2, rows, 10.0, model.units, {"M": "g", "L": "mm", "T": "s"}, 1e-3)
 
 
 SAMPLES = {
@@ -189,6 +202,9 @@ SAMPLES = {
     "params_answer": lambda: ParamsAnswer("pendulum.xml", _engine_model()),
     "engine_apply_answer": _engine_apply_answer,
     "engine_verify_answer": _engine_verify_answer,
+    "sweep": _sweep,
+    "sweep_row": lambda: _sweep().rows[2],
+    "sweep_answer": lambda: SweepAnswer(("a_&_b.xml", "c.xml"), (_sweep(), _sweep()), ("s.png",)),
 }
 
 
@@ -250,7 +266,7 @@ JSON_NUMBERS = {
         _exact_map(doc["unit_change"]) == dict(v.unit_change) and _value_numbers(v.values, doc["values"]) is None
     ),
     "RangeBound": lambda v, doc: _exact(doc["bound"]) == v.bound,
-    "Cause": lambda v, doc: doc == {"kind": v.kind, "element": v.element, "detail": v.detail},
+    "Cause": lambda v, doc: doc == {"kind": v.kind, "element": v.element, "detail": v.detail, "restores": v.restores},
     "Audit": lambda v, doc: doc["compared"] == v.compared and len(doc["causes"]) == len(v.causes),
     "HiddenConstant": lambda v, doc: pt.Dimension.parse(doc["dimension"]) == v.dimension,
     "RuleVerdict": lambda v, doc: (
@@ -273,6 +289,13 @@ JSON_NUMBERS = {
     ),
     "ParamsAnswer": lambda v, doc: len(doc["parameters"]) == len(v.engine_model.parameters),
     "EngineApplyAnswer": lambda v, doc: [_exact(c["exponent"]) for c in doc["changed"]] == [p for _, p in v.changed],
+    "Sweep": lambda v, doc: (
+        [_exact(r["s"]) if isinstance(r["s"], int | str) else r["s"] for r in doc["rows"]] == list(v.s)
+        and [r["max_deviation"] for r in doc["rows"]] == [r.max_deviation for r in v.rows]
+        and _exact_map(doc["scaling"]["exponents"]) == v.scaling.exponents
+    ),
+    "SweepRow": lambda v, doc: doc["s"] == v.s and doc["thresholds"] == list(v.thresholds),
+    "SweepAnswer": lambda v, doc: [len(sw["rows"]) for sw in doc["sweeps"]] == [len(sw.rows) for sw in v.sweeps],
     "EngineVerifyAnswer": lambda v, doc: (
         _exact(doc["s"]) == v.s
         and doc["exact"] is v.report.exact

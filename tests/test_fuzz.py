@@ -12,10 +12,19 @@ written out here).
 
 Cross-cutting: its one test spans every public entry point at once, so that the
 draw mixes them; each module's own bad-input cases are in that module's file.
+
+The size limits of exponents (issue 33) are held the same way at every entry that
+takes one (a formula, a mapping, a power, a product, a System, a unit string, a
+model file): the tests below draw exponents within the limits, which every entry
+accepts and gives back exactly, and beyond them, which every entry refuses by
+name.  Whether an exponent is within is decided here, from the documented numbers
+(|e| <= 1000, denominator <= 10^12), not by the code under test.
 """
 
 from __future__ import annotations
 
+import math
+import pickle
 import tempfile
 from datetime import timedelta
 from decimal import Decimal
@@ -23,8 +32,9 @@ from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
+import pytest
 import sympy
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import pitheorem as pt
@@ -306,3 +316,175 @@ def test_fuzz_every_entry_point(data):
     if error is not None:  # a named error, with a message that says something
         assert str(error).strip()
         assert isinstance(error, ValueError | KeyError | TypeError | ImportError)
+
+
+# -- the exponent limits at every entry (issue 33) ----------------------------------------------
+
+LIMIT, DENOMINATOR = 1000, 10**12  # as documented in docs/howto/numbers_and_base_letters.md
+
+
+def within(e: Fraction) -> bool:
+    return abs(e) <= LIMIT and e.denominator <= DENOMINATOR
+
+
+@st.composite
+def exponents_within(draw) -> Fraction:
+    """An exponent within the limits: any denominator up to 10^12, so numerators up to 10^15."""
+    q = draw(st.one_of(st.integers(1, 12), st.integers(1, DENOMINATOR), st.just(DENOMINATOR)))
+    p = draw(st.one_of(st.integers(-LIMIT * q, LIMIT * q), st.sampled_from([LIMIT * q, -LIMIT * q, 1, -1, 0])))
+    return Fraction(p, q)
+
+
+@st.composite
+def exponents_beyond(draw) -> Fraction:
+    """An exponent beyond a limit: too large, or a denominator above 10^12 (a reduced one)."""
+    if draw(st.booleans()):
+        q = draw(st.integers(1, 10**6))
+        return Fraction(draw(st.integers(LIMIT * q + 1, 10**20)), q) * draw(st.sampled_from([1, -1]))
+    q = draw(st.integers(DENOMINATOR + 1, 10**18))
+    e = Fraction(draw(st.integers(-LIMIT * q, LIMIT * q)), q)
+    assume(not within(e))
+    return e
+
+
+any_exponent = st.one_of(exponents_within(), exponents_beyond())
+
+
+def formula(e: Fraction, base: str = "L") -> str:
+    return f"{base}^({e.numerator}/{e.denominator})"
+
+
+def accepted_or_refused(build, expected: Fraction, culprit: str = "'L'"):
+    """Build; within the limits it must give `expected`'s dimension, beyond them a LimitError naming the culprit."""
+    if within(expected):
+        dim = build()
+        assert dim.exponents == ({"L": expected} if expected else {})
+        return dim
+    with pytest.raises(pt.LimitError) as info:
+        build()
+    message = str(info.value)
+    assert culprit in message
+    limit = "its magnitude exceeds the limit 1000" if abs(expected) > LIMIT else "exceeds the limit 1000000000000"
+    assert limit in message
+    return None
+
+
+@settings(max_examples=150, deadline=None)
+@given(any_exponent)
+def test_an_exponent_is_accepted_within_the_limits_and_refused_beyond_them_at_every_entry(e):
+    dim = accepted_or_refused(lambda: pt.Dimension({"L": e}), e)
+    accepted_or_refused(lambda: pt.Dimension.parse(formula(e)), e, culprit="exponent in")
+    accepted_or_refused(lambda: pt.Dimension.parse("L") ** e, e, culprit="the power of a dimension")
+    for spec in (formula(e), {"L": e}, {"L": f"{e.numerator}/{e.denominator}"}):
+        accepted_or_refused(lambda spec=spec: pt.System({"x": spec}).dimension("x"), e, culprit="of 'x'")
+    model = accepted_or_refused_in_a_model_file(f'dimension = "{formula(e)}"', e)
+    if dim is not None:  # within: every form it takes comes back as itself
+        assert pt.Dimension.parse(str(dim)) == dim
+        assert pt.Dimension.parse(str(dim)) ** 1 == dim
+        assert pickle.loads(pickle.dumps(dim)) == dim
+        assert pt.System({"x": dim}).dimension("x") == dim
+        assert model.system.dimension("x") == dim
+        assert pt.System({"x": str(pt.System({"x": dim}).dimension("x"))}).dimension("x") == dim
+
+
+def accepted_or_refused_in_a_model_file(entry: str, e: Fraction):
+    text = f'[variables]\nx = {{ {entry} }}\nt = {{ dimension = "T" }}\n'
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "model.toml"
+        path.write_text(text, encoding="utf-8")
+        if within(e):
+            return pt.load_model_file(path)
+        with pytest.raises(pt.ModelFileError, match=r"variable 'x'.*exceeds the limit"):
+            pt.load_model_file(path)
+    return None
+
+
+@settings(max_examples=150, deadline=None)
+@given(exponents_within(), exponents_within())
+def test_products_and_powers_of_valid_dimensions_are_held_to_the_limits_as_totals(a, b):
+    L = pt.Dimension.parse("L")
+    accepted_or_refused(lambda: pt.Dimension({"L": a}) * pt.Dimension({"L": b}), a + b)
+    accepted_or_refused(lambda: pt.Dimension({"L": a}) / pt.Dimension({"L": b}), a - b)
+    accepted_or_refused(lambda: pt.Dimension.parse(f"{formula(a)} {formula(b)}"), a + b, culprit="exponent of 'L'")
+    accepted_or_refused(lambda: pt.Dimension.parse(f"{formula(a)} / {formula(b)}"), a - b, culprit="exponent of 'L'")
+    accepted_or_refused(lambda: pt.Dimension([("L", a), ("L", b)]), a + b)
+    accepted_or_refused(lambda: pt.System({"x": f"{formula(a)} {formula(b)}"}).dimension("x"), a + b, "of 'x'")
+    # a power of a power: the power is an exponent (within), and so must be the result
+    accepted_or_refused(lambda: pt.Dimension.parse(f"({formula(a)})^({b.numerator}/{b.denominator})"), a * b)
+    accepted_or_refused(lambda: (L**a) ** b, a * b)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "(L^1000)^1000",
+        "L^1000 L",
+        "(L^(1/1000000))^(1/1000000000)",
+        "L^(1000000000001/1000000000000) L^999",
+        " ".join(f"L^(1/{p})" for p in (999999999989, 999999999961)),
+    ],
+)
+def test_the_issue_33_formulas_beyond_the_limits_are_refused_by_name(text):
+    with pytest.raises(pt.LimitError, match=r"the exponent of 'L' in .* exceeds the limit"):
+        pt.Dimension.parse(text)
+    accepted_or_refused_in_a_model_file(f'dimension = "{text}"', Fraction(10**20))  # beyond: refused
+
+
+# a computed float (more than 12 significant digits) is an exponent only when its simplest fraction has a
+# denominator of at most 1000; a float of at most 12 digits is the decimal it prints as
+
+
+def is_short(x: float) -> bool:
+    """Whether a float prints with at most 12 significant digits (written out here, not the package's)."""
+    mantissa = repr(x).lstrip("-").split("e")[0]
+    return len(mantissa.replace(".", "").strip("0")) <= 12
+
+
+small_fractions = st.builds(Fraction, st.integers(-(10**6), 10**6), st.integers(1, 1000)).filter(
+    lambda f: abs(f) <= 1000
+)
+irrational_powers = st.one_of(
+    st.integers(2, 1000).filter(lambda k: math.isqrt(k) ** 2 != k).map(lambda k: (f"{k}**0.5", k**0.5)),
+    st.integers(2, 1000).filter(lambda k: round(k ** (1 / 3)) ** 3 != k).map(lambda k: (f"{k}**(1/3)", k ** (1 / 3))),
+    st.integers(1, 300).map(lambda k: (f"{k}*2**0.5", k * 2**0.5)),
+    st.sampled_from([("3.141592653589793", math.pi), ("2.718281828459045", math.e)]),
+)
+
+
+@settings(max_examples=100, deadline=None)
+@given(small_fractions)
+def test_a_computed_float_of_a_fraction_within_the_limits_is_read_as_that_fraction(e):
+    # pint computes m**(p/q) as the float p/q; so does a float passed in a mapping, a power or a search
+    x = e.numerator / e.denominator
+    unit = f"m**({e.numerator}/{e.denominator})"
+    assert pt.System.from_units({"x": unit}).dimension("x").exponents == ({"L": e} if e else {})
+    assert pt.Dimension({"L": x}).exponents == ({"L": e} if e else {})
+    assert (pt.Dimension.parse("L") ** x).exponents == ({"L": e} if e else {})
+    model = accepted_or_refused_in_a_model_file(f'unit = "{unit}"', e)
+    assert model.system.dimension("x").exponents == ({"L": e} if e else {})
+
+
+@settings(max_examples=100, deadline=None)
+@given(irrational_powers)
+def test_an_irrational_exponent_is_refused_by_name_at_every_entry(power):
+    text, x = power
+    assume(not is_short(x))  # a float of at most 12 digits is the decimal it prints as: a rational exponent
+    unit = f"m**({text})"
+    with pytest.raises(pt.NumberError, match="must be a rational number") as info:
+        pt.System.from_units({"x": unit})
+    assert unit in str(info.value)
+    for build in (
+        lambda: pt.Dimension({"L": x}),
+        lambda: pt.Dimension.parse("L") ** x,
+        lambda: pt.System({"x": {"L": x}}),
+        lambda: pt.search(pt.System({"l": "L", "t": "T"}), scale={"l": x}),
+        lambda: pt.check_dimensions(sympy.Symbol("l") ** sympy.Float(x), pt.System({"l": "L"})),
+    ):
+        with pytest.raises(pt.NumberError, match="may not exceed 1000") as info:
+            build()
+        assert info.value.culprit == x or float(info.value.culprit) == x
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "model.toml"
+        path.write_text(f'[variables]\nx = {{ unit = "{unit}" }}\n', encoding="utf-8")
+        with pytest.raises(pt.ModelFileError, match=r"variable 'x'.*must be a rational number"):
+            pt.load_model_file(path)

@@ -77,6 +77,13 @@ VALUE_TYPES = {
     engines.EngineModel: (_engine_model, "parameters"),
     engines.Cause: (lambda: engines.Cause("solver", "option tolerance", "no pure dimension"), "detail"),
     engines.Audit: (lambda: engines.Audit((), 3, 4.0), "compared"),
+    engines.SweepRow: (lambda: engines.SweepRow(4, "exact", 0.0, 1e-12, None, True, None, (), ()), "verdict"),
+    engines.Sweep: (
+        lambda: engines.Sweep(
+            "", "mujoco", None, 1.0, (engines.SweepRow(4, "exact", 0.0, 0.0, None, True, None, (), ()),)
+        ),
+        "rows",
+    ),
     engines.Parameter: (lambda: _engine_model().parameters[0], "value"),
     engines.HiddenConstant: (lambda: engines.CATALOGUE[0], "dimension"),
     engines.RuleOfThumb: (lambda: engines.BULLET_SCALE_THE_WORLD, "quantities"),

@@ -266,6 +266,8 @@ def test_every_module_has_its_test_file_and_every_test_file_a_module_or_a_reason
             "verdicts.audit",
             "verdicts.causes",
             "verdicts.diagnose",
+            "verdicts.strength",
+            "verdicts.sweep",
             "verdicts.verify",
         )
     }

@@ -344,11 +344,21 @@ def test_from_units_reads_exponents_by_the_float_rule(unit, exponent):
     assert pt.System.from_units({"x": unit}).dimension("x") == pt.Dimension({"L": exponent})
 
 
-def test_from_units_reads_an_irrational_power_as_the_fraction_that_rounds_to_it():
-    # 2**0.5 is a computed float: the simplest fraction rounding to it, not limit_denominator's 665857/470832
-    exponent = pt.System.from_units({"x": "m**(2**0.5)"}).dimension("x").exponent_of("L")
-    assert float(exponent) == 2**0.5
-    assert exponent != Fraction(665857, 470832)
+@pytest.mark.parametrize("unit", ["m**(2**0.5)", "m**(3**(1/3))", "s**(0.1+0.2)", "kg**(2**-0.5)"])
+def test_from_units_refuses_an_irrational_power_by_name(unit):
+    # issue 33: 2**0.5 was read as 131836323/93222358, the simplest fraction that rounds to its float
+    with pytest.raises(pt.NumberError, match="must be a rational number") as info:
+        pt.System.from_units({"x": unit})
+    assert unit in str(info.value)
+    assert "may not exceed 1000" in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("unit", "power"),
+    [("m**(1/3)", Fraction(1, 3)), ("m**(2/7)", Fraction(2, 7)), ("m**(-997/991)", Fraction(-997, 991))],
+)
+def test_from_units_reads_a_computed_rational_power_as_that_fraction(unit, power):
+    assert pt.System.from_units({"x": unit}).dimension("x").exponent_of("L") == power
 
 
 def test_from_units_refuses_a_power_it_cannot_hold_exactly():

@@ -9,8 +9,10 @@ asked for.  Install the engines with ``pip install "pitheorem[engines]"``
   MJCF (MuJoCo) or URDF (PyBullet) file as an ``EngineModel``, every
   dimensional number a ``Parameter`` with its dimension; its system,
   a scaled copy and the file the engine loads;
-* ``pitheorem.engines.verdicts.verify``: runs a model and its scaled copy in the
+* ``pitheorem.engines.verify``: runs a model and its scaled copy in the
   engine and compares them against the model's own one-ulp sensitivity;
+* ``pitheorem.engines.verdicts.sweep``: :func:`sweep`, the verification at many
+  scale factors, on every core or on a Dask cluster;
 * ``pitheorem.engines.cli``: the command line on MJCF and URDF files;
 * ``pitheorem.engines.paper.superball``: SUPERball, the white paper's robot, as a
   MuJoCo tensegrity;
@@ -62,6 +64,7 @@ from .rules import (
 from .thresholds import check
 from .verdicts.audit import Audit, audit
 from .verdicts.causes import CAUSE_KINDS, Cause
+from .verdicts.sweep import Sweep, SweepRow, sweep
 from .verdicts.verify import smooth_controls, verify
 
 __all__ = [
@@ -81,6 +84,8 @@ __all__ = [
     "RuleOfThumb",
     "RuleQuantity",
     "RuleVerdict",
+    "Sweep",
+    "SweepRow",
     "UnscalableModelWarning",
     "UnscalableParameterError",
     "audit",
@@ -95,6 +100,7 @@ __all__ = [
     "load",
     "simulate_rod",
     "smooth_controls",
+    "sweep",
     "verify",
     "verify_engine_similarity",
     "with_hidden_constants",

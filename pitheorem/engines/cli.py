@@ -15,12 +15,12 @@ import re
 from fractions import Fraction
 from pathlib import Path
 
-from ..answers import EngineApplyAnswer, EngineVerifyAnswer, ParamsAnswer
+from ..answers import EngineApplyAnswer, EngineVerifyAnswer, ParamsAnswer, SweepAnswer
 from ..errors import InvalidRequestError
 from ..modelfile import ModelFile
 from .enginemodel import EngineModel, EngineModelError, UnscalableParameterError
 from .loading import load, scene_options
-from .protocols import RefusesScalings
+from .protocols import EngineNotes, RefusesScalings
 from .verdicts.causes import Cause
 
 __all__ = [
@@ -30,10 +30,12 @@ __all__ = [
     "convert_engine",
     "engine_model_file",
     "params_answer",
+    "parse_s_values",
     "parse_scene",
     "parse_units",
     "scene_help",
     "scene_text",
+    "sweep_engine",
     "verify_engine",
 ]
 
@@ -363,8 +365,9 @@ def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str =
 
     controls = smooth_controls(model) if inputs == "smooth" and len(model.inputs()[0]) else None
     rep = verify(model, scaling, s, duration=duration, controls=controls)
+    notes = model.runner.engine_notes() if isinstance(model.runner, EngineNotes) else ()
     return EngineVerifyAnswer(
-        model.path, model.engine, Fraction(s), duration, inputs, exact_in_binary(model, scaling, s), rep
+        model.path, model.engine, Fraction(s), duration, inputs, exact_in_binary(model, scaling, s), rep, notes
     )
 
 
@@ -575,8 +578,11 @@ def check_engine_model(path: str, *, from_units=None, engine: str | None = None,
             {"file": path, "engine": engine, "units": model.units, "causes": [c.to_dict() for c in causes]}, indent=2
         ), not causes
     name = Path(path).name
+    notes = model.runner.engine_notes() if isinstance(model.runner, EngineNotes) else ()
     if not causes:
-        return f"{name}: clear of every catalogued threshold of {engine}", True
+        return "\n".join(
+            [f"{name}: clear of every catalogued threshold of {engine}", *(f"note: {n}" for n in notes)]
+        ), True
     count = sum(int(c.element.split(" ", 1)[0]) for c in causes if c.element.split(" ", 1)[0].isdigit())
     lines = [f"{name}: {count} number(s) at, beyond or near {len(causes)} threshold(s) of {engine}"]
     if refused is not None:
@@ -587,4 +593,151 @@ def check_engine_model(path: str, *, from_units=None, engine: str | None = None,
     lines.extend(f"  {c.element}: {c.detail}" for c in causes)
     if units_help:
         lines.append(f"units clear of them: pitheorem convert {name} --fit {engine} --output OUT")
+    lines.extend(f"note: {n}" for n in notes)
     return "\n".join(lines), False
+
+
+def parse_s_values(items: list[str]) -> tuple:
+    """The scale factors of ``--s``: numbers, and ranges ``A:B:N`` of N factors evenly spaced in log s.
+
+    Parameters
+    ----------
+    items : list of str
+        Each a scale factor (``4``, ``1/4``, ``1e-3``) or ``A:B:N``: from
+        A to B inclusive, N factors, evenly spaced on a log scale; a
+        factor that is an integral power of ten is exact (``1e3`` is 1000).
+
+    Returns
+    -------
+    tuple of Fraction or float
+
+    Raises
+    ------
+    InvalidRequestError
+        For a range with a bound that is no positive number or a count below 2.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.cli import parse_s_values
+    >>> [str(s) for s in parse_s_values(["1e-3:1e3:7"])]
+    ['1/1000', '1/100', '1/10', '1', '10', '100', '1000']
+    >>> [float(s) for s in parse_s_values(["1:100:3", "4"])]
+    [1.0, 10.0, 100.0, 4.0]
+    """
+    import math
+
+    from ..exact import read_count, read_positive
+
+    out = []
+    for item in items:
+        if ":" not in item:
+            out.append(read_positive(item, "--s"))
+            continue
+        parts = item.split(":")
+        if len(parts) != 3:
+            raise InvalidRequestError(f"--s {item!r}: a range is A:B:N (from A to B, N factors)", culprit=item)
+        a, b = (read_positive(p, "--s") for p in parts[:2])
+        count = parts[2].strip()
+        n = read_count(int(count) if count.isdigit() else count, "the count of an --s range", least=2)
+        low, high = math.log10(a), math.log10(b)
+        for k in range(n):
+            e = low + (high - low) * k / (n - 1)
+            exact = round(e)
+            out.append(Fraction(10) ** exact if abs(e - exact) < 1e-12 else 10.0**e)
+    return tuple(out)
+
+
+def sweep_engine(
+    models: list,
+    scalings: list,
+    s: tuple,
+    duration: float,
+    *,
+    names: list[str],
+    inputs: str = "smooth",
+    client=None,
+    plot: str | None = None,
+    progress: bool = False,
+) -> SweepAnswer:
+    """The command line's ``sweep``: each model verified at every ``s``, and the figures written.
+
+    Parameters
+    ----------
+    models : list of EngineModel
+    scalings : list of Scaling
+        One per model.
+    s : tuple
+        The scale factors (:func:`parse_s_values`).
+    duration : float
+    names : list of str
+        Each file's name as given.
+    inputs : {"smooth", "zero"}
+    client : dask.distributed.Client, optional
+    plot : str, optional
+        A PNG path; with several files each figure gets the file's stem
+        before the suffix (``sweep_hopper.png``).
+    progress : bool
+        Show a progress bar on stderr (tqdm).
+
+    Returns
+    -------
+    SweepAnswer
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.cli import sweep_engine
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    >>> answer = sweep_engine([model], [sc], (1, 4), 0.2, names=["pendulum.xml"])
+    >>> answer.sweeps[0].verdicts
+    ('exact', 'exact')
+    """
+    from .verdicts.sweep import sweep
+    from .verdicts.verify import smooth_controls
+
+    bar = _progress_bar(len(models) * len(s)) if progress else None
+    sweeps, plots = [], []
+    try:
+        for model, scaling in zip(models, scalings, strict=True):
+            step = [0]
+
+            def advance(done, total, step=step):
+                if bar is not None:
+                    bar.update(done - step[0])
+                step[0] = done
+
+            controls = smooth_controls(model) if inputs == "smooth" and len(model.inputs()[0]) else None
+            sweeps.append(sweep(model, scaling, s, duration, controls, client=client, progress=advance))
+    finally:
+        if bar is not None:
+            bar.close()
+    if plot:
+        for name, sw in zip(names, sweeps, strict=True):
+            out = Path(plot) if len(sweeps) == 1 else Path(plot).with_stem(f"{Path(plot).stem}_{Path(name).stem}")
+            plots.append(str(_save_figure(sw, out)))
+    return SweepAnswer(tuple(names), tuple(sweeps), tuple(plots))
+
+
+def _progress_bar(total: int):
+    """tqdm's bar on stderr, or None where tqdm is not installed."""
+    try:
+        from tqdm import tqdm
+    except ImportError:
+        return None
+    import sys
+
+    return tqdm(total=total, desc="sweep", unit="run", file=sys.stderr, leave=False)
+
+
+def _save_figure(sw, path: Path) -> Path:
+    """The sweep's figure as a PNG, its alt text in the file's Description."""
+    import matplotlib.pyplot as plt
+
+    fig = sw.plot()
+    try:
+        fig.savefig(path, dpi=150, metadata={"Description": fig.get_label()})
+    finally:
+        plt.close(fig)
+    return path

@@ -38,9 +38,11 @@ from .packages import check_engine
 
 __all__ = [
     "CATALOGUE",
+    "CAUSE_PATHS",
     "ENGINES",
     "HiddenConstant",
     "broken_constants",
+    "constants_for",
     "engine_search",
     "hidden_constants",
     "with_hidden_constants",
@@ -69,6 +71,17 @@ class HiddenConstant(TextDisplay):
         Where the default comes from: header or documentation page, version.
     note : str
         What it does and how it interacts with scaling.
+    location : str, optional
+        Where the engine's code uses it: file and function, and the
+        version read (empty where only the documentation was read).
+    measured : str, optional
+        Its effect on a scaled run, measured with a small model and the
+        counter-run that removes it (the test that asserts it is named).
+    paths : tuple of str, optional
+        The cause paths (``CAUSE_PATHS`` of this module) on which a run meets it.
+    remedy : str, optional
+        What a user can do about it: the setting that keeps a scaled copy
+        clear of it, or why nothing is needed.
 
     Examples
     --------
@@ -85,10 +98,38 @@ class HiddenConstant(TextDisplay):
     where: str
     source: str
     note: str
+    location: str = ""
+    measured: str = ""
+    paths: tuple[str, ...] = ()
+    remedy: str = ""
 
     def __post_init__(self):
         if not isinstance(self.dimension, Dimension):
             object.__setattr__(self, "dimension", Dimension.parse(self.dimension))
+        object.__setattr__(self, "paths", tuple(self.paths))
+        unknown = [p for p in self.paths if p not in CAUSE_PATHS]
+        if unknown:
+            raise InvalidRequestError(
+                f"hidden constant {self.name!r}: unknown cause path {unknown[0]!r}; valid: {', '.join(CAUSE_PATHS)}"
+            )
+
+
+#: the paths by which a run meets an engine's constants, as a diagnosis names a cause: contacts found by
+#: native convex collision detection (GJK/EPA: meshes, ellipsoids, cylinders), contacts of primitive pairs
+#: (analytic sphere, capsule, box, plane functions), contact margins, the constraint solver's stopping
+#: rules, the noslip post-solver, equality constraints, the impedance and softness of every constraint,
+#: friction, and the compiler's processing of meshes
+CAUSE_PATHS = (
+    "native_ccd",
+    "primitive",
+    "margin",
+    "solver_tolerance",
+    "noslip",
+    "equality",
+    "impedance",
+    "friction",
+    "mesh",
+)
 
 
 def _catalogue(path: Path) -> tuple[HiddenConstant, ...]:
@@ -96,8 +137,9 @@ def _catalogue(path: Path) -> tuple[HiddenConstant, ...]:
     doc = tomllib.loads(path.read_text(encoding="utf-8"))
     sources = doc.pop("sources")
     doc.pop("thresholds")  # read by pitheorem.engines.thresholds
+    texts = ("source", "location", "measured")
     return tuple(
-        HiddenConstant(engine, **{**entry, "source": entry["source"].format_map(sources)})
+        HiddenConstant(engine, **{**entry, **{k: entry[k].format_map(sources) for k in texts if k in entry}})
         for engine, entries in doc.items()
         for entry in entries
     )
@@ -156,6 +198,45 @@ def hidden_constants(
     if dimensional is not None:
         pool = [c for c in pool if c.dimension.is_dimensionless != bool(dimensional)]
     return tuple(pool)
+
+
+def constants_for(engine: str, path: str) -> tuple[HiddenConstant, ...]:
+    """The catalogued constants of an engine that a run meets on one cause path.
+
+    A diagnosis that has shown a cause (contacts of a geom pair found by
+    native CCD, the solver's tolerance, an equality, ...) names with this
+    the engine's fixed constants behind it, in the catalogue's order.
+
+    Parameters
+    ----------
+    engine : {"pybullet", "mujoco", "mjx"}
+    path : str
+        One of ``CAUSE_PATHS``.
+
+    Returns
+    -------
+    tuple of HiddenConstant
+        Empty where the catalogue names none on that path for the engine.
+
+    Raises
+    ------
+    InvalidRequestError
+        For an unknown engine or path.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.constants import constants_for
+    >>> [c.name for c in constants_for("mujoco", "native_ccd")]
+    ['mujoco_ccd_tolerance', 'mujoco_ccd_iterations', 'mujoco_ccd_discrete_tolerance']
+    >>> constants_for("mujoco", "native_ccd")[0].location.split(" (")[0]
+    'engine_collision_convex.c mjc_penetration'
+    >>> [c.name for c in constants_for("mujoco", "noslip")]
+    ['mujoco_noslip_tolerance']
+    """
+    engine = check_engine(engine)
+    if path not in CAUSE_PATHS:
+        raise InvalidRequestError(f"unknown cause path {path!r}; valid: {', '.join(CAUSE_PATHS)}")
+    return tuple(c for c in CATALOGUE if c.engine == engine and path in c.paths)
 
 
 def with_hidden_constants(
@@ -285,7 +366,7 @@ def broken_constants(scaling, engine: str, *, names: Iterable[str] | None = None
     >>> lengths_only = pt.Scaling.from_unit_change(rod, {"L": 1})
     >>> [c.name for c in broken_constants(lengths_only, "mujoco")]
     ['mujoco_solimp_width', 'mujoco_torsional_friction', 'mujoco_rolling_friction', 'mujoco_geom_density', \
-'mujoco_ccd_tolerance']
+'mujoco_ccd_tolerance', 'mujoco_ccd_discrete_tolerance', 'mujoco_minval_normal']
     """
     if not isinstance(scaling, Scaling):
         raise InvalidRequestError(f"broken_constants needs a Scaling, got {type(scaling).__name__}")

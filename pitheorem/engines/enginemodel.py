@@ -446,7 +446,7 @@ class EngineModel(TableDisplay):
         """A copy with some parameters multiplied by factors (a vector entry by entry).
 
         For the runs a similarity scaling is *not*: scale some numbers and
-        leave others alone, then compare with :func:`~pitheorem.engines.verdicts.verify`
+        leave others alone, then compare with :func:`~pitheorem.engines.verify`
         (``scaled=``) to see what breaks.
 
         Parameters

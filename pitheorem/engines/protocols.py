@@ -55,6 +55,7 @@ __all__ = [
     "REQUIRED",
     "Controls",
     "CounterRuns",
+    "EngineNotes",
     "HasSceneSettings",
     "IgnoredSettings",
     "NamesElements",
@@ -74,7 +75,7 @@ Job = tuple[Any, Controls, bool, Any]
 
 @runtime_checkable
 class Runs(Protocol):
-    """What :func:`~pitheorem.engines.verdicts.verify` needs of an engine to run a model.
+    """What :func:`~pitheorem.engines.verify` needs of an engine to run a model.
 
     Examples
     --------
@@ -256,6 +257,9 @@ class SolverDiagnosis(Protocol):
     def solver_name(self) -> str:
         """The constraint solver's name (``"Newton"``, ...)."""
 
+    def uses_native_ccd(self) -> bool:
+        """Whether convex pairs collide through the engine's own convex collision (``variant(native_ccd=False)``)."""
+
     def equality_names(self) -> list[str]:
         """Each equality constraint, named as the reports name it."""
 
@@ -293,6 +297,22 @@ class IgnoredSettings(Protocol):
         """A Cause for each setting the engine ignores."""
 
 
+@runtime_checkable
+class EngineNotes(Protocol):
+    """Optional: what the engine says of itself that can touch a verdict on this model (a known bug).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.protocols import EngineNotes
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, EngineNotes)
+    True
+    """
+
+    def engine_notes(self) -> tuple[str, ...]:
+        """One sentence per note, empty where none applies to this model."""
+
+
 def _members(protocol) -> tuple[str, ...]:
     own = [name for name in vars(protocol) if not name.startswith("_")]
     own.extend(vars(protocol).get("__annotations__", {}))
@@ -305,5 +325,13 @@ REQUIRED = tuple(sorted({*_members(Runs), *_members(Runner)}))
 #: the optional capabilities: protocol -> its members
 OPTIONAL = {
     p.__name__: _members(p)
-    for p in (RefusesScalings, HasSceneSettings, CounterRuns, SolverDiagnosis, NamesElements, IgnoredSettings)
+    for p in (
+        RefusesScalings,
+        HasSceneSettings,
+        CounterRuns,
+        SolverDiagnosis,
+        NamesElements,
+        IgnoredSettings,
+        EngineNotes,
+    )
 }

@@ -30,7 +30,7 @@ Examples
 >>> [(f.name, f.engine) for f in FORMATS]
 [('mjcf', 'mujoco'), ('urdf', 'pybullet')]
 >>> [(e.name, e.formats) for e in REGISTRY]
-[('pybullet', ('urdf',)), ('mujoco', ('mjcf',)), ('mjx', ('mjcf',))]
+[('pybullet', ('urdf',)), ('mujoco', ('mjcf', 'urdf')), ('mjx', ('mjcf', 'urdf'))]
 """
 
 from __future__ import annotations
@@ -155,11 +155,11 @@ FORMATS: tuple[Format, ...] = (
 #: every engine pitheorem runs, one line each
 REGISTRY: tuple[Engine, ...] = (
     Engine("pybullet", "runners.pybullet", (("urdf", "load_urdf"),), ("pybullet",)),
-    Engine("mujoco", "runners.mujoco", (("mjcf", "load_mjcf"),), ("mujoco",)),
+    Engine("mujoco", "runners.mujoco", (("mjcf", "load_mjcf"), ("urdf", "load_urdf")), ("mujoco",)),
     Engine(
         "mjx",
         "runners.mjx",
-        (("mjcf", "load_mjx"),),
+        (("mjcf", "load_mjx"), ("urdf", "load_urdf")),
         ("mujoco", "jax", "mujoco.mjx"),
         extra="mjx",
         base="mujoco",

@@ -17,6 +17,7 @@ from . import render
 from .pieces import (
     COMMAND_LINE_TIME_REMEDY,
     PYTHON_TIME_REMEDY,
+    SWEEP_HEADER,
     UNCHANGED,
     base_latex,
     changed_rows,
@@ -32,6 +33,10 @@ from .pieces import (
     rational_latex,
     registry,
     search_cells,
+    sweep_cells,
+    sweep_fit_text,
+    sweep_grid,
+    sweep_head,
     unit_fit_rows,
     value_text,
 )
@@ -228,6 +233,27 @@ def _rule_verdict(verdict) -> str:
     )
 
 
+@_renders("pitheorem.engines.verdicts.sweep.SweepRow")
+def _sweep_row(row) -> str:
+    return f"<span>{escape(render(row, 'text'))}</span>"
+
+
+@_renders("pitheorem.engines.verdicts.sweep.Sweep")
+def _sweep(sweep) -> str:
+    rows = [[escape(cell) for cell in sweep_cells(r)] for r in sweep.rows]
+    header = [_math("s"), *SWEEP_HEADER[1:]]
+    out = _p(escape(sweep_head(sweep))) + _table(header, rows)
+    caused = [r for r in sweep.rows if r.causes]
+    if caused:
+        items = "".join(
+            f"<li>s = {escape(value_text(r.s))}: " + "; ".join(render(c, "html") for c in r.causes) + "</li>"
+            for r in caused
+        )
+        out += f"<ul>{items}</ul>"
+    fit = sweep_fit_text(sweep)
+    return out + (_p(escape(fit)) if fit else "")
+
+
 def _parameters(name: str, model) -> str:
     rows = [
         [
@@ -314,3 +340,13 @@ def _engine_verify_answer(answer) -> str:
     lines = [line for line in render(answer, "text").splitlines() if not line.startswith(("causes:", "  "))]
     items = "".join(f"<li>{render(c, 'html')}</li>" for c in answer.report.causes)
     return "".join(_p(escape(line)) for line in lines) + (f"<ul>{items}</ul>" if items else "")
+
+
+@_renders("pitheorem.answers.SweepAnswer")
+def _sweep_answer(answer) -> str:
+    out = "".join(_sweep(sw) for sw in answer.sweeps)
+    out += "".join(_p(f"wrote {_code(path)}") for path in answer.plots)
+    if len(answer.sweeps) > 1:
+        header, *rows = sweep_grid(answer)
+        out += _table([escape(cell) for cell in header], [[escape(cell) for cell in row] for row in rows])
+    return out

@@ -214,6 +214,39 @@ def _engine_similarity_report(report) -> dict:
     }
 
 
+# -- sweeps ----------------------------------------------------------------------------------
+
+
+@_data("pitheorem.engines.verdicts.sweep.SweepRow")
+def _sweep_row(row) -> dict:
+    return {
+        "s": json_number(row.s),
+        "verdict": row.verdict,
+        "max_deviation": row.max_deviation,
+        "yardstick": row.yardstick,
+        "horizon": row.horizon,
+        "excited": row.excited,
+        "first_divergence": None if row.first_divergence is None else list(row.first_divergence),
+        "causes": [_cause(c) for c in row.causes],
+        "thresholds": list(row.thresholds),
+    }
+
+
+@_data("pitheorem.engines.verdicts.sweep.Sweep")
+def _sweep(sweep) -> dict:
+    return {
+        "file": sweep.model,
+        "engine": sweep.engine,
+        "scaling": None if sweep.scaling is None else _scaling(sweep.scaling),
+        "duration": sweep.duration,
+        "baseline_factor": sweep.baseline_factor,
+        "units": dict(sweep.units),
+        "fitted_units": None if sweep.fitted_units is None else dict(sweep.fitted_units),
+        "fitted_s": sweep.fitted_s,
+        "rows": [_sweep_row(r) for r in sweep.rows],
+    }
+
+
 # -- unit fits -------------------------------------------------------------------------------
 
 
@@ -248,7 +281,7 @@ def _unit_fit(fit) -> dict:
 
 @_data("pitheorem.engines.verdicts.causes.Cause")
 def _cause(cause) -> dict:
-    return {"kind": cause.kind, "element": cause.element, "detail": cause.detail}
+    return {"kind": cause.kind, "element": cause.element, "detail": cause.detail, "restores": cause.restores}
 
 
 @_data("pitheorem.engines.verdicts.audit.Audit")
@@ -428,7 +461,17 @@ def _engine_verify_answer(answer) -> dict:
         "max_deviation": rep.max_deviation,
         "first_divergence": None if rep.first_divergence is None else list(rep.first_divergence),
         "causes": [_cause(c) for c in rep.causes],
+        "notes": list(answer.notes),
         "report": _similarity_report(rep),
+    }
+
+
+@_data("pitheorem.answers.SweepAnswer")
+def _sweep_answer(answer) -> dict:
+    return {
+        "files": list(answer.model),
+        "plots": list(answer.plots),
+        "sweeps": [_sweep(sw) for sw in answer.sweeps],
     }
 
 

@@ -17,6 +17,7 @@ import sympy
 from . import render
 from .pieces import (
     PYTHON_TIME_REMEDY,
+    SWEEP_HEADER,
     UNCHANGED,
     base_latex,
     changed_rows,
@@ -33,6 +34,10 @@ from .pieces import (
     rational_latex,
     registry,
     search_cells,
+    sweep_cells,
+    sweep_fit_text,
+    sweep_grid,
+    sweep_head,
     unit_fit_rows,
     value_text,
     which_scaling,
@@ -235,6 +240,27 @@ def _rule_verdict(verdict) -> str:
     return rf"\textbf{{{latex_escape(first)}}}" + "\n\\begin{itemize}" + items + "\n\\end{itemize}"
 
 
+@_renders("pitheorem.engines.verdicts.sweep.SweepRow")
+def _sweep_row(row) -> str:
+    return latex_escape(render(row, "text"))
+
+
+@_renders("pitheorem.engines.verdicts.sweep.Sweep")
+def _sweep(sweep) -> str:
+    rows = [[latex_escape(cell) for cell in sweep_cells(r)] for r in sweep.rows]
+    parts = [latex_escape(sweep_head(sweep)), _tabular("rlrrl", rows, list(SWEEP_HEADER))]
+    caused = [r for r in sweep.rows if r.causes]
+    if caused:
+        items = "".join(
+            rf"\item $s = {_number(r.s)}$: " + "; ".join(render(c, "latex") for c in r.causes) + "\n" for r in caused
+        )
+        parts.append("\\begin{itemize}\n" + items + "\\end{itemize}")
+    fit = sweep_fit_text(sweep)
+    if fit:
+        parts.append(latex_escape(fit))
+    return "\n\n".join(parts)
+
+
 def _parameter_table(name: str, model) -> str:
     rows = [
         [
@@ -311,3 +337,14 @@ def _engine_verify_answer(answer) -> str:
     items = "".join(rf"\item {render(c, 'latex')}" + "\n" for c in answer.report.causes)
     head = f"% {answer.model} in {answer.engine}, s = {answer.s}\n" + "\n\n".join(map(latex_escape, lines))
     return head + ("\n\\begin{itemize}\n" + items + "\\end{itemize}" if items else "")
+
+
+@_renders("pitheorem.answers.SweepAnswer")
+def _sweep_answer(answer) -> str:
+    parts = [_sweep(sw) for sw in answer.sweeps]
+    parts += [latex_escape(f"wrote {path}") for path in answer.plots]
+    if len(answer.sweeps) > 1:
+        header, *rows = sweep_grid(answer)
+        grid = [[latex_escape(cell) for cell in row] for row in rows]
+        parts.append(_tabular("l" * len(header), grid, [latex_escape(cell) for cell in header]))
+    return "\n\n".join(parts)

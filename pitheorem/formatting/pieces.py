@@ -29,6 +29,7 @@ __all__ = [
     "COMMAND_LINE_TIME_REMEDY",
     "NAMES_SHOWN",
     "PYTHON_TIME_REMEDY",
+    "SWEEP_HEADER",
     "UNCHANGED",
     "align",
     "base_latex",
@@ -36,6 +37,7 @@ __all__ = [
     "changed_rows",
     "default_text",
     "deviation_rows",
+    "file_name",
     "float_text",
     "group_name_latex",
     "json_number",
@@ -55,6 +57,10 @@ __all__ = [
     "scale_text",
     "search_cells",
     "solutions_text",
+    "sweep_cells",
+    "sweep_fit_text",
+    "sweep_grid",
+    "sweep_head",
     "unit_change_text",
     "unit_fit_rows",
     "value_text",
@@ -945,3 +951,147 @@ def align(rows) -> str:
     """
     widths = [max(len(r[c]) for r in rows) for c in range(len(rows[0]))]
     return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in rows)
+
+
+# -- sweeps ----------------------------------------------------------------------------------
+
+#: the columns of a sweep's table
+SWEEP_HEADER = ("s", "verdict", "deviation", "yardstick", "thresholds crossed")
+
+
+def _short(value) -> str:
+    """A deviation or yardstick in a cell: three digits, an exact zero as 0, nothing for None."""
+    if value is None:
+        return ""
+    return "0" if value == 0 else f"{value:.3g}"
+
+
+def file_name(path: str) -> str:
+    """The last part of a file's path, as a table or a title shows it ("" for "").
+
+    Parameters
+    ----------
+    path : str
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import file_name
+    >>> file_name("robots/hopper.xml"), file_name("C:\\\\robots\\\\ant.xml"), file_name("")
+    ('hopper.xml', 'ant.xml', '')
+    """
+    return path.replace("\\", "/").rsplit("/", 1)[-1]
+
+
+def sweep_head(sweep) -> str:
+    """A sweep's first line: the model, its engine, the scaling, the run's length and the number of rows.
+
+    Parameters
+    ----------
+    sweep : Sweep
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.engines import Sweep
+    >>> from pitheorem.formatting.pieces import sweep_head
+    >>> sweep_head(Sweep("robots/hopper.xml", "mujoco", None, 0.5, ()))
+    'hopper.xml in mujoco: 0 scale factors, 0.5 s each'
+    """
+    name = file_name(sweep.model) or "(unsaved model)"
+    scaling = "" if sweep.scaling is None else f", {unit_change_text(sweep.scaling)}"
+    time_unit = dict(sweep.units).get("T", "s")
+    return f"{name} in {sweep.engine}{scaling}: {len(sweep.rows)} scale factors, {sweep.duration:g} {time_unit} each"
+
+
+def sweep_cells(row) -> list[str]:
+    """One row of a sweep's table as text cells, in the order of :data:`SWEEP_HEADER`.
+
+    Parameters
+    ----------
+    row : SweepRow
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> from pitheorem.engines import SweepRow
+    >>> from pitheorem.formatting.pieces import sweep_cells
+    >>> sweep_cells(SweepRow(0.001, "similar", 2.5e-9, 1.25e-10, None, True, None, (), ("mujoco_minmu",)))
+    ['0.001', 'similar', '2.5e-09', '1.25e-10', 'mujoco_minmu']
+    """
+    return [
+        value_text(row.s),
+        row.verdict,
+        _short(row.max_deviation),
+        _short(row.yardstick),
+        ", ".join(row.thresholds),
+    ]
+
+
+def sweep_fit_text(sweep) -> str:
+    """What :func:`pitheorem.fit_units` chooses for the sweep's engine, and where the sweep meets it ("" if not asked).
+
+    Parameters
+    ----------
+    sweep : Sweep
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.engines import Sweep
+    >>> from pitheorem.formatting.pieces import sweep_fit_text
+    >>> sweep_fit_text(Sweep("", "mujoco", None, 1.0, (), fitted_units={"M": "g", "L": "mm", "T": "s"}, fitted_s=1e-3))
+    'fit_units chooses M = g, L = mm, T = s for mujoco: this scaling reaches them at s = 0.001'
+    """
+    if sweep.fitted_units is None:
+        return ""
+    units = ", ".join(f"{b} = {u}" for b, u in sweep.fitted_units.items())
+    where = (
+        "this scaling moves none of their base units"
+        if sweep.fitted_s is None
+        else f"this scaling reaches them at s = {sweep.fitted_s:.3g}"
+    )
+    return f"fit_units chooses {units} for {sweep.engine}: {where}"
+
+
+def sweep_grid(answer) -> list[list[str]]:
+    """Several sweeps as one table of robots by scale: a header row of ``s``, then a row of verdicts per file.
+
+    The ``s`` of every sweep in the order of the first file's rows (the command line sweeps every file
+    at the same ``s``).
+
+    Parameters
+    ----------
+    answer : SweepAnswer
+
+    Returns
+    -------
+    list of list of str
+
+    Examples
+    --------
+    >>> from pitheorem.answers import SweepAnswer
+    >>> from pitheorem.engines import Sweep, SweepRow
+    >>> from pitheorem.formatting.pieces import sweep_grid
+    >>> rows = (SweepRow(0.5, "similar", 1e-14, 1e-12, None, True, None, (), ()),)
+    >>> sweep_grid(SweepAnswer(("a.xml",), (Sweep("a.xml", "mujoco", None, 1.0, rows),), ()))
+    [['robot', '0.5'], ['a.xml', 'similar']]
+    """
+    first = answer.sweeps[0].rows if answer.sweeps else ()
+    grid = [["robot", *(value_text(r.s) for r in first)]]
+    grid += [
+        [file_name(name), *(r.verdict for r in sw.rows)] for name, sw in zip(answer.model, answer.sweeps, strict=True)
+    ]
+    return grid

@@ -8,11 +8,14 @@ columns (:func:`~pitheorem.formatting.pieces.align`).
 
 from __future__ import annotations
 
+import textwrap
+
 import sympy
 
 from .pieces import (
     COMMAND_LINE_TIME_REMEDY,
     PYTHON_TIME_REMEDY,
+    SWEEP_HEADER,
     align,
     changed_by_kind,
     changed_rows,
@@ -28,6 +31,10 @@ from .pieces import (
     search_cells,
     solutions_text,
     strength_lines,
+    sweep_cells,
+    sweep_fit_text,
+    sweep_grid,
+    sweep_head,
     unit_change_text,
     unit_fit_rows,
     value_text,
@@ -230,7 +237,7 @@ def _symmetry_report(report) -> str:
 def _verdict(report) -> tuple[str, str]:
     """``PASSED``/``FAILED``, and whether the exponents are a change of units."""
     return (
-        "PASSED" if report.passed else "FAILED",
+        "FAILED" if not report.passed else "INCONCLUSIVE" if report.inconclusive else "PASSED",
         "similarity scaling" if report.is_similarity else "NOT a similarity scaling",
     )
 
@@ -244,7 +251,8 @@ def _similarity_report(report) -> str:
         judged = f"within {report.baseline_factor:g}x the one-ulp sensitivity (largest {worst:.3g}) per state"
     else:
         judged = f"tol {report.tol:g}"
-    head = "EXACT (bit for bit), " if report.exact and report.sensitivity is not None else ""
+    exact = report.exact and report.sensitivity is not None
+    head = ("bit for bit, " if report.inconclusive else "EXACT (bit for bit), ") if exact else ""
     lines = [
         f"{head}{verdict}: max deviation {report.max_deviation:.3g} ({judged}) at s={report.s:g}, "
         f"{kind}, method {report.method}; per state {per}"
@@ -358,6 +366,39 @@ def _rule_verdict(verdict) -> str:
             f"  hidden constant left out: {_hidden_constant(c)}"
             f" must scale by X^{verdict.scaling.exponent_of(c.dimension)}"
         )
+    return "\n".join(lines)
+
+
+@_renders("pitheorem.engines.verdicts.sweep.SweepRow")
+def _sweep_row(row) -> str:
+    s, verdict, deviation, yardstick, crossed = sweep_cells(row)
+    line = f"s = {s}: {verdict}"
+    if row.max_deviation is not None:
+        line += f", deviation {deviation}, yardstick {yardstick}"
+    if crossed:
+        line += f", beyond {crossed}"
+    return line
+
+
+#: the width the lines of a sweep's prose are wrapped at (its table is as wide as its columns)
+SWEEP_WIDTH = 88
+
+
+@_renders("pitheorem.engines.verdicts.sweep.Sweep")
+def _sweep(sweep) -> str:
+    lines = [
+        textwrap.fill(sweep_head(sweep), SWEEP_WIDTH, subsequent_indent="  "),
+        align([list(SWEEP_HEADER)] + [sweep_cells(r) for r in sweep.rows]),
+    ]
+    caused = [r for r in sweep.rows if r.causes]
+    if caused:
+        lines.append("causes:")
+        for r in caused:
+            line = f"  s = {value_text(r.s)}: " + "; ".join(f"{c.kind}: {c.element}" for c in r.causes)
+            lines.append(textwrap.fill(line, SWEEP_WIDTH, subsequent_indent="    "))
+    fit = sweep_fit_text(sweep)
+    if fit:
+        lines.append(textwrap.fill(fit, SWEEP_WIDTH, subsequent_indent="  "))
     return "\n".join(lines)
 
 
@@ -517,9 +558,20 @@ def _engine_verify_answer(answer) -> str:
             "(use --input smooth or another initial pose)"
         )
     lines.extend(strength_lines(rep))
+    lines.extend(f"note: {note}" for note in answer.notes)
     if rep.causes:
         lines.append("causes:")
         lines.extend(f"  {c}" for c in rep.causes)
     elif not rep.similar or (not rep.exact and answer.exact_expected):
         lines.append("no cause found by the audit and the counter-runs (solver, contacts)")
     return "\n".join(lines)
+
+
+@_renders("pitheorem.answers.SweepAnswer")
+def _sweep_answer(answer) -> str:
+    parts = [_sweep(sw) for sw in answer.sweeps]
+    if answer.plots:
+        parts.append("\n".join(f"wrote {path}" for path in answer.plots))
+    if len(answer.sweeps) > 1:
+        parts.append("verdicts of every file by scale factor s:\n" + align(sweep_grid(answer)))
+    return "\n\n".join(parts)

@@ -320,7 +320,7 @@ class EngineSimilarityReport(SimilarityReport):
 
     A :class:`pitheorem.SimilarityReport` and more.  The comparison itself is ``pitheorem.simulation.similarity_report``,
     shared with :func:`pitheorem.verify_similarity` and
-    :func:`pitheorem.engines.verdicts.verify`; this subclass only adds what the
+    :func:`pitheorem.engines.verify`; this subclass only adds what the
     rod's engine runs know besides.
 
     Attributes

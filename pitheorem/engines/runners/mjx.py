@@ -6,7 +6,9 @@ device with ``mujoco.mjx.put_model``.  MJX computes in float32 unless
 asked for float64 (``precision="float64"``, JAX's x64 mode, switched on
 only while this backend computes).  What MJX does not support (the PGS
 solver, some geom pairs, flex objects, some sensors and actuators) is
-refused by name when the file is loaded.
+refused by name when the file is loaded.  A URDF file goes to MJX as it
+goes to MuJoCo (:func:`load_urdf`): compiled by MuJoCo's URDF reader, with
+the MuJoCo settings saved beside it.
 
 The runs of a verification (the original, its scaled copy, the
 yardstick's twins) go to :meth:`MjxBackend.run_many`, which stacks the
@@ -47,9 +49,9 @@ from ..enginemodel import EngineModel
 from ..fileformats.mjcf import read_mjcf
 from ..packages import engine_module
 from ..parameters import Parameter, dim
-from .mujoco import MujocoRunner
+from .mujoco import MujocoRunner, urdf_runner
 
-__all__ = ["PRECISIONS", "MjxBackend", "load_mjx", "mjx_parameters", "threshold_numbers"]
+__all__ = ["PRECISIONS", "MjxBackend", "load_mjx", "load_urdf", "mjx_parameters", "threshold_numbers"]
 
 _M, _ML2, _L = dim("M"), dim("M L^2"), dim("L")
 
@@ -566,9 +568,49 @@ def load_mjx(path, *, precision: str = "float32") -> EngineModel:
     ...     print(err)
     precision must be 'float32' or 'float64', got 'float16'
     """
-    if precision not in PRECISIONS:
-        raise InvalidRequestError(f"precision must be 'float32' or 'float64', got {precision!r}", culprit=precision)
+    _check_precision(precision)
     reading = MujocoRunner(read_mjcf(path))
     if reading.refusal is not None:  # MuJoCo's compiler refused it: there is no model to put in MJX
         raise reading.refusal
     return EngineModel(MjxBackend(reading, precision), "mjx", str(path))
+
+
+def _check_precision(precision) -> None:
+    if precision not in PRECISIONS:
+        raise InvalidRequestError(f"precision must be 'float32' or 'float64', got {precision!r}", culprit=precision)
+
+
+def load_urdf(path, *, settings=None, precision: str = "float32") -> EngineModel:
+    """Read a URDF file as an MJX model: compiled by MuJoCo's URDF reader, put on JAX's device.
+
+    The same model as :func:`pitheorem.engines.runners.mujoco.load_urdf`'s (its
+    parameters, settings file and scaled copies), run by MJX.
+
+    Parameters
+    ----------
+    path : str or Path
+    settings : str, Path or bool, optional
+        The MuJoCo settings file: by default ``<path>.mujoco.json`` if it
+        exists; ``False`` ignores it.
+    precision : {"float32", "float64"}
+
+    Returns
+    -------
+    EngineModel
+        Of engine ``"mjx"``.
+
+    Raises
+    ------
+    EngineModelError
+        For a file the URDF format, MuJoCo or MJX rejects (named).
+    InvalidRequestError
+        For another precision.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> engines.load(engines.example_path("hinged_rod.urdf"), engine="mjx").engine
+    'mjx'
+    """
+    _check_precision(precision)
+    return EngineModel(MjxBackend(urdf_runner(path, settings=settings), precision), "mjx", str(path))

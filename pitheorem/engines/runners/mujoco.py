@@ -7,12 +7,26 @@ loop step by step, a batch of runs at once; it copies the compiled model
 one ulp off for the yardstick's twins and with another solver, tolerance,
 contacts or equality constraints for the diagnosis' counter-runs, and
 says what MuJoCo stores, which contacts a run makes and which solver it
-uses.  :func:`load_mjcf` is the registry's loader for ``"mujoco"``.
+uses.  :func:`load_mjcf` is the registry's loader of MJCF files for ``"mujoco"``.
+
+A URDF file runs here too (:func:`load_urdf`): MuJoCo's own URDF reader
+compiles it (with its ``<mujoco>`` block of compiler, option and size
+settings), and :class:`UrdfInMujoco` gives the runner what it needs of a
+document.  The table is the URDF's numbers (the URDF format's
+:class:`~pitheorem.engines.fileformats.urdf.UrdfDocument`) and the MuJoCo
+settings a URDF cannot hold: the options (time step, gravity, wind, ...),
+and the contact and limit softness, friction and margins MuJoCo's reader
+gives every geom and joint from its default class.  They are written
+beside a saved copy (``NAME.urdf.mujoco.json``) and read back by
+:func:`load_urdf`.  MuJoCo's URDF reader makes no actuators: such a model
+has no controls (``run(controls=...)`` has nothing to set).
 """
 
 from __future__ import annotations
 
 import atexit
+import json
+import math
 import re
 from contextlib import contextmanager
 from pathlib import Path
@@ -23,9 +37,11 @@ from ...errors import EngineModelError
 from ...simulation import nudged
 from ..enginemodel import EngineModel
 from ..fileformats.mjcf import read_mjcf
+from ..fileformats.urdf import UrdfDocument, read_urdf, refuse_units
 from ..packages import engine_module
+from ..parameters import Parameter, dim
 
-__all__ = ["MujocoRunner", "load_mjcf"]
+__all__ = ["MujocoRunner", "UrdfInMujoco", "load_mjcf", "load_urdf"]
 
 
 def _mujoco():
@@ -90,11 +106,16 @@ class MujocoRunner:
         return copy
 
     def in_units(self, units) -> MujocoRunner:
-        """This model, its document recording other units (a saved file then says so)."""
+        """This model, its document recording other units (a saved file then says so); a URDF's stay SI."""
+        if isinstance(self.document, UrdfInMujoco):
+            self.document.check_units(units)
+            return self
         return MujocoRunner(self.document.in_units(units))
 
     def check_units(self, units) -> None:
-        """Nothing to refuse: an MJCF file may be in any units, and records them when saved."""
+        """Nothing to refuse for an MJCF file (in any units, recorded when saved); a URDF's are SI only."""
+        if isinstance(self.document, UrdfInMujoco):
+            self.document.check_units(units)
 
     def recorded_units(self) -> dict[str, str] | None:
         return self.document.recorded_units()
@@ -103,7 +124,10 @@ class MujocoRunner:
         self.document.save(path)
 
     def written_beside(self, path) -> tuple[str, ...]:
-        """The files :meth:`save` writes beside `path`: none (an MJCF file holds every setting)."""
+        """The files :meth:`save` writes beside `path`: none for MJCF (its file holds every setting), a
+        URDF's MuJoCo settings."""
+        if isinstance(self.document, UrdfInMujoco):
+            return self.document.written_beside(path)
         return ()
 
     def unread(self) -> frozenset[str]:
@@ -237,6 +261,7 @@ class MujocoRunner:
         solver: str | None = None,
         inactive_equalities: tuple[int, ...] = (),
         integrator: str | None = None,
+        native_ccd: bool = True,
     ) -> MujocoRunner:
         """A copy run with another solver, tolerance or integrator, with contacts switched off, or with some
         equality constraints inactive: a counter-run's model (or the rod's, in another integrator)."""
@@ -254,7 +279,13 @@ class MujocoRunner:
             m.opt.noslip_tolerance = tolerance
         if not contacts:
             m.opt.disableflags |= int(mj.mjtDisableBit.mjDSBL_CONTACT)
+        if not native_ccd:  # convex pairs through MuJoCo's older libccd path instead of its native GJK/EPA
+            m.opt.disableflags |= int(mj.mjtDisableBit.mjDSBL_NATIVECCD)
         return out
+
+    def uses_native_ccd(self) -> bool:
+        """Whether convex geom pairs (meshes, boxes against meshes, ...) collide through MuJoCo's native CCD."""
+        return not int(self.mjmodel.opt.disableflags) & int(_mujoco().mjtDisableBit.mjDSBL_NATIVECCD)
 
     def control_ranges(self) -> tuple[np.ndarray, np.ndarray]:
         """Each actuator's control range where the file limits it; -inf and inf where it does not."""
@@ -276,6 +307,29 @@ class MujocoRunner:
     def equality_names(self) -> list[str]:
         """Each equality constraint, named as the reports name it."""
         return [self.element_name("eq_data", i) for i in range(self.mjmodel.neq)]
+
+    def engine_notes(self) -> tuple[str, ...]:
+        """Known bugs of the installed MuJoCo that can touch a verdict on this model.
+
+        MuJoCo 4.0.0's Newton solver has a bug in its sparse Cholesky
+        factorisation, fixed in 4.0.1 (MuJoCo issue #3767); it touches a
+        model that uses the Newton solver with sparse Jacobians (the
+        ``jacobian`` option sparse, or auto on a model of 60 or more degrees
+        of freedom).  The package index served only 4.0.0 when this was
+        written.
+        """
+        mj, m = _mujoco(), self.mjmodel
+        newton = int(m.opt.solver) == int(mj.mjtSolver.mjSOL_NEWTON)
+        jacobian = int(m.opt.jacobian)
+        sparse = jacobian == int(mj.mjtJacobian.mjJAC_SPARSE) or (
+            jacobian == int(mj.mjtJacobian.mjJAC_AUTO) and m.nv >= 60
+        )
+        if mj.__version__ == "4.0.0" and newton and sparse:
+            return (
+                "MuJoCo 4.0.0's Newton solver has a sparse Cholesky bug, fixed in 4.0.1 (MuJoCo #3767), "
+                "which this model meets (Newton, sparse Jacobians): a verdict may change with 4.0.1",
+            )
+        return ()
 
     #: the solver whose iterations are scale-free (its line search is exact in any units)
     scale_free_solver = "Newton"
@@ -608,3 +662,402 @@ def load_mjcf(path) -> EngineModel:
     'mujoco'
     """
     return EngineModel(MujocoRunner(read_mjcf(path)), "mujoco", str(Path(path)))
+
+
+# -- URDF files, compiled by MuJoCo's own URDF reader ------------------------------------------------
+
+#: the MuJoCo settings a URDF cannot hold, by group: (attribute, entries with a dimension, dimension, suffix).
+#: ``option`` is the model's options, ``compiler`` its compiler's mass bounds, ``geom`` what MuJoCo's URDF
+#: reader gives every geom from its default class, ``hinge`` and ``slide`` what it gives every joint of that
+#: kind (``q`` is the joint's coordinate: 1 for a hinge, a length for a slide); a setting of no dimension
+#: (the solver's tolerance) is kept and written, not scaled, and is no parameter
+_URDF_SETTINGS = {
+    "option": (
+        ("timestep", None, "T", ""),
+        ("gravity", (0, 3), "L T^-2", ""),
+        ("wind", (0, 3), "L T^-1", ""),
+        ("density", None, "M L^-3", ""),
+        ("viscosity", None, "M L^-1 T^-1", ""),
+        ("o_margin", None, "L", ""),
+        ("o_solref", (0, 1), "T", "_time"),
+        ("o_solimp", (2, 3), "L", "_width"),
+        ("o_friction", (2, 5), "L", "_torsional_rolling"),
+        ("ccd_tolerance", None, "L", ""),
+        ("tolerance", None, None, ""),  # no dimension: copied unchanged (0 runs every iteration: exact)
+    ),
+    "compiler": (
+        ("boundmass", None, "M", ""),
+        ("boundinertia", None, "M L^2", ""),
+        ("settotalmass", None, "M", ""),
+    ),
+    "geom": (
+        ("friction", (1, 3), "L", "_torsional_rolling"),
+        ("solref", (0, 1), "T", "_time"),
+        ("solimp", (2, 3), "L", "_width"),
+        ("margin", None, "L", ""),
+        ("gap", None, "L", ""),
+        ("density", None, "M L^-3", ""),
+    ),
+    "hinge": (
+        ("solref_limit", (0, 1), "T", "_time"),
+        ("solimp_limit", (2, 3), "q", "_width"),
+        ("solref_friction", (0, 1), "T", "_time"),
+        ("solimp_friction", (2, 3), "q", "_width"),
+        ("margin", None, "q", ""),
+        ("eq_solref", (0, 1), "T", "_time"),  # of each <mimic> of a joint of this kind (a joint equality)
+        ("eq_solimp", (2, 3), "q", "_width"),
+    ),
+}
+_URDF_SETTINGS["slide"] = _URDF_SETTINGS["hinge"]
+_JOINT_Q = {"hinge": "1", "slide": "L"}
+#: the suffix of the settings file a saved URDF's MuJoCo settings are written to
+SETTINGS_SUFFIX = ".mujoco.json"
+
+
+def _setting_name(group: str, attr: str, suffix: str) -> str:
+    return "g" if attr == "gravity" else "timestep" if attr == "timestep" else f"{group}_{attr}{suffix}"
+
+
+def _setting_dimension(group: str, text: str):
+    return dim(text.replace("q", _JOINT_Q.get(group, "1")))
+
+
+def _joint_groups(mj, spec) -> list[str]:
+    """The joint kinds of a URDF's spec (MuJoCo makes hinges and slides of it), in a fixed order."""
+    types = {int(j.type) for j in spec.joints}
+    return [g for g, t in (("hinge", mj.mjtJoint.mjJNT_HINGE), ("slide", mj.mjtJoint.mjJNT_SLIDE)) if int(t) in types]
+
+
+def _holders(mj, spec, group: str) -> list:
+    """The spec's objects a group of settings is written on."""
+    if group == "option":
+        return [spec.option]
+    if group == "compiler":
+        return [spec.compiler]
+    if group == "geom":
+        return list(spec.geoms)
+    kind = int(getattr(mj.mjtJoint, f"mjJNT_{group.upper()}"))
+    return [j for j in spec.joints if int(j.type) == kind] + _mimics(mj, spec, kind)
+
+
+def _mimics(mj, spec, kind: int) -> list:
+    """The joint equalities (a URDF's ``<mimic>``) whose first joint is of `kind`."""
+    types = {j.name: int(j.type) for j in spec.joints}
+    return [e for e in spec.equalities if e.type == mj.mjtEq.mjEQ_JOINT and types.get(e.name1) == kind]
+
+
+def _refuse_mixed_mimics(mj, spec, path: str) -> None:
+    """Refuse a ``<mimic>`` whose offset or multiplier has a dimension (the URDF format does not list them)."""
+    types = {j.name: int(j.type) for j in spec.joints}
+    slide = int(mj.mjtJoint.mjJNT_SLIDE)
+    for e in spec.equalities:
+        if e.type != mj.mjtEq.mjEQ_JOINT:
+            continue
+        offset, multiplier = float(e.data[0]), float(e.data[1])
+        mixed = types.get(e.name1) != types.get(e.name2) and multiplier != 0
+        if (offset != 0 and types.get(e.name1) == slide) or mixed:
+            raise EngineModelError(
+                path,
+                f"joint {e.name1!r} mimic",
+                "its offset (a length) or its multiplier between a prismatic and a revolute joint has a "
+                "dimension, and the URDF format does not list it, so a scaled copy would keep it; "
+                "use offset 0 and joints of one kind",
+            )
+
+
+def _read_urdf_settings(mj, spec) -> dict:
+    """The settings MuJoCo's URDF reader left in `spec`: its options, and its default class's geom and joint."""
+    sources = {"option": spec.option, "compiler": spec.compiler, "geom": spec.default.geom}
+    out = {}
+    for group in ("option", "compiler", "geom", *_joint_groups(mj, spec)):
+        holder = sources.get(group, spec.default.joint)
+        out[group] = {}
+        for attr, entries, _dimension, _suffix in _URDF_SETTINGS[group]:
+            source = spec.default.equality if attr.startswith("eq_") else holder
+            value = np.asarray(getattr(source, attr.removeprefix("eq_")), dtype=float)
+            out[group][attr] = value.tolist() if entries is not None else float(value)
+    return out
+
+
+def _apply_urdf_settings(mj, spec, settings: dict) -> None:
+    """Write `settings` on `spec`: the options, and every geom and joint MuJoCo's URDF reader made.
+
+    A geom the reader made massless (a visual one, of density 0) stays massless.
+    """
+    for group, values in settings.items():
+        for holder in _holders(mj, spec, group):
+            equality = isinstance(holder, mj.MjsEquality)
+            for attr, value in values.items():
+                if group == "geom" and attr == "density" and holder.density == 0:
+                    continue
+                if attr.startswith("eq_") != equality:  # a joint's settings, or a mimic's
+                    continue
+                value = np.asarray(value, dtype=float) if isinstance(value, list) else value
+                setattr(holder, attr.removeprefix("eq_"), value)
+
+
+class UrdfInMujoco:
+    """A URDF document as MuJoCo's runner holds a model: compiled by MuJoCo's URDF reader, with its settings.
+
+    Parameters
+    ----------
+    urdf : UrdfDocument
+        The URDF file's numbers, each with its address (the URDF format).
+    settings : dict, optional
+        The MuJoCo settings a URDF cannot hold, by group (``option``,
+        ``compiler``, ``geom``, ``hinge``, ``slide``), as :meth:`settings`
+        returns them; by default those MuJoCo's reader leaves (its
+        defaults, and the ``<mujoco>`` block's options).
+
+    Raises
+    ------
+    EngineModelError
+        When MuJoCo's URDF reader or compiler rejects the file (the
+        message is MuJoCo's), or `settings` is not a table of this file's
+        settings (the message names the group or the setting).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.fileformats.urdf import read_urdf
+    >>> from pitheorem.engines.runners.mujoco import UrdfInMujoco
+    >>> document = UrdfInMujoco(read_urdf(engines.example_path("hinged_rod.urdf")))
+    >>> document.mjmodel.nq, document.settings()["option"]["timestep"]
+    (1, 0.002)
+    """
+
+    def __init__(self, urdf: UrdfDocument, settings: dict | None = None):
+        import warnings
+
+        mj = _mujoco()
+        self.urdf, self.path, self.refusal = urdf, urdf.path, None
+        text = urdf.portable_text()  # meshes by absolute path; package:// found as the URDF format finds it
+        try:
+            spec = mj.MjSpec.from_string(text if text is not None else urdf.text())
+        except ValueError as err:
+            raise EngineModelError(self.path, "MuJoCo's URDF reader", _first_line(str(err))) from None
+        if text is None:
+            spec.modelfiledir = str(urdf.source_dir)
+        _refuse_mixed_mimics(mj, spec, self.path)
+        found = _read_urdf_settings(mj, spec)
+        if settings is not None:
+            _check_urdf_settings(self.path, settings, found)
+            _apply_urdf_settings(mj, spec, settings)
+        self._settings = found if settings is None else json.loads(json.dumps(settings))
+        self.spec = spec
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                self.mjmodel = spec.compile()
+        except ValueError as err:
+            raise EngineModelError(self.path, "MuJoCo's compiler", _first_line(str(err))) from None
+        self._coordinates = None
+
+    @property
+    def fixed_units(self) -> dict[str, str]:
+        """The units a URDF file is in (SI, by its specification)."""
+        return dict(self.urdf.fixed_units)
+
+    def settings(self) -> dict:
+        """The MuJoCo settings a URDF cannot hold, by group: a copy, as the settings file holds them."""
+        return json.loads(json.dumps(self._settings))
+
+    def parameters(self) -> list[Parameter]:
+        """The URDF's numbers, then each MuJoCo setting with a dimension (the gravity as its magnitude ``g``)."""
+        out = self.urdf.parameters()
+        for group, values in self._settings.items():
+            for attr, entries, dimension, suffix in _URDF_SETTINGS[group]:
+                value = values[attr]
+                if dimension is None:
+                    continue
+                if attr == "gravity":
+                    value = (math.hypot(*value),)
+                elif entries is not None:
+                    value = tuple(value[entries[0] : entries[1]])
+                else:
+                    value = (value,)
+                where = "option" if group in ("option", "compiler") else f"every {group}"
+                out.append(
+                    Parameter(
+                        _setting_name(group, attr, suffix),
+                        f"{group} {attr}" + (f" of {where}" if group not in ("option", "compiler") else ""),
+                        value,
+                        _setting_dimension(group, dimension),
+                        "engine",
+                        f"settings file ({SETTINGS_SUFFIX})",
+                        note="a MuJoCo setting a URDF cannot hold",
+                    )
+                )
+        return out
+
+    def scaled(self, factors, scaling=None, s=None) -> UrdfInMujoco:
+        """A copy: the URDF scaled by address, each setting multiplied by its factor, compiled again."""
+        settings = self.settings()
+        for group, values in settings.items():
+            for attr, entries, dimension, suffix in _URDF_SETTINGS[group]:
+                factor = factors.get(_setting_name(group, attr, suffix), 1.0)
+                if factor == 1.0 or dimension is None:
+                    continue
+                if attr == "gravity":
+                    values[attr] = [v * factor for v in values[attr]]
+                elif entries is not None:
+                    start, stop = entries
+                    values[attr][start:stop] = [v * factor for v in values[attr][start:stop]]
+                else:
+                    values[attr] *= factor
+        copy = UrdfInMujoco(self.urdf.scaled(factors), settings)
+        copy._coordinates = self.coordinate_dimensions()
+        return copy
+
+    def check_units(self, units) -> None:
+        """Refuse units other than SI: a URDF file is in SI units by its specification."""
+        if dict(units) != self.fixed_units:
+            refuse_units(self.path, units)
+
+    def recorded_units(self) -> dict[str, str] | None:
+        """None: a URDF file records no units (it is in SI)."""
+        return None
+
+    def written_beside(self, path) -> tuple[str, ...]:
+        """The settings file :meth:`save` writes beside `path`."""
+        return (f"{path}{SETTINGS_SUFFIX}",)
+
+    def save(self, path) -> None:
+        """Write the URDF (meshes by absolute path) and its MuJoCo settings beside it."""
+        self.urdf.save(path)
+        Path(f"{path}{SETTINGS_SUFFIX}").write_text(json.dumps(self._settings, indent=2))
+
+    def coordinate_dimensions(self):
+        """Names and dimensions of qpos and qvel entries: a hinge's angle is 1, a slide's position a length."""
+        if self._coordinates is None:
+            mj, m = _mujoco(), self.mjmodel
+            names, dims = [], []
+            for label, rate in (("qpos", 0), ("qvel", 1)):
+                for j in range(m.njnt):
+                    group = "hinge" if int(m.jnt_type[j]) == int(mj.mjtJoint.mjJNT_HINGE) else "slide"
+                    names.append(f"{label}[{mj.mj_id2name(m, mj.mjtObj.mjOBJ_JOINT, j) or f'joint{j}'}]")
+                    dims.append(dim(_JOINT_Q[group]) * dim("T") ** (-rate))
+            self._coordinates = (names, dims)
+        return self._coordinates
+
+    def control_dimensions(self) -> list:
+        """None: MuJoCo's URDF reader makes no actuators."""
+        return []
+
+    def activation_dimensions(self) -> list:
+        return []
+
+
+def _first_line(text: str) -> str:
+    return text.strip().splitlines()[0] if text.strip() else "rejected"
+
+
+def _check_urdf_settings(path: str, settings, found: dict) -> None:
+    """Refuse a settings table that is not one of this file's, naming the group or setting at fault."""
+    if not isinstance(settings, dict) or sorted(settings) != sorted(found):
+        got = sorted(settings) if isinstance(settings, dict) else type(settings).__name__
+        raise EngineModelError(
+            path, "MuJoCo settings", f"groups {got}; this file's are {sorted(found)} (as settings() returns them)"
+        )
+    for group, values in found.items():
+        given = settings[group]
+        if not isinstance(given, dict) or sorted(given) != sorted(values):
+            raise EngineModelError(path, f"MuJoCo settings {group!r}", f"must set exactly {sorted(values)}")
+        for attr, value in values.items():
+            shape = len(value) if isinstance(value, list) else None
+            v = given[attr]
+            ok = (
+                isinstance(v, list) and len(v) == shape and all(_finite(x) for x in v)
+                if shape is not None
+                else _finite(v)
+            )
+            if not ok:
+                size = f"a list of {shape} finite numbers" if shape is not None else "a finite number"
+                raise EngineModelError(path, f"MuJoCo setting {group}.{attr}", f"got {v!r}; use {size}")
+            if attr.startswith(("solref", "o_solref")) and v[0] <= 0:
+                raise EngineModelError(
+                    path,
+                    f"MuJoCo setting {group}.{attr}",
+                    f"got {v!r}; a time constant and a damping ratio (both > 0) scale, a stiffness and a "
+                    "damping (negative) mix dimensions",
+                )
+
+
+def _finite(x) -> bool:
+    return isinstance(x, int | float) and not isinstance(x, bool) and math.isfinite(x)
+
+
+def urdf_runner(path, *, settings=None) -> MujocoRunner:
+    """A URDF file compiled by MuJoCo's URDF reader, with the settings saved beside it: the runner of
+    :func:`load_urdf` (MJX puts the same model on its device).
+
+    Parameters
+    ----------
+    path : str or Path
+    settings : str, Path or bool, optional
+        The settings file: by default ``<path>.mujoco.json`` if it exists
+        (one :meth:`UrdfInMujoco.save` wrote); ``False`` ignores it.
+
+    Returns
+    -------
+    MujocoRunner
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.runners.mujoco import urdf_runner
+    >>> urdf_runner(engines.example_path("hinged_rod.urdf")).mjmodel.njnt
+    1
+    """
+    path = Path(path)
+    document = read_urdf(path)
+    saved = Path(f"{path}{SETTINGS_SUFFIX}") if settings is None or settings is True else settings
+    table = None
+    if saved is not False:
+        saved = Path(saved)
+        if saved.is_file():
+            try:
+                table = json.loads(saved.read_text())
+            except (ValueError, UnicodeDecodeError) as err:
+                raise EngineModelError(str(saved), "settings", f"not a MuJoCo settings file ({err})") from None
+        elif settings not in (None, True):
+            raise EngineModelError(str(saved), "", "no such settings file")
+    return MujocoRunner(UrdfInMujoco(document, table))
+
+
+def load_urdf(path, *, settings=None) -> EngineModel:
+    """Read a URDF file as a MuJoCo model: compiled by MuJoCo's own URDF reader, with its MuJoCo settings.
+
+    MuJoCo reads the file's ``<mujoco>`` block (compiler, option and size),
+    merges links joined by fixed joints, drops the visual geoms unless the
+    block keeps them, and welds the root link to the world.  Mesh files are
+    found as the URDF format finds them: beside the file, or a
+    ``package://NAME/...`` path in the folders above it.
+
+    Parameters
+    ----------
+    path : str or Path
+    settings : str, Path or bool, optional
+        The settings file to read: by default ``<path>.mujoco.json`` if it
+        exists (a saved copy's); ``False`` ignores it.
+
+    Returns
+    -------
+    EngineModel
+        Of engine ``"mujoco"``; its parameters are the URDF's numbers and
+        the MuJoCo settings a URDF cannot hold.
+
+    Raises
+    ------
+    EngineModelError
+        For a file the URDF format or MuJoCo rejects, and a settings file
+        that is missing or not one of this file's (the message names it).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> model = engines.load(engines.example_path("hinged_rod.urdf"), engine="mujoco")
+    >>> model.engine, [p.name for p in model.parameters if p.source == "engine"][:2]
+    ('mujoco', ['timestep', 'g'])
+    """
+    return EngineModel(urdf_runner(path, settings=settings), "mujoco", str(Path(path)))

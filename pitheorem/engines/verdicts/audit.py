@@ -37,7 +37,7 @@ from ..enginemodel import EngineModel, check_scaling
 from ..protocols import CounterRuns, IgnoredSettings, NamesElements
 from .causes import Cause, sorted_causes
 
-__all__ = ["Audit", "audit"]
+__all__ = ["Audit", "audit", "held_otherwise"]
 
 #: the exact probe factor: every s**k with k a multiple of 1/2 is a power of two
 PROBE = 4
@@ -174,8 +174,9 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
         back, clean_back, _ = _probe_exponents(before, inverse[field])
         clean &= clean_back & (back == -k)
         probed[field] = k, clean, residue
-        if not clean.all():
-            causes.append(_not_a_power(backend, field, before, probe[field], ~clean))
+        changed = held_otherwise(before, copy[field], clean)
+        if changed.any():
+            causes.append(_not_a_power(backend, field, before, probe[field], changed))
         magnitude = np.abs(before.astype(float))
         for e in np.unique(k[clean]):
             scale[e] = max(scale.get(e, 0.0), float(np.max(magnitude[clean & (k == e)], initial=0.0)))
@@ -249,6 +250,28 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
         causes.extend(crossed(model.engine, scaled.parameters, **how))
     causes.extend(crossed(model.engine, model.parameters, **how))
     return Audit(sorted_causes(causes), compared, float(s))
+
+
+def held_otherwise(before: np.ndarray, copy: np.ndarray, clean: np.ndarray) -> np.ndarray:
+    """The entries of a field with no exponent (`clean` False) that the copy holds otherwise than the original.
+
+    A number whose probes show no power of 4 is a cause only where the
+    copy's number differs from the original's: where the engine holds the
+    very same number in the copy (a mesh's polygon normals, recomputed
+    alike at this scale), nothing in the run can differ by it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pitheorem.engines.verdicts.audit import held_otherwise
+    >>> before = np.array([1.0, 0.5, 0.25])
+    >>> held_otherwise(before, np.array([4.0, 0.5, 0.3]), np.array([True, False, False])).tolist()
+    [False, False, True]
+    """
+    before, copy = np.asarray(before), np.asarray(copy)
+    with np.errstate(invalid="ignore"):
+        same = (before == copy) | (np.isnan(before) & np.isnan(copy))
+    return ~np.asarray(clean, dtype=bool) & ~same
 
 
 def _probe_exponents(before: np.ndarray, probe: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

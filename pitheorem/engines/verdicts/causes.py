@@ -2,8 +2,8 @@
 
 A verdict of "not similar" helps nobody unless it says why.  Every check of
 the engines layer that finds something a scaling cannot carry
-(:func:`pitheorem.engines.verdicts.verify`, :func:`pitheorem.engines.verdicts.audit`,
-:func:`pitheorem.engines.check`) answers with ``Cause`` records of six kinds:
+(:func:`pitheorem.engines.verify`, :func:`pitheorem.engines.audit`,
+:func:`pitheorem.engines.check`) answers with ``Cause`` records of seven kinds:
 
 ``precision``
     a number the engine stores in lower precision than the scaling needs
@@ -21,6 +21,9 @@ the engines layer that finds something a scaling cannot carry
 ``unscaled``
     a number the engine holds that is not the original times its factor
     (a sentinel such as ``-1`` for "compute it", a value derived at load).
+``unknown``
+    the runs part and no counter-run removes the difference: the step and
+    the coordinate where they part, and what was tried.
 """
 
 from __future__ import annotations
@@ -34,7 +37,7 @@ from ...immutable import immutable
 __all__ = ["CAUSE_KINDS", "Cause"]
 
 #: the kinds of cause, in the order reports list them
-CAUSE_KINDS = ("unscaled", "setting", "threshold", "solver", "precision", "contact")
+CAUSE_KINDS = ("unscaled", "setting", "threshold", "solver", "precision", "contact", "unknown")
 
 
 @immutable
@@ -44,12 +47,18 @@ class Cause(TextDisplay):
 
     Parameters
     ----------
-    kind : {"precision", "solver", "contact", "threshold", "setting", "unscaled"}
+    kind : {"precision", "solver", "contact", "threshold", "setting", "unscaled", "unknown"}
         What sort of reason (see the module's documentation).
     element : str
         What it concerns: a parameter, a geom pair, an engine constant.
     detail : str
         The numbers behind it, and what would remove it.
+    restores : bool or None
+        For a cause found by a counter-run: whether that counter-run, with
+        the other causes named removed too, reproduces the original (bit
+        for bit where every factor is a power of two, else within the
+        yardstick).  None for a cause no run tests (a number the audit
+        finds unscaled, a threshold crossed).
 
     Examples
     --------
@@ -62,12 +71,13 @@ class Cause(TextDisplay):
     ...     Cause("luck", "x", "")
     ... except pt.InvalidRequestError as err:
     ...     print(err)
-    unknown cause kind 'luck'; valid: unscaled, setting, threshold, solver, precision, contact
+    unknown cause kind 'luck'; valid: unscaled, setting, threshold, solver, precision, contact, unknown
     """
 
     kind: str
     element: str
     detail: str
+    restores: bool | None = None
 
     def __post_init__(self) -> None:
         if self.kind not in CAUSE_KINDS:
@@ -85,7 +95,7 @@ class Cause(TextDisplay):
         >>> Cause("contact", "geom 'foot' / geom 'floor'", "starts at step 3").to_dict()["kind"]
         'contact'
         """
-        return {"kind": self.kind, "element": self.element, "detail": self.detail}
+        return {"kind": self.kind, "element": self.element, "detail": self.detail, "restores": self.restores}
 
 
 def sorted_causes(causes) -> tuple[Cause, ...]:

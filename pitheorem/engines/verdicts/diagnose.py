@@ -1,24 +1,27 @@
 """Why a scaled run is not exact or not similar: causes found by counter-runs, not guessed.
 
-:func:`pitheorem.engines.verdicts.verify` calls :func:`find_causes` when a run at a
+:func:`pitheorem.engines.verify` calls :func:`find_causes` when a run at a
 power of four is not bit for bit the original, or a run is not similar.
 Each cause is established, not presumed:
 
-* the static ones by :func:`pitheorem.engines.verdicts.audit` (numbers the engine
+* the static ones by :func:`pitheorem.engines.audit` (numbers the engine
   holds that are not the original times their factor, float32 rounding,
   settings the engine ignores);
 * ``solver``: the original and the scaled copy run again with the
-  solver's tolerance at 0 (every iteration done); it is a cause when
-  the pair then agrees (bit for bit at a power of four, or within the
-  yardstick) where it did not;
-* ``solver`` too: an equality constraint the solver does not treat
-  scale-free (a weld with an offset), found by running both with the
-  equality constraints inactive, then each one alone inactive;
-* ``contact``: the geom pairs in contact after each step, in the original
-  and in the scaled run; the first step where they differ is named, and a
-  counter-run with contacts switched off says whether the difference goes
-  with them.  When the same pairs touch throughout and a solver cause is
-  shown, the contacts are only where that solver iterates: no cause.
+  solver's tolerance at 0 (every iteration done), with the scale-free
+  solver, and with the equality constraints inactive (then each one alone);
+* ``contact``: with MuJoCo's native convex collision (native CCD) off,
+  and with contacts off; the geom pairs in contact after each step are
+  compared, and the first pair that touches in one run only is named.
+
+A counter-run *shows* a cause when the runs, with it removed from both,
+part later or never.  A cause is named only as part of the smallest set
+whose counter-runs together *restore* the run: bit for bit where every
+factor is a power of two ("nearly" is not agreement there), else within
+the yardstick; each such cause says so (``cause.restores``).  Causes
+that together do not restore it are named with ``restores=False``, and
+the step and coordinate where the runs part become a cause of kind
+``"unknown"`` (unless the audit found a number the copy holds wrong).
 """
 
 from __future__ import annotations
@@ -34,7 +37,10 @@ from ..protocols import CounterRuns, SolverDiagnosis
 from .audit import audit
 from .causes import Cause, sorted_causes
 
-__all__ = ["find_causes"]
+__all__ = ["SHRINK", "find_causes"]
+
+#: a counter-run that leaves the runs this many times closer than the verdict's shows a cause (or they part later)
+SHRINK = 1000.0
 
 
 def find_causes(
@@ -47,7 +53,7 @@ def find_causes(
     model, scaled : EngineModel
         The original and its scaled copy.
     scaling, s
-        As given to :func:`pitheorem.engines.verdicts.verify`.
+        As given to :func:`pitheorem.engines.verify`.
     n_steps : int
     u_original, u_scaled : ndarray or None
         The open-loop inputs of each run, one row per step.
@@ -76,12 +82,13 @@ def find_causes(
     causes = [c for c in audit(model, scaling, s, scaled=scaled).causes if c.kind != "solver"]
     limits = allowed_deviation(report.original, report.sensitivity, report.baseline_factor)
 
-    # Where the runs first part: the first step at which they differ in a bit, when every factor is exact
-    # and the verdict was similar (a difference in any bit is then the thing to explain), else the first
-    # step at which a coordinate leaves the yardstick.  A counter-run shows a cause when, with the
-    # candidate removed from both runs, they never part, or part later than the verdict's runs do: a
-    # model with two causes is not repaired by removing one, but its first difference moves.
-    bits = exact_expected and report.similar
+    # Where the runs first part: where every factor is a power of two, the first step at which they differ in
+    # a bit (a faithful engine reproduces the original exactly: "nearly" is a difference to explain); else the
+    # first step at which a coordinate leaves the yardstick.  A counter-run *shows* a cause when, with the
+    # candidate removed from both runs, they never part, or part later than the verdict's runs do (a model
+    # with two causes is not repaired by removing one, but its first difference moves); it *restores* the run
+    # when they never part.
+    bits = exact_expected
 
     def parting(run: np.ndarray, back: np.ndarray) -> int | None:
         with np.errstate(invalid="ignore"):
@@ -90,6 +97,8 @@ def find_causes(
         return int(rows[0]) if rows.size else None
 
     verdict_parts = parting(report.original.y, report.mapped.y)
+    if verdict_parts is None:  # nothing to explain by a run: the static causes (the audit's) only
+        return sorted_causes(causes)
 
     def counters(*variants) -> list[Counter]:
         """Both runs again under each variant's options, all in one batch: what each shows."""
@@ -104,23 +113,35 @@ def find_causes(
         for run, other in zip(runs[::2], runs[1::2], strict=True):
             back = other / factors
             parts = parting(run, back)
-            later = parts is None or (verdict_parts is not None and parts > verdict_parts)
-            out.append(Counter(later, parts is None, _largest(back - run), parts, bool(np.array_equal(run, back))))
+            worst = _largest(back - run)
+            # it shows a cause: the runs part later, or stay a thousand times closer than the verdict's
+            shows = parts is None or parts > verdict_parts or worst < report.max_deviation / SHRINK
+            out.append(Counter(shows, parts is None, worst, parts, bool(np.array_equal(run, back))))
         return out
 
     t = report.original.t
 
     def shown(counter: Counter) -> str:
-        """What a counter-run that shows a cause showed, in words."""
-        if counter.agree:
-            return f"they agree (largest deviation {counter.worst:.3g} instead of {report.max_deviation:.3g})"
+        """What a counter-run that shows a cause showed, in words: never "agree" for "nearly"."""
+        if counter.exact:
+            return "they are equal bit for bit"
+        if counter.restores:
+            return (
+                f"they stay within the yardstick (largest deviation {float_text(counter.worst)} instead of "
+                f"{float_text(report.max_deviation)})"
+            )
+        if counter.parts > verdict_parts:
+            return (
+                f"they part later: first at t = {float(t[counter.parts]):.6g} instead of t = "
+                f"{float(t[verdict_parts]):.6g}, where another cause takes over"
+            )
         return (
-            f"they part later: first at t = {float(t[counter.parts]):.6g} instead of t = "
-            f"{float(t[verdict_parts]):.6g}, where another cause takes over"
+            f"they come closer (largest deviation {float_text(counter.worst)} instead of "
+            f"{float_text(report.max_deviation)}) but still part at t = {float(t[counter.parts]):.6g}"
         )
 
     if not isinstance(original, CounterRuns):
-        return sorted_causes(causes)
+        return sorted_causes(causes or [_unknown(report, verdict_parts, bits, ())])
     solver = original.solver_settings()
     diagnosable = isinstance(original, SolverDiagnosis)  # a runner without: no solver to switch, no contact list
     # every counter-run a cause may need, in one batch (MuJoCo's rollout spreads them over the cores)
@@ -133,76 +154,202 @@ def find_causes(
             variants["newton"] = {"solver": original.scale_free_solver}
         if equalities:
             variants["equalities"] = {"inactive_equalities": tuple(range(len(equalities)))}
+        if original.uses_native_ccd():
+            variants["native_ccd"] = {"native_ccd": False}
         variants["contacts"] = {"contacts": False}
     results = dict(zip(variants, counters(*variants.values()), strict=True)) if variants else {}
+    # each cause a counter-run shows, with the options of that counter-run: (cause, options)
+    found: list[tuple[Cause, dict]] = []
 
     if "tolerance" in results and results["tolerance"].shows:
         names = ", ".join(f"option {k} = {float_text(v)}" for k, v in solver.items())
-        causes.append(
-            Cause(
-                "solver",
-                names,
-                "a stopping rule of no pure dimension: the scaled run stops after "
-                f"other iterations; with it at 0 in both runs {shown(results['tolerance'])}; load with "
-                f"with_values({', '.join(f'{k}=0' for k in solver)})",
+        found.append(
+            (
+                Cause(
+                    "solver",
+                    names,
+                    "a stopping rule of no pure dimension: the scaled run stops after "
+                    f"other iterations; with it at 0 in both runs {shown(results['tolerance'])}; load with "
+                    f"with_values({', '.join(f'{k}=0' for k in solver)})",
+                ),
+                variants["tolerance"],
             )
         )
-    if not diagnosable:
-        return sorted_causes(causes)
-    newton, remedy = results.get("newton"), original.solver_remedy(tolerance_zero=False)
-    if newton is not None and not (newton.exact or (newton.shows and not exact_expected)):
-        # Newton's own stopping rule may stop it at another iteration too: with it at 0, bit for bit at s = 4
-        stopped = counters({"solver": original.scale_free_solver, "tolerance": 0.0})[0]
-        if stopped.exact or (stopped.shows and not newton.shows):
-            newton, remedy = stopped, original.solver_remedy(tolerance_zero=True)
-    if newton is not None and newton.shows:
-        causes.append(
-            Cause(
-                "solver",
-                f"option solver = {original.solver_name()}",
-                "this solver's iterations are "
-                f"not scale-free; with {original.scale_free_solver}'s in both runs {shown(newton)}: "
-                f"{remedy} to scale it",
+    if diagnosable:
+        newton, remedy = results.get("newton"), original.solver_remedy(tolerance_zero=False)
+        newton_options = variants.get("newton")
+        if newton is not None and not (newton.exact or (newton.shows and not exact_expected)):
+            # the solver's own stopping rule may stop it at another iteration too: with it at 0, bit for bit
+            zero = {"solver": original.scale_free_solver, "tolerance": 0.0}
+            stopped = counters(zero)[0]
+            if stopped.exact or (stopped.shows and not newton.shows):
+                newton, remedy, newton_options = stopped, original.solver_remedy(tolerance_zero=True), zero
+        if newton is not None and newton.shows:
+            found.append(
+                (
+                    Cause(
+                        "solver",
+                        f"option solver = {original.solver_name()}",
+                        "this solver's iterations are "
+                        f"not scale-free; with {original.scale_free_solver}'s in both runs {shown(newton)}: "
+                        f"{remedy} to scale it",
+                    ),
+                    newton_options,
+                )
             )
+        if "equalities" in results and results["equalities"].shows:  # which of them: each one off alone
+            alone = counters(*({"inactive_equalities": (i,)} for i in range(len(equalities))))
+            shows = [i for i, counter in enumerate(alone) if counter.shows]
+            named = ", ".join(equalities[i] for i in shows)
+            found.append(
+                (
+                    Cause(
+                        "solver",
+                        named or "the equality constraints together",
+                        "an equality constraint the solver does not treat scale-free: with "
+                        f"{'it' if len(shows) == 1 else 'them'} inactive in both runs "
+                        f"{shown(results['equalities'])}",
+                    ),
+                    {"inactive_equalities": tuple(shows) or tuple(range(len(equalities)))},
+                )
+            )
+        found.extend(_contact_causes(original, copy, results, shown, n_steps, verdict_parts, u_original, u_scaled, t))
+    found = [(_with_constants(c, o, model.engine), o) for c, o in found]
+    static = bool(causes)  # the audit's: numbers the copy holds wrong, which no counter-run removes
+    return sorted_causes([*causes, *_restoring(found, counters, report, verdict_parts, bits, list(variants), static)])
+
+
+def _restoring(found, counters, report, verdict_parts, bits, tried, static: bool) -> list[Cause]:
+    """The smallest set of the causes found whose counter-runs together restore the run, each marked so.
+
+    A cause whose counter-run restores the run on its own is named alone (a specific one before native
+    CCD, and both before contacts off, the broadest), and the others that would do so alone are said in
+    its detail: removing two of them at once need not restore the run (with the solver's tolerance at 0
+    the scale-free solver may stop one iteration apart).  Else all the counter-runs' options at once:
+    when they restore the run, each cause is dropped in turn (the broadest first) whose removal the
+    others do not need, and each one kept ``restores``.  When even all of them do not, each is named as
+    found (``restores=False``) and, unless the audit named a number the copy holds wrong (`static`), the
+    run's parting is a cause of kind ``"unknown"``.
+    """
+    unknown = [] if static else [_unknown(report, verdict_parts, bits, tried)]
+    if not found:
+        return unknown
+    broad = sorted(found, key=lambda f: ("contacts" in f[1], "native_ccd" in f[1]))  # specific ones first
+    alone = counters(*(o for _c, o in broad))
+    restoring = [f for f, counter in zip(broad, alone, strict=True) if counter.restores]
+    if restoring:
+        (cause, _o), others = restoring[0], restoring[1:]
+        partial = [c.element for (c, _o), counter in zip(broad, alone, strict=True) if not counter.restores]
+        also = "".join(
+            [
+                f"; removed alone, each of these restores it too: {', '.join(c.element for c, _ in others)}"
+                if others
+                else "",
+                f"; removing {', '.join(partial)} alone brings the runs closer or parts them later, but does not "
+                "restore them"
+                if partial
+                else "",
+            ]
         )
-    if "equalities" in results and results["equalities"].shows:  # which of them: each one off alone
-        alone = counters(*({"inactive_equalities": (i,)} for i in range(len(equalities))))
-        named = ", ".join(name for name, counter in zip(equalities, alone, strict=True) if counter.shows)
-        causes.append(
-            Cause(
-                "solver",
-                named or "the equality constraints together",
-                "an equality constraint the "
-                "solver does not treat scale-free (a weld with an offset is one): with it inactive in both "
-                f"runs {shown(results['equalities'])}",
+        return [_marked(cause, True, also)]
+    if not counters(_merged(o for _c, o in found))[0].restores:
+        return [*(_marked(c, False) for c, _o in found), *unknown]
+    kept = list(found)
+    for candidate in reversed(broad):  # the broadest first
+        if len(kept) > 1:
+            trial = [f for f in kept if f is not candidate]
+            if counters(_merged(o for _c, o in trial))[0].restores:
+                kept = trial
+    return [_marked(c, True) for c, _o in kept]
+
+
+#: the catalogue's cause path (``engines.constants.CAUSE_PATHS``) of each counter-run's option
+_PATHS = {"native_ccd": "native_ccd", "tolerance": "solver_tolerance", "inactive_equalities": "equality"}
+
+
+def _with_constants(cause: Cause, options: dict, engine: str) -> Cause:
+    """The cause with the engine's fixed constants its counter-run's path meets, from the catalogue."""
+    from ..constants import constants_for
+
+    paths = [_PATHS[key] for key in options if key in _PATHS]
+    names = list(dict.fromkeys(c.name for p in paths for c in constants_for(engine, p)))
+    if not names:
+        return cause
+    shown = ", ".join(names[:4]) + (f" and {len(names) - 4} more" if len(names) > 4 else "")
+    return Cause(cause.kind, cause.element, f"{cause.detail}; the engine's constants on this path: {shown}")
+
+
+def _merged(options) -> dict:
+    """The options of several counter-runs as one: every equality inactive that any makes inactive."""
+    out: dict = {}
+    for o in options:
+        for key, value in o.items():
+            out[key] = tuple(sorted(set(out.get(key, ())) | set(value))) if key == "inactive_equalities" else value
+    return out
+
+
+def _marked(cause: Cause, restores: bool, also: str = "") -> Cause:
+    """The cause with what its counter-run, with the other causes named, did to the run."""
+    how = "restores the run" if restores else "does not restore the run"
+    return Cause(
+        cause.kind, cause.element, f"{cause.detail} (removed with the other causes named, it {how}{also})", restores
+    )
+
+
+def _unknown(report, verdict_parts: int, bits: bool, tried) -> Cause:
+    """The runs part and no counter-run removes it: where, in which coordinate, and what was tried."""
+    t, diff = report.original.t, np.abs(report.mapped.y - report.original.y)
+    row = diff[verdict_parts]
+    j = int(np.nanargmax(np.where(np.isnan(row), np.inf, row))) if row.size else 0
+    name = report.original.states[j]
+    how = "differ in a bit" if bits else "leave the yardstick"
+    counter = f"; the counter-runs tried ({', '.join(tried)}) do not restore it" if tried else ""
+    return Cause(
+        "unknown",
+        name,
+        f"the runs first {how} at step {verdict_parts} (t = {float(t[verdict_parts]):.6g}), in {name}{counter}",
+        False,
+    )
+
+
+def _contact_causes(original, copy, results, shown, n_steps, verdict_parts, u_original, u_scaled, t):
+    """The contact causes a counter-run shows, by geom pair and collision path: (cause, options) each."""
+    out = []
+    ccd = results.get("native_ccd")
+    if ccd is not None and ccd.shows:
+        out.append(
+            (
+                Cause(
+                    "contact",
+                    "native CCD (convex pairs: meshes, boxes)",
+                    "MuJoCo's own convex collision (GJK/EPA, stopped by ccd_tolerance and ccd_iterations) finds "
+                    f"other contacts in the scaled run; with it off in both runs {shown(ccd)}: set "
+                    '<flag nativeccd="disable"/> in both, or see the hidden constants page',
+                ),
+                {"native_ccd": False},
             )
         )
     contacts = results["contacts"]
+    if not contacts.shows:
+        return out
     # a contact can explain the runs' parting only if it differs before they part: after that, other contacts
     # are what parted runs do (and stepping in Python past that point would cost a whole run)
-    until = n_steps if verdict_parts is None else min(n_steps, verdict_parts + 1)
+    until = min(n_steps, verdict_parts + 1)
     contact = _contact_difference(original, copy, until, u_original, u_scaled, t)
-    # the same pairs touching throughout, and a solver cause shown: the contacts are only where that solver's
-    # iterations act (without contacts there is nothing to iterate on), no cause of their own
-    explained = contact is None and any(c.kind == "solver" for c in causes)
-    if (contact is not None or contacts.shows) and not explained:
-        pairs, detail = contact if contact is not None else ("every contact", "the same pairs touch at every step")
-        verdict = (
-            shown(contacts)
-            if contacts.shows
-            else (f"they still differ (largest deviation {contacts.worst:.3g} instead of {report.max_deviation:.3g})")
-        )
-        causes.append(Cause("contact", pairs, f"{detail}; with contacts off in both runs {verdict}"))
-    return sorted_causes(causes)
+    pairs, detail = contact if contact is not None else ("every contact", "the same pairs touch at every step")
+    out.append(
+        (Cause("contact", pairs, f"{detail}; with contacts off in both runs {shown(contacts)}"), {"contacts": False})
+    )
+    return out
 
 
 class Counter(NamedTuple):
     """What one counter-run showed: whether its runs part later than the verdict's (or never), whether they
-    never part, the largest deviation, the step at which they first part (None: never), and whether they
-    are equal bit for bit."""
+    never part (bit for bit where every factor is a power of two, else within the yardstick), the largest
+    deviation, the step at which they first part (None: never), and whether they are equal bit for bit."""
 
     shows: bool
-    agree: bool
+    restores: bool
     worst: float
     parts: int | None
     exact: bool

@@ -17,7 +17,7 @@ bouncing ball, a walker falling over) moves that far on its own.
 At ``s`` a power of four every factor is exact in binary, so a faithful
 engine reproduces the original bit for bit (``rep.exact``): a proof.
 When a run is not exact where it should be, or not similar, ``verify``
-finds out why (``rep.causes``): :func:`pitheorem.engines.verdicts.audit` holds
+finds out why (``rep.causes``): :func:`pitheorem.engines.audit` holds
 every stored number against the original times its factor, and
 counter-runs test the dynamic causes: contacts switched off, the
 solver's tolerance set to 0.

@@ -1,0 +1,110 @@
+"""pitheorem.engines.verdicts.strength: the twins' horizon, negative controls and what a run can see."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import pitheorem as pt
+from pitheorem.engines.verdicts.strength import CONTROL_ERRORS, HORIZON_FRACTION, caught, control_factors, horizon
+
+mujoco = pytest.importorskip("mujoco")
+
+from pitheorem import engines  # noqa: E402
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(2, 40), st.integers(0, 39), st.floats(0.02, 10.0))
+def test_the_horizon_is_the_last_time_before_a_twin_parts_by_the_fraction(n, k, jump):
+    """A twin equal to a ramp until step k, then off by `jump` of the ramp's range: the horizon ends at k - 1."""
+    k = min(k, n - 1)
+    t = np.linspace(0.0, 1.0, n)
+    run = np.column_stack([t * 3.0, np.zeros(n)])  # a still coordinate beside: it has no spread to count
+    twin = run.copy()
+    twin[k:, 0] += jump * 3.0
+    assert jump > HORIZON_FRACTION
+    assert horizon(t, run, [twin]) == t[max(k - 1, 0)]
+    assert horizon(t, run, [run.copy()]) == t[-1]  # twins that never part: the whole run
+    below = run.copy()
+    below[:, 0] += HORIZON_FRACTION * 3.0 * 0.5  # within the fraction throughout
+    assert horizon(t, run, [below]) == t[-1]
+
+
+def test_a_twin_that_goes_nan_parts_at_once():
+    t = np.arange(3.0)
+    run = np.array([[0.0], [1.0], [2.0]])
+    assert horizon(t, run, [np.array([[0.0], [np.nan], [2.0]])]) == 0.0
+
+
+def test_caught_by_any_bit_or_beyond_the_yardstick():
+    a = np.array([[1.0, 2.0], [3.0, 4.0]])
+    limits = np.array([0.1, 0.1])
+    assert not caught(a, a.copy(), limits, bits=True)
+    assert caught(a, np.nextafter(a, 9.0), limits, bits=True)
+    assert not caught(a, a + 0.05, limits, bits=False)
+    assert caught(a, a + 0.2, limits, bits=False)
+    assert caught(a, np.full_like(a, np.nan), limits, bits=False)
+
+
+def test_the_controls_are_gravity_at_each_error_and_the_masses_doubled():
+    model = engines.load(engines.example_path("pendulum.xml"))
+    controls = control_factors(model)
+    assert [(g, e) for g, e, _ in controls] == [*(("g", e) for e in CONTROL_ERRORS), ("masses", 1.0)]
+    assert all(f == {"g": 1.0 + e} for g, e, f in controls if g == "g")
+    masses = controls[-1][2]
+    # every mass and density the file states, none the compiler derived (a body's mass from its geoms)
+    expected = {
+        p.name
+        for p in model.parameters
+        if str(p.dimension) in ("M", "M L^-3") and p.source != "derived" and any(v != 0 for v in p.value)
+    }
+    assert set(masses) == expected
+    assert masses
+    assert set(masses.values()) == {2.0}
+
+
+def test_a_model_without_gravity_has_only_the_mass_control():
+    model = engines.load(engines.example_path("pendulum.xml")).with_values(g=0)
+    assert [g for g, _e, _f in control_factors(model)] == ["masses"]
+
+
+def test_a_copy_with_gravity_left_wrong_is_never_similar_where_the_run_cannot_show_it():
+    """The issue's false positive: a run gravity cannot act on passes a wrong copy; the controls say so."""
+    model = engines.load(engines.example_path("causes/hanging.xml"))
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    wrong = model.scaled(sc, 10).multiplied(g=0.1)  # gravity as it was
+    rep = engines.verify(model, sc, 10, duration=0.3, scaled=wrong)
+    assert rep.passed  # within the yardstick
+    assert rep.inconclusive
+    assert not rep.similar
+    assert rep.verdict == "inconclusive"
+    assert rep.detection_limit is None
+    # independent of verify: MuJoCo's own runs of the hanging pendulum under 9.81 and 19.62 are the same bits
+    m = model.runner.mjmodel
+    d1, d2 = mujoco.MjData(m), mujoco.MjData(m)
+    m2 = model.multiplied(g=2).runner.mjmodel
+    for _ in range(100):
+        mujoco.mj_step(m, d1)
+        mujoco.mj_step(m2, d2)
+    assert np.array_equal(d1.qpos, d2.qpos)
+
+
+def test_a_moving_run_catches_a_small_gravity_error_and_says_its_limit():
+    model = engines.load(engines.example_path("pendulum.xml"))
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    u = engines.smooth_controls(model)
+    rep = engines.verify(model, sc, 10, duration=0.5, controls=u)
+    assert rep.verdict == "similar"
+    assert rep.detection_limit == CONTROL_ERRORS[0]
+    assert all(c.caught for c in rep.controls)
+    assert rep.horizon == pytest.approx(0.5)
+    proof = engines.verify(model, sc, 4, duration=0.5, controls=u)
+    assert proof.verdict == "exact"
+    assert proof.detection_limit == CONTROL_ERRORS[0]  # at a power of four any bit counts
+    off = engines.verify(model, sc, 10, duration=0.5, controls=u, strength=False)
+    assert off.controls == ()
+    assert off.horizon is None
+    assert off.detection_limit is None
+    assert off.similar
