@@ -97,6 +97,8 @@ BASES_SHOWN = 50
 
 #: how the help and the error for a bad ``example:`` name list the shipped examples
 _EXAMPLES_TEXT = "example:NAME, NAME one of " + ", ".join(examples())
+#: the shipped examples verify, check and convert read: the MJCF and URDF files
+_ENGINE_EXAMPLES_TEXT = "example:NAME, NAME one of " + ", ".join(n for n in examples() if Path(n).suffix)
 
 _SCALE_HELP = (
     "NAME=EXP: EXP is the exponent of the scale factor s, not a factor: NAME -> s^EXP NAME "
@@ -140,14 +142,19 @@ def _load(path: str, scene: list[str] | None = None) -> ModelFile:
     return _load_with_engine(path, scene)[0]
 
 
-def _load_with_engine(path: str, scene: list[str] | None = None, engine: str | None = None) -> tuple[ModelFile, object]:
-    """The model file and, for MJCF or URDF, the engine's model it was read from (else None)."""
+def _load_with_engine(
+    path: str, scene: list[str] | None = None, engine: str | None = None, added: dict | None = None
+) -> tuple[ModelFile, object]:
+    """The model file and, for MJCF or URDF, the engine's model it was read from (else None).
+
+    `added` holds scene options the command line chose itself (:func:`_scaled_scene`).
+    """
     engine_path = _engine_path(path)
     if engine_path is not None:  # MJCF or URDF: its system and scalar values, through the engine
         from .engines.cli import engine_model_file, parse_scene
 
         options = {} if engine is None else {"engine": engine}  # the file's own engine unless one is named
-        return engine_model_file(engine_path, **parse_scene(scene), **options)
+        return engine_model_file(engine_path, **parse_scene(scene), **(added or {}), **options)
     if scene:
         raise _CommandError(f"--scene sets up URDF models; {path} is no URDF file")
     try:
@@ -348,6 +355,42 @@ def _chosen_scaling(result, k: int):
     return result.scalings[k - 1]
 
 
+def _scaled_scene(args, model, engine_model, result, s, engine=None):
+    """The model, its engine model, search result and scaling, in a scene the scaling can follow.
+
+    When the engine's default scene refuses the chosen scaling (PyBullet's link
+    damping and split impulse) and the user set none of the remedy's options,
+    the file is loaded once more in the remedy scene, used by both runs, and
+    one line on stderr says which scene and how to choose another.
+    """
+    from .engines.cli import automatic_scene, parse_scene, scene_refusal, scene_text
+
+    sc = _chosen_scaling(result, args.solution)
+    added = automatic_scene(engine_model, sc, s, parse_scene(args.scene))
+    if not added:
+        return model, engine_model, result, sc
+    chosen = _load_with_engine(args.file, args.scene, engine, added)
+    chosen_result = _run_search(chosen[0], args)
+    chosen_sc = _chosen_scaling(chosen_result, args.solution)
+    if automatic_scene(chosen[1], chosen_sc, s):  # the user's own options still refuse it: one short line
+        raise _CommandError(f"{Path(args.file).name}: {scene_refusal(engine_model, sc, s)}")
+    print(
+        f"pitheorem: note: scene {scene_text(added)} in both runs (the default refuses this scaling; --scene sets it)",
+        file=sys.stderr,
+    )
+    return (*chosen, chosen_result, chosen_sc)
+
+
+def _say_scaling(result, k: int) -> None:
+    """One line on stderr: which of several minimal scalings apply or verify uses, and how to pick another."""
+    if result.n_scalings > 1:
+        print(
+            f"pitheorem: note: minimal scaling #{k} of {result.n_scalings}; --solution K picks another "
+            "(pitheorem search lists them)",
+            file=sys.stderr,
+        )
+
+
 def _cmd_apply(args) -> int:
     from .answers import ApplyAnswer
     from .exact import read_positive
@@ -367,7 +410,9 @@ def _cmd_apply(args) -> int:
     if engine_model is not None:  # write the scaled file the engine loads
         from .engines.cli import apply_engine, parse_scene
 
+        model, engine_model, result, sc = _scaled_scene(args, model, engine_model, result, s)
         _print(apply_engine(engine_model, sc, s, args.output, scene=parse_scene(args.scene)), args)
+        _say_scaling(result, args.solution)
         return EXIT_OK
     scaled_model = model.with_values(_scaled_values(sc, model.values, s), name=f"{model.name}, scaled with s = {s}")
     output = None
@@ -398,8 +443,10 @@ def _cmd_verify(args) -> int:
         return EXIT_ERROR
     from .engines.cli import verify_engine
 
-    answer = verify_engine(engine_model, _chosen_scaling(result, args.solution), s, float(duration), args.input)
+    model, engine_model, result, sc = _scaled_scene(args, model, engine_model, result, s, args.engine)
+    answer = verify_engine(engine_model, sc, s, float(duration), args.input)
     _print(answer, args)
+    _say_scaling(result, args.solution)
     return EXIT_OK if answer.report.similar else EXIT_INFEASIBLE
 
 
@@ -497,16 +544,27 @@ def _cmd_params(args) -> int:
         return EXIT_OK
     from .engines.cli import params_answer, parse_scene
 
-    _print(params_answer(engine_path, **parse_scene(args.scene), name=args.file), args)
+    # the file by its name (a shipped one as example:NAME): the first line stays short whatever its folder
+    named = _as_named(args.file)
+    name = named if named.startswith("example:") else Path(args.file).name
+    _print(params_answer(engine_path, **parse_scene(args.scene), name=name), args)
     return EXIT_OK
 
 
 # -- parser and entry point ------------------------------------------------------------------
 
 
+#: the warnings this command has shown: each is shown once, whichever call raised it and however often
+_SHOWN: set[str] = set()
+
+
 def _one_line_warning(message, category, filename, lineno, file=None, line=None) -> None:
-    """A warning as the command line shows it: ``pitheorem: warning: ...``, never Python's source line."""
-    print(f"pitheorem: warning: {_as_named(message)}", file=sys.stderr if file is None else file)
+    """A warning as the command line shows it: ``pitheorem: warning: ...``, never Python's source line; once."""
+    text = f"pitheorem: warning: {_as_named(message)}"
+    if text in _SHOWN:
+        return
+    _SHOWN.add(text)
+    print(text, file=sys.stderr if file is None else file)
 
 
 class _Help(argparse.HelpFormatter):
@@ -552,8 +610,9 @@ def build_parser() -> argparse.ArgumentParser:
         prog="pitheorem",
         description="Exact dimensional analysis and similarity-scaling search on a model file: "
         "TOML, MJCF (MuJoCo) or URDF (PyBullet).",
-        epilog="Exit codes: 0 success; 1 no similarity scaling meets the request (search, apply); "
-        f"2 bad input. FILE may be a shipped example, {_EXAMPLES_TEXT}.",
+        epilog="Exit codes: 0 success; 1 no similarity scaling meets the request (search, apply), the copy "
+        "is not similar (verify), a number sits at, beyond or near a threshold (check), no units clear every "
+        f"threshold (convert --fit); 2 bad input. FILE may be a shipped example, {_EXAMPLES_TEXT}.",
         allow_abbrev=False,
         formatter_class=_Help,
     )
@@ -566,6 +625,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     common.add_argument("--format", choices=FORMATS, default="text", help="output format (default: text)")
     common.add_argument("--scene", nargs="+", metavar="NAME=VALUE", help="URDF files: PyBullet's scene")
+    # verify runs only engine files: its FILE names only the shipped MJCF and URDF examples
+    engine_common = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
+    engine_common.add_argument(
+        "file", metavar="FILE", help=f"MJCF (.xml) or URDF (.urdf) model file, or {_ENGINE_EXAMPLES_TEXT}"
+    )
+    engine_common.add_argument("--format", choices=FORMATS, default="text", help="output format (default: text)")
+    engine_common.add_argument("--scene", nargs="+", metavar="NAME=VALUE", help="URDF files: PyBullet's scene")
 
     request = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
     request.add_argument("--scale", nargs="+", required=True, metavar="NAME=EXP", help=_SCALE_HELP)
@@ -658,7 +724,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser(
         "verify",
-        parents=[common, request],
+        parents=[engine_common, request],
         **options,
         help="run an MJCF or URDF model and its scaled copy: similar or not, and why",
         description="Run the model and its scaled copy in their engine and compare them in original "
@@ -715,7 +781,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(run=_cmd_sweep)
 
     units = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
-    units.add_argument("file", metavar="FILE", help=f"MJCF (.xml) or URDF (.urdf) model file, or {_EXAMPLES_TEXT}")
+    units.add_argument(
+        "file", metavar="FILE", help=f"MJCF (.xml) or URDF (.urdf) model file, or {_ENGINE_EXAMPLES_TEXT}"
+    )
     units.add_argument("--format", choices=("text", "json"), default="text", help="output format (default: text)")
     units.add_argument(
         "--from",
@@ -732,7 +800,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="the engine thresholds an MJCF or URDF model sits beyond or near",
         description="Hold every number of the model against the catalogued thresholds of its engine "
         "(MuJoCo: mjMINVAL, mjMINMU, mjMAXVAL; PyBullet: its minimum object sizes), each with a unit "
-        "change that clears it. Exit codes: 0 clean, 1 some number beyond or near a threshold, "
+        "change that clears it. Exit codes: 0 clean, 1 some number at, beyond or near a threshold, "
         "2 bad input.",
     )
     p.add_argument(
@@ -750,8 +818,9 @@ def build_parser() -> argparse.ArgumentParser:
         description="Write the same model in other units: every number by its dimension (gravity, "
         "densities, stiffness, damping, gains, time constants, the time step and keyframes), the "
         "units recorded in the file. --fit ENGINE chooses units clear of that engine's thresholds. "
-        "Exit codes: 0 converted, 1 no units clear every threshold (the closest are used), "
-        "2 bad input.",
+        "A fit that keeps the file's own units writes nothing and says so. "
+        "Exit codes: 0 converted (or nothing to convert), 1 no units clear every threshold (the closest are "
+        "used), 2 bad input.",
     )
     p.add_argument("--units", nargs="+", metavar="BASE=UNIT", help="the new units, e.g. L=mm M=g T=ms")
     p.add_argument("--fit", metavar="ENGINE", help="choose units clear of this engine's thresholds (mujoco, ...)")
@@ -801,6 +870,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as exc:  # --help, --version, and argparse's usage errors
         return exc.code if isinstance(exc.code, int) else EXIT_ERROR
     try:
+        _SHOWN.clear()
         with warnings.catch_warnings():  # restores Python's own display when the command returns
             warnings.showwarning = _one_line_warning
             return args.run(args)

@@ -64,13 +64,36 @@ def test_apply_loads_the_engine_file_once(tmp_path, capsys, monkeypatch):
     assert f"wrote {out}" in capsys.readouterr().out
 
 
-def test_apply_urdf_writes_settings_or_names_the_mixed_damping(tmp_path, capsys):
+def test_apply_and_verify_choose_the_scene_a_urdf_scaling_needs_and_say_so_in_one_line(tmp_path, capsys):
     urdf = str(DATA / "slider_arm.urdf")
-    # PyBullet's multibody damping mixes a rate and an inverse length: scaling lengths cannot keep it
-    assert main(["apply", urdf, "--scale", "g=1", "--s", "2", "--output", str(tmp_path / "a.urdf")]) == 2
-    err = capsys.readouterr().err
-    assert "linearDamping" in err
-    assert "--scene damping=0" in err
+    # PyBullet's multibody damping mixes a rate and an inverse length, and its split-impulse threshold (a
+    # length) cannot be set: the command line runs both runs without them, and says so once
+    out = tmp_path / "a.urdf"
+    assert main(["apply", urdf, "--scale", "g=1", "--s", "2", "--output", str(out)]) == 0
+    err = capsys.readouterr().err.splitlines()
+    notes = [line for line in err if line.startswith("pitheorem: note: scene")]
+    assert notes == [
+        "pitheorem: note: scene damping=0 split_impulse=false in both runs (the default refuses this scaling; "
+        "--scene sets it)"
+    ]
+    written = json.loads(Path(f"{out}.settings.json").read_text())
+    assert written["setPhysicsEngineParameter"]["useSplitImpulse"] == 0
+    assert {call["linearDamping"] for call in written["changeDynamics"] if "linearDamping" in call} == {0.0}
+    assert main(["verify", urdf, "--scale", "g=1", "--s", "2", "--duration", "0.2"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert [line for line in err if line.startswith("pitheorem: note: scene")] == notes
+    # and which of the minimal scalings it used, and how to pick another
+    assert "pitheorem: note: minimal scaling #1 of 3; --solution K picks another (pitheorem search lists them)" in err
+    # a scaling of masses alone needs no other scene: nothing is said
+    assert main(["apply", urdf, "--scale", "link_base_mass=1", "--s", "4"]) == 0
+    assert "note: scene" not in capsys.readouterr().err
+    # the user's own scene stands; where it refuses the scaling, one short line gives the flags
+    for scene in (["damping=0.1"], ["split_impulse=true"]):
+        assert main(["verify", urdf, "--scale", "g=1", "--s", "2", "--scene", *scene]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1, err
+        assert len(err) < 200, err
+        assert err.rstrip().endswith("give --scene damping=0 split_impulse=false"), err
     # the search itself is fine: the damping's two parts are two variables of the system
     assert main(["search", urdf, "--scale", "g=1", "--format", "json"]) == 0
     doc = json.loads(capsys.readouterr().out)
@@ -282,7 +305,8 @@ def test_every_command_succeeds_on_every_shipped_and_gymnasium_model(capsys, mod
         out, err = capsys.readouterr()
         assert code == 0, (verb, err)
         assert "Traceback" not in err
-        assert all(line.startswith("pitheorem: warning: ") for line in err.splitlines())
+        assert all(line.startswith(("pitheorem: warning: ", "pitheorem: note: ")) for line in err.splitlines())
+        assert len(set(err.splitlines())) == len(err.splitlines()), err  # every warning once
         assert str(EXAMPLES) not in out + err  # a shipped file by the name the user gave, example:NAME
         # a summary first: the first lines name the model and fit on a screen whatever its size
         assert all(len(line) < 400 for line in out.splitlines()[:3]), (verb, out[:800])
@@ -365,8 +389,10 @@ def test_search_on_a_large_model_opens_with_a_short_summary(capsys):
     times = model.system().time_variables
     assert len(times) > 10
     # the long list of time variables held fixed is shortened with a count, in the first line and the note
-    assert f"and {len(times) - 6} more ({len(times)} in all) fixed: " in lines[0]
-    assert len(lines[0]) < 300
+    assert lines[0].startswith(
+        f"Scaling g by s with {times[0]} and {len(times) - 1} more ({len(times)} in all) fixed: "
+    )
+    assert len(lines[0]) < 120
     n = int(lines[0].split(" fixed: ")[1].split()[0])
     start = lines.index(f"summary (the table below has a row for each of the {len(model.system())} variables):")
     assert [line.split(":")[0].strip() for line in lines[start + 1 : start + n + 1]] == [
@@ -440,6 +466,28 @@ def test_convert_writes_the_same_model_in_other_units_and_check_reads_it(tmp_pat
     assert json.loads(capsys.readouterr().out)["causes"] == []
 
 
+def test_convert_fit_that_changes_nothing_says_so_and_writes_nothing(tmp_path, capsys):
+    out = tmp_path / "same.xml"
+    assert main(["convert", PENDULUM, "--fit", "mujoco", "--output", str(out)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines == ["pendulum.xml: its units (M=kg L=m T=s) are those --fit mujoco chooses; nothing to convert"]
+    assert not out.exists()
+
+
+def test_check_says_first_that_another_engine_refuses_the_file(tmp_path, capsys):
+    pytest.importorskip("mujoco.mjx", reason="mujoco-mjx is not installed (pip install 'pitheorem[mjx]')")
+    path = tmp_path / "pgs.xml"
+    path.write_text(
+        '<mujoco><option solver="PGS"/><worldbody><body><joint type="hinge"/>'
+        '<geom size=".1" mass="1"/></body></worldbody></mujoco>'
+    )
+    assert main(["check", str(path)]) == 0  # MuJoCo runs it
+    capsys.readouterr()
+    assert main(["check", str(path), "--engine", "mjx"]) == 1
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith("pgs.xml: mjx refuses the file (option solver: MJX does not support the PGS solver")
+
+
 def test_check_exits_0_on_a_clean_model_and_reads_the_units_given(capsys):
     assert main(["check", "example:pendulum.xml"]) == 0
     assert "clear of every catalogued threshold of mujoco" in capsys.readouterr().out
@@ -498,3 +546,50 @@ def test_verify_runs_a_file_in_the_engine_named(capsys):
     )
     doc = json.loads(capsys.readouterr().out)  # nothing but the answer: not MJX's note on a missing warp
     assert (doc["engine"], doc["exact"]) == ("mjx", True)
+
+
+# -- issue 32's rules on a sample of the corpus (tests/robots/cli_corpus.py runs them on the whole) -----
+
+
+def _corpus_rules():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("cli_corpus", Path(__file__).parent / "robots" / "cli_corpus.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+#: the four pybullet_data robots a newcomer tried first (issue 32)
+URDF_SAMPLE = ("r2d2.urdf", "cartpole.urdf", "kuka_iiwa/model.urdf", "teddy_vhacd.urdf")
+
+
+@pytest.mark.parametrize("name", URDF_SAMPLE)
+def test_every_command_keeps_the_rules_on_pybullet_datas_robots_with_the_defaults(name):
+    pybullet_data = pytest.importorskip("pybullet_data", reason="pybullet_data is not installed")
+    rules = _corpus_rules()
+    path = str(Path(pybullet_data.getDataPath()) / name)
+    assert rules.pybullet_loads(Path(path))
+    for argv in rules.commands(path):
+        assert rules.problems(argv) == [], argv
+    # apply and verify at s = 4 with the defaults: exit 0, and verify finds the copy exact
+    code, out, _err = rules.run(["verify", path, "--scale", "g=1", "--s", "4", "--duration", "0.2"])
+    assert code == 0
+    assert out.startswith("exact: ")
+
+
+def test_the_corpus_rules_catch_what_they_name(tmp_path, monkeypatch):
+    # a long first line, a repeated line and an undocumented exit code are each found
+    rules = _corpus_rules()
+    monkeypatch.setattr(rules, "run", lambda argv: (2, "x" * 130 + "\nsame\nsame\n", ""))
+    found = rules.problems(["params", "model.xml"])
+    assert [text.split(" ")[0] for text in found] == ["exit", "first", "stdout"]
+
+
+def test_check_on_dm_controls_dog_prints_at_most_ten_lines(capsys):
+    dm_control = pytest.importorskip("dm_control", reason="dm-control is not installed (it ships the dog)")
+    dog = Path(dm_control.__file__).parent / "suite" / "dog.xml"
+    assert main(["check", str(dog)]) in (0, 1)
+    lines = capsys.readouterr().out.splitlines()
+    assert 1 <= len(lines) <= 10
+    assert len(lines[0]) < 120

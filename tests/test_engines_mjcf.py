@@ -402,7 +402,9 @@ def test_a_composed_scene_saves_with_every_models_meshes_found(tmp_path):
     files = {m.name: Path(m.file) for m in again.runner.spec.meshes}
     assert files["g_palm"].parent.name == "gripper_parts"  # the gripper's folder, not the arm's
     assert files["base"].parent.name == "arm_parts"
-    assert all(f.is_absolute() and f.is_file() for f in files.values())
+    # each named relative to the saved file (which travels with them), and found from its folder
+    assert not any(f.is_absolute() for f in files.values())
+    assert all((tmp_path / f).is_file() for f in files.values())
 
 
 def test_a_saved_copy_writes_each_scaled_number_as_its_exact_decimal_product(tmp_path):
@@ -599,6 +601,110 @@ def test_the_readers_names_paths_and_sources_of_plain_attributes(tmp_path):
     assert params["joint_j_frictionloss"].source == "default"
     assert params["geom_g_pos"].source == "default"
     assert params["body_b_pos"].source == "file"
+
+
+def _skin_file(path: Path, verts, faces, bones) -> None:
+    """A binary ``.skn`` file as MuJoCo's documentation of ``<skin file>`` lays it out.
+
+    Four int32 counts (vertices, texture coordinates, faces, bones), the vertex positions (float32), the
+    faces (int32), then per bone: its body's name in 40 bytes, bind position (3 float32), bind quaternion
+    (4 float32), vertex count (int32), vertex ids (int32) and weights (float32).
+    """
+    import struct
+
+    out = struct.pack("4i", len(verts), 0, len(faces), len(bones))
+    out += struct.pack(f"{3 * len(verts)}f", *(c for v in verts for c in v))
+    out += struct.pack(f"{3 * len(faces)}i", *(i for f in faces for i in f))
+    for name, pos, ids, weights in bones:
+        out += name.encode().ljust(40, b"\0") + struct.pack("3f", *pos) + struct.pack("4f", 1, 0, 0, 0)
+        out += struct.pack("i", len(ids)) + struct.pack(f"{len(ids)}i", *ids) + struct.pack(f"{len(ids)}f", *weights)
+    path.write_bytes(out)
+
+
+@pytest.mark.parametrize("inline", [True, False], ids=["inline", "file"])
+def test_a_skin_is_scaled_as_lengths_and_written_back(tmp_path, inline):
+    # a render-only mesh bound to a body: its vertices and bind positions are lengths, as in dm_control's dog
+    verts = [(0.0, 0.0, 0.0), (0.5, 0.0, 0.0), (0.0, 0.25, 0.0), (0.0, 0.0, 0.125)]
+    faces = [(0, 1, 2), (0, 2, 3), (0, 3, 1), (1, 3, 2)]
+    bone = ("arm", (0.0, 0.0, 0.5), [0, 1, 2, 3], [1.0, 1.0, 1.0, 1.0])
+    if inline:
+        skin = (
+            '<skin name="hide" inflate="0.01" vertex="{}" face="{}">'
+            '<bone body="arm" bindpos="0 0 0.5" bindquat="1 0 0 0" vertid="0 1 2 3" vertweight="1 1 1 1"/></skin>'
+        ).format(" ".join(f"{c:g}" for v in verts for c in v), " ".join(str(i) for f in faces for i in f))
+    else:
+        _skin_file(tmp_path / "hide.skn", verts, faces, [bone])
+        skin = '<skin name="hide" file="hide.skn"/>'
+    path = tmp_path / "skinned.xml"
+    path.write_text(
+        f"<mujoco><asset>{skin}</asset><worldbody><body name='arm' pos='0 0 0.5'><joint type='hinge'/>"
+        "<geom size='0.1' mass='1'/></body></worldbody></mujoco>"
+    )
+    model = engines.load(path)
+    lengths = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    out = tmp_path / "moved" / "skinned4.xml"
+    out.parent.mkdir()
+    model.scaled(lengths, 4).save(out)
+    original, scaled = mujoco.MjModel.from_xml_path(str(path)), mujoco.MjModel.from_xml_path(str(out))
+    # every vertex, bind position and the inflation four times as long; the faces and bodies as they were
+    np.testing.assert_array_equal(scaled.skin_vert, 4 * original.skin_vert)
+    np.testing.assert_array_equal(scaled.skin_bonebindpos, 4 * original.skin_bonebindpos)
+    np.testing.assert_array_equal(scaled.skin_inflate, 4 * original.skin_inflate)
+    np.testing.assert_array_equal(scaled.skin_face, original.skin_face)
+    np.testing.assert_array_equal(scaled.skin_bonebodyid, original.skin_bonebodyid)
+    assert np.asarray(original.skin_vert).tolist() == [list(v) for v in verts]
+
+
+ROBOT_MESHES = Path(__file__).resolve().parent / "robots" / "mjcf" / "meshes"
+MESHED = """<mujoco>
+  <compiler meshdir="parts"/>
+  <asset><mesh name="crate" file="crate.stl"/></asset>
+  <worldbody><body name="box" pos="0 0 1"><freejoint/><geom type="mesh" mesh="crate" mass="1"/></body></worldbody>
+</mujoco>
+"""
+
+
+def _meshed_model(folder: Path) -> Path:
+    (folder / "parts").mkdir(parents=True)
+    (folder / "parts" / "crate.stl").write_bytes((ROBOT_MESHES / "crate.stl").read_bytes())
+    (folder / "box.xml").write_text(MESHED)
+    return folder / "box.xml"
+
+
+def test_a_saved_copy_names_its_meshes_relative_to_itself_and_loads_after_its_folder_moves(tmp_path):
+    import shutil
+
+    path = _meshed_model(tmp_path / "lab" / "robot")
+    model = engines.load(path)
+    lengths = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    out = tmp_path / "lab" / "robot" / "scaled" / "box4.xml"
+    out.parent.mkdir()
+    model.scaled(lengths, 4).save(out)
+    text = out.read_text()
+    assert 'file="../parts/crate.stl"' in text
+    assert str(tmp_path) not in text  # no path of this machine
+    shutil.move(tmp_path / "lab", tmp_path / "moved")  # the whole folder, elsewhere
+    moved = mujoco.MjModel.from_xml_path(str(tmp_path / "moved" / "robot" / "scaled" / "box4.xml"))
+    original = mujoco.MjModel.from_xml_path(str(tmp_path / "moved" / "robot" / "box.xml"))
+    np.testing.assert_allclose(moved.mesh_vert, 4 * original.mesh_vert, rtol=1e-6)
+
+
+def test_a_model_opened_through_a_symbolic_link_finds_its_meshes_where_mujoco_does(tmp_path):
+    # the file's target lies in a folder without meshes; MuJoCo reads them beside the link
+    target = tmp_path / "elsewhere" / "box.xml"
+    target.parent.mkdir()
+    target.write_text(MESHED)
+    folder = tmp_path / "robot"
+    _meshed_model(folder)
+    (folder / "box.xml").unlink()
+    (folder / "box.xml").symlink_to(target)
+    assert mujoco.MjModel.from_xml_path(str(folder / "box.xml")).nmesh == 1
+    model = engines.load(folder / "box.xml")
+    lengths = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    out = folder / "box4.xml"
+    model.scaled(lengths, 4).save(out)
+    assert 'file="parts/crate.stl"' in out.read_text()
+    assert mujoco.MjModel.from_xml_path(str(out)).nmesh == 1
 
 
 # -- large files (issue 33): the spec's elements listed in linear time, the collector paused while reading

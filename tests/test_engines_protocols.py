@@ -48,7 +48,7 @@ def test_the_required_methods_are_the_runner_and_the_model_file():
         "recorded_units",
         "written_beside",
     }
-    assert OPTIONAL["RefusesScalings"] == ("command_line_remedy", "unscalable", "unscalable_remedy")
+    assert OPTIONAL["RefusesScalings"] == ("command_line_remedy", "remedy_scene", "unscalable", "unscalable_remedy")
     assert OPTIONAL["CounterRuns"] == ("solver_settings", "variant")
     optional = {m for members in OPTIONAL.values() for m in members}
     assert not optional & set(REQUIRED)

@@ -625,3 +625,47 @@ def test_the_fluid_models_numbers_join_only_with_a_fluid_and_a_compiled_mass(tmp
     refused = speck(1e-6, 'density="1.2"')  # MuJoCo refuses it; its compiled masses are a probe's
     assert type(refused.runner.document).__name__ == "RefusedMjcfDocument"
     assert mjx_parameters(refused) == ()
+
+
+# -- the command line's summary: one cause per threshold and value ---------------------------------
+
+SUMMARY_MODEL = """<mujoco>
+  <option timestep="0.01"/>
+  <worldbody>
+    <geom name="floor" type="plane" size="1 1 0.1"/>
+    <body name="a" pos="0 0 1"><freejoint/><geom name="ball_a" size="0.1" mass="1"/></body>
+    <body name="b" pos="1 0 1"><freejoint/><geom name="ball_b" size="0.1" mass="1" solref="0.015 1"/></body>
+    <body name="c" pos="2 0 1"><freejoint/>
+      <geom name="ghost" size="0.1" mass="1" contype="0" conaffinity="0" solref="0.011 1"/></body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def test_check_summary_groups_by_threshold_and_value_says_at_truly_and_skips_numbers_never_read(tmp_path):
+    from pitheorem.engines.thresholds import check_summary
+
+    path = tmp_path / "balls.xml"
+    path.write_text(SUMMARY_MODEL)
+    model = engines.load(path)
+    causes, units_help = check_summary(model)
+    # two geoms at MuJoCo's floor of two time steps (0.02 = 2 x 0.01: left as they are), one below it (0.015:
+    # raised); the ghost's 0.011 is never read (it collides with nothing) and is not named
+    assert [c.element for c in causes] == [
+        "2 numbers (solref timeconst of 2 geoms)",
+        "1 number (solref timeconst of 1 geom)",
+    ]
+    assert causes[0].detail.startswith("0.02 is at mujoco_refsafe (0.02 = 2.0 timestep): left as it is")
+    assert causes[1].detail.startswith("0.015 is below mujoco_refsafe (0.02 = 2.0 timestep): raised")
+    # a floor that moves with the time step: no change of units helps, the remedy says what does
+    assert "change it or timestep by a factor 2.67" in causes[1].detail
+    assert "units that multiply" not in causes[0].detail + causes[1].detail
+    assert not units_help
+    assert "geom_ghost_solref_timeconst" in model.runner.unread()
+    assert "geom_ball_a_solref_timeconst" not in model.runner.unread()
+    # engines.check leaves the unread number out too, and keeps one cause per number
+    assert sorted(c.element for c in engines.check(model)) == [
+        "geom_ball_a_solref_timeconst",
+        "geom_ball_b_solref_timeconst",
+        "geom_floor_solref_timeconst",
+    ]

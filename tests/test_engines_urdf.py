@@ -300,3 +300,27 @@ def test_a_scaled_copy_keeps_each_file_numbers_name_place_dimension_and_note():
 
     assert described(copy) == described(model)
     assert any(note for *_, note in described(model))  # the inertia's note among them: not only empty notes
+
+
+def test_a_saved_urdf_names_its_meshes_relative_to_itself_and_loads_after_its_folder_moves(tmp_path):
+    import shutil
+
+    import pybullet
+
+    robots = Path(__file__).resolve().parent / "robots" / "urdf"
+    shutil.copytree(robots, tmp_path / "lab" / "urdf")
+    model = engines.load(tmp_path / "lab" / "urdf" / "arm.urdf", fixed_base=True, damping=0.0, split_impulse=False)
+    lengths = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    out = tmp_path / "lab" / "urdf" / "scaled" / "arm4.urdf"
+    out.parent.mkdir()
+    model.scaled(lengths, 4).save(out)
+    text = out.read_text()
+    assert 'filename="../meshes/base.obj"' in text
+    assert str(tmp_path) not in text
+    shutil.move(tmp_path / "lab", tmp_path / "moved")
+    client = pybullet.connect(pybullet.DIRECT)
+    try:
+        body = pybullet.loadURDF(str(tmp_path / "moved" / "urdf" / "scaled" / "arm4.urdf"), physicsClientId=client)
+        assert pybullet.getNumJoints(body, physicsClientId=client) == 4
+    finally:
+        pybullet.disconnect(client)

@@ -11,18 +11,21 @@ line prints in the format asked for.
 
 from __future__ import annotations
 
+import re
 from fractions import Fraction
 from pathlib import Path
 
 from ..answers import EngineApplyAnswer, EngineVerifyAnswer, ParamsAnswer, SweepAnswer
 from ..errors import InvalidRequestError
 from ..modelfile import ModelFile
-from .enginemodel import EngineModel, UnscalableParameterError
+from .enginemodel import EngineModel, EngineModelError, UnscalableParameterError
 from .loading import load, scene_options
 from .protocols import EngineNotes, RefusesScalings
+from .verdicts.causes import Cause
 
 __all__ = [
     "apply_engine",
+    "automatic_scene",
     "check_engine_model",
     "convert_engine",
     "engine_model_file",
@@ -31,6 +34,7 @@ __all__ = [
     "parse_scene",
     "parse_units",
     "scene_help",
+    "scene_text",
     "sweep_engine",
     "verify_engine",
 ]
@@ -135,6 +139,101 @@ def engine_model_file(path: str, **options) -> tuple[ModelFile, EngineModel]:
     return ModelFile(
         name=name, description=f"{model.engine} model {name}", system=system, values=values, roles=roles, path=str(path)
     ), model
+
+
+def automatic_scene(model: EngineModel, scaling, s, scene: dict | None = None) -> dict:
+    """The scene options the command line adds so that the engine's default scene follows `scaling`.
+
+    PyBullet's default scene has link damping (one number acting as a rate
+    and per length, which no scaling that changes lengths can follow) and
+    split impulse (whose threshold, a length, cannot be set from Python).
+    When the scaling is refused for them and the user set neither, the
+    command line loads the model in the runner's remedy scene instead, in
+    both runs, and says so in one line (:func:`scene_text`).
+
+    Parameters
+    ----------
+    model : EngineModel
+        The model as loaded with the user's scene.
+    scaling : Scaling
+    s : Fraction
+    scene : dict, optional
+        The scene options the user gave (:func:`parse_scene`); none of them
+        is overridden.
+
+    Returns
+    -------
+    dict
+        The options to add (empty when the scaling is accepted, when the
+        runner refuses nothing, or when the user set every remedy option).
+
+    Examples
+    --------
+    >>> import os, pybullet_data
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.cli import automatic_scene
+    >>> model = engines.load(os.path.join(pybullet_data.getDataPath(), "cartpole.urdf"))
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[1]
+    >>> automatic_scene(model, sc, 4)
+    {'damping': 0.0, 'split_impulse': False}
+    >>> automatic_scene(model, sc, 4, {"damping": 0.0, "split_impulse": False})
+    {}
+    """
+    if not isinstance(model.runner, RefusesScalings):
+        return {}
+    try:
+        model.scaled(scaling, s)
+    except UnscalableParameterError:
+        return {k: v for k, v in model.runner.remedy_scene.items() if k not in (scene or {})}
+    return {}
+
+
+def scene_refusal(model: EngineModel, scaling, s) -> str | None:
+    """One short line when the model's scene refuses `scaling` and a scene option removes it, else None.
+
+    Examples
+    --------
+    >>> import os, pybullet_data
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.cli import scene_refusal
+    >>> model = engines.load(os.path.join(pybullet_data.getDataPath(), "cartpole.urdf"), damping=0.1)
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[1]
+    >>> print(scene_refusal(model, sc, 4))
+    the scene refuses this scaling (4 numbers, the first 'link_slideBar_linearDamping'); give --scene damping=0 split_impulse=false
+    """
+    if not isinstance(model.runner, RefusesScalings):
+        return None
+    try:
+        model.scaled(scaling, s)
+    except UnscalableParameterError as err:
+        many = re.match(r"(\d+) numbers cannot follow", err.reason)
+        many = f"{many.group(1)} numbers, the first " if many else ""
+        return (
+            f"the scene refuses this scaling ({many}{err.name!r}); give --scene {scene_text(model.runner.remedy_scene)}"
+        )
+    return None
+
+
+def scene_text(options: dict) -> str:
+    """Scene options as ``--scene`` writes them: ``damping=0 split_impulse=false``.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.cli import scene_text
+    >>> scene_text({"damping": 0.0, "split_impulse": False, "base_position": (0.0, 0.0, 1.5)})
+    'damping=0 split_impulse=false base_position=0,0,1.5'
+    """
+
+    def one(value) -> str:
+        if isinstance(value, bool):
+            return "true" if value else "false"
+        if isinstance(value, (tuple, list)):
+            return ",".join(one(v) for v in value)
+        return f"{value:g}" if float(value) == int(value) else repr(float(value))
+
+    return " ".join(f"{name}={one(value)}" for name, value in options.items())
 
 
 def params_answer(path: str, *, name: str | None = None, **options) -> ParamsAnswer:
@@ -360,17 +459,33 @@ def convert_engine(
         fitted = engine_fit(model, engine=fit)
         units = fitted_units(model, fitted)
     new = read_units({**model.units, **units})
-    converted = model.converted(**new)
     factors = _factors_text(model.units, new)
+    try:
+        converted = model.converted(**new)
+    except EngineModelError:
+        if fitted is None:
+            raise
+        # the file's format holds one set of units (a URDF file is in SI): the fit's cannot be written
+        text = (
+            f"{Path(path).name}: no units keep every number clear of {fit}'s thresholds: its format holds only "
+            f"{_units_text(model.units)}\n{_units_text(new)} would; a similarity scaling (pitheorem apply) "
+            "changes its numbers instead"
+        )
+        if fmt == "json":
+            return json.dumps({"file": path, "fit": fit, "feasible": False, "written": None, "reason": text}, indent=2)
+        return text
+    unchanged = all(f == "1" for f in factors.values())
     written = None
-    if output:
+    if output and not (fit and unchanged):  # a fit that changes nothing writes no copy of the file
         out = Path(output)
         if out.exists() and out.resolve() == Path(path).resolve():
             raise InvalidRequestError(f"--output {output!r} is the input file; choose another name")
         converted.save(out)
         written = str(out)
     steps = len(conversion(model.system(), model.units, new))
-    crossings = tuple(str(c) for c in _check(converted, fit or None))
+    from .thresholds import check_summary
+
+    crossings = tuple(f"{c.element}: {c.detail}" for c in check_summary(converted, fit or None)[0])
     if fmt == "json":
         return json.dumps(
             {
@@ -387,15 +502,21 @@ def convert_engine(
             indent=2,
         )
     name = Path(path).name
-    lines = [
-        f"{name}: {_units_text(model.units)} -> {_units_text(new)} (factors "
-        + ", ".join(f"{b} {f}" for b, f in factors.items())
-        + ")"
-    ]
+    if fit and unchanged:
+        lines = [f"{name}: its units ({_units_text(model.units)}) are those --fit {fit} chooses; nothing to convert"]
+    else:
+        lines = [
+            f"{name}: {_units_text(model.units)} -> {_units_text(new)} (factors "
+            + ", ".join(f"{b} {f}" for b, f in factors.items())
+            + ")"
+        ]
     if fitted is not None and not fitted.feasible:
         lines.append(f"no units keep every number clear of {fit}'s thresholds; these are the closest")
     lines.extend(f"  {c}" for c in crossings)
-    lines.append(f"wrote {written}" if written else "nothing written (give --output OUT)")
+    if written:
+        lines.append(f"wrote {written}")
+    elif not (fit and unchanged):
+        lines.append("nothing written (give --output OUT)")
     return "\n".join(lines)
 
 
@@ -408,12 +529,6 @@ def _factors_text(old, new) -> dict[str, str]:
     from .units import unit_size
 
     return {b: short_text(unit_size(b, old[b]) / unit_size(b, new[b])) for b in old}
-
-
-def _check(model, engine: str | None = None):
-    from .thresholds import check
-
-    return check(model, engine)
 
 
 def check_engine_model(path: str, *, from_units=None, engine: str | None = None, fmt: str = "text") -> tuple[str, bool]:
@@ -446,10 +561,18 @@ def check_engine_model(path: str, *, from_units=None, engine: str | None = None,
     import json
 
     from .packages import check_engine
+    from .thresholds import check_summary
 
     model = load(path, units=from_units or None)
     engine = model.engine if engine is None else check_engine(engine)
-    causes = _check(model, engine)
+    causes, units_help = check_summary(model, engine)
+    refused = None
+    if engine != model.engine:  # another engine that compiles the file its own way (MJX) may refuse it: said first
+        try:
+            load(path, units=from_units or None, engine=engine)
+        except EngineModelError as err:
+            refused = str(err).strip().splitlines()[0].removeprefix(f"{path}: ")
+            causes = (Cause("threshold", "file", f"{engine} refuses the file: {refused}"), *causes)
     if fmt == "json":
         return json.dumps(
             {"file": path, "engine": engine, "units": model.units, "causes": [c.to_dict() for c in causes]}, indent=2
@@ -460,9 +583,16 @@ def check_engine_model(path: str, *, from_units=None, engine: str | None = None,
         return "\n".join(
             [f"{name}: clear of every catalogued threshold of {engine}", *(f"note: {n}" for n in notes)]
         ), True
-    lines = [f"{name}: {len(causes)} number(s) beyond or near a threshold of {engine}"]
-    lines.extend(f"  {c}" for c in causes)
-    lines.append(f"units clear of them: pitheorem convert {name} --fit {engine} --output OUT")
+    count = sum(int(c.element.split(" ", 1)[0]) for c in causes if c.element.split(" ", 1)[0].isdigit())
+    lines = [f"{name}: {count} number(s) at, beyond or near {len(causes)} threshold(s) of {engine}"]
+    if refused is not None:
+        lines[0] = f"{name}: {engine} refuses the file ({refused})"
+        causes = causes[1:]
+        if causes:
+            lines.append(f"and {count} number(s) at, beyond or near {len(causes)} threshold(s) of {engine}:")
+    lines.extend(f"  {c.element}: {c.detail}" for c in causes)
+    if units_help:
+        lines.append(f"units clear of them: pitheorem convert {name} --fit {engine} --output OUT")
     lines.extend(f"note: {n}" for n in notes)
     return "\n".join(lines), False
 

@@ -46,7 +46,7 @@ False
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
 
@@ -61,6 +61,7 @@ __all__ = [
     "HasSceneSettings",
     "IgnoredSettings",
     "NamesElements",
+    "ReadsSomeNumbers",
     "RefusesScalings",
     "Runner",
     "Runs",
@@ -179,11 +180,31 @@ class RefusesScalings(Protocol):
 
     unscalable_remedy: str
 
+    #: the scene options (:func:`pitheorem.engines.loading.scene_options`) that remove every refusal
+    #: at once, chosen by the command line when the user set none of them
+    remedy_scene: Mapping[str, object]
+
     def command_line_remedy(self, name: str) -> tuple[str, str]:
         """The command line's option that removes the refusal of parameter `name`, and the flag that sets it."""
 
     def unscalable(self, factors: dict[str, float]) -> list:
         """An UnscalableParameterError for each number the factors would need changed and no call can."""
+
+
+@runtime_checkable
+class ReadsSomeNumbers(Protocol):
+    """Optional: numbers of the file the engine never reads (MuJoCo's contact numbers of geoms that never collide).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.protocols import ReadsSomeNumbers
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, ReadsSomeNumbers)
+    True
+    """
+
+    def unread(self) -> frozenset[str]:
+        """The names of the parameters the engine holds but never reads in a run."""
 
 
 @runtime_checkable

@@ -42,6 +42,7 @@ from .enginemodel import EngineModel
 from .loading import runner_module
 from .packages import check_engine
 from .parameters import Parameter
+from .protocols import ReadsSomeNumbers
 from .registry import registered
 from .verdicts.causes import Cause, sorted_causes
 
@@ -51,6 +52,7 @@ __all__ = [
     "THRESHOLDS",
     "Threshold",
     "check",
+    "check_summary",
     "crossed",
     "held_against",
     "thresholds",
@@ -367,8 +369,33 @@ def crossed(
     table = _read_table(parameters)
     near = _read_near(near)
     factors = _read_factors(factors, {p.name for p in table})
+    found = _crossings(engine, table, factors, near, fixed_only, precision)
+    if not grouped:
+        return sorted_causes(
+            Cause("threshold", p.name, _detail(p, t, worst, limit, near, beyond))
+            for t, p, worst, limit, beyond in found
+        )
+    groups: dict = {}
+    for t, p, worst, limit, beyond in found:
+        groups.setdefault((t.name, p.dimension_text, beyond), []).append((p.name, worst, t, p, limit))
+    out = []
+    for (_name, _dimension, beyond), members in groups.items():
+        members.sort(key=lambda m: m[0])  # by parameter name
+        _, worst, t, p, limit = (min if t.bound == "below" else max)(members, key=lambda m: m[1])
+        detail = _detail(p, t, worst, limit, near, beyond)
+        names = ", ".join(name for name, *_ in members[:3])
+        if len(members) > 3:
+            names += f" and {len(members) - 3} more"
+        out.append(
+            Cause("threshold", names, f"{len(members)} numbers; the worst: {detail}" if len(members) > 1 else detail)
+        )
+    return sorted_causes(out)
+
+
+def _crossings(engine, table, factors, near, fixed_only, precision) -> list:
+    """(threshold, parameter, its worst number, the limit, whether beyond it) for each number beyond or near."""
     scalars = {p.name: p.value[0] * factors.get(p.name, 1.0) for p in table if len(p.value) == 1}
-    found = []  # (threshold, parameter, its worst number, the limit, whether beyond it)
+    found = []
     if precision not in ("float32", "float64"):
         raise InvalidRequestError(f"precision must be 'float32' or 'float64', got {precision!r}", culprit=precision)
     compared = [
@@ -394,26 +421,7 @@ def crossed(
             close = worst < limit * near if t.bound == "below" else worst > limit / near
             if beyond or close:
                 found.append((t, p, worst, limit, beyond))
-    if not grouped:
-        return sorted_causes(
-            Cause("threshold", p.name, _detail(p, t, worst, limit, near, beyond))
-            for t, p, worst, limit, beyond in found
-        )
-    groups: dict = {}
-    for t, p, worst, limit, beyond in found:
-        groups.setdefault((t.name, p.dimension_text, beyond), []).append((p.name, worst, t, p, limit))
-    out = []
-    for (_name, _dimension, beyond), members in groups.items():
-        members.sort(key=lambda m: m[0])  # by parameter name
-        _, worst, t, p, limit = (min if t.bound == "below" else max)(members, key=lambda m: m[1])
-        detail = _detail(p, t, worst, limit, near, beyond)
-        names = ", ".join(name for name, *_ in members[:3])
-        if len(members) > 3:
-            names += f" and {len(members) - 3} more"
-        out.append(
-            Cause("threshold", names, f"{len(members)} numbers; the worst: {detail}" if len(members) > 1 else detail)
-        )
-    return sorted_causes(out)
+    return found
 
 
 def _detail(p, t: Threshold, worst: float, limit: float, near: float, beyond: bool) -> str:
@@ -489,21 +497,104 @@ def check(model, engine: str | None = None) -> tuple[Cause, ...]:
     ...     print(cause.element, "|", cause.detail.split(" is ")[1].split(":")[0])
     geom_rod_friction_torsional_rolling | below mujoco_minmu (1e-05)
     """
+    engine, table, precision, refused = _checked(model, engine)
+    return (*refused, *crossed(engine, table, precision=precision))
+
+
+def _checked(model, engine):
+    """The engine, the numbers it reads, its precision, and the engine's refusal of the file (as causes)."""
     if not isinstance(model, EngineModel):
         raise InvalidRequestError(f"check needs an EngineModel (from engines.load), got {type(model).__name__}")
     engine = model.engine if engine is None else check_engine(engine)
     table = held_against(model, engine)
+    if isinstance(model.runner, ReadsSomeNumbers):  # numbers the engine never reads cross nothing
+        unread = model.runner.unread()
+        table = tuple(p for p in table if p.name not in unread)
     # a model says its precision; one held against another engine's thresholds gets that engine's default
     precision = model.runner.precision if engine == model.engine else registered(engine).precision
-    causes = crossed(engine, table, precision=precision)
     refusal = model.runner.refusal  # a file the engine refused to compile (read as a table)
+    refused = ()
     if refusal is not None:
-        causes = (
+        refused = (
             Cause(
                 "threshold",
                 refusal.element or Path(refusal.path).name,
                 f"{model.engine} refuses the file: {refusal.reason}",
             ),
-            *causes,
         )
-    return causes
+    return engine, table, precision, refused
+
+
+def check_summary(model, engine: str | None = None, *, near: float = 2.0) -> tuple[tuple[Cause, ...], bool]:
+    """What :func:`check` finds, one cause per threshold and value: the command line's ``check``.
+
+    The numbers that sit at, beyond or near the same threshold with the same
+    value are one cause, whatever elements hold them, with their count and
+    the kinds of element (``solref timeconst of 14 geoms``).  A number
+    exactly at a floor is said to be *at* it (the engine leaves it as it
+    is); a remedy is named only where one exists (a change of units clears
+    a fixed threshold; none moves a number away from a threshold that is a
+    multiple of another of the model's numbers, such as two time steps).
+    Numbers the engine never reads (the contact numbers of a geom that
+    never collides) are left out.
+
+    Parameters
+    ----------
+    model : EngineModel
+    engine : str, optional
+        Default: the model's engine.
+    near : float
+        The factor within which a number counts as near (default 2).
+
+    Returns
+    -------
+    (tuple of Cause, bool)
+        The causes (the engine's refusal of the file first, if any), and
+        whether a change of units would clear some of them.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.thresholds import check_summary
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> lengths = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    >>> causes, units_help = check_summary(model.scaled(lengths, 1e-3))
+    >>> print(causes[0].element); units_help
+    1 number (friction torsional rolling of 1 geom)
+    True
+    """
+    engine, table, precision, refused = _checked(model, engine)
+    near = _read_near(near)
+    groups: dict = {}
+    for t, p, worst, limit, beyond in _crossings(engine, table, {}, near, False, precision):
+        at = not beyond and worst == limit
+        relation = "beyond" if beyond else "at" if at else "near"
+        groups.setdefault((t.name, worst, relation), []).append((t, p, limit))
+    out, units_help = [], False
+    for (_name, worst, relation), members in sorted(groups.items(), key=lambda g: (g[0][0], g[0][2], g[0][1])):
+        t, p, limit = members[0]
+        holders: dict[tuple[str, str], int] = {}
+        for _t, q, _limit in members:
+            kind, _, rest = q.path.partition(" ")
+            attribute = rest.split("' ", 1)[-1] if rest.startswith("'") else rest.partition(" ")[2]
+            holders[(attribute, kind)] = holders.get((attribute, kind), 0) + 1
+        kinds = [f"{a} of {n} {k}{'s' if n > 1 else ''}" for (a, k), n in sorted(holders.items())]
+        if len(kinds) > 3:
+            kinds = [*kinds[:3], f"{len(kinds) - 3} more"]
+        count = len(members)
+        element = f"{count} {'number' if count == 1 else 'numbers'} ({', '.join(kinds)})"
+        of = f" = {t.value!r} {t.relative_to}" if t.relative_to else ""
+        head = f"{worst!r} is {t.bound if relation == 'beyond' else relation if relation == 'at' else 'within a factor ' + format(near, 'g') + ' of'} {t.name} ({limit!r}{of})"
+        need = limit * near / worst if t.bound == "below" else limit / (near * worst)
+        if relation == "beyond":
+            detail = f"{head}: {t.effect}"
+        else:
+            detail = f"{head}: left as it is; {t.bound} it, {t.effect.split(': ')[0]}"
+        if not t.relative_to:
+            detail += f"; units that multiply {p.dimension_text} by {need:.3g} clear it"
+            units_help = True
+        elif relation == "beyond":
+            detail += f"; change it or {t.relative_to} by a factor {need:.3g} (a change of units moves both alike)"
+        out.append(Cause("threshold", element, detail))
+    return (*refused, *out), units_help

@@ -435,7 +435,10 @@ def request_text(result) -> str:
     >>> request_text(pt.search(pt.System({"l": "L", "g": "L T^-2", "t": "T"}), scale={"g": 1}))
     'g by s with t fixed'
     """
-    return scale_text(result) + (f" with {names_text(result.fixed)} fixed" if result.fixed else "")
+    # a long list (an engine file's every time constant) keeps the first name: the line stays short, and the
+    # note under it names them all
+    shown = 1 if len(result.fixed) > 3 else 3
+    return scale_text(result) + (f" with {names_text(result.fixed, shown=shown)} fixed" if result.fixed else "")
 
 
 def scale_text(result) -> str:

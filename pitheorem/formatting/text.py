@@ -546,9 +546,8 @@ def _engine_verify_answer(answer) -> str:
         verdict = {"similar": "similar", "inconclusive": "inconclusive", "not similar": "NOT similar"}[rep.verdict]
         worst = max(rep.sensitivity.values(), default=0.0)
         lines = [
-            f"{verdict}: largest deviation {rep.max_deviation:.3g} in original units, against "
-            f"{rep.baseline_factor:g}x the spread of {rep.ensemble} one-ulp twins of the original (largest "
-            f"{worst:.3g}); s = {s}, {steps} steps"
+            f"{verdict}: deviation {rep.max_deviation:.3g} (original units) against {rep.baseline_factor:g}x the "
+            f"spread {worst:.3g} of {rep.ensemble} one-ulp twins; s = {s}, {steps} steps"
         ]
         if rep.first_divergence is not None:
             t, name = rep.first_divergence

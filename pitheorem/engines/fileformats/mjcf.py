@@ -30,11 +30,13 @@ from __future__ import annotations
 
 import gc
 import math
+import os
 import warnings
 from collections.abc import Callable, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
+from xml.sax.saxutils import escape
 
 import numpy as np
 
@@ -148,6 +150,7 @@ _COLLECTIONS = (
     "pairs",
     "sensors",
     "numerics",
+    "skins",
 )
 #: the spec's single elements, addressed by their kind
 _SINGLES = ("option", "compiler", "stat")
@@ -389,7 +392,11 @@ class _Walker:
             self.add_set("pair", pair, ident, path, "adhesion", _FORCE)
         for i, sensor in enumerate(lists["sensors"]):
             self.sensor(sensor, i)
-        for kind, items in (("flex", spec.flexes), ("skin", spec.skins), ("plugin", spec.plugins)):
+        for i, skin in enumerate(self.lists["skins"]):  # render-only: its vertices and bind positions are lengths
+            ident, path = self.label("skin", skin, i)
+            for attr in ("vert", "bindpos", "inflate"):
+                self.add("skin", skin, ident, path, attr, _L)
+        for kind, items in (("flex", spec.flexes), ("plugin", spec.plugins)):
             for i, item in enumerate(items):
                 _, path = self.label(kind, item, i)
                 self.fail(path, f"{kind} elements cannot be scaled by pitheorem yet; remove it or scale it by hand")
@@ -1224,6 +1231,8 @@ class MjcfDocument:
         try:
             with _muted():
                 self.mjmodel = spec.compile()
+                if _inline_skins(spec, self.mjmodel):  # a skin's file written into the model: scaled as lengths
+                    self.mjmodel = spec.compile()
         except ValueError as err:
             raise _rejected(path, err, spec) from None
         # warn once, when the file is read; not again for each scaled copy, whose table is read only when
@@ -1358,6 +1367,13 @@ class MjcfDocument:
         return recorded_units(self.spec, self.path)
 
     def save(self, path: Path) -> None:
+        """Write the model to `path`; its mesh, texture and height-field files named relative to it.
+
+        A saved file and its assets move together: each asset is named by its
+        path relative to the written file's folder (the file's ``meshdir`` and
+        ``texturedir`` then name nothing), so copying the folder that holds both
+        keeps the copy loading.
+        """
         spec = self._portable_spec()
         # each scaled number as the decimal a person would write: the exact product of the original's
         # decimal and the factor's, rounded once (9.81 times 10 is 98.1, where the float product is
@@ -1375,10 +1391,11 @@ class MjcfDocument:
         # quaternions and radians); the uncompiled output keeps every value at full precision
         spec.compiler.savecompiled = False
         spec.compiler.savecanonical = False
+        spec.meshdir = spec.texturedir = ""  # every asset's path is whole: no folder is put before it
         with _muted():
             spec.compile()
             text = spec.to_xml()
-        Path(path).write_text(text)
+        Path(path).write_text(_relative_assets(spec, text, Path(os.path.abspath(path)).parent))
 
     def _written(self) -> list:
         """What :meth:`scaled` multiplied: (address, attribute, entries, the original's values, factor) each.
@@ -1421,7 +1438,9 @@ class MjcfDocument:
                 base = self.asset_dirs.get((kind, item.name))
                 if base is None:
                     base = self.source_dir / (getattr(self.spec, folders[kind], "") or "")
-                item.file = str((base / file).resolve())
+                # the folder as MuJoCo reads it: a model opened through a symbolic link finds its assets
+                # beside the link, not beside the link's target
+                item.file = os.path.normpath(os.path.abspath(base / file))
         return spec
 
     def _scale_keyframes(self, spec, scaling, s) -> None:
@@ -1707,6 +1726,60 @@ def recorded_units(spec, path: str) -> dict[str, str] | None:
     return None
 
 
+def _folder(path: Path) -> Path:
+    """The folder MuJoCo reads a file's assets from: the file's own, a symbolic link not followed."""
+    return Path(os.path.abspath(path)).parent
+
+
+def _relative_assets(spec, text: str, folder: Path) -> str:
+    """`text`, the XML of `spec`, with each asset's absolute path made relative to `folder`.
+
+    The spec's asset paths are absolute (:meth:`MjcfDocument._portable_spec`); in the written
+    file each is relative to the file's folder, so that the folder holding the file and its
+    assets can move.
+    """
+    for items in (spec.meshes, spec.hfields, spec.textures):
+        for item in items:
+            file = getattr(item, "file", "") or ""
+            if file and Path(file).is_absolute():
+                relative = Path(os.path.relpath(file, folder)).as_posix()
+                text = text.replace(f'file="{escape(file)}"', f'file="{escape(relative)}"')
+    return text
+
+
+def _inline_skins(spec, m) -> bool:
+    """Write each skin read from a file (``<skin file="dog.skn">``) into the spec, as MuJoCo compiled it.
+
+    A skin is a render-only mesh bound to bodies; its vertices, bind
+    positions and inflation are lengths.  MuJoCo's spec holds none of them
+    for a skin read from a file (they are read when it compiles), so they are
+    taken from the compiled model `m` and the file is no longer needed: the
+    scaled copy holds them scaled, and travels without the ``.skn`` file.
+    Returns whether any skin was read from a file.
+    """
+    inlined = False
+    for i, skin in enumerate(spec.skins):
+        if not skin.file:
+            continue
+        va, vn = m.skin_vertadr[i], m.skin_vertnum[i]
+        skin.vert = m.skin_vert[va : va + vn].ravel().tolist()
+        if m.skin_texcoordadr[i] >= 0:
+            ta = m.skin_texcoordadr[i]
+            skin.texcoord = m.skin_texcoord[ta : ta + vn].ravel().tolist()
+        fa, fn = m.skin_faceadr[i], m.skin_facenum[i]
+        skin.face = m.skin_face[fa : fa + fn].ravel().tolist()
+        ba, bn = m.skin_boneadr[i], m.skin_bonenum[i]
+        skin.bodyname = [m.body(int(b)).name for b in m.skin_bonebodyid[ba : ba + bn]]
+        skin.bindpos = m.skin_bonebindpos[ba : ba + bn].ravel().tolist()
+        skin.bindquat = m.skin_bonebindquat[ba : ba + bn].ravel().tolist()
+        starts, counts = m.skin_bonevertadr[ba : ba + bn], m.skin_bonevertnum[ba : ba + bn]
+        skin.vertid = [m.skin_bonevertid[a : a + n].tolist() for a, n in zip(starts, counts, strict=True)]
+        skin.vertweight = [m.skin_bonevertweight[a : a + n].tolist() for a, n in zip(starts, counts, strict=True)]
+        skin.file = ""
+        inlined = True
+    return inlined
+
+
 def read_mjcf(path) -> MjcfDocument:
     """Read an MJCF file through MuJoCo's parser and compiler: its document.
 
@@ -1745,9 +1818,9 @@ def read_mjcf(path) -> MjcfDocument:
         raise _rejected(str(path), err) from None
     asset_dirs = _attached_asset_dirs(mj, path, root)
     try:
-        return MjcfDocument(spec, str(path), path.resolve().parent, asset_dirs=asset_dirs)
+        return MjcfDocument(spec, str(path), _folder(path), asset_dirs=asset_dirs)
     except EngineModelError as err:
         if "mjMINVAL" not in err.reason:
             raise
         # refused for a threshold that units decide: still a table, so check, fit and convert can repair it
-        return RefusedMjcfDocument(spec, str(path), path.resolve().parent, err, asset_dirs=asset_dirs)
+        return RefusedMjcfDocument(spec, str(path), _folder(path), err, asset_dirs=asset_dirs)

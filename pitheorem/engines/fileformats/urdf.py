@@ -14,6 +14,7 @@ keeps PyBullet's beside the file.  Nothing here imports an engine.
 from __future__ import annotations
 
 import copy
+import os
 import xml.etree.ElementTree as ET
 from collections.abc import Mapping
 from pathlib import Path
@@ -342,12 +343,15 @@ class UrdfDocument:
         _warn_compound_meshes(self.tree, self.path, self.source_dir)
 
     def save(self, path) -> None:
-        """Write the file, its meshes named by absolute paths so that the copy loads from any folder."""
+        """Write the file, its meshes and textures named relative to it: the folder holding both can move."""
         tree = copy.deepcopy(self.tree)
-        for g in tree.getroot().iter("mesh"):
+        folder = Path(os.path.abspath(path)).parent
+        for g in tree.getroot().iter():
+            if g.tag not in ("mesh", "texture") or not g.get("filename"):
+                continue
             resolved = _mesh_path(g.get("filename", ""), self.source_dir)
             if resolved is not None:
-                g.set("filename", str(resolved.resolve()))
+                g.set("filename", Path(os.path.relpath(os.path.abspath(resolved), folder)).as_posix())
         Path(path).write_text(_xml_text(tree))
 
 
@@ -385,7 +389,7 @@ def read_urdf(path) -> UrdfDocument:
             tree = ET.parse(path)
         except ET.ParseError as err:
             raise EngineModelError(str(path), f"line {err.position[0]}", f"not well-formed XML ({err})") from None
-    return UrdfDocument(tree, str(path), path.resolve().parent)
+    return UrdfDocument(tree, str(path), Path(os.path.abspath(path)).parent)  # a symbolic link not followed
 
 
 def refuse_units(path: str, units: Mapping[str, str]) -> None:

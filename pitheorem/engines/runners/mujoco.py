@@ -27,6 +27,7 @@ from __future__ import annotations
 import atexit
 import json
 import math
+import re
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -45,6 +46,15 @@ __all__ = ["MujocoRunner", "UrdfInMujoco", "load_mjcf", "load_urdf"]
 
 def _mujoco():
     return engine_module("mujoco")
+
+
+#: a parameter's path: its element (``geom 'foot'``, ``geom #3``) and the attribute after it
+_ELEMENT_ATTRIBUTE = re.compile(r"^(\w+ (?:'[^']*'|#\d+)) (\S+)")
+
+
+def _dofs(m, j: int) -> int:
+    """The degrees of freedom of joint `j`: 6 free, 3 ball, 1 slide or hinge."""
+    return {0: 6, 1: 3}.get(int(m.jnt_type[j]), 1)
 
 
 class MujocoRunner:
@@ -119,6 +129,36 @@ class MujocoRunner:
         if isinstance(self.document, UrdfInMujoco):
             return self.document.written_beside(path)
         return ()
+
+    def unread(self) -> frozenset[str]:
+        """The parameters MuJoCo holds but never reads in a run.
+
+        A geom's contact numbers (``solref``, ``solimp``, ``margin``, ``gap``,
+        ``friction``) when it can never collide (``contype`` and
+        ``conaffinity`` both 0, and in no explicit ``<pair>``); a joint's
+        limit softness when it has no limit; its friction-loss softness
+        when it has no friction loss.
+        """
+        m = self.mjmodel
+        paired = {int(g) for g in (*m.pair_geom1, *m.pair_geom2)}
+        kinds: dict[str, set[str]] = {}  # element path -> attributes never read
+        for i in range(m.ngeom):
+            if m.geom_contype[i] == 0 and m.geom_conaffinity[i] == 0 and i not in paired:
+                name = m.geom(i).name
+                kinds[f"geom {name!r}" if name else f"geom #{i}"] = {"solref", "solimp", "margin", "gap", "friction"}
+        for j in range(m.njnt):
+            name = m.joint(j).name
+            unread = set() if m.jnt_limited[j] else {"solref_limit", "solimp_limit", "margin"}
+            if not np.any(m.dof_frictionloss[m.jnt_dofadr[j] : m.jnt_dofadr[j] + _dofs(m, j)]):
+                unread |= {"solref_friction", "solimp_friction"}
+            if unread:
+                kinds[f"joint {name!r}" if name else f"joint #{j}"] = unread
+        out = set()
+        for p in self.parameters():
+            where = _ELEMENT_ATTRIBUTE.match(p.path)
+            if where and where.group(2) in kinds.get(where.group(1), ()):
+                out.add(p.name)
+        return frozenset(out)
 
     def coordinate_dimensions(self):
         return self.document.coordinate_dimensions()

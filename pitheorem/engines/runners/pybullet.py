@@ -30,6 +30,7 @@ import copy
 import json
 import math
 from pathlib import Path
+from types import MappingProxyType
 
 import numpy as np
 
@@ -435,6 +436,10 @@ class PybulletRunner:
         "In one go: engines.load(path, damping=0.0, split_impulse=False) (on the command line: "
         "--scene damping=0 split_impulse=false), the same in the original and the scaled run"
     )
+
+    #: the scene in which every number follows every scaling: no link damping (its rate and per-length
+    #: parts need different factors) and no split impulse (its threshold cannot be set from Python)
+    remedy_scene = MappingProxyType({"damping": 0.0, "split_impulse": False})
 
     def command_line_remedy(self, name: str) -> tuple[str, str]:
         """The ``--scene`` option that removes the refusal of `name`, and its flag (("", "") for none)."""
