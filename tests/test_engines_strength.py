@@ -32,6 +32,16 @@ def test_the_horizon_is_the_last_time_before_a_twin_parts_by_the_fraction(n, k, 
     assert horizon(t, run, [below]) == t[-1]
 
 
+def test_a_still_coordinate_jittering_by_rounding_does_not_end_the_horizon():
+    t = np.arange(4.0)
+    run = np.array([[0.0, 0.0], [1.0, 1e-15], [2.0, 0.0], [3.0, 1e-15]])
+    twin = run.copy()
+    twin[:, 1] = [0.0, 0.0, 1e-15, 0.0]  # off by 100% of its own range of 1e-15, 3e-16 of the largest
+    assert horizon(t, run, [twin]) == 3.0
+    twin[3, 1] = 3 * HORIZON_FRACTION * 1e-3 * 3.0  # past the fraction of STILL of the largest range
+    assert horizon(t, run, [twin]) == 2.0
+
+
 def test_a_twin_that_goes_nan_parts_at_once():
     t = np.arange(3.0)
     run = np.array([[0.0], [1.0], [2.0]])

@@ -36,10 +36,13 @@ import numpy as np
 
 from ...immutable import immutable
 
-__all__ = ["CONTROL_ERRORS", "HORIZON_FRACTION", "Control", "caught", "control_factors", "horizon"]
+__all__ = ["CONTROL_ERRORS", "HORIZON_FRACTION", "STILL", "Control", "caught", "control_factors", "horizon"]
 
 #: the twins' spread, as a fraction of each coordinate's range over the run, that ends the horizon
 HORIZON_FRACTION = 0.01
+
+#: a coordinate's range counts as at least this fraction of the largest range of the run (still ones jitter)
+STILL = 1e-3
 
 #: the relative errors of the negative controls (gravity times 1 + e); the masses are doubled
 CONTROL_ERRORS = (1e-4, 1e-2, 1.0)
@@ -80,8 +83,11 @@ def horizon(t: np.ndarray, original: np.ndarray, twins) -> float:
     """How long the original's twins stay within :data:`HORIZON_FRACTION` of its motion, in its time unit.
 
     Each coordinate's spread (the largest distance of any twin from the
-    original) is taken relative to the coordinate's range over the run; a
-    coordinate that does not move has no spread.  The horizon is the last
+    original) is taken relative to the coordinate's range over the run,
+    or to :data:`STILL` of the largest range of any coordinate where its
+    own is smaller (a body at rest jitters by rounding: that is no motion
+    to part from); a run in which nothing moves has no horizon short of
+    its end.  The horizon is the last
     time before the largest relative spread first exceeds the fraction, or
     the run's end when it never does.
 
@@ -111,6 +117,9 @@ def horizon(t: np.ndarray, original: np.ndarray, twins) -> float:
     if not len(twins) or original.size == 0:
         return float(t[-1]) if len(t) else 0.0
     span = np.ptp(original, axis=0)
+    # a coordinate that barely moves (a body at rest, jittering at 1e-15) has no motion to be a fraction of:
+    # each range is taken as at least STILL of the largest range any coordinate covers
+    span = np.maximum(span, STILL * float(np.max(span, initial=0.0)))
     with np.errstate(invalid="ignore", divide="ignore"):
         spread = np.max([np.abs(np.asarray(twin, dtype=float) - original) for twin in twins], axis=0)
         relative = np.where(span > 0, spread / np.where(span > 0, span, 1.0), 0.0)
