@@ -369,7 +369,7 @@ class ModelScaling:
     parameters and the initial state, scale the time span (and a fixed
     step) by the time's factor, and map the scaled run back to original
     units.  :func:`verify_similarity` and
-    :func:`pitheorem.engines.verdicts.verify_engine_similarity` both use it.  Build
+    :func:`pitheorem.engines.verify_engine_similarity` both use it.  Build
     it with :meth:`of`.
 
     Parameters

@@ -104,7 +104,7 @@ class EngineModel(TableDisplay):
 
         The analysis (:func:`~pitheorem.engines.verify`, :func:`~pitheorem.engines.audit`,
         :func:`~pitheorem.engines.check`, the fit) asks it only what
-        :class:`pitheorem.engines.protocols.Runner` and its optional
+        ``pitheorem.engines.protocols.Runner`` and its optional
         capabilities name (tests/test_architecture.py holds them to it).
 
         Examples
