@@ -116,7 +116,9 @@ def test_a_urdf_in_mujoco_is_mujocos_own_reading_of_the_file_with_its_settings_l
     assert table["geom_solref_time"].value == (native.geom_solref[0, 0],)
     assert str(table["slide_solimp_limit_width"].dimension) == "L"  # the cart's rail: a slide
     assert str(table["hinge_solimp_limit_width"].dimension) == "1"  # the pole's hinge
-    assert model.runner.control_dimensions() == []  # MuJoCo's URDF reader makes no actuators
+    # MuJoCo's URDF reader makes no actuators: the runner gives each joint a motor (the rail a force)
+    assert native.nu == 0
+    assert [str(d) for d in model.runner.control_dimensions()] == ["M L T^-2", "M L^2 T^-2"]
 
 
 @pytest.mark.parametrize("name", ["cartpole.urdf", "kuka_iiwa/model.urdf", "pendulum5.urdf"])

@@ -1,7 +1,10 @@
 """The URDF format: every number a URDF file states, with its dimension and its address; written back by address.
 
 Read with :mod:`xml.etree.ElementTree`, by the URDF specification (SI
-units: metres, kilograms, seconds, radians).  Dimensions follow the joint
+units: metres, kilograms, seconds, radians).  Mesh files are found as
+PyBullet finds them (beside the file, ``package://`` in the folders above
+it) and, first, in the folder of MuJoCo's extension ``<mujoco><compiler
+meshdir="..."/></mujoco>`` where the file has one.  Dimensions follow the joint
 type: a revolute or continuous joint has coordinate ``q`` = 1 and
 generalised force ``Q`` = M L^2 T^-2, a prismatic one ``q`` = L and ``Q``
 = M L T^-2.  A scaled copy is the parsed file with each number rewritten
@@ -89,6 +92,7 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
     out: list[_Attr] = []
     names: set[str] = set()
     address = {id(element): i for i, element in enumerate(root.iter())}
+    mesh_folder = _mesh_folder(root, source_dir)
 
     def add(ident, where, element, attr, dimension, note="", default=None):
         if element is None or element.get(attr, default) is None:
@@ -134,12 +138,15 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
                         add(f"{sid}_length", f"{swhere} {g.tag} length", g, "length", _L)
                     elif g.tag == "mesh":
                         filename = g.get("filename", "")
-                        resolved = _mesh_path(filename, source_dir)
+                        resolved = _mesh_path(filename, source_dir, mesh_folder)
                         if resolved is None:
+                            where_looked = "the URDF's folder" + (
+                                f" or its <mujoco><compiler meshdir> {str(mesh_folder)!r}" if mesh_folder else ""
+                            )
                             raise EngineModelError(
                                 path,
                                 f"{swhere} mesh {filename!r}",
-                                "mesh file not found (relative to the URDF's folder)",
+                                f"mesh file not found (relative to {where_looked})",
                             )
                         add(
                             f"{sid}_scale",
@@ -219,11 +226,12 @@ def _compound_meshes(tree: ET.ElementTree, source_dir: Path) -> list[tuple[str, 
     contacts of a scaled copy are off by it.  Returns (link, file, parts) each.
     """
     found = []
+    mesh_folder = _mesh_folder(tree.getroot(), source_dir)
     for link in tree.getroot().iter("link"):
         for collision in link.findall("collision"):
             for mesh in collision.iter("mesh"):
                 filename = mesh.get("filename", "")
-                resolved = _mesh_path(filename, source_dir)
+                resolved = _mesh_path(filename, source_dir, mesh_folder)
                 if resolved is None or resolved.suffix.lower() != ".obj":
                     continue
                 with open(resolved, encoding="utf-8", errors="replace") as lines:
@@ -248,17 +256,37 @@ def _xml_text(tree: ET.ElementTree) -> str:
     return ET.tostring(tree.getroot(), encoding="unicode")
 
 
-def _mesh_path(filename: str, source_dir: Path) -> Path | None:
-    """The file a URDF's mesh or texture names, searched as PyBullet does; None if there is none.
+def _mesh_folder(root: ET.Element, source_dir: Path) -> Path | None:
+    """The folder of MuJoCo's extension ``<mujoco><compiler meshdir="..."/></mujoco>``; None without one.
 
-    A relative name is relative to the URDF's folder; ``package://NAME/REST`` is looked for as
-    ``NAME/REST`` in that folder and the folders above it (a ROS package's meshes sit beside its
-    ``urdf`` folder).
+    A relative folder is relative to the URDF's folder, as MuJoCo takes it.
+    """
+    for compiler in root.findall("mujoco/compiler"):
+        if compiler.get("meshdir"):
+            return source_dir / compiler.get("meshdir")
+    return None
+
+
+def _without_mesh_folder(root: ET.Element) -> None:
+    """Drop the ``meshdir`` of the ``<mujoco><compiler>`` block: every mesh is then named from the file itself."""
+    for compiler in root.findall("mujoco/compiler"):
+        compiler.attrib.pop("meshdir", None)
+
+
+def _mesh_path(filename: str, source_dir: Path, mesh_folder: Path | None = None) -> Path | None:
+    """The file a URDF's mesh or texture names, searched as MuJoCo and PyBullet do; None if there is none.
+
+    A relative mesh name is looked for in `mesh_folder` first (MuJoCo's ``<mujoco><compiler
+    meshdir>`` extension, where MuJoCo looks for it), then as PyBullet does: relative to the URDF's
+    folder; ``package://NAME/REST`` is looked for as ``NAME/REST`` in that folder and the folders
+    above it (a ROS package's meshes sit beside its ``urdf`` folder).
     """
     name = filename
     if name.startswith("package://"):
         name = name[len("package://") :]
     candidates = [source_dir / name, Path(name)]
+    if mesh_folder is not None and not filename.startswith("package://"):
+        candidates.insert(0, mesh_folder / name)
     if filename.startswith("package://"):
         candidates += [folder / name for folder in list(source_dir.parents)[:4]]
     for c in candidates:
@@ -273,12 +301,14 @@ def _portable_text(tree: ET.ElementTree, source_dir: Path) -> str | None:
     None when one of them cannot be found (PyBullet may still find it from the file's own folder).
     """
     tree = copy.deepcopy(tree)
+    mesh_folder = _mesh_folder(tree.getroot(), source_dir)
     for element in tree.getroot().iter():
         if element.tag in ("mesh", "texture") and element.get("filename"):
-            found = _mesh_path(element.get("filename"), source_dir)
+            found = _mesh_path(element.get("filename"), source_dir, mesh_folder if element.tag == "mesh" else None)
             if found is None:
                 return None
             element.set("filename", str(found.resolve()))
+    _without_mesh_folder(tree.getroot())  # every mesh named by its absolute path
     return _xml_text(tree)
 
 
@@ -346,12 +376,14 @@ class UrdfDocument:
         """Write the file, its meshes and textures named relative to it: the folder holding both can move."""
         tree = copy.deepcopy(self.tree)
         folder = Path(os.path.abspath(path)).parent
+        mesh_folder = _mesh_folder(tree.getroot(), self.source_dir)
         for g in tree.getroot().iter():
             if g.tag not in ("mesh", "texture") or not g.get("filename"):
                 continue
-            resolved = _mesh_path(g.get("filename", ""), self.source_dir)
+            resolved = _mesh_path(g.get("filename", ""), self.source_dir, mesh_folder if g.tag == "mesh" else None)
             if resolved is not None:
                 g.set("filename", Path(os.path.relpath(os.path.abspath(resolved), folder)).as_posix())
+        _without_mesh_folder(tree.getroot())  # each mesh now named relative to the saved file, not to meshdir
         Path(path).write_text(_xml_text(tree))
 
 

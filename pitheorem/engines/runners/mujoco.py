@@ -18,8 +18,10 @@ settings a URDF cannot hold: the options (time step, gravity, wind, ...),
 and the contact and limit softness, friction and margins MuJoCo's reader
 gives every geom and joint from its default class.  They are written
 beside a saved copy (``NAME.urdf.mujoco.json``) and read back by
-:func:`load_urdf`.  MuJoCo's URDF reader makes no actuators: such a model
-has no controls (``run(controls=...)`` has nothing to set).
+:func:`load_urdf`.  MuJoCo's URDF reader makes no actuators; the runner
+gives every movable joint a motor (:func:`add_joint_motors`), as PyBullet's
+runner takes one torque or force per movable joint, so ``run(controls=...)``
+sets one torque (revolute) or force (prismatic) per joint.
 """
 
 from __future__ import annotations
@@ -39,9 +41,9 @@ from ..enginemodel import EngineModel
 from ..fileformats.mjcf import read_mjcf
 from ..fileformats.urdf import UrdfDocument, read_urdf, refuse_units
 from ..packages import engine_module
-from ..parameters import Parameter, dim
+from ..parameters import JointKind, Parameter, dim
 
-__all__ = ["MujocoRunner", "UrdfInMujoco", "load_mjcf", "load_urdf"]
+__all__ = ["MujocoRunner", "UrdfInMujoco", "add_joint_motors", "load_mjcf", "load_urdf"]
 
 
 def _mujoco():
@@ -802,6 +804,41 @@ def _apply_urdf_settings(mj, spec, settings: dict) -> None:
                 setattr(holder, attr.removeprefix("eq_"), value)
 
 
+def add_joint_motors(mj, spec) -> list[str]:
+    """Give every hinge and slide joint of `spec` a motor: its input is the joint's torque or force.
+
+    One ``<motor>`` per joint, in the spec's joint order (the order of
+    ``qpos``), named after its joint, with gear 1 and no control range: the
+    input ``ctrl`` is the torque (a hinge, M L^2 T^-2) or force (a slide,
+    M L T^-2) itself, as PyBullet's ``TORQUE_CONTROL`` takes it.  The
+    joint's ``actuatorfrcrange`` (MuJoCo's URDF reader writes a joint's
+    ``effort`` limit there) still caps the force the motor applies.
+
+    Returns the names of the joints given a motor.
+
+    Examples
+    --------
+    >>> import mujoco
+    >>> from pitheorem.engines.runners.mujoco import add_joint_motors
+    >>> spec = mujoco.MjSpec.from_string(
+    ...     '<mujoco><worldbody><body><joint name="j" type="slide"/><geom size="0.1"/></body></worldbody></mujoco>'
+    ... )
+    >>> add_joint_motors(mujoco, spec), spec.compile().actuator_gear[0, 0]
+    (['j'], np.float64(1.0))
+    """
+    kinds = (int(mj.mjtJoint.mjJNT_HINGE), int(mj.mjtJoint.mjJNT_SLIDE))
+    names = []
+    for joint in spec.joints:
+        if int(joint.type) not in kinds:
+            continue
+        motor = spec.add_actuator(name=joint.name, target=joint.name, trntype=mj.mjtTrn.mjTRN_JOINT)
+        motor.set_to_motor()
+        motor.ctrllimited = mj.mjtLimited.mjLIMITED_FALSE
+        motor.forcelimited = mj.mjtLimited.mjLIMITED_FALSE
+        names.append(joint.name)
+    return names
+
+
 class UrdfInMujoco:
     """A URDF document as MuJoCo's runner holds a model: compiled by MuJoCo's URDF reader, with its settings.
 
@@ -845,6 +882,7 @@ class UrdfInMujoco:
         if text is None:
             spec.modelfiledir = str(urdf.source_dir)
         _refuse_mixed_mimics(mj, spec, self.path)
+        add_joint_motors(mj, spec)  # a URDF states no actuators: a torque or force per movable joint
         found = _read_urdf_settings(mj, spec)
         if settings is not None:
             _check_urdf_settings(self.path, settings, found)
@@ -947,8 +985,13 @@ class UrdfInMujoco:
         return self._coordinates
 
     def control_dimensions(self) -> list:
-        """None: MuJoCo's URDF reader makes no actuators."""
-        return []
+        """One per movable joint (its motor, :func:`add_joint_motors`): a torque (hinge) or a force (slide)."""
+        mj, m = _mujoco(), self.mjmodel
+        slide = int(mj.mjtJoint.mjJNT_SLIDE)
+        return [
+            (JointKind.SLIDE if int(m.jnt_type[int(m.actuator_trnid[i, 0])]) == slide else JointKind.HINGE).force
+            for i in range(m.nu)
+        ]
 
     def activation_dimensions(self) -> list:
         return []
