@@ -166,3 +166,50 @@ def test_pybullet_data_robots_whose_runs_mujoco_parts_get_a_cause_whose_counter_
         assert np.array_equal(d.efc_R[: d.nefc][floor], e.efc_R[: e.nefc][floor])
     else:
         assert not floor.any()
+
+
+_COMPILER = """<robot name="bounded">
+  <mujoco><compiler balanceinertia="true" boundmass="0.05" boundinertia="0.0002"/></mujoco>
+  <link name="base"/>
+  <link name="flat">
+    <inertial><mass value="1"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.005"/></inertial>
+  </link>
+  <joint name="hip" type="revolute">
+    <parent link="base"/><child link="flat"/><axis xyz="0 1 0"/><origin xyz="0 0 0"/>
+  </joint>
+  <link name="light">
+    <inertial><origin xyz="0.2 0 0"/><mass value="0.001"/>
+      <inertia ixx="0.00001" ixy="0" ixz="0" iyy="0.00001" iyz="0" izz="0.00001"/></inertial>
+  </link>
+  <joint name="knee" type="revolute">
+    <parent link="flat"/><child link="light"/><axis xyz="0 1 0"/><origin xyz="0.3 0 0"/>
+  </joint>
+  <link name="solid">
+    <collision><origin xyz="0.1 0 0"/><geometry><box size="0.2 0.05 0.05"/></geometry></collision>
+  </link>
+  <joint name="ankle" type="prismatic">
+    <parent link="light"/><child link="solid"/><axis xyz="1 0 0"/><origin xyz="0.2 0 0"/>
+    <limit lower="-0.1" upper="0.1" effort="5" velocity="1"/>
+  </joint>
+</robot>
+"""
+
+
+def test_the_inertias_mujoco_derives_under_the_urdfs_compiler_block_scale_with_the_copy(tmp_path):
+    """balanceinertia, boundmass and boundinertia, and a link's mass from its geometry (no <inertial>)."""
+    path = tmp_path / "bounded.urdf"
+    path.write_text(_COMPILER)
+    model = engines.load(path, engine="mujoco")
+    m = model.runner.mjmodel
+    with pytest.raises(ValueError, match="balanceinertia"):  # MuJoCo refuses the flat link's inertia unbalanced
+        mujoco.MjModel.from_xml_string(_COMPILER.replace(' balanceinertia="true"', ""))
+    assert m.body_mass[2] == 0.05  # the light link raised to boundmass
+    assert m.body_mass[3] == pytest.approx(1000 * 0.2 * 0.05 * 0.05)  # the solid link's box at density 1000
+    scaling = pt.Scaling.from_unit_change(model.system(), {"L": 1, "M": 3, "T": -1})  # every bound moves
+    mass, length = 4.0**3, 4.0
+    copy = model.scaled(scaling, 4).runner.mjmodel
+    assert np.array_equal(copy.body_mass, m.body_mass * mass)
+    assert np.array_equal(copy.body_inertia, m.body_inertia * mass * length**2)
+    rep = engines.verify(model, scaling, 4, duration=0.5, controls=engines.smooth_controls(model))
+    assert rep.excited, str(rep)
+    assert rep.exact, str(rep)
