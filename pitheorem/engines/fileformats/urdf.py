@@ -3,8 +3,9 @@
 Read with :mod:`xml.etree.ElementTree`, by the URDF specification (SI
 units: metres, kilograms, seconds, radians).  Mesh files are found as
 PyBullet finds them (beside the file, ``package://`` in the folders above
-it) and, first, in the folder of MuJoCo's extension ``<mujoco><compiler
-meshdir="..."/></mujoco>`` where the file has one.  Dimensions follow the joint
+it) and, first, in a mesh folder the file names where a runner says where
+it does (MuJoCo's runner: its extension ``<mujoco><compiler
+meshdir="..."/></mujoco>``).  Dimensions follow the joint
 type: a revolute or continuous joint has coordinate ``q`` = 1 and
 generalised force ``Q`` = M L^2 T^-2, a prismatic one ``q`` = L and ``Q``
 = M L T^-2.  A scaled copy is the parsed file with each number rewritten
@@ -84,7 +85,7 @@ class _Attr:
         )
 
 
-def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr]:
+def _attributes(tree: ET.ElementTree, path: str, source_dir: Path, folder_at=None) -> list[_Attr]:
     """Every dimensional number the URDF states, in document order."""
     root = tree.getroot()
     if root.tag != "robot":
@@ -92,7 +93,7 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
     out: list[_Attr] = []
     names: set[str] = set()
     address = {id(element): i for i, element in enumerate(root.iter())}
-    mesh_folder = _mesh_folder(root, source_dir)
+    mesh_folder = _mesh_folder(root, source_dir, folder_at)
 
     def add(ident, where, element, attr, dimension, note="", default=None):
         if element is None or element.get(attr, default) is None:
@@ -141,7 +142,10 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
                         resolved = _mesh_path(filename, source_dir, mesh_folder)
                         if resolved is None:
                             where_looked = "the URDF's folder" + (
-                                f" or its <mujoco><compiler meshdir> {str(mesh_folder)!r}" if mesh_folder else ""
+                                f" or its mesh folder {str(mesh_folder)!r}, its "
+                                f"<{'><'.join(folder_at[0].split('/'))} {folder_at[1]}>"
+                                if mesh_folder
+                                else ""
                             )
                             raise EngineModelError(
                                 path,
@@ -216,7 +220,7 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
     return out
 
 
-def _compound_meshes(tree: ET.ElementTree, source_dir: Path) -> list[tuple[str, str, int]]:
+def _compound_meshes(tree: ET.ElementTree, source_dir: Path, folder_at=None) -> list[tuple[str, str, int]]:
     """The OBJ collision meshes of several objects (convex decompositions such as V-HACD's).
 
     PyBullet loads such a mesh as a compound of convex hulls, and
@@ -226,7 +230,7 @@ def _compound_meshes(tree: ET.ElementTree, source_dir: Path) -> list[tuple[str, 
     contacts of a scaled copy are off by it.  Returns (link, file, parts) each.
     """
     found = []
-    mesh_folder = _mesh_folder(tree.getroot(), source_dir)
+    mesh_folder = _mesh_folder(tree.getroot(), source_dir, folder_at)
     for link in tree.getroot().iter("link"):
         for collision in link.findall("collision"):
             for mesh in collision.iter("mesh"):
@@ -241,9 +245,9 @@ def _compound_meshes(tree: ET.ElementTree, source_dir: Path) -> list[tuple[str, 
     return found
 
 
-def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> None:
+def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path, folder_at=None) -> None:
     """Warn about each collision mesh of :func:`_compound_meshes`."""
-    for link, filename, parts in _compound_meshes(tree, source_dir):
+    for link, filename, parts in _compound_meshes(tree, source_dir, folder_at):
         warn_unscalable(
             path,
             f"link {link!r} collision mesh {filename!r}",
@@ -256,28 +260,32 @@ def _xml_text(tree: ET.ElementTree) -> str:
     return ET.tostring(tree.getroot(), encoding="unicode")
 
 
-def _mesh_folder(root: ET.Element, source_dir: Path) -> Path | None:
-    """The folder of MuJoCo's extension ``<mujoco><compiler meshdir="..."/></mujoco>``; None without one.
+def _mesh_folder(root: ET.Element, source_dir: Path, folder_at) -> Path | None:
+    """The mesh folder the file names at `folder_at` (an element's path and its attribute); None without one.
 
-    A relative folder is relative to the URDF's folder, as MuJoCo takes it.
+    A relative folder is relative to the URDF's folder.
     """
-    for compiler in root.findall("mujoco/compiler"):
-        if compiler.get("meshdir"):
-            return source_dir / compiler.get("meshdir")
+    if folder_at is None:
+        return None
+    element_path, attribute = folder_at
+    for element in root.findall(element_path):
+        if element.get(attribute):
+            return source_dir / element.get(attribute)
     return None
 
 
-def _without_mesh_folder(root: ET.Element) -> None:
-    """Drop the ``meshdir`` of the ``<mujoco><compiler>`` block: every mesh is then named from the file itself."""
-    for compiler in root.findall("mujoco/compiler"):
-        compiler.attrib.pop("meshdir", None)
+def _without_mesh_folder(root: ET.Element, folder_at) -> None:
+    """Drop the mesh folder the file names at `folder_at`: every mesh is then named from the file itself."""
+    if folder_at is not None:
+        for element in root.findall(folder_at[0]):
+            element.attrib.pop(folder_at[1], None)
 
 
 def _mesh_path(filename: str, source_dir: Path, mesh_folder: Path | None = None) -> Path | None:
     """The file a URDF's mesh or texture names, searched as MuJoCo and PyBullet do; None if there is none.
 
-    A relative mesh name is looked for in `mesh_folder` first (MuJoCo's ``<mujoco><compiler
-    meshdir>`` extension, where MuJoCo looks for it), then as PyBullet does: relative to the URDF's
+    A relative mesh name is looked for in `mesh_folder` first (a folder the file names for an
+    engine that reads it, such as MuJoCo's ``<mujoco><compiler meshdir>``), then as PyBullet does: relative to the URDF's
     folder; ``package://NAME/REST`` is looked for as ``NAME/REST`` in that folder and the folders
     above it (a ROS package's meshes sit beside its ``urdf`` folder).
     """
@@ -295,20 +303,19 @@ def _mesh_path(filename: str, source_dir: Path, mesh_folder: Path | None = None)
     return None
 
 
-def _portable_text(tree: ET.ElementTree, source_dir: Path) -> str | None:
+def _portable_text(tree: ET.ElementTree, source_dir: Path, folder_at=None) -> str | None:
     """The URDF's text with every mesh and texture file named by its absolute path, to load from any folder.
 
     None when one of them cannot be found (PyBullet may still find it from the file's own folder).
     """
     tree = copy.deepcopy(tree)
-    mesh_folder = _mesh_folder(tree.getroot(), source_dir)
+    mesh_folder = _mesh_folder(tree.getroot(), source_dir, folder_at)
     for element in tree.getroot().iter():
         if element.tag in ("mesh", "texture") and element.get("filename"):
             found = _mesh_path(element.get("filename"), source_dir, mesh_folder if element.tag == "mesh" else None)
             if found is None:
                 return None
             element.set("filename", str(found.resolve()))
-    _without_mesh_folder(tree.getroot())  # every mesh named by its absolute path
     return _xml_text(tree)
 
 
@@ -323,6 +330,11 @@ class UrdfDocument:
         The file it was read from.
     source_dir : Path
         The folder its mesh and texture files are relative to.
+    mesh_folder : tuple of (str, str), optional
+        Where the file names a folder its meshes are looked for in first:
+        an element's path below ``<robot>`` and its attribute (MuJoCo's
+        runner gives ``("mujoco/compiler", "meshdir")``).  A saved copy
+        names every mesh relative to itself and drops that attribute.
 
     Examples
     --------
@@ -336,10 +348,18 @@ class UrdfDocument:
     #: the units a URDF file is in, whatever a caller declares (its specification's)
     fixed_units = SI
 
-    def __init__(self, tree: ET.ElementTree, path: str, source_dir: Path, *, attrs: list[_Attr] | None = None):
-        self.tree, self.path, self.source_dir = tree, path, source_dir
+    def __init__(
+        self,
+        tree: ET.ElementTree,
+        path: str,
+        source_dir: Path,
+        *,
+        attrs: list[_Attr] | None = None,
+        mesh_folder: tuple[str, str] | None = None,
+    ):
+        self.tree, self.path, self.source_dir, self.mesh_folder = tree, path, source_dir, mesh_folder
         # a copy gets its attributes by address from its original's: the file is not walked again
-        self.attrs = _attributes(tree, path, source_dir) if attrs is None else attrs
+        self.attrs = _attributes(tree, path, source_dir, mesh_folder) if attrs is None else attrs
 
     def parameters(self) -> list[Parameter]:
         """Every dimensional number the file states, in document order."""
@@ -354,7 +374,7 @@ class UrdfDocument:
             f = factors.get(a.name, 1.0)
             if f != 1.0:
                 a.element.set(a.attr, text(a.read(), f))
-        return UrdfDocument(tree, self.path, self.source_dir, attrs=attrs)
+        return UrdfDocument(tree, self.path, self.source_dir, attrs=attrs, mesh_folder=self.mesh_folder)
 
     def text(self) -> str:
         """The file's text as it stands."""
@@ -362,37 +382,41 @@ class UrdfDocument:
 
     def portable_text(self) -> str | None:
         """The file's text with every mesh and texture named by its absolute path (None: one is missing)."""
-        return _portable_text(self.tree, self.source_dir)
+        return _portable_text(self.tree, self.source_dir, self.mesh_folder)
 
     def compound_meshes(self) -> list[tuple[str, str, int]]:
         """The OBJ collision meshes of several convex parts: (link, file, parts) each."""
-        return _compound_meshes(self.tree, self.source_dir)
+        return _compound_meshes(self.tree, self.source_dir, self.mesh_folder)
 
     def warn_compound_meshes(self) -> None:
         """Warn about each collision mesh of several convex parts, whose margins no call reaches."""
-        _warn_compound_meshes(self.tree, self.path, self.source_dir)
+        _warn_compound_meshes(self.tree, self.path, self.source_dir, self.mesh_folder)
 
     def save(self, path) -> None:
         """Write the file, its meshes and textures named relative to it: the folder holding both can move."""
         tree = copy.deepcopy(self.tree)
         folder = Path(os.path.abspath(path)).parent
-        mesh_folder = _mesh_folder(tree.getroot(), self.source_dir)
+        mesh_folder = _mesh_folder(tree.getroot(), self.source_dir, self.mesh_folder)
         for g in tree.getroot().iter():
             if g.tag not in ("mesh", "texture") or not g.get("filename"):
                 continue
             resolved = _mesh_path(g.get("filename", ""), self.source_dir, mesh_folder if g.tag == "mesh" else None)
             if resolved is not None:
                 g.set("filename", Path(os.path.relpath(os.path.abspath(resolved), folder)).as_posix())
-        _without_mesh_folder(tree.getroot())  # each mesh now named relative to the saved file, not to meshdir
+        _without_mesh_folder(tree.getroot(), self.mesh_folder)  # each mesh now named relative to the saved file
         Path(path).write_text(_xml_text(tree))
 
 
-def read_urdf(path) -> UrdfDocument:
+def read_urdf(path, *, mesh_folder: tuple[str, str] | None = None) -> UrdfDocument:
     """Read a URDF file: its tree and every number it states.
 
     Parameters
     ----------
     path : str or Path
+    mesh_folder : tuple of (str, str), optional
+        Where the file may name a folder its meshes are looked for in
+        first: an element's path below ``<robot>`` and its attribute, as a
+        runner reads the file (MuJoCo's: ``("mujoco/compiler", "meshdir")``).
 
     Returns
     -------
@@ -421,7 +445,8 @@ def read_urdf(path) -> UrdfDocument:
             tree = ET.parse(path)
         except ET.ParseError as err:
             raise EngineModelError(str(path), f"line {err.position[0]}", f"not well-formed XML ({err})") from None
-    return UrdfDocument(tree, str(path), Path(os.path.abspath(path)).parent)  # a symbolic link not followed
+    # a symbolic link not followed
+    return UrdfDocument(tree, str(path), Path(os.path.abspath(path)).parent, mesh_folder=mesh_folder)
 
 
 def refuse_units(path: str, units: Mapping[str, str]) -> None:

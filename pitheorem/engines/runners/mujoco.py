@@ -720,6 +720,8 @@ _URDF_SETTINGS["slide"] = _URDF_SETTINGS["hinge"]
 _JOINT_Q = {"hinge": "1", "slide": "L"}
 #: the suffix of the settings file a saved URDF's MuJoCo settings are written to
 SETTINGS_SUFFIX = ".mujoco.json"
+#: where a URDF names the folder MuJoCo looks for its meshes in: its extension ``<mujoco><compiler meshdir>``
+MESH_FOLDER = ("mujoco/compiler", "meshdir")
 
 
 def _setting_name(group: str, attr: str, suffix: str) -> str:
@@ -1059,7 +1061,7 @@ def urdf_runner(path, *, settings=None) -> MujocoRunner:
     1
     """
     path = Path(path)
-    document = read_urdf(path)
+    document = read_urdf(path, mesh_folder=MESH_FOLDER)
     saved = Path(f"{path}{SETTINGS_SUFFIX}") if settings is None or settings is True else settings
     table = None
     if saved is not False:
@@ -1080,8 +1082,10 @@ def load_urdf(path, *, settings=None) -> EngineModel:
     MuJoCo reads the file's ``<mujoco>`` block (compiler, option and size),
     merges links joined by fixed joints, drops the visual geoms unless the
     block keeps them, and welds the root link to the world.  Mesh files are
-    found as the URDF format finds them: beside the file, or a
-    ``package://NAME/...`` path in the folders above it.
+    found in the block's ``<compiler meshdir>`` first, where it has one (as
+    MuJoCo finds them), then as the URDF format finds them: beside the
+    file, or a ``package://NAME/...`` path in the folders above it.  Every
+    movable joint gets a motor (:func:`add_joint_motors`).
 
     Parameters
     ----------
