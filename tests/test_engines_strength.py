@@ -91,6 +91,11 @@ def test_a_copy_with_gravity_left_wrong_is_never_similar_where_the_run_cannot_sh
     assert not rep.similar
     assert rep.verdict == "inconclusive"
     assert rep.detection_limit is None
+    # the first control passed unnoticed, so every other one was run too, and none was caught
+    assert [(c.group, c.error, c.caught) for c in rep.controls] == [
+        *(("g", e, False) for e in CONTROL_ERRORS),
+        ("masses", 1.0, False),
+    ]
     # independent of verify: MuJoCo's own runs of the hanging pendulum under 9.81 and 19.62 are the same bits
     m = model.runner.mjmodel
     d1, d2 = mujoco.MjData(m), mujoco.MjData(m)
@@ -108,7 +113,7 @@ def test_a_moving_run_catches_a_small_gravity_error_and_says_its_limit():
     rep = engines.verify(model, sc, 10, duration=0.5, controls=u)
     assert rep.verdict == "similar"
     assert rep.detection_limit == CONTROL_ERRORS[0]
-    assert all(c.caught for c in rep.controls)
+    assert [(c.group, c.error, c.caught) for c in rep.controls] == [("g", CONTROL_ERRORS[0], True)]
     assert rep.horizon == pytest.approx(0.5)
     proof = engines.verify(model, sc, 4, duration=0.5, controls=u)
     assert proof.verdict == "exact"
@@ -118,3 +123,19 @@ def test_a_moving_run_catches_a_small_gravity_error_and_says_its_limit():
     assert off.horizon is None
     assert off.detection_limit is None
     assert off.similar
+
+
+def test_a_gravity_control_made_in_the_compiled_model_runs_as_one_compiled_from_the_file():
+    """The control copy that skips compiling (gravity changed in the compiled model) steps the very same bits."""
+    model = engines.load(engines.example_path("pendulum.xml"))
+    in_place = model.runner.with_gravity_times(1.5)
+    compiled = model.multiplied(g=1.5).runner
+    assert np.array_equal(in_place.mjmodel.opt.gravity, compiled.mjmodel.opt.gravity)
+    assert np.array_equal(model.runner.mjmodel.opt.gravity, [0.0, 0.0, -9.81])  # the original is left alone
+    a, b = mujoco.MjData(in_place.mjmodel), mujoco.MjData(compiled.mjmodel)
+    a.qpos[:] = b.qpos[:] = 0.3
+    for _ in range(200):
+        mujoco.mj_step(in_place.mjmodel, a)
+        mujoco.mj_step(compiled.mjmodel, b)
+    assert np.array_equal(a.qpos, b.qpos)
+    assert a.qpos[0] != 0.3

@@ -24,6 +24,7 @@ is named here:
   ``with_settings``), :class:`CounterRuns` (copies run with another
   solver tolerance, for the diagnosis), :class:`SolverDiagnosis`
   (solver, equality constraints and contacts, named),
+  :class:`MultipliesGravity` (a copy with other gravity, not compiled again),
   :class:`NamesElements` (a stored number's element),
   :class:`StoresCopies` (the stored numbers that are the file's, with
   their parameters) and :class:`IgnoredSettings` (settings the engine
@@ -60,6 +61,7 @@ __all__ = [
     "EngineNotes",
     "HasSceneSettings",
     "IgnoredSettings",
+    "MultipliesGravity",
     "NamesElements",
     "ReadsSomeNumbers",
     "RefusesScalings",
@@ -241,6 +243,26 @@ class CounterRuns(Protocol):
 
 
 @runtime_checkable
+class MultipliesGravity(Protocol):
+    """Optional: a copy with gravity times a factor, made from the compiled model without compiling again.
+
+    The negative controls of :func:`~pitheorem.engines.verify` are such
+    copies; a runner without it gets them through ``EngineModel.multiplied``
+    (one compilation each).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.protocols import MultipliesGravity
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, MultipliesGravity)
+    True
+    """
+
+    def with_gravity_times(self, factor: float) -> Runs:
+        """This runner with its gravity times `factor` (gravity enters no other compiled number)."""
+
+
+@runtime_checkable
 class SolverDiagnosis(Protocol):
     """Optional: the solver, the equality constraints and the contacts of each step, named (MuJoCo's).
 
@@ -267,7 +289,12 @@ class SolverDiagnosis(Protocol):
         """Each equality constraint, named as the reports name it."""
 
     def first_contact_difference(self, other, n_steps: int, controls: Controls = None, other_controls: Controls = None):
-        """The first step after which other pairs touch in `other`'s run: (step, pairs only there, only here)."""
+        """The first step after which other pairs touch in `other`'s run: (step or None, pairs only there, only
+        here, pairs touched in this run so far)."""
+
+    def contact_candidates(self, pairs) -> list[tuple[int, str, str, tuple[str, ...]]]:
+        """Per pair that touches, the geom a counter-run takes out of collision: (id, pair, collision function,
+        cause paths)."""
 
 
 @runtime_checkable
@@ -347,6 +374,7 @@ OPTIONAL = {
         RefusesScalings,
         HasSceneSettings,
         CounterRuns,
+        MultipliesGravity,
         SolverDiagnosis,
         NamesElements,
         StoresCopies,

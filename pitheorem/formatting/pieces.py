@@ -741,10 +741,10 @@ def deviation_rows(report, name):
 
 
 def strength_lines(report) -> list[str]:
-    """What a report says of its own strength: inconclusive, weak, gravity unseen, past the horizon.
+    """What a report says of its own strength: the scale-free proof, inconclusive, weak, gravity unseen, the horizon.
 
-    Empty for a report without twins or controls (an ODE verdict against
-    a tolerance).
+    Empty for a report without twins, controls or a scale-free run (an
+    ODE verdict against a tolerance).
 
     Parameters
     ----------
@@ -765,9 +765,10 @@ def strength_lines(report) -> list[str]:
     >>> strength_lines(rep)
     ['strength: an error of 0.0001 in gravity or the masses is caught; the twins stay together to the end (t = 0.5)']
     """
-    if report.horizon is None and not report.controls:
+    free = report.scale_free
+    if report.horizon is None and not report.controls and free is None:
         return []
-    lines = []
+    lines = [] if free is None else [free.text()]
     if report.inconclusive:
         lines.append(
             "INCONCLUSIVE: not even gravity or the masses doubled change this run beyond its yardstick, "
