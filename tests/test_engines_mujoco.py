@@ -391,6 +391,9 @@ def test_pybullet_data_robots_whose_runs_mujoco_parts_get_a_cause_whose_counter_
     assert not rep.exact
     assert rep.causes
     assert all(c.kind == "contact" and c.restores for c in rep.causes), rep.causes
+    # the mechanism the cause names: the softness floor for r2d2, the collision function for the minitaur
+    named = "R at MuJoCo's floor mjMINVAL" if name == "r2d2.urdf" else "mjc_Convex (GJK/EPA)"
+    assert all(named in c.element for c in rep.causes), rep.causes
     # by hand, in plain MuJoCo: the copy is compiled from the original's numbers times their factors
     m, c = model.runner.mjmodel, model.scaled(scaling, 4).runner.mjmodel
     mass, length, time = (4.0 ** float(scaling.unit_change[b]) for b in "MLT")

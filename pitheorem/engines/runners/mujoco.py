@@ -691,12 +691,28 @@ _GEOM_TYPES = ("plane", "hfield", "sphere", "capsule", "ellipsoid", "cylinder", 
 
 
 def _collider(m, a: int, b: int) -> tuple[str, tuple[str, ...]]:
-    """The collision function MuJoCo calls for two geoms, in words, and the catalogue's cause paths it takes."""
+    """The collision function MuJoCo calls for two geoms, in words, and the catalogue's cause paths it takes.
+
+    Where neither geom's body can move along a contact at the reference pose (MuJoCo's translational
+    ``body_invweight0`` is 0 for both: a body hinged at its own centre of mass, or one welded to the
+    world), MuJoCo's approximate inverse weight of their contacts is 0 and the contacts' softness R is
+    its floor ``mjMINVAL`` (engine_core_constraint.c, mj_makeImpedance), a number no scaling moves:
+    that, not the collision function, is named (the contacts themselves scale bit for bit).
+    """
     first, second = sorted((int(m.geom_type[a]), int(m.geom_type[b])))
     kinds = (
         _GEOM_TYPES[first] if first < len(_GEOM_TYPES) else str(first),
         _GEOM_TYPES[second] if second < len(_GEOM_TYPES) else str(second),
     )
+    body_a, body_b = int(m.geom_bodyid[a]), int(m.geom_bodyid[b])
+    weights = m.body_invweight0[body_a, 0] + m.body_invweight0[body_b, 0]
+    apart = m.body_weldid[body_a] != m.body_weldid[body_b]  # two geoms of one rigid body never touch
+    if apart and weights == 0 and int(m.geom_condim[a]) <= 3 and int(m.geom_condim[b]) <= 3:
+        return (
+            f"{kinds[0]}-{kinds[1]}: contact softness R at MuJoCo's floor mjMINVAL (neither body "
+            "moves along the contact: inverse weight 0)",
+            (),
+        )
     margin = ("margin",) if m.geom_margin[a] + m.geom_margin[b] > 0 else ()
     mesh = ("mesh",) if "mesh" in kinds else ()
     primitive = _PRIMITIVE_COLLIDERS.get(kinds)
