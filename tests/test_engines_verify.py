@@ -125,11 +125,11 @@ def test_controller_is_built_once_per_run_from_that_runs_model():
     rep = engines.verify(model, sc, 10, duration=0.05, controller=controller, ensemble=2)
     assert rep.similar
     g = model.parameter("g").value[0]
-    # the original, the scaled copy, two twins, then the first negative control: the copy with gravity off by
-    # 1e-4, caught, so that the larger errors (1e-2, 1, the masses doubled) need no run
+    # the original, the scaled copy, two twins, then each group's first negative control: the copy with gravity
+    # off by 1e-4 and with its masses doubled, both caught, so that gravity's larger errors need no run
     ten = pytest.approx(10 * g, rel=1e-15)
-    assert seen == [g, ten, g, g, pytest.approx(10 * g * (1 + 1e-4), rel=1e-15)]
-    assert [(c.group, c.error, c.caught) for c in rep.controls] == [("g", 1e-4, True)]
+    assert seen == [g, ten, g, g, pytest.approx(10 * g * (1 + 1e-4), rel=1e-15), ten]
+    assert [(c.group, c.error, c.caught) for c in rep.controls] == [("g", 1e-4, True), ("masses", 1.0, True)]
 
 
 def test_controller_misuse_is_named():

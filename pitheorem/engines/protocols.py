@@ -24,7 +24,7 @@ is named here:
   ``with_settings``), :class:`CounterRuns` (copies run with another
   solver tolerance, for the diagnosis), :class:`SolverDiagnosis`
   (solver, equality constraints and contacts, named),
-  :class:`MultipliesGravity` (a copy with other gravity, not compiled again),
+  :class:`MultipliesInPlace` (a copy with other gravity or masses, not compiled again),
   :class:`NamesElements` (a stored number's element),
   :class:`StoresCopies` (the stored numbers that are the file's, with
   their parameters) and :class:`IgnoredSettings` (settings the engine
@@ -61,7 +61,7 @@ __all__ = [
     "EngineNotes",
     "HasSceneSettings",
     "IgnoredSettings",
-    "MultipliesGravity",
+    "MultipliesInPlace",
     "NamesElements",
     "ReadsSomeNumbers",
     "RefusesScalings",
@@ -243,8 +243,8 @@ class CounterRuns(Protocol):
 
 
 @runtime_checkable
-class MultipliesGravity(Protocol):
-    """Optional: a copy with gravity times a factor, made from the compiled model without compiling again.
+class MultipliesInPlace(Protocol):
+    """Optional: copies with gravity, or every body's mass and inertia, times a factor, not compiled again.
 
     The negative controls of :func:`~pitheorem.engines.verify` are such
     copies; a runner without it gets them through ``EngineModel.multiplied``
@@ -253,13 +253,17 @@ class MultipliesGravity(Protocol):
     Examples
     --------
     >>> from pitheorem import engines
-    >>> from pitheorem.engines.protocols import MultipliesGravity
-    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, MultipliesGravity)
+    >>> from pitheorem.engines.protocols import MultipliesInPlace
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, MultipliesInPlace)
     True
     """
 
     def with_gravity_times(self, factor: float) -> Runs:
         """This runner with its gravity times `factor` (gravity enters no other compiled number)."""
+
+    def with_masses_times(self, factor: float) -> Runs:
+        """This runner with every body's mass and inertia times `factor`, the constants derived from them
+        computed again."""
 
 
 @runtime_checkable
@@ -374,7 +378,7 @@ OPTIONAL = {
         RefusesScalings,
         HasSceneSettings,
         CounterRuns,
-        MultipliesGravity,
+        MultipliesInPlace,
         SolverDiagnosis,
         NamesElements,
         StoresCopies,

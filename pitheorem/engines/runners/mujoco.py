@@ -189,10 +189,19 @@ class MujocoRunner:
         """Every floating-point number the compiled model holds, by field: a copy, in its own precision.
 
         The arrays of ``MjModel`` (mesh vertices in float32 where MuJoCo keeps them so) and the
-        floating-point fields of ``opt`` and ``stat``; colours are left out (they draw, not move).
+        floating-point fields of ``opt`` and ``stat``; colours are left out (they draw, not move), and so
+        is a field that only a flag this model leaves off makes MuJoCo read (:data:`_READ_ONLY_WITH`).
         """
         m, out = self.mjmodel, {}
+        mj = _mujoco()
+        unread = {
+            field
+            for field, flag in _READ_ONLY_WITH.items()
+            if not m.opt.enableflags & int(getattr(mj.mjtEnableBit, flag))
+        }
         for field in self._fields():
+            if field in unread:
+                continue
             holder, attr = _holder(m, field)
             out[field] = np.array(getattr(holder, attr), copy=True, ndmin=1)
         return out
@@ -229,6 +238,18 @@ class MujocoRunner:
         gravity when it compiles (a negative control of the verdict)."""
         out = self._with_model_copy()
         out.mjmodel.opt.gravity[:] = np.asarray(out.mjmodel.opt.gravity) * factor
+        return out
+
+    def with_masses_times(self, factor: float) -> MujocoRunner:
+        """A copy with every body's mass and inertia times `factor` (a negative control of the verdict): the
+        compiled model copied, and what MuJoCo derives from masses when it compiles (subtree masses, the
+        inverse weights that scale constraint softness, actuators' reference accelerations) computed again."""
+        mj = _mujoco()
+        out = self._with_model_copy()
+        m = out.mjmodel
+        m.body_mass[:] = np.asarray(m.body_mass) * factor
+        m.body_inertia[:] = np.asarray(m.body_inertia) * factor
+        mj.mj_setConst(m, mj.MjData(m))
         return out
 
     def _neighbours(self):
@@ -685,6 +706,11 @@ _PRIMITIVE_COLLIDERS = {
     ("capsule", "box"): "mjc_CapsuleBox",
     ("box", "box"): "mjc_BoxBox",
 }
+
+#: stored fields that MuJoCo reads in a step only with an enable flag on: ``dof_length`` (each degree of
+#: freedom's length scale, from the body sizes mj_setConst finds) only to put bodies to sleep
+#: (engine_sleep.c); a copy whose dof_length is not its original's times a power of s runs alike without it
+_READ_ONLY_WITH = {"dof_length": "mjENBL_SLEEP"}
 
 #: MuJoCo's geom types in the order of mjtGeom
 _GEOM_TYPES = ("plane", "hfield", "sphere", "capsule", "ellipsoid", "cylinder", "box", "mesh", "sdf")

@@ -50,9 +50,9 @@ from ...scaling import is_power_of_two
 from ...simulation import SimilarityReport, Trajectory, allowed_deviation, positive_float, similarity_report
 from ..enginemodel import EngineModel, check_scaling
 from ..parameters import dim, dimension_factors
-from ..protocols import MultipliesGravity, Runs
+from ..protocols import MultipliesInPlace, Runs
 from .scalefree import scale_free_run
-from .strength import Control, caught, control_factors, horizon
+from .strength import Control, caught, control_factors, horizon, unseen_groups
 
 __all__ = ["Baseline", "Runs", "baseline", "smooth_controls", "verify"]
 
@@ -122,9 +122,10 @@ def verify(
         ``horizon`` and the ``detection_limit`` of negative controls (the
         copy with gravity times 1 + e for e = 1e-4, 1e-2 and 1, and with
         every mass doubled; see ``pitheorem.engines.verdicts.strength``).
-        The smallest error runs in the verdict's batch; the others run
-        only when it passes unnoticed.  A verdict none of whose controls
-        is caught is ``inconclusive``, never similar.
+        Each group's smallest error runs in the verdict's batch; its larger
+        ones only when that passes unnoticed.  A verdict that cannot see a
+        group's error (none of its controls caught: gravity on a
+        gravity-compensated arm) is ``inconclusive``, never similar.
     baseline : Baseline, optional
         The original's run and its twins' under the same inputs, from
         :func:`baseline`: they do not depend on ``s``, so copies of one
@@ -191,7 +192,8 @@ def verify(
     if len(copy.coordinate_dimensions()[0]) != len(names):
         raise InvalidRequestError("the scaled model has other coordinates than the original")
     factors = np.array([factor(d) for d in dims])
-    input_factors = np.array([factor(d) for d in original.control_dimensions()])
+    input_dims = list(original.control_dimensions())
+    input_factors = np.array([factor(d) for d in input_dims])
     u_original = _open_loop_rows(controls, n_steps, dt, input_factors.size)
     u_scaled = None if u_original is None else u_original * input_factors
     policy = _policies(controller, input_factors.size)
@@ -201,21 +203,27 @@ def verify(
     twins = [] if baseline is not None else [original.twin(seed + k) for k in range(ensemble)]
     # the negative controls: the copy with one group wrong by a known error, judged like the copy itself
     # (none for a file the engine refuses to run: the runs below say so)
-    ladder = control_factors(model) if strength and original.refusal is None and copy.refusal is None else []
+    # the inputs that act carry their dimensions into the groups: a motor's force makes the masses matter
+    acting = () if u_original is None else [d for d, col in zip(input_dims, u_original.T, strict=True) if col.any()]
+    if controller is not None:
+        acting = input_dims
+    strong = strength and original.refusal is None and copy.refusal is None
+    ladder = control_factors(model, acting) if strong else []
     t = np.arange(n_steps + 1) * dt
     batched = controller is None and type(copy) is type(original)
 
     def wrong_runs(rungs):
         """The runs of some controls: in one batch open loop, else one by one with their own policies."""
-        wrong = [_wrong_copy(model, scaled, times, compiled=batched) for _g, _e, times in rungs]
+        wrong = [_wrong_copy(model, scaled, g, times, compiled=batched) for g, _e, times in rungs]
         if batched:
             return original.run_many(n_steps, [(w, u_scaled, False, None) for w in wrong])
         return [w.runner.run(n_steps, u_scaled, policy=policy(w)) for w in wrong]
 
-    # the first control (the smallest error) runs in the verdict's batch; the others only if it passes
-    # unnoticed, for a control caught at the smallest error is the detection limit whatever the others do
+    # each group's first control (its smallest error) runs in the verdict's batch; a group's others only if it
+    # passes unnoticed, for a control caught at a group's smallest error says what the larger ones would
+    first_rungs, later_rungs = _rungs(ladder)
     if batched:
-        first = [_wrong_copy(model, scaled, times, compiled=True) for _g, _e, times in ladder[:1]]
+        first = [_wrong_copy(model, scaled, g, times, compiled=True) for g, _e, times in first_rungs]
         # one batch: the engine runs them at once (MuJoCo's rollout spreads them over the cores, MJX vmaps them)
         jobs = [
             *(() if baseline is not None else ((original, u_original, False, None),)),
@@ -236,7 +244,7 @@ def verify(
             if baseline is not None
             else [twin.run(n_steps, u_original, policy=policy(model)) for twin in twins]
         )
-        control_runs = wrong_runs(ladder[:1])
+        control_runs = wrong_runs(first_rungs)
 
     def trajectory(rows):
         return Trajectory(t, rows, tuple(names))
@@ -260,17 +268,19 @@ def verify(
             for (group, error, _f), rows in zip(rungs, rows_of_each, strict=True)
         ]
 
-    controls = judged(ladder[:1], control_runs)
-    if ladder[1:] and not controls[0].caught:
-        controls += judged(ladder[1:], wrong_runs(ladder[1:]))
-    controls = tuple(controls)
+    controls = judged(first_rungs, control_runs)
+    unseen = {c.group for c in controls if not c.caught}
+    later = [rung for rung in later_rungs if rung[0] in unseen]
+    if later:
+        controls += judged(later, wrong_runs(later))
+    controls = tuple(sorted(controls, key=lambda c: (c.group != "g", c.error)))
     seen = [c.error for c in controls if c.caught]
     report = dataclasses.replace(
         report,
         horizon=horizon(t, run, twin_runs) if strength else None,
         detection_limit=min(seen) if seen else None,
         controls=controls,
-        inconclusive=bool(controls) and not seen,
+        inconclusive=bool(unseen_groups(controls)),
     )
     if exact_expected and not report.exact and controller is None:
         # the proof of the scaling beside the verdict on the model as written: settings of no pure dimension
@@ -374,18 +384,31 @@ def _check_baseline(base, n_steps: int, inputs, ensemble: int, seed: int, contro
         )
 
 
-def _wrong_copy(model: EngineModel, scaled: EngineModel, wrong: dict[str, float], *, compiled: bool):
+def _rungs(ladder: list) -> tuple[list, list]:
+    """The controls of the first batch (each group's smallest error) and the others, in the ladder's order."""
+    firsts, later, groups = [], [], set()
+    for rung in ladder:
+        (later if rung[0] in groups else firsts).append(rung)
+        groups.add(rung[0])
+    return firsts, later
+
+
+def _wrong_copy(model: EngineModel, scaled: EngineModel, group: str, wrong: dict[str, float], *, compiled: bool):
     """A negative control's copy: the scaled copy with some parameters times a known factor.
 
-    Gravity alone, on a runner that multiplies it in its compiled model
-    (:class:`~pitheorem.engines.protocols.MultipliesGravity`), is changed
-    there, not compiled again (``compiled=True``: a runner, for a batch).
+    Gravity, or the masses, on a runner that multiplies them in its
+    compiled model (:class:`~pitheorem.engines.protocols.MultipliesInPlace`),
+    are changed there, not compiled again (``compiled=True``: a runner, for
+    a batch).
     Otherwise an EngineModel: made from the original with the copy's
     factors (one compilation) where the copy is ``model.scaled(...)``,
     else from the copy itself.
     """
-    if compiled and set(wrong) == {"g"} and isinstance(scaled.runner, MultipliesGravity):
-        return scaled.runner.with_gravity_times(wrong["g"])
+    if compiled and isinstance(scaled.runner, MultipliesInPlace):
+        if set(wrong) == {"g"}:
+            return scaled.runner.with_gravity_times(wrong["g"])
+        if group == "masses":
+            return scaled.runner.with_masses_times(next(iter(wrong.values())))
     origin = scaled.copied_from
     if origin is not None and origin[0] is model:
         factors = dict(origin[1])
