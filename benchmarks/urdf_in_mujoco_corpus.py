@@ -12,15 +12,16 @@ under :func:`pitheorem.engines.smooth_controls` (a motor per movable joint).  At
 factor is exact in binary, so a faithful copy reproduces the original run bit for bit.
 
 Prints one row per file: ``exact``, ``similar`` (within the twins' yardstick but not bit for bit),
-``not`` (not similar) or ``refused``, whether the run moved (``moved``) or the robot is welded to
-the world with no joint (``welded``), and, where not exact, the causes the verdict names (``+``: its
-counter-run restores the run) and what plain MuJoCo shows (``by hand``): both compiled models
-stepped side by side with ``mj_step`` under the same input, and at the first step whose state is not
-exactly the original's times its factor, whether the contacts MuJoCo found (depth, point, frame) are
-the original's times their factors (if not, the collision code is not scale-free: which geom types),
-and how many constraint rows have their softness R at MuJoCo's floor ``mjMINVAL`` = 1e-15 (a
-contact between bodies that cannot move along it: MuJoCo's approximate inverse weight is 0 there,
-and the floor is a number no scaling moves).  Then a summary.
+``inconclusive`` (the run cannot show an error of some group), ``not`` (not similar) or ``refused``,
+whether the run moved (``moved``) or the robot is welded to the world with no joint (``welded``),
+and, where not exact, the causes the verdict names (``+``: its counter-run restores the run) and
+what plain MuJoCo shows (``by hand``): both compiled models stepped side by side with ``mj_step``
+under the same input, and at the first step whose state is not exactly the original's times its
+factor, whether the contacts MuJoCo found (depth, point, frame) are the original's times their
+factors (if not, the collision code is not scale-free: which geom types), and how many constraint
+rows have their softness R at MuJoCo's floor ``mjMINVAL`` = 1e-15 (a contact between bodies that
+cannot move along it: MuJoCo's approximate inverse weight is 0 there, and the floor is a number no
+scaling moves).  Then a summary.
 """
 
 from __future__ import annotations
@@ -109,7 +110,7 @@ def judge(name: str, duration: float) -> tuple[str, str]:
     motion = "welded" if welded else "moved" if rep.excited else "still"
     if rep.exact:
         return "exact", motion
-    verdict = "similar" if rep.similar else "not"
+    verdict = {"not similar": "not"}.get(rep.verdict, rep.verdict)  # similar, inconclusive or not
     change = {b: sc.unit_change[b] for b in "MLT"}
     return verdict, f"{motion}; {_causes(rep)}; {by_hand(model, model.scaled(sc, 4), change, 4, duration)}"
 
@@ -131,7 +132,9 @@ def main() -> None:
         print(f"{name:48s} {verdict:8s} {detail}", flush=True)
     print(
         f"\n{len(names)} files: "
-        + ", ".join(f"{counts[v]} {v} ({moved[v]} moved)" for v in ("exact", "similar", "not") if counts[v])
+        + ", ".join(
+            f"{counts[v]} {v} ({moved[v]} moved)" for v in ("exact", "similar", "inconclusive", "not") if counts[v]
+        )
         + f", {counts['refused']} refused | {time.perf_counter() - start:.0f} s"
     )
 
