@@ -20,11 +20,14 @@ read the model from its file (a copy without one is saved to a temporary
 file first), so the file must be readable there, and the controls must
 pickle (Dask pickles closures and lambdas with cloudpickle).
 
-An engine built on JAX (MJX, float32: one vectorised call per
-verification, compiled once for the model's shapes and reused for every
-scaled copy), and any process that has loaded JAX, does not fork: such
-sweeps run one ``s`` after another in this process unless a cluster is
-given (:data:`NO_FORK_PACKAGES`).
+The original's run and its twins' do not depend on ``s``: they run once
+(:func:`~pitheorem.engines.verdicts.verify.baseline`), and each ``s``
+runs only its copy and its negative controls.  An engine built on JAX
+(MJX, float32), and any process that has loaded JAX, does not fork
+(:data:`NO_FORK_PACKAGES`); such sweeps, and any with ``workers=1``, run
+in this process, where the copies of every ``s`` share one call of the
+engine (MJX's vectorised call, MuJoCo Warp's worlds, MuJoCo's rollout
+threads): a scaled copy keeps its original's sizes.
 """
 
 from __future__ import annotations
