@@ -54,7 +54,7 @@ from ..protocols import MultipliesInPlace, Runs
 from .scalefree import scale_free_run
 from .strength import Control, caught, control_factors, horizon, unseen_groups
 
-__all__ = ["Baseline", "Runs", "baseline", "smooth_controls", "verify"]
+__all__ = ["STAGES", "Baseline", "Plan", "Runs", "baseline", "judge", "prepare", "smooth_controls", "verify"]
 
 
 def verify(
@@ -72,6 +72,7 @@ def verify(
     diagnose: bool = True,
     strength: bool = True,
     baseline: Baseline | None = None,
+    progress=None,
 ) -> SimilarityReport:
     """Run a model and its scaled copy, compare them, and say why they differ.
 
@@ -131,6 +132,10 @@ def verify(
         :func:`baseline`: they do not depend on ``s``, so copies of one
         model at many scale factors (a sweep) run them once.  Open loop
         only; its duration, inputs, ensemble and seed must be these.
+    progress : callable, optional
+        ``progress(done, total)``, called as each of its :data:`STAGES`
+        ends (the copies made, the first batch run, the controls and the
+        scale-free proof, the causes).
 
     Returns
     -------
@@ -178,7 +183,16 @@ def verify(
         strength=strength,
         baseline=baseline,
     )
-    return judge(plan, plan.original.run_many(plan.n_steps, plan.jobs()) if plan.batched else None)
+    step = progress if progress is not None else (lambda done, total: None)
+    step(1, STAGES)
+    rows = plan.original.run_many(plan.n_steps, plan.jobs()) if plan.batched else None
+    step(2, STAGES)
+    return judge(plan, rows, step)
+
+
+#: the stages a verification reports to its `progress`: copies made, first batch run, controls and the
+#: scale-free proof, causes
+STAGES = 4
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -335,7 +349,7 @@ def prepare(
     )
 
 
-def judge(plan: Plan, rows: list | None) -> SimilarityReport:
+def judge(plan: Plan, rows: list | None, progress=None) -> SimilarityReport:
     """Finish a verification: the rows of ``plan.jobs()`` (None: closed loop, run here) compared and judged,
     the controls' larger errors run where needed, the scale-free proof and the causes found."""
     p = plan
@@ -406,11 +420,15 @@ def judge(plan: Plan, rows: list | None) -> SimilarityReport:
         # (the solver's tolerance, a solver whose steps are not scale-free) made scale-free in both runs
         free = scale_free_run(original, copy, n_steps, u_original, u_scaled, factors, p.t, p.names)
         report = dataclasses.replace(report, scale_free=free)
+    step = progress if progress is not None else (lambda done, total: None)
+    step(3, STAGES)
     if not p.diagnose or p.controller is not None or (report.similar and (report.exact or not exact_expected)):
+        step(4, STAGES)
         return report
     from .diagnose import find_causes
 
     causes = find_causes(model, scaled, p.scaling, p.s, n_steps, u_original, u_scaled, factors, report, exact_expected)
+    step(4, STAGES)
     return dataclasses.replace(report, causes=causes)
 
 
