@@ -301,11 +301,23 @@ def test_the_command_line_json_has_the_rows_of_the_python_call(pendulum, capsys)
     assert [r["max_deviation"] for r in doc["sweeps"][0]["rows"]] == [r.max_deviation for r in sw.rows]
 
 
-def test_mjx_sweeps_run_in_this_process_and_match_verify(pendulum):
+def test_mjx_sweeps_run_in_this_process_and_match_verify(pendulum, monkeypatch):
     pytest.importorskip("mujoco.mjx", reason="MJX is not installed (pip install 'pitheorem[mjx]')")
     model, sc = pendulum
+    mjx_class = type(engines.load(PENDULUM, engine="mjx").runner)
+    calls = []
+    run_many = mjx_class.run_many
+
+    def counting(self, n_steps, jobs):
+        calls.append(len(jobs))
+        return run_many(self, n_steps, jobs)
+
+    monkeypatch.setattr(mjx_class, "run_many", counting)
     sw = engines.sweep(model, sc, s=(4, 10), duration=0.02, controls=push, engine="mjx", fit=False)
+    monkeypatch.setattr(mjx_class, "run_many", run_many)
     assert sw.engine == "mjx"
+    # the original and its three twins once, then both copies with their first controls in one vectorised call
+    assert calls[:2] == [4, 2 * (1 + len({g for g, _e, _f in control_factors(model)}))]
     mjx = engines.load(PENDULUM, engine="mjx")
     for row in sw.rows:
         rep = engines.verify(mjx, sc, row.s, duration=0.02, controls=push)
