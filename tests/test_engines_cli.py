@@ -11,6 +11,7 @@ import pytest
 
 pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
 
+import pitheorem as pt
 from pitheorem import engines
 from pitheorem.cli import BASES_SHOWN, main
 from pitheorem.modelfile import EXAMPLES, examples
@@ -113,8 +114,6 @@ def test_scene_options_make_a_urdf_scalable_and_reach_its_settings(tmp_path, cap
     assert settings["loadURDF"]["basePosition"] == [0, 0, 1.0]
     # the saved file reloads with its settings (gravity, base position, contact constants times 2) and runs
     # like the original, landing on the ground included
-    import pitheorem as pt
-
     model = engines.load(urdf, damping=0.0, split_impulse=False, ground=True, base_position=(0, 0, 0.5), g=9.8)
     again = engines.load(out)
     assert again.parameter("g").value[0] == pytest.approx(19.6, rel=1e-15)
@@ -599,3 +598,14 @@ def test_check_on_dm_controls_dog_prints_at_most_ten_lines(capsys):
     lines = capsys.readouterr().out.splitlines()
     assert 1 <= len(lines) <= 10
     assert len(lines[0]) < 120
+
+
+def test_verify_shows_its_stages_on_stderr_when_asked(capsys):
+    from pitheorem.engines.cli import verify_engine
+
+    model = engines.load(engines.example_path("pendulum.xml"))
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    verify_engine(model, sc, 4, 0.1, progress=True)
+    assert "verify" in capsys.readouterr().err  # tqdm's bar, named
+    verify_engine(model, sc, 4, 0.1)
+    assert capsys.readouterr().err == ""
