@@ -252,7 +252,7 @@ def _mesh_path(filename: str, source_dir: Path) -> Path | None:
     """The file a URDF's mesh or texture names, searched as PyBullet does; None if there is none.
 
     A relative name is relative to the URDF's folder; ``package://NAME/REST`` is looked for as
-    ``NAME/REST`` in that folder and the folders above it (a ROS package's meshes sit beside its
+    ``NAME/REST`` in that folder and the four folders above it (a ROS package's meshes sit beside its
     ``urdf`` folder).
     """
     name = filename
