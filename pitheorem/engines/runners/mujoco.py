@@ -586,13 +586,13 @@ class MujocoRunner:
 class MujocoCompiledRunner:
     """What a runner of another engine shares when MuJoCo's compiler builds its model (MJX, MuJoCo Warp).
 
-    The file is read and compiled as for MuJoCo (:attr:`mjcf`, a
+    The file is read and compiled as for MuJoCo (``mjcf``, a
     :class:`MujocoRunner`), then put on the other engine's device.  The
     table, scaled copies, saved files, units, time step, coordinates,
     controls and solver stopping rule are MuJoCo's reading of the file;
     a subclass holds the device model (``_device_model``) and gives what
     differs: its settings, what its device stores, its twins and its runs
-    (:meth:`run_many`), and :meth:`_rebuilt`, its copy of another reading.
+    (``run_many``), and ``_rebuilt``, its copy of another reading.
     Such an engine runs open loop only here: a closed-loop controller runs
     in ``"mujoco"``.
 
