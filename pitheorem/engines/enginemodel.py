@@ -80,7 +80,7 @@ class EngineModel(TableDisplay):
     ('mujoco', True)
     """
 
-    __slots__ = ("_groups", "_origin", "_parameters", "_runner", "_system", "_units", "engine", "path")
+    __slots__ = ("_by_name", "_groups", "_origin", "_parameters", "_runner", "_system", "_units", "engine", "path")
 
     def __init__(self, backend, engine: str, path: str, units=None, origin: tuple | None = None):
         units = tuple((units or {"M": "kg", "L": "m", "T": "s"}).items())
@@ -93,6 +93,7 @@ class EngineModel(TableDisplay):
             ("_parameters", None),
             ("_units", units),
             ("_groups", None),
+            ("_by_name", None),
             ("_origin", origin),
             ("_system", None),
         ):
@@ -298,9 +299,11 @@ class EngineModel(TableDisplay):
         >>> model.parameter("g").value
         (9.81,)
         """
-        for p in self.parameters:
-            if p.name == name:
-                return p
+        if self._by_name is None:  # a dictionary once: a negative control names thousands of masses
+            object.__setattr__(self, "_by_name", {p.name: p for p in self.parameters})
+        found = self._by_name.get(name) if isinstance(name, str) else None
+        if found is not None:
+            return found
         from ..errors import UnknownVariableError
 
         raise UnknownVariableError(name, tuple(p.name for p in self.parameters), "the model's parameters")
