@@ -23,8 +23,9 @@ load the file (:func:`pitheorem.engines.load`), search gravity times ``s`` with 
 :func:`pitheorem.engines.verify` it with :func:`pitheorem.engines.smooth_controls` as the
 input
 
-* at ``s = 4``, the proof: exact (bit for bit) or not, and each cause with whether its
-  counter-run restores the run (``cause.restores``);
+* at ``s = 4``, the proof: exact (bit for bit) or not, each cause with whether its
+  counter-run restores the run (``cause.restores``), and the proof with the engine's
+  settings of no pure dimension made scale-free in both runs (``rep.scale_free``);
 * at ``s = 10``, the verdict (``rep.verdict``), the horizon of the twins (``rep.horizon``),
   the detection limit of the negative controls (``rep.detection_limit``, ``rep.controls``)
   and the causes;
@@ -327,7 +328,19 @@ def report_row(rep, s, seconds: float) -> dict:
         "causes": [
             {"kind": c.kind, "element": c.element, "detail": c.detail, "restores": c.restores} for c in rep.causes
         ],
+        "scale_free": None if rep.scale_free is None else scale_free_row(rep.scale_free, number),
         "seconds": round(seconds, 2),
+    }
+
+
+def scale_free_row(free, number) -> dict:
+    """The proof with the engine's settings of no pure dimension made scale-free in both runs."""
+    where = free.first_divergence
+    return {
+        "settings": [[str(name), str(value)] for name, value in free.settings],
+        "exact": bool(free.exact),
+        "first_divergence": None if where is None else [number(where[0]), str(where[1])],
+        "text": free.text(),
     }
 
 

@@ -38,6 +38,7 @@ REPORT_KEYS = {
     "controls",
     "first_divergence",
     "causes",
+    "scale_free",
     "seconds",
 }
 
@@ -104,8 +105,18 @@ def report_errors(rep: dict, s, duration: float) -> list[str]:
     caught = [c["error"] for c in rep["controls"] if c["caught"]]
     if rep["detection_limit"] != (min(caught) if caught else None):
         errors.append(f"detection limit {rep['detection_limit']} against the controls caught {caught}")
-    if rep["inconclusive"] != (bool(rep["controls"]) and not caught):
-        errors.append("inconclusive disagrees with the controls")
+    groups = {c["group"] for c in rep["controls"]}
+    unseen = [g for g in groups if not any(c["caught"] for c in rep["controls"] if c["group"] == g)]
+    if rep["inconclusive"] != bool(unseen):
+        errors.append(f"inconclusive = {rep['inconclusive']}, yet the groups no control caught are {unseen}")
+    free = rep["scale_free"]
+    if free is not None:
+        if rep["exact"] or s & (s - 1):
+            errors.append("a scale-free proof where there is none to give (exact, or s no power of two)")
+        if not isinstance(free["exact"], bool) or free["exact"] != (free["first_divergence"] is None):
+            errors.append(f"scale-free proof: exact {free['exact']} with first divergence {free['first_divergence']}")
+        if not free["settings"] or not all(len(pair) == 2 for pair in free["settings"]):
+            errors.append(f"scale-free proof without its settings: {free['settings']}")
     for c in rep["controls"]:
         if c["group"] not in ("g", "masses") or not c["error"] > 0 or not isinstance(c["caught"], bool):
             errors.append(f"control {c}")
