@@ -94,3 +94,26 @@ def test_options_name_each_setting_of_no_pure_dimension():
     pgs = model.with_values(tolerance=0).runner.variant(solver="PGS")
     assert scale_free_options(pgs) == [{"solver": "Newton"}]
     assert ScaleFree((("option solver", "Newton"),), False, (0.5, "q")).text().endswith("first at t = 0.5 in q")
+
+
+def test_the_diagnosis_reuses_the_scale_free_runs_as_its_counter_runs(tmp_path, monkeypatch):
+    """Each way of the scale-free proof is also a counter-run of the diagnosis: it runs once, not twice."""
+    from pitheorem.engines.runners.mujoco import MujocoRunner
+
+    pgs = tmp_path / "pgs.xml"
+    pgs.write_text((DATA / "contact.xml").read_text().replace('tolerance="0"', 'solver="PGS"'))
+    model, sc = searched(pgs)
+    seen = []
+    run_many = MujocoRunner.run_many
+
+    def recording(self, n_steps, jobs):
+        seen.extend((float(r.mjmodel.opt.tolerance), int(r.mjmodel.opt.solver)) for r, *_ in jobs)
+        return run_many(self, n_steps, jobs)
+
+    monkeypatch.setattr(MujocoRunner, "run_many", recording)
+    rep = engines.verify(model, sc, 4, duration=0.4)
+    assert rep.scale_free is not None
+    assert rep.causes
+    pgs_id, newton = int(mujoco.mjtSolver.mjSOL_PGS), int(mujoco.mjtSolver.mjSOL_NEWTON)
+    for way in ((0.0, pgs_id), (1e-8, newton), (0.0, newton)):  # the original and the copy, once each
+        assert seen.count(way) == 2, way

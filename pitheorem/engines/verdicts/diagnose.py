@@ -44,7 +44,7 @@ SHRINK = 1000.0
 
 
 def find_causes(
-    model, scaled, scaling, s, n_steps, u_original, u_scaled, factors, report, exact_expected: bool
+    model, scaled, scaling, s, n_steps, u_original, u_scaled, factors, report, exact_expected: bool, ran=None
 ) -> tuple[Cause, ...]:
     """The causes of a verdict that is not exact (at a power of four) or not similar.
 
@@ -63,6 +63,9 @@ def find_causes(
         The verdict to explain.
     exact_expected : bool
         Whether every factor is a power of two (the runs should be bit for bit equal).
+    ran : dict, optional
+        Runs already made under some options (the scale-free proof's), by their sorted items: the
+        original's and the copy's, reused as those counter-runs.
 
     Returns
     -------
@@ -105,6 +108,9 @@ def find_causes(
     def counters(*variants) -> list[Counter]:
         """Both runs again under each variant's options, those not yet run in one batch: what each shows."""
         keys = [tuple(sorted(options.items())) for options in variants]
+        for key in keys:
+            if key not in done and ran and key in ran:
+                judged(key, *ran[key])
         todo = list(dict.fromkeys(k for k in keys if k not in done))
         jobs = []
         for key in todo:
@@ -115,13 +121,16 @@ def find_causes(
             ]
         runs = jobs[0][0].run_many(n_steps, jobs) if jobs else []
         for key, run, other in zip(todo, runs[::2], runs[1::2], strict=True):
-            back = other / factors
-            parts = parting(run, back)
-            worst = _largest(back - run)
-            # it shows a cause: the runs part later, or stay a thousand times closer than the verdict's
-            shows = parts is None or parts > verdict_parts or worst < report.max_deviation / SHRINK
-            done[key] = Counter(shows, parts is None, worst, parts, bool(np.array_equal(run, back)))
+            judged(key, run, other)
         return [done[k] for k in keys]
+
+    def judged(key, run, other) -> None:
+        back = other / factors
+        parts = parting(run, back)
+        worst = _largest(back - run)
+        # it shows a cause: the runs part later, or stay a thousand times closer than the verdict's
+        shows = parts is None or parts > verdict_parts or worst < report.max_deviation / SHRINK
+        done[key] = Counter(shows, parts is None, worst, parts, bool(np.array_equal(run, back)))
 
     t = report.original.t
 

@@ -93,7 +93,9 @@ def scale_free_options(runner) -> list[dict]:
     return each if len(each) < 2 else [*each, {k: v for options in each for k, v in options.items()}]
 
 
-def scale_free_run(original, copy, n_steps: int, u_original, u_scaled, factors, t, names) -> ScaleFree | None:
+def scale_free_run(
+    original, copy, n_steps: int, u_original, u_scaled, factors, t, names, ran: dict | None = None
+) -> ScaleFree | None:
     """Run both again under each of :func:`scale_free_options`; None where the runners have no such setting.
 
     Every way is run in one batch; the first under which the runs are bit
@@ -113,6 +115,9 @@ def scale_free_run(original, copy, n_steps: int, u_original, u_scaled, factors, 
         The sample times of the original run.
     names : sequence of str
         The recorded coordinates.
+    ran : dict, optional
+        Filled with each way's two runs, by its options (sorted items), for
+        the diagnosis to reuse as counter-runs.
 
     Returns
     -------
@@ -128,6 +133,9 @@ def scale_free_run(original, copy, n_steps: int, u_original, u_scaled, factors, 
             (copy.variant(**options), u_scaled, False, None),
         ]
     runs = original.run_many(n_steps, jobs)
+    if ran is not None:
+        for i, options in enumerate(ways):
+            ran[tuple(sorted(options.items()))] = (runs[2 * i], runs[2 * i + 1])
     pairs = [(runs[2 * i], runs[2 * i + 1] / factors) for i in range(len(ways))]
     chosen = next((i for i, (run, back) in enumerate(pairs) if np.array_equal(run, back)), len(ways) - 1)
     options, (run, back) = ways[chosen], pairs[chosen]

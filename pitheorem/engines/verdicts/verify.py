@@ -416,10 +416,11 @@ def judge(plan: Plan, rows: list | None, progress=None) -> SimilarityReport:
         controls=controls,
         inconclusive=bool(unseen_groups(controls)),
     )
+    ran: dict = {}  # the scale-free runs, by their options: counter-runs the diagnosis need not run again
     if exact_expected and not report.exact and p.controller is None:
         # the proof of the scaling beside the verdict on the model as written: settings of no pure dimension
         # (the solver's tolerance, a solver whose steps are not scale-free) made scale-free in both runs
-        free = scale_free_run(original, copy, n_steps, u_original, u_scaled, factors, p.t, p.names)
+        free = scale_free_run(original, copy, n_steps, u_original, u_scaled, factors, p.t, p.names, ran)
         report = dataclasses.replace(report, scale_free=free)
     step = progress if progress is not None else (lambda done, total: None)
     step(3, STAGES)
@@ -428,7 +429,9 @@ def judge(plan: Plan, rows: list | None, progress=None) -> SimilarityReport:
         return report
     from .diagnose import find_causes
 
-    causes = find_causes(model, scaled, p.scaling, p.s, n_steps, u_original, u_scaled, factors, report, exact_expected)
+    causes = find_causes(
+        model, scaled, p.scaling, p.s, n_steps, u_original, u_scaled, factors, report, exact_expected, ran=ran
+    )
     step(4, STAGES)
     return dataclasses.replace(report, causes=causes)
 
