@@ -138,8 +138,17 @@ class WarpRunner:
     def scaled(self, factors, scaling, s) -> WarpRunner:
         return WarpRunner(self.mjcf.scaled(factors, scaling, s), self.device)
 
-    def save(self, path: Path) -> None:
-        self.mjcf.save(path)  # an MJCF file: MuJoCo and MJWarp load it alike
+    def input_parameters(self) -> list[dict[str, int]]:
+        return self.mjcf.input_parameters()
+
+    def coordinate_inputs(self) -> list[int | None]:
+        return self.mjcf.coordinate_inputs()
+
+    def scaled_keeping_inputs(self, factors, scaling, s) -> WarpRunner:
+        return WarpRunner(self.mjcf.scaled_keeping_inputs(factors, scaling, s), self.device)
+
+    def save(self, path: Path, *, copy_assets: bool = False) -> None:
+        self.mjcf.save(path, copy_assets=copy_assets)  # an MJCF file: MuJoCo and MJWarp load it alike
 
     def written_beside(self, path) -> tuple[str, ...]:
         return self.mjcf.written_beside(path)

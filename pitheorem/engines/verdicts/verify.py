@@ -50,7 +50,7 @@ from ...scaling import is_power_of_two
 from ...simulation import SimilarityReport, Trajectory, allowed_deviation, positive_float, similarity_report
 from ..enginemodel import EngineModel, check_scaling
 from ..parameters import dim, dimension_factors
-from ..protocols import Runs
+from ..protocols import KeepsInputs, Runs
 from .strength import Control, caught, control_factors, horizon
 
 __all__ = ["Runs", "smooth_controls", "verify"]
@@ -70,6 +70,7 @@ def verify(
     seed: int = 0,
     diagnose: bool = True,
     strength: bool = True,
+    keep_inputs: bool = False,
 ) -> SimilarityReport:
     """Run a model and its scaled copy, compare them, and say why they differ.
 
@@ -104,7 +105,7 @@ def verify(
         numbers live in Python is not, and the report shows it.
     scaled : EngineModel, optional
         The scaled model (e.g. a saved and reloaded file); default
-        ``model.scaled(scaling, s)``.
+        ``model.scaled(scaling, s, keep_inputs=keep_inputs)``.
     baseline_factor : float
         The margin: how many times its yardstick a coordinate's deviation
         may reach (default 10).
@@ -122,6 +123,12 @@ def verify(
         1e-2 and 1, and with every mass doubled; see
         ``pitheorem.engines.verdicts.strength``).  A verdict none of whose
         controls is caught is ``inconclusive``, never similar.
+
+    keep_inputs : bool
+        Compare with a copy whose inputs keep their values
+        (:meth:`~pitheorem.engines.EngineModel.scaled` with
+        ``keep_inputs=True``): the scaled run gets the very same inputs,
+        and its activations are compared in their inputs' units.
 
     Returns
     -------
@@ -159,7 +166,7 @@ def verify(
     ensemble = read_count(ensemble, "ensemble", least=1)
     seed = read_count(seed, "seed")
     if scaled is None:
-        scaled = model.scaled(scaling, s)
+        scaled = model.scaled(scaling, s, keep_inputs=keep_inputs)
     elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:
         raise InvalidRequestError("scaled must be an EngineModel of the same engine as model")
     if controls is not None and controller is not None:
@@ -181,6 +188,10 @@ def verify(
         raise InvalidRequestError("the scaled model has other coordinates than the original")
     factors = np.array([factor(d) for d in dims])
     control_factors = np.array([factor(d) for d in original.control_dimensions()])
+    if keep_inputs:  # the same inputs; an activation is in its input's unit, which is kept
+        inputs = original.coordinate_inputs() if isinstance(original, KeepsInputs) else [None] * len(factors)
+        factors = factors / np.array([1.0 if i is None else control_factors[i] for i in inputs])
+        control_factors = np.ones_like(control_factors)
     u_original = _open_loop_rows(controls, n_steps, dt, control_factors.size)
     u_scaled = None if u_original is None else u_original * control_factors
     policy = _policies(controller, control_factors.size)
