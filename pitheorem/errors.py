@@ -526,7 +526,7 @@ class UnscalableParameterError(PiTheoremError, ValueError):
 
 
 class InputsNotKeptError(InvalidRequestError):
-    """A model whose control inputs cannot keep their values under a scaling (``keep_inputs=True``).
+    """A model whose inputs cannot keep their values (``keep_inputs=True``).
 
     Raised by :meth:`pitheorem.engines.EngineModel.scaled` and
     :meth:`~pitheorem.engines.EngineModel.converted` with ``keep_inputs=True``

@@ -483,7 +483,7 @@ class UnitFit(TableDisplay):
 
     @property
     def units(self) -> dict[str, object] | None:
-        """For a fit of an engine model, its new units: a name for each of M, L and T where it has one.
+        """An engine model's new units: a name for each of M, L and T.
 
         Ready for ``model.converted(**fit.units)``, or ``model.converted(fit)``
         in one step; a unit with no name is its size in SI units.  None for a

@@ -358,7 +358,7 @@ class EngineModel(TableDisplay):
         return self._system
 
     def default_repeating(self) -> tuple[str, ...]:
-        """The repeating variables ``pitheorem groups`` takes for this model: the robot's, never a solver's.
+        """The repeaters ``pitheorem groups`` takes: the robot's numbers, no solver's.
 
         The first valid set (in :meth:`pitheorem.System.bases` order) of
         :meth:`system` that uses none of the engine's settings (MJCF's

@@ -411,7 +411,7 @@ def refuse_units(path: str, units: Mapping[str, str]) -> None:
     ...     refuse_units("arm.urdf", {"M": "g", "L": "cm", "T": "s"})
     ... except engines.EngineModelError as err:
     ...     print(str(err)[:60])
-    arm.urdf: units: a URDF file is in SI units, not g cm s: sc
+    arm.urdf: units: a URDF file is in SI units, not g cm s: sca
     """
     raise EngineModelError(
         path or "the URDF model",
