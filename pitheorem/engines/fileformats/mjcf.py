@@ -1369,7 +1369,7 @@ class MjcfDocument:
 
         With `keep_inputs`, `factors` already keep every input (:meth:`input_parameters`); the
         keyframes' inputs and activations keep theirs too, a control range MuJoCo's compiler would
-        derive from a scaled joint range (``inheritrange``) is written as it is now, and a position
+        derive from a scaled joint range (``inheritrange``) is stated as it is now, and a position
         servo's damping ratio, which MuJoCo reads only while the gain and the bias are equal and
         opposite, is written as the damping it compiles to, times its factor.
         """
@@ -1492,10 +1492,10 @@ class MjcfDocument:
     def _keep_compiled_inputs(self, spec, scaling, s) -> None:
         """What MuJoCo's compiler derives from a scaled copy's numbers and must not change with kept inputs.
 
-        Each actuator whose input has a factor other than 1: a control range inherited from the joint's
-        range is written out (the joint's range is scaled, the input's is not), and a damping ratio is
-        written as the compiled damping times its factor (a kept input makes gain and bias differ, and
-        MuJoCo then reads the ratio as a damping).
+        Each actuator whose input has a factor other than 1: its control range is stated as compiled
+        (a range inherited from the joint's, ``inheritrange``, would follow the scaled joint), and a
+        damping ratio is written as the compiled damping times its factor (a kept input makes gain and
+        bias differ, and MuJoCo then reads the ratio as a damping).
         """
         mj, model = _mujoco(), self.mjmodel
         factor, _ = dimension_factors(scaling, s)
@@ -1505,7 +1505,7 @@ class MjcfDocument:
             ctrl, _act = self._actuator_inputs()[i]
             if factor(ctrl) == 1.0:
                 continue
-            if act.inheritrange > 0:
+            if model.actuator_ctrllimited[i]:  # the range as compiled, stated: nothing left to derive from the joint
                 act.inheritrange = 0
                 act.ctrlrange = np.array(model.actuator_ctrlrange[i], dtype=float)
                 act.ctrllimited = mj.mjtLimited.mjLIMITED_TRUE
