@@ -799,19 +799,3 @@ def test_a_copy_saved_with_its_assets_copied_loads_alone_after_the_originals_are
     original = mujoco.MjModel.from_xml_path(str(_meshed_model(tmp_path / "again")))
     np.testing.assert_allclose(moved.mesh_vert, 4 * original.mesh_vert, rtol=1e-6)
     assert engines.load(tmp_path / "moved" / "box4.xml").parameter("g").value == scaled.parameter("g").value
-
-
-def test_copied_assets_of_the_same_name_from_two_folders_are_kept_apart(tmp_path):
-    from pitheorem.engines.fileformats.assets import AssetCopies
-
-    for side, text in (("left", "L"), ("right", "R")):
-        (tmp_path / side).mkdir()
-        (tmp_path / side / "foot.stl").write_text(text)
-    copies = AssetCopies(tmp_path / "out")
-    left, right = copies.copy(tmp_path / "left" / "foot.stl"), copies.copy(tmp_path / "right" / "foot.stl")
-    assert (left.read_text(), right.read_text()) == ("L", "R")
-    assert copies.copy(tmp_path / "left" / "foot.stl") == left  # once per file
-    # a second writer of the same folder reuses an identical copy and never overwrites a different one
-    again = AssetCopies(tmp_path / "out")
-    assert again.copy(tmp_path / "right" / "foot.stl") != left
-    assert left.read_text() == "L"

@@ -123,7 +123,6 @@ def verify(
         1e-2 and 1, and with every mass doubled; see
         ``pitheorem.engines.verdicts.strength``).  A verdict none of whose
         controls is caught is ``inconclusive``, never similar.
-
     keep_inputs : bool
         Compare with a copy whose inputs keep their values
         (:meth:`~pitheorem.engines.EngineModel.scaled` with
@@ -199,7 +198,11 @@ def verify(
     twins = [original.twin(seed + k) for k in range(ensemble)]
     # the negative controls: the copy with one group wrong by a known error, judged like the copy itself
     # (none for a file the engine refuses to run: the runs below say so)
-    wrong = _negative_controls(model, scaled) if strength and original.refusal is None and copy.refusal is None else []
+    wrong = (
+        _negative_controls(model, scaled, keep_inputs)
+        if strength and original.refusal is None and copy.refusal is None
+        else []
+    )
     t = np.arange(n_steps + 1) * dt
     if controller is None and all(type(c.runner) is type(original) for c in (scaled, *(w for *_, w in wrong))):
         # one batch: the engine runs them at once (MuJoCo's rollout spreads them over the cores, MJX vmaps them)
@@ -252,17 +255,19 @@ def verify(
     return dataclasses.replace(report, causes=causes)
 
 
-def _negative_controls(model: EngineModel, scaled: EngineModel) -> list:
+def _negative_controls(model: EngineModel, scaled: EngineModel, from_copy: bool = False) -> list:
     """The negative controls of a verification: ``(group, error, wrong copy)`` each.
 
     Each wrong copy is the scaled copy with one group times ``1 + e``: made
     from the original with the copy's factors (one compilation each) where
-    the copy is ``model.scaled(...)``, else from the copy itself.
+    the copy is ``model.scaled(...)``, else (or with `from_copy`: a copy that
+    keeps its inputs states numbers the factors alone do not give) from the
+    copy itself.
     """
     out = []
     origin = scaled.copied_from
     for group, error, wrong in control_factors(model):
-        if origin is not None and origin[0] is model:
+        if origin is not None and origin[0] is model and not from_copy:
             factors = dict(origin[1])
             for name, f in wrong.items():
                 factors[name] = factors.get(name, 1.0) * f
