@@ -8,10 +8,11 @@ the best of ``--repeats`` tries each (the goal: at most 0.65 on 2 cores).  ``--d
 times the sweep on a ``LocalCluster`` of one worker process per core, and checks that its
 rows are those of the local sweep.
 
-What bounds the ratio: each verify already runs its five runs (original, copy, three twins)
-as one batch of MuJoCo's ``rollout`` on every core, so the pool gains on what a verify does
-between its batches (compiling the copy, mapping back, comparing, the audit and counter-runs
-of a copy that is not similar) and on the rollout's idle threads (five runs on two threads).
+Where the gain comes from: the original's run and its three twins' do not depend on ``s``, so
+the sweep runs them once (``pitheorem.engines.verdicts.verify.baseline``) and each ``s`` runs
+only its copy and the first negative control, where verify alone runs all six every time; the
+pool then spreads over the cores what a verify does between its batches (compiling the copy,
+mapping back, comparing, the audit and counter-runs of a copy that is not similar).
 
 Run: python benchmarks/bench_sweep.py [--model hopper.xml] [--duration 1] [--repeats 2] [--dask]
 """

@@ -156,6 +156,8 @@ def positive_float(value, what: str) -> float:
     ...     print(err)
     dt must be a positive number within the range of floating point (about 1e-308 to 1e308), got '1e-400'
     """
+    if isinstance(value, float) and 0.0 < value < math.inf:
+        return float(value)  # what the exact reading below gives for it, without reading it
     number = read_positive(value, what, irrational_ok=True)
     try:
         x = float(number)
@@ -704,6 +706,11 @@ class SimilarityReport(TableDisplay):
     inconclusive : bool
         Controls were run and none was caught: the run cannot show an
         error in the scaling, so the verdict is not "similar".
+    scale_free : ScaleFree or None
+        At a power of four, when the runs are not bit for bit: both runs
+        again with the engine's settings of no pure dimension made
+        scale-free (``pitheorem.engines.verdicts.scalefree``), and whether
+        they are then exact.  None otherwise.
 
     Examples
     --------
@@ -739,6 +746,7 @@ class SimilarityReport(TableDisplay):
     detection_limit: float | None = None
     controls: tuple = ()
     inconclusive: bool = False
+    scale_free: object | None = None
 
     @property
     def similar(self) -> bool:

@@ -6,6 +6,7 @@ and the runs agree.  And the verdict is honest both ways: wrong copies are caugh
 
 from __future__ import annotations
 
+import copy as copy_module
 import json
 import warnings
 from pathlib import Path
@@ -377,22 +378,69 @@ def test_of_two_causes_the_one_that_parts_the_runs_first_is_named():
     assert "precision" in {c.kind for c in judged.causes}
 
 
-def test_the_solver_remedy_names_every_stopping_rule_and_it_works(tmp_path):
+def test_the_solver_remedy_names_every_stopping_rule_and_it_works():
     """A leg with the noslip solver on: its tolerance is a second stopping rule of no pure dimension."""
-    leg = tmp_path / "leg.xml"
-    leg.write_text(
-        '<mujoco><option timestep="0.002" cone="elliptic" noslip_iterations="3"/><worldbody>'
-        '<geom type="plane" size="2 2 0.1"/><body pos="0 0 0.4"><freejoint/>'
-        '<geom type="box" size="0.1 0.05 0.03" mass="2"/><body pos="0.1 0 0"><joint name="hip" axis="0 1 0" '
-        'range="-1 1" damping="0.5"/><geom type="capsule" fromto="0 0 0 0 0 -0.45" size="0.02"/></body></body>'
-        '</worldbody><actuator><position joint="hip" kp="20" kv="1" ctrlrange="-1 1"/></actuator></mujoco>'
-    )
-    model, sc = searched(leg)
+    model, sc = searched(DATA / "noslip_leg.xml")
     u = engines.smooth_controls(model)
     rep = engines.verify(model, sc, 4, duration=1.0, controls=u)
     assert not rep.exact
     # the two stopping rules bring the runs closer but do not restore them: contacts off does, and is named
     assert [(c.kind, c.restores) for c in rep.causes] == [("contact", True)]
-    assert "removing option tolerance = 1e-08, option noslip_tolerance = 1e-06 alone brings" in rep.causes[0].detail
+    assert "removing option tolerance = 1e-08, option noslip_tolerance = 1e-06, " in rep.causes[0].detail
+    assert "alone brings the runs closer" in rep.causes[0].detail
     fixed = engines.verify(model.with_values(tolerance=0, noslip_tolerance=0), sc, 4, duration=1.0, controls=u)
     assert fixed.max_deviation < 1e-6 * rep.max_deviation  # the rules at 0: nearly all of the difference is gone
+
+
+def test_a_contact_the_same_pairs_make_alike_is_named_by_pair_and_collision_function():
+    """An ellipsoid on a sphere: the same pair touches at every step, and its contact through mjc_Convex is not
+    bit for bit at s = 4.  The cause names the pair and the collision function, not "every contact"."""
+    model, sc = searched(DATA / "egg_on_post.xml")
+    rep = engines.verify(model, sc, 4, duration=1.0)
+    assert not rep.exact
+    first = rep.causes[0]
+    assert (first.kind, first.element, first.restores) == (
+        "contact",
+        "geom 'post' / geom 'shell' (sphere-ellipsoid: mjc_Convex (GJK/EPA))",
+        True,
+    )
+    assert "mujoco_ccd_tolerance" in first.detail  # the catalogue's constants on the convex path
+    # independent of verify: in plain MuJoCo the shell out of collision in both models gives the same bits
+    exponents = 4 ** np.array([sc.exponent_of(d) for d in model.runner.coordinate_dimensions()[1]], dtype=float)
+    copy = model.scaled(sc, 4)
+
+    def plain(m, collide: bool):
+        m = copy_module.copy(m)
+        shell = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, "shell")
+        if not collide:
+            m.geom_contype[shell] = m.geom_conaffinity[shell] = 0
+        d = mujoco.MjData(m)
+        rows = []
+        for _ in range(500):
+            mujoco.mj_step(m, d)
+            rows.append(np.concatenate([d.qpos, d.qvel]))
+        return np.array(rows)
+
+    for collide in (True, False):
+        a, b = plain(model.runner.mjmodel, collide), plain(copy.runner.mjmodel, collide)
+        assert np.array_equal(a, b / exponents) is not collide
+
+
+def test_contact_candidates_take_the_moving_geom_of_each_pair_with_its_collision_function():
+    runner = engines.load(DATA / "egg_on_post.xml").runner
+    m = runner.mjmodel
+    ids = {name: mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, name) for name in ("floor", "post", "shell")}
+    pairs = [(ids["floor"], ids["shell"]), (ids["post"], ids["shell"]), (ids["floor"], ids["post"])]
+    got = runner.contact_candidates(pairs)
+    # the shell is the moving geom of its two pairs (once); floor and post are both the world's: the one in
+    # fewer pairs, then the lower id
+    assert [(g, pair, function) for g, pair, function, _paths in got] == [
+        (ids["shell"], "geom 'floor' / geom 'shell'", "plane-ellipsoid: mjc_PlaneConvex"),
+        (ids["floor"], "geom 'floor' / geom 'post'", "plane-sphere: mjc_PlaneSphere"),
+    ]
+    assert got[0][3] == ("primitive",)
+    assert got[1][3] == ("primitive",)
+    assert runner.contact_candidates([(ids["post"], ids["shell"])])[0][2:] == (
+        "sphere-ellipsoid: mjc_Convex (GJK/EPA)",
+        ("native_ccd",),
+    )

@@ -257,3 +257,15 @@ def test_mujoco_4_0_0s_sparse_cholesky_bug_is_noted_where_a_model_meets_it(tmp_p
     assert "note: MuJoCo 4.0.0's Newton solver has a sparse Cholesky bug" in capsys.readouterr().out
     main(["verify", str(sparse), "--scale", "g=1", "--s", "4", "--duration", "0.1"])
     assert "note: MuJoCo 4.0.0's Newton solver" in capsys.readouterr().out
+
+
+def test_dof_length_is_a_stored_number_only_where_sleep_makes_mujoco_read_it(tmp_path):
+    """MuJoCo reads dof_length (a rotational dof's length scale) only to put bodies to sleep: without sleep a
+    copy whose dof_length is off cannot run otherwise, so the audit does not hold it."""
+    body = '<worldbody><body><joint type="hinge"/><geom size="0.1" mass="1"/></body></worldbody>'
+    awake = tmp_path / "awake.xml"
+    awake.write_text(f"<mujoco>{body}</mujoco>")
+    asleep = tmp_path / "asleep.xml"
+    asleep.write_text(f'<mujoco><option><flag sleep="enable"/></option>{body}</mujoco>')
+    assert "dof_length" not in engines.load(awake).runner.stored_numbers()
+    assert "dof_length" in engines.load(asleep).runner.stored_numbers()

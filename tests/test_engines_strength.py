@@ -91,6 +91,11 @@ def test_a_copy_with_gravity_left_wrong_is_never_similar_where_the_run_cannot_sh
     assert not rep.similar
     assert rep.verdict == "inconclusive"
     assert rep.detection_limit is None
+    # the first control passed unnoticed, so every other one was run too, and none was caught
+    assert [(c.group, c.error, c.caught) for c in rep.controls] == [
+        *(("g", e, False) for e in CONTROL_ERRORS),
+        ("masses", 1.0, False),
+    ]
     # independent of verify: MuJoCo's own runs of the hanging pendulum under 9.81 and 19.62 are the same bits
     m = model.runner.mjmodel
     d1, d2 = mujoco.MjData(m), mujoco.MjData(m)
@@ -108,7 +113,10 @@ def test_a_moving_run_catches_a_small_gravity_error_and_says_its_limit():
     rep = engines.verify(model, sc, 10, duration=0.5, controls=u)
     assert rep.verdict == "similar"
     assert rep.detection_limit == CONTROL_ERRORS[0]
-    assert all(c.caught for c in rep.controls)
+    assert [(c.group, c.error, c.caught) for c in rep.controls] == [
+        ("g", CONTROL_ERRORS[0], True),
+        ("masses", 1.0, True),
+    ]
     assert rep.horizon == pytest.approx(0.5)
     proof = engines.verify(model, sc, 4, duration=0.5, controls=u)
     assert proof.verdict == "exact"
@@ -118,3 +126,87 @@ def test_a_moving_run_catches_a_small_gravity_error_and_says_its_limit():
     assert off.horizon is None
     assert off.detection_limit is None
     assert off.similar
+
+
+def test_a_gravity_control_made_in_the_compiled_model_runs_as_one_compiled_from_the_file():
+    """The control copy that skips compiling (gravity changed in the compiled model) steps the very same bits."""
+    model = engines.load(engines.example_path("pendulum.xml"))
+    in_place = model.runner.with_gravity_times(1.5)
+    compiled = model.multiplied(g=1.5).runner
+    assert np.array_equal(in_place.mjmodel.opt.gravity, compiled.mjmodel.opt.gravity)
+    assert np.array_equal(model.runner.mjmodel.opt.gravity, [0.0, 0.0, -9.81])  # the original is left alone
+    a, b = mujoco.MjData(in_place.mjmodel), mujoco.MjData(compiled.mjmodel)
+    a.qpos[:] = b.qpos[:] = 0.3
+    for _ in range(200):
+        mujoco.mj_step(in_place.mjmodel, a)
+        mujoco.mj_step(compiled.mjmodel, b)
+    assert np.array_equal(a.qpos, b.qpos)
+    assert a.qpos[0] != 0.3
+
+
+def test_a_copy_with_gravity_left_wrong_on_a_planar_model_is_inconclusive_not_similar(tmp_path):
+    """A slider moving in the horizontal plane: gravity cannot act on it, so a copy with gravity left unscaled
+    moves exactly like a right one.  Its masses are seen (a motor pushes them), gravity is not: inconclusive."""
+    planar = tmp_path / "planar.xml"
+    planar.write_text(
+        '<mujoco><option timestep="0.002"/><worldbody><body><joint name="x" type="slide" axis="1 0 0" '
+        'damping="0.2"/><geom type="box" size="0.1 0.1 0.1" mass="1"/></body></worldbody>'
+        '<actuator><motor joint="x" gear="1"/></actuator></mujoco>'
+    )
+    model = engines.load(planar)
+    sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
+    u = engines.smooth_controls(model)
+    wrong = model.scaled(sc, 10).multiplied(g=0.1)  # gravity as it was
+    rep = engines.verify(model, sc, 10, duration=0.5, controls=u, scaled=wrong)
+    assert rep.passed  # the motion is the right one
+    assert rep.verdict == "inconclusive"
+    assert [(c.group, c.caught) for c in rep.controls] == [("g", False)] * 3 + [("masses", True)]
+    assert rep.detection_limit == 1.0  # the masses doubled are seen
+    text = str(rep)
+    assert "INCONCLUSIVE: not even gravity doubled changes this run" in text
+    assert "a gravity error cannot be seen" in text
+    right = engines.verify(model, sc, 10, duration=0.5, controls=u)
+    assert right.verdict == "inconclusive"  # a right copy cannot prove its gravity either
+
+
+def test_a_masses_control_made_in_the_compiled_model_matches_its_definition(tmp_path):
+    """Every body's mass and inertia doubled, the derived constants computed again: as MuJoCo compiles a file
+    whose masses and inertias are doubled (the oracle: MuJoCo's own compile of that file)."""
+    text = (
+        '<mujoco><worldbody><body pos="0 0 1"><joint type="hinge" axis="0 1 0"/>'
+        '<inertial pos="0 0 -0.5" mass="{m}" diaginertia="{i} {i} {i}"/>'
+        '<geom type="sphere" size="0.1" contype="0" conaffinity="0"/></body></worldbody></mujoco>'
+    )
+    path = tmp_path / "p.xml"
+    path.write_text(text.format(m=1.5, i=0.02))
+    doubled = engines.load(path).runner.with_masses_times(2.0).mjmodel
+    two = mujoco.MjModel.from_xml_string(text.format(m=3.0, i=0.04))
+    for field in ("body_mass", "body_inertia", "body_subtreemass", "dof_invweight0", "body_invweight0"):
+        assert np.array_equal(getattr(doubled, field), getattr(two, field)), field
+    assert engines.load(path).runner.mjmodel.body_mass[1] == 1.5  # the original is left alone
+
+
+def test_the_masses_are_a_control_only_where_something_else_carries_mass(tmp_path):
+    """A body that only falls moves alike whatever it weighs: every mass doubled is then a change of the unit of
+    mass, no error.  A damping, or a motor's force, puts mass into a dimensionless group: then it is one."""
+    from pitheorem.dimensions import Dimension
+
+    def model(joint):
+        path = tmp_path / f"m{len(joint)}.xml"
+        path.write_text(
+            f'<mujoco><worldbody><body pos="0 0 1"><joint type="hinge" axis="0 1 0"{joint}/>'
+            '<geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.02" mass="0.4"/></body></worldbody></mujoco>'
+        )
+        return engines.load(path)
+
+    def groups(m, inputs=()):
+        return [g for g, _e, _f in control_factors(m, inputs)]
+
+    falling = model("")
+    assert groups(falling) == ["g", "g", "g"]
+    assert groups(falling, [Dimension.parse("M L^2 T^-2")]) == ["g", "g", "g", "masses"]  # a torque acts
+    assert groups(model(' damping="0.1"')) == ["g", "g", "g", "masses"]
+    sc = pt.search(falling.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
+    rep = engines.verify(falling, sc, 10, duration=0.5)
+    assert rep.verdict == "similar"  # gravity is seen, and the masses form no group
+    assert [c.group for c in rep.controls] == ["g"]

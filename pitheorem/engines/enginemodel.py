@@ -81,7 +81,7 @@ class EngineModel(TableDisplay):
     ('mujoco', True)
     """
 
-    __slots__ = ("_groups", "_origin", "_parameters", "_runner", "_system", "_units", "engine", "path")
+    __slots__ = ("_by_name", "_groups", "_origin", "_parameters", "_runner", "_system", "_units", "engine", "path")
 
     def __init__(self, backend, engine: str, path: str, units=None, origin: tuple | None = None):
         units = tuple((units or {"M": "kg", "L": "m", "T": "s"}).items())
@@ -94,6 +94,7 @@ class EngineModel(TableDisplay):
             ("_parameters", None),
             ("_units", units),
             ("_groups", None),
+            ("_by_name", None),
             ("_origin", origin),
             ("_system", None),
         ):
@@ -327,9 +328,11 @@ class EngineModel(TableDisplay):
         >>> model.parameter("g").value
         (9.81,)
         """
-        for p in self.parameters:
-            if p.name == name:
-                return p
+        if self._by_name is None:  # a dictionary once: a negative control names thousands of masses
+            object.__setattr__(self, "_by_name", {p.name: p for p in self.parameters})
+        found = self._by_name.get(name) if isinstance(name, str) else None
+        if found is not None:
+            return found
         from ..errors import UnknownVariableError
 
         raise UnknownVariableError(name, tuple(p.name for p in self.parameters), "the model's parameters")
@@ -504,7 +507,9 @@ class EngineModel(TableDisplay):
             for name, power in powers.items():  # the factor of the dimension with the input's taken out, exactly
                 factors[name] = dimension_factor(scaling, s, dimensions[name] / ctrl**power)
         runner = self._runner.scaled_keeping_inputs(factors, scaling, s)
-        return EngineModel(runner, self.engine, "", self.units, origin=(self, factors))
+        # no origin: the copy states numbers its factors alone do not give (a compiled range, a damping for a
+        # damping ratio), so a copy of it is made from it, not from this model times the factors
+        return EngineModel(runner, self.engine, "", self.units)
 
     def with_values(self, **values) -> EngineModel:
         """A copy with some parameters set to new values (each must be one number).

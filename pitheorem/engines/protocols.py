@@ -25,6 +25,7 @@ is named here:
   keep their values, the factors on the gains), :class:`CounterRuns` (copies run with another
   solver tolerance, for the diagnosis), :class:`SolverDiagnosis`
   (solver, equality constraints and contacts, named),
+  :class:`MultipliesInPlace` (a copy with other gravity or masses, not compiled again),
   :class:`NamesElements` (a stored number's element),
   :class:`StoresCopies` (the stored numbers that are the file's, with
   their parameters) and :class:`IgnoredSettings` (settings the engine
@@ -62,6 +63,7 @@ __all__ = [
     "HasSceneSettings",
     "IgnoredSettings",
     "KeepsInputs",
+    "MultipliesInPlace",
     "NamesElements",
     "ReadsSomeNumbers",
     "RefusesScalings",
@@ -265,6 +267,30 @@ class CounterRuns(Protocol):
 
 
 @runtime_checkable
+class MultipliesInPlace(Protocol):
+    """Optional: copies with gravity, or every body's mass and inertia, times a factor, not compiled again.
+
+    The negative controls of :func:`~pitheorem.engines.verify` are such
+    copies; a runner without it gets them through ``EngineModel.multiplied``
+    (one compilation each).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.protocols import MultipliesInPlace
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, MultipliesInPlace)
+    True
+    """
+
+    def with_gravity_times(self, factor: float) -> Runs:
+        """This runner with its gravity times `factor` (gravity enters no other compiled number)."""
+
+    def with_masses_times(self, factor: float) -> Runs:
+        """This runner with every body's mass and inertia times `factor`, the constants derived from them
+        computed again."""
+
+
+@runtime_checkable
 class SolverDiagnosis(Protocol):
     """Optional: the solver, the equality constraints and the contacts of each step, named (MuJoCo's).
 
@@ -291,7 +317,12 @@ class SolverDiagnosis(Protocol):
         """Each equality constraint, named as the reports name it."""
 
     def first_contact_difference(self, other, n_steps: int, controls: Controls = None, other_controls: Controls = None):
-        """The first step after which other pairs touch in `other`'s run: (step, pairs only there, only here)."""
+        """The first step after which other pairs touch in `other`'s run: (step or None, pairs only there, only
+        here, pairs touched in this run so far)."""
+
+    def contact_candidates(self, pairs) -> list[tuple[int, str, str, tuple[str, ...]]]:
+        """Per pair that touches, the geom a counter-run takes out of collision: (id, pair, collision function,
+        cause paths)."""
 
 
 @runtime_checkable
@@ -372,6 +403,7 @@ OPTIONAL = {
         HasSceneSettings,
         KeepsInputs,
         CounterRuns,
+        MultipliesInPlace,
         SolverDiagnosis,
         NamesElements,
         StoresCopies,

@@ -198,6 +198,18 @@ def _similarity_report(report) -> dict:
         "detection_limit": report.detection_limit,
         "inconclusive": report.inconclusive,
         "controls": [{"group": c.group, "error": c.error, "caught": c.caught} for c in report.controls],
+        "scale_free": _scale_free(report.scale_free),
+    }
+
+
+def _scale_free(free) -> dict | None:
+    """The scale-free proof beside a verdict, or None."""
+    if free is None:
+        return None
+    return {
+        "settings": dict(free.settings),
+        "exact": free.exact,
+        "first_divergence": None if free.first_divergence is None else list(free.first_divergence),
     }
 
 
@@ -461,6 +473,7 @@ def _engine_verify_answer(answer) -> dict:
         "max_deviation": rep.max_deviation,
         "first_divergence": None if rep.first_divergence is None else list(rep.first_divergence),
         "causes": [_cause(c) for c in rep.causes],
+        "scale_free": _scale_free(rep.scale_free),
         "notes": list(answer.notes),
         "report": _similarity_report(rep),
     }

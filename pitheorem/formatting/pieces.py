@@ -741,10 +741,10 @@ def deviation_rows(report, name):
 
 
 def strength_lines(report) -> list[str]:
-    """What a report says of its own strength: inconclusive, weak, gravity unseen, past the horizon.
+    """What a report says of its own strength: the scale-free proof, inconclusive, weak, gravity unseen, the horizon.
 
-    Empty for a report without twins or controls (an ODE verdict against
-    a tolerance).
+    Empty for a report without twins, controls or a scale-free run (an
+    ODE verdict against a tolerance).
 
     Parameters
     ----------
@@ -765,18 +765,22 @@ def strength_lines(report) -> list[str]:
     >>> strength_lines(rep)
     ['strength: an error of 0.0001 in gravity or the masses is caught; the twins stay together to the end (t = 0.5)']
     """
-    if report.horizon is None and not report.controls:
+    free = report.scale_free
+    if report.horizon is None and not report.controls and free is None:
         return []
-    lines = []
+    lines = [] if free is None else [free.text()]
+    groups = dict.fromkeys(c.group for c in report.controls)  # each group's controls all unnoticed: unseen
+    unseen = [g for g in groups if not any(c.caught for c in report.controls if c.group == g)]
     if report.inconclusive:
+        words = {"g": "gravity", "masses": "the masses"}
+        what = " or ".join(words.get(g, g) for g in unseen)
         lines.append(
-            "INCONCLUSIVE: not even gravity or the masses doubled change this run beyond its yardstick, "
-            "so it cannot show an error in the scaling"
+            f"INCONCLUSIVE: not even {what} doubled change{'s' if len(unseen) == 1 else ''} this run beyond "
+            f"its yardstick, so it cannot show an error in {'that' if len(unseen) == 1 else 'them'}"
         )
-    gravity = [c for c in report.controls if c.group == "g"]
-    if gravity and not any(c.caught for c in gravity):
+    if "g" in unseen:
         lines.append(
-            "gravity cannot act on this run's motion (compensated or balanced): a gravity error cannot be seen"
+            "gravity cannot act on this run's motion (compensated, balanced or planar): a gravity error cannot be seen"
         )
     parts = []
     if report.detection_limit is not None:

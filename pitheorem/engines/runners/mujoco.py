@@ -198,10 +198,19 @@ class MujocoRunner:
         """Every floating-point number the compiled model holds, by field: a copy, in its own precision.
 
         The arrays of ``MjModel`` (mesh vertices in float32 where MuJoCo keeps them so) and the
-        floating-point fields of ``opt`` and ``stat``; colours are left out (they draw, not move).
+        floating-point fields of ``opt`` and ``stat``; colours are left out (they draw, not move), and so
+        is a field that only a flag this model leaves off makes MuJoCo read (:data:`_READ_ONLY_WITH`).
         """
         m, out = self.mjmodel, {}
+        mj = _mujoco()
+        unread = {
+            field
+            for field, flag in _READ_ONLY_WITH.items()
+            if not m.opt.enableflags & int(getattr(mj.mjtEnableBit, flag))
+        }
         for field in self._fields():
+            if field in unread:
+                continue
             holder, attr = _holder(m, field)
             out[field] = np.array(getattr(holder, attr), copy=True, ndmin=1)
         return out
@@ -232,6 +241,25 @@ class MujocoRunner:
             else:
                 getattr(holder, attr)[...] = moved
         return twin
+
+    def with_gravity_times(self, factor: float) -> MujocoRunner:
+        """A copy with gravity times `factor`: the compiled model copied, for MuJoCo derives nothing else from
+        gravity when it compiles (a negative control of the verdict)."""
+        out = self._with_model_copy()
+        out.mjmodel.opt.gravity[:] = np.asarray(out.mjmodel.opt.gravity) * factor
+        return out
+
+    def with_masses_times(self, factor: float) -> MujocoRunner:
+        """A copy with every body's mass and inertia times `factor` (a negative control of the verdict): the
+        compiled model copied, and what MuJoCo derives from masses when it compiles (subtree masses, the
+        inverse weights that scale constraint softness, actuators' reference accelerations) computed again."""
+        mj = _mujoco()
+        out = self._with_model_copy()
+        m = out.mjmodel
+        m.body_mass[:] = np.asarray(m.body_mass) * factor
+        m.body_inertia[:] = np.asarray(m.body_inertia) * factor
+        mj.mj_setConst(m, mj.MjData(m))
+        return out
 
     def _neighbours(self):
         """Every stored number's neighbours one ulp up and one down (zeros kept), found once per model.
@@ -279,9 +307,11 @@ class MujocoRunner:
         inactive_equalities: tuple[int, ...] = (),
         integrator: str | None = None,
         native_ccd: bool = True,
+        contactless_geoms: tuple[int, ...] = (),
     ) -> MujocoRunner:
-        """A copy run with another solver, tolerance or integrator, with contacts switched off, or with some
-        equality constraints inactive: a counter-run's model (or the rod's, in another integrator)."""
+        """A copy run with another solver, tolerance or integrator, with contacts switched off (all, or some
+        geoms'), or with some equality constraints inactive: a counter-run's model (or the rod's, in another
+        integrator)."""
         mj = _mujoco()
         out = self._with_model_copy()
         m = out.mjmodel
@@ -296,6 +326,9 @@ class MujocoRunner:
             m.opt.noslip_tolerance = tolerance
         if not contacts:
             m.opt.disableflags |= int(mj.mjtDisableBit.mjDSBL_CONTACT)
+        for g in contactless_geoms:  # this geom collides with nothing (its explicit <pair>s stay)
+            m.geom_contype[g] = 0
+            m.geom_conaffinity[g] = 0
         if not native_ccd:  # convex pairs through MuJoCo's older libccd path instead of its native GJK/EPA
             m.opt.disableflags |= int(mj.mjtDisableBit.mjDSBL_NATIVECCD)
         return out
@@ -364,7 +397,8 @@ class MujocoRunner:
         """The first step after which other geom pairs touch in `other`'s run than in this one's.
 
         Both run open loop, step by step side by side, and stop at the first difference: returns
-        ``(step, pairs only in other's run, pairs only in this one's)``, pairs named and sorted, or
+        ``(step, pairs only in other's run, pairs only in this one's, pairs touched so far)``, the
+        first two named and sorted, the last as geom ids in the order they first touched; the step is
         None when the same pairs touch after every step.  `other` has the same geoms (a scaled copy).
         """
         mj = _mujoco()
@@ -372,6 +406,7 @@ class MujocoRunner:
             (self, self._start(False, None)[0], self._control_rows(controls, n_steps)),
             (other, other._start(False, None)[0], other._control_rows(other_controls, n_steps)),
         ]
+        touched: dict[tuple[int, int], None] = {}
         for i in range(n_steps):
             touching = []
             for backend, data, rows in runs:
@@ -380,13 +415,36 @@ class MujocoRunner:
                 mj.mj_step(backend.mjmodel, data)
                 touching.append(_touching(data))
             mine, theirs = touching
+            touched.update(dict.fromkeys(sorted(tuple(sorted(p)) for p in mine)))
             if mine != theirs:
 
                 def named(pairs):
                     return sorted((self._geom_name(a), self._geom_name(b)) for a, b in pairs)
 
-                return i + 1, named(theirs - mine), named(mine - theirs)
-        return None
+                return i + 1, named(theirs - mine), named(mine - theirs), tuple(touched)
+        return None, [], [], tuple(touched)
+
+    def contact_candidates(self, pairs) -> list[tuple[int, str, str, tuple[str, ...]]]:
+        """For each pair of geoms that touch, the geom whose contacts a counter-run switches off, named.
+
+        Of a pair, the geom of a moving body (not the world's floor), else the one in fewer of the
+        pairs; each geom once.  Returns ``(geom id, the pair, its collision function, the cause
+        paths of the catalogue it takes)`` each, in the order of `pairs`.
+        """
+        m = self.mjmodel
+        count: dict[int, int] = {}
+        for pair in pairs:
+            for g in pair:
+                count[g] = count.get(g, 0) + 1
+        out, seen = [], set()
+        for a, b in pairs:
+            g = min((a, b), key=lambda x: (int(m.geom_bodyid[x]) == 0, count[x], x))
+            if g in seen:
+                continue
+            seen.add(g)
+            function, paths = _collider(m, a, b)
+            out.append((int(g), f"{self._geom_name(a)} / {self._geom_name(b)}", function, paths))
+        return out
 
     def element_name(self, field: str, row: int) -> str:
         """A row of a stored field, named by its element where the field has one row per element."""
@@ -638,6 +696,52 @@ def _close_pools() -> None:
         if pid == os.getpid():
             pool.close()
     _POOLS.clear()
+
+
+#: MuJoCo's collision function for each pair of geom types that has one of its own (engine_collision_driver.c,
+#: mjCOLLISIONFUNC): the primitive colliders; the other convex pairs go to mjc_Convex (GJK/EPA)
+_PRIMITIVE_COLLIDERS = {
+    ("plane", "sphere"): "mjc_PlaneSphere",
+    ("plane", "capsule"): "mjc_PlaneCapsule",
+    ("plane", "cylinder"): "mjc_PlaneCylinder",
+    ("plane", "box"): "mjc_PlaneBox",
+    ("plane", "ellipsoid"): "mjc_PlaneConvex",
+    ("plane", "mesh"): "mjc_PlaneConvex",
+    ("sphere", "sphere"): "mjc_SphereSphere",
+    ("sphere", "capsule"): "mjc_SphereCapsule",
+    ("sphere", "cylinder"): "mjc_SphereCylinder",
+    ("sphere", "box"): "mjc_SphereBox",
+    ("capsule", "capsule"): "mjc_CapsuleCapsule",
+    ("capsule", "box"): "mjc_CapsuleBox",
+    ("box", "box"): "mjc_BoxBox",
+}
+
+#: stored fields that MuJoCo reads in a step only with an enable flag on: ``dof_length`` (each degree of
+#: freedom's length scale, from the body sizes mj_setConst finds) only to put bodies to sleep
+#: (engine_sleep.c); a copy whose dof_length is not its original's times a power of s runs alike without it
+_READ_ONLY_WITH = {"dof_length": "mjENBL_SLEEP"}
+
+#: MuJoCo's geom types in the order of mjtGeom
+_GEOM_TYPES = ("plane", "hfield", "sphere", "capsule", "ellipsoid", "cylinder", "box", "mesh", "sdf")
+
+
+def _collider(m, a: int, b: int) -> tuple[str, tuple[str, ...]]:
+    """The collision function MuJoCo calls for two geoms, in words, and the catalogue's cause paths it takes."""
+    first, second = sorted((int(m.geom_type[a]), int(m.geom_type[b])))
+    kinds = (
+        _GEOM_TYPES[first] if first < len(_GEOM_TYPES) else str(first),
+        _GEOM_TYPES[second] if second < len(_GEOM_TYPES) else str(second),
+    )
+    margin = ("margin",) if m.geom_margin[a] + m.geom_margin[b] > 0 else ()
+    mesh = ("mesh",) if "mesh" in kinds else ()
+    primitive = _PRIMITIVE_COLLIDERS.get(kinds)
+    if primitive is not None:
+        return f"{kinds[0]}-{kinds[1]}: {primitive}", ("primitive", *mesh, *margin)
+    if "sdf" in kinds:
+        return f"{kinds[0]}-{kinds[1]}: MuJoCo's SDF collision", margin
+    if "hfield" in kinds:
+        return f"{kinds[0]}-{kinds[1]}: mjc_ConvexHField", ("native_ccd", *mesh, *margin)
+    return f"{kinds[0]}-{kinds[1]}: mjc_Convex (GJK/EPA)", ("native_ccd", *mesh, *margin)
 
 
 def _touching(data) -> frozenset:

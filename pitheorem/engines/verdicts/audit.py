@@ -175,13 +175,16 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
         if field not in copy or copy[field].shape != before.shape or probe[field].shape != before.shape:
             causes.append(Cause("unscaled", field, "the scaled model holds another number of values here"))
             continue
-        k, clean, residue = _probe_exponents(before, probe[field])
+        k, clean_up, residue = _probe_exponents(before, probe[field])
         back, clean_back, _ = _probe_exponents(before, inverse[field])
-        clean &= clean_back & (back == -k)
+        clean = clean_up & clean_back & (back == -k)
         probed[field] = k, clean, residue
         changed = held_otherwise(before, copy[field], clean)
         if changed.any():
-            causes.append(_not_a_power(backend, field, before, probe[field], changed))
+            # the probe that shows it: the one by 4 where that is no power of 4, else the one by 1/4
+            i = tuple(np.argwhere(changed)[0]) if changed.ndim else ()
+            shown = (PROBE, probe[field]) if not clean_up[i] else (Fraction(1, PROBE), inverse[field])
+            causes.append(_not_a_power(backend, field, before, shown, changed))
         magnitude = np.abs(before.astype(float))
         for e in np.unique(k[clean]):
             scale[e] = max(scale.get(e, 0.0), float(np.max(magnitude[clean & (k == e)], initial=0.0)))
@@ -322,13 +325,15 @@ def _where(backend, field: str, mask: np.ndarray) -> str:
     return ", ".join(names) + more
 
 
-def _not_a_power(backend, field, before, probe, mask) -> Cause:
+def _not_a_power(backend, field, before, shown, mask) -> Cause:
+    """The cause of numbers that no power of 4 carries, with the probe (by 4 or by 1/4) that shows the first."""
+    by, probe = shown
     i = tuple(np.argwhere(mask)[0]) if mask.ndim else ()
     return Cause(
         "unscaled",
         field,
-        f"{_where(backend, field, mask)}: scaled by {PROBE} as a change of units, "
-        f"{float_text(before[i])} became {float_text(probe[i])}, no power of {PROBE}: the engine reads a "
+        f"{_where(backend, field, mask)}: scaled by {by} as a change of units, "
+        f"{float_text(before[i])} became {float_text(probe[i])}, no power of {by}: the engine reads a "
         "sentinel or derives this number in a way no change of units carries",
     )
 

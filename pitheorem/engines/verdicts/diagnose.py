@@ -100,24 +100,28 @@ def find_causes(
     if verdict_parts is None:  # nothing to explain by a run: the static causes (the audit's) only
         return sorted_causes(causes)
 
+    done: dict[tuple, Counter] = {}  # a counter-run asked for twice (alone, then in the smallest set) runs once
+
     def counters(*variants) -> list[Counter]:
-        """Both runs again under each variant's options, all in one batch: what each shows."""
+        """Both runs again under each variant's options, those not yet run in one batch: what each shows."""
+        keys = [tuple(sorted(options.items())) for options in variants]
+        todo = list(dict.fromkeys(k for k in keys if k not in done))
         jobs = []
-        for options in variants:
+        for key in todo:
+            options = dict(key)
             jobs += [
                 (original.variant(**options), u_original, False, None),
                 (copy.variant(**options), u_scaled, False, None),
             ]
-        runs = jobs[0][0].run_many(n_steps, jobs)
-        out = []
-        for run, other in zip(runs[::2], runs[1::2], strict=True):
+        runs = jobs[0][0].run_many(n_steps, jobs) if jobs else []
+        for key, run, other in zip(todo, runs[::2], runs[1::2], strict=True):
             back = other / factors
             parts = parting(run, back)
             worst = _largest(back - run)
             # it shows a cause: the runs part later, or stay a thousand times closer than the verdict's
             shows = parts is None or parts > verdict_parts or worst < report.max_deviation / SHRINK
-            out.append(Counter(shows, parts is None, worst, parts, bool(np.array_equal(run, back))))
-        return out
+            done[key] = Counter(shows, parts is None, worst, parts, bool(np.array_equal(run, back)))
+        return [done[k] for k in keys]
 
     t = report.original.t
 
@@ -213,7 +217,11 @@ def find_causes(
                     {"inactive_equalities": tuple(shows) or tuple(range(len(equalities)))},
                 )
             )
-        found.extend(_contact_causes(original, copy, results, shown, n_steps, verdict_parts, u_original, u_scaled, t))
+        found.extend(
+            _contact_causes(
+                original, copy, results, shown, counters, n_steps, verdict_parts, u_original, u_scaled, t, model.engine
+            )
+        )
     found = [(_with_constants(c, o, model.engine), o) for c, o in found]
     static = bool(causes)  # the audit's: numbers the copy holds wrong, which no counter-run removes
     return sorted_causes([*causes, *_restoring(found, counters, report, verdict_parts, bits, list(variants), static)])
@@ -269,9 +277,13 @@ _PATHS = {"native_ccd": "native_ccd", "tolerance": "solver_tolerance", "inactive
 
 def _with_constants(cause: Cause, options: dict, engine: str) -> Cause:
     """The cause with the engine's fixed constants its counter-run's path meets, from the catalogue."""
+    return _with_paths(cause, [_PATHS[key] for key in options if key in _PATHS], engine)
+
+
+def _with_paths(cause: Cause, paths, engine: str) -> Cause:
+    """The cause with the engine's fixed constants on some cause paths, from the catalogue."""
     from ..constants import constants_for
 
-    paths = [_PATHS[key] for key in options if key in _PATHS]
     names = list(dict.fromkeys(c.name for p in paths for c in constants_for(engine, p)))
     if not names:
         return cause
@@ -280,11 +292,13 @@ def _with_constants(cause: Cause, options: dict, engine: str) -> Cause:
 
 
 def _merged(options) -> dict:
-    """The options of several counter-runs as one: every equality inactive that any makes inactive."""
+    """The options of several counter-runs as one: every equality inactive (every geom out of collision) that
+    any makes so."""
     out: dict = {}
     for o in options:
         for key, value in o.items():
-            out[key] = tuple(sorted(set(out.get(key, ())) | set(value))) if key == "inactive_equalities" else value
+            many = key in ("inactive_equalities", "contactless_geoms")
+            out[key] = tuple(sorted(set(out.get(key, ())) | set(value))) if many else value
     return out
 
 
@@ -312,7 +326,14 @@ def _unknown(report, verdict_parts: int, bits: bool, tried) -> Cause:
     )
 
 
-def _contact_causes(original, copy, results, shown, n_steps, verdict_parts, u_original, u_scaled, t):
+#: when the same pairs touch in both runs, each pair's geom gets a counter-run of its own if there are at most
+#: this many (besides one per collision function)
+CONTACT_CANDIDATES = 6
+
+
+def _contact_causes(
+    original, copy, results, shown, counters, n_steps, verdict_parts, u_original, u_scaled, t, engine: str
+):
     """The contact causes a counter-run shows, by geom pair and collision path: (cause, options) each."""
     out = []
     ccd = results.get("native_ccd")
@@ -335,12 +356,55 @@ def _contact_causes(original, copy, results, shown, n_steps, verdict_parts, u_or
     # a contact can explain the runs' parting only if it differs before they part: after that, other contacts
     # are what parted runs do (and stepping in Python past that point would cost a whole run)
     until = min(n_steps, verdict_parts + 1)
-    contact = _contact_difference(original, copy, until, u_original, u_scaled, t)
-    pairs, detail = contact if contact is not None else ("every contact", "the same pairs touch at every step")
-    out.append(
-        (Cause("contact", pairs, f"{detail}; with contacts off in both runs {shown(contacts)}"), {"contacts": False})
-    )
-    return out
+    step, only_scaled, only_original, touched = _contact_steps(original, copy, until, u_original, u_scaled)
+    if step is not None:
+        pair = (only_scaled or only_original)[0]
+        where = "the scaled run only" if only_scaled else "the original only"
+        extra = len(only_scaled) + len(only_original) - 1
+        more = f" (and {extra} other pair{'s' if extra > 1 else ''})" if extra else ""
+        detail = (
+            f"in contact in {where} after step {step} (t = {float(t[step]):.6g}){more}: a contact that starts "
+            f"or ends at another step; with contacts off in both runs {shown(contacts)}"
+        )
+        return [*out, (Cause("contact", " / ".join(pair), detail), {"contacts": False})]
+    # the same pairs touch at every step: the contact computed for some pair is not scale-free.  Counter-runs
+    # take out of collision, in both runs, the moving geoms of all pairs that one collision function computes
+    # (the path, with the catalogue's constants on it), and, for few pairs, each pair's geom alone
+    candidates = original.contact_candidates(touched)
+    groups: dict[str, list] = {}
+    for candidate in candidates:
+        groups.setdefault(candidate[2], []).append(candidate)
+    trials = []
+    for function, members in groups.items():
+        pairs = [pair for _g, pair, _f, _p in members]
+        shown_pairs = ", ".join(pairs[:2]) + (f" and {len(pairs) - 2} more" if len(pairs) > 2 else "")
+        label = f"{function}: {shown_pairs}" if len(members) > 1 else f"{pairs[0]} ({function})"
+        trials.append((label, members[0][3], {"contactless_geoms": tuple(sorted(g for g, *_ in members))}))
+    if len(candidates) <= CONTACT_CANDIDATES and len(groups) < len(candidates):
+        trials += [
+            (f"{pair} ({function})", paths, {"contactless_geoms": (g,)}) for g, pair, function, paths in candidates
+        ]
+    trials = list({tuple(sorted(o.items())): (label, paths, o) for label, paths, o in reversed(trials)}.values())[::-1]
+    for (label, paths, option), counter in zip(trials, counters(*(o for *_, o in trials)), strict=True):
+        if counter.shows:
+            detail = (
+                "the same pairs touch at every step, but the contacts computed here are not scale-free: with "
+                f"these contacts off in both runs {shown(counter)}"
+            )
+            out.append((_with_paths(Cause("contact", label, detail), paths, engine), option))
+    touch = "1 pair touches" if len(touched) == 1 else f"{len(touched)} pairs touch"
+    everything = f"every contact ({touch}, alike in both runs)"
+    detail = f"the same pairs touch at every step; with contacts off in both runs {shown(contacts)}"
+    return [*out, (Cause("contact", everything, detail), {"contacts": False})]
+
+
+def _contact_steps(original, copy, n_steps, u_original, u_scaled):
+    """``first_contact_difference`` over the first `n_steps` steps of each run's inputs."""
+
+    def first(rows):
+        return None if rows is None else rows[:n_steps]
+
+    return original.first_contact_difference(copy, n_steps, first(u_original), first(u_scaled))
 
 
 class Counter(NamedTuple):
@@ -358,23 +422,3 @@ class Counter(NamedTuple):
 def _largest(diff: np.ndarray) -> float:
     diff = np.abs(diff)
     return float(diff.max()) if diff.size and np.all(np.isfinite(diff)) else float("inf")
-
-
-def _contact_difference(original, copy, n_steps, u_original, u_scaled, t):
-    """The first step at which other geom pairs touch in the scaled run: (pairs, detail), or None."""
-
-    def first(rows):
-        return None if rows is None else rows[:n_steps]
-
-    found = original.first_contact_difference(copy, n_steps, first(u_original), first(u_scaled))
-    if found is None:
-        return None
-    step, only_scaled, only_original = found
-    pair = (only_scaled or only_original)[0]
-    where = "the scaled run only" if only_scaled else "the original only"
-    extra = len(only_scaled) + len(only_original) - 1
-    more = f" (and {extra} other pair{'s' if extra > 1 else ''})" if extra else ""
-    return " / ".join(pair), (
-        f"in contact in {where} after step {step} (t = {float(t[step]):.6g}){more}: a "
-        "contact that starts or ends at another step"
-    )

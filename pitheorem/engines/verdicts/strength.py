@@ -19,9 +19,10 @@ says which:
   (bit for bit where every factor is a power of two, else against the
   yardstick).  The smallest ``e`` a control is caught at is the run's
   :attr:`detection_limit`: a relative error in a dimensionless group
-  smaller than it would pass unnoticed.  When no control is caught, not
-  even gravity or the masses doubled, the verdict is *inconclusive*, never
-  *similar*.
+  smaller than it would pass unnoticed.  When a group's controls all pass
+  unnoticed, not even gravity doubled (a gravity-compensated arm, a planar
+  model), the run cannot show an error in that group: the verdict is
+  *inconclusive*, never *similar*, and the report names the group.
 
 The margin of the yardstick (a copy may deviate 10 times as far as the
 twins) is what the controls calibrate: the detection limit is what that
@@ -36,7 +37,16 @@ import numpy as np
 
 from ...immutable import immutable
 
-__all__ = ["CONTROL_ERRORS", "HORIZON_FRACTION", "STILL", "Control", "caught", "control_factors", "horizon"]
+__all__ = [
+    "CONTROL_ERRORS",
+    "HORIZON_FRACTION",
+    "STILL",
+    "Control",
+    "caught",
+    "control_factors",
+    "horizon",
+    "unseen_groups",
+]
 
 #: the twins' spread, as a fraction of each coordinate's range over the run, that ends the horizon
 HORIZON_FRACTION = 0.01
@@ -130,12 +140,22 @@ def horizon(t: np.ndarray, original: np.ndarray, twins) -> float:
     return float(t[max(int(rows[0]) - 1, 0)])
 
 
-def control_factors(model) -> list[tuple[str, float, dict[str, float]]]:
+def control_factors(model, inputs=()) -> list[tuple[str, float, dict[str, float]]]:
     """The negative controls a model takes: ``(group, error, factors for EngineModel.multiplied)`` each.
 
     Gravity at each of :data:`CONTROL_ERRORS` where the model has a
     nonzero gravity; the masses (every parameter of dimension M or
-    M L^-3 that is not zero) doubled.
+    M L^-3 that is not zero) doubled, where something else carries mass
+    (a nonzero parameter or input whose dimension has M: a damping, a
+    stiffness, a motor's force).  Where nothing else does, every mass
+    doubled is a change of the unit of mass, no error at all: a passive
+    body falls alike whatever it weighs.
+
+    Parameters
+    ----------
+    model : EngineModel
+    inputs : sequence of Dimension
+        The dimensions of the inputs the run gives (nonzero ones).
 
     Examples
     --------
@@ -153,14 +173,32 @@ def control_factors(model) -> list[tuple[str, float, dict[str, float]]]:
     if gravity is not None and any(v != 0 for v in gravity.value):
         out.extend(("g", e, {"g": 1.0 + e}) for e in CONTROL_ERRORS)
     mass, density = Dimension.parse("M"), Dimension.parse("M L^-3")
-    masses = {
-        p.name: 2.0
-        for p in model.parameters
-        if p.dimension in (mass, density) and p.source != "derived" and any(v != 0 for v in p.value)
-    }
-    if masses:
+    nonzero = [p for p in model.parameters if p.source != "derived" and any(v != 0 for v in p.value)]
+    masses = {p.name: 2.0 for p in nonzero if p.dimension in (mass, density)}
+    carriers = [
+        d
+        for p in nonzero
+        if p.dimension not in (mass, density)
+        for d in ((p.dimension,) if p.dimension is not None else (d for _part, d in p.parts))
+    ] + list(inputs)
+    if masses and any(d.exponent_of("M") != 0 for d in carriers):
         out.append(("masses", 1.0, masses))
     return out
+
+
+def unseen_groups(controls) -> tuple[str, ...]:
+    """The groups whose every control passed unnoticed: errors this run cannot see, in the controls' order.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.verdicts.strength import Control, unseen_groups
+    >>> unseen_groups([Control("g", 1e-4, False), Control("g", 1.0, False), Control("masses", 1.0, True)])
+    ('g',)
+    >>> unseen_groups([Control("g", 1e-4, False), Control("g", 1.0, True)])
+    ()
+    """
+    groups = dict.fromkeys(c.group for c in controls)
+    return tuple(g for g in groups if not any(c.caught for c in controls if c.group == g))
 
 
 def caught(original: np.ndarray, back: np.ndarray, limits: np.ndarray, bits: bool) -> bool:

@@ -307,7 +307,17 @@ def sweep(
     if workers is not None:
         workers = read_count(workers, "workers", least=1)
     baseline_factor = positive_float(baseline_factor, "baseline_factor")
-    options = {"baseline_factor": baseline_factor, "ensemble": ensemble, "seed": seed, "diagnose": diagnose}
+    from .verify import baseline
+
+    # the original's run and its twins' do not depend on s: run once here, shared by every verification
+    base = baseline(model, duration, controls, ensemble=ensemble, seed=seed)
+    options = {
+        "baseline_factor": baseline_factor,
+        "ensemble": ensemble,
+        "seed": seed,
+        "diagnose": diagnose,
+        "baseline": base,
+    }
     job = (model, scaling, duration, controls, options)
     report = progress if progress is not None else (lambda done, total: None)
     if client is not None:

@@ -50,10 +50,11 @@ from ...scaling import is_power_of_two
 from ...simulation import SimilarityReport, Trajectory, allowed_deviation, positive_float, similarity_report
 from ..enginemodel import EngineModel, check_scaling
 from ..parameters import dim, dimension_factors
-from ..protocols import KeepsInputs, Runs
-from .strength import Control, caught, control_factors, horizon
+from ..protocols import KeepsInputs, MultipliesInPlace, Runs
+from .scalefree import scale_free_run
+from .strength import Control, caught, control_factors, horizon, unseen_groups
 
-__all__ = ["Runs", "smooth_controls", "verify"]
+__all__ = ["Baseline", "Runs", "baseline", "smooth_controls", "verify"]
 
 
 def verify(
@@ -70,6 +71,7 @@ def verify(
     seed: int = 0,
     diagnose: bool = True,
     strength: bool = True,
+    baseline: Baseline | None = None,
     keep_inputs: bool = False,
 ) -> SimilarityReport:
     """Run a model and its scaled copy, compare them, and say why they differ.
@@ -118,11 +120,18 @@ def verify(
         not similar (default True).
     strength : bool
         Say how strong the verdict is (default True): the twins'
-        ``horizon`` and the ``detection_limit`` of negative controls run in
-        the same batch (the copy with gravity times 1 + e for e = 1e-4,
-        1e-2 and 1, and with every mass doubled; see
-        ``pitheorem.engines.verdicts.strength``).  A verdict none of whose
-        controls is caught is ``inconclusive``, never similar.
+        ``horizon`` and the ``detection_limit`` of negative controls (the
+        copy with gravity times 1 + e for e = 1e-4, 1e-2 and 1, and with
+        every mass doubled; see ``pitheorem.engines.verdicts.strength``).
+        Each group's smallest error runs in the verdict's batch; its larger
+        ones only when that passes unnoticed.  A verdict that cannot see a
+        group's error (none of its controls caught: gravity on a
+        gravity-compensated arm) is ``inconclusive``, never similar.
+    baseline : Baseline, optional
+        The original's run and its twins' under the same inputs, from
+        :func:`baseline`: they do not depend on ``s``, so copies of one
+        model at many scale factors (a sweep) run them once.  Open loop
+        only; its duration, inputs, ensemble and seed must be these.
     keep_inputs : bool
         Compare with a copy whose inputs keep their values
         (:meth:`~pitheorem.engines.EngineModel.scaled` with
@@ -134,7 +143,10 @@ def verify(
     SimilarityReport
         ``.exact``, ``.first_divergence``, ``.similar``, ``.excited``,
         ``.causes``, ``.max_deviation``, ``.deviation`` and
-        ``.sensitivity`` per coordinate, the runs as trajectories.
+        ``.sensitivity`` per coordinate, the runs as trajectories.  Where
+        every factor is a power of two and the runs are not bit for bit,
+        ``.scale_free`` says whether they are with the settings of no pure
+        dimension made scale-free in both (``pitheorem.engines.verdicts.scalefree``).
 
     Raises
     ------
@@ -186,39 +198,63 @@ def verify(
     if len(copy.coordinate_dimensions()[0]) != len(names):
         raise InvalidRequestError("the scaled model has other coordinates than the original")
     factors = np.array([factor(d) for d in dims])
-    control_factors = np.array([factor(d) for d in original.control_dimensions()])
+    input_dims = list(original.control_dimensions())
+    input_factors = np.array([factor(d) for d in input_dims])
     if keep_inputs:  # the same inputs; an activation is in its input's unit, which is kept
         inputs = original.coordinate_inputs() if isinstance(original, KeepsInputs) else [None] * len(factors)
-        factors = factors / np.array([1.0 if i is None else control_factors[i] for i in inputs])
-        control_factors = np.ones_like(control_factors)
-    u_original = _open_loop_rows(controls, n_steps, dt, control_factors.size)
-    u_scaled = None if u_original is None else u_original * control_factors
-    policy = _policies(controller, control_factors.size)
+        factors = factors / np.array([1.0 if i is None else input_factors[i] for i in inputs])
+        input_factors = np.ones_like(input_factors)
+    u_original = _open_loop_rows(controls, n_steps, dt, input_factors.size)
+    u_scaled = None if u_original is None else u_original * input_factors
+    policy = _policies(controller, input_factors.size)
 
-    twins = [original.twin(seed + k) for k in range(ensemble)]
+    if baseline is not None:
+        _check_baseline(baseline, n_steps, u_original, ensemble, seed, controller)
+    twins = [] if baseline is not None else [original.twin(seed + k) for k in range(ensemble)]
     # the negative controls: the copy with one group wrong by a known error, judged like the copy itself
     # (none for a file the engine refuses to run: the runs below say so)
-    wrong = (
-        _negative_controls(model, scaled, keep_inputs)
-        if strength and original.refusal is None and copy.refusal is None
-        else []
-    )
+    # the inputs that act carry their dimensions into the groups: a motor's force makes the masses matter
+    acting = () if u_original is None else [d for d, col in zip(input_dims, u_original.T, strict=True) if col.any()]
+    if controller is not None:
+        acting = input_dims
+    strong = strength and original.refusal is None and copy.refusal is None
+    ladder = control_factors(model, acting) if strong else []
     t = np.arange(n_steps + 1) * dt
-    if controller is None and all(type(c.runner) is type(original) for c in (scaled, *(w for *_, w in wrong))):
+    batched = controller is None and type(copy) is type(original)
+
+    def wrong_runs(rungs):
+        """The runs of some controls: in one batch open loop, else one by one with their own policies."""
+        wrong = [_wrong_copy(model, scaled, g, times, compiled=batched) for g, _e, times in rungs]
+        if batched:
+            return original.run_many(n_steps, [(w, u_scaled, False, None) for w in wrong])
+        return [w.runner.run(n_steps, u_scaled, policy=policy(w)) for w in wrong]
+
+    # each group's first control (its smallest error) runs in the verdict's batch; a group's others only if it
+    # passes unnoticed, for a control caught at a group's smallest error says what the larger ones would
+    first_rungs, later_rungs = _rungs(ladder)
+    if batched:
+        first = [_wrong_copy(model, scaled, g, times, compiled=True) for g, _e, times in first_rungs]
         # one batch: the engine runs them at once (MuJoCo's rollout spreads them over the cores, MJX vmaps them)
         jobs = [
-            (original, u_original, False, None),
+            *(() if baseline is not None else ((original, u_original, False, None),)),
             (copy, u_scaled, False, None),
             *((twin, u_original, False, None) for twin in twins),
-            *((w.runner, u_scaled, False, None) for *_, w in wrong),
+            *((w, u_scaled, False, None) for w in first),
         ]
-        run, scaled_run, *rest = original.run_many(n_steps, jobs)
-        twin_runs, control_runs = rest[: len(twins)], rest[len(twins) :]
+        rows = original.run_many(n_steps, jobs)
+        if baseline is not None:  # the original's run and its twins' are the baseline's
+            rows = [baseline.run, *rows[:1], *baseline.twins, *rows[1:]]
+        run, scaled_run, *rest = rows
+        twin_runs, control_runs = rest[:ensemble], rest[ensemble:]
     else:
-        run = original.run(n_steps, u_original, policy=policy(model))
+        run = baseline.run if baseline is not None else original.run(n_steps, u_original, policy=policy(model))
         scaled_run = copy.run(n_steps, u_scaled, policy=policy(scaled))
-        twin_runs = [twin.run(n_steps, u_original, policy=policy(model)) for twin in twins]
-        control_runs = [w.runner.run(n_steps, u_scaled, policy=policy(w)) for *_, w in wrong]
+        twin_runs = (
+            list(baseline.twins)
+            if baseline is not None
+            else [twin.run(n_steps, u_original, policy=policy(model)) for twin in twins]
+        )
+        control_runs = wrong_runs(first_rungs)
 
     def trajectory(rows):
         return Trajectory(t, rows, tuple(names))
@@ -235,18 +271,32 @@ def verify(
     )
     exact_expected = _every_factor_a_power_of_two(model, factor)
     limits = allowed_deviation(report.original, report.sensitivity, baseline_factor)
-    controls = tuple(
-        Control(group, error, caught(run, rows / factors, limits, bits=exact_expected))
-        for (group, error, _w), rows in zip(wrong, control_runs, strict=True)
-    )
+
+    def judged(rungs, rows_of_each):
+        return [
+            Control(group, error, caught(run, rows / factors, limits, bits=exact_expected))
+            for (group, error, _f), rows in zip(rungs, rows_of_each, strict=True)
+        ]
+
+    controls = judged(first_rungs, control_runs)
+    unseen = {c.group for c in controls if not c.caught}
+    later = [rung for rung in later_rungs if rung[0] in unseen]
+    if later:
+        controls += judged(later, wrong_runs(later))
+    controls = tuple(sorted(controls, key=lambda c: (c.group != "g", c.error)))
     seen = [c.error for c in controls if c.caught]
     report = dataclasses.replace(
         report,
         horizon=horizon(t, run, twin_runs) if strength else None,
         detection_limit=min(seen) if seen else None,
         controls=controls,
-        inconclusive=bool(controls) and not seen,
+        inconclusive=bool(unseen_groups(controls)),
     )
+    if exact_expected and not report.exact and controller is None:
+        # the proof of the scaling beside the verdict on the model as written: settings of no pure dimension
+        # (the solver's tolerance, a solver whose steps are not scale-free) made scale-free in both runs
+        free = scale_free_run(original, copy, n_steps, u_original, u_scaled, factors, t, names)
+        report = dataclasses.replace(report, scale_free=free)
     if not diagnose or controller is not None or (report.similar and (report.exact or not exact_expected)):
         return report
     from .diagnose import find_causes
@@ -255,27 +305,129 @@ def verify(
     return dataclasses.replace(report, causes=causes)
 
 
-def _negative_controls(model: EngineModel, scaled: EngineModel, from_copy: bool = False) -> list:
-    """The negative controls of a verification: ``(group, error, wrong copy)`` each.
+@dataclasses.dataclass(frozen=True, eq=False)
+class Baseline:
+    """The original's own runs in a verification, which no scale factor changes: its run and its twins'.
 
-    Each wrong copy is the scaled copy with one group times ``1 + e``: made
-    from the original with the copy's factors (one compilation each) where
-    the copy is ``model.scaled(...)``, else (or with `from_copy`: a copy that
-    keeps its inputs states numbers the factors alone do not give) from the
-    copy itself.
+    Make one with :func:`baseline`; :func:`verify` (``baseline=``) and
+    :func:`~pitheorem.engines.sweep` then run only the copies.
+
+    Attributes
+    ----------
+    n_steps : int
+        Steps of each run.
+    inputs : ndarray or None
+        The open-loop inputs, one row per step (None: zero input).
+    run : ndarray
+        The original's run, one row per sample.
+    twins : tuple of ndarray
+        The twins' runs, of seeds ``seed``, ``seed + 1``, ...
+    seed : int
     """
-    out = []
+
+    n_steps: int
+    inputs: np.ndarray | None
+    run: np.ndarray
+    twins: tuple
+    seed: int
+
+
+def baseline(model: EngineModel, duration: float = 1.0, controls=None, *, ensemble: int = 3, seed: int = 0) -> Baseline:
+    """Run a model and its one-ulp twins once, for verifications of its copies at several scale factors.
+
+    Parameters
+    ----------
+    model : EngineModel
+    duration : float
+        Simulated time of the runs, in the model's units.
+    controls : callable, optional
+        ``t -> array`` of inputs, as for :func:`verify`.
+    ensemble, seed : int
+        The twins, as for :func:`verify`.
+
+    Returns
+    -------
+    Baseline
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.verdicts.verify import baseline
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    >>> u = lambda t: [0.1]
+    >>> base = baseline(model, 0.5, u)
+    >>> [engines.verify(model, sc, s, duration=0.5, controls=u, baseline=base).verdict for s in (4, 10)]
+    ['exact', 'similar']
+    """
+    if not isinstance(model, EngineModel):
+        raise InvalidRequestError(f"baseline needs an EngineModel (engines.load(...)), got {type(model).__name__}")
+    duration = positive_float(duration, "duration")
+    ensemble = read_count(ensemble, "ensemble", least=1)
+    seed = read_count(seed, "seed")
+    runner = model.runner
+    dt = runner.timestep()
+    n_steps = max(1, round(duration / dt))
+    inputs = _open_loop_rows(controls, n_steps, dt, len(runner.control_dimensions()))
+    twins = [runner.twin(seed + k) for k in range(ensemble)]
+    run, *twin_runs = runner.run_many(n_steps, [(r, inputs, False, None) for r in (runner, *twins)])
+    for rows in (run, *twin_runs, *(() if inputs is None else (inputs,))):
+        rows.setflags(write=False)  # shared by every verification that reuses it
+    return Baseline(n_steps, inputs, run, tuple(twin_runs), seed)
+
+
+def _check_baseline(base, n_steps: int, inputs, ensemble: int, seed: int, controller) -> None:
+    """Refuse a baseline made for other runs than this verification's."""
+    if not isinstance(base, Baseline):
+        raise InvalidRequestError(f"baseline must come from baseline(...), got {type(base).__name__}")
+    if controller is not None:
+        raise InvalidRequestError("a baseline holds open-loop runs; a closed-loop controller runs its own")
+    same_inputs = (base.inputs is None and inputs is None) or (
+        base.inputs is not None and inputs is not None and np.array_equal(base.inputs, inputs)
+    )
+    if base.n_steps != n_steps or not same_inputs or len(base.twins) != ensemble or base.seed != seed:
+        raise InvalidRequestError(
+            "the baseline was run for another duration, other inputs or other twins than this verification "
+            f"({base.n_steps} steps, {len(base.twins)} twins from seed {base.seed}; this one: {n_steps} steps, "
+            f"{ensemble} twins from seed {seed})"
+        )
+
+
+def _rungs(ladder: list) -> tuple[list, list]:
+    """The controls of the first batch (each group's smallest error) and the others, in the ladder's order."""
+    firsts, later, groups = [], [], set()
+    for rung in ladder:
+        (later if rung[0] in groups else firsts).append(rung)
+        groups.add(rung[0])
+    return firsts, later
+
+
+def _wrong_copy(model: EngineModel, scaled: EngineModel, group: str, wrong: dict[str, float], *, compiled: bool):
+    """A negative control's copy: the scaled copy with some parameters times a known factor.
+
+    Gravity, or the masses, on a runner that multiplies them in its
+    compiled model (:class:`~pitheorem.engines.protocols.MultipliesInPlace`),
+    are changed there, not compiled again (``compiled=True``: a runner, for
+    a batch).
+    Otherwise an EngineModel: made from the original with the copy's
+    factors (one compilation) where the copy is ``model.scaled(...)``,
+    else from the copy itself.
+    """
+    if compiled and isinstance(scaled.runner, MultipliesInPlace):
+        if set(wrong) == {"g"}:
+            return scaled.runner.with_gravity_times(wrong["g"])
+        if group == "masses":
+            return scaled.runner.with_masses_times(next(iter(wrong.values())))
     origin = scaled.copied_from
-    for group, error, wrong in control_factors(model):
-        if origin is not None and origin[0] is model and not from_copy:
-            factors = dict(origin[1])
-            for name, f in wrong.items():
-                factors[name] = factors.get(name, 1.0) * f
-            copy = model.multiplied(**factors)
-        else:
-            copy = scaled.multiplied(**wrong)
-        out.append((group, error, copy))
-    return out
+    if origin is not None and origin[0] is model:
+        factors = dict(origin[1])
+        for name, f in wrong.items():
+            factors[name] = factors.get(name, 1.0) * f
+        made = model.multiplied(**factors)
+    else:
+        made = scaled.multiplied(**wrong)
+    return made.runner if compiled else made
 
 
 def exact_in_binary(model: EngineModel, scaling, s) -> bool:

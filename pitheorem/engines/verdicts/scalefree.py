@@ -1,0 +1,138 @@
+"""The proof beside the verdict: both runs again with every setting of no pure dimension made scale-free.
+
+Some engine settings have no pure dimension, so no similarity scaling can
+carry them: MuJoCo's solver ``tolerance`` (and ``noslip_tolerance``)
+compares a sum of residuals of mixed dimensions with a fixed number, so a
+scaled run stops after other iterations; the PGS and CG solvers take
+steps that are not invariant under a change of units.  A model that uses
+them cannot be bit for bit at a power of four, however right its scaling.
+
+Where every factor is a power of two and the runs as written are not bit
+for bit, :func:`scale_free_run` runs the original and the copy again with
+those settings made scale-free in both (a tolerance of 0: every
+iteration done; the scale-free solver), and says whether the runs are
+then exact.  It is a proof *of the scaling*, stated beside the verdict on
+the model as written (``rep.scale_free``): the verdict stays what the
+model as written does.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...immutable import immutable
+from ...simulation import Trajectory, first_divergence
+from ..protocols import CounterRuns, SolverDiagnosis
+
+__all__ = ["ScaleFree", "scale_free_options", "scale_free_run"]
+
+
+@immutable
+@dataclass(frozen=True, slots=True)
+class ScaleFree:
+    """Both runs again with the settings of no pure dimension made scale-free.
+
+    Parameters
+    ----------
+    settings : tuple of (str, str)
+        Each setting changed, and its value in both runs
+        (``("option tolerance", "0")``, ``("option solver", "Newton")``).
+    exact : bool
+        Whether the runs are then bit for bit equal (coordinates mapped back).
+    first_divergence : tuple of (float, str) or None
+        Where they still part: the time and the coordinate.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.verdicts.scalefree import ScaleFree
+    >>> ScaleFree((("option tolerance", "0"),), True, None).text()
+    'scale-free: with option tolerance 0 in both runs the copy is bit for bit the original'
+    """
+
+    settings: tuple
+    exact: bool
+    first_divergence: tuple | None
+
+    def text(self) -> str:
+        """One line for a report: what was changed, and what the runs then did."""
+        changed = ", ".join(f"{name} {value}" for name, value in self.settings)
+        if self.exact:
+            return f"scale-free: with {changed} in both runs the copy is bit for bit the original"
+        t, where = self.first_divergence
+        return f"scale-free: with {changed} in both runs the runs still part, first at t = {t:.6g} in {where}"
+
+
+def scale_free_options(runner) -> list[dict]:
+    """The variant options that make a runner's settings of no pure dimension scale-free, each way to try.
+
+    Each setting alone (the stopping rules at 0; the scale-free solver),
+    then all of them: a solver stopped by a fixed tolerance, or a solver
+    whose steps are not scale-free, may each be the only cause, and with
+    both changed the scale-free solver may stop one iteration apart.
+    Empty where the runner has no such setting.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.verdicts.scalefree import scale_free_options
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> scale_free_options(model.runner)  # MuJoCo's default tolerance, 1e-8
+    [{'tolerance': 0.0}]
+    >>> scale_free_options(model.runner.variant(solver="PGS"))
+    [{'tolerance': 0.0}, {'solver': 'Newton'}, {'tolerance': 0.0, 'solver': 'Newton'}]
+    >>> scale_free_options(model.with_values(tolerance=0).runner)
+    []
+    """
+    if not isinstance(runner, CounterRuns):
+        return []
+    each = [{"tolerance": 0.0}] if runner.solver_settings() else []
+    if isinstance(runner, SolverDiagnosis) and runner.solver_name() != runner.scale_free_solver:
+        each.append({"solver": runner.scale_free_solver})
+    return each if len(each) < 2 else [*each, {k: v for options in each for k, v in options.items()}]
+
+
+def scale_free_run(original, copy, n_steps: int, u_original, u_scaled, factors, t, names) -> ScaleFree | None:
+    """Run both again under each of :func:`scale_free_options`; None where the runners have no such setting.
+
+    Every way is run in one batch; the first under which the runs are bit
+    for bit is reported, else the last (every setting changed) with where
+    the runs still part.
+
+    Parameters
+    ----------
+    original, copy : Runner
+        The original's runner and its scaled copy's.
+    n_steps : int
+    u_original, u_scaled : ndarray or None
+        The open-loop inputs of each run.
+    factors : ndarray
+        Each recorded coordinate's factor (the copy's rows are divided by them).
+    t : ndarray
+        The sample times of the original run.
+    names : sequence of str
+        The recorded coordinates.
+
+    Returns
+    -------
+    ScaleFree or None
+    """
+    ways = scale_free_options(original)
+    if not ways:
+        return None
+    jobs = []
+    for options in ways:
+        jobs += [
+            (original.variant(**options), u_original, False, None),
+            (copy.variant(**options), u_scaled, False, None),
+        ]
+    runs = original.run_many(n_steps, jobs)
+    pairs = [(runs[2 * i], runs[2 * i + 1] / factors) for i in range(len(ways))]
+    chosen = next((i for i, (run, back) in enumerate(pairs) if np.array_equal(run, back)), len(ways) - 1)
+    options, (run, back) = ways[chosen], pairs[chosen]
+    exact = bool(np.array_equal(run, back))
+    where = None if exact else first_divergence(Trajectory(t, run, tuple(names)), Trajectory(t, back, tuple(names)))
+    zeroed = tuple((f"option {name}", "0") for name in original.solver_settings()) if "tolerance" in options else ()
+    solver = (("option solver", options["solver"]),) if "solver" in options else ()
+    return ScaleFree(zeroed + solver, exact, where)

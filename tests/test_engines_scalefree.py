@@ -1,0 +1,96 @@
+"""pitheorem.engines.verdicts.scalefree: the proof beside the verdict, with settings of no pure dimension made scale-free."""
+
+from __future__ import annotations
+
+import copy as copy_module
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pitheorem as pt
+
+mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
+
+from pitheorem import engines  # noqa: E402
+from pitheorem.engines.verdicts.scalefree import ScaleFree, scale_free_options  # noqa: E402
+
+DATA = Path(__file__).resolve().parent / "data" / "engines"
+
+
+def searched(path):
+    model = engines.load(path)
+    return model, pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
+
+
+def plain_runs_equal(model, copy, exponents, n_steps, solver) -> bool:
+    """Independent of pitheorem's runs: both compiled models copied, changed by hand to tolerance 0 (and Newton
+    where asked), and stepped by mj_step from rest."""
+    out = []
+    for m in (model.runner.mjmodel, copy.runner.mjmodel):
+        m = copy_module.copy(m)
+        if solver == "Newton":
+            m.opt.solver = int(mujoco.mjtSolver.mjSOL_NEWTON)
+        m.opt.tolerance = 0.0
+        m.opt.noslip_tolerance = 0.0
+        d = mujoco.MjData(m)
+        rows = []
+        for _ in range(n_steps):
+            mujoco.mj_step(m, d)
+            rows.append(np.concatenate([d.qpos, d.qvel]))
+        out.append(np.array(rows))
+    return np.array_equal(out[0], out[1] / exponents[: out[0].shape[1]])
+
+
+def test_a_solver_of_no_pure_dimension_is_proved_scale_free_beside_the_verdict(tmp_path):
+    """A box on the floor under PGS with a tolerance: not bit for bit as written; with the tolerance at 0 it is
+    (and Newton's steps at tolerance 0 are not: the way that is exact is the one reported)."""
+    pgs = tmp_path / "pgs.xml"
+    pgs.write_text((DATA / "contact.xml").read_text().replace('tolerance="0"', 'solver="PGS"'))
+    model, sc = searched(pgs)
+    rep = engines.verify(model, sc, 4, duration=0.4)
+    assert not rep.exact
+    free = rep.scale_free
+    assert free.settings == (("option tolerance", "0"),)
+    exponents = 4 ** np.array([sc.exponent_of(d) for d in model.runner.coordinate_dimensions()[1]], dtype=float)
+    n_steps = len(rep.original) - 1
+    copy = model.scaled(sc, 4)
+    assert plain_runs_equal(model, copy, exponents, n_steps, solver=None)
+    assert not plain_runs_equal(model, copy, exponents, n_steps, solver="Newton")
+    assert free.exact
+    assert free.first_divergence is None
+    assert free.text() in str(rep).splitlines()
+    assert rep.verdict != "exact"  # the verdict stays what the model as written does
+
+
+def test_a_run_that_parts_for_another_reason_says_where_even_when_scale_free():
+    """The leg of the noslip test: its two stopping rules at 0 do not make it exact (a contact does)."""
+    model, sc = searched(DATA / "noslip_leg.xml")
+    rep = engines.verify(model, sc, 4, duration=1.0, controls=engines.smooth_controls(model), diagnose=False)
+    free = rep.scale_free
+    assert free.settings == (("option tolerance", "0"), ("option noslip_tolerance", "0"))
+    assert not free.exact
+    t, where = free.first_divergence
+    assert 0 < t <= 1.0
+    assert where in rep.original.states
+    assert "still part" in free.text()
+    data = json.loads(format(rep, "json"))
+    assert data["scale_free"]["exact"] is False
+    assert data["scale_free"]["settings"] == {"option tolerance": "0", "option noslip_tolerance": "0"}
+
+
+def test_no_scale_free_run_where_the_runs_are_exact_or_cannot_be():
+    model, sc = searched(engines.example_path("pendulum.xml"))
+    u = engines.smooth_controls(model)
+    assert engines.verify(model, sc, 4, duration=0.3, controls=u).scale_free is None  # exact as written
+    assert engines.verify(model, sc, 10, duration=0.3, controls=u).scale_free is None  # no power of four
+    assert scale_free_options(model.with_values(tolerance=0).runner) == []
+
+
+def test_options_name_each_setting_of_no_pure_dimension():
+    model = engines.load(engines.example_path("pendulum.xml"))
+    assert scale_free_options(model.runner) == [{"tolerance": 0.0}]  # MuJoCo's default tolerance, 1e-8
+    pgs = model.with_values(tolerance=0).runner.variant(solver="PGS")
+    assert scale_free_options(pgs) == [{"solver": "Newton"}]
+    assert ScaleFree((("option solver", "Newton"),), False, (0.5, "q")).text().endswith("first at t = 0.5 in q")
