@@ -477,7 +477,8 @@ def _cmd_verify(args) -> int:
     from .engines.cli import verify_engine
 
     model, engine_model, result, sc = _scaled_scene(args, model, engine_model, result, s, args.engine)
-    answer = verify_engine(engine_model, sc, s, float(duration), args.input)
+    show = args.format != "json" and sys.stderr.isatty()
+    answer = verify_engine(engine_model, sc, s, float(duration), args.input, progress=show)
     _print(answer, args)
     _say_scaling(result, args.solution)
     return EXIT_OK if answer.report.similar else EXIT_INFEASIBLE

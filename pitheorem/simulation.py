@@ -702,10 +702,11 @@ class SimilarityReport(TableDisplay):
         times ``1 + e``) that the negative controls run beside the copy
         were caught at; None when none was run or none was caught.
     controls : tuple of Control
-        The negative controls and whether each was caught.
+        The negative controls that ran and whether each was caught.
     inconclusive : bool
-        Controls were run and none was caught: the run cannot show an
-        error in the scaling, so the verdict is not "similar".
+        A group's controls (gravity's, or the masses') all passed
+        unnoticed: the run cannot show an error in that group, so the
+        verdict is not "similar".
     scale_free : ScaleFree or None
         At a power of four, when the runs are not bit for bit: both runs
         again with the engine's settings of no pure dimension made

@@ -79,7 +79,9 @@ def test_at_four_exact_or_the_solver_named_and_at_ten_similar_under_a_smooth_inp
     assert proof.max_deviation == 0.0
     assert proof.causes == ()
     rep = engines.verify(model, sc, 10, duration=1.0, controls=u)
-    assert rep.similar, rep
+    # gymnasium's planar models cannot show a gravity error: within the yardstick, but inconclusive
+    assert rep.similar or (rep.passed and name in ("point.xml", "reacher.xml", "swimmer.xml")), rep
+    assert rep.similar is not rep.inconclusive
     assert rep.excited
     assert not rep.exact
     assert rep.first_divergence is not None

@@ -18,6 +18,7 @@ from pitheorem import engines
 from pitheorem.cli import main
 from pitheorem.engines.cli import parse_s_values
 from pitheorem.engines.thresholds import thresholds
+from pitheorem.engines.verdicts.strength import control_factors
 
 PENDULUM = engines.example_path("pendulum.xml")
 DURATION = 0.1
@@ -83,6 +84,30 @@ def test_the_process_pool_and_this_process_give_the_same_rows(pendulum):
     engines.sweep(model, sc, s=s, duration=DURATION, controls=push, fit=False, progress=lambda *a: seen.append(a))
     assert [done for done, _ in seen] == [1, 2, 3, 4]
     assert {total for _, total in seen} == {4}
+
+
+def test_in_this_process_the_copies_of_every_s_run_in_one_call(pendulum, monkeypatch):
+    """The first batches of all the verifications go to the engine at once (rollout's threads, MJX's vmap):
+    one call for the baseline, one for every copy and its first controls, and the rows are verify's."""
+    from pitheorem.engines.runners.mujoco import MujocoRunner
+
+    model, sc = pendulum
+    s = (4, 1e-2, 10, 100)
+    calls = []
+    run_many = MujocoRunner.run_many
+
+    def counting(self, n_steps, jobs):
+        calls.append(len(jobs))
+        return run_many(self, n_steps, jobs)
+
+    monkeypatch.setattr(MujocoRunner, "run_many", counting)
+    sw = engines.sweep(model, sc, s=s, duration=DURATION, controls=push, fit=False, workers=1)
+    first_controls = len({g for g, _e, _f in control_factors(model)})
+    assert calls[:2] == [1 + 3, len(s) * (1 + first_controls)]  # the original and 3 twins; then every copy
+    monkeypatch.setattr(MujocoRunner, "run_many", run_many)
+    for row in sw.rows:
+        rep = verify_alone(model, sc, row.s)
+        assert (row.verdict, row.max_deviation, row.horizon) == (rep.verdict, rep.max_deviation, rep.horizon)
 
 
 def test_a_copy_the_compiler_refuses_is_a_row(pendulum, tmp_path):
@@ -276,11 +301,23 @@ def test_the_command_line_json_has_the_rows_of_the_python_call(pendulum, capsys)
     assert [r["max_deviation"] for r in doc["sweeps"][0]["rows"]] == [r.max_deviation for r in sw.rows]
 
 
-def test_mjx_sweeps_run_in_this_process_and_match_verify(pendulum):
+def test_mjx_sweeps_run_in_this_process_and_match_verify(pendulum, monkeypatch):
     pytest.importorskip("mujoco.mjx", reason="MJX is not installed (pip install 'pitheorem[mjx]')")
     model, sc = pendulum
+    mjx_class = type(engines.load(PENDULUM, engine="mjx").runner)
+    calls = []
+    run_many = mjx_class.run_many
+
+    def counting(self, n_steps, jobs):
+        calls.append(len(jobs))
+        return run_many(self, n_steps, jobs)
+
+    monkeypatch.setattr(mjx_class, "run_many", counting)
     sw = engines.sweep(model, sc, s=(4, 10), duration=0.02, controls=push, engine="mjx", fit=False)
+    monkeypatch.setattr(mjx_class, "run_many", run_many)
     assert sw.engine == "mjx"
+    # the original and its three twins once, then both copies with their first controls in one vectorised call
+    assert calls[:2] == [4, 2 * (1 + len({g for g, _e, _f in control_factors(model)}))]
     mjx = engines.load(PENDULUM, engine="mjx")
     for row in sw.rows:
         rep = engines.verify(mjx, sc, row.s, duration=0.02, controls=push)

@@ -301,3 +301,13 @@ def test_a_baseline_of_other_runs_is_refused_by_name():
         engines.verify(model, sc, 4, duration=0.1, ensemble=2, baseline=base, controller=lambda m: lambda *a: 0)
     with pytest.raises(pt.InvalidRequestError, match="must come from baseline"):
         engines.verify(model, sc, 4, duration=0.1, baseline="runs")
+
+
+def test_progress_is_told_each_stage_in_order():
+    from pitheorem.engines.verdicts.verify import STAGES
+
+    model = engines.load(DATA / "tendon_actuators.xml")
+    sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
+    seen = []
+    engines.verify(model, sc, 4, duration=0.05, progress=lambda done, total: seen.append((done, total)))
+    assert seen == [(k, STAGES) for k in range(1, STAGES + 1)]

@@ -270,6 +270,7 @@ def test_every_module_has_its_test_file_and_every_test_file_a_module_or_a_reason
             "verdicts.causes",
             "verdicts.diagnose",
             "verdicts.probes",
+            "verdicts.scalefree",
             "verdicts.strength",
             "verdicts.sweep",
             "verdicts.verify",

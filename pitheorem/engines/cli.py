@@ -345,7 +345,9 @@ def apply_engine(
     )
 
 
-def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str = "smooth") -> EngineVerifyAnswer:
+def verify_engine(
+    model: EngineModel, scaling, s, duration: float, inputs: str = "smooth", progress: bool = False
+) -> EngineVerifyAnswer:
     """The command line's ``verify``: the model and its scaled copy run, and the verdict.
 
     Parameters
@@ -356,6 +358,8 @@ def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str =
     duration : float
     inputs : {"smooth", "zero"}
         :func:`pitheorem.engines.smooth_controls`, or no input.
+    progress : bool
+        Show a progress bar of the verification's stages on stderr (tqdm).
 
     Returns
     -------
@@ -375,10 +379,16 @@ def verify_engine(model: EngineModel, scaling, s, duration: float, inputs: str =
     strength: an error of 0.0001 in gravity or the masses is caught; the twins stay together to the end (t = 0.5)
     True
     """
-    from .verdicts.verify import exact_in_binary, smooth_controls, verify
+    from .verdicts.verify import STAGES, exact_in_binary, smooth_controls, verify
 
     controls = smooth_controls(model) if inputs == "smooth" and len(model.inputs()[0]) else None
-    rep = verify(model, scaling, s, duration=duration, controls=controls)
+    bar = _progress_bar(STAGES, "verify", "stage") if progress else None
+    try:
+        advance = None if bar is None else (lambda done, total: bar.update(done - bar.n))
+        rep = verify(model, scaling, s, duration=duration, controls=controls, progress=advance)
+    finally:
+        if bar is not None:
+            bar.close()
     notes = model.runner.engine_notes() if isinstance(model.runner, EngineNotes) else ()
     return EngineVerifyAnswer(
         model.path, model.engine, Fraction(s), duration, inputs, exact_in_binary(model, scaling, s), rep, notes
@@ -746,7 +756,7 @@ def sweep_engine(
     return SweepAnswer(tuple(names), tuple(sweeps), tuple(plots))
 
 
-def _progress_bar(total: int):
+def _progress_bar(total: int, what: str = "sweep", unit: str = "run"):
     """tqdm's bar on stderr, or None where tqdm is not installed."""
     try:
         from tqdm import tqdm
@@ -754,7 +764,7 @@ def _progress_bar(total: int):
         return None
     import sys
 
-    return tqdm(total=total, desc="sweep", unit="run", file=sys.stderr, leave=False)
+    return tqdm(total=total, desc=what, unit=unit, file=sys.stderr, leave=False)
 
 
 def _save_figure(sw, path: Path) -> Path:

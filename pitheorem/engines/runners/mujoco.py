@@ -45,7 +45,13 @@ __all__ = ["MujocoRunner", "UrdfInMujoco", "load_mjcf", "load_urdf"]
 
 
 def _mujoco():
-    return engine_module("mujoco")
+    module = _MODULE.get("mujoco")
+    if module is None:  # asked once, and named with its extra when it is missing
+        module = _MODULE["mujoco"] = engine_module("mujoco")
+    return module
+
+
+_MODULE: dict = {}
 
 
 #: a parameter's path: its element (``geom 'foot'``, ``geom #3``) and the attribute after it
@@ -448,18 +454,36 @@ class MujocoRunner:
 
     def element_name(self, field: str, row: int) -> str:
         """A row of a stored field, named by its element where the field has one row per element."""
-        mj, m = _mujoco(), self.mjmodel
-        prefix = field.split("_", 1)[0]
-        kind = _FIELD_OBJECTS.get(prefix)
-        rows = np.asarray(getattr(m, field)).shape[0] if "." not in field else 0
-        if prefix == "dof" and rows == m.nv:
-            kind, row = "joint", int(m.dof_jntid[row])
-        elif prefix == "mesh" and rows == m.nmeshvert and m.nmesh:
-            kind, row = "mesh", int(np.searchsorted(m.mesh_vertadr, row, side="right") - 1)
-        elif kind is None or rows != getattr(m, _COUNTS.get(kind, f"n{kind}"), -1):
+        kind, ids = self._element_rows(field)
+        if kind is None:
             return f"{field}[{row}]"
-        name = mj.mj_id2name(m, getattr(mj.mjtObj, f"mjOBJ_{kind.upper()}"), row)
-        return f"{kind} {name!r}" if name else f"{kind} #{row}"
+        element = int(ids[row]) if ids is not None else int(row)
+        names = self._element_names.setdefault(kind, {})
+        if element not in names:
+            mj = _mujoco()
+            name = mj.mj_id2name(self.mjmodel, getattr(mj.mjtObj, f"mjOBJ_{kind.upper()}"), element)
+            names[element] = f"{kind} {name!r}" if name else f"{kind} #{element}"
+        return names[element]
+
+    def _element_rows(self, field: str):
+        """The kind of element a field's rows belong to and each row's element (None: the row is the element),
+        found once per field: an audit names thousands of mesh vertices."""
+        cache = self.__dict__.setdefault("_element_row_cache", {})
+        self.__dict__.setdefault("_element_names", {})
+        if field not in cache:
+            m = self.mjmodel
+            prefix = field.split("_", 1)[0]
+            kind = _FIELD_OBJECTS.get(prefix)
+            rows = np.asarray(getattr(m, field)).shape[0] if "." not in field else 0
+            if prefix == "dof" and rows == m.nv:
+                cache[field] = ("joint", np.asarray(m.dof_jntid))
+            elif prefix == "mesh" and rows == m.nmeshvert and m.nmesh:
+                cache[field] = ("mesh", np.searchsorted(m.mesh_vertadr, np.arange(rows), side="right") - 1)
+            elif kind is None or rows != getattr(m, _COUNTS.get(kind, f"n{kind}"), -1):
+                cache[field] = (None, None)
+            else:
+                cache[field] = (kind, None)
+        return cache[field]
 
     def _geom_name(self, index: int) -> str:
         mj = _mujoco()

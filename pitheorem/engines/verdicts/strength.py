@@ -14,7 +14,7 @@ says which:
   same whatever gravity is; a copy with gravity left unscaled is then
   "similar" and proves nothing about gravity.  A *negative control* is the
   scaled copy with one group deliberately wrong by a known relative error
-  ``e`` (gravity times ``1 + e``; every mass and density times ``1 + e``),
+  ``e`` (gravity times ``1 + e``; every mass, density and inertia times ``1 + e``),
   run in the same batch and judged by the same rule as the copy itself
   (bit for bit where every factor is a power of two, else against the
   yardstick).  The smallest ``e`` a control is caught at is the run's
@@ -144,12 +144,12 @@ def control_factors(model, inputs=()) -> list[tuple[str, float, dict[str, float]
     """The negative controls a model takes: ``(group, error, factors for EngineModel.multiplied)`` each.
 
     Gravity at each of :data:`CONTROL_ERRORS` where the model has a
-    nonzero gravity; the masses (every parameter of dimension M or
-    M L^-3 that is not zero) doubled, where something else carries mass
-    (a nonzero parameter or input whose dimension has M: a damping, a
-    stiffness, a motor's force).  Where nothing else does, every mass
-    doubled is a change of the unit of mass, no error at all: a passive
-    body falls alike whatever it weighs.
+    nonzero gravity; the masses (every nonzero mass, density and inertia:
+    a dimension M L^k, without time) doubled, where something else
+    carries mass (a nonzero parameter or input whose dimension has M: a
+    damping, a stiffness, a motor's force).  Where nothing else does,
+    every mass doubled is a change of the unit of mass, no error at all:
+    a passive body falls alike whatever it weighs.
 
     Parameters
     ----------
@@ -165,25 +165,27 @@ def control_factors(model, inputs=()) -> list[tuple[str, float, dict[str, float]
     >>> [(group, error) for group, error, _ in control_factors(model)]
     [('g', 0.0001), ('g', 0.01), ('g', 1.0), ('masses', 1.0)]
     """
-    from ...dimensions import Dimension
-
     out = []
     names = {p.name: p for p in model.parameters}
     gravity = names.get("g")
     if gravity is not None and any(v != 0 for v in gravity.value):
         out.extend(("g", e, {"g": 1.0 + e}) for e in CONTROL_ERRORS)
-    mass, density = Dimension.parse("M"), Dimension.parse("M L^-3")
     nonzero = [p for p in model.parameters if p.source != "derived" and any(v != 0 for v in p.value)]
-    masses = {p.name: 2.0 for p in nonzero if p.dimension in (mass, density)}
+    masses = {p.name: 2.0 for p in nonzero if p.dimension is not None and _inertial(p.dimension)}
     carriers = [
         d
         for p in nonzero
-        if p.dimension not in (mass, density)
+        if p.name not in masses
         for d in ((p.dimension,) if p.dimension is not None else (d for _part, d in p.parts))
     ] + list(inputs)
     if masses and any(d.exponent_of("M") != 0 for d in carriers):
         out.append(("masses", 1.0, masses))
     return out
+
+
+def _inertial(dimension) -> bool:
+    """Whether a number is a mass, a density or an inertia: M times a power of L, without time."""
+    return dimension.exponent_of("M") != 0 and dimension.exponent_of("T") == 0
 
 
 def unseen_groups(controls) -> tuple[str, ...]:

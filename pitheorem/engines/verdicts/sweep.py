@@ -20,11 +20,14 @@ read the model from its file (a copy without one is saved to a temporary
 file first), so the file must be readable there, and the controls must
 pickle (Dask pickles closures and lambdas with cloudpickle).
 
-An engine built on JAX (MJX, float32: one vectorised call per
-verification, compiled once for the model's shapes and reused for every
-scaled copy), and any process that has loaded JAX, does not fork: such
-sweeps run one ``s`` after another in this process unless a cluster is
-given (:data:`NO_FORK_PACKAGES`).
+The original's run and its twins' do not depend on ``s``: they run once
+(:func:`~pitheorem.engines.verdicts.verify.baseline`), and each ``s``
+runs only its copy and its negative controls.  An engine built on JAX
+(MJX, float32), and any process that has loaded JAX, does not fork
+(:data:`NO_FORK_PACKAGES`); such sweeps, and any with ``workers=1``, run
+in this process, where the copies of every ``s`` share one call of the
+engine (MJX's vectorised call, MuJoCo Warp's worlds, MuJoCo's rollout
+threads): a scaled copy keeps its original's sizes.
 """
 
 from __future__ import annotations
@@ -361,12 +364,23 @@ def _outcome(model: EngineModel, scaling, s, duration: float, controls, options:
     """
     from .verify import verify
 
+    copy = _copy_or_refusal(model, scaling, s)
+    if isinstance(copy, tuple):
+        return copy
+    return _fields(verify(model, scaling, s, duration=duration, controls=controls, scaled=copy, **options))
+
+
+def _copy_or_refusal(model: EngineModel, scaling, s):
+    """The scaled copy, or the row of a copy the engine's compiler refuses."""
     try:
-        copy = model.scaled(scaling, s)
+        return model.scaled(scaling, s)
     except EngineModelError as err:
         cause = Cause("threshold", err.element or "the scaled copy", f"{model.engine} refuses the copy: {err.reason}")
         return "refused", None, None, None, None, None, (cause,)
-    rep = verify(model, scaling, s, duration=duration, controls=controls, scaled=copy, **options)
+
+
+def _fields(rep) -> tuple:
+    """A report as the fields of a row after ``s`` and before the thresholds."""
     yardstick = max(rep.sensitivity.values(), default=0.0) if rep.sensitivity else 0.0
     horizon = rep.horizon
     return (
@@ -378,6 +392,42 @@ def _outcome(model: EngineModel, scaling, s, duration: float, controls, options:
         rep.first_divergence,
         tuple(rep.causes),
     )
+
+
+def _batched_outcomes(job: tuple, factors: tuple, report) -> list:
+    """Every ``s`` in this process, the first batch of each verification in one call of the engine.
+
+    The copies of one model share its sizes, so the engine runs all their first batches (each copy and its
+    first negative controls; the original and its twins are the baseline's) at once: MuJoCo's rollout over
+    its threads, MJX as one vectorised call, MuJoCo Warp as the worlds of one model.  What a verification
+    needs after that (a control's larger errors, the scale-free proof, the causes) runs s by s.
+    """
+    from .verify import judge, prepare
+
+    model, scaling, duration, controls, options = job
+    total = len(factors)
+    outcomes: list = [None] * total
+    plans = {}
+    for k, f in enumerate(factors):
+        copy = _copy_or_refusal(model, scaling, f)
+        if isinstance(copy, tuple):
+            outcomes[k] = copy
+        else:
+            plans[k] = prepare(model, scaling, f, duration, controls, scaled=copy, **options)
+    jobs = [j for plan in plans.values() for j in plan.jobs()] if all(p.batched for p in plans.values()) else []
+    rows = model.runner.run_many(next(iter(plans.values())).n_steps, jobs) if jobs else []
+    done = total - len(plans)  # the refused copies: done
+    if done:
+        report(done, total)
+    for k, plan in plans.items():
+        mine = None
+        if jobs:
+            size = len(plan.jobs())
+            mine, rows = rows[:size], rows[size:]
+        outcomes[k] = _fields(judge(plan, mine))
+        done += 1
+        report(done, total)
+    return outcomes
 
 
 #: the jobs of the sweeps in flight in this process, by key: forked workers inherit them
@@ -410,11 +460,7 @@ def _on_this_machine(job: tuple, factors: tuple, workers: int | None, report) ->
     total = len(factors)
     n = min(total, workers if workers is not None else (os.cpu_count() or 1))
     if n <= 1 or not _forks(job[0]):
-        outcomes = []
-        for k, f in enumerate(factors):
-            outcomes.append(_outcome(*_with_s(job, f)))
-            report(k + 1, total)
-        return outcomes
+        return _batched_outcomes(job, factors, report)
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 

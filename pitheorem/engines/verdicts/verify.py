@@ -54,7 +54,7 @@ from ..protocols import KeepsInputs, MultipliesInPlace, Runs
 from .scalefree import scale_free_run
 from .strength import Control, caught, control_factors, horizon, unseen_groups
 
-__all__ = ["Baseline", "Runs", "baseline", "smooth_controls", "verify"]
+__all__ = ["STAGES", "Baseline", "Plan", "Runs", "baseline", "judge", "prepare", "smooth_controls", "verify"]
 
 
 def verify(
@@ -73,6 +73,7 @@ def verify(
     strength: bool = True,
     baseline: Baseline | None = None,
     keep_inputs: bool = False,
+    progress=None,
 ) -> SimilarityReport:
     """Run a model and its scaled copy, compare them, and say why they differ.
 
@@ -137,6 +138,10 @@ def verify(
         (:meth:`~pitheorem.engines.EngineModel.scaled` with
         ``keep_inputs=True``): the scaled run gets the very same inputs,
         and its activations are compared in their inputs' units.
+    progress : callable, optional
+        ``progress(done, total)``, called as each of its :data:`STAGES`
+        ends (the copies made, the first batch run, the controls and the
+        scale-free proof, the causes).
 
     Returns
     -------
@@ -169,11 +174,110 @@ def verify(
     >>> rep.verdict, rep.detection_limit, rep.horizon
     ('similar', 0.0001, 0.5)
     """
+    plan = prepare(
+        model,
+        scaling,
+        s,
+        duration,
+        controls,
+        controller=controller,
+        scaled=scaled,
+        baseline_factor=baseline_factor,
+        ensemble=ensemble,
+        seed=seed,
+        diagnose=diagnose,
+        strength=strength,
+        baseline=baseline,
+    )
+    step = progress if progress is not None else (lambda done, total: None)
+    step(1, STAGES)
+    rows = plan.original.run_many(plan.n_steps, plan.jobs()) if plan.batched else None
+    step(2, STAGES)
+    return judge(plan, rows, step)
+
+
+#: the stages a verification reports to its `progress`: copies made, first batch run, controls and the
+#: scale-free proof, causes
+STAGES = 4
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Plan:
+    """A verification made ready to run: its inputs checked, its copies made, its first batch of runs named.
+
+    :func:`prepare` makes one and :func:`judge` finishes it with the rows of
+    :meth:`jobs` (one ``run_many`` call, or None for closed-loop runs, which
+    it runs itself).  A sweep puts the jobs of every ``s`` into one call.
+    """
+
+    model: EngineModel
+    scaled: EngineModel
+    scaling: object
+    s: object
+    n_steps: int
+    names: tuple
+    dims: tuple
+    factors: np.ndarray
+    u_original: np.ndarray | None
+    u_scaled: np.ndarray | None
+    policy: object
+    controller: object
+    baseline: Baseline | None
+    twins: tuple
+    first_rungs: tuple
+    later_rungs: tuple
+    first: tuple
+    t: np.ndarray
+    batched: bool
+    exponents: dict
+    exact_expected: bool
+    baseline_factor: float
+    ensemble: int
+    strength: bool
+    diagnose: bool
+
+    @property
+    def original(self):
+        return self.model.runner
+
+    @property
+    def copy(self):
+        return self.scaled.runner
+
+    def jobs(self) -> list:
+        """The open-loop runs of the first batch: the original (unless a baseline has it), the copy, the twins
+        (unless a baseline has them) and each group's first negative control."""
+        return [
+            *(() if self.baseline is not None else ((self.original, self.u_original, False, None),)),
+            (self.copy, self.u_scaled, False, None),
+            *((twin, self.u_original, False, None) for twin in self.twins),
+            *((w, self.u_scaled, False, None) for w in self.first),
+        ]
+
+
+def prepare(
+    model: EngineModel,
+    scaling,
+    s,
+    duration: float = 1.0,
+    controls=None,
+    *,
+    controller=None,
+    scaled: EngineModel | None = None,
+    baseline_factor: float = 10.0,
+    ensemble: int = 3,
+    seed: int = 0,
+    diagnose: bool = True,
+    strength: bool = True,
+    baseline: Baseline | None = None,
+) -> Plan:
+    """The checks and copies of :func:`verify`, its runs not yet run (the arguments are verify's)."""
     if not isinstance(model, EngineModel):
         raise InvalidRequestError(f"verify needs an EngineModel (engines.load(...)), got {type(model).__name__}")
     s = read_scale_factor(s)
     check_scaling(scaling)
     duration = positive_float(duration, "duration")
+    baseline_factor = positive_float(baseline_factor, "baseline_factor")
     ensemble = read_count(ensemble, "ensemble", least=1)
     seed = read_count(seed, "seed")
     if scaled is None:
@@ -210,98 +314,131 @@ def verify(
 
     if baseline is not None:
         _check_baseline(baseline, n_steps, u_original, ensemble, seed, controller)
-    twins = [] if baseline is not None else [original.twin(seed + k) for k in range(ensemble)]
+    twins = () if baseline is not None else tuple(original.twin(seed + k) for k in range(ensemble))
     # the negative controls: the copy with one group wrong by a known error, judged like the copy itself
-    # (none for a file the engine refuses to run: the runs below say so)
-    # the inputs that act carry their dimensions into the groups: a motor's force makes the masses matter
+    # (none for a file the engine refuses to run: the runs say so).  The inputs that act carry their
+    # dimensions into the groups: a motor's force makes the masses matter
     acting = () if u_original is None else [d for d, col in zip(input_dims, u_original.T, strict=True) if col.any()]
     if controller is not None:
         acting = input_dims
     strong = strength and original.refusal is None and copy.refusal is None
     ladder = control_factors(model, acting) if strong else []
-    t = np.arange(n_steps + 1) * dt
     batched = controller is None and type(copy) is type(original)
-
-    def wrong_runs(rungs):
-        """The runs of some controls: in one batch open loop, else one by one with their own policies."""
-        wrong = [_wrong_copy(model, scaled, g, times, compiled=batched) for g, _e, times in rungs]
-        if batched:
-            return original.run_many(n_steps, [(w, u_scaled, False, None) for w in wrong])
-        return [w.runner.run(n_steps, u_scaled, policy=policy(w)) for w in wrong]
-
     # each group's first control (its smallest error) runs in the verdict's batch; a group's others only if it
     # passes unnoticed, for a control caught at a group's smallest error says what the larger ones would
     first_rungs, later_rungs = _rungs(ladder)
-    if batched:
-        first = [_wrong_copy(model, scaled, g, times, compiled=True) for g, _e, times in first_rungs]
-        # one batch: the engine runs them at once (MuJoCo's rollout spreads them over the cores, MJX vmaps them)
-        jobs = [
-            *(() if baseline is not None else ((original, u_original, False, None),)),
-            (copy, u_scaled, False, None),
-            *((twin, u_original, False, None) for twin in twins),
-            *((w, u_scaled, False, None) for w in first),
-        ]
-        rows = original.run_many(n_steps, jobs)
-        if baseline is not None:  # the original's run and its twins' are the baseline's
-            rows = [baseline.run, *rows[:1], *baseline.twins, *rows[1:]]
+    first = (
+        tuple(_wrong_copy(model, scaled, g, times, compiled=True) for g, _e, times in first_rungs) if batched else ()
+    )
+    return Plan(
+        model=model,
+        scaled=scaled,
+        scaling=scaling,
+        s=s,
+        n_steps=n_steps,
+        names=tuple(names),
+        dims=tuple(dims),
+        factors=factors,
+        u_original=u_original,
+        u_scaled=u_scaled,
+        policy=policy,
+        controller=controller,
+        baseline=baseline,
+        twins=twins,
+        first_rungs=tuple(first_rungs),
+        later_rungs=tuple(later_rungs),
+        first=first,
+        t=np.arange(n_steps + 1) * dt,
+        batched=batched,
+        exponents={n: exponent_of[d] for n, d in zip(names, dims, strict=True)},
+        exact_expected=_every_factor_a_power_of_two(model, factor),
+        baseline_factor=baseline_factor,
+        ensemble=ensemble,
+        strength=strength,
+        diagnose=diagnose,
+    )
+
+
+def judge(plan: Plan, rows: list | None, progress=None) -> SimilarityReport:
+    """Finish a verification: the rows of ``plan.jobs()`` (None: closed loop, run here) compared and judged,
+    the controls' larger errors run where needed, the scale-free proof and the causes found."""
+    p = plan
+    original, copy, model, scaled, n_steps = p.original, p.copy, p.model, p.scaled, p.n_steps
+    factors, u_original, u_scaled, policy = p.factors, p.u_original, p.u_scaled, p.policy
+
+    def wrong_runs(rungs):
+        """The runs of some controls: in one batch open loop, else one by one with their own policies."""
+        wrong = [_wrong_copy(model, scaled, g, times, compiled=p.batched) for g, _e, times in rungs]
+        if p.batched:
+            return original.run_many(n_steps, [(w, u_scaled, False, None) for w in wrong])
+        return [w.runner.run(n_steps, u_scaled, policy=policy(w)) for w in wrong]
+
+    if rows is not None:
+        if p.baseline is not None:  # the original's run and its twins' are the baseline's
+            rows = [p.baseline.run, *rows[:1], *p.baseline.twins, *rows[1:]]
         run, scaled_run, *rest = rows
-        twin_runs, control_runs = rest[:ensemble], rest[ensemble:]
+        twin_runs, control_runs = rest[: p.ensemble], rest[p.ensemble :]
     else:
-        run = baseline.run if baseline is not None else original.run(n_steps, u_original, policy=policy(model))
+        base = p.baseline
+        run = base.run if base is not None else original.run(n_steps, u_original, policy=policy(model))
         scaled_run = copy.run(n_steps, u_scaled, policy=policy(scaled))
         twin_runs = (
-            list(baseline.twins)
-            if baseline is not None
-            else [twin.run(n_steps, u_original, policy=policy(model)) for twin in twins]
+            list(base.twins)
+            if base is not None
+            else [twin.run(n_steps, u_original, policy=policy(model)) for twin in p.twins]
         )
-        control_runs = wrong_runs(first_rungs)
+        control_runs = wrong_runs(p.first_rungs)
 
-    def trajectory(rows):
-        return Trajectory(t, rows, tuple(names))
+    def trajectory(values):
+        return Trajectory(p.t, values, p.names)
 
     report = similarity_report(
         trajectory(run),
         trajectory(scaled_run / factors),
-        s=float(s),
-        scaling=scaling,
-        exponents={n: exponent_of[d] for n, d in zip(names, dims, strict=True)},
-        twins=[trajectory(rows) for rows in twin_runs],
-        baseline_factor=baseline_factor,
+        s=float(p.s),
+        scaling=p.scaling,
+        exponents=p.exponents,
+        twins=[trajectory(r) for r in twin_runs],
+        baseline_factor=p.baseline_factor,
         method=model.engine,
     )
-    exact_expected = _every_factor_a_power_of_two(model, factor)
-    limits = allowed_deviation(report.original, report.sensitivity, baseline_factor)
+    exact_expected = p.exact_expected
+    limits = allowed_deviation(report.original, report.sensitivity, p.baseline_factor)
 
     def judged(rungs, rows_of_each):
         return [
-            Control(group, error, caught(run, rows / factors, limits, bits=exact_expected))
-            for (group, error, _f), rows in zip(rungs, rows_of_each, strict=True)
+            Control(group, error, caught(run, values / factors, limits, bits=exact_expected))
+            for (group, error, _f), values in zip(rungs, rows_of_each, strict=True)
         ]
 
-    controls = judged(first_rungs, control_runs)
+    controls = judged(p.first_rungs, control_runs)
     unseen = {c.group for c in controls if not c.caught}
-    later = [rung for rung in later_rungs if rung[0] in unseen]
+    later = [rung for rung in p.later_rungs if rung[0] in unseen]
     if later:
         controls += judged(later, wrong_runs(later))
     controls = tuple(sorted(controls, key=lambda c: (c.group != "g", c.error)))
     seen = [c.error for c in controls if c.caught]
     report = dataclasses.replace(
         report,
-        horizon=horizon(t, run, twin_runs) if strength else None,
+        horizon=horizon(p.t, run, twin_runs) if p.strength else None,
         detection_limit=min(seen) if seen else None,
         controls=controls,
         inconclusive=bool(unseen_groups(controls)),
     )
-    if exact_expected and not report.exact and controller is None:
+    if exact_expected and not report.exact and p.controller is None:
         # the proof of the scaling beside the verdict on the model as written: settings of no pure dimension
         # (the solver's tolerance, a solver whose steps are not scale-free) made scale-free in both runs
-        free = scale_free_run(original, copy, n_steps, u_original, u_scaled, factors, t, names)
+        free = scale_free_run(original, copy, n_steps, u_original, u_scaled, factors, p.t, p.names)
         report = dataclasses.replace(report, scale_free=free)
-    if not diagnose or controller is not None or (report.similar and (report.exact or not exact_expected)):
+    step = progress if progress is not None else (lambda done, total: None)
+    step(3, STAGES)
+    if not p.diagnose or p.controller is not None or (report.similar and (report.exact or not exact_expected)):
+        step(4, STAGES)
         return report
     from .diagnose import find_causes
 
-    causes = find_causes(model, scaled, scaling, s, n_steps, u_original, u_scaled, factors, report, exact_expected)
+    causes = find_causes(model, scaled, p.scaling, p.s, n_steps, u_original, u_scaled, factors, report, exact_expected)
+    step(4, STAGES)
     return dataclasses.replace(report, causes=causes)
 
 
