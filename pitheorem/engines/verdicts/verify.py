@@ -188,6 +188,7 @@ def verify(
         diagnose=diagnose,
         strength=strength,
         baseline=baseline,
+        keep_inputs=keep_inputs,
     )
     step = progress if progress is not None else (lambda done, total: None)
     step(1, STAGES)
@@ -270,6 +271,7 @@ def prepare(
     diagnose: bool = True,
     strength: bool = True,
     baseline: Baseline | None = None,
+    keep_inputs: bool = False,
 ) -> Plan:
     """The checks and copies of :func:`verify`, its runs not yet run (the arguments are verify's)."""
     if not isinstance(model, EngineModel):
