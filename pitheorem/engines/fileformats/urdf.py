@@ -1,7 +1,11 @@
 """The URDF format: every number a URDF file states, with its dimension and its address; written back by address.
 
 Read with :mod:`xml.etree.ElementTree`, by the URDF specification (SI
-units: metres, kilograms, seconds, radians).  Dimensions follow the joint
+units: metres, kilograms, seconds, radians).  Mesh files are found as
+PyBullet finds them (beside the file, ``package://`` in the folders above
+it) and, first, in a mesh folder the file names where a runner says where
+it does (MuJoCo's runner: its extension ``<mujoco><compiler
+meshdir="..."/></mujoco>``).  Dimensions follow the joint
 type: a revolute or continuous joint has coordinate ``q`` = 1 and
 generalised force ``Q`` = M L^2 T^-2, a prismatic one ``q`` = L and ``Q``
 = M L T^-2.  A scaled copy is the parsed file with each number rewritten
@@ -82,7 +86,7 @@ class _Attr:
         )
 
 
-def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr]:
+def _attributes(tree: ET.ElementTree, path: str, source_dir: Path, folder_at=None) -> list[_Attr]:
     """Every dimensional number the URDF states, in document order."""
     root = tree.getroot()
     if root.tag != "robot":
@@ -90,6 +94,7 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
     out: list[_Attr] = []
     names: set[str] = set()
     address = {id(element): i for i, element in enumerate(root.iter())}
+    mesh_folder = _mesh_folder(root, source_dir, folder_at)
 
     def add(ident, where, element, attr, dimension, note="", default=None):
         if element is None or element.get(attr, default) is None:
@@ -135,12 +140,18 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
                         add(f"{sid}_length", f"{swhere} {g.tag} length", g, "length", _L)
                     elif g.tag == "mesh":
                         filename = g.get("filename", "")
-                        resolved = _mesh_path(filename, source_dir)
+                        resolved = _mesh_path(filename, source_dir, mesh_folder)
                         if resolved is None:
+                            where_looked = "the URDF's folder" + (
+                                f" or its mesh folder {str(mesh_folder)!r}, its "
+                                f"<{'><'.join(folder_at[0].split('/'))} {folder_at[1]}>"
+                                if mesh_folder
+                                else ""
+                            )
                             raise EngineModelError(
                                 path,
                                 f"{swhere} mesh {filename!r}",
-                                "mesh file not found (relative to the URDF's folder)",
+                                f"mesh file not found (relative to {where_looked})",
                             )
                         add(
                             f"{sid}_scale",
@@ -210,7 +221,7 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path) -> list[_Attr
     return out
 
 
-def _compound_meshes(tree: ET.ElementTree, source_dir: Path) -> list[tuple[str, str, int]]:
+def _compound_meshes(tree: ET.ElementTree, source_dir: Path, folder_at=None) -> list[tuple[str, str, int]]:
     """The OBJ collision meshes of several objects (convex decompositions such as V-HACD's).
 
     PyBullet loads such a mesh as a compound of convex hulls, and
@@ -220,11 +231,12 @@ def _compound_meshes(tree: ET.ElementTree, source_dir: Path) -> list[tuple[str, 
     contacts of a scaled copy are off by it.  Returns (link, file, parts) each.
     """
     found = []
+    mesh_folder = _mesh_folder(tree.getroot(), source_dir, folder_at)
     for link in tree.getroot().iter("link"):
         for collision in link.findall("collision"):
             for mesh in collision.iter("mesh"):
                 filename = mesh.get("filename", "")
-                resolved = _mesh_path(filename, source_dir)
+                resolved = _mesh_path(filename, source_dir, mesh_folder)
                 if resolved is None or resolved.suffix.lower() != ".obj":
                     continue
                 with open(resolved, encoding="utf-8", errors="replace") as lines:
@@ -234,9 +246,9 @@ def _compound_meshes(tree: ET.ElementTree, source_dir: Path) -> list[tuple[str, 
     return found
 
 
-def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path) -> None:
+def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path, folder_at=None) -> None:
     """Warn about each collision mesh of :func:`_compound_meshes`."""
-    for link, filename, parts in _compound_meshes(tree, source_dir):
+    for link, filename, parts in _compound_meshes(tree, source_dir, folder_at):
         warn_unscalable(
             path,
             f"link {link!r} collision mesh {filename!r}",
@@ -249,17 +261,41 @@ def _xml_text(tree: ET.ElementTree) -> str:
     return ET.tostring(tree.getroot(), encoding="unicode")
 
 
-def _mesh_path(filename: str, source_dir: Path) -> Path | None:
-    """The file a URDF's mesh or texture names, searched as PyBullet does; None if there is none.
+def _mesh_folder(root: ET.Element, source_dir: Path, folder_at) -> Path | None:
+    """The mesh folder the file names at `folder_at` (an element's path and its attribute); None without one.
 
-    A relative name is relative to the URDF's folder; ``package://NAME/REST`` is looked for as
-    ``NAME/REST`` in that folder and the folders above it (a ROS package's meshes sit beside its
-    ``urdf`` folder).
+    A relative folder is relative to the URDF's folder.
+    """
+    if folder_at is None:
+        return None
+    element_path, attribute = folder_at
+    for element in root.findall(element_path):
+        if element.get(attribute):
+            return source_dir / element.get(attribute)
+    return None
+
+
+def _without_mesh_folder(root: ET.Element, folder_at) -> None:
+    """Drop the mesh folder the file names at `folder_at`: every mesh is then named from the file itself."""
+    if folder_at is not None:
+        for element in root.findall(folder_at[0]):
+            element.attrib.pop(folder_at[1], None)
+
+
+def _mesh_path(filename: str, source_dir: Path, mesh_folder: Path | None = None) -> Path | None:
+    """The file a URDF's mesh or texture names, searched as MuJoCo and PyBullet do; None if there is none.
+
+    A relative mesh name is looked for in `mesh_folder` first (a folder the file names for an
+    engine that reads it, such as MuJoCo's ``<mujoco><compiler meshdir>``), then as PyBullet does: relative to the URDF's
+    folder; ``package://NAME/REST`` is looked for as ``NAME/REST`` in that folder and the folders
+    above it (a ROS package's meshes sit beside its ``urdf`` folder).
     """
     name = filename
     if name.startswith("package://"):
         name = name[len("package://") :]
     candidates = [source_dir / name, Path(name)]
+    if mesh_folder is not None and not filename.startswith("package://"):
+        candidates.insert(0, mesh_folder / name)
     if filename.startswith("package://"):
         candidates += [folder / name for folder in list(source_dir.parents)[:4]]
     for c in candidates:
@@ -268,15 +304,16 @@ def _mesh_path(filename: str, source_dir: Path) -> Path | None:
     return None
 
 
-def _portable_text(tree: ET.ElementTree, source_dir: Path) -> str | None:
+def _portable_text(tree: ET.ElementTree, source_dir: Path, folder_at=None) -> str | None:
     """The URDF's text with every mesh and texture file named by its absolute path, to load from any folder.
 
     None when one of them cannot be found (PyBullet may still find it from the file's own folder).
     """
     tree = copy.deepcopy(tree)
+    mesh_folder = _mesh_folder(tree.getroot(), source_dir, folder_at)
     for element in tree.getroot().iter():
         if element.tag in ("mesh", "texture") and element.get("filename"):
-            found = _mesh_path(element.get("filename"), source_dir)
+            found = _mesh_path(element.get("filename"), source_dir, mesh_folder if element.tag == "mesh" else None)
             if found is None:
                 return None
             element.set("filename", str(found.resolve()))
@@ -294,6 +331,11 @@ class UrdfDocument:
         The file it was read from.
     source_dir : Path
         The folder its mesh and texture files are relative to.
+    mesh_folder : tuple of (str, str), optional
+        Where the file names a folder its meshes are looked for in first:
+        an element's path below ``<robot>`` and its attribute (MuJoCo's
+        runner gives ``("mujoco/compiler", "meshdir")``).  A saved copy
+        names every mesh relative to itself and drops that attribute.
 
     Examples
     --------
@@ -307,10 +349,18 @@ class UrdfDocument:
     #: the units a URDF file is in, whatever a caller declares (its specification's)
     fixed_units = SI
 
-    def __init__(self, tree: ET.ElementTree, path: str, source_dir: Path, *, attrs: list[_Attr] | None = None):
-        self.tree, self.path, self.source_dir = tree, path, source_dir
+    def __init__(
+        self,
+        tree: ET.ElementTree,
+        path: str,
+        source_dir: Path,
+        *,
+        attrs: list[_Attr] | None = None,
+        mesh_folder: tuple[str, str] | None = None,
+    ):
+        self.tree, self.path, self.source_dir, self.mesh_folder = tree, path, source_dir, mesh_folder
         # a copy gets its attributes by address from its original's: the file is not walked again
-        self.attrs = _attributes(tree, path, source_dir) if attrs is None else attrs
+        self.attrs = _attributes(tree, path, source_dir, mesh_folder) if attrs is None else attrs
 
     def parameters(self) -> list[Parameter]:
         """Every dimensional number the file states, in document order."""
@@ -325,7 +375,7 @@ class UrdfDocument:
             f = factors.get(a.name, 1.0)
             if f != 1.0:
                 a.element.set(a.attr, text(a.read(), f))
-        return UrdfDocument(tree, self.path, self.source_dir, attrs=attrs)
+        return UrdfDocument(tree, self.path, self.source_dir, attrs=attrs, mesh_folder=self.mesh_folder)
 
     def text(self) -> str:
         """The file's text as it stands."""
@@ -333,15 +383,15 @@ class UrdfDocument:
 
     def portable_text(self) -> str | None:
         """The file's text with every mesh and texture named by its absolute path (None: one is missing)."""
-        return _portable_text(self.tree, self.source_dir)
+        return _portable_text(self.tree, self.source_dir, self.mesh_folder)
 
     def compound_meshes(self) -> list[tuple[str, str, int]]:
         """The OBJ collision meshes of several convex parts: (link, file, parts) each."""
-        return _compound_meshes(self.tree, self.source_dir)
+        return _compound_meshes(self.tree, self.source_dir, self.mesh_folder)
 
     def warn_compound_meshes(self) -> None:
         """Warn about each collision mesh of several convex parts, whose margins no call reaches."""
-        _warn_compound_meshes(self.tree, self.path, self.source_dir)
+        _warn_compound_meshes(self.tree, self.path, self.source_dir, self.mesh_folder)
 
     def save(self, path, *, copy_assets: bool = False) -> None:
         """Write the file, its meshes and textures named relative to it: the folder holding both can move.
@@ -352,23 +402,29 @@ class UrdfDocument:
         tree = copy.deepcopy(self.tree)
         folder = Path(os.path.abspath(path)).parent
         copies = AssetCopies(assets_folder(os.path.abspath(path))) if copy_assets else None
+        mesh_folder = _mesh_folder(tree.getroot(), self.source_dir, self.mesh_folder)
         for g in tree.getroot().iter():
             if g.tag not in ("mesh", "texture") or not g.get("filename"):
                 continue
-            resolved = _mesh_path(g.get("filename", ""), self.source_dir)
+            resolved = _mesh_path(g.get("filename", ""), self.source_dir, mesh_folder if g.tag == "mesh" else None)
             if resolved is not None:
                 if copies is not None:
                     resolved = copies.copy(resolved)
                 g.set("filename", Path(os.path.relpath(os.path.abspath(resolved), folder)).as_posix())
+        _without_mesh_folder(tree.getroot(), self.mesh_folder)  # each mesh now named relative to the saved file
         Path(path).write_text(_xml_text(tree))
 
 
-def read_urdf(path) -> UrdfDocument:
+def read_urdf(path, *, mesh_folder: tuple[str, str] | None = None) -> UrdfDocument:
     """Read a URDF file: its tree and every number it states.
 
     Parameters
     ----------
     path : str or Path
+    mesh_folder : tuple of (str, str), optional
+        Where the file may name a folder its meshes are looked for in
+        first: an element's path below ``<robot>`` and its attribute, as a
+        runner reads the file (MuJoCo's: ``("mujoco/compiler", "meshdir")``).
 
     Returns
     -------
@@ -397,7 +453,8 @@ def read_urdf(path) -> UrdfDocument:
             tree = ET.parse(path)
         except ET.ParseError as err:
             raise EngineModelError(str(path), f"line {err.position[0]}", f"not well-formed XML ({err})") from None
-    return UrdfDocument(tree, str(path), Path(os.path.abspath(path)).parent)  # a symbolic link not followed
+    # a symbolic link not followed
+    return UrdfDocument(tree, str(path), Path(os.path.abspath(path)).parent, mesh_folder=mesh_folder)
 
 
 def refuse_units(path: str, units: Mapping[str, str]) -> None:

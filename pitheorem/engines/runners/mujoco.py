@@ -18,8 +18,10 @@ settings a URDF cannot hold: the options (time step, gravity, wind, ...),
 and the contact and limit softness, friction and margins MuJoCo's reader
 gives every geom and joint from its default class.  They are written
 beside a saved copy (``NAME.urdf.mujoco.json``) and read back by
-:func:`load_urdf`.  MuJoCo's URDF reader makes no actuators: such a model
-has no controls (``run(controls=...)`` has nothing to set).
+:func:`load_urdf`.  MuJoCo's URDF reader makes no actuators; the runner
+gives every movable joint a motor (:func:`add_joint_motors`), as PyBullet's
+runner takes one torque or force per movable joint, so ``run(controls=...)``
+sets one torque (revolute) or force (prismatic) per joint.
 """
 
 from __future__ import annotations
@@ -39,9 +41,9 @@ from ..enginemodel import EngineModel
 from ..fileformats.mjcf import read_mjcf
 from ..fileformats.urdf import UrdfDocument, read_urdf, refuse_units
 from ..packages import engine_module
-from ..parameters import Parameter, dim
+from ..parameters import JointKind, Parameter, dim
 
-__all__ = ["MujocoRunner", "UrdfInMujoco", "load_mjcf", "load_urdf"]
+__all__ = ["MujocoRunner", "UrdfInMujoco", "add_joint_motors", "load_mjcf", "load_urdf"]
 
 
 def _mujoco():
@@ -750,12 +752,28 @@ _GEOM_TYPES = ("plane", "hfield", "sphere", "capsule", "ellipsoid", "cylinder", 
 
 
 def _collider(m, a: int, b: int) -> tuple[str, tuple[str, ...]]:
-    """The collision function MuJoCo calls for two geoms, in words, and the catalogue's cause paths it takes."""
+    """The collision function MuJoCo calls for two geoms, in words, and the catalogue's cause paths it takes.
+
+    Where neither geom's body can move along a contact at the reference pose (MuJoCo's translational
+    ``body_invweight0`` is 0 for both: a body hinged at its own centre of mass, or one welded to the
+    world), MuJoCo's approximate inverse weight of their contacts is 0 and the contacts' softness R is
+    its floor ``mjMINVAL`` (engine_core_constraint.c, mj_makeImpedance), a number no scaling moves:
+    that, not the collision function, is named (the contacts themselves scale bit for bit).
+    """
     first, second = sorted((int(m.geom_type[a]), int(m.geom_type[b])))
     kinds = (
         _GEOM_TYPES[first] if first < len(_GEOM_TYPES) else str(first),
         _GEOM_TYPES[second] if second < len(_GEOM_TYPES) else str(second),
     )
+    body_a, body_b = int(m.geom_bodyid[a]), int(m.geom_bodyid[b])
+    weights = m.body_invweight0[body_a, 0] + m.body_invweight0[body_b, 0]
+    apart = m.body_weldid[body_a] != m.body_weldid[body_b]  # two geoms of one rigid body never touch
+    if apart and weights == 0 and int(m.geom_condim[a]) <= 3 and int(m.geom_condim[b]) <= 3:
+        return (
+            f"{kinds[0]}-{kinds[1]}: contact softness R at MuJoCo's floor mjMINVAL (neither body "
+            "moves along the contact: inverse weight 0)",
+            (),
+        )
     margin = ("margin",) if m.geom_margin[a] + m.geom_margin[b] > 0 else ()
     mesh = ("mesh",) if "mesh" in kinds else ()
     primitive = _PRIMITIVE_COLLIDERS.get(kinds)
@@ -857,6 +875,8 @@ _URDF_SETTINGS["slide"] = _URDF_SETTINGS["hinge"]
 _JOINT_Q = {"hinge": "1", "slide": "L"}
 #: the suffix of the settings file a saved URDF's MuJoCo settings are written to
 SETTINGS_SUFFIX = ".mujoco.json"
+#: where a URDF names the folder MuJoCo looks for its meshes in: its extension ``<mujoco><compiler meshdir>``
+MESH_FOLDER = ("mujoco/compiler", "meshdir")
 
 
 def _setting_name(group: str, attr: str, suffix: str) -> str:
@@ -941,6 +961,41 @@ def _apply_urdf_settings(mj, spec, settings: dict) -> None:
                 setattr(holder, attr.removeprefix("eq_"), value)
 
 
+def add_joint_motors(mj, spec) -> list[str]:
+    """Give every hinge and slide joint of `spec` a motor: its input is the joint's torque or force.
+
+    One ``<motor>`` per joint, in the spec's joint order (the order of
+    ``qpos``), named after its joint, with gear 1 and no control range: the
+    input ``ctrl`` is the torque (a hinge, M L^2 T^-2) or force (a slide,
+    M L T^-2) itself, as PyBullet's ``TORQUE_CONTROL`` takes it.  The
+    joint's ``actuatorfrcrange`` (MuJoCo's URDF reader writes a joint's
+    ``effort`` limit there) still caps the force the motor applies.
+
+    Returns the names of the joints given a motor.
+
+    Examples
+    --------
+    >>> import mujoco
+    >>> from pitheorem.engines.runners.mujoco import add_joint_motors
+    >>> spec = mujoco.MjSpec.from_string(
+    ...     '<mujoco><worldbody><body><joint name="j" type="slide"/><geom size="0.1"/></body></worldbody></mujoco>'
+    ... )
+    >>> add_joint_motors(mujoco, spec), spec.compile().actuator_gear[0, 0]
+    (['j'], np.float64(1.0))
+    """
+    kinds = (int(mj.mjtJoint.mjJNT_HINGE), int(mj.mjtJoint.mjJNT_SLIDE))
+    names = []
+    for joint in spec.joints:
+        if int(joint.type) not in kinds:
+            continue
+        motor = spec.add_actuator(name=joint.name, target=joint.name, trntype=mj.mjtTrn.mjTRN_JOINT)
+        motor.set_to_motor()
+        motor.ctrllimited = mj.mjtLimited.mjLIMITED_FALSE
+        motor.forcelimited = mj.mjtLimited.mjLIMITED_FALSE
+        names.append(joint.name)
+    return names
+
+
 class UrdfInMujoco:
     """A URDF document as MuJoCo's runner holds a model: compiled by MuJoCo's URDF reader, with its settings.
 
@@ -984,6 +1039,7 @@ class UrdfInMujoco:
         if text is None:
             spec.modelfiledir = str(urdf.source_dir)
         _refuse_mixed_mimics(mj, spec, self.path)
+        add_joint_motors(mj, spec)  # a URDF states no actuators: a torque or force per movable joint
         found = _read_urdf_settings(mj, spec)
         if settings is not None:
             _check_urdf_settings(self.path, settings, found)
@@ -1096,8 +1152,13 @@ class UrdfInMujoco:
         return self._coordinates
 
     def control_dimensions(self) -> list:
-        """None: MuJoCo's URDF reader makes no actuators."""
-        return []
+        """One per movable joint (its motor, :func:`add_joint_motors`): a torque (hinge) or a force (slide)."""
+        mj, m = _mujoco(), self.mjmodel
+        slide = int(mj.mjtJoint.mjJNT_SLIDE)
+        return [
+            (JointKind.SLIDE if int(m.jnt_type[int(m.actuator_trnid[i, 0])]) == slide else JointKind.HINGE).force
+            for i in range(m.nu)
+        ]
 
     def activation_dimensions(self) -> list:
         return []
@@ -1165,7 +1226,7 @@ def urdf_runner(path, *, settings=None) -> MujocoRunner:
     1
     """
     path = Path(path)
-    document = read_urdf(path)
+    document = read_urdf(path, mesh_folder=MESH_FOLDER)
     saved = Path(f"{path}{SETTINGS_SUFFIX}") if settings is None or settings is True else settings
     table = None
     if saved is not False:
@@ -1186,8 +1247,10 @@ def load_urdf(path, *, settings=None) -> EngineModel:
     MuJoCo reads the file's ``<mujoco>`` block (compiler, option and size),
     merges links joined by fixed joints, drops the visual geoms unless the
     block keeps them, and welds the root link to the world.  Mesh files are
-    found as the URDF format finds them: beside the file, or a
-    ``package://NAME/...`` path in the folders above it.
+    found in the block's ``<compiler meshdir>`` first, where it has one (as
+    MuJoCo finds them), then as the URDF format finds them: beside the
+    file, or a ``package://NAME/...`` path in the folders above it.  Every
+    movable joint gets a motor (:func:`add_joint_motors`).
 
     Parameters
     ----------

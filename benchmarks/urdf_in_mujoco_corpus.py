@@ -1,0 +1,143 @@
+"""URDF in MuJoCo on pybullet_data's URDF files: which compile, and which verify bit for bit at s = 4.
+
+Run with the engines installed (``pip install "pitheorem[engines]"``, which brings pybullet_data)::
+
+    python benchmarks/urdf_in_mujoco_corpus.py [--duration 1.0] [--all] [NAME ...]
+
+For every URDF file of pybullet_data (the thousand generated ones under ``random_urdfs`` only with
+``--all``; NAMEs select files by their path relative to pybullet_data): load it with
+``engine="mujoco"``, or the reason it is refused (by the URDF format or by MuJoCo); search a scaling
+with gravity scaled by s and time fixed; verify the scaled copy at s = 4 for ``--duration`` seconds
+under :func:`pitheorem.engines.smooth_controls` (a motor per movable joint).  At a power of four every
+factor is exact in binary, so a faithful copy reproduces the original run bit for bit.
+
+Prints one row per file: ``exact``, ``similar`` (within the twins' yardstick but not bit for bit),
+``inconclusive`` (the run cannot show an error of some group), ``not`` (not similar) or ``refused``,
+whether the run moved (``moved``) or the robot is welded to the world with no joint (``welded``),
+and, where not exact, the causes the verdict names (``+``: its counter-run restores the run) and
+what plain MuJoCo shows (``by hand``): both compiled models stepped side by side with ``mj_step``
+under the same input, and at the first step whose state is not exactly the original's times its
+factor, whether the contacts MuJoCo found (depth, point, frame) are the original's times their
+factors (if not, the collision code is not scale-free: which geom types), and how many constraint
+rows have their softness R at MuJoCo's floor ``mjMINVAL`` = 1e-15 (a contact between bodies that
+cannot move along it: MuJoCo's approximate inverse weight is 0 there, and the floor is a number no
+scaling moves).  Then a summary.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+import warnings
+from collections import Counter
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pybullet_data
+
+import pitheorem as pt
+from pitheorem import engines
+
+DATA = Path(pybullet_data.getDataPath())
+
+
+def _files(everything: bool) -> list[str]:
+    names = sorted(p.relative_to(DATA).as_posix() for p in DATA.rglob("*.urdf"))
+    return [n for n in names if everything or not n.startswith("random_urdfs/")]
+
+
+def _causes(rep) -> str:
+    return "; ".join(f"{c.kind}{'+' if c.restores else ''} {c.element}" for c in rep.causes) or "no cause named"
+
+
+def _factor(dimension, change, s: float) -> float:
+    return s ** float(sum(dimension.exponent_of(b) * change[b] for b in "MLT"))
+
+
+def by_hand(model, copy, change, s: float, duration: float) -> str:
+    """Plain MuJoCo: step both compiled models side by side and say where and why they part."""
+    m, c = model.runner.mjmodel, copy.runner.mjmodel
+    _names, dims = model.runner.coordinate_dimensions()
+    fq = np.array([_factor(d, change, s) for d in dims[: m.nq]])
+    fv = np.array([_factor(d, change, s) for d in dims[m.nq :]])
+    fu = np.array([_factor(d, change, s) for d in model.inputs()[0]])
+    length = _factor(pt.Dimension.parse("L"), change, s)
+    u = engines.smooth_controls(model)
+    d, e = mujoco.MjData(m), mujoco.MjData(c)
+    for i in range(round(duration / m.opt.timestep)):
+        before = mujoco.MjData(m), mujoco.MjData(c)
+        for source, target in zip((d, e), before, strict=True):
+            target.qpos[:], target.qvel[:], target.qacc_warmstart[:] = source.qpos, source.qvel, source.qacc_warmstart
+        d.ctrl[:] = u(i * m.opt.timestep)
+        e.ctrl[:] = d.ctrl * fu
+        mujoco.mj_step(m, d)
+        mujoco.mj_step(c, e)
+        if np.array_equal(d.qpos * fq, e.qpos) and np.array_equal(d.qvel * fv, e.qvel):
+            continue
+        d0, e0 = before  # the step's start, equal in both: what MuJoCo computed from it
+        d0.ctrl[:], e0.ctrl[:] = d.ctrl, e.ctrl
+        d0.time, e0.time = i * m.opt.timestep, i * c.opt.timestep
+        mujoco.mj_forward(m, d0)
+        mujoco.mj_forward(c, e0)
+        moved = set()
+        for x, y in zip(d0.contact[: d0.ncon], e0.contact[: e0.ncon], strict=False):
+            if not (
+                x.dist * length == y.dist
+                and np.array_equal(np.asarray(x.pos) * length, y.pos)
+                and np.array_equal(x.frame, y.frame)
+            ):
+                moved.add("-".join(sorted(mujoco.mjtGeom(int(m.geom_type[g])).name[7:].lower() for g in x.geom)))
+        geometry = f"contacts off in {', '.join(sorted(moved))}" if moved else "contacts scaled"
+        if d0.ncon != e0.ncon:
+            geometry = f"{d0.ncon} contacts, {e0.ncon} in the copy"
+        floor = int(np.sum(d0.efc_R[: d0.nefc] <= 2 * mujoco.mjMINVAL))
+        return f"by hand: parts at step {i + 1}; {geometry}; R at floor in {floor} of {d0.nefc} rows"
+    return "by hand: exact"
+
+
+def judge(name: str, duration: float) -> tuple[str, str]:
+    """The verdict on one file (exact, similar, not, refused) and what stands behind it."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            model = engines.load(DATA / name, engine="mujoco")
+        except pt.PiTheoremError as err:
+            return "refused", " ".join(str(err).replace(str(DATA / name), name).split())[:150]
+        sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
+        rep = engines.verify(model, sc, 4, duration=duration, controls=engines.smooth_controls(model))
+    welded = model.runner.mjmodel.njnt == 0
+    motion = "welded" if welded else "moved" if rep.excited else "still"
+    if rep.exact:
+        return "exact", motion
+    verdict = {"not similar": "not"}.get(rep.verdict, rep.verdict)  # similar, inconclusive or not
+    change = {b: sc.unit_change[b] for b in "MLT"}
+    return verdict, f"{motion}; {_causes(rep)}; {by_hand(model, model.scaled(sc, 4), change, 4, duration)}"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--duration", type=float, default=1.0)
+    parser.add_argument("--all", action="store_true", help="also the generated files under random_urdfs")
+    parser.add_argument("names", nargs="*")
+    args = parser.parse_args()
+    names = args.names or _files(args.all)
+    counts: Counter = Counter()
+    moved: Counter = Counter()
+    start = time.perf_counter()
+    for name in names:
+        verdict, detail = judge(name, args.duration)
+        counts[verdict] += 1
+        moved[verdict] += detail.startswith("moved")
+        print(f"{name:48s} {verdict:8s} {detail}", flush=True)
+    print(
+        f"\n{len(names)} files: "
+        + ", ".join(
+            f"{counts[v]} {v} ({moved[v]} moved)" for v in ("exact", "similar", "inconclusive", "not") if counts[v]
+        )
+        + f", {counts['refused']} refused | {time.perf_counter() - start:.0f} s"
+    )
+
+
+if __name__ == "__main__":
+    main()
