@@ -278,10 +278,11 @@ def test_converted_keeps_the_inputs_on_request_and_by_default_converts_them():
     assert kept.units == mm.units == {"M": "g", "L": "mm", "T": "s"}
 
 
-def test_a_urdf_compiled_by_mujoco_has_no_inputs_to_keep_and_scales_alike():
-    urdf = engines.example_path("hinged_rod.urdf")
-    model = engines.load(urdf, engine="mujoco")
+def test_a_urdf_compiled_by_mujoco_refuses_to_keep_its_inputs_as_pybullet_does():
+    # its motors (one per joint, gear 1) take the joint's force itself: no number of the file carries a factor
+    model = engines.load(engines.example_path("hinged_rod.urdf"), engine="mujoco")
+    assert [str(d) for d in model.inputs()[0]] == ["M L^2 T^-2"]
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    kept, default = model.scaled(sc, 4, keep_inputs=True), model.scaled(sc, 4)
-    assert model.inputs()[0] == []
-    assert kept.parameters == default.parameters
+    with pytest.raises(pt.errors.InputsNotKeptError, match="joint forces, with no gain to carry a factor"):
+        model.scaled(sc, 4, keep_inputs=True)
+    model.scaled(sc, 4)  # the default stays as it is

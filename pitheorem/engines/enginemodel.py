@@ -495,15 +495,13 @@ class EngineModel(TableDisplay):
 
     def _keeping_inputs(self, factors: dict[str, float], scaling, s) -> EngineModel:
         """:meth:`scaled` with ``keep_inputs``: each number an input passes through divided by the input's factor."""
-        if not isinstance(self._runner, KeepsInputs):
-            raise InputsNotKeptError(
-                self.engine,
-                "its inputs are joint forces, with no gain to carry a factor",
-            )
-        factors = dict(factors)
         controls = self._runner.control_dimensions()
+        carriers = self._runner.input_parameters() if isinstance(self._runner, KeepsInputs) else None
+        if carriers is None or len(carriers) != len(controls):  # a URDF's joint motors: no gain in the file
+            raise InputsNotKeptError(self.engine, "its inputs are joint forces, with no gain to carry a factor")
+        factors = dict(factors)
         dimensions = {p.name: p.dimension for p in self.parameters}
-        for ctrl, powers in zip(controls, self._runner.input_parameters(), strict=True):
+        for ctrl, powers in zip(controls, carriers, strict=True):
             for name, power in powers.items():  # the factor of the dimension with the input's taken out, exactly
                 factors[name] = dimension_factor(scaling, s, dimensions[name] / ctrl**power)
         runner = self._runner.scaled_keeping_inputs(factors, scaling, s)

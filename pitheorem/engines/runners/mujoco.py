@@ -1092,7 +1092,7 @@ class UrdfInMujoco:
         return out
 
     def input_parameters(self) -> list[dict[str, int]]:
-        """None: MuJoCo's URDF reader makes no actuators, so there is no input to keep."""
+        """None: the joints' motors take the joint forces themselves, with no gain in the file to carry a factor."""
         return []
 
     def coordinate_inputs(self) -> list[int | None]:
