@@ -16,7 +16,11 @@ Two ratios, each against a baseline timed in the same run:
   covers gymnasium's models, four pybullet_data URDFs and the robots of tests/robots (not with
   ``--quick``).
 
-Run: python benchmarks/bench_engines.py [--quick]
+Issue 31's targets (the verdict within 3x a plain run, median over robots with meshes; with
+causes within 10x; the three slowest under 20 s) are measured on dm_control's robots (and a
+Menagerie checkout's) by ``--verdicts``, which runs ``bench_verdicts.py``.
+
+Run: python benchmarks/bench_engines.py [--quick] [--verdicts [--menagerie DIR]]
 """
 
 from __future__ import annotations
@@ -184,4 +188,12 @@ def main(quick: bool = False):
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer models, one repetition")
-    main(parser.parse_args().quick)
+    parser.add_argument("--verdicts", action="store_true", help="issue 31's targets on robots with meshes instead")
+    parser.add_argument("--menagerie", type=Path, help="with --verdicts: a MuJoCo Menagerie checkout")
+    args = parser.parse_args()
+    if args.verdicts:
+        import bench_verdicts
+
+        bench_verdicts.main(args.menagerie, [], 1)
+    else:
+        main(args.quick)

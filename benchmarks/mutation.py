@@ -1,4 +1,4 @@
-"""Mutation testing of pitheorem's core modules: does the test suite notice a planted bug?
+"""Mutation testing of pitheorem's core modules and file readers: does the test suite notice a planted bug?
 
 Run from the repository root (NOT part of ``make test``; it rewrites source files
 one at a time and restores them)::
@@ -54,7 +54,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = ROOT / "pitheorem"
 
-#: the tests that exercise each core module (fast: no simulations, no docs; ``-m "not slow"``)
+#: the tests that exercise each module (fast: no simulations but the readers' loads, no docs; ``-m "not slow"``)
 TARGETS = {
     "exact": [
         "tests/test_exact.py",
@@ -83,6 +83,9 @@ TARGETS = {
     "model": ["tests/test_model.py", "tests/test_models.py", "tests/test_errors.py"],
     "models": ["tests/test_models.py", "tests/test_model.py", "tests/test_equations.py"],
     "simulation": ["tests/test_simulation.py", "tests/test_models.py", "tests/test_plotting.py"],
+    # the readers of model files (their tests load URDF files in PyBullet and MuJoCo: seconds a mutant)
+    "engines/fileformats/numbers": ["tests/test_engines_numbers.py", "tests/test_engines_urdf.py"],
+    "engines/fileformats/urdf": ["tests/test_engines_urdf.py", "tests/test_engines_numbers.py"],
     **{
         f"formatting/{name}": ["tests/test_formatting.py", "tests/test_cli.py", "tests/test_scalesearch.py"]
         for name in ("__init__", "pieces", "text", "latex", "html", "json")

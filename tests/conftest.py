@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+from collections import Counter
 from fractions import Fraction
 from itertools import combinations
 from math import gcd, lcm
@@ -38,6 +39,27 @@ REFERENCE = REPO.parent / "shared" / "reference"
 
 if str(REPO) not in sys.path:  # lets tests import matlab_ports/ and benchmarks/
     sys.path.insert(0, str(REPO))
+
+
+#: test files whose time is mostly an engine compiling on a cold start (Warp its kernels on the CPU, about
+#: 35 s of CPU with an empty kernel cache; JAX tracing MJX's step), sent first to xdist's workers. By its
+#: own rule (the files with the most tests first) xdist sent them last: on a fresh clone the suite waited
+#: at its end for the Warp file's compile.
+FIRST = ("tests/test_engines_warp.py", "tests/test_engines_mjx.py")
+
+
+def pytest_configure(config):
+    if getattr(config.option, "dist", "no") in ("loadfile", "loadscope"):
+        config.option.loadscopereorder = False  # the workers' order below, not xdist's by the number of tests
+
+
+def pytest_collection_modifyitems(config, items):
+    """On an xdist worker: the files of :data:`FIRST`, then the others by their number of tests (xdist's rule)."""
+    if not hasattr(config, "workerinput"):
+        return
+    files = {id(item): item.nodeid.split("::")[0] for item in items}
+    counts = Counter(files.values())
+    items.sort(key=lambda item: (FIRST.index(f) if (f := files[id(item)]) in FIRST else len(FIRST), -counts[f]))
 
 
 #: the paper's hinged rod (Section 2.1) with force and torque, as name -> formula

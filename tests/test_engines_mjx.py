@@ -52,7 +52,7 @@ def test_an_mjcf_file_loads_scales_and_saves_in_mjx(pendulum, tmp_path):
     assert pendulum.parameters == engines.load(PENDULUM).parameters
     scaled = pendulum.scaled(time_free(pendulum), 4)
     assert scaled.engine == "mjx"
-    assert type(scaled.runner) is mjx_backend.MjxBackend
+    assert type(scaled.runner) is mjx_backend.MjxRunner
     out = scaled.save(tmp_path / "pendulum_4.xml")
     back = engines.load(out, engine="mjx")
     assert back.parameter("g").value == scaled.parameter("g").value == (9.81 * 4,)
@@ -483,13 +483,13 @@ def test_a_scaled_copy_is_one_program_with_its_original(name):
         warnings.simplefilter("ignore", engines.UnscalableModelWarning)
         model = engines.load(ASSETS / name, engine="mjx")
     copy = model.scaled(time_free(model), 4)
-    assert not np.array_equal(copy.runner._device.body_margin, model.runner._device.body_margin)
+    assert not np.array_equal(copy.runner.device_model().body_margin, model.runner.device_model().body_margin)
     aligned = mjx_backend._aligned(copy.runner, model.runner)
     structure = jax.tree_util.tree_structure
-    assert structure(aligned) == structure(model.runner._device)
+    assert structure(aligned) == structure(model.runner.device_model())
     # the arrays MJX traces are the copy's own
-    assert np.array_equal(aligned.geom_size, copy.runner._device.geom_size)
-    assert not np.array_equal(aligned.geom_size, model.runner._device.geom_size)
+    assert np.array_equal(aligned.geom_size, copy.runner.device_model().geom_size)
+    assert not np.array_equal(aligned.geom_size, model.runner.device_model().geom_size)
 
 
 def test_the_static_arrays_taken_from_the_original_are_never_read_by_mjx():

@@ -343,3 +343,112 @@ def test_a_urdf_saved_with_its_meshes_copied_loads_alone_after_the_originals_are
     shutil.move(tmp_path / "lab" / "out", tmp_path / "moved")
     again = engines.load(tmp_path / "moved" / "arm_copy.urdf", engine=engine)  # its saved settings hold the scene
     assert [p.value for p in again.parameters] == [p.value for p in model.parameters]
+
+
+def _binary_stl(header: bytes) -> bytes:
+    """A binary STL of one triangle whose 80-byte header (free text by the format) is `header`."""
+    import struct
+
+    return header.ljust(80, b" ") + struct.pack("<I12fH", 1, *[0.0] * 3, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0)
+
+
+def _mesh_robot(tmp_path) -> Path:
+    """A URDF in ws/robot/urdf/ whose meshes sit beside it and, as ``package://tools/...``, two folders up."""
+    folder = tmp_path / "ws" / "robot" / "urdf"
+    (tmp_path / "ws" / "tools" / "meshes").mkdir(parents=True)
+    folder.mkdir(parents=True)
+    (folder / "parts.obj").write_text("o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no b\nv 0 0 1\nf 1 2 4\n")
+    (folder / "one.obj").write_text("o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    (folder / "header.stl").write_bytes(_binary_stl(b"exported\no a\no b\no c\n"))  # lines that look like OBJ parts
+    (folder / "skin.png").write_bytes(b"\x89PNG\r\n\x1a\n")
+    (folder / "libplugin.so").write_bytes(b"")  # a plugin is found on Gazebo's plugin path, not beside the file
+    (tmp_path / "ws" / "tools" / "meshes" / "hand.obj").write_text("o x\nv 0 0 0\no y\nv 1 0 0\no z\nv 0 1 0\n")
+    path = folder / "robot.urdf"
+    path.write_text(
+        '<robot name="r"><link name="base">'
+        '<collision><geometry><mesh filename="parts.obj"/></geometry></collision>'
+        '<collision><geometry><mesh filename="one.obj"/></geometry></collision>'
+        '<collision><geometry><mesh filename="header.stl"/></geometry></collision>'
+        '<visual><geometry><mesh filename="parts.obj"/></geometry>'
+        '<material name="skin"><texture filename="skin.png"/></material></visual></link>'
+        '<link name="hand"><collision><geometry><mesh filename="package://tools/meshes/hand.obj"/></geometry>'
+        "</collision></link>"
+        '<gazebo><plugin name="p" filename="libplugin.so"/></gazebo></robot>'
+    )
+    return path
+
+
+def test_compound_meshes_are_the_collision_objs_of_several_parts_found_as_pybullet_finds_them(tmp_path):
+    from pitheorem.engines.fileformats.urdf import read_urdf
+
+    document = read_urdf(_mesh_robot(tmp_path))
+    # two parts count (one does not); an STL whose header holds OBJ-like lines is not an OBJ; the visual
+    # copy of parts.obj is not a collision shape; the package's mesh is found two folders up
+    assert document.compound_meshes() == [("base", "parts.obj", 2), ("hand", "package://tools/meshes/hand.obj", 3)]
+    scales = [p.path for p in document.parameters() if p.path.endswith("mesh scale")]
+    assert scales == [f"link 'base' collision #{k} mesh scale" for k in range(3)] + [
+        "link 'base' visual #0 mesh scale",
+        "link 'hand' collision #0 mesh scale",
+    ]
+
+
+def test_a_package_path_is_looked_for_up_to_four_folders_above_the_file(tmp_path):
+    from pitheorem.engines.fileformats.urdf import read_urdf
+
+    folder = tmp_path / "top" / "a" / "b" / "c" / "d" / "urdf"
+    folder.mkdir(parents=True)
+    path = folder / "robot.urdf"
+    path.write_text(
+        '<robot name="r"><link name="base"><collision><geometry><mesh filename="package://far/m.obj"/>'
+        "</geometry></collision></link></robot>"
+    )
+    for up, found in ((folder.parents[3], True), (folder.parents[4], False)):  # folders a (4th above) and top
+        (up / "far").mkdir()
+        (up / "far" / "m.obj").write_text("o x\nv 0 0 0\n")
+        if found:
+            assert read_urdf(path).parameters()[0].path == "link 'base' collision #0 mesh scale"
+        else:
+            with pytest.raises(EngineModelError, match="mesh file not found"):
+                read_urdf(path)
+        (up / "far" / "m.obj").unlink()
+        (up / "far").rmdir()
+
+
+def test_the_portable_text_names_meshes_and_textures_by_absolute_path_and_nothing_else(tmp_path):
+    from pitheorem.engines.fileformats.urdf import read_urdf
+
+    path = _mesh_robot(tmp_path)
+    document = read_urdf(path)
+    text = document.portable_text()
+    assert text is not None
+    for name in ("parts.obj", "one.obj", "header.stl", "skin.png"):
+        assert f'filename="{(path.parent / name).resolve()}"' in text
+    assert f'filename="{(tmp_path / "ws" / "tools" / "meshes" / "hand.obj").resolve()}"' in text
+    assert 'filename="libplugin.so"' in text  # not a mesh or a texture: left as written
+    assert document.text().count('filename="parts.obj"') == 2  # the document itself is unchanged
+    (path.parent / "skin.png").unlink()
+    assert read_urdf(path).portable_text() is None  # a texture that cannot be found: no portable text
+
+
+def test_a_saved_copy_renames_meshes_and_textures_only(tmp_path):
+    from pitheorem.engines.fileformats.urdf import read_urdf
+
+    out = tmp_path / "elsewhere" / "copy.urdf"
+    out.parent.mkdir()
+    read_urdf(_mesh_robot(tmp_path)).save(out)
+    text = out.read_text()
+    assert 'filename="../ws/robot/urdf/parts.obj"' in text
+    assert 'filename="../ws/robot/urdf/skin.png"' in text
+    assert 'filename="../ws/tools/meshes/hand.obj"' in text
+    assert 'filename="libplugin.so"' in text  # the plugin keeps its name, though a file of that name is beside
+
+
+def test_a_file_that_is_not_well_formed_is_refused_at_its_line(tmp_path):
+    from pitheorem.engines.fileformats.urdf import read_urdf
+
+    path = tmp_path / "broken.urdf"
+    path.write_text('<robot name="r">\n  <link name="a"/>\n  <link name="b"></robot>\n')
+    with pytest.raises(EngineModelError) as caught:
+        read_urdf(path)
+    assert caught.value.element == "line 3"  # its column (19) is not its line
+    assert "not well-formed XML" in str(caught.value)

@@ -168,6 +168,7 @@ CROSS_CUTTING = {
     "test_docstrings.py": "a meta-test over every public object of pitheorem, pitheorem.engines and matlab_ports",
     "test_package.py": "the package as a whole: its import, its private names, this layout",
     "test_check_pages.py": "docs tooling (docs/check_pages.py), not a module of pitheorem",
+    "test_corpus_robots.py": "docs tooling (docs/corpus_verdicts.py and the JSON file it writes), not a module",
     "test_matlab_ports.py": "the matlab_ports namespace, not a module of pitheorem",
     "test_architecture.py": "the layers of docs/explanation/architecture.md: every import of every module",
     "test_engines_corpus.py": "the whole engine path on the corpus of gymnasium's and pybullet_data's models",

@@ -287,8 +287,8 @@ def _mesh_path(filename: str, source_dir: Path, mesh_folder: Path | None = None)
 
     A relative mesh name is looked for in `mesh_folder` first (a folder the file names for an
     engine that reads it, such as MuJoCo's ``<mujoco><compiler meshdir>``), then as PyBullet does: relative to the URDF's
-    folder; ``package://NAME/REST`` is looked for as ``NAME/REST`` in that folder and the folders
-    above it (a ROS package's meshes sit beside its ``urdf`` folder).
+    folder; ``package://NAME/REST`` is looked for as ``NAME/REST`` in that folder and the four
+    folders above it (a ROS package's meshes sit beside its ``urdf`` folder).
     """
     name = filename
     if name.startswith("package://"):

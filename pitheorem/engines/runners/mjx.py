@@ -4,14 +4,14 @@ An MJCF file is read as for MuJoCo (:mod:`pitheorem.engines.fileformats.mjcf` re
 it: the same parameters, scaled copies and saved files) and put on JAX's
 device with ``mujoco.mjx.put_model``.  MJX computes in float32 unless
 asked for float64 (``precision="float64"``, JAX's x64 mode, switched on
-only while this backend computes).  What MJX does not support (the PGS
+only while this runner computes).  What MJX does not support (the PGS
 solver, some geom pairs, flex objects, some sensors and actuators) is
 refused by name when the file is loaded.  A URDF file goes to MJX as it
 goes to MuJoCo (:func:`load_urdf`): compiled by MuJoCo's URDF reader, with
 the MuJoCo settings saved beside it.
 
 The runs of a verification (the original, its scaled copy, the
-yardstick's twins) go to :meth:`MjxBackend.run_many`, which stacks the
+yardstick's twins) go to :meth:`MjxRunner.run_many`, which stacks the
 models and runs them as one ``jax.vmap`` of a ``jax.lax.scan`` over the
 steps.  Models whose static parts differ (MJX keeps some numbers, such as
 mesh vertices and site sizes, outside the arrays it traces) cannot share
@@ -40,7 +40,6 @@ With MJX installed (``pip install "pitheorem[mjx]"``)::
 from __future__ import annotations
 
 import dataclasses
-from pathlib import Path
 
 import numpy as np
 
@@ -49,9 +48,9 @@ from ..enginemodel import EngineModel
 from ..fileformats.mjcf import read_mjcf
 from ..packages import engine_module
 from ..parameters import Parameter, dim
-from .mujoco import MujocoRunner, urdf_runner
+from .mujoco import MujocoCompiledRunner, MujocoRunner, urdf_runner
 
-__all__ = ["PRECISIONS", "MjxBackend", "load_mjx", "load_urdf", "mjx_parameters", "threshold_numbers"]
+__all__ = ["PRECISIONS", "MjxRunner", "load_mjx", "load_urdf", "mjx_parameters", "threshold_numbers"]
 
 _M, _ML2, _L = dim("M"), dim("M L^2"), dim("L")
 
@@ -69,88 +68,48 @@ def _jax():
     return jax
 
 
-class MjxBackend:
+class MjxRunner(MujocoCompiledRunner):
     """An MJCF model in MJX: MuJoCo's reading of the file, and its ``mjx.Model`` on JAX's device.
+
+    What MuJoCo's reading gives (the table, copies, files, sizes) is
+    :class:`~pitheorem.engines.runners.mujoco.MujocoCompiledRunner`'s.
 
     Parameters
     ----------
     mjcf : MujocoRunner
         The file as MuJoCo reads and compiles it.
     precision : {"float32", "float64"}
+    device_model : mjx.Model, optional
+        The model on JAX's device (a twin's): by default ``mjcf``'s, put there.
 
     Examples
     --------
     >>> from pitheorem.engines.protocols import Runner
-    >>> from pitheorem.engines.runners.mjx import MjxBackend
-    >>> all(hasattr(MjxBackend, name) for name in Runner.__dict__ if not name.startswith("_"))
+    >>> from pitheorem.engines.runners.mjx import MjxRunner
+    >>> all(hasattr(MjxRunner, name) for name in Runner.__dict__ if not name.startswith("_"))
     True
     """
+
+    engine_label = "MJX"
 
     def __init__(self, mjcf: MujocoRunner, precision: str = "float32", device_model=None):
         self.mjcf = mjcf
         self.precision = precision
-        self._device = device_model if device_model is not None else _put(mjcf, precision)
+        self._device_model = device_model if device_model is not None else _put(mjcf, precision)
 
-    def device_model(self):
-        """The ``mjx.Model`` this backend runs."""
-        return self._device
-
-    @property
-    def spec(self):
-        """MuJoCo's ``MjSpec`` of the file (where a file written by pitheorem records its units)."""
-        return self.mjcf.spec
-
-    def in_units(self, units) -> MjxBackend:
-        """This model, MuJoCo's reading recording other units (the device model is the same)."""
-        return MjxBackend(self.mjcf.in_units(units), self.precision, self._device)
-
-    # -- the table, scaled copies and files: MuJoCo's reading of the file ------------------------
-
-    def parameters(self):
-        return self.mjcf.parameters()
+    def _rebuilt(self, mjcf: MujocoRunner, *, same_numbers: bool) -> MjxRunner:
+        return MjxRunner(mjcf, self.precision, self._device_model if same_numbers else None)
 
     def settings(self) -> dict:
         return {"precision": self.precision}
-
-    def scaled(self, factors, scaling, s) -> MjxBackend:
-        return MjxBackend(self.mjcf.scaled(factors, scaling, s), self.precision)
-
-    def input_parameters(self) -> list[dict[str, int]]:
-        return self.mjcf.input_parameters()
-
-    def coordinate_inputs(self) -> list[int | None]:
-        return self.mjcf.coordinate_inputs()
-
-    def scaled_keeping_inputs(self, factors, scaling, s) -> MjxBackend:
-        return MjxBackend(self.mjcf.scaled_keeping_inputs(factors, scaling, s), self.precision)
-
-    def save(self, path: Path, *, copy_assets: bool = False) -> None:
-        self.mjcf.save(path, copy_assets=copy_assets)  # an MJCF file: MuJoCo and MJX load it alike
-
-    def written_beside(self, path) -> tuple[str, ...]:
-        return self.mjcf.written_beside(path)
-
-    def check_units(self, units) -> None:
-        self.mjcf.check_units(units)
-
-    def recorded_units(self) -> dict[str, str] | None:
-        return self.mjcf.recorded_units()
-
-    @property
-    def refusal(self):
-        """None: MJX loads only what MuJoCo's compiler accepts."""
-        return None
 
     # -- what MJX holds ------------------------------------------------------------------------
 
     def stored_numbers(self) -> dict[str, np.ndarray]:
         """Every floating-point array MJX traces for the model, by field, in its own precision."""
-        return {field: np.array(value, copy=True, ndmin=1) for field, value in _float_arrays(self._device)}
+        return {field: np.array(value, copy=True, ndmin=1) for field, value in _float_arrays(self._device_model)}
 
-    def element_name(self, field: str, row: int) -> str:
-        return self.mjcf.element_name(field, row)
-
-    def twin(self, seed: int) -> MjxBackend:
+    def twin(self, seed: int) -> MjxRunner:
         """A copy whose every number in MJX's arrays is one unit in its own last place off (signs from `seed`).
 
         Zeros stay zero and the time step stays; the static parts are the original's.
@@ -158,53 +117,20 @@ class MjxBackend:
         jax = _jax()
         rng = np.random.default_rng(seed)
         moved = {}
-        for field, value in _float_arrays(self._device):
+        for field, value in _float_arrays(self._device_model):
             if field == "opt.timestep":
                 continue
             value = np.asarray(value)
             toward = np.where(rng.random(value.shape) < 0.5, np.inf, -np.inf).astype(value.dtype)
             moved[field] = np.where(value == 0, value, np.nextafter(value, toward))
         with jax.enable_x64(self.precision == "float64"):
-            device = _replaced(jax, self._device, moved)
-        return MjxBackend(self.mjcf, self.precision, device)
-
-    def variant(self, *, tolerance: float | None = None) -> MjxBackend:
-        """A copy run with another solver tolerance: a counter-run's model."""
-        return MjxBackend(self.mjcf.variant(tolerance=tolerance), self.precision)
-
-    def solver_settings(self) -> dict[str, float]:
-        return {k: v for k, v in self.mjcf.solver_settings().items() if k == "tolerance"}
+            device = _replaced(jax, self._device_model, moved)
+        return MjxRunner(self.mjcf, self.precision, device)
 
     # -- running ------------------------------------------------------------------------------
 
-    def timestep(self) -> float:
-        return self.mjcf.timestep()
-
-    def coordinate_dimensions(self):
-        return self.mjcf.coordinate_dimensions()
-
-    def control_dimensions(self):
-        return self.mjcf.control_dimensions()
-
-    def control_ranges(self):
-        return self.mjcf.control_ranges()
-
-    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None) -> np.ndarray:
-        """Rows of (qpos, qvel, act) after 0..n_steps steps from the initial state, open loop.
-
-        Raises
-        ------
-        InvalidRequestError
-            For a closed-loop `policy` (run it in ``"mujoco"``).
-        """
-        if policy is not None:
-            raise InvalidRequestError(
-                "MJX runs open loop here; run a closed-loop controller in 'mujoco' (engines.load(path))"
-            )
-        return self.run_many(n_steps, [(self, controls, nudge, initial)])[0]
-
     def run_many(self, n_steps: int, jobs) -> list[np.ndarray]:
-        """The runs of ``(backend, controls, nudge, initial)`` jobs, vmapped: one call per static part.
+        """The runs of ``(runner, controls, nudge, initial)`` jobs, vmapped: one call per static part.
 
         The models must have the same sizes (a model, its scaled copies and
         its twins do).  ``controls`` is None, rows of inputs (one per step)
@@ -217,12 +143,12 @@ class MjxBackend:
         dtype = np.dtype(self.precision)
         nu = self.mjcf.mjmodel.nu
         groups: dict = {}
-        devices = [_aligned(backend, jobs[0][0]) for backend, *_ in jobs]
+        devices = [_aligned(runner, jobs[0][0]) for runner, *_ in jobs]
         for i, device in enumerate(devices):
             groups.setdefault(jax.tree_util.tree_structure(device), []).append(i)
         out: list = [None] * len(jobs)
         with jax.enable_x64(self.precision == "float64"):
-            runner = _runner(jax, self.precision)
+            step_all = _runner(jax, self.precision)
             for members in groups.values():
                 models = [devices[i] for i in members]
                 batch = jax.tree_util.tree_map(lambda *xs: jnp.stack(xs), *models)
@@ -230,7 +156,7 @@ class MjxBackend:
                 rows = np.stack([_control_rows(jobs[i][1], n_steps, nu, jobs[i][0].timestep(), dtype) for i in members])
                 qpos = jnp.asarray(np.stack([q for q, _ in starts]))
                 qvel = jnp.asarray(np.stack([v for _, v in starts]))
-                runs = np.asarray(runner(batch, qpos, qvel, jnp.asarray(rows)))
+                runs = np.asarray(step_all(batch, qpos, qvel, jnp.asarray(rows)))
                 for k, i in enumerate(members):
                     model = jobs[i][0].mjcf.mjmodel
                     first = np.concatenate([starts[k][0], starts[k][1], np.zeros(model.na, dtype)])
@@ -246,8 +172,8 @@ _UNREAD_STATIC = (
 )
 
 
-def _aligned(backend: MjxBackend, reference: MjxBackend):
-    """`backend`'s device model, batchable with `reference`'s where nothing MJX reads tells them apart.
+def _aligned(runner: MjxRunner, reference: MjxRunner):
+    """`runner`'s device model, batchable with `reference`'s where nothing MJX reads tells them apart.
 
     MJX keeps some arrays static, outside the arrays it traces: two models
     whose static arrays differ are two programs to XLA, compiled apart,
@@ -259,13 +185,13 @@ def _aligned(backend: MjxBackend, reference: MjxBackend):
     ``body_margin``, the hopper's copy ran in a call of its own and parted
     from the original after one step, by one float32 ulp.
     """
-    device, other = backend._device, reference._device
+    device, other = runner._device_model, reference._device_model
     mujoco = engine_module("mujoco")
     for owner, field, geom_type in _UNREAD_STATIC:
         mine, theirs = (getattr(d._impl, field) if owner else getattr(d, field) for d in (device, other))
         if mine.shape != theirs.shape or np.array_equal(mine, theirs):
             continue
-        if geom_type is not None and np.any(backend.mjcf.mjmodel.geom_type == int(getattr(mujoco.mjtGeom, geom_type))):
+        if geom_type is not None and np.any(runner.mjcf.mjmodel.geom_type == int(getattr(mujoco.mjtGeom, geom_type))):
             continue
         device = (
             device.replace(_impl=device._impl.replace(**{field: theirs}))
@@ -327,11 +253,11 @@ def _replaced(jax, device, values: dict):
     return device.replace(**top, opt=device.opt.replace(**opt), stat=device.stat.replace(**stat))
 
 
-def _initial(backend: MjxBackend, nudge: bool, initial, dtype) -> tuple[np.ndarray, np.ndarray]:
+def _initial(runner: MjxRunner, nudge: bool, initial, dtype) -> tuple[np.ndarray, np.ndarray]:
     """The initial (qpos, qvel): the model's reference pose at rest, or `initial`'s; nudged by one ulp of `dtype`."""
-    m = backend.mjcf.mjmodel
+    m = runner.mjcf.mjmodel
     if initial is None:
-        qpos = np.asarray(backend._device.qpos0, dtype=dtype)
+        qpos = np.asarray(runner._device_model.qpos0, dtype=dtype)
         qvel = np.zeros(m.nv, dtype)
     else:
         if np.any(initial[m.nq + m.nv :]):
@@ -395,7 +321,7 @@ _SEGMENT_PARTNERS = frozenset({_HFIELD, _SPHERE, _CAPSULE, _BOX, _MESH})
 def _compiled(model):
     """The model's compiled MjModel (MuJoCo's or MJX's compilation of the file), or None (another engine's)."""
     runner = model.runner
-    if isinstance(runner, MjxBackend):
+    if isinstance(runner, MjxRunner):
         return runner.mjcf.mjmodel
     return runner.mjmodel if isinstance(runner, MujocoRunner) else None
 
@@ -581,7 +507,7 @@ def load_mjx(path, *, precision: str = "float32") -> EngineModel:
     reading = MujocoRunner(read_mjcf(path))
     if reading.refusal is not None:  # MuJoCo's compiler refused it: there is no model to put in MJX
         raise reading.refusal
-    return EngineModel(MjxBackend(reading, precision), "mjx", str(path))
+    return EngineModel(MjxRunner(reading, precision), "mjx", str(path))
 
 
 def _check_precision(precision) -> None:
@@ -622,4 +548,4 @@ def load_urdf(path, *, settings=None, precision: str = "float32") -> EngineModel
     'mjx'
     """
     _check_precision(precision)
-    return EngineModel(MjxBackend(urdf_runner(path, settings=settings), precision), "mjx", str(path))
+    return EngineModel(MjxRunner(urdf_runner(path, settings=settings), precision), "mjx", str(path))

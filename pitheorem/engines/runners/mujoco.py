@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import EngineModelError
+from ...errors import EngineModelError, InvalidRequestError
 from ...simulation import nudged
 from ..enginemodel import EngineModel
 from ..fileformats.mjcf import read_mjcf
@@ -43,7 +43,7 @@ from ..fileformats.urdf import UrdfDocument, read_urdf, refuse_units
 from ..packages import engine_module
 from ..parameters import JointKind, Parameter, dim
 
-__all__ = ["MujocoRunner", "UrdfInMujoco", "add_joint_motors", "load_mjcf", "load_urdf"]
+__all__ = ["MujocoCompiledRunner", "MujocoRunner", "UrdfInMujoco", "add_joint_motors", "load_mjcf", "load_urdf"]
 
 
 def _mujoco():
@@ -618,6 +618,133 @@ class MujocoRunner:
                 mj.mj_step(m, data)
             qpos[i], qvel[i], act[i] = data.qpos, data.qvel, data.act
         return out
+
+
+class MujocoCompiledRunner:
+    """What a runner of another engine shares when MuJoCo's compiler builds its model (MJX, MuJoCo Warp).
+
+    The file is read and compiled as for MuJoCo (``mjcf``, a
+    :class:`MujocoRunner`), then put on the other engine's device.  The
+    table, scaled copies, saved files, units, time step, coordinates,
+    controls and solver stopping rule are MuJoCo's reading of the file;
+    a subclass holds the device model (``_device_model``) and gives what
+    differs: its settings, what its device stores, its twins and its runs
+    (``run_many``), and ``_rebuilt``, its copy of another reading.
+    Such an engine runs open loop only here: a closed-loop controller runs
+    in ``"mujoco"``.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.runners.mujoco import MujocoCompiledRunner
+    >>> from pitheorem.engines.runners.mjx import MjxRunner
+    >>> from pitheorem.engines.runners.warp import WarpRunner
+    >>> [(c.__name__, c.engine_label) for c in (MjxRunner, WarpRunner) if issubclass(c, MujocoCompiledRunner)]
+    [('MjxRunner', 'MJX'), ('WarpRunner', 'MuJoCo Warp')]
+    """
+
+    #: the engine's name in messages (``"MJX"``)
+    engine_label = "MuJoCo's compilation"
+
+    #: None: such an engine loads only what MuJoCo's compiler accepts (and it supports)
+    refusal = None
+
+    mjcf: MujocoRunner
+    _device_model: object
+
+    def _rebuilt(self, mjcf: MujocoRunner, *, same_numbers: bool) -> MujocoCompiledRunner:
+        """This runner's engine and settings on another reading of the file.
+
+        With `same_numbers` the device model's numbers stay (a twin's moved
+        ones): the reading differs only in the units it records.
+        """
+        raise NotImplementedError
+
+    def device_model(self):
+        """The model on the engine's device that this runner runs."""
+        return self._device_model
+
+    @property
+    def spec(self):
+        """MuJoCo's ``MjSpec`` of the file (where a file written by pitheorem records its units)."""
+        return self.mjcf.spec
+
+    # -- the table, scaled copies and files: MuJoCo's reading of the file ------------------------
+
+    def parameters(self):
+        return self.mjcf.parameters()
+
+    def scaled(self, factors, scaling, s) -> MujocoCompiledRunner:
+        return self._rebuilt(self.mjcf.scaled(factors, scaling, s), same_numbers=False)
+
+    def input_parameters(self) -> list[dict[str, int]]:
+        return self.mjcf.input_parameters()
+
+    def coordinate_inputs(self) -> list[int | None]:
+        return self.mjcf.coordinate_inputs()
+
+    def scaled_keeping_inputs(self, factors, scaling, s) -> MujocoCompiledRunner:
+        return self._rebuilt(self.mjcf.scaled_keeping_inputs(factors, scaling, s), same_numbers=False)
+
+    def in_units(self, units) -> MujocoCompiledRunner:
+        """This model, MuJoCo's reading recording other units (the device's numbers are the same)."""
+        return self._rebuilt(self.mjcf.in_units(units), same_numbers=True)
+
+    def save(self, path: Path, *, copy_assets: bool = False) -> None:
+        # an MJCF file (or a URDF and its settings): MuJoCo and this engine load it alike
+        self.mjcf.save(path, copy_assets=copy_assets)
+
+    def written_beside(self, path) -> tuple[str, ...]:
+        return self.mjcf.written_beside(path)
+
+    def check_units(self, units) -> None:
+        self.mjcf.check_units(units)
+
+    def recorded_units(self) -> dict[str, str] | None:
+        return self.mjcf.recorded_units()
+
+    def element_name(self, field: str, row: int) -> str:
+        """A row of a stored field, named by its element as MuJoCo names it; ``field[row]`` for the engine's own."""
+        if "." in field or not hasattr(self.mjcf.mjmodel, field):
+            return f"{field}[{row}]"
+        return self.mjcf.element_name(field, row)
+
+    # -- counter-runs: another solver tolerance ------------------------------------------------
+
+    def variant(self, *, tolerance: float | None = None) -> MujocoCompiledRunner:
+        """A copy run with another solver tolerance: a counter-run's model."""
+        return self._rebuilt(self.mjcf.variant(tolerance=tolerance), same_numbers=False)
+
+    def solver_settings(self) -> dict[str, float]:
+        return {k: v for k, v in self.mjcf.solver_settings().items() if k == "tolerance"}
+
+    # -- running: MuJoCo's sizes and time step, open loop ---------------------------------------
+
+    def timestep(self) -> float:
+        return self.mjcf.timestep()
+
+    def coordinate_dimensions(self):
+        return self.mjcf.coordinate_dimensions()
+
+    def control_dimensions(self):
+        return self.mjcf.control_dimensions()
+
+    def control_ranges(self):
+        return self.mjcf.control_ranges()
+
+    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None) -> np.ndarray:
+        """Rows of (qpos, qvel, act) after 0..n_steps steps from the initial state, open loop.
+
+        Raises
+        ------
+        InvalidRequestError
+            For a closed-loop `policy` (run it in ``"mujoco"``).
+        """
+        if policy is not None:
+            raise InvalidRequestError(
+                f"{self.engine_label} runs open loop here; run a closed-loop controller in 'mujoco' "
+                "(engines.load(path))"
+            )
+        return self.run_many(n_steps, [(self, controls, nudge, initial)])[0]
 
 
 #: the element each prefix of a compiled field belongs to, and the count of that element where not n<kind>

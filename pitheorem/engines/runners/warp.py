@@ -45,7 +45,6 @@ from __future__ import annotations
 
 import copy
 import dataclasses
-from pathlib import Path
 
 import numpy as np
 
@@ -53,7 +52,7 @@ from ...errors import EngineModelError, InvalidRequestError
 from ..enginemodel import EngineModel
 from ..fileformats.mjcf import read_mjcf
 from ..packages import engine_module
-from .mujoco import MujocoRunner, urdf_runner
+from .mujoco import MujocoCompiledRunner, MujocoRunner, urdf_runner
 
 __all__ = ["PRECISION", "WarpRunner", "load_urdf", "load_warp"]
 
@@ -91,8 +90,11 @@ def _warp():
     return warp, mjw
 
 
-class WarpRunner:
+class WarpRunner(MujocoCompiledRunner):
     """An MJCF model in MJWarp: MuJoCo's reading of the file, and its ``mujoco_warp.Model`` on a Warp device.
+
+    What MuJoCo's reading gives (the table, copies, files, sizes) is
+    :class:`~pitheorem.engines.runners.mujoco.MujocoCompiledRunner`'s.
 
     Parameters
     ----------
@@ -111,6 +113,7 @@ class WarpRunner:
     True
     """
 
+    engine_label = "MuJoCo Warp"
     precision = PRECISION
 
     def __init__(self, mjcf: MujocoRunner, device: str, moved: dict | None = None):
@@ -119,50 +122,11 @@ class WarpRunner:
         self._moved = dict(moved or {})
         self._device_model = _put(mjcf, device, self._moved)
 
-    def device_model(self):
-        """The ``mujoco_warp.Model`` this runner runs (one world)."""
-        return self._device_model
-
-    def in_units(self, units) -> WarpRunner:
-        """This model, MuJoCo's reading recording other units (the numbers are the same)."""
-        return WarpRunner(self.mjcf.in_units(units), self.device, self._moved)
-
-    # -- the table, scaled copies and files: MuJoCo's reading of the file ------------------------
-
-    def parameters(self):
-        return self.mjcf.parameters()
+    def _rebuilt(self, mjcf: MujocoRunner, *, same_numbers: bool) -> WarpRunner:
+        return WarpRunner(mjcf, self.device, self._moved if same_numbers else None)
 
     def settings(self) -> dict:
         return {"precision": PRECISION, "device": self.device}
-
-    def scaled(self, factors, scaling, s) -> WarpRunner:
-        return WarpRunner(self.mjcf.scaled(factors, scaling, s), self.device)
-
-    def input_parameters(self) -> list[dict[str, int]]:
-        return self.mjcf.input_parameters()
-
-    def coordinate_inputs(self) -> list[int | None]:
-        return self.mjcf.coordinate_inputs()
-
-    def scaled_keeping_inputs(self, factors, scaling, s) -> WarpRunner:
-        return WarpRunner(self.mjcf.scaled_keeping_inputs(factors, scaling, s), self.device)
-
-    def save(self, path: Path, *, copy_assets: bool = False) -> None:
-        self.mjcf.save(path, copy_assets=copy_assets)  # an MJCF file: MuJoCo and MJWarp load it alike
-
-    def written_beside(self, path) -> tuple[str, ...]:
-        return self.mjcf.written_beside(path)
-
-    def check_units(self, units) -> None:
-        self.mjcf.check_units(units)
-
-    def recorded_units(self) -> dict[str, str] | None:
-        return self.mjcf.recorded_units()
-
-    @property
-    def refusal(self):
-        """None: MJWarp loads only what MuJoCo's compiler accepts and it supports."""
-        return None
 
     # -- what MJWarp holds ---------------------------------------------------------------------
 
@@ -172,11 +136,6 @@ class WarpRunner:
         A per-world array is given for its one world, laid out as MuJoCo's.
         """
         return {field: _one_world(array, batched) for field, array, batched in _float_arrays(self._device_model)}
-
-    def element_name(self, field: str, row: int) -> str:
-        if "." in field or not hasattr(self.mjcf.mjmodel, field):  # a field of MJWarp's own
-            return f"{field}[{row}]"
-        return self.mjcf.element_name(field, row)
 
     def twin(self, seed: int) -> WarpRunner:
         """A copy whose every number in MJWarp's arrays is one float32 unit in its last place off (signs from `seed`).
@@ -193,40 +152,7 @@ class WarpRunner:
             moved[field] = np.where(value == 0, value, np.nextafter(value, toward))
         return WarpRunner(self.mjcf, self.device, moved)
 
-    def variant(self, *, tolerance: float | None = None) -> WarpRunner:
-        """A copy run with another solver tolerance: a counter-run's model."""
-        return WarpRunner(self.mjcf.variant(tolerance=tolerance), self.device)
-
-    def solver_settings(self) -> dict[str, float]:
-        return {k: v for k, v in self.mjcf.solver_settings().items() if k == "tolerance"}
-
     # -- running ------------------------------------------------------------------------------
-
-    def timestep(self) -> float:
-        return self.mjcf.timestep()
-
-    def coordinate_dimensions(self):
-        return self.mjcf.coordinate_dimensions()
-
-    def control_dimensions(self):
-        return self.mjcf.control_dimensions()
-
-    def control_ranges(self):
-        return self.mjcf.control_ranges()
-
-    def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None) -> np.ndarray:
-        """Rows of (qpos, qvel, act) after 0..n_steps steps from the initial state, open loop.
-
-        Raises
-        ------
-        InvalidRequestError
-            For a closed-loop `policy` (run it in ``"mujoco"``).
-        """
-        if policy is not None:
-            raise InvalidRequestError(
-                "MuJoCo Warp runs open loop here; run a closed-loop controller in 'mujoco' (engines.load(path))"
-            )
-        return self.run_many(n_steps, [(self, controls, nudge, initial)])[0]
 
     def run_many(self, n_steps: int, jobs) -> list[np.ndarray]:
         """The runs of ``(runner, controls, nudge, initial)`` jobs as the worlds of one call per group.

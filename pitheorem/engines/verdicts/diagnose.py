@@ -367,9 +367,10 @@ def _contact_causes(
             f"or ends at another step; with contacts off in both runs {shown(contacts)}"
         )
         return [*out, (Cause("contact", " / ".join(pair), detail), {"contacts": False})]
-    # the same pairs touch at every step: the contact computed for some pair is not scale-free.  Counter-runs
-    # take out of collision, in both runs, the moving geoms of all pairs that one collision function computes
-    # (the path, with the catalogue's constants on it), and, for few pairs, each pair's geom alone
+    # the same pairs touch at every step before the runs part: the contact computed for some pair is not
+    # scale-free.  Counter-runs take out of collision, in both runs, the moving geoms of all pairs that one
+    # collision function computes (the path, with the catalogue's constants on it), and, for few pairs, each
+    # pair's geom alone
     candidates = original.contact_candidates(touched)
     groups: dict[str, list] = {}
     for candidate in candidates:
@@ -385,16 +386,18 @@ def _contact_causes(
             (f"{pair} ({function})", paths, {"contactless_geoms": (g,)}) for g, pair, function, paths in candidates
         ]
     trials = list({tuple(sorted(o.items())): (label, paths, o) for label, paths, o in reversed(trials)}.values())[::-1]
+    # the pairs are those that touch before the runs part: after it, other contacts are what parted runs do
+    parted = f"until the runs part (step {verdict_parts}, t = {float(t[verdict_parts]):.6g})"
     for (label, paths, option), counter in zip(trials, counters(*(o for *_, o in trials)), strict=True):
         if counter.shows:
             detail = (
-                "the same pairs touch at every step, but the contacts computed here are not scale-free: with "
-                f"these contacts off in both runs {shown(counter)}"
+                f"the same pairs touch in both runs {parted}, but the contacts computed here are not "
+                f"scale-free: with these contacts off in both runs {shown(counter)}"
             )
             out.append((_with_paths(Cause("contact", label, detail), paths, engine), option))
     touch = "1 pair touches" if len(touched) == 1 else f"{len(touched)} pairs touch"
-    everything = f"every contact ({touch}, alike in both runs)"
-    detail = f"the same pairs touch at every step; with contacts off in both runs {shown(contacts)}"
+    everything = f"every contact ({touch} {parted}, alike in both runs)"
+    detail = f"the same pairs touch in both runs {parted}; with contacts off in both runs {shown(contacts)}"
     return [*out, (Cause("contact", everything, detail), {"contacts": False})]
 
 

@@ -130,16 +130,17 @@ def verify(
         gravity-compensated arm) is ``inconclusive``, never similar.
     baseline : Baseline, optional
         The original's run and its twins' under the same inputs, from
-        :func:`baseline`: they do not depend on ``s``, so copies of one
-        model at many scale factors (a sweep) run them once.  Open loop
-        only; its duration, inputs, ensemble and seed must be these.
+        ``pitheorem.engines.verdicts.verify.baseline``: they do not
+        depend on ``s``, so copies of one model at many scale factors (a
+        sweep) run them once.  Open loop only; its duration, inputs,
+        ensemble and seed must be these.
     keep_inputs : bool
         Compare with a copy whose inputs keep their values
         (:meth:`~pitheorem.engines.EngineModel.scaled` with
         ``keep_inputs=True``): the scaled run gets the very same inputs,
         and its activations are compared in their inputs' units.
     progress : callable, optional
-        ``progress(done, total)``, called as each of its :data:`STAGES`
+        ``progress(done, total)``, called as each of its ``STAGES`` (4)
         ends (the copies made, the first batch run, the controls and the
         scale-free proof, the causes).
 
@@ -448,7 +449,7 @@ def judge(plan: Plan, rows: list | None, progress=None) -> SimilarityReport:
 class Baseline:
     """The original's own runs in a verification, which no scale factor changes: its run and its twins'.
 
-    Make one with :func:`baseline`; :func:`verify` (``baseline=``) and
+    Make one with ``baseline(...)``; ``verify`` (``baseline=``) and
     :func:`~pitheorem.engines.sweep` then run only the copies.
 
     Attributes
