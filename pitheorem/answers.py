@@ -44,6 +44,9 @@ class GroupsAnswer(NamedTuple):
     passed_over : tuple of str, optional
         The variables whose value is 0, which the default repeaters avoid
         (empty when the repeaters were given).
+    settings_avoided : bool, optional
+        Whether the default repeaters also avoid the engine's settings
+        (an engine model's, :meth:`~pitheorem.engines.EngineModel.default_repeating`).
 
     Examples
     --------
@@ -63,6 +66,7 @@ class GroupsAnswer(NamedTuple):
     groups: object
     values: tuple
     passed_over: tuple[str, ...] = ()
+    settings_avoided: bool = False
 
     __str__ = TextDisplay.__str__
     __format__ = TextDisplay.__format__

@@ -305,12 +305,17 @@ def _group_value(group, values):
 def _cmd_groups(args) -> int:
     from .answers import GroupsAnswer
 
-    model = _load(args.file, args.scene)
-    repeating = args.repeating if args.repeating is not None else _default_repeating(model)
+    engine = args.repeating is None and _engine_path(args.file) is not None
+    if engine:  # the robot's numbers, never a solver's setting
+        model, engine_model = _load_with_engine(args.file, args.scene)
+        repeating = engine_model.default_repeating()
+    else:
+        model = _load(args.file, args.scene)
+        repeating = args.repeating if args.repeating is not None else _default_repeating(model)
     groups = model.system.pi_groups(repeating=repeating)
     values = tuple(_group_value(g, model.values) for g in groups)
     passed_over = () if args.repeating is not None else _zero_valued(model)
-    _print(GroupsAnswer(model.name, model.system, groups, values, passed_over), args)
+    _print(GroupsAnswer(model.name, model.system, groups, values, passed_over, engine), args)
     return EXIT_OK
 
 
@@ -396,6 +401,9 @@ def _cmd_apply(args) -> int:
     from .exact import read_positive
 
     model, engine_model = _load_with_engine(args.file, args.scene)
+    for flag, given in (("--keep-inputs", args.keep_inputs), ("--copy-assets", args.copy_assets)):
+        if given and engine_model is None:
+            raise _CommandError(f"{flag} is for MJCF and URDF model files; {args.file} has no actuators or assets")
     s = read_positive(args.s, "--s")
     if engine_model is None and not model.values:
         raise _CommandError(
@@ -411,7 +419,16 @@ def _cmd_apply(args) -> int:
         from .engines.cli import apply_engine, parse_scene
 
         model, engine_model, result, sc = _scaled_scene(args, model, engine_model, result, s)
-        _print(apply_engine(engine_model, sc, s, args.output, scene=parse_scene(args.scene)), args)
+        answer = apply_engine(
+            engine_model,
+            sc,
+            s,
+            args.output,
+            scene=parse_scene(args.scene),
+            keep_inputs=args.keep_inputs,
+            copy_assets=args.copy_assets,
+        )
+        _print(answer, args)
         _say_scaling(result, args.solution)
         return EXIT_OK
     scaled_model = model.with_values(_scaled_values(sc, model.values, s), name=f"{model.name}, scaled with s = {s}")
@@ -427,6 +444,22 @@ def _cmd_apply(args) -> int:
         output = str(out)
     _print(ApplyAnswer(model.name, s, args.solution, result, sc, model.values, scaled_model.values, output), args)
     return EXIT_OK
+
+
+def _add_engine_file_flags(p, copy: str) -> None:
+    """``--keep-inputs`` and ``--copy-assets``, the options of a written MJCF or URDF copy."""
+    p.add_argument(
+        "--keep-inputs",
+        action="store_true",
+        help=f"keep every actuator input's value (MJCF): the factors go on the gains, so a policy trained on "
+        f"the original's inputs drives the {copy} copy as it is; default: inputs are scaled by their dimension",
+    )
+    p.add_argument(
+        "--copy-assets",
+        action="store_true",
+        help="copy the mesh and texture files into OUT's folder (OUT_STEM_assets/); default: name the originals "
+        "relative to OUT",
+    )
 
 
 def _cmd_verify(args) -> int:
@@ -531,6 +564,8 @@ def _cmd_convert(args) -> int:
         fit=args.fit,
         output=args.output,
         fmt=args.format,
+        keep_inputs=args.keep_inputs,
+        copy_assets=args.copy_assets,
     )
     print(_as_named(text))
     return EXIT_INFEASIBLE if "no units keep every number clear" in text or '"feasible": false' in text else EXIT_OK
@@ -721,6 +756,7 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="OUT",
         help="write the scaled model file: .toml or .json for a TOML model, the same kind for MJCF/URDF",
     )
+    _add_engine_file_flags(p, "scaled")
     p.set_defaults(run=_cmd_apply)
 
     p = sub.add_parser(
@@ -826,6 +862,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--units", nargs="+", metavar="BASE=UNIT", help="the new units, e.g. L=mm M=g T=ms")
     p.add_argument("--fit", metavar="ENGINE", help="choose units clear of this engine's thresholds (mujoco, ...)")
     p.add_argument("--output", metavar="OUT", help="write the converted file")
+    _add_engine_file_flags(p, "converted")
     p.set_defaults(run=_cmd_convert)
     return parser
 

@@ -28,6 +28,7 @@ __all__ = [
     "EmptySystemError",
     "EngineModelError",
     "EngineUnavailableError",
+    "InputsNotKeptError",
     "InvalidRequestError",
     "LimitError",
     "ModelEquationError",
@@ -522,6 +523,35 @@ class UnscalableParameterError(PiTheoremError, ValueError):
 
     def __str__(self) -> str:
         return f"cannot scale {self.name!r}: {self.reason}"
+
+
+class InputsNotKeptError(InvalidRequestError):
+    """A model whose inputs cannot keep their values (``keep_inputs=True``).
+
+    Raised by :meth:`pitheorem.engines.EngineModel.scaled` and
+    :meth:`~pitheorem.engines.EngineModel.converted` with ``keep_inputs=True``
+    for an engine whose inputs are applied as they are given, with no gain
+    in the file to carry the actuators' factors.
+
+    Parameters
+    ----------
+    engine : str
+        The engine of the model (the culprit).
+    reason : str
+        Why its inputs cannot keep their values, and what to do instead.
+
+    Examples
+    --------
+    >>> from pitheorem.errors import InputsNotKeptError
+    >>> print(InputsNotKeptError("bullet", "its inputs are joint forces, with no gain to carry a factor"))
+    a bullet model cannot keep its inputs: its inputs are joint forces, with no gain to carry a factor
+    """
+
+    def __init__(self, engine: str, reason: str):
+        self._keep(engine, reason, culprit=engine)
+
+    def __str__(self) -> str:
+        return f"a {self.engine} model cannot keep its inputs: {self.reason}"
 
 
 class CommandLineError(PiTheoremError, ValueError):

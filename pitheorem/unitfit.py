@@ -417,6 +417,9 @@ class UnitFit(TableDisplay):
         The base the factors were rounded to, or None.
     exact : bool
         Whether `satisfied` was decided in exact arithmetic.
+    unit_names : tuple of (str, str)
+        For a fit of an engine model: its new units, as ``units``
+        gives them; empty for a fit of a System.
 
     Examples
     --------
@@ -443,6 +446,7 @@ class UnitFit(TableDisplay):
     fixed_units: tuple[str, ...]
     nice: int | None
     exact: bool
+    unit_names: tuple[tuple[str, object], ...] = ()
 
     @property
     def feasible(self) -> bool:
@@ -476,6 +480,29 @@ class UnitFit(TableDisplay):
             else:
                 out[b] = float_power(float(self.s), u, f"the factor of {b}")
         return out
+
+    @property
+    def units(self) -> dict[str, object] | None:
+        """An engine model's new units: a name for each of M, L and T.
+
+        Ready for ``model.converted(**fit.units)``, or ``model.converted(fit)``
+        in one step; a unit with no name is its size in SI units.  None for a
+        fit of a System, whose values carry no units.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> from pitheorem import engines
+        >>> model = engines.load(engines.example_path("pendulum.xml")).converted(L=100, M=1e6)
+        >>> fit = pt.fit_units(model)
+        >>> fit.units
+        {'M': '1000000 kg', 'L': 'm', 'T': 's'}
+        >>> model.converted(fit).units == fit.units
+        True
+        >>> print(pt.fit_units(pt.System({"l": "L"}), {"l": 500}, ranges={"l": (1, 2)}).units)
+        None
+        """
+        return dict(self.unit_names) if self.unit_names else None
 
     @property
     def new_units(self) -> dict[str, object]:

@@ -54,7 +54,7 @@ def test_an_answer_keeps_what_it_is_given_and_cannot_be_changed(cls):
 def test_optional_fields_default_to_nothing():
     # an engine apply names no other file and no values by default; groups pass over no variable
     assert answers.EngineApplyAnswer._field_defaults == {"also_written": (), "details": ()}
-    assert answers.GroupsAnswer._field_defaults == {"passed_over": ()}
+    assert answers.GroupsAnswer._field_defaults == {"passed_over": (), "settings_avoided": False}
     assert answers.EngineVerifyAnswer._field_defaults == {"notes": ()}  # the engine's notes: none by default
     others = (answers.EngineApplyAnswer, answers.GroupsAnswer, answers.EngineVerifyAnswer)
     assert all(not cls._field_defaults for cls in ANSWERS if cls not in others)

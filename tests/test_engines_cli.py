@@ -7,6 +7,7 @@ import re
 import warnings
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
@@ -338,8 +339,26 @@ def test_groups_avoids_zero_repeaters_and_says_which(capsys):
             assert group["value"] == pytest.approx(expected, rel=1e-12)
     assert main(["groups", PENDULUM]) == 0
     text = capsys.readouterr().out.splitlines()
-    assert text[2].startswith("(the first valid set without time variables")
+    assert text[2].startswith("(the first valid set without the engine's settings, time variables")
     assert "density" in text[2]
+
+
+@pytest.mark.parametrize(
+    "model",
+    [f"example:{n}" for n in examples() if n.endswith((".xml", ".urdf"))]
+    + sorted(str(p) for p in (Path(__file__).parent / "robots").glob("*/*.[xu][mr][ld]*")),
+    ids=lambda m: Path(m).name,
+)
+def test_default_repeaters_are_never_a_solver_setting(capsys, model):
+    engine_model = engines.load(engines.example_path(model[8:]) if model.startswith("example:") else model)
+    settings = {p.name for p in engine_model.parameters if p.name not in ("g", "wind", "density", "viscosity")}
+    settings = {n for n in settings if engine_model.parameter(n).path.startswith(("option ", "set"))}
+    assert main(["groups", model, "--format", "json"]) == 0
+    repeating = json.loads(capsys.readouterr().out)["repeating"]
+    assert repeating == list(engine_model.default_repeating())
+    assert not set(repeating) & (settings | {"ccd_tolerance", "tolerance", "noslip_tolerance", "o_margin"})
+    # each repeater is one nonzero number of the file or of gravity: every group gets a value
+    assert all(len(engine_model.parameter(n).value) == 1 and engine_model.parameter(n).value[0] != 0 for n in repeating)
 
 
 def test_groups_with_a_zero_repeater_given_shows_the_undefined_group_in_its_row(capsys):
@@ -598,6 +617,68 @@ def test_check_on_dm_controls_dog_prints_at_most_ten_lines(capsys):
     lines = capsys.readouterr().out.splitlines()
     assert 1 <= len(lines) <= 10
     assert len(lines[0]) < 120
+
+
+def test_apply_and_convert_keep_the_inputs_and_copy_the_assets_on_request(tmp_path, capsys):
+    import shutil
+
+    model = engines.load(DATA / "actuated.xml")
+    low, high = model.inputs()[1:]
+    for verb, request in (("apply", ["--scale", "g=1", "--s", "4"]), ("convert", ["--units", "L=mm", "M=g"])):
+        out = tmp_path / f"{verb}.xml"
+        assert main([verb, str(DATA / "actuated.xml"), *request, "--keep-inputs", "--output", str(out)]) == 0
+        kept = engines.load(out)
+        assert np.array_equal(kept.inputs()[1], low)
+        assert np.array_equal(kept.inputs()[2], high)
+        default = tmp_path / f"{verb}_default.xml"
+        assert main([verb, str(DATA / "actuated.xml"), *request, "--output", str(default)]) == 0
+        assert not np.array_equal(engines.load(default).inputs()[2], high)  # without the flag, as before
+    capsys.readouterr()
+    # assets: copied beside the output, which then travels alone
+    shutil.copytree(Path(__file__).parent / "robots" / "mjcf", tmp_path / "robots")
+    out = tmp_path / "out" / "arm4.xml"
+    out.parent.mkdir()
+    request = ["--scale", "g=1", "--s", "4", "--copy-assets", "--output", str(out)]
+    assert main(["apply", str(tmp_path / "robots" / "arm.xml"), *request]) == 0
+    shutil.rmtree(tmp_path / "robots")
+    shutil.move(tmp_path / "out", tmp_path / "moved")
+    assert engines.load(tmp_path / "moved" / "arm4.xml").runner.mjmodel.nmesh > 0
+
+
+def test_keep_inputs_and_copy_assets_are_refused_by_name_where_they_mean_nothing(capsys):
+    for flag in ("--keep-inputs", "--copy-assets"):
+        assert main(["apply", "example:hinged_rod", "--scale", "g=1", "--s", "4", flag]) == 2
+        err = capsys.readouterr().err
+        assert err.startswith(f"pitheorem: error: {flag} is for MJCF and URDF model files")
+        assert err.count("\n") == 1
+    pytest.importorskip("pybullet")
+    assert main(["apply", "example:hinged_rod.urdf", "--scale", "g=1", "--s", "4", "--keep-inputs"]) == 2
+    err = capsys.readouterr().err
+    assert "cannot keep its inputs: its inputs are joint forces" in err
+    assert err.count("\n") == 1
+    assert len(err.splitlines()[0]) < 120
+
+
+SHIPPED_ENGINE_FILES = [f"example:{n}" for n in examples() if n.endswith((".xml", ".urdf"))]
+
+
+@pytest.mark.parametrize("model", SHIPPED_ENGINE_FILES, ids=lambda m: m[8:])
+def test_every_commands_first_line_fits_120_characters_on_the_shipped_examples(capsys, model, tmp_path):
+    commands = [
+        ["params"],
+        ["groups"],
+        ["bases"],
+        ["search", "--scale", "g=1"],
+        ["apply", "--scale", "g=1", "--s", "4"],
+        ["verify", "--scale", "g=1", "--s", "4", "--duration", "0.05"],
+        ["check"],
+        ["convert", "--units", "L=mm"],
+    ]
+    for verb, *request in commands:
+        main([verb, model, *request])
+        out, err = capsys.readouterr()
+        first = (out or err).splitlines()[0]
+        assert len(first) < 120, (verb, first)
 
 
 def test_verify_shows_its_stages_on_stderr_when_asked(capsys):

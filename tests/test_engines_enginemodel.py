@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -196,3 +197,92 @@ def test_the_how_to_models_ship_with_their_meshes_and_load(name):
         warnings.simplefilter("ignore", engines.UnscalableModelWarning)
         model = engines.load(path, **({"ground": True} if name.endswith(".urdf") else {}))
     assert model.parameters
+
+
+# -- keep_inputs: the actuators' factors on their gains, every input unchanged ---------------------------------
+
+ACTUATED = Path(__file__).parent / "data" / "engines" / "actuated.xml"
+
+
+def _inputs_moving_every_actuator(t):
+    return [0.5 * math.sin(5 * t), 0.05 * math.cos(3 * t), 0.7 * math.sin(2 * t), 0.1 * math.sin(4 * t), 0.5, 0.3]
+
+
+def test_keep_inputs_keeps_every_control_range_keyframe_and_activation_range():
+    model = engines.load(ACTUATED)
+    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1, "M": 3})
+    dims, low, high = model.inputs()
+    assert [str(d) for d in dims] == ["M L^2 T^-2", "L", "M L T^-2", "L", "L T^-1", "L T^-1"]
+    for s in (4, 10):
+        default, kept = model.scaled(sc, s), model.scaled(sc, s, keep_inputs=True)
+        # the default scales each input by its dimension; kept, every range is the original's, exactly
+        assert not np.array_equal(default.inputs()[2], high)
+        assert np.array_equal(kept.inputs()[1], low)
+        assert np.array_equal(kept.inputs()[2], high)
+        m, m0 = kept.runner.mjmodel, model.runner.mjmodel
+        assert np.array_equal(m.actuator_ctrlrange, m0.actuator_ctrlrange)  # the inherited range too
+        assert np.array_equal(m.actuator_actrange, m0.actuator_actrange)
+        assert np.array_equal(m.key_ctrl, m0.key_ctrl)
+        assert np.array_equal(m.key_act, m0.key_act)
+        # the gains carry the factor: the motor's by the torque's (s^2 s^3 = s^5), the servos' by the force's
+        force = s ** (1 + 3)
+        assert m.actuator_gainprm[0, 0] == pytest.approx(m0.actuator_gainprm[0, 0] * s**5, rel=1e-15)
+        assert m.actuator_gainprm[1, 0] == pytest.approx(m0.actuator_gainprm[1, 0] * force, rel=1e-15)
+        # a bias takes its own factor, as always (force per length: s^3)
+        assert m.actuator_biasprm[1, 1] == pytest.approx(m0.actuator_biasprm[1, 1] * s**3, rel=1e-15)
+        # the damping ratio, read by MuJoCo only while gain and bias are opposite, is written as its damping
+        assert m.actuator_biasprm[3, 2] < 0
+        assert m.actuator_biasprm[3, 2] == pytest.approx(m0.actuator_biasprm[3, 2] * s**3, rel=1e-12)
+
+
+@pytest.mark.parametrize("s", [4, 10])
+def test_a_copy_that_keeps_its_inputs_verifies_with_the_very_same_inputs(tmp_path, s):
+    model = engines.load(ACTUATED)
+    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1, "M": 3})
+    rep = engines.verify(model, sc, s=s, duration=0.3, controls=_inputs_moving_every_actuator, keep_inputs=True)
+    assert rep.excited
+    assert rep.similar
+    assert rep.exact == (s == 4)
+    # saved and read back, the same
+    saved = model.scaled(sc, s, keep_inputs=True).save(tmp_path / "kept.xml")
+    again = engines.verify(
+        model,
+        sc,
+        s=s,
+        duration=0.3,
+        controls=_inputs_moving_every_actuator,
+        keep_inputs=True,
+        scaled=engines.load(saved),
+    )
+    assert again.similar
+    assert again.exact == (s == 4)
+    # the kept copy driven as if its inputs were scaled is no longer the same motion
+    wrong = engines.verify(
+        model,
+        sc,
+        s=4,
+        duration=0.3,
+        controls=_inputs_moving_every_actuator,
+        scaled=model.scaled(sc, 4, keep_inputs=True),
+    )
+    assert not wrong.exact
+
+
+def test_converted_keeps_the_inputs_on_request_and_by_default_converts_them():
+    model = engines.load(ACTUATED)
+    mm = model.converted(L="mm", M="g")
+    kept = model.converted(L="mm", M="g", keep_inputs=True)
+    assert mm.inputs()[2][0] == model.inputs()[2][0] * 1e9  # g mm^2 s^-2 per kg m^2 s^-2
+    assert np.array_equal(kept.inputs()[1], model.inputs()[1])
+    assert np.array_equal(kept.inputs()[2], model.inputs()[2])
+    assert kept.units == mm.units == {"M": "g", "L": "mm", "T": "s"}
+
+
+def test_a_urdf_compiled_by_mujoco_refuses_to_keep_its_inputs_as_pybullet_does():
+    # its motors (one per joint, gear 1) take the joint's force itself: no number of the file carries a factor
+    model = engines.load(engines.example_path("hinged_rod.urdf"), engine="mujoco")
+    assert [str(d) for d in model.inputs()[0]] == ["M L^2 T^-2"]
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    with pytest.raises(pt.errors.InputsNotKeptError, match="joint forces, with no gain to carry a factor"):
+        model.scaled(sc, 4, keep_inputs=True)
+    model.scaled(sc, 4)  # the default stays as it is

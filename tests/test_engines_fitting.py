@@ -145,3 +145,34 @@ def test_superball_a_thousand_times_larger_at_the_same_density_is_fitted_and_ver
     assert np.isfinite(fitted.runner.run(200)).all()
     ((scaling, factor),) = conversion(big.system(), big.units, read_units(units))
     assert engines.verify(big, scaling, factor, duration=0.2).similar
+
+
+def test_a_fit_of_a_model_names_its_units_and_converted_takes_the_fit_itself():
+    tiny = engines.load(PENDULUM).converted(L=100, M=1e6)
+    fit = pt.fit_units(tiny)
+    assert fit.units == fitted_units(tiny, fit) == {"M": "1000000 kg", "L": "m", "T": "s"}
+    # the units read back to the fit's factors: each new unit is the old one over its factor, exactly
+    sizes_old = {b: engines.units.unit_size(b, tiny.units[b]) for b in "MLT"}
+    sizes_new = {b: engines.units.unit_size(b, fit.units[b]) for b in "MLT"}
+    assert {b: sizes_old[b] / sizes_new[b] for b in "MLT"} == fit.factors
+    one_step, two_steps = tiny.converted(fit), tiny.converted(**fit.units)
+    assert one_step.units == two_steps.units == fit.units
+    assert one_step.parameters == two_steps.parameters
+    assert not engines.check(one_step)  # the fitted copy is clear of every threshold
+    assert pt.fit_units(pt.System({"l": "L"}), {"l": 500}, ranges={"l": (1, 2)}).units is None
+
+
+@pytest.mark.parametrize(
+    ("fit", "units", "says"),
+    [
+        ("mm", {}, "converted takes the fit of an engine model"),
+        (pt.fit_units(pt.System({"l": "L"}), {"l": 500}, ranges={"l": (1, 2)}), {}, "the fit of an engine model"),
+        (None, None, "a fit or units, not both"),
+    ],
+)
+def test_converted_refuses_a_fit_it_cannot_read(fit, units, says):
+    model = engines.load(PENDULUM)
+    if units is None:
+        fit, units = pt.fit_units(model.converted(L=100)), {"L": "mm"}
+    with pytest.raises(pt.InvalidRequestError, match=says):
+        model.converted(fit, **units)

@@ -360,11 +360,13 @@ _PENDULUM = """<mujoco model="p">
 )
 def test_nan_and_infinite_numbers_are_refused_by_name(tmp_path, numbers, element, attribute):
     path = tmp_path / "bad.xml"
-    path.write_text(_PENDULUM.format(**{"timestep": "0.002", "damping": "0.1", "stiffness": "0", **numbers}))
+    text = _PENDULUM.format(**{"timestep": "0.002", "damping": "0.1", "stiffness": "0", **numbers})
+    path.write_text(text)
     with pytest.raises(EngineModelError) as caught:
         engines.load(path)
-    assert (
-        str(caught.value) == f"{path}: {element}: {attribute} is not a finite number; a model holds finite numbers only"
+    line = next(k for k, row in enumerate(text.strip().splitlines(), 1) if attribute.replace("'", '"') in row)
+    assert str(caught.value) == (
+        f"{path}: line {line}, {element}: {attribute} is not a finite number; a model holds finite numbers only"
     )
 
 
@@ -776,3 +778,24 @@ def test_reading_a_file_pauses_the_collector_and_gives_it_back_as_it_was():
     with pytest.raises(ZeroDivisionError), _collection_paused():
         1 / 0  # noqa: B018
     assert gc.isenabled()
+
+
+def test_a_copy_saved_with_its_assets_copied_loads_alone_after_the_originals_are_gone(tmp_path):
+    import shutil
+
+    path = _meshed_model(tmp_path / "lab" / "robot")
+    model = engines.load(path)
+    lengths = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    out = tmp_path / "lab" / "out" / "box4.xml"
+    out.parent.mkdir()
+    scaled = model.scaled(lengths, 4)
+    scaled.save(out, copy_assets=True)
+    text = out.read_text()
+    assert 'file="box4_assets/crate.stl"' in text  # the copy, beside the file, named relative to it
+    assert (out.parent / "box4_assets" / "crate.stl").read_bytes() == (ROBOT_MESHES / "crate.stl").read_bytes()
+    shutil.rmtree(tmp_path / "lab" / "robot")  # the originals gone: the output folder holds everything
+    shutil.move(tmp_path / "lab" / "out", tmp_path / "moved")
+    moved = mujoco.MjModel.from_xml_path(str(tmp_path / "moved" / "box4.xml"))
+    original = mujoco.MjModel.from_xml_path(str(_meshed_model(tmp_path / "again")))
+    np.testing.assert_allclose(moved.mesh_vert, 4 * original.mesh_vert, rtol=1e-6)
+    assert engines.load(tmp_path / "moved" / "box4.xml").parameter("g").value == scaled.parameter("g").value

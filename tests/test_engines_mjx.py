@@ -608,3 +608,14 @@ def test_a_urdf_in_mjx_is_mujocos_urdf_model_with_its_settings_file(tmp_path):
     assert engines.load(out, engine="mjx").timestep() == in_mjx.timestep() / 4
     with pytest.raises(pt.InvalidRequestError, match="precision"):
         engines.load(path, engine="mjx", precision="float16")
+
+
+def test_an_mjx_copy_keeps_its_inputs_as_mujocos_does():
+    path = Path(__file__).resolve().parent / "data" / "engines" / "actuated.xml"
+    model = engines.load(path, engine="mjx")
+    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1, "M": 3})
+    kept = model.scaled(sc, 4, keep_inputs=True)
+    in_mujoco = engines.load(path).scaled(sc, 4, keep_inputs=True)
+    np.testing.assert_array_equal(kept.inputs()[1], model.inputs()[1])
+    np.testing.assert_array_equal(kept.inputs()[2], model.inputs()[2])
+    assert [repr(p.value) for p in kept.parameters] == [repr(p.value) for p in in_mujoco.parameters]  # NaN: unset

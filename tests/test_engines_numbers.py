@@ -9,6 +9,7 @@ import pickle
 
 import pytest
 
+from pitheorem import engines
 from pitheorem.engines import EngineModelError
 from pitheorem.engines.fileformats.numbers import check_model_file, check_numbers
 
@@ -39,7 +40,7 @@ def test_nan_and_infinities_are_refused_naming_element_and_attribute(tmp_path, a
     with pytest.raises(EngineModelError) as caught:
         check_model_file(path)
     message = str(caught.value)
-    assert message.startswith(f"{path}: <joint name='h'>: {attribute}={value!r} is not a finite number")
+    assert message.startswith(f"{path}: line 1, <joint name='h'>: {attribute}={value!r} is not a finite number")
     assert str(pickle.loads(pickle.dumps(caught.value))) == message
 
 
@@ -108,7 +109,7 @@ def test_the_whole_messages(tmp_path):
         check_model_file(path)
     assert (
         str(caught.value)
-        == f"{path}: <option>: timestep='nan' is not a finite number; a model holds finite numbers only"
+        == f"{path}: line 1, <option>: timestep='nan' is not a finite number; a model holds finite numbers only"
     )
     bad = tmp_path / "bad.xml"
     bad.write_bytes(b"<mujoco>\n<x a='\xc3'/></mujoco>")
@@ -152,3 +153,38 @@ def test_text_attributes_do_not_end_the_scan(tmp_path):
     root = check_model_file(fine)
     assert root is not None
     assert [e.tag for e in root.iter()] == ["mujoco", "custom", "text", "option"]
+
+
+def test_nan_in_a_default_class_names_the_class_and_the_line(tmp_path):
+    path = write(
+        tmp_path,
+        "<mujoco>\n  <default>\n    <default class='stiff'>\n      <joint damping='1'/>\n    </default>\n"
+        "    <default class='soft'>\n      <joint damping='nan'/>\n    </default>\n  </default>\n"
+        "  <worldbody><body name='b'><joint class='soft'/><geom size='0.1'/></body></worldbody>\n</mujoco>",
+    )
+    with pytest.raises(EngineModelError) as caught:
+        engines.load(path)
+    # the seventh line, in the class 'soft' (not the first class, nor the body that uses it)
+    assert str(caught.value) == (
+        f"{path}: line 7, <joint> in <default class='soft'>: damping='nan' is not a finite number; "
+        "a model holds finite numbers only"
+    )
+
+
+@pytest.mark.parametrize(
+    ("inertial", "attribute"),
+    [('mass="-1" diaginertia="1 1 1"', "mass"), ('mass="1" diaginertia="1 -1 1"', "diaginertia")],
+)
+def test_a_negative_inertial_mass_or_inertia_is_refused_with_its_body_and_line(tmp_path, inertial, attribute):
+    # MuJoCo compiles a negative <inertial> mass or principal inertia of a welded body to 0 without a word
+    body = f'<body name="tip">\n<inertial pos="0 0 0" {inertial}/>\n</body>'
+    text = f'<mujoco>\n<worldbody>\n<body name="arm">\n<joint/>\n<geom size=".1"/>\n{body}\n</body>\n</worldbody>\n</mujoco>'
+    mujoco_module = pytest.importorskip("mujoco")
+    assert mujoco_module.MjModel.from_xml_string(text).body_mass[2] in (0.0, 1.0)  # MuJoCo itself says nothing
+    path = write(tmp_path, text)
+    with pytest.raises(EngineModelError) as caught:
+        engines.load(path)
+    assert str(caught.value).startswith(f"{path}: line 7, <inertial> in <body name='tip'>: {attribute}=")
+    assert "is negative" in str(caught.value)
+    # zero stays allowed (a massless frame), and a URDF's own check is untouched
+    engines.load(write(tmp_path, text.replace("-1", "0")))

@@ -93,3 +93,12 @@ def test_every_optional_method_is_asked_for_through_its_protocol_not_hasattr():
                 args = node.args
                 probed = args[1].value if len(args) > 1 and isinstance(args[1], ast.Constant) else None
                 assert probed not in optional | {"run_many"}, (name, probed)
+
+
+def test_mujocos_runners_keep_inputs_and_pybullets_does_not():
+    from pitheorem.engines.protocols import KeepsInputs
+
+    assert isinstance(engines.load(engines.example_path("pendulum.xml")).runner, KeepsInputs)
+    assert isinstance(engines.load(engines.example_path("hinged_rod.urdf"), engine="mujoco").runner, KeepsInputs)
+    pytest.importorskip("pybullet")
+    assert not isinstance(engines.load(engines.example_path("hinged_rod.urdf")).runner, KeepsInputs)

@@ -504,3 +504,16 @@ def test_a_compound_mesh_cause_names_the_file_never_a_machine_path(tmp_path):
     causes = [c for c in model.runner.ignored_settings() if "collision mesh" in c.element]
     assert [c.element for c in causes] == ["link 'baseLink' collision mesh 'duck_vhacd.obj'"]
     assert str(data) not in causes[0].detail
+
+
+def test_keep_inputs_is_refused_for_pybullet_whose_inputs_are_the_joint_forces_themselves():
+    model = engines.load(ARM, damping=0.0, split_impulse=False)
+    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    with pytest.raises(pt.errors.InputsNotKeptError) as caught:
+        model.scaled(sc, 4, keep_inputs=True)
+    assert caught.value.culprit == "pybullet"
+    assert str(caught.value) == (
+        "a pybullet model cannot keep its inputs: its inputs are joint forces, with no gain to carry a factor"
+    )
+    assert isinstance(caught.value, pt.InvalidRequestError)
+    model.scaled(sc, 4)  # the default stays as it is

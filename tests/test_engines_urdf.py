@@ -326,6 +326,25 @@ def test_a_saved_urdf_names_its_meshes_relative_to_itself_and_loads_after_its_fo
         pybullet.disconnect(client)
 
 
+@pytest.mark.parametrize("engine", ["pybullet", "mujoco"])
+def test_a_urdf_saved_with_its_meshes_copied_loads_alone_after_the_originals_are_gone(tmp_path, engine):
+    import shutil
+
+    pytest.importorskip(engine)
+    robots = Path(__file__).resolve().parent / "robots" / "urdf"
+    shutil.copytree(robots, tmp_path / "lab" / "urdf")
+    options = {"fixed_base": True, "damping": 0.0, "split_impulse": False} if engine == "pybullet" else {}
+    model = engines.load(tmp_path / "lab" / "urdf" / "arm.urdf", engine=engine, **options)
+    out = tmp_path / "lab" / "out" / "arm_copy.urdf"
+    out.parent.mkdir()
+    model.save(out, copy_assets=True)
+    assert 'filename="arm_copy_assets/base.obj"' in out.read_text()
+    shutil.rmtree(tmp_path / "lab" / "urdf")
+    shutil.move(tmp_path / "lab" / "out", tmp_path / "moved")
+    again = engines.load(tmp_path / "moved" / "arm_copy.urdf", engine=engine)  # its saved settings hold the scene
+    assert [p.value for p in again.parameters] == [p.value for p in model.parameters]
+
+
 def _binary_stl(header: bytes) -> bytes:
     """A binary STL of one triangle whose 80-byte header (free text by the format) is `header`."""
     import struct

@@ -63,6 +63,7 @@ def _every_error_with_every_field_set():
         errors.EngineModelError("robot.xml", "mesh 'torso'", "not found"),
         errors.UnscalableParameterError("joint_root_damping", "needs s^1 and s^3"),
         errors.EngineUnavailableError("bullet", "pybullet"),
+        errors.InputsNotKeptError("bullet", "its inputs are forces"),
     ]
 
 
@@ -85,6 +86,7 @@ CULPRITS = {
     "EngineModelError": "robot.xml",
     "UnscalableParameterError": "joint_root_damping",
     "EngineUnavailableError": "bullet",
+    "InputsNotKeptError": "bullet",
 }
 
 
@@ -166,6 +168,8 @@ def provoked_errors():
             errors.UnscalableParameterError("joint_root_damping", "needs s^1 and s^3"),
             "joint_root_damping",
         ),
+        # provoked through the public API in test_engines_pybullet.py (a PyBullet model keeps no inputs)
+        errors.InputsNotKeptError: (errors.InputsNotKeptError("bullet", "its inputs are forces"), "bullet"),
     }
 
 

@@ -110,6 +110,7 @@ NOT_VALUE_TYPES = {
     "UnitError": _ERROR,
     "UnknownVariableError": _ERROR,
     "EngineModelError": _ERROR,
+    "InputsNotKeptError": _ERROR,
     "UnscalableParameterError": _ERROR,
     "UnscalableModelWarning": "a warning category: warnings.warn instantiates it, nobody holds one as a value",
 }

@@ -247,6 +247,7 @@ def test_every_module_has_its_test_file_and_every_test_file_a_module_or_a_reason
             "cli",
             "constants",
             "enginemodel",
+            "fileformats.assets",
             "fileformats.mjcf",
             "fileformats.mjcfunits",
             "fileformats.numbers",

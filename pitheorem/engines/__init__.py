@@ -47,7 +47,7 @@ from .constants import (
     hidden_constants,
     with_hidden_constants,
 )
-from .enginemodel import EngineModel, EngineModelError, UnscalableParameterError, example_path
+from .enginemodel import EngineModel, EngineModelError, InputsNotKeptError, UnscalableParameterError, example_path
 from .loading import load
 from .paper.rod import EngineSimilarityReport, simulate_rod, verify_engine_similarity
 from .parameters import Parameter, UnscalableModelWarning
@@ -80,6 +80,7 @@ __all__ = [
     "EngineModelError",
     "EngineSimilarityReport",
     "HiddenConstant",
+    "InputsNotKeptError",
     "Parameter",
     "RuleOfThumb",
     "RuleQuantity",

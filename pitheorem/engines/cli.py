@@ -20,7 +20,7 @@ from ..errors import InvalidRequestError
 from ..modelfile import ModelFile
 from .enginemodel import EngineModel, EngineModelError, UnscalableParameterError
 from .loading import load, scene_options
-from .protocols import EngineNotes, RefusesScalings
+from .protocols import EngineNotes, KeepsInputs, RefusesScalings
 from .verdicts.causes import Cause
 
 __all__ = [
@@ -264,7 +264,9 @@ def params_answer(path: str, *, name: str | None = None, **options) -> ParamsAns
     return ParamsAnswer(str(path) if name is None else name, load(path, **options))
 
 
-def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None) -> EngineApplyAnswer:
+def apply_engine(
+    model: EngineModel, scaling, s, output: str | None, scene=None, *, keep_inputs=False, copy_assets=False
+) -> EngineApplyAnswer:
     """Scale an engine model file and write it (``pitheorem apply FILE ... --output OUT``).
 
     Parameters
@@ -283,6 +285,12 @@ def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None)
         The scene options the URDF file was loaded with (:func:`parse_scene`);
         without ``damping``, a refusal of PyBullet's mixed damping names
         ``--scene damping=0``.
+    keep_inputs : bool
+        Keep every control input's value (``--keep-inputs``; see
+        :meth:`~pitheorem.engines.EngineModel.scaled`).
+    copy_assets : bool
+        Copy the mesh and texture files beside the written file
+        (``--copy-assets``; see :meth:`~pitheorem.engines.EngineModel.save`).
 
     Returns
     -------
@@ -304,7 +312,7 @@ def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None)
     True
     """
     try:
-        scaled = model.scaled(scaling, s)
+        scaled = model.scaled(scaling, s, keep_inputs=keep_inputs)
     except UnscalableParameterError as err:
         option, flags = (
             model.runner.command_line_remedy(err.name) if isinstance(model.runner, RefusesScalings) else ("", "")
@@ -312,8 +320,14 @@ def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None)
         if option and option not in (scene or {}):
             raise InvalidRequestError(f"{err}; on the command line: {flags}") from None
         raise
+    kept = {}  # with kept inputs: each number an input passes through, measured with the input taken out
+    if keep_inputs and isinstance(model.runner, KeepsInputs):
+        for ctrl, powers in zip(model.runner.control_dimensions(), model.runner.input_parameters(), strict=True):
+            kept.update({name: ctrl**power for name, power in powers.items()})
     exponents = (
-        (p, scaling.exponent_of(p.dimension)) for p in model.parameters if not p.mixed and any(v != 0 for v in p.value)
+        (p, scaling.exponent_of(p.dimension / kept[p.name] if p.name in kept else p.dimension))
+        for p in model.parameters
+        if not p.mixed and any(v != 0 for v in p.value)
     )
     changed_parameters = [(p, e) for p, e in exponents if e != 0]
     changed = tuple((p.name, e) for p, e in changed_parameters)
@@ -323,7 +337,7 @@ def apply_engine(model: EngineModel, scaling, s, output: str | None, scene=None)
         out = Path(output)
         if out.exists() and out.resolve() == Path(model.path).resolve():
             raise InvalidRequestError(f"--output {output!r} is the input file; choose another name")
-        scaled.save(out)
+        scaled.save(out, copy_assets=copy_assets)
         written = str(out)
         beside = scaled.runner.written_beside(out)
     return EngineApplyAnswer(
@@ -420,7 +434,15 @@ def parse_units(items: list[str] | None, option: str) -> dict[str, str]:
 
 
 def convert_engine(
-    path: str, *, from_units=None, units=None, fit: str | None = None, output: str | None = None, fmt: str = "text"
+    path: str,
+    *,
+    from_units=None,
+    units=None,
+    fit: str | None = None,
+    output: str | None = None,
+    fmt: str = "text",
+    keep_inputs: bool = False,
+    copy_assets: bool = False,
 ) -> str:
     """The command line's ``convert``: the same model in other units, written with ``--output``.
 
@@ -438,6 +460,10 @@ def convert_engine(
     output : str, optional
         Where to write the converted file.
     fmt : {"text", "json"}
+    keep_inputs : bool
+        Keep every control input's value (``--keep-inputs``).
+    copy_assets : bool
+        Copy the mesh and texture files beside the written file (``--copy-assets``).
 
     Returns
     -------
@@ -471,7 +497,7 @@ def convert_engine(
     new = read_units({**model.units, **units})
     factors = _factors_text(model.units, new)
     try:
-        converted = model.converted(**new)
+        converted = model.converted(**new, keep_inputs=keep_inputs)
     except EngineModelError:
         if fitted is None:
             raise
@@ -490,7 +516,7 @@ def convert_engine(
         out = Path(output)
         if out.exists() and out.resolve() == Path(path).resolve():
             raise InvalidRequestError(f"--output {output!r} is the input file; choose another name")
-        converted.save(out)
+        converted.save(out, copy_assets=copy_assets)
         written = str(out)
     steps = len(conversion(model.system(), model.units, new))
     from .thresholds import check_summary

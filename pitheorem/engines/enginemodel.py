@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..dimensions import Dimension
-from ..errors import EngineModelError, InvalidRequestError, UnscalableParameterError
+from ..errors import EngineModelError, InputsNotKeptError, InvalidRequestError, UnscalableParameterError
 from ..exact import read_count, read_scale_factor, read_value
 from ..formatting import TableDisplay
 from ..immutable import immutable
@@ -34,7 +34,7 @@ from ..scaling import Scaling
 from ..simulation import positive_float
 from ..system import System
 from .parameters import Parameter, UnscalableModelWarning, dim, dimension_factor
-from .protocols import HasSceneSettings, RefusesScalings
+from .protocols import HasSceneSettings, KeepsInputs, RefusesScalings
 
 if TYPE_CHECKING:  # numpy only for the annotations: loading a model's table needs none of it
     import numpy as np
@@ -42,6 +42,7 @@ if TYPE_CHECKING:  # numpy only for the annotations: loading a model's table nee
 __all__ = [
     "EngineModel",
     "EngineModelError",
+    "InputsNotKeptError",
     "Parameter",
     "UnscalableModelWarning",
     "UnscalableParameterError",
@@ -133,7 +134,7 @@ class EngineModel(TableDisplay):
         """
         return dict(self._units)
 
-    def converted(self, **units) -> EngineModel:
+    def converted(self, fit=None, /, *, keep_inputs: bool = False, **units) -> EngineModel:
         """The same model in other units: every number by its dimension.
 
         A change of units is a similarity scaling, so this is
@@ -144,6 +145,14 @@ class EngineModel(TableDisplay):
 
         Parameters
         ----------
+        fit : UnitFit, optional
+            The units :func:`pitheorem.fit_units` chose for this model
+            (its :attr:`~pitheorem.UnitFit.units`), instead of
+            `units`.
+        keep_inputs : bool
+            Keep the value of every control input: each actuator's factor
+            goes on its gain instead of its input range (see
+            :meth:`scaled`).  Default False: the inputs are converted too.
         **units : str or number
             New units for some of ``M``, ``L`` and ``T``: a name pint
             reads (``L="mm"``), or the unit's size in SI units
@@ -161,6 +170,12 @@ class EngineModel(TableDisplay):
         EngineModelError
             For a URDF model and units other than SI (URDF is SI by its
             specification).
+        InvalidRequestError
+            For a `fit` that is no UnitFit of an engine model, or both a
+            `fit` and `units`.
+        InputsNotKeptError
+            With `keep_inputs`, for an engine whose inputs have no gain
+            to carry the factors (PyBullet's).
 
         Examples
         --------
@@ -169,10 +184,24 @@ class EngineModel(TableDisplay):
         >>> cm = model.converted(L="cm", M="g")
         >>> cm.units, cm.parameter("g").value
         ({'M': 'g', 'L': 'cm', 'T': 's'}, (981.0,))
+        >>> cm.inputs()[1:], model.converted(L="cm", M="g", keep_inputs=True).inputs()[1:]
+        ((array([-10000000.]), array([10000000.])), (array([-1.]), array([1.])))
         """
+        from ..unitfit import UnitFit
         from .units import convert
 
-        return convert(self, units)
+        if fit is not None:
+            if not isinstance(fit, UnitFit) or fit.units is None:
+                raise InvalidRequestError(
+                    f"converted takes the fit of an engine model (pt.fit_units(model)), got {type(fit).__name__}",
+                    culprit=fit,
+                )
+            if units:
+                raise InvalidRequestError(
+                    f"give converted a fit or units, not both (units {', '.join(sorted(units))})", culprit=fit
+                )
+            units = fit.units
+        return convert(self, units, keep_inputs=keep_inputs)
 
     def in_units(self, units) -> EngineModel:
         """This model's numbers, unchanged, declared to be in other units.
@@ -331,6 +360,41 @@ class EngineModel(TableDisplay):
             object.__setattr__(self, "_system", System(dims))
         return self._system
 
+    def default_repeating(self) -> tuple[str, ...]:
+        """The repeaters ``pitheorem groups`` takes: the robot's numbers, no solver's.
+
+        The first valid set (in :meth:`pitheorem.System.bases` order) of
+        :meth:`system` that uses none of the engine's settings (MJCF's
+        ``<option>`` numbers but gravity, wind, density and viscosity:
+        ``ccd_tolerance``, ``o_margin``, ...; the engine parameters and
+        per-link defaults a URDF file does not state), no time variable, no
+        number that is 0 and no vector; the conditions are dropped, last
+        first, where no set meets them.
+
+        Returns
+        -------
+        tuple of str
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> model = engines.load(engines.example_path("pendulum.xml"))
+        >>> model.default_repeating()
+        ('g', 'body_arm_mass', 'geom_rod_density')
+        >>> model.system().pi_groups(repeating=model.default_repeating()).repeating
+        ('g', 'body_arm_mass', 'geom_rod_density')
+        """
+        system = self.system()
+        settings = {p.name for p in self.parameters if _engine_setting(p)}
+        zero = {p.name for p in self.parameters if not p.mixed and all(v == 0 for v in p.value)}
+        vectors = {p.name for p in self.parameters if len(p.value) != 1}
+        time = set(system.time_variables)
+        for avoid in (settings | zero | time | vectors, settings | zero | time, zero | time, zero):
+            first = next(system.iter_bases(exclude=[n for n in system.variables if n in avoid]), None)
+            if first is not None:
+                return first
+        return system.default_repeating()
+
     def table(self) -> str:
         """The parameters as aligned plain text: name, dimension, value, source, path.
 
@@ -345,7 +409,7 @@ class EngineModel(TableDisplay):
 
         return parameter_table(self)
 
-    def scaled(self, scaling, s) -> EngineModel:
+    def scaled(self, scaling, s, *, keep_inputs: bool = False) -> EngineModel:
         """A copy with every parameter multiplied by ``s`` to its exponent.
 
         Parameters
@@ -355,6 +419,16 @@ class EngineModel(TableDisplay):
             :func:`pitheorem.search`).
         s : float
             The scale factor, positive.
+        keep_inputs : bool
+            Keep the value of every control input (an actuator's
+            ``ctrl``): each actuator's factor goes on the gain that turns
+            its input into a force (its ``gainprm``), its control and
+            activation ranges keep their values, and so do the keyframes'
+            inputs; biases and force ranges take their own factors as
+            always.  For a policy that acts in normalised inputs.
+            Default False: an input is scaled by its dimension (a motor's
+            by the force's factor, a position servo's by the length's),
+            for inputs that are physical commands.
 
         Returns
         -------
@@ -365,6 +439,10 @@ class EngineModel(TableDisplay):
         UnscalableParameterError
             For a mixed number the scaling would split, or an engine
             constant the scaling must change but no call can.
+        InputsNotKeptError
+            With `keep_inputs`, for an engine whose inputs have no gain
+            to carry the factors (PyBullet's: a joint's force, applied as
+            given).
 
         Examples
         --------
@@ -374,6 +452,12 @@ class EngineModel(TableDisplay):
         >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
         >>> round(model.scaled(sc, 10).parameter("g").value[0], 12)
         98.1
+        >>> longer = pt.Scaling.from_unit_change(model.system(), {"L": 1})  # lengths x s: torques x s^2
+        >>> model.scaled(longer, 4).inputs()[2], model.scaled(longer, 4).parameter("actuator_torque_gainprm_gain").value
+        (array([16.]), (1.0,))
+        >>> kept = model.scaled(longer, 4, keep_inputs=True)
+        >>> kept.inputs()[2], kept.parameter("actuator_torque_gainprm_gain").value
+        (array([1.]), (16.0,))
         """
         s = read_scale_factor(s)
         check_scaling(scaling)
@@ -405,7 +489,25 @@ class EngineModel(TableDisplay):
             )
         if refused:
             raise refused[0]
+        if keep_inputs:
+            return self._keeping_inputs(factors, scaling, s)
         return self._times(factors, scaling, s)
+
+    def _keeping_inputs(self, factors: dict[str, float], scaling, s) -> EngineModel:
+        """:meth:`scaled` with ``keep_inputs``: each number an input passes through divided by the input's factor."""
+        controls = self._runner.control_dimensions()
+        carriers = self._runner.input_parameters() if isinstance(self._runner, KeepsInputs) else None
+        if carriers is None or len(carriers) != len(controls):  # a URDF's joint motors: no gain in the file
+            raise InputsNotKeptError(self.engine, "its inputs are joint forces, with no gain to carry a factor")
+        factors = dict(factors)
+        dimensions = {p.name: p.dimension for p in self.parameters}
+        for ctrl, powers in zip(controls, carriers, strict=True):
+            for name, power in powers.items():  # the factor of the dimension with the input's taken out, exactly
+                factors[name] = dimension_factor(scaling, s, dimensions[name] / ctrl**power)
+        runner = self._runner.scaled_keeping_inputs(factors, scaling, s)
+        # no origin: the copy states numbers its factors alone do not give (a compiled range, a damping for a
+        # damping ratio), so a copy of it is made from it, not from this model times the factors
+        return EngineModel(runner, self.engine, "", self.units)
 
     def with_values(self, **values) -> EngineModel:
         """A copy with some parameters set to new values (each must be one number).
@@ -487,17 +589,24 @@ class EngineModel(TableDisplay):
             self._runner.scaled(factors, scaling, s), self.engine, "", self.units, origin=(self, dict(factors))
         )
 
-    def save(self, path) -> Path:
+    def save(self, path, *, copy_assets: bool = False) -> Path:
         """Write the model as a file the engine loads as is.
 
-        For PyBullet, the settings a URDF cannot hold (gravity, time step,
-        engine parameters, per-link dynamics) go beside it, as data
+        Its mesh, texture and height-field files are named relative to the
+        written file, so the folder holding both can move; with
+        `copy_assets` they are copied into ``<stem>_assets`` beside it, and
+        the written file and that folder travel alone.  For PyBullet, the
+        settings a URDF cannot hold (gravity, time step, engine
+        parameters, per-link dynamics) go beside it, as data
         (``<path>.settings.json``) and as a runnable snippet
         (``<path>.settings.py``).
 
         Parameters
         ----------
         path : str or Path
+        copy_assets : bool
+            Copy the asset files beside the written file (default False:
+            name the originals, relative to it).
 
         Returns
         -------
@@ -514,7 +623,7 @@ class EngineModel(TableDisplay):
         (9.81,)
         """
         path = Path(path)
-        self._runner.save(path)
+        self._runner.save(path, copy_assets=copy_assets)
         return path
 
     def with_settings(self, **changes) -> EngineModel:
@@ -668,6 +777,15 @@ class EngineModel(TableDisplay):
         """
         low, high = self._runner.control_ranges()
         return list(self._runner.control_dimensions()), low, high
+
+
+#: the numbers of an engine's settings that describe the robot's world, not the solver: fit repeaters
+_WORLD = frozenset({"g", "wind", "density", "viscosity"})
+
+
+def _engine_setting(p: Parameter) -> bool:
+    """Whether a parameter is a setting of the engine (its solver's, or a default it applies), not the robot's."""
+    return p.name not in _WORLD and (p.path.startswith("option ") or p.source == "engine")
 
 
 def check_scaling(scaling) -> Scaling:

@@ -19,6 +19,7 @@ steps) move with them under every change of units and are left out.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping
 from fractions import Fraction
@@ -153,7 +154,8 @@ def engine_fit(
     -------
     UnitFit
         On the system of the model's numbers: ``fit.factors`` multiply
-        readings of M, L and T.
+        readings of M, L and T; for a model, ``fit.units`` are its new
+        units by name (:func:`fitted_units`).
 
     Examples
     --------
@@ -165,6 +167,8 @@ def engine_fit(
     >>> fit = engine_fit(tiny)
     >>> fit.feasible, fit.factors
     (True, {'M': Fraction(1, 1), 'L': Fraction(100, 1), 'T': Fraction(1, 1)})
+    >>> fit.units
+    {'M': '1000000 kg', 'L': 'm', 'T': 's'}
     """
     if isinstance(source, System):
         if engine is None:
@@ -206,6 +210,8 @@ def engine_fit(
         fit = fit_units(system, vals, ranges=rng, fixed=fixed, fixed_units=units, nice=nice, centre=False)
         if fit.feasible:
             break
+    if not isinstance(source, System):  # a model's units, by name: what model.converted(fit) reads
+        fit = dataclasses.replace(fit, unit_names=tuple(fitted_units(source, fit).items()))
     return fit
 
 

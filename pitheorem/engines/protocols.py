@@ -21,7 +21,8 @@ is named here:
   ``isinstance`` where they are used: :class:`RefusesScalings` (numbers a
   scaling cannot reach, named before a copy is made),
   :class:`HasSceneSettings` (settings outside the file, changed by
-  ``with_settings``), :class:`CounterRuns` (copies run with another
+  ``with_settings``), :class:`KeepsInputs` (copies whose control inputs
+  keep their values, the factors on the gains), :class:`CounterRuns` (copies run with another
   solver tolerance, for the diagnosis), :class:`SolverDiagnosis`
   (solver, equality constraints and contacts, named),
   :class:`MultipliesInPlace` (a copy with other gravity or masses, not compiled again),
@@ -61,6 +62,7 @@ __all__ = [
     "EngineNotes",
     "HasSceneSettings",
     "IgnoredSettings",
+    "KeepsInputs",
     "MultipliesInPlace",
     "NamesElements",
     "ReadsSomeNumbers",
@@ -143,8 +145,8 @@ class Runner(Runs, Protocol):
     def scaled(self, factors: dict[str, float], scaling, s) -> Runner:
         """A copy with each parameter multiplied by its factor (`scaling` and `s` None for a plain product)."""
 
-    def save(self, path: Path) -> None:
-        """Write the model as a file the engine loads as it is."""
+    def save(self, path: Path, *, copy_assets: bool = False) -> None:
+        """Write the model as a file the engine loads as it is (its asset files copied beside it on request)."""
 
     def stored_numbers(self) -> dict[str, np.ndarray]:
         """Every floating-point number the engine holds for the model, by field, in its own precision."""
@@ -191,6 +193,28 @@ class RefusesScalings(Protocol):
 
     def unscalable(self, factors: dict[str, float]) -> list:
         """An UnscalableParameterError for each number the factors would need changed and no call can."""
+
+
+@runtime_checkable
+class KeepsInputs(Protocol):
+    """Optional: scaled copies whose control inputs keep their values (MuJoCo's actuators have gains).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.protocols import KeepsInputs
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, KeepsInputs)
+    True
+    """
+
+    def input_parameters(self) -> list[dict[str, int]]:
+        """Per control input: each parameter that carries it, with the power of the input in its dimension."""
+
+    def scaled_keeping_inputs(self, factors: dict[str, float], scaling, s) -> KeepsInputs:
+        """A scaled copy (as ``scaled``) where `factors` keep every input: keyframes and compiled ranges kept too."""
+
+    def coordinate_inputs(self) -> list[int | None]:
+        """Per recorded coordinate: the input whose unit it is in (an actuator's activation), else None."""
 
 
 @runtime_checkable
@@ -377,6 +401,7 @@ OPTIONAL = {
     for p in (
         RefusesScalings,
         HasSceneSettings,
+        KeepsInputs,
         CounterRuns,
         MultipliesInPlace,
         SolverDiagnosis,

@@ -232,7 +232,7 @@ def conversion(system, old: Mapping[str, str], new: Mapping[str, str]) -> tuple[
     return tuple((Scaling.from_unit_change(system, {b: 1}), f) for b, f in factors.items())
 
 
-def convert(model, units: Mapping[str, object]):
+def convert(model, units: Mapping[str, object], *, keep_inputs: bool = False):
     """The same model in other units (:meth:`pitheorem.engines.EngineModel.converted`).
 
     Parameters
@@ -240,6 +240,9 @@ def convert(model, units: Mapping[str, object]):
     model : EngineModel
     units : mapping of str to (str or number)
         The new units of some of M, L and T; the others keep the model's.
+    keep_inputs : bool
+        Keep every control input's value (the factors on the gains; see
+        :meth:`~pitheorem.engines.EngineModel.scaled`).
 
     Returns
     -------
@@ -266,7 +269,7 @@ def convert(model, units: Mapping[str, object]):
     model.runner.check_units(new)  # a format fixed in its units (URDF: SI) refuses others, by name
     out = model
     for scaling, s in conversion(model.system(), old, new):
-        out = out.scaled(scaling, s)
+        out = out.scaled(scaling, s, keep_inputs=keep_inputs)
     return out.in_units(new)
 
 

@@ -449,7 +449,9 @@ def _groups_answer(answer) -> str:
     ]
     if answer.passed_over:
         lines.append(
-            "(the first valid set without time variables, variables lacking one value, and the "
+            "(the first valid set without "
+            + ("the engine's settings, " if answer.settings_avoided else "")
+            + "time variables, variables lacking one value, and the "
             f"variables whose value is 0: {names_text(answer.passed_over)})"
         )
     if len(groups):

@@ -56,9 +56,11 @@ from ..parameters import (
     unique_name,
     warn_unscalable,
 )
+from .assets import AssetCopies, assets_folder
 from .numbers import check_model_file
 
 __all__ = [
+    "NONNEGATIVE",
     "UNITS_TEXT",
     "AttributeDimension",
     "MjcfDocument",
@@ -68,6 +70,9 @@ __all__ = [
     "record_units",
     "recorded_units",
 ]
+
+#: attributes that MuJoCo's compiler turns to 0 when negative, without a word: refused when the file is read
+NONNEGATIVE = {"inertial": ("mass", "diaginertia")}
 
 #: a custom ``<text>`` element named this prefix plus a numeric's name declares that numeric's dimension
 DIMENSION_TEXT = "dimension:"
@@ -213,6 +218,8 @@ class _Walker:
         self.names: set[str] = set()
         self.tendon_kinds: dict = {}  # tendon (name or id) -> (tendon, its kind), found once
         self.inputs: list = []  # per actuator walked: its control's and its activation's dimensions
+        self.input_powers: list = []  # per actuator walked: its parameters that carry its input, with the power
+        self.targets: list = []  # per actuator walked: the dimensions of its length and its force
         # every element listed once, kept alive, so that an element's id gives its address
         self.lists = {collection: _listed(spec, collection) for collection in _COLLECTIONS}
         self.where_of = _Elements.addresses(spec, self.lists)
@@ -786,6 +793,8 @@ class _Walker:
         dynamic = act.dyntype != mj.mjtDyn.mjDYN_NONE
         driven = act_dim if dynamic else ctrl
         self.inputs.append((ctrl, act_dim if dynamic else None))
+        self.targets.append((length, force))
+        first = len(self.slots)
         if act.trntype == mj.mjtTrn.mjTRN_SITE:
             self.add("actuator", act, ident, path, "gear", _L, slice(3, 6), "_torque")
         if act.trntype == mj.mjtTrn.mjTRN_SLIDERCRANK:
@@ -823,6 +832,12 @@ class _Walker:
             else:
                 self.add("actuator", act, ident, path, "biasprm", force * _T / length, slice(2, 3), "_velocity")
         self.refuse(act, path, ("damping", "armature", "ffrange", "velrange"))
+        # the numbers the input passes through: its range and the activation's (an activation is the input
+        # filtered or integrated), and the gain that turns it into a force (a muscle's input has no unit)
+        powers = {"ctrlrange": 1, "actrange": 1, "gainprm": 0 if act.gaintype == mj.mjtGain.mjGAIN_MUSCLE else -1}
+        self.input_powers.append(
+            {s.name: powers[s.attrs[0][0]] for s in self.slots[first:] if s.attrs and powers.get(s.attrs[0][0])}
+        )
 
     def lengthrange(self, act, index, ident, path, length) -> None:
         """The actuator's length range: as the file gives it, or as MuJoCo's compiler found it.
@@ -1246,6 +1261,7 @@ class MjcfDocument:
             slots = walker.walk()
         if self._inputs is None:
             self._inputs = walker.inputs
+        self._input_powers, self._actuator_targets = walker.input_powers, walker.targets
         return slots
 
     @property
@@ -1338,15 +1354,35 @@ class MjcfDocument:
                 out.append(AttributeDimension(kind, name, attr, entries, slot.dimension, slot.name))
         return out
 
-    def scaled(self, factors, scaling, s) -> MjcfDocument:
+    def input_parameters(self) -> list[dict[str, int]]:
+        """Per actuator: the parameters its input passes through, each with the power of the input in it.
+
+        The control range and the activation's range (power 1) and the
+        gains (power -1): what :meth:`scaled` with ``keep_inputs`` divides
+        by the input's factor, so that every input keeps its value.
+        """
+        self._slots  # noqa: B018 (walked once, which finds them)
+        return [dict(p) for p in self._input_powers]
+
+    def scaled(self, factors, scaling, s, *, keep_inputs: bool = False) -> MjcfDocument:
+        """A copy with each slot times its factor, and the keyframes scaled (when `scaling` is given).
+
+        With `keep_inputs`, `factors` already keep every input (:meth:`input_parameters`); the
+        keyframes' inputs and activations keep theirs too, a control range MuJoCo's compiler would
+        derive from a scaled joint range (``inheritrange``) is stated as it is now, and a position
+        servo's damping ratio, which MuJoCo reads only while the gain and the bias are equal and
+        opposite, is written as the damping it compiles to, times its factor.
+        """
         spec = self._portable_spec()
         elements = _Elements(spec)
         for slot in self._slots:
             factor = factors.get(slot.name, 1.0)
             if factor != 1.0:
                 slot.write_on(elements.get(slot.where), factor)
+        if keep_inputs and scaling is not None:
+            self._keep_compiled_inputs(spec, scaling, s)
         if scaling is not None:
-            self._scale_keyframes(spec, scaling, s)
+            self._scale_keyframes(spec, scaling, s, keep_inputs=keep_inputs)
         copy = MjcfDocument(spec, "", self.source_dir, warn=False, asset_dirs=self.asset_dirs)
         copy._scaled_from = (self, factors)  # for save's exact decimals, read only if the copy is saved
         copy._inputs = self._actuator_inputs()  # the same actuators and joints: the same dimensions
@@ -1366,15 +1402,25 @@ class MjcfDocument:
         """The units the file records (one pitheorem wrote), or None."""
         return recorded_units(self.spec, self.path)
 
-    def save(self, path: Path) -> None:
+    def save(self, path: Path, *, copy_assets: bool = False) -> None:
         """Write the model to `path`; its mesh, texture and height-field files named relative to it.
 
         A saved file and its assets move together: each asset is named by its
         path relative to the written file's folder (the file's ``meshdir`` and
         ``texturedir`` then name nothing), so copying the folder that holds both
-        keeps the copy loading.
+        keeps the copy loading.  With `copy_assets` the asset files are copied
+        into ``<stem>_assets`` beside the file
+        (:func:`~pitheorem.engines.fileformats.assets.assets_folder`), and the
+        file names the copies.
         """
         spec = self._portable_spec()
+        if copy_assets:
+            copies = AssetCopies(assets_folder(os.path.abspath(path)))
+            for items in (spec.meshes, spec.hfields, spec.textures):
+                for item in items:
+                    file = getattr(item, "file", "") or ""
+                    if file and Path(file).is_absolute():
+                        item.file = str(copies.copy(file))
         # each scaled number as the decimal a person would write: the exact product of the original's
         # decimal and the factor's, rounded once (9.81 times 10 is 98.1, where the float product is
         # 98.10000000000001); at a power-of-two factor the very same double as in memory
@@ -1443,8 +1489,38 @@ class MjcfDocument:
                 item.file = os.path.normpath(os.path.abspath(base / file))
         return spec
 
-    def _scale_keyframes(self, spec, scaling, s) -> None:
-        """Scale the keyframes of `spec`, a copy of this model's, coordinate by coordinate."""
+    def _keep_compiled_inputs(self, spec, scaling, s) -> None:
+        """What MuJoCo's compiler derives from a scaled copy's numbers and must not change with kept inputs.
+
+        Each actuator whose input has a factor other than 1: its control range is stated as compiled
+        (a range inherited from the joint's, ``inheritrange``, would follow the scaled joint), and a
+        damping ratio is written as the compiled damping times its factor (a kept input makes gain and
+        bias differ, and MuJoCo then reads the ratio as a damping).
+        """
+        mj, model = _mujoco(), self.mjmodel
+        factor, _ = dimension_factors(scaling, s)
+        self._slots  # noqa: B018 (the walk finds each actuator's dimensions)
+        originals = _listed(self.spec, "actuators")
+        for i, act in enumerate(_listed(spec, "actuators")):
+            ctrl, _act = self._actuator_inputs()[i]
+            if factor(ctrl) == 1.0:
+                continue
+            if model.actuator_ctrllimited[i]:  # the range as compiled, stated: nothing left to derive from the joint
+                act.inheritrange = 0
+                act.ctrlrange = np.array(model.actuator_ctrlrange[i], dtype=float)
+                act.ctrllimited = mj.mjtLimited.mjLIMITED_TRUE
+            if act.biastype == mj.mjtBias.mjBIAS_AFFINE and _damping_ratio(mj, originals[i]):
+                length, force = self._actuator_targets[i]
+                bias = np.array(act.biasprm, dtype=float)
+                bias[2] = float(model.actuator_biasprm[i][2]) * factor(force * _T / length)
+                act.biasprm = bias
+
+    def _scale_keyframes(self, spec, scaling, s, *, keep_inputs: bool = False) -> None:
+        """Scale the keyframes of `spec`, a copy of this model's, coordinate by coordinate.
+
+        With `keep_inputs` each keyframe's inputs keep their values, and its activations the value
+        they have in units of their input.
+        """
         if not len(spec.keys):
             return
         model = self.mjmodel  # the copy has the same coordinates and actuators as this model
@@ -1459,6 +1535,10 @@ class MjcfDocument:
         fq, fv, fa = factors(dims[:nq]), factors(dims[nq : nq + nv]), factors(dims[nq + nv :])
         ft, fl = factor(_T), factor(_L)
         fctrl = factors(self.control_dimensions())
+        if keep_inputs:  # an activation has its input's dimension times 1 or T: only that part is scaled
+            acting = [factor(c) for c, a in self._actuator_inputs() if a is not None]
+            fa = fa / np.array(acting) if len(acting) == len(fa) else fa
+            fctrl = np.ones_like(fctrl)
         for key in spec.keys:
             if len(key.qpos) == model.nq:
                 key.qpos = np.asarray(key.qpos) * fq
@@ -1503,6 +1583,12 @@ class MjcfDocument:
 
     def control_dimensions(self):
         return [ctrl for ctrl, _act in self._actuator_inputs()]
+
+    def coordinate_inputs(self) -> list[int | None]:
+        """Per coordinate: None for qpos and qvel, and the actuator of each activation (in its input's unit)."""
+        names, _dims = self.coordinate_dimensions()
+        acting = [i for i, (_ctrl, act) in enumerate(self._actuator_inputs()) if act is not None]
+        return [None] * (len(names) - len(acting)) + acting
 
     def activation_dimensions(self):
         return [act for _ctrl, act in self._actuator_inputs() if act is not None]
@@ -1811,7 +1897,9 @@ def read_mjcf(path) -> MjcfDocument:
     mj = _mujoco()
     path = Path(path)
     with _collection_paused():  # its parse allocates an object per element and frees none
-        root = check_model_file(path)  # MuJoCo drops damping="nan" and keeps "inf"; a non-UTF-8 byte breaks its names
+        root = check_model_file(
+            path, nonnegative=NONNEGATIVE
+        )  # MuJoCo drops damping="nan" and keeps "inf"; a non-UTF-8 byte breaks its names
     try:
         spec = mj.MjSpec.from_file(str(path))
     except ValueError as err:

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 import xml.etree.ElementTree as ET
+from collections.abc import Mapping
 from pathlib import Path
 
 from ...errors import EngineModelError
@@ -74,20 +75,50 @@ _NAMES = frozenset(
 
 
 def _element(element: ET.Element, parents: dict) -> str:
-    """``<joint name='h'>``, or an unnamed element with its nearest named ancestor: ``<mass> in <link name='b'>``."""
+    """``<joint name='h'>``, or an unnamed element with its nearest named ancestor: ``<mass> in <link name='b'>``.
+
+    A default class names itself by its class: ``<joint> in <default class='soft'>``.
+    """
+
+    def named(e):
+        return e.get("name") or (e.tag == "default" and e.get("class"))
 
     def label(e):
-        return f"<{e.tag} name={e.get('name')!r}>" if e.get("name") else f"<{e.tag}>"
+        if e.get("name"):
+            return f"<{e.tag} name={e.get('name')!r}>"
+        return f"<{e.tag} class={e.get('class')!r}>" if named(e) else f"<{e.tag}>"
 
     ancestor = element
-    while ancestor is not None and not ancestor.get("name"):
+    while ancestor is not None and not named(ancestor):
         ancestor = parents.get(ancestor)
     if ancestor is None or ancestor is element:
         return label(element)
     return f"{label(element)} in {label(ancestor)}"
 
 
-def check_model_file(path) -> ET.Element | None:
+def _line(text: str, root: ET.Element, element: ET.Element) -> int | None:
+    """The line `element` of `root` (parsed from `text`) starts on: read again, only for a message."""
+    import xml.parsers.expat
+
+    order = {id(e): k for k, e in enumerate(root.iter())}
+    starts: list[int] = []
+    parser = xml.parsers.expat.ParserCreate()
+    parser.StartElementHandler = lambda _tag, _attrs: starts.append(parser.CurrentLineNumber)
+    try:  # the same text ElementTree read, its starts in the same order as root.iter()
+        parser.Parse(text.strip().rstrip("\x00").strip(), True)
+    except xml.parsers.expat.ExpatError:
+        return None
+    k = order.get(id(element))
+    return starts[k] if k is not None and k < len(starts) else None
+
+
+def _where(path, text: str, root: ET.Element, element: ET.Element, parents: dict) -> str:
+    """The element of a message, after its line where it is known: ``line 5, <joint> in <default class='soft'>``."""
+    line = _line(text, root, element)
+    return (f"line {line}, " if line is not None else "") + _element(element, parents)
+
+
+def check_model_file(path, *, nonnegative: Mapping[str, tuple[str, ...]] | None = None) -> ET.Element | None:
     """Refuse a model file that is not UTF-8 text, or whose attributes hold NaN or an infinity.
 
     A file that cannot be read, or is not well-formed XML, passes: the
@@ -98,6 +129,11 @@ def check_model_file(path) -> ET.Element | None:
     ----------
     path : str or Path
         The MJCF or URDF file.
+    nonnegative : mapping of str to tuple of str, optional
+        Per element tag, attributes whose numbers must not be negative
+        (the MJCF reader's :data:`~pitheorem.engines.fileformats.mjcf.NONNEGATIVE`:
+        ``<inertial>``'s mass and principal inertias, which MuJoCo's
+        compiler turns to 0 without a word).
 
     Returns
     -------
@@ -107,8 +143,8 @@ def check_model_file(path) -> ET.Element | None:
     Raises
     ------
     EngineModelError
-        Naming the file, the element (or the line of a bad byte) and the
-        attribute.
+        Naming the file, the line, the element (with its default class)
+        and the attribute; also for a negative number `nonnegative` names.
 
     Examples
     --------
@@ -120,7 +156,14 @@ def check_model_file(path) -> ET.Element | None:
     ...     check_model_file(path)
     ... except Exception as err:
     ...     print(str(err).replace(str(path), "m.xml"))
-    m.xml: <option>: timestep='nan' is not a finite number; a model holds finite numbers only
+    m.xml: line 1, <option>: timestep='nan' is not a finite number; a model holds finite numbers only
+    >>> rows = ['<mujoco>', '<default>', '<default class="soft">', '<joint damping="nan"/>', '</default>']
+    >>> _ = path.write_text(chr(10).join([*rows, '</default>', '</mujoco>']))
+    >>> try:
+    ...     check_model_file(path)
+    ... except Exception as err:
+    ...     print(str(err).replace(str(path), "m.xml"))
+    m.xml: line 4, <joint> in <default class='soft'>: damping='nan' is not a finite number; a model holds finite numbers only
     """
     try:
         raw = Path(path).read_bytes()
@@ -152,10 +195,28 @@ def check_model_file(path) -> ET.Element | None:
                 if not math.isfinite(number):
                     raise EngineModelError(
                         str(path),
-                        _element(element, parents),
+                        _where(path, text, root, element, parents),
                         f"{attr}={value!r} is not a finite number; a model holds finite numbers only",
                     )
+    for tag, attrs in (nonnegative or {}).items():
+        for element in root.iter(tag):
+            for attr in attrs:
+                if any(x < 0 for x in _numbers(element.get(attr))):
+                    raise EngineModelError(
+                        str(path),
+                        _where(path, text, root, element, parents),
+                        f"{attr}={element.get(attr)!r} is negative, which the engine's compiler would make 0 "
+                        "without a word; give 0 or more",
+                    )
     return root
+
+
+def _numbers(text: str | None) -> list[float]:
+    """An attribute's numbers, or none where it is absent or not numbers."""
+    try:
+        return [float(token) for token in (text or "").split()]
+    except ValueError:
+        return []
 
 
 def check_numbers(path, element: str, attr: str, text: str | None, *, nonnegative: bool = False) -> None:

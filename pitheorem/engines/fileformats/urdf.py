@@ -25,6 +25,7 @@ from pathlib import Path
 
 from ..enginemodel import EngineModelError
 from ..parameters import JointKind, Parameter, attribute_text, dim, identifier, unique_name, warn_unscalable
+from .assets import AssetCopies, assets_folder
 from .numbers import check_model_file, check_numbers
 
 __all__ = ["SI", "UrdfDocument", "joint_kind", "read_urdf", "refuse_units"]
@@ -392,16 +393,23 @@ class UrdfDocument:
         """Warn about each collision mesh of several convex parts, whose margins no call reaches."""
         _warn_compound_meshes(self.tree, self.path, self.source_dir, self.mesh_folder)
 
-    def save(self, path) -> None:
-        """Write the file, its meshes and textures named relative to it: the folder holding both can move."""
+    def save(self, path, *, copy_assets: bool = False) -> None:
+        """Write the file, its meshes and textures named relative to it: the folder holding both can move.
+
+        With `copy_assets` the mesh and texture files are copied into
+        ``<stem>_assets`` beside the file, and the file names the copies.
+        """
         tree = copy.deepcopy(self.tree)
         folder = Path(os.path.abspath(path)).parent
+        copies = AssetCopies(assets_folder(os.path.abspath(path))) if copy_assets else None
         mesh_folder = _mesh_folder(tree.getroot(), self.source_dir, self.mesh_folder)
         for g in tree.getroot().iter():
             if g.tag not in ("mesh", "texture") or not g.get("filename"):
                 continue
             resolved = _mesh_path(g.get("filename", ""), self.source_dir, mesh_folder if g.tag == "mesh" else None)
             if resolved is not None:
+                if copies is not None:
+                    resolved = copies.copy(resolved)
                 g.set("filename", Path(os.path.relpath(os.path.abspath(resolved), folder)).as_posix())
         _without_mesh_folder(tree.getroot(), self.mesh_folder)  # each mesh now named relative to the saved file
         Path(path).write_text(_xml_text(tree))
@@ -460,12 +468,10 @@ def refuse_units(path: str, units: Mapping[str, str]) -> None:
     ...     refuse_units("arm.urdf", {"M": "g", "L": "cm", "T": "s"})
     ... except engines.EngineModelError as err:
     ...     print(str(err)[:60])
-    arm.urdf: units: a URDF file is in SI units (metres, kilogra
+    arm.urdf: units: a URDF file is in SI units, not g cm s: sca
     """
     raise EngineModelError(
         path or "the URDF model",
         "units",
-        "a URDF file is in SI units (metres, "
-        "kilograms, seconds) by its specification, so pitheorem reads and writes none in "
-        f"{' '.join(units.values())}; scale it with model.scaled(...) instead",
+        f"a URDF file is in SI units, not {' '.join(units.values())}: scale it instead",
     )

@@ -113,6 +113,17 @@ class MujocoRunner:
         copy._field_names = self._fields()  # the same elements: the same stored fields
         return copy
 
+    def input_parameters(self) -> list[dict[str, int]]:
+        return self.document.input_parameters()
+
+    def coordinate_inputs(self) -> list[int | None]:
+        return self.document.coordinate_inputs()
+
+    def scaled_keeping_inputs(self, factors, scaling, s) -> MujocoRunner:
+        copy = MujocoRunner(self.document.scaled(factors, scaling, s, keep_inputs=True))
+        copy._field_names = self._fields()
+        return copy
+
     def in_units(self, units) -> MujocoRunner:
         """This model, its document recording other units (a saved file then says so); a URDF's stay SI."""
         if isinstance(self.document, UrdfInMujoco):
@@ -128,8 +139,8 @@ class MujocoRunner:
     def recorded_units(self) -> dict[str, str] | None:
         return self.document.recorded_units()
 
-    def save(self, path) -> None:
-        self.document.save(path)
+    def save(self, path, *, copy_assets: bool = False) -> None:
+        self.document.save(path, copy_assets=copy_assets)
 
     def written_beside(self, path) -> tuple[str, ...]:
         """The files :meth:`save` writes beside `path`: none for MJCF (its file holds every setting), a
@@ -665,12 +676,22 @@ class MujocoCompiledRunner:
     def scaled(self, factors, scaling, s) -> MujocoCompiledRunner:
         return self._rebuilt(self.mjcf.scaled(factors, scaling, s), same_numbers=False)
 
+    def input_parameters(self) -> list[dict[str, int]]:
+        return self.mjcf.input_parameters()
+
+    def coordinate_inputs(self) -> list[int | None]:
+        return self.mjcf.coordinate_inputs()
+
+    def scaled_keeping_inputs(self, factors, scaling, s) -> MujocoCompiledRunner:
+        return self._rebuilt(self.mjcf.scaled_keeping_inputs(factors, scaling, s), same_numbers=False)
+
     def in_units(self, units) -> MujocoCompiledRunner:
         """This model, MuJoCo's reading recording other units (the device's numbers are the same)."""
         return self._rebuilt(self.mjcf.in_units(units), same_numbers=True)
 
-    def save(self, path: Path) -> None:
-        self.mjcf.save(path)  # an MJCF file (or a URDF and its settings): MuJoCo and this engine load it alike
+    def save(self, path: Path, *, copy_assets: bool = False) -> None:
+        # an MJCF file (or a URDF and its settings): MuJoCo and this engine load it alike
+        self.mjcf.save(path, copy_assets=copy_assets)
 
     def written_beside(self, path) -> tuple[str, ...]:
         return self.mjcf.written_beside(path)
@@ -1197,8 +1218,18 @@ class UrdfInMujoco:
                 )
         return out
 
-    def scaled(self, factors, scaling=None, s=None) -> UrdfInMujoco:
-        """A copy: the URDF scaled by address, each setting multiplied by its factor, compiled again."""
+    def input_parameters(self) -> list[dict[str, int]]:
+        """None: the joints' motors take the joint forces themselves, with no gain in the file to carry a factor."""
+        return []
+
+    def coordinate_inputs(self) -> list[int | None]:
+        return [None] * len(self.coordinate_dimensions()[0])
+
+    def scaled(self, factors, scaling=None, s=None, *, keep_inputs: bool = False) -> UrdfInMujoco:
+        """A copy: the URDF scaled by address, each setting multiplied by its factor, compiled again.
+
+        `keep_inputs` changes nothing: the model has no actuators.
+        """
         settings = self.settings()
         for group, values in settings.items():
             for attr, entries, dimension, suffix in _URDF_SETTINGS[group]:
@@ -1229,9 +1260,9 @@ class UrdfInMujoco:
         """The settings file :meth:`save` writes beside `path`."""
         return (f"{path}{SETTINGS_SUFFIX}",)
 
-    def save(self, path) -> None:
-        """Write the URDF (meshes by absolute path) and its MuJoCo settings beside it."""
-        self.urdf.save(path)
+    def save(self, path, *, copy_assets: bool = False) -> None:
+        """Write the URDF (meshes relative to it, or copied beside it) and its MuJoCo settings beside it."""
+        self.urdf.save(path, copy_assets=copy_assets)
         Path(f"{path}{SETTINGS_SUFFIX}").write_text(json.dumps(self._settings, indent=2))
 
     def coordinate_dimensions(self):

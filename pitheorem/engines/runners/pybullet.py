@@ -480,9 +480,9 @@ class PybulletRunner:
         """The settings :meth:`save` writes beside the file: a JSON file and a script that applies it."""
         return (f"{path}.settings.json", f"{path}.settings.py")
 
-    def save(self, path: Path) -> None:
+    def save(self, path: Path, *, copy_assets: bool = False) -> None:
         path = Path(path)
-        self.document.save(path)
+        self.document.save(path, copy_assets=copy_assets)
         settings = self.settings()
         Path(f"{path}.settings.json").write_text(json.dumps(settings, indent=2))
         Path(f"{path}.settings.py").write_text(_snippet(path.name, settings))

@@ -50,7 +50,7 @@ from ...scaling import is_power_of_two
 from ...simulation import SimilarityReport, Trajectory, allowed_deviation, positive_float, similarity_report
 from ..enginemodel import EngineModel, check_scaling
 from ..parameters import dim, dimension_factors
-from ..protocols import MultipliesInPlace, Runs
+from ..protocols import KeepsInputs, MultipliesInPlace, Runs
 from .scalefree import scale_free_run
 from .strength import Control, caught, control_factors, horizon, unseen_groups
 
@@ -72,6 +72,7 @@ def verify(
     diagnose: bool = True,
     strength: bool = True,
     baseline: Baseline | None = None,
+    keep_inputs: bool = False,
     progress=None,
 ) -> SimilarityReport:
     """Run a model and its scaled copy, compare them, and say why they differ.
@@ -107,7 +108,7 @@ def verify(
         numbers live in Python is not, and the report shows it.
     scaled : EngineModel, optional
         The scaled model (e.g. a saved and reloaded file); default
-        ``model.scaled(scaling, s)``.
+        ``model.scaled(scaling, s, keep_inputs=keep_inputs)``.
     baseline_factor : float
         The margin: how many times its yardstick a coordinate's deviation
         may reach (default 10).
@@ -133,6 +134,11 @@ def verify(
         depend on ``s``, so copies of one model at many scale factors (a
         sweep) run them once.  Open loop only; its duration, inputs,
         ensemble and seed must be these.
+    keep_inputs : bool
+        Compare with a copy whose inputs keep their values
+        (:meth:`~pitheorem.engines.EngineModel.scaled` with
+        ``keep_inputs=True``): the scaled run gets the very same inputs,
+        and its activations are compared in their inputs' units.
     progress : callable, optional
         ``progress(done, total)``, called as each of its ``STAGES`` (4)
         ends (the copies made, the first batch run, the controls and the
@@ -183,6 +189,7 @@ def verify(
         diagnose=diagnose,
         strength=strength,
         baseline=baseline,
+        keep_inputs=keep_inputs,
     )
     step = progress if progress is not None else (lambda done, total: None)
     step(1, STAGES)
@@ -265,6 +272,7 @@ def prepare(
     diagnose: bool = True,
     strength: bool = True,
     baseline: Baseline | None = None,
+    keep_inputs: bool = False,
 ) -> Plan:
     """The checks and copies of :func:`verify`, its runs not yet run (the arguments are verify's)."""
     if not isinstance(model, EngineModel):
@@ -276,7 +284,7 @@ def prepare(
     ensemble = read_count(ensemble, "ensemble", least=1)
     seed = read_count(seed, "seed")
     if scaled is None:
-        scaled = model.scaled(scaling, s)
+        scaled = model.scaled(scaling, s, keep_inputs=keep_inputs)
     elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:
         raise InvalidRequestError("scaled must be an EngineModel of the same engine as model")
     if controls is not None and controller is not None:
@@ -299,6 +307,10 @@ def prepare(
     factors = np.array([factor(d) for d in dims])
     input_dims = list(original.control_dimensions())
     input_factors = np.array([factor(d) for d in input_dims])
+    if keep_inputs:  # the same inputs; an activation is in its input's unit, which is kept
+        inputs = original.coordinate_inputs() if isinstance(original, KeepsInputs) else [None] * len(factors)
+        factors = factors / np.array([1.0 if i is None else input_factors[i] for i in inputs])
+        input_factors = np.ones_like(input_factors)
     u_original = _open_loop_rows(controls, n_steps, dt, input_factors.size)
     u_scaled = None if u_original is None else u_original * input_factors
     policy = _policies(controller, input_factors.size)
