@@ -764,6 +764,20 @@ class SimilarityReport(TableDisplay):
         return self.passed and not self.inconclusive
 
     @property
+    def unseen(self) -> tuple[str, ...]:
+        """The groups the run cannot see an error in: every one of their negative controls passed unnoticed.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> smd = pt.models.spring_mass_damper()
+        >>> sc = pt.Scaling.from_unit_change(smd.system, {"L": 1})
+        >>> pt.verify_similarity(smd, sc, s=2, t_final=0.2).unseen  # no controls: nothing unseen
+        ()
+        """
+        return unseen_groups(self.controls)
+
+    @property
     def verdict(self) -> str:
         """The verdict in one word: exact, similar, inconclusive or not similar.
 
@@ -1141,6 +1155,25 @@ def allowed_deviation(original: Trajectory, sensitivity, baseline_factor: float)
     return np.array(
         [max(baseline_factor * sensitivity[n], 1e-9 * float(span[j])) for j, n in enumerate(original.states)]
     )
+
+
+def unseen_groups(controls) -> tuple[str, ...]:
+    """The groups whose every negative control passed unnoticed: errors a run cannot see, in the controls' order.
+
+    Each control has a ``group`` (``"g"``, ``"masses"``) and whether it was
+    ``caught`` (``pitheorem.engines.verdicts.strength.Control``).
+
+    Examples
+    --------
+    >>> from pitheorem.engines.verdicts.strength import Control
+    >>> from pitheorem.simulation import unseen_groups
+    >>> unseen_groups([Control("g", 1e-4, False), Control("g", 1.0, False), Control("masses", 1.0, True)])
+    ('g',)
+    >>> unseen_groups([Control("g", 1e-4, False), Control("g", 1.0, True)])
+    ()
+    """
+    groups = dict.fromkeys(c.group for c in controls)
+    return tuple(g for g in groups if not any(c.caught for c in controls if c.group == g))
 
 
 def first_divergence(original: Trajectory, mapped: Trajectory) -> tuple[float, str] | None:

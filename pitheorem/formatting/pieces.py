@@ -769,8 +769,7 @@ def strength_lines(report) -> list[str]:
     if report.horizon is None and not report.controls and free is None:
         return []
     lines = [] if free is None else [free.text()]
-    groups = dict.fromkeys(c.group for c in report.controls)  # each group's controls all unnoticed: unseen
-    unseen = [g for g in groups if not any(c.caught for c in report.controls if c.group == g)]
+    unseen = report.unseen
     if report.inconclusive:
         words = {"g": "gravity", "masses": "the masses"}
         what = " or ".join(words.get(g, g) for g in unseen)

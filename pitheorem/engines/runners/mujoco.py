@@ -27,6 +27,7 @@ sets one torque (revolute) or force (prismatic) per joint.
 from __future__ import annotations
 
 import atexit
+import functools
 import json
 import math
 import re
@@ -46,14 +47,9 @@ from ..parameters import JointKind, Parameter, dim
 __all__ = ["MujocoCompiledRunner", "MujocoRunner", "UrdfInMujoco", "add_joint_motors", "load_mjcf", "load_urdf"]
 
 
+@functools.cache  # asked once; a missing MuJoCo raises (named with its extra) and is not cached
 def _mujoco():
-    module = _MODULE.get("mujoco")
-    if module is None:  # asked once, and named with its extra when it is missing
-        module = _MODULE["mujoco"] = engine_module("mujoco")
-    return module
-
-
-_MODULE: dict = {}
+    return engine_module("mujoco")
 
 
 #: a parameter's path: its element (``geom 'foot'``, ``geom #3``) and the attribute after it
@@ -90,6 +86,10 @@ class MujocoRunner:
         self.document = document
         self.mjmodel = document.mjmodel  # this runner's own copy once a twin or a counter-run changes it
         self.refusal = getattr(document, "refusal", None)
+        # each stored field's rows by element, and the elements' names: found once, shared with the copies of
+        # this model (twins, counter-runs), which have the same elements
+        self._element_row_cache: dict = {}
+        self._element_names: dict = {}
 
     # -- the document's table, copies and files -------------------------------------------------
 
@@ -470,8 +470,7 @@ class MujocoRunner:
     def _element_rows(self, field: str):
         """The kind of element a field's rows belong to and each row's element (None: the row is the element),
         found once per field: an audit names thousands of mesh vertices."""
-        cache = self.__dict__.setdefault("_element_row_cache", {})
-        self.__dict__.setdefault("_element_names", {})
+        cache = self._element_row_cache
         if field not in cache:
             m = self.mjmodel
             prefix = field.split("_", 1)[0]

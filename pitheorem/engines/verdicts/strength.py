@@ -36,6 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...immutable import immutable
+from ...simulation import unseen_groups
 
 __all__ = [
     "CONTROL_ERRORS",
@@ -186,21 +187,6 @@ def control_factors(model, inputs=()) -> list[tuple[str, float, dict[str, float]
 def _inertial(dimension) -> bool:
     """Whether a number is a mass, a density or an inertia: M times a power of L, without time."""
     return dimension.exponent_of("M") != 0 and dimension.exponent_of("T") == 0
-
-
-def unseen_groups(controls) -> tuple[str, ...]:
-    """The groups whose every control passed unnoticed: errors this run cannot see, in the controls' order.
-
-    Examples
-    --------
-    >>> from pitheorem.engines.verdicts.strength import Control, unseen_groups
-    >>> unseen_groups([Control("g", 1e-4, False), Control("g", 1.0, False), Control("masses", 1.0, True)])
-    ('g',)
-    >>> unseen_groups([Control("g", 1e-4, False), Control("g", 1.0, True)])
-    ()
-    """
-    groups = dict.fromkeys(c.group for c in controls)
-    return tuple(g for g in groups if not any(c.caught for c in controls if c.group == g))
 
 
 def caught(original: np.ndarray, back: np.ndarray, limits: np.ndarray, bits: bool) -> bool:
