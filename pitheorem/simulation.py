@@ -765,7 +765,7 @@ class SimilarityReport(TableDisplay):
 
     @property
     def unseen(self) -> tuple[str, ...]:
-        """The groups the run cannot see an error in: every one of their negative controls passed unnoticed.
+        """The groups whose negative controls all passed unnoticed: errors unseen.
 
         Examples
         --------
