@@ -116,6 +116,8 @@ def _as_named(text) -> str:
     package; the command line shows it by the name the user gave.
     """
     text = str(text).replace(str(EXAMPLES) + os.sep, "example:")
+    for long, short in _GIVEN:  # a model file given with its folders, by its name: a message's first line stays short
+        text = text.replace(long, short)
     for name in examples():
         if not Path(name).suffix:  # a TOML model file is named without its suffix
             text = text.replace(f"example:{name}.toml", f"example:{name}")
@@ -360,27 +362,31 @@ def _chosen_scaling(result, k: int):
     return result.scalings[k - 1]
 
 
-def _scaled_scene(args, model, engine_model, result, s, engine=None):
+def _scaled_scene(args, model, engine_model, result, s, engine=None, file=None, named=False):
     """The model, its engine model, search result and scaling, in a scene the scaling can follow.
 
     When the engine's default scene refuses the chosen scaling (PyBullet's link
     damping and split impulse) and the user set none of the remedy's options,
     the file is loaded once more in the remedy scene, used by both runs, and
-    one line on stderr says which scene and how to choose another.
+    one line on stderr says which scene and how to choose another.  `file`
+    is the model file (default ``args.file``); `named` puts its name in that
+    line (``sweep`` of several files says it once per file).
     """
     from .engines.cli import automatic_scene, parse_scene, scene_refusal, scene_text
 
+    file = args.file if file is None else file
     sc = _chosen_scaling(result, args.solution)
     added = automatic_scene(engine_model, sc, s, parse_scene(args.scene))
     if not added:
         return model, engine_model, result, sc
-    chosen = _load_with_engine(args.file, args.scene, engine, added)
+    chosen = _load_with_engine(file, args.scene, engine, added)
     chosen_result = _run_search(chosen[0], args)
     chosen_sc = _chosen_scaling(chosen_result, args.solution)
     if automatic_scene(chosen[1], chosen_sc, s):  # the user's own options still refuse it: one short line
-        raise _CommandError(f"{Path(args.file).name}: {scene_refusal(engine_model, sc, s)}")
+        raise _CommandError(f"{Path(file).name}: {scene_refusal(engine_model, sc, s)}")
+    runs = f"every run of {Path(file).name}" if named else "both runs"
     print(
-        f"pitheorem: note: scene {scene_text(added)} in both runs (the default refuses this scaling; --scene sets it)",
+        f"pitheorem: note: scene {scene_text(added)} in {runs} (the default refuses this scaling; --scene sets it)",
         file=sys.stderr,
     )
     return (*chosen, chosen_result, chosen_sc)
@@ -502,8 +508,13 @@ def _cmd_sweep(args) -> int:
         if not result.feasible:
             print(f"pitheorem: {name}: {result.explanation()} Nothing swept.", file=sys.stderr)
             return EXIT_ERROR
+        # the scene a scaling needs, as verify chooses it: judged at the first factor that changes anything
+        moved = next((v for v in s if v != 1), s[0])
+        model, engine_model, result, sc = _scaled_scene(
+            args, model, engine_model, result, moved, args.engine, file=name, named=True
+        )
         models.append(engine_model)
-        scalings.append(_chosen_scaling(result, args.solution))
+        scalings.append(sc)
     client = _dask_client(args.dask) if args.dask else None
     show = args.format != "json" and sys.stderr.isatty()
     answer = sweep_engine(
@@ -592,6 +603,20 @@ def _cmd_params(args) -> int:
 
 #: the warnings this command has shown: each is shown once, whichever call raised it and however often
 _SHOWN: set[str] = set()
+#: the model files this command was given with their folders, each with its name: (path as written, name), longest first
+_GIVEN: list[tuple[str, str]] = []
+
+
+def _given_files(args) -> list[tuple[str, str]]:
+    """Each model file of `args` that has folders, as the messages name it (its absolute path too) and its name."""
+    files = getattr(args, "file", None)
+    pairs = set()
+    for given in [files] if isinstance(files, str) else list(files or ()):
+        if given.startswith("example:") or Path(given).name == given:
+            continue
+        for long in (given, os.path.abspath(given), str(Path(given).resolve())):
+            pairs.add((long, Path(given).name))
+    return sorted(pairs, key=lambda pair: -len(pair[0]))
 
 
 def _one_line_warning(message, category, filename, lineno, file=None, line=None) -> None:
@@ -909,6 +934,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return exc.code if isinstance(exc.code, int) else EXIT_ERROR
     try:
         _SHOWN.clear()
+        _GIVEN[:] = _given_files(args)
         with warnings.catch_warnings():  # restores Python's own display when the command returns
             warnings.showwarning = _one_line_warning
             return args.run(args)

@@ -392,26 +392,35 @@ def test_compound_meshes_are_the_collision_objs_of_several_parts_found_as_pybull
     ]
 
 
-def test_a_package_path_is_looked_for_up_to_four_folders_above_the_file(tmp_path):
+def test_a_mesh_is_looked_for_in_every_folder_above_the_file_as_pybullet_does(tmp_path):
     from pitheorem.engines.fileformats.urdf import read_urdf
 
     folder = tmp_path / "top" / "a" / "b" / "c" / "d" / "urdf"
     folder.mkdir(parents=True)
     path = folder / "robot.urdf"
-    path.write_text(
-        '<robot name="r"><link name="base"><collision><geometry><mesh filename="package://far/m.obj"/>'
-        "</geometry></collision></link></robot>"
-    )
-    for up, found in ((folder.parents[3], True), (folder.parents[4], False)):  # folders a (4th above) and top
-        (up / "far").mkdir()
-        (up / "far" / "m.obj").write_text("o x\nv 0 0 0\n")
-        if found:
-            assert read_urdf(path).parameters()[0].path == "link 'base' collision #0 mesh scale"
-        else:
-            with pytest.raises(EngineModelError, match="mesh file not found"):
-                read_urdf(path)
-        (up / "far" / "m.obj").unlink()
-        (up / "far").rmdir()
+    inertial = '<inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>'
+    for name in ("package://far/m.obj", "far/m.obj"):  # PyBullet drops package:// and searches the same folders
+        path.write_text(
+            f'<robot name="r"><link name="base">{inertial}<collision><geometry><mesh filename="{name}"/>'
+            "</geometry></collision></link></robot>"
+        )
+        with pytest.raises(EngineModelError, match="mesh file not found"):
+            read_urdf(path)
+        for up in (folder.parents[3], folder.parents[4]):  # folders a (4th above) and top (5th)
+            (up / "far").mkdir()
+            (up / "far" / "m.obj").write_text("o x\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n")
+            assert read_urdf(path).parameters()[-1].path == "link 'base' collision #0 mesh scale"
+            import pybullet  # the oracle: PyBullet finds the same file
+
+            client = pybullet.connect(pybullet.DIRECT)
+            try:
+                body = pybullet.loadURDF(str(path), physicsClientId=client)
+                shape = pybullet.getCollisionShapeData(body, -1, physicsClientId=client)[0]
+            finally:
+                pybullet.disconnect(client)
+            assert Path(shape[4].decode()) == up / "far" / "m.obj"
+            (up / "far" / "m.obj").unlink()
+            (up / "far").rmdir()
 
 
 def test_the_portable_text_names_meshes_and_textures_by_absolute_path_and_nothing_else(tmp_path):

@@ -503,9 +503,9 @@ def convert_engine(
             raise
         # the file's format holds one set of units (a URDF file is in SI): the fit's cannot be written
         text = (
-            f"{Path(path).name}: no units keep every number clear of {fit}'s thresholds: its format holds only "
-            f"{_units_text(model.units)}\n{_units_text(new)} would; a similarity scaling (pitheorem apply) "
-            "changes its numbers instead"
+            f"{Path(path).name}: no units keep every number clear of {fit}'s thresholds\n"
+            f"its format holds only {_units_text(model.units)}; {_units_text(new)} would clear them; "
+            "a similarity scaling (pitheorem apply) changes its numbers instead"
         )
         if fmt == "json":
             return json.dumps({"file": path, "fit": fit, "feasible": False, "written": None, "reason": text}, indent=2)

@@ -538,11 +538,13 @@ def _engine_apply_answer(answer) -> str:
 def _engine_verify_answer(answer) -> str:
     rep, s = answer.report, answer.s
     steps = len(rep.original) - 1
-    if rep.exact:
-        head, tail = ("inconclusive", ", but so do copies made wrong on purpose") if rep.inconclusive else ("exact", "")
+    if rep.exact and rep.inconclusive:  # the first line within 120 characters: the lines below say why
         lines = [
-            f"{head}: the scaled copy, mapped back, equals the original bit for bit at every step "
-            f"(s = {s}, {steps} steps){tail}"
+            f"inconclusive: the copy matches bit for bit (s = {s}, {steps} steps), as do copies made wrong on purpose"
+        ]
+    elif rep.exact:
+        lines = [
+            f"exact: the scaled copy, mapped back, equals the original bit for bit at every step (s = {s}, {steps} steps)"
         ]
     else:
         verdict = {"similar": "similar", "inconclusive": "inconclusive", "not similar": "NOT similar"}[rep.verdict]

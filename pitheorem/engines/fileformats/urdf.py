@@ -19,16 +19,19 @@ from __future__ import annotations
 
 import copy
 import os
+import re
+import warnings
 import xml.etree.ElementTree as ET
 from collections.abc import Mapping
 from pathlib import Path
 
+from ...formatting.pieces import float_text
 from ..enginemodel import EngineModelError
 from ..parameters import JointKind, Parameter, attribute_text, dim, identifier, unique_name, warn_unscalable
 from .assets import AssetCopies, assets_folder
 from .numbers import check_model_file, check_numbers
 
-__all__ = ["SI", "UrdfDocument", "joint_kind", "read_urdf", "refuse_units"]
+__all__ = ["SI", "UrdfDocument", "bullet_numbers", "joint_kind", "read_urdf", "refuse_units"]
 
 _ONE, _L, _T, _M = dim("1"), dim("L"), dim("T"), dim("M")
 
@@ -40,19 +43,78 @@ def _floats(text: str | None) -> list[float]:
     return [float(v) for v in (text or "").split()]
 
 
+#: what C's ``atof`` reads at the start of a text: the longest prefix that is a decimal number
+_ATOF = re.compile(r"\s*[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan)", re.IGNORECASE)
+
+#: the attributes PyBullet reads as three numbers (its ``parseVector3``); every other one is one number
+_VECTORS = frozenset({"xyz", "size", "scale"})
+
+
+def _atof(text: str) -> float:
+    """C's ``atof``: the number a text starts with, 0.0 where it starts with none (``"1.57."`` -> 1.57)."""
+    match = _ATOF.match(text)
+    if match is None:
+        return 0.0
+    try:
+        return float(match.group())
+    except ValueError:  # "1e" and the like: the mantissa alone, as atof reads it
+        return float(re.match(r"\s*[+-]?(?:\d+\.?\d*|\.\d+)", text).group())
+
+
+def bullet_numbers(attr: str, text: str) -> tuple[float, ...] | None:
+    """The numbers PyBullet's URDF reader takes from an attribute's text; None where it takes none.
+
+    PyBullet reads one number with C's ``atof`` (the number the text starts
+    with: ``"-1.57."`` is -1.57) and three numbers (``xyz``, ``size``,
+    ``scale``) by splitting the text at spaces and reading each piece with
+    ``atof``, keeping the first three (``"0.07, 0, -0.69"`` is 0.07 0 -0.69);
+    with fewer than three pieces it reads none.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.fileformats.urdf import bullet_numbers
+    >>> bullet_numbers("xyz", "0.07, 0, -0.69"), bullet_numbers("lower", "-1.57.")
+    ((0.07, 0.0, -0.69), (-1.57,))
+    >>> bullet_numbers("xyz", "$(optenv XYZ 0.19 0 0.149)"), bullet_numbers("xyz", "1 2")
+    ((0.0, 0.0, 0.19), None)
+    """
+    if attr not in _VECTORS:
+        return (_atof(text),)
+    pieces = [piece for piece in text.split(" ") if piece]
+    if len(pieces) < 3:
+        return None
+    return tuple(_atof(piece) for piece in pieces[:3])
+
+
+def _read_numbers(attr: str, text: str) -> tuple[tuple[float, ...], bool]:
+    """An attribute's numbers, and whether they were read as PyBullet reads a text that is not plain numbers.
+
+    Plain numbers are read as they are written; any other text as
+    :func:`bullet_numbers` reads it (the text of a file that PyBullet loads).
+    """
+    try:
+        plain = tuple(float(v) for v in text.split())
+    except ValueError:
+        plain = ()
+    if plain and (attr in _VECTORS or len(plain) == 1):
+        return plain, False
+    numbers = bullet_numbers(attr, text)
+    return (numbers, True) if numbers is not None else ((), False)
+
+
 def joint_kind(jtype: str) -> JointKind | None:
     """The coordinate and force of a URDF joint type: None for a fixed (or unknown) joint.
 
     Examples
     --------
     >>> from pitheorem.engines.fileformats.urdf import joint_kind
-    >>> str(joint_kind("prismatic").force), joint_kind("fixed")
-    ('M L T^-2', None)
+    >>> str(joint_kind("prismatic").force), str(joint_kind("spherical").q), joint_kind("fixed")
+    ('M L T^-2', '1', None)
     """
     if jtype == "prismatic":
         return JointKind.SLIDE
-    if jtype in ("revolute", "continuous"):
-        return JointKind.HINGE
+    if jtype in ("revolute", "continuous", "spherical"):
+        return JointKind.HINGE  # a spherical joint turns by angles under torques, as MuJoCo's ball does
     return None
 
 
@@ -77,7 +139,7 @@ class _Attr:
         self.index, self.default = index, default
 
     def read(self):
-        return tuple(_floats(self.element.get(self.attr, self.default)))
+        return _read_numbers(self.attr, self.element.get(self.attr, self.default))[0]
 
     def in_copy(self, elements: list) -> _Attr:
         """The same attribute in a copy of the file, whose elements in document order are `elements`."""
@@ -92,6 +154,7 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path, folder_at=Non
     if root.tag != "robot":
         raise EngineModelError(path, f"<{root.tag}>", "a URDF file's root element must be <robot>")
     out: list[_Attr] = []
+    read_loosely: list[tuple[str, str, str, tuple[float, ...]]] = []
     names: set[str] = set()
     address = {id(element): i for i, element in enumerate(root.iter())}
     mesh_folder = _mesh_folder(root, source_dir, folder_at)
@@ -100,7 +163,12 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path, folder_at=Non
         if element is None or element.get(attr, default) is None:
             return
         text = element.get(attr, default)
-        check_numbers(path, where, attr, text, nonnegative=dimension == _M)  # a mass cannot be < 0
+        numbers, loose = _read_numbers(attr, text)
+        if loose and _has_number(attr, text):  # not plain numbers, but PyBullet loads it: read as it reads it
+            check_numbers(path, where, attr, " ".join(map(repr, numbers)), nonnegative=dimension == _M)
+            read_loosely.append((where, attr, text, numbers))
+        else:
+            check_numbers(path, where, attr, text, nonnegative=dimension == _M)  # a mass cannot be < 0
         out.append(
             _Attr(unique_name(ident, names), where, element, attr, dimension, note, address[id(element)], default)
         )
@@ -218,7 +286,33 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path, folder_at=Non
         dynamics = joint.find("dynamics")
         add(f"{ident}_damping", f"{where} dynamics damping", dynamics, "damping", force * _T / q)
         add(f"{ident}_friction", f"{where} dynamics friction", dynamics, "friction", force)
+        if jtype == "spherical":
+            add(f"{ident}_twist", f"{where} limit twist", limit, "twist", q)
+    _warn_loose(path, read_loosely)
     return out
+
+
+def _has_number(attr: str, text: str) -> bool:
+    """Whether PyBullet reads a number from `text` at all: a scalar's text starts with one, a vector's has one."""
+    if attr not in _VECTORS:
+        return _ATOF.match(text) is not None
+    return any(_ATOF.match(piece) for piece in text.split(" ") if piece)
+
+
+def _warn_loose(path: str, read_loosely: list) -> None:
+    """One warning for every attribute that is not plain numbers, read as PyBullet reads it: the first named."""
+    if not read_loosely:
+        return
+    where, attr, text, numbers = read_loosely[0]
+    more = f" (and {len(read_loosely) - 1} more)" if len(read_loosely) > 1 else ""
+    shown = " ".join(float_text(x) for x in numbers)
+    hint = "; an unexpanded xacro macro: run xacro first" if "$(" in text else ""
+    warnings.warn(
+        f"{Path(path).name}: {where}: {attr}={text!r} is not plain numbers; read as PyBullet reads it, "
+        f"{shown}{more}{hint}",
+        UserWarning,
+        stacklevel=4,
+    )
 
 
 def _compound_meshes(tree: ET.ElementTree, source_dir: Path, folder_at=None) -> list[tuple[str, str, int]]:
@@ -247,14 +341,18 @@ def _compound_meshes(tree: ET.ElementTree, source_dir: Path, folder_at=None) -> 
 
 
 def _warn_compound_meshes(tree: ET.ElementTree, path: str, source_dir: Path, folder_at=None) -> None:
-    """Warn about each collision mesh of :func:`_compound_meshes`."""
-    for link, filename, parts in _compound_meshes(tree, source_dir, folder_at):
-        warn_unscalable(
-            path,
-            f"link {link!r} collision mesh {filename!r}",
-            f"its {parts} convex parts load as a compound whose collision margins "
-            "changeDynamics cannot reach; contacts of a scaled copy are off by that margin",
-        )
+    """Warn once about the collision meshes of :func:`_compound_meshes`: the first named, the others counted."""
+    found = _compound_meshes(tree, source_dir, folder_at)
+    if not found:
+        return
+    link, filename, parts = found[0]
+    more = f" (and {len(found) - 1} more such meshes)" if len(found) > 1 else ""
+    warn_unscalable(
+        path,
+        f"link {link!r} collision mesh {filename!r}{more}",
+        f"its {parts} convex parts load as a compound whose collision margins "
+        "changeDynamics cannot reach; contacts of a scaled copy are off by that margin",
+    )
 
 
 def _xml_text(tree: ET.ElementTree) -> str:
@@ -286,18 +384,20 @@ def _mesh_path(filename: str, source_dir: Path, mesh_folder: Path | None = None)
     """The file a URDF's mesh or texture names, searched as MuJoCo and PyBullet do; None if there is none.
 
     A relative mesh name is looked for in `mesh_folder` first (a folder the file names for an
-    engine that reads it, such as MuJoCo's ``<mujoco><compiler meshdir>``), then as PyBullet does: relative to the URDF's
-    folder; ``package://NAME/REST`` is looked for as ``NAME/REST`` in that folder and the four
-    folders above it (a ROS package's meshes sit beside its ``urdf`` folder).
+    engine that reads it, such as MuJoCo's ``<mujoco><compiler meshdir>``), then as PyBullet does
+    (its ``UrdfFindMeshFile``): ``package://`` and ``model://`` dropped, the name is looked for in
+    the URDF's folder and in every folder above it, nearest first (a ROS package's meshes sit
+    beside its ``urdf`` folder; pybullet_data's ``differential/diff_ring.urdf`` names
+    ``differential/diff_ring.stl`` from the folder above), then as given.
     """
     name = filename
-    if name.startswith("package://"):
-        name = name[len("package://") :]
-    candidates = [source_dir / name, Path(name)]
-    if mesh_folder is not None and not filename.startswith("package://"):
+    for scheme in ("package://", "model://"):
+        if name.startswith(scheme):
+            name = name[len(scheme) :]
+            break
+    candidates = [folder / name for folder in (source_dir, *source_dir.parents)] + [Path(name)]
+    if mesh_folder is not None and name == filename:
         candidates.insert(0, mesh_folder / name)
-    if filename.startswith("package://"):
-        candidates += [folder / name for folder in list(source_dir.parents)[:4]]
     for c in candidates:
         if c.is_file():
             return c

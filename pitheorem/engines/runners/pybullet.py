@@ -88,6 +88,15 @@ def _pybullet():
     return engine_module("pybullet")
 
 
+#: the suffixes of a spherical joint's coordinates: its quaternion (PyBullet's order), its angular velocity
+_QUATERNION, _VECTOR = (":x", ":y", ":z", ":w"), (":x", ":y", ":z")
+
+
+def _axes(jtype: str, axes: tuple[str, ...]) -> tuple[str, ...]:
+    """A joint's coordinate suffixes: `axes` for a spherical joint, one unnamed coordinate for any other."""
+    return axes if jtype == "spherical" else ("",)
+
+
 def _link_parameter(link: str, setting: str) -> str:
     """The parameter name of a link's ``changeDynamics`` setting, as the table and a scaled copy know it."""
     return f"{identifier(f'link_{link}')}_{setting}"
@@ -179,8 +188,9 @@ class PybulletRunner:
             for j in range(pb.getNumJoints(body, physicsClientId=client)):
                 info = pb.getJointInfo(body, j, physicsClientId=client)
                 links.append((j, info[12].decode()))
-                if info[2] in (pb.JOINT_REVOLUTE, pb.JOINT_PRISMATIC):
-                    joints.append((j, info[1].decode(), "prismatic" if info[2] == pb.JOINT_PRISMATIC else "revolute"))
+                kind = {pb.JOINT_REVOLUTE: "revolute", pb.JOINT_PRISMATIC: "prismatic", pb.JOINT_SPHERICAL: "spherical"}
+                if info[2] in kind:
+                    joints.append((j, info[1].decode(), kind[info[2]]))
             dynamics = {index: pb.getDynamicsInfo(body, index, physicsClientId=client) for index, _ in links}
             shapes = {index: pb.getCollisionShapeData(body, index, physicsClientId=client) for index, _ in links}
             return {"links": links, "joints": joints, "dynamics": dynamics, "shapes": shapes}
@@ -493,20 +503,37 @@ class PybulletRunner:
         return float(self._settings["timestep"])
 
     def coordinate_dimensions(self):
+        """The base's 13 numbers, then each movable joint's position, then its velocity.
+
+        A spherical joint's position is its quaternion (``q[NAME:x]`` ... ``q[NAME:w]``,
+        PyBullet's order) and its velocity an angular velocity of three (``qdot[NAME:x]`` ...).
+        """
         names, dims = [], []
         for k, d in enumerate([_L] * 3 + [_ONE] * 4 + [dim("L T^-1")] * 3 + [dim("T^-1")] * 3):
             names.append(f"base[{k}]")
             dims.append(d)
         for _j, jname, jtype in self._info["joints"]:
-            names.append(f"q[{jname}]")
-            dims.append(joint_kind(jtype).q)
+            for axis in _axes(jtype, _QUATERNION):
+                names.append(f"q[{jname}{axis}]")
+                dims.append(joint_kind(jtype).q)
         for _j, jname, jtype in self._info["joints"]:
-            names.append(f"qdot[{jname}]")
-            dims.append(joint_kind(jtype).q / _T)
+            for axis in _axes(jtype, _VECTOR):
+                names.append(f"qdot[{jname}{axis}]")
+                dims.append(joint_kind(jtype).q / _T)
         return names, dims
 
     def control_dimensions(self):
-        return [joint_kind(jtype).force for _j, _n, jtype in self._info["joints"]]
+        """One force or torque per movable joint; three torques for a spherical joint."""
+        return [joint_kind(jtype).force for _j, _n, jtype in self._info["joints"] for _axis in _axes(jtype, _VECTOR)]
+
+    def _layout(self) -> list[tuple[int, str, slice, slice, slice]]:
+        """Each movable joint: its index, type, and its columns among the positions, velocities and inputs."""
+        out, pos, vel = [], 0, 0
+        for j, _n, jtype in self._info["joints"]:
+            npos, nvel = len(_axes(jtype, _QUATERNION)), len(_axes(jtype, _VECTOR))
+            out.append((j, jtype, slice(pos, pos + npos), slice(vel, vel + nvel), slice(vel, vel + nvel)))
+            pos, vel = pos + npos, vel + nvel
+        return out
 
     def _setup(self, pb, client) -> int:
         """The scene, the robot and every setting, as a run starts them; the robot's body id."""
@@ -529,8 +556,21 @@ class PybulletRunner:
             index = call.pop("linkIndex")
             for key, value in call.items():  # one setting per call (see rod.py on pybullet 3.2.7)
                 pb.changeDynamics(body, index, **{key: value}, physicsClientId=client)
-        for j, _n, _t in self._info["joints"]:
-            pb.setJointMotorControl2(body, j, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=client)
+        for j, _n, jtype in self._info["joints"]:
+            if jtype == "spherical":  # its default motor pulls it to rest: no force, no gain on position
+                pb.setJointMotorControlMultiDof(
+                    body,
+                    j,
+                    pb.POSITION_CONTROL,
+                    targetPosition=[0.0, 0.0, 0.0, 1.0],
+                    targetVelocity=[0.0, 0.0, 0.0],
+                    positionGain=0.0,
+                    velocityGain=1.0,
+                    force=[0.0, 0.0, 0.0],
+                    physicsClientId=client,
+                )
+            else:
+                pb.setJointMotorControl2(body, j, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=client)
         return body
 
     # -- what the engine holds: the audit's numbers, the yardstick's twins ------------------------
@@ -664,7 +704,7 @@ class PybulletRunner:
 
     def control_ranges(self) -> tuple[np.ndarray, np.ndarray]:
         """Unlimited for every movable joint: under torque control PyBullet applies no effort limit."""
-        high = np.full(len(self._info["joints"]), np.inf)
+        high = np.full(len(self.control_dimensions()), np.inf)
         return -high, high
 
     def run(self, n_steps: int, controls=None, nudge: bool = False, policy=None, initial=None):
@@ -679,46 +719,76 @@ class PybulletRunner:
         nudge = nudge or self.nudge_start
         st = self._settings
         body = self._setup(pb, client)
-        joints = [j for j, _n, _t in self._info["joints"]]
-        n = len(joints)
-        if initial is not None:  # the row's layout: base position, orientation, velocities; q; qdot
+        layout = self._layout()
+        joints = [j for j, *_ in layout]
+        single = [(j, where) for j, jtype, where, _v, _c in layout if jtype != "spherical"]
+        spherical = [(j, where) for j, jtype, where, _v, _c in layout if jtype == "spherical"]
+        npos = layout[-1][2].stop if layout else 0
+        nvel = layout[-1][3].stop if layout else 0
+        if initial is not None:  # the row's layout: base position, orientation, velocities; positions; velocities
             pb.resetBasePositionAndOrientation(
                 body, initial[:3].tolist(), initial[3:7].tolist(), physicsClientId=client
             )
             pb.resetBaseVelocity(body, initial[7:10].tolist(), initial[10:13].tolist(), physicsClientId=client)
-            for k, j in enumerate(joints):
-                pb.resetJointState(body, j, float(initial[13 + k]), float(initial[13 + n + k]), physicsClientId=client)
+            q, qdot = initial[13 : 13 + npos], initial[13 + npos : 13 + npos + nvel]
+            for j, jtype, pos, vel, _c in layout:
+                if jtype == "spherical":
+                    pb.resetJointStateMultiDof(body, j, q[pos].tolist(), qdot[vel].tolist(), physicsClientId=client)
+                else:
+                    pb.resetJointState(body, j, float(q[pos][0]), float(qdot[vel][0]), physicsClientId=client)
         if nudge:
             pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=client)
             pb.resetBasePositionAndOrientation(body, nudged(pos).tolist(), orn, physicsClientId=client)
-            for j in joints:
+            for j, _where in single:
                 q, qdot = pb.getJointState(body, j, physicsClientId=client)[:2]
                 pb.resetJointState(body, j, float(nudged([q])[0]), qdot, physicsClientId=client)
-        out = np.empty((n_steps + 1, 13 + 2 * len(joints)))
+            for j, _where in spherical:
+                q, qdot = pb.getJointStateMultiDof(body, j, physicsClientId=client)[:2]
+                pb.resetJointStateMultiDof(body, j, nudged(q).tolist(), list(qdot), physicsClientId=client)
+        out = np.empty((n_steps + 1, 13 + npos + nvel))
 
         def record(i):
             pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=client)
             lin, ang = pb.getBaseVelocity(body, physicsClientId=client)
-            states = pb.getJointStates(body, joints, physicsClientId=client) if joints else []
-            out[i] = [*pos, *orn, *lin, *ang, *(x[0] for x in states), *(x[1] for x in states)]
+            if spherical:  # positions and velocities of several numbers each
+                states = pb.getJointStatesMultiDof(body, joints, physicsClientId=client)
+                q = [x for state in states for x in state[0]]
+                qdot = [x for state in states for x in state[1]]
+            else:
+                states = pb.getJointStates(body, joints, physicsClientId=client) if joints else []
+                q, qdot = [x[0] for x in states], [x[1] for x in states]
+            out[i] = [*pos, *orn, *lin, *ang, *q, *qdot]
 
         record(0)
         dt = st["timestep"]
         sprung, stiffness, rest = self._springs()
+        # a spring's joint by its column among the positions and among the inputs
+        sprung_q = [layout[place][2].start for place in sprung]
+        sprung_u = [layout[place][4].start for place in sprung]
+        single_joints = [j for j, _where in single]
+        single_u = [layout[place][4].start for place, (_j, jtype, *_r) in enumerate(layout) if jtype != "spherical"]
         for i in range(1, n_steps + 1):
             if (controls is not None or policy is not None or sprung) and joints:
                 t = (i - 1) * dt
                 if controls is None and policy is None:
-                    u = np.zeros(len(joints))
+                    u = np.zeros(nvel)
                 elif controls is None:
                     u = policy(client, body, t)
                 else:  # an array of rows, one per step, or a function of time
                     u = controls(t) if callable(controls) else controls[i - 1]
                 u = np.array(u, dtype=float)
                 if sprung:  # the springs' torques from the state this step starts from
-                    q = out[i - 1, 13 : 13 + len(joints)]
-                    u[sprung] += -stiffness * (q[sprung] - rest)
-                pb.setJointMotorControlArray(body, joints, pb.TORQUE_CONTROL, forces=u.tolist(), physicsClientId=client)
+                    q = out[i - 1, 13 : 13 + npos]
+                    u[sprung_u] += -stiffness * (q[sprung_q] - rest)
+                if single_joints:
+                    pb.setJointMotorControlArray(
+                        body, single_joints, pb.TORQUE_CONTROL, forces=u[single_u].tolist(), physicsClientId=client
+                    )
+                for j, jtype, _p, _v, inputs in layout:
+                    if jtype == "spherical":
+                        pb.setJointMotorControlMultiDof(
+                            body, j, pb.TORQUE_CONTROL, force=u[inputs].tolist(), physicsClientId=client
+                        )
             pb.stepSimulation(physicsClientId=client)
             record(i)
         return out
@@ -765,6 +835,7 @@ class PybulletRunner:
     def _joint_springs(self, springs) -> dict:
         """``{joint name: (stiffness, rest position)}`` read into the settings' ``{joint index: [k, q0]}``."""
         movable = {name: j for j, name, _t in self._info["joints"]}
+        spherical = {name for _j, name, jtype in self._info["joints"] if jtype == "spherical"}
         if not isinstance(springs, dict):
             raise InvalidRequestError(
                 f"joint_springs maps a joint's name to (stiffness, rest position), got {springs!r}", culprit=springs
@@ -775,6 +846,11 @@ class PybulletRunner:
                 raise InvalidRequestError(
                     f"no movable joint {name!r} for a spring; the movable joints are "
                     f"{', '.join(sorted(movable)) or 'none'}",
+                    culprit=name,
+                )
+            if name in spherical:
+                raise InvalidRequestError(
+                    f"joint {name!r} is spherical; a spring takes a revolute, continuous or prismatic joint",
                     culprit=name,
                 )
             if isinstance(spring, str | bytes) or np.ndim(spring) != 1 or len(spring) != 2:
@@ -846,8 +922,12 @@ def _snippet(name: str, settings: dict) -> str:
     lines.append("    index = call.pop('linkIndex')")
     lines.append("    for key, value in call.items():")
     lines.append("        p.changeDynamics(body, index, **{key: value})")
-    lines.append("for j in range(p.getNumJoints(body)):  # PyBullet's default velocity motors off")
-    lines.append("    p.setJointMotorControl2(body, j, p.VELOCITY_CONTROL, force=0)")
+    lines.append("for j in range(p.getNumJoints(body)):  # PyBullet's default motors off")
+    lines.append("    if p.getJointInfo(body, j)[2] == p.JOINT_SPHERICAL:")
+    lines.append("        p.setJointMotorControlMultiDof(body, j, p.POSITION_CONTROL, targetPosition=[0, 0, 0, 1],")
+    lines.append("                                       positionGain=0, velocityGain=1, force=[0, 0, 0])")
+    lines.append("    else:")
+    lines.append("        p.setJointMotorControl2(body, j, p.VELOCITY_CONTROL, force=0)")
     if settings["jointSprings"]:
         lines += [
             "",
