@@ -116,8 +116,6 @@ def _as_named(text) -> str:
     package; the command line shows it by the name the user gave.
     """
     text = str(text).replace(str(EXAMPLES) + os.sep, "example:")
-    for long, short in _GIVEN:  # a model file given with its folders, by its name: a message's first line stays short
-        text = text.replace(long, short)
     for name in examples():
         if not Path(name).suffix:  # a TOML model file is named without its suffix
             text = text.replace(f"example:{name}.toml", f"example:{name}")
@@ -603,20 +601,6 @@ def _cmd_params(args) -> int:
 
 #: the warnings this command has shown: each is shown once, whichever call raised it and however often
 _SHOWN: set[str] = set()
-#: the model files this command was given with their folders, each with its name: (path as written, name), longest first
-_GIVEN: list[tuple[str, str]] = []
-
-
-def _given_files(args) -> list[tuple[str, str]]:
-    """Each model file of `args` that has folders, as the messages name it (its absolute path too) and its name."""
-    files = getattr(args, "file", None)
-    pairs = set()
-    for given in [files] if isinstance(files, str) else list(files or ()):
-        if given.startswith("example:") or Path(given).name == given:
-            continue
-        for long in (given, os.path.abspath(given), str(Path(given).resolve())):
-            pairs.add((long, Path(given).name))
-    return sorted(pairs, key=lambda pair: -len(pair[0]))
 
 
 def _one_line_warning(message, category, filename, lineno, file=None, line=None) -> None:
@@ -934,7 +918,6 @@ def main(argv: Sequence[str] | None = None) -> int:
         return exc.code if isinstance(exc.code, int) else EXIT_ERROR
     try:
         _SHOWN.clear()
-        _GIVEN[:] = _given_files(args)
         with warnings.catch_warnings():  # restores Python's own display when the command returns
             warnings.showwarning = _one_line_warning
             return args.run(args)

@@ -517,3 +517,78 @@ def test_keep_inputs_is_refused_for_pybullet_whose_inputs_are_the_joint_forces_t
     )
     assert isinstance(caught.value, pt.InvalidRequestError)
     model.scaled(sc, 4)  # the default stays as it is
+
+
+# -- spherical joints (pybullet_data's humanoid): a quaternion and three torques each, PyBullet's motor off ----
+
+
+def _humanoid():
+    pybullet_data = pytest.importorskip("pybullet_data", reason="pybullet_data is not installed")
+    return Path(pybullet_data.getDataPath()) / "humanoid" / "humanoid.urdf"
+
+
+def test_a_spherical_joint_runs_with_its_quaternion_and_three_torques_and_no_motor():
+    model = engines.load(_humanoid(), fixed_base=True)
+    names, dims = model.coordinates()
+    assert [n for n in names if n.startswith("q[chest")] == ["q[chest:x]", "q[chest:y]", "q[chest:z]", "q[chest:w]"]
+    assert [str(dims[names.index(f"qdot[chest:{a}]")]) for a in "xyz"] == ["T^-1"] * 3
+    assert str(dims[names.index("q[right_knee]")]) == "1"  # a revolute joint keeps its one coordinate
+    inputs = model.inputs()[0]
+    spherical, revolute = 8, 4  # the humanoid's joints as its file states them
+    assert len(inputs) == 3 * spherical + revolute
+    assert {str(d) for d in inputs} == {"M L^2 T^-2"}
+    assert str(model.parameter("joint_neck_maxJointVelocity").dimension) == "T^-1"
+    # zero input, the root held: with PyBullet's default motor on, the hip would stay within 1e-4 of rest;
+    # without it the leg swings under gravity
+    rows = model.run(240)
+    hip = names.index("q[right_hip:x]")
+    assert np.allclose(rows[0, hip : hip + 4], (0, 0, 0, 1))
+    assert abs(rows[-1, hip : hip + 4] - (0, 0, 0, 1)).max() > 0.05
+    assert np.allclose(np.linalg.norm(rows[:, hip : hip + 4], axis=1), 1.0)
+    # each torque acts on its own joint and axis: a torque about the chest's x turns the chest about x
+    push = np.zeros(len(inputs))
+    push[0] = 50.0
+    pushed = model.run(60, controls=lambda t: push)
+    chest = names.index("q[chest:x]")
+    still = model.run(60)
+    assert abs(pushed[-1, chest] - still[-1, chest]) > 1e-3
+    assert abs(pushed[-1, chest + 1] - still[-1, chest + 1]) < abs(pushed[-1, chest] - still[-1, chest]) / 10
+    # a run started from a row restarts exactly there, the quaternions included
+    again = model.run(10, initial=rows[-1])
+    assert np.array_equal(again[0], rows[-1])
+
+
+def test_a_spherical_joint_scales_bit_for_bit_and_refuses_a_spring_by_name():
+    model = engines.load(_humanoid(), damping=0.0, split_impulse=False)
+    scaling = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    rep = engines.verify(model, scaling, s=4, duration=0.1, controls=engines.smooth_controls(model))
+    assert rep.exact
+    assert rep.excited
+    with pytest.raises(pt.InvalidRequestError, match="joint 'chest' is spherical; a spring takes a revolute"):
+        model.with_settings(joint_springs={"chest": (1.0, 0.0)})
+
+
+def test_a_link_without_a_mass_in_its_file_gets_pybullets_and_follows_the_scaling(tmp_path):
+    # husky's sensor and bumper links state no <inertial>: PyBullet gives each 1 kg and a unit inertia
+    path = tmp_path / "two.urdf"
+    path.write_text(
+        '<robot name="two"><link name="base"><inertial><mass value="2"/>'
+        '<inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>'
+        '<collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>'
+        '<link name="tip"><collision><geometry><sphere radius="0.05"/></geometry></collision></link>'
+        '<joint name="hinge" type="revolute"><parent link="base"/><child link="tip"/>'
+        '<origin xyz="0.3 0 0"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="10" velocity="10"/></joint>'
+        "</robot>"
+    )
+    model = engines.load(path, damping=0.0, split_impulse=False)
+    mass = model.parameter("link_tip_mass")
+    assert (mass.value, str(mass.dimension), mass.source) == ((1.0,), "M", "engine")
+    # the file's own mass keeps its one row
+    assert [p.source for p in model.parameters if p.name.startswith("link_base_mass")] == ["file"]
+    heavier = pt.Scaling.from_unit_change(model.system(), {"M": 1})
+    copy = model.scaled(heavier, 4)
+    assert copy.runner.stored_numbers()["link.mass"][:, 0].tolist() == [8.0, 4.0]
+    rep = engines.verify(model, pt.search(model.system(), scale={"g": 1}).scalings[0], s=4, duration=0.2)
+    assert rep.exact
+    saved = copy.save(tmp_path / "two4.urdf")
+    assert engines.load(saved).parameter("link_tip_mass").value == (4.0,)

@@ -2,10 +2,15 @@
 
 from __future__ import annotations
 
+import math
 import pickle
+import re
 from pathlib import Path
 
+import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import pitheorem as pt
 
@@ -461,3 +466,99 @@ def test_a_file_that_is_not_well_formed_is_refused_at_its_line(tmp_path):
         read_urdf(path)
     assert caught.value.element == "line 3"  # its column (19) is not its line
     assert "not well-formed XML" in str(caught.value)
+
+
+# -- numbers as PyBullet reads them: text that is not plain numbers (pybullet_data's bike, biped, husky) --------
+
+
+def _libc_atof():
+    import ctypes
+    import ctypes.util
+
+    libc = ctypes.CDLL(ctypes.util.find_library("c"))
+    libc.atof.restype, libc.atof.argtypes = ctypes.c_double, (ctypes.c_char_p,)
+    return libc.atof
+
+
+@given(st.text(alphabet="0123456789.eE+- ,\tinfaINF$(x)", max_size=14))
+@settings(max_examples=300, deadline=None)
+def test_a_number_is_read_as_c_atof_reads_it(text):
+    from pitheorem.engines.fileformats.urdf import bullet_numbers
+
+    atof = _libc_atof()  # the oracle: C's own atof, which PyBullet's URDF reader calls
+    if "x" in text.lower():  # C reads hexadecimal ("0x1p3"), which no URDF writes; the reader does not
+        text = text.replace("x", "").replace("X", "")
+    expected = atof(text.encode())
+    (value,) = bullet_numbers("value", text)
+    assert value == expected or (math.isnan(value) and math.isnan(expected))
+    pieces = [p for p in text.split(" ") if p]
+    three = bullet_numbers("xyz", text)
+    if len(pieces) < 3:
+        assert three is None
+    else:
+        want = [atof(p.encode()) for p in pieces[:3]]
+        assert all(a == b or (math.isnan(a) and math.isnan(b)) for a, b in zip(three, want, strict=True))
+
+
+LOOSE_URDFS = {  # a file of pybullet_data with numbers that are not plain, the first such attribute, PyBullet's reading
+    "bicycle/bike.urdf": ("joint 'handlebar_to_frontwheel' origin xyz", (0.07, 0.0, -0.69)),
+    "biped/biped2d_pybullet.urdf": ("joint 'torso_to_rightleg' limit lower", (-1.57,)),
+    "husky/husky.urdf": ("joint 'imu_joint' origin xyz", (0.0, 0.0, 0.19)),  # an unexpanded xacro $(optenv ...)
+}
+
+
+@pytest.mark.parametrize("name", sorted(LOOSE_URDFS))
+def test_numbers_that_are_not_plain_are_read_as_pybullet_holds_them_and_said_once(name):
+    import warnings
+
+    import pybullet
+
+    from pitheorem.engines.fileformats.urdf import read_urdf
+
+    pybullet_data = pytest.importorskip("pybullet_data", reason="pybullet_data is not installed")
+    path = Path(pybullet_data.getDataPath()) / name
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        document = read_urdf(path)
+    said = [str(w.message) for w in caught if "read as PyBullet reads it" in str(w.message)]
+    where, numbers = LOOSE_URDFS[name]
+    assert len(said) == 1
+    assert said[0].startswith(f"{path.name}: {where}: ")
+    assert ("run xacro first" in said[0]) == (name == "husky/husky.urdf")
+    values = {p.path: p.value for p in document.parameters()}
+    assert values[where] == numbers
+    # the oracle: what PyBullet holds once it loaded the file, joint by joint
+    client = pybullet.connect(pybullet.DIRECT)
+    try:
+        body = pybullet.loadURDF(str(path), physicsClientId=client)
+        checked = 0
+        for j in range(pybullet.getNumJoints(body, physicsClientId=client)):
+            info = pybullet.getJointInfo(body, j, physicsClientId=client)
+            joint = info[1].decode()
+            xyz = values.get(f"joint {joint!r} origin xyz")
+            if xyz is not None:  # PyBullet keeps the origin in the parent's inertial frame: back to the link's
+                com, turn = pybullet.getDynamicsInfo(body, info[16], physicsClientId=client)[3:5]
+                held = pybullet.multiplyTransforms(com, turn, info[14], (0.0, 0.0, 0.0, 1.0))[0]
+                assert np.allclose(held, xyz, rtol=0, atol=1e-6), joint
+                checked += 1
+            for k, limit in ((8, "lower"), (9, "upper")):
+                if f"joint {joint!r} limit {limit}" in values and info[2] != pybullet.JOINT_FIXED:
+                    assert values[f"joint {joint!r} limit {limit}"] == (info[k],), joint
+                    checked += 1
+    finally:
+        pybullet.disconnect(client)
+    assert checked >= 2
+
+
+def test_text_with_no_number_pybullet_reads_is_still_refused(tmp_path):
+    from pitheorem.engines.fileformats.urdf import read_urdf
+
+    path = tmp_path / "r.urdf"
+    for bad, message in (
+        ('<mass value="heavy"/>', "value='heavy' must be a finite number"),
+        ('<mass value="-2,5"/>', "value='-2,5' must be a finite number, such as 1.5, and not negative"),
+        ('<origin xyz="a b c"/><mass value="1"/>', "xyz='a b c' must be finite numbers"),
+    ):
+        path.write_text(f'<robot name="r"><link name="a"><inertial>{bad}</inertial></link></robot>')
+        with pytest.raises(EngineModelError, match=re.escape(message)):
+            read_urdf(path)

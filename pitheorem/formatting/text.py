@@ -390,11 +390,15 @@ def _sweep(sweep) -> str:
         textwrap.fill(sweep_head(sweep), SWEEP_WIDTH, subsequent_indent="  "),
         align([list(SWEEP_HEADER)] + [sweep_cells(r) for r in sweep.rows]),
     ]
-    caused = [r for r in sweep.rows if r.causes]
-    if caused:
+    # the same causes at several factors are said once, with every factor (no line comes twice)
+    grouped: dict[str, list[str]] = {}
+    for r in sweep.rows:
+        if r.causes:
+            grouped.setdefault("; ".join(f"{c.kind}: {c.element}" for c in r.causes), []).append(value_text(r.s))
+    if grouped:
         lines.append("causes:")
-        for r in caused:
-            line = f"  s = {value_text(r.s)}: " + "; ".join(f"{c.kind}: {c.element}" for c in r.causes)
+        for causes, factors in grouped.items():
+            line = f"  s = {', '.join(factors)}: {causes}"
             lines.append(textwrap.fill(line, SWEEP_WIDTH, subsequent_indent="    "))
     fit = sweep_fit_text(sweep)
     if fit:

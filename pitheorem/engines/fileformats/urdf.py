@@ -18,6 +18,7 @@ keeps PyBullet's beside the file.  Nothing here imports an engine.
 from __future__ import annotations
 
 import copy
+import math
 import os
 import re
 import warnings
@@ -53,12 +54,7 @@ _VECTORS = frozenset({"xyz", "size", "scale"})
 def _atof(text: str) -> float:
     """C's ``atof``: the number a text starts with, 0.0 where it starts with none (``"1.57."`` -> 1.57)."""
     match = _ATOF.match(text)
-    if match is None:
-        return 0.0
-    try:
-        return float(match.group())
-    except ValueError:  # "1e" and the like: the mantissa alone, as atof reads it
-        return float(re.match(r"\s*[+-]?(?:\d+\.?\d*|\.\d+)", text).group())
+    return 0.0 if match is None else float(match.group())  # "1e" matches as "1": an exponent needs digits
 
 
 def bullet_numbers(attr: str, text: str) -> tuple[float, ...] | None:
@@ -165,7 +161,8 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path, folder_at=Non
         text = element.get(attr, default)
         numbers, loose = _read_numbers(attr, text)
         if loose and _has_number(attr, text):  # not plain numbers, but PyBullet loads it: read as it reads it
-            check_numbers(path, where, attr, " ".join(map(repr, numbers)), nonnegative=dimension == _M)
+            if not all(math.isfinite(x) and (x >= 0 or dimension != _M) for x in numbers):
+                check_numbers(path, where, attr, text, nonnegative=dimension == _M)  # refused, named as written
             read_loosely.append((where, attr, text, numbers))
         else:
             check_numbers(path, where, attr, text, nonnegative=dimension == _M)  # a mass cannot be < 0

@@ -250,6 +250,18 @@ class PybulletRunner:
                         note="a torque per normal force",
                     )
                 )
+            if "mass" in link:
+                out.append(
+                    Parameter(
+                        _link_parameter(lname, "mass"),
+                        f"link {lname!r} mass",
+                        (link["mass"],),
+                        _M,
+                        "engine",
+                        "changeDynamics(mass=...)",
+                        note="PyBullet's own for a link whose file states no mass",
+                    )
+                )
             if self._info["dynamics"][index][0] > 0:
                 out.append(
                     Parameter(
@@ -376,6 +388,8 @@ class PybulletRunner:
         """
         st, key, dyn = self._settings, str(index), self._info["dynamics"][index]
         values = {}
+        if index in self._unstated_masses():  # first: setting a mass makes Bullet compute the inertia again
+            values["mass"] = st.get("mass", {}).get(key, dyn[0])
         if self._info["shapes"][index]:
             values["collisionMargin"] = st["margins"].get(key, dyn[11])
         for k, name in enumerate(("rollingFriction", "spinningFriction")):
@@ -384,6 +398,17 @@ class PybulletRunner:
             values[name] = st["damping"].get(key, {}).get(name, _BULLET[parts[0][1]].default)
         values["localInertiaDiagonal"] = st["inertia"].get(key, dyn[2])
         return values
+
+    def _unstated_masses(self) -> frozenset[int]:
+        """The links whose file states no mass: PyBullet gives each its own (1 kg), a number the table must hold."""
+        if "_unstated" not in self.__dict__:
+            stated = {p.name for p in self.document.parameters() if p.name.endswith("_mass")}
+            self._unstated = frozenset(
+                index
+                for index, lname in self._info["links"]
+                if _link_parameter(lname, "mass") not in stated and self._info["dynamics"][index][0] > 0
+            )
+        return self._unstated
 
     def _max_joint_velocity(self, j: int) -> float:
         return self._settings["max_joint_velocity"].get(str(j), _BULLET["bullet_max_joint_velocity"].default)
@@ -394,6 +419,8 @@ class PybulletRunner:
             call = {"linkIndex": index, **self._link_dynamics(index)}
             if str(index) not in self._settings["inertia"]:  # Bullet's own, computed at load: not set again
                 del call["localInertiaDiagonal"]
+            if "mass" in call and str(index) not in self._settings.get("mass", {}):  # likewise PyBullet's own
+                del call["mass"]
             calls.append(call)
         for j, _jname, _jtype in self._info["joints"]:
             calls.append({"linkIndex": j, "maxJointVelocity": self._max_joint_velocity(j)})
@@ -417,6 +444,9 @@ class PybulletRunner:
             name = _link_parameter(lname, "inertia")
             if name in params:
                 st["inertia"][key] = [v * factors.get(name, 1.0) for v in params[name].value]
+            name = _link_parameter(lname, "mass")
+            if index in self._unstated_masses():
+                st.setdefault("mass", {})[key] = params[name].value[0] * factors.get(name, 1.0)
             for fname in ("rollingFriction", "spinningFriction", *(n for n, *_ in MIXED_DAMPING)):
                 name = _link_parameter(lname, fname)
                 group = "damping" if "Damping" in fname else "friction"
@@ -1097,6 +1127,7 @@ def _scene_backend(path: Path, scene: dict) -> PybulletRunner:
         "damping": {},
         "max_joint_velocity": {},
         "inertia": {},
+        "mass": {},
         "springs": {},
         "ground_margin": _BULLET["bullet_collision_margin"].default,
     }
@@ -1152,6 +1183,8 @@ def _load_saved(path: Path, saved: Path) -> EngineModel:
                 st["margins"][key] = float(call["collisionMargin"])
             if "localInertiaDiagonal" in call:
                 st["inertia"][key] = [float(v) for v in call["localInertiaDiagonal"]]
+            if "mass" in call:
+                st["mass"][key] = float(call["mass"])
             for name in ("rollingFriction", "spinningFriction"):
                 if name in call:
                     st["friction"].setdefault(key, {})[name] = float(call[name])
