@@ -481,3 +481,18 @@ def test_the_inertias_mujoco_derives_under_the_urdfs_compiler_block_scale_with_t
     rep = engines.verify(model, scaling, 4, duration=0.5, controls=engines.smooth_controls(model))
     assert rep.excited, str(rep)
     assert rep.exact, str(rep)
+
+
+def test_a_urdfs_spherical_joint_is_mujocos_ball_with_a_quaternion_and_verifies_exact():
+    # pybullet_data's humanoid: MuJoCo reads its spherical joints as balls (4 positions, 3 velocities each)
+    model = engines.load(PYBULLET_DATA / "humanoid" / "humanoid.urdf", engine="mujoco")
+    m = model.runner.mjmodel
+    names, dims = model.coordinates()
+    assert len(names) == m.nq + m.nv
+    balls = [j for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_BALL]
+    assert len(balls) == 8
+    chest = mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, balls[0])
+    assert [n for n in names if n.startswith(f"qpos[{chest}]")] == [f"qpos[{chest}][{k}]" for k in range(4)]
+    assert {str(dims[names.index(f"qvel[{chest}][{k}]")]) for k in range(3)} == {"T^-1"}
+    rep = engines.verify(model, _unit_change(model), 4, duration=0.1)
+    assert rep.exact, str(rep)

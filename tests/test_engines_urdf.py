@@ -248,14 +248,16 @@ def test_the_reader_finds_every_number_with_its_name_place_dimension_and_note(tm
             "unknown contact parameter",
         ),
         (
-            '<robot><joint name="j" type="floating"/></robot>',
-            "joint 'j' (type 'floating')",
-            "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic or fixed",
+            '<robot><joint name="j" type="planar"/></robot>',
+            "joint 'j' (type 'planar')",
+            "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic, spherical, "
+            "floating or fixed",
         ),
         (
             '<robot><joint name="j"/></robot>',
             "joint 'j' (type '')",
-            "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic or fixed",
+            "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic, spherical, "
+            "floating or fixed",
         ),
     ],
 )
@@ -562,3 +564,19 @@ def test_text_with_no_number_pybullet_reads_is_still_refused(tmp_path):
         path.write_text(f'<robot name="r"><link name="a"><inertial>{bad}</inertial></link></robot>')
         with pytest.raises(EngineModelError, match=re.escape(message)):
             read_urdf(path)
+
+
+def test_a_floating_joint_states_no_number_and_runs_as_pybullet_runs_it(tmp_path):
+    # PyBullet loads a floating joint as a fixed one ("joint unsupported, creating a fixed joint instead")
+    inertial = '<inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>'
+    path = tmp_path / "floating.urdf"
+    path.write_text(
+        f'<robot name="r"><link name="a">{inertial}</link><link name="b">{inertial}</link>'
+        '<joint name="j" type="floating"><parent link="a"/><child link="b"/><origin xyz="0 0 1"/>'
+        '<limit lower="-1" upper="1"/></joint></robot>'
+    )
+    model = engines.load(path, damping=0.0, split_impulse=False)
+    assert [p.path for p in model.parameters if p.path.startswith("joint 'j'")] == ["joint 'j' origin xyz"]
+    assert not any(name.startswith("q[") for name in model.coordinates()[0])
+    rep = engines.verify(model, pt.search(model.system(), scale={"g": 1}).scalings[0], s=4, duration=0.1)
+    assert rep.exact

@@ -265,14 +265,15 @@ def _attributes(tree: ET.ElementTree, path: str, source_dir: Path, folder_at=Non
         ident = identifier(f"joint_{jname}")
         where = f"joint {jname!r}"
         add(f"{ident}_xyz", f"{where} origin xyz", joint.find("origin"), "xyz", _L)
-        if jtype == "fixed":
+        if jtype in ("fixed", "floating"):  # a floating joint states no number (PyBullet loads it as fixed)
             continue
         kind = joint_kind(jtype)
         if kind is None:
             raise EngineModelError(
                 path,
                 f"{where} (type {jtype!r})",
-                "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic or fixed",
+                "joint type not supported by pitheorem's scaling; use revolute, continuous, prismatic, "
+                "spherical, floating or fixed",
             )
         q, force = kind.q, kind.force
         limit = joint.find("limit")

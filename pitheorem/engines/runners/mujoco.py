@@ -1265,15 +1265,28 @@ class UrdfInMujoco:
         Path(f"{path}{SETTINGS_SUFFIX}").write_text(json.dumps(self._settings, indent=2))
 
     def coordinate_dimensions(self):
-        """Names and dimensions of qpos and qvel entries: a hinge's angle is 1, a slide's position a length."""
+        """Names and dimensions of qpos and qvel entries: a hinge's angle is 1, a slide's position a length.
+
+        A URDF's spherical joint is MuJoCo's ball (a quaternion, then an angular velocity of three) and
+        its floating joint a free joint (a position and a quaternion), named ``qpos[NAME][k]`` as in MJCF.
+        """
         if self._coordinates is None:
             mj, m = _mujoco(), self.mjmodel
             names, dims = [], []
             for label, rate in (("qpos", 0), ("qvel", 1)):
+                turn = [dim("1")] * (4 if rate == 0 else 3)  # a quaternion, or an angular velocity
                 for j in range(m.njnt):
-                    group = "hinge" if int(m.jnt_type[j]) == int(mj.mjtJoint.mjJNT_HINGE) else "slide"
-                    names.append(f"{label}[{mj.mj_id2name(m, mj.mjtObj.mjOBJ_JOINT, j) or f'joint{j}'}]")
-                    dims.append(dim(_JOINT_Q[group]) * dim("T") ** (-rate))
+                    jtype = int(m.jnt_type[j])
+                    if jtype == int(mj.mjtJoint.mjJNT_FREE):
+                        per = [dim("L")] * 3 + turn
+                    elif jtype == int(mj.mjtJoint.mjJNT_BALL):
+                        per = turn
+                    else:
+                        per = [dim(_JOINT_Q["hinge" if jtype == int(mj.mjtJoint.mjJNT_HINGE) else "slide"])]
+                    jname = mj.mj_id2name(m, mj.mjtObj.mjOBJ_JOINT, j) or f"joint{j}"
+                    for k, d in enumerate(per):
+                        names.append(f"{label}[{jname}]" + (f"[{k}]" if len(per) > 1 else ""))
+                        dims.append(d * dim("T") ** (-rate))
             self._coordinates = (names, dims)
         return self._coordinates
 

@@ -224,44 +224,38 @@ class PybulletRunner:
                     note=note,
                 )
             )
+
+        def setting(lname, suffix, what, value, dimension, key, note):  # a link's changeDynamics number
+            return Parameter(
+                _link_parameter(lname, suffix),
+                f"link {lname!r} {what}",
+                (value,),
+                dimension,
+                "engine",
+                f"changeDynamics({key}=...)",
+                note=note,
+            )
+
         for index, lname in self._info["links"]:
             link = self._link_dynamics(index)
             if "collisionMargin" in link:
+                margin = "0.001 for boxes and meshes, the radius for spheres"
                 out.append(
-                    Parameter(
-                        _link_parameter(lname, "collision_margin"),
-                        f"link {lname!r} collision margin",
-                        (link["collisionMargin"],),
+                    setting(
+                        lname,
+                        "collision_margin",
+                        "collision margin",
+                        link["collisionMargin"],
                         _L,
-                        "engine",
-                        "changeDynamics(collisionMargin=...)",
-                        note="0.001 for boxes and meshes, the radius for spheres",
+                        "collisionMargin",
+                        margin,
                     )
                 )
             for key in ("rollingFriction", "spinningFriction"):
-                out.append(
-                    Parameter(
-                        _link_parameter(lname, key),
-                        f"link {lname!r} {key}",
-                        (link[key],),
-                        _L,
-                        "engine",
-                        f"changeDynamics({key}=...)",
-                        note="a torque per normal force",
-                    )
-                )
+                out.append(setting(lname, key, key, link[key], _L, key, "a torque per normal force"))
             if "mass" in link:
-                out.append(
-                    Parameter(
-                        _link_parameter(lname, "mass"),
-                        f"link {lname!r} mass",
-                        (link["mass"],),
-                        _M,
-                        "engine",
-                        "changeDynamics(mass=...)",
-                        note="PyBullet's own for a link whose file states no mass",
-                    )
-                )
+                unstated = "PyBullet's own for a link whose file states no mass"
+                out.append(setting(lname, "mass", "mass", link["mass"], _M, "mass", unstated))
             if self._info["dynamics"][index][0] > 0:
                 out.append(
                     Parameter(
