@@ -716,7 +716,8 @@ def test_sweep_on_a_urdf_chooses_the_scene_as_verify_does_and_says_each_cause_on
     assert "pitheorem: note: scene damping=0 split_impulse=false in every run of base.urdf" in err
     lines = out.splitlines()
     assert len(lines) == len(set(lines))
-    assert any(line.startswith("  s = 1/4, 4: setting: ") for line in lines)  # the same causes: said once
+    # a cause found at both factors: said once, with both
+    assert [line for line in lines if line.startswith("  setting: ")][0].endswith("(s = 1/4, 4)")
     # the user's own scene is kept, and a scene that still refuses gives the flags in one short line
     err = capsys.readouterr().err
     assert err.count("pitheorem: error: ") == 1

@@ -390,15 +390,17 @@ def _sweep(sweep) -> str:
         textwrap.fill(sweep_head(sweep), SWEEP_WIDTH, subsequent_indent="  "),
         align([list(SWEEP_HEADER)] + [sweep_cells(r) for r in sweep.rows]),
     ]
-    # the same causes at several factors are said once, with every factor (no line comes twice)
+    # each cause once, with the factors it was found at (a cause of every factor is not said at each)
     grouped: dict[str, list[str]] = {}
     for r in sweep.rows:
-        if r.causes:
-            grouped.setdefault("; ".join(f"{c.kind}: {c.element}" for c in r.causes), []).append(value_text(r.s))
+        for c in r.causes:
+            factors = grouped.setdefault(f"{c.kind}: {c.element}", [])
+            if value_text(r.s) not in factors:
+                factors.append(value_text(r.s))
     if grouped:
         lines.append("causes:")
-        for causes, factors in grouped.items():
-            line = f"  s = {', '.join(factors)}: {causes}"
+        for cause, factors in grouped.items():
+            line = f"  {cause} (s = {', '.join(factors)})"
             lines.append(textwrap.fill(line, SWEEP_WIDTH, subsequent_indent="    "))
     fit = sweep_fit_text(sweep)
     if fit:
