@@ -717,7 +717,7 @@ def test_sweep_on_a_urdf_chooses_the_scene_as_verify_does_and_says_each_cause_on
     lines = out.splitlines()
     assert len(lines) == len(set(lines))
     # a cause found at both factors: said once, with both
-    assert [line for line in lines if line.startswith("  setting: ")][0].endswith("(s = 1/4, 4)")
+    assert next(line for line in lines if line.startswith("  setting: ")).endswith("(s = 1/4, 4)")
     # the user's own scene is kept, and a scene that still refuses gives the flags in one short line
     err = capsys.readouterr().err
     assert err.count("pitheorem: error: ") == 1
