@@ -208,6 +208,26 @@ def test_a_batch_run_inherits_nothing_from_the_run_before_it_on_its_thread(tmp_p
     assert not np.array_equal(one_by_one[1], one_by_one[2])  # and so does the input
 
 
+def test_a_batch_run_takes_its_own_models_mocap_pose_not_the_run_before_its(tmp_path):
+    """A mocap body's pose is an input a reset takes from the model: a scaled copy's differs from the original's."""
+    path = tmp_path / "platform.xml"
+    path.write_text(
+        '<mujoco><worldbody><body name="platform" mocap="true" pos="0 0 0.5"><geom type="box" size="1 1 0.05"/>'
+        '</body><body name="ball" pos="0 0 1"><freejoint/><geom type="sphere" size="0.05" mass="1"/></body>'
+        "</worldbody></mujoco>"
+    )
+    model = engines.load(path)
+    twice = model.scaled(pt.Scaling.from_unit_change(model.system(), {"L": 1}), 2).runner
+    b = model.runner
+    jobs = [(twice, None, False, None), (b, None, False, None), (twice, None, False, None), (b, None, False, None)]
+    together = b.run_many(300, jobs)
+    one_by_one = [backend.run(300) for backend, *_ in jobs]
+    assert all(np.array_equal(x, y) for x, y in zip(one_by_one, together, strict=True))
+    # not vacuous: each ball lands on its own model's platform, the copy's at twice the height
+    assert 0.55 < one_by_one[1][-1, 2] < 0.65
+    assert 1.1 < one_by_one[0][-1, 2] < 1.3
+
+
 def test_what_verify_cannot_compare_is_refused_by_name():
     model = engines.load(DATA / "hanging.xml")
     sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})

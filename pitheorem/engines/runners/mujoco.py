@@ -524,28 +524,30 @@ class MujocoRunner:
         if self.refusal is not None or any(job[0].refusal is not None for job in jobs):
             (self if self.refusal is not None else next(j[0] for j in jobs if j[0].refusal is not None))._refuse()
         mj = _mujoco()  # names a missing MuJoCo before its submodule is imported
-        physics, user = mj.mjtState.mjSTATE_FULLPHYSICS, mj.mjtState.mjSTATE_USER
-        models, initial, inputs, firsts = [], [], [], []
+        physics = mj.mjtState.mjSTATE_FULLPHYSICS
+        spec = _input_spec(mj, jobs[0][0].mjmodel)
         threads = max(1, min(len(jobs), os.cpu_count() or 1))
         # The jobs' models have the same sizes: one data per thread serves them all, and the first also
         # finds each job's initial state.  A thread's data runs several jobs, and rollout sets only the
-        # full-physics state between them: each job therefore also gets, at every step, every input a
-        # reset leaves in a data (the controls, applied forces, which equality constraints are active,
-        # mocap poses, user data), and a zero warm start, so that no run inherits another's.
+        # full-physics state between them: each job therefore also gets, at every step, every input that
+        # differs between models of these sizes (`_input_spec`), and a zero warm start, so that no run
+        # inherits another's.
         datas = [mj.MjData(jobs[0][0].mjmodel) for _ in range(threads)]
-        for backend, controls, nudge, row in jobs:
+        width = mj.mj_stateSize(jobs[0][0].mjmodel, spec)
+        initial = np.empty((len(jobs), mj.mj_stateSize(jobs[0][0].mjmodel, physics)))
+        inputs = np.empty((len(jobs), n_steps, width))  # filled in place: rollout copies it once more
+        models, firsts = [], []
+        for k, (backend, controls, nudge, row) in enumerate(jobs):
             m = backend.mjmodel
             data, first = backend._start(nudge, row, datas[0])
-            x0, u0 = np.empty(mj.mj_stateSize(m, physics)), np.empty(mj.mj_stateSize(m, user))
-            mj.mj_getState(m, data, x0, physics)
-            mj.mj_getState(m, data, u0, user)
-            rows = np.tile(u0, (n_steps, 1))
+            u0 = np.empty(width)
+            mj.mj_getState(m, data, initial[k], physics)
+            mj.mj_getState(m, data, u0, spec)
+            inputs[k] = u0
             ctrl = backend._control_rows(controls, n_steps)
-            if ctrl is not None:  # the user state starts with the controls
-                rows[:, : m.nu] = ctrl
+            if ctrl is not None:  # the input state starts with the controls
+                inputs[k, :, : m.nu] = ctrl
             models.append(m)
-            initial.append(x0)
-            inputs.append(rows)
             firsts.append(first)
         if n_steps == 0:
             return [first[None, :] for first in firsts]
@@ -553,9 +555,9 @@ class MujocoRunner:
             states, _ = pool.rollout(
                 models,
                 datas,
-                np.array(initial),
-                np.array(inputs),
-                control_spec=user,
+                initial,
+                inputs,
+                control_spec=spec,
                 initial_warmstart=np.zeros((len(jobs), models[0].nv)),
                 nstep=n_steps,
             )
@@ -810,6 +812,28 @@ def _stored_fields(m) -> list[str]:
 
 #: the rollout thread pools kept between batches: (process id, thread count) -> (pool, lock)
 _POOLS: dict = {}
+
+
+def _input_spec(mj, m) -> int:
+    """The inputs a run of `m` takes at every step: its controls, and those of the other inputs that a reset
+    sets from the model (active equalities, mocap poses, user data), where the model has any.
+
+    A thread's data runs one job after another, and these could otherwise carry the last job's values
+    into the next (a scaled copy's mocap poses differ from the original's).  MuJoCo 4's rollout sets
+    them from each job's model itself when they are not sent; they are sent for the 3.x versions whose
+    rollout may not.  The applied forces are left out: a reset zeroes them and no open-loop step writes
+    them, so they are zero in every job, and sending them at every step made the inputs of a robot with
+    many bodies several times larger than its states (the fruit fly's: about 500 numbers a step).
+    """
+    st = mj.mjtState
+    spec = st.mjSTATE_CTRL.value
+    if m.neq:
+        spec |= st.mjSTATE_EQ_ACTIVE.value
+    if m.nmocap:
+        spec |= st.mjSTATE_MOCAP_POS.value | st.mjSTATE_MOCAP_QUAT.value
+    if m.nuserdata:
+        spec |= st.mjSTATE_USERDATA.value
+    return spec
 
 
 @contextmanager
