@@ -563,9 +563,15 @@ class MujocoRunner:
             )
         # the full-physics state is laid out by component: time, then qpos, qvel, act
         out = []
+        clocks: dict = {}  # each time step's times: MuJoCo adds the step to the time (a copy's step may differ)
         for m, first, rows in zip(models, firsts, states, strict=True):
             start = mj.mj_stateSize(m, mj.mjtState.mjSTATE_TIME)
-            out.append(np.concatenate([first[None, :], rows[:, start : start + m.nq + m.nv + m.na]]))
+            run = np.concatenate([first[None, :], rows[:, start : start + m.nq + m.nv + m.na]])
+            dt = float(m.opt.timestep)
+            if dt not in clocks:
+                clocks[dt] = np.add.accumulate(np.full(n_steps, dt))
+            _mark_reset(run, rows[:, 0] != clocks[dt])
+            out.append(run)
         return out
 
     def _start(self, nudge: bool, initial, data=None):
@@ -608,6 +614,7 @@ class MujocoRunner:
         # still the last step's.  mj_step1 computes them first, mj_step2 finishes the step: together the
         # same step as mj_step, except for RK4, which mj_step2 does not take (there mj_forward goes first).
         split = int(m.opt.integrator) != int(mj.mjtIntegrator.mjINT_RK4)
+        clock = data.time
         for i in range(1, n_steps + 1):
             if split:
                 mj.mj_step1(m, data)
@@ -617,6 +624,10 @@ class MujocoRunner:
                 mj.mj_forward(m, data)
                 data.ctrl[:] = policy(m, data)
                 mj.mj_step(m, data)
+            clock += m.opt.timestep
+            if data.time != clock:  # MuJoCo reset the run: what follows is not this run (`_mark_reset`)
+                out[i:] = np.nan
+                break
             qpos[i], qvel[i], act[i] = data.qpos, data.qvel, data.act
         return out
 
@@ -812,6 +823,23 @@ def _stored_fields(m) -> list[str]:
 
 #: the rollout thread pools kept between batches: (process id, thread count) -> (pool, lock)
 _POOLS: dict = {}
+
+
+def _mark_reset(run: np.ndarray, off_clock: np.ndarray) -> None:
+    """Mark the rows of a run after MuJoCo reset it as not a run (NaN), in place.
+
+    When an acceleration is NaN, infinite or huge (an unstable model, or a
+    time step too long for it), MuJoCo warns, resets the data to the model's
+    reference pose and time 0 and goes on; rollout then stops and repeats
+    that state to the end.  Those rows are no simulation of the model, and a
+    copy reset at the same step would match them bit for bit.  The reset
+    shows in the time: it is no longer the time steps added up.  `off_clock`
+    holds, per step, whether that step's time is not (row 0 of `run` is the
+    initial state, before any step).
+    """
+    reset = np.flatnonzero(off_clock)
+    if reset.size:
+        run[int(reset[0]) + 1 :] = np.nan
 
 
 def _input_spec(mj, m) -> int:
