@@ -234,6 +234,22 @@ class ReadsSomeNumbers(Protocol):
 
 
 @runtime_checkable
+class StoresUnreadNumbers(Protocol):
+    """Optional: stored numbers no step of a run reads, by field (MuJoCo's geoms that never collide, and their meshes).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.protocols import StoresUnreadNumbers
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, StoresUnreadNumbers)
+    True
+    """
+
+    def unread_stored(self) -> dict:
+        """Per field of :meth:`stored_numbers`, a mask of its rows that no step of a run reads."""
+
+
+@runtime_checkable
 class HasSceneSettings(Protocol):
     """Optional: settings outside the file, changed by ``EngineModel.with_settings`` (PyBullet's).
 

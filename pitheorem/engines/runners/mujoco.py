@@ -179,6 +179,43 @@ class MujocoRunner:
                 out.add(p.name)
         return frozenset(out)
 
+    def unread_stored(self) -> dict[str, np.ndarray]:
+        """Per stored field, a mask of the rows no step of a run reads (fields with none are left out).
+
+        The rows of a geom that never collides (``contype`` and
+        ``conaffinity`` 0, in no ``<pair>``) and takes no part in the fluid
+        model: its pose, size and contact numbers only draw it (MuJoCo used
+        its shape for the body's inertia when it compiled, and that shows
+        in the body's numbers).  And the rows of a mesh that only such geoms
+        use: its vertices, normals and the offset MuJoCo computed for it.
+        A visual mesh's centroid, recomputed from vertices four times
+        larger, may differ from four times the original's in its last bits;
+        that moves nothing in a run.
+        """
+        m = self.mjmodel
+        paired = {int(g) for g in (*m.pair_geom1, *m.pair_geom2)}
+        fluid = np.asarray(m.geom_fluid).reshape(m.ngeom, -1)[:, 0] if m.ngeom else np.zeros(0)
+        idle_geom = np.array(
+            [
+                m.geom_contype[g] == 0 and m.geom_conaffinity[g] == 0 and g not in paired and fluid[g] == 0
+                for g in range(m.ngeom)
+            ],
+            dtype=bool,
+        )
+        mesh_geoms = (np.asarray(m.geom_type) == int(_mujoco().mjtGeom.mjGEOM_MESH)) & ~idle_geom
+        idle_mesh = np.ones(m.nmesh, dtype=bool)
+        idle_mesh[np.asarray(m.geom_dataid)[mesh_geoms]] = False
+        out = {}
+        for field in self._fields():
+            kind, ids = self._element_rows(field)
+            idle = {"geom": idle_geom, "mesh": idle_mesh}.get(kind)
+            if idle is None:
+                continue
+            mask = idle if ids is None else idle[ids]
+            if mask.any():
+                out[field] = mask
+        return out
+
     def coordinate_dimensions(self):
         return self.document.coordinate_dimensions()
 
@@ -342,8 +379,13 @@ class MujocoRunner:
         return out
 
     def uses_native_ccd(self) -> bool:
-        """Whether convex geom pairs (meshes, boxes against meshes, ...) collide through MuJoCo's native CCD."""
-        return not int(self.mjmodel.opt.disableflags) & int(_mujoco().mjtDisableBit.mjDSBL_NATIVECCD)
+        """Whether some geom pair that can collide (meshes, ellipsoids, cylinders against most, ...) goes
+        through MuJoCo's native convex collision, which is on (found once: a copy has the same geoms)."""
+        if int(self.mjmodel.opt.disableflags) & int(_mujoco().mjtDisableBit.mjDSBL_NATIVECCD):
+            return False
+        if getattr(self, "_convex_pairs", None) is None:
+            self._convex_pairs = _has_convex_pairs(self.mjmodel)
+        return self._convex_pairs
 
     def control_ranges(self) -> tuple[np.ndarray, np.ndarray]:
         """Each actuator's control range where the file limits it; -inf and inf where it does not."""
@@ -478,8 +520,9 @@ class MujocoRunner:
             rows = np.asarray(getattr(m, field)).shape[0] if "." not in field else 0
             if prefix == "dof" and rows == m.nv:
                 cache[field] = ("joint", np.asarray(m.dof_jntid))
-            elif prefix == "mesh" and rows == m.nmeshvert and m.nmesh:
-                cache[field] = ("mesh", np.searchsorted(m.mesh_vertadr, np.arange(rows), side="right") - 1)
+            elif prefix == "mesh" and field in _MESH_ROWS and rows == np.sum(getattr(m, _MESH_ROWS[field])):
+                # the meshes' rows lie end to end in mesh order, each mesh's count of them
+                cache[field] = ("mesh", np.repeat(np.arange(m.nmesh), getattr(m, _MESH_ROWS[field])))
             elif kind is None or rows != getattr(m, _COUNTS.get(kind, f"n{kind}"), -1):
                 cache[field] = (None, None)
             else:
@@ -825,6 +868,15 @@ def _stored_fields(m) -> list[str]:
 _POOLS: dict = {}
 
 
+#: the mesh fields with a row per vertex, normal, texture coordinate or polygon, and each mesh's count of them
+_MESH_ROWS = {
+    "mesh_vert": "mesh_vertnum",
+    "mesh_normal": "mesh_normalnum",
+    "mesh_texcoord": "mesh_texcoordnum",
+    "mesh_polynormal": "mesh_polynum",
+}
+
+
 def _mark_reset(run: np.ndarray, off_clock: np.ndarray) -> None:
     """Mark the rows of a run after MuJoCo reset it as not a run (NaN), in place.
 
@@ -962,6 +1014,23 @@ def _collider(m, a: int, b: int) -> tuple[str, tuple[str, ...]]:
     if "hfield" in kinds:
         return f"{kinds[0]}-{kinds[1]}: mjc_ConvexHField", ("native_ccd", *mesh, *margin)
     return f"{kinds[0]}-{kinds[1]}: mjc_Convex (GJK/EPA)", ("native_ccd", *mesh, *margin)
+
+
+def _has_convex_pairs(m) -> bool:
+    """Whether two geoms of `m` that may collide (their contype and conaffinity match, on two rigid bodies, or
+    an explicit ``<pair>``) meet through no primitive collision function of MuJoCo: through its convex one."""
+    types = np.asarray(m.geom_type)
+    contype, conaffinity = np.asarray(m.geom_contype), np.asarray(m.geom_conaffinity)
+    weld = np.asarray(m.body_weldid)[np.asarray(m.geom_bodyid)]
+    may = ((contype[:, None] & conaffinity[None, :]) | (contype[None, :] & conaffinity[:, None])) != 0
+    may &= weld[:, None] != weld[None, :]
+    a, b = np.nonzero(np.triu(may))
+    pairs = {*zip(types[a], types[b], strict=True), *zip(types[m.pair_geom1], types[m.pair_geom2], strict=True)}
+    for pair in pairs:
+        names = tuple(_GEOM_TYPES[k] if k < len(_GEOM_TYPES) else str(k) for k in sorted(map(int, pair)))
+        if names not in _PRIMITIVE_COLLIDERS and "sdf" not in names and names != ("plane", "plane"):
+            return True
+    return False
 
 
 def _touching(data) -> frozenset:

@@ -67,10 +67,13 @@ class ScaleFree:
 def scale_free_options(runner) -> list[dict]:
     """The variant options that make a runner's settings of no pure dimension scale-free, each way to try.
 
-    Each setting alone (the stopping rules at 0; the scale-free solver),
-    then all of them: a solver stopped by a fixed tolerance, or a solver
-    whose steps are not scale-free, may each be the only cause, and with
-    both changed the scale-free solver may stop one iteration apart.
+    Each setting alone (the stopping rules at 0; the scale-free solver;
+    the engine's own convex collision off where some pair can collide
+    through it, for MuJoCo's GJK and EPA hold lengths against fixed
+    constants), then all of them: a solver stopped by a fixed tolerance,
+    or a solver whose steps are not scale-free, may each be the only
+    cause, and with both changed the scale-free solver may stop one
+    iteration apart.
     Empty where the runner has no such setting.
 
     Examples
@@ -90,6 +93,8 @@ def scale_free_options(runner) -> list[dict]:
     each = [{"tolerance": 0.0}] if runner.solver_settings() else []
     if isinstance(runner, SolverDiagnosis) and runner.solver_name() != runner.scale_free_solver:
         each.append({"solver": runner.scale_free_solver})
+    if isinstance(runner, SolverDiagnosis) and runner.uses_native_ccd():
+        each.append({"native_ccd": False})
     return each if len(each) < 2 else [*each, {k: v for options in each for k, v in options.items()}]
 
 
@@ -143,4 +148,5 @@ def scale_free_run(
     where = None if exact else first_divergence(Trajectory(t, run, tuple(names)), Trajectory(t, back, tuple(names)))
     zeroed = tuple((f"option {name}", "0") for name in original.solver_settings()) if "tolerance" in options else ()
     solver = (("option solver", options["solver"]),) if "solver" in options else ()
-    return ScaleFree(zeroed + solver, exact, where)
+    ccd = (("flag nativeccd", "disable"),) if "native_ccd" in options else ()
+    return ScaleFree(zeroed + solver + ccd, exact, where)
