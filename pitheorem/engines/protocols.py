@@ -332,6 +332,9 @@ class SolverDiagnosis(Protocol):
     def equality_names(self) -> list[str]:
         """Each equality constraint, named as the reports name it."""
 
+    def equality_kinds(self) -> list[str]:
+        """Each equality constraint's kind, in the engine's words (``"weld"``, ``"connect"``, ...)."""
+
     def first_contact_difference(self, other, n_steps: int, controls: Controls = None, other_controls: Controls = None):
         """The first step after which other pairs touch in `other`'s run: (step or None, pairs only there, only
         here, pairs touched in this run so far)."""

@@ -408,6 +408,11 @@ class MujocoRunner:
         """Each equality constraint, named as the reports name it."""
         return [self.element_name("eq_data", i) for i in range(self.mjmodel.neq)]
 
+    def equality_kinds(self) -> list[str]:
+        """Each equality constraint's kind: connect, weld, joint, tendon, flex, ... (mjtEq's names, lower case)."""
+        mj = _mujoco()
+        return [mj.mjtEq(int(k)).name.removeprefix("mjEQ_").lower() for k in self.mjmodel.eq_type]
+
     def engine_notes(self) -> tuple[str, ...]:
         """Known bugs of the installed MuJoCo that can touch a verdict on this model.
 
