@@ -195,3 +195,29 @@ def test_a_pair_goes_through_native_convex_collision_only_where_it_may_collide_t
         f'<body pos="0 0 1"><freejoint/>{geoms}</body></worldbody></mujoco>'
     )
     assert engines.load(path).runner.uses_native_ccd() is convex
+
+
+def test_the_collision_path_is_run_only_where_the_solvers_settings_do_not_prove_it(tmp_path):
+    """The box under PGS, with a cylinder standing far off (so some pair may collide through MuJoCo's convex
+    collision): the tolerance at 0 proves it exact, and native convex collision off is not run for the proof;
+    the egg on its post is not proved by the solver's settings, so it is."""
+    from pitheorem.engines.verdicts.scalefree import scale_free_run
+
+    pgs = tmp_path / "pgs.xml"
+    pgs.write_text(
+        (DATA / "contact.xml")
+        .read_text()
+        .replace('tolerance="0"', 'solver="PGS"')
+        .replace("</worldbody>", '<geom name="far" type="cylinder" size="0.1 0.2" pos="4 4 0.2"/></worldbody>')
+    )
+    for path, proved, n in ((pgs, True, 200), (DATA / "egg_on_post.xml", False, 500)):
+        model, sc = searched(path)
+        assert {"native_ccd": False} in scale_free_options(model.runner)
+        copy = model.scaled(sc, 4)
+        names, dims = model.runner.coordinate_dimensions()
+        factors = 4 ** np.array([sc.exponent_of(d) for d in dims], dtype=float)
+        ran: dict = {}
+        free = scale_free_run(model.runner, copy.runner, n, None, None, factors, np.arange(n + 1) * 0.002, names, ran)
+        assert free.exact is proved
+        with_ccd_off = [key for key in ran if ("native_ccd", False) in key]
+        assert bool(with_ccd_off) is not proved
