@@ -1023,16 +1023,27 @@ def _collider(m, a: int, b: int) -> tuple[str, tuple[str, ...]]:
 
 def _has_convex_pairs(m) -> bool:
     """Whether two geoms of `m` that may collide (their contype and conaffinity match, on two rigid bodies, or
-    an explicit ``<pair>``) meet through no primitive collision function of MuJoCo: through its convex one."""
+    an explicit ``<pair>``) meet through no primitive collision function of MuJoCo: through its convex one.
+
+    The geoms are grouped by type, contype and conaffinity (a few groups, however many geoms), and each
+    rigid body that holds a group's geoms is noted: two groups meet where their bits match and their geoms
+    lie on at least two bodies.
+    """
     types = np.asarray(m.geom_type)
-    contype, conaffinity = np.asarray(m.geom_contype), np.asarray(m.geom_conaffinity)
     weld = np.asarray(m.body_weldid)[np.asarray(m.geom_bodyid)]
-    may = ((contype[:, None] & conaffinity[None, :]) | (contype[None, :] & conaffinity[:, None])) != 0
-    may &= weld[:, None] != weld[None, :]
-    a, b = np.nonzero(np.triu(may))
-    pairs = {*zip(types[a], types[b], strict=True), *zip(types[m.pair_geom1], types[m.pair_geom2], strict=True)}
+    groups: dict[tuple[int, int, int], set[int]] = {}
+    for g in range(m.ngeom):
+        key = (int(types[g]), int(m.geom_contype[g]), int(m.geom_conaffinity[g]))
+        groups.setdefault(key, set()).add(int(weld[g]))
+    pairs = {tuple(sorted((int(types[a]), int(types[b])))) for a, b in zip(m.pair_geom1, m.pair_geom2, strict=True)}
+    keys = sorted(groups)
+    for i, (type_a, contype_a, affinity_a) in enumerate(keys):
+        for type_b, contype_b, affinity_b in keys[i:]:
+            bodies = groups[(type_a, contype_a, affinity_a)] | groups[(type_b, contype_b, affinity_b)]
+            if (contype_a & affinity_b or contype_b & affinity_a) and len(bodies) > 1:
+                pairs.add(tuple(sorted((type_a, type_b))))
     for pair in pairs:
-        names = tuple(_GEOM_TYPES[k] if k < len(_GEOM_TYPES) else str(k) for k in sorted(map(int, pair)))
+        names = tuple(_GEOM_TYPES[k] if k < len(_GEOM_TYPES) else str(k) for k in pair)
         if names not in _PRIMITIVE_COLLIDERS and "sdf" not in names and names != ("plane", "plane"):
             return True
     return False
