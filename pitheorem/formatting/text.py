@@ -544,10 +544,12 @@ def _engine_apply_answer(answer) -> str:
 def _engine_verify_answer(answer) -> str:
     rep, s = answer.report, answer.s
     steps = len(rep.original) - 1
-    if rep.exact and rep.inconclusive:  # the first line within 120 characters: the lines below say why
-        lines = [
-            f"inconclusive: the copy matches bit for bit (s = {s}, {steps} steps), as do copies made wrong on purpose"
-        ]
+    if rep.exact and (rep.inconclusive or rep.engine_reset is not None):  # within 120 characters: the rest below
+        why = "as do copies made wrong on purpose"
+        if rep.engine_reset is not None:  # inconclusive however the controls went: the run itself broke down
+            why = "up to where the engine gave up on the run"
+        head = "inconclusive" if rep.inconclusive else "exact"
+        lines = [f"{head}: the copy matches bit for bit (s = {s}, {steps} steps), {why}"]
     elif rep.exact:
         lines = [
             f"exact: the scaled copy, mapped back, equals the original bit for bit at every step (s = {s}, {steps} steps)"
