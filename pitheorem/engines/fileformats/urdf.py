@@ -1,14 +1,17 @@
 """The URDF format: every number a URDF file states, with its dimension and its address; written back by address.
 
 Read with :mod:`xml.etree.ElementTree`, by the URDF specification (SI
-units: metres, kilograms, seconds, radians).  Mesh files are found as
-PyBullet finds them (beside the file, ``package://`` in the folders above
-it) and, first, in a mesh folder the file names where a runner says where
-it does (MuJoCo's runner: its extension ``<mujoco><compiler
-meshdir="..."/></mujoco>``).  Dimensions follow the joint
-type: a revolute or continuous joint has coordinate ``q`` = 1 and
-generalised force ``Q`` = M L^2 T^-2, a prismatic one ``q`` = L and ``Q``
-= M L T^-2.  A scaled copy is the parsed file with each number rewritten
+units: metres, kilograms, seconds, radians).  A number is read as it is
+written, and text that is not plain numbers as PyBullet reads it (C's
+``atof``: :func:`bullet_numbers`), with one warning.  Mesh files are found
+as PyBullet finds them (beside the file and in every folder above it,
+``package://`` dropped) and, first, in a mesh folder the file names where
+a runner says where it does (MuJoCo's runner: its extension
+``<mujoco><compiler meshdir="..."/></mujoco>``).  Dimensions follow the
+joint type: a revolute, continuous or spherical joint has coordinate ``q``
+= 1 and generalised force ``Q`` = M L^2 T^-2, a prismatic one ``q`` = L and
+``Q`` = M L T^-2; a fixed or floating joint states no number but its
+origin.  A scaled copy is the parsed file with each number rewritten
 at its address (its element's place in document order), never walked
 again.  What a URDF cannot hold (gravity, the time step, contact and
 solver settings) is the runner's: :mod:`pitheorem.engines.runners.pybullet`
@@ -38,10 +41,6 @@ _ONE, _L, _T, _M = dim("1"), dim("L"), dim("T"), dim("M")
 
 #: the units of every URDF file, by its specification
 SI = {"M": "kg", "L": "m", "T": "s"}
-
-
-def _floats(text: str | None) -> list[float]:
-    return [float(v) for v in (text or "").split()]
 
 
 #: what C's ``atof`` reads at the start of a text: the longest prefix that is a decimal number

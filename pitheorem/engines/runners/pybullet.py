@@ -15,7 +15,12 @@ torque ``-k (q - q_0)`` before every step, as a PyBullet user does by hand).
 PyBullet's default velocity motors on every joint
 are switched off (``VELOCITY_CONTROL`` with ``force=0``) in every run, as
 the PyBullet guide advises for torque control: their impulse cap has no
-documented value to scale.
+documented value to scale.  A spherical joint's motor, which pulls it back
+to rest, is switched off too (``POSITION_CONTROL`` with no gain and no
+force); its coordinates are its quaternion and angular velocity, and it
+takes three torques.  A link whose file states no mass has PyBullet's own
+(1 kg): the table lists it, and a scaled copy sets it with
+``changeDynamics(mass=...)``.
 
 The multibody damping ``linearDamping`` (default 0.04) enters as ``m v (d +
 d |v|)``: one number that is a rate (T^-1) and an inverse length (L^-1)
