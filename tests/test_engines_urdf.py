@@ -583,3 +583,18 @@ def test_a_floating_joint_states_no_number_and_runs_as_pybullet_runs_it(tmp_path
     assert not any(name.startswith("q[") for name in model.coordinates()[0])
     rep = engines.verify(model, pt.search(model.system(), scale={"g": 1}).scalings[0], s=4, duration=0.1)
     assert rep.exact
+
+
+def test_a_spherical_joints_limits_are_angles_and_its_effort_a_torque():
+    pybullet_data = pytest.importorskip("pybullet_data", reason="pybullet_data is not installed")
+    model = engines.load(Path(pybullet_data.getDataPath()) / "spherical_joint_limit.urdf")
+    table = {p.name: p for p in model.parameters}
+    assert [(table[f"joint_neck_{a}"].value, str(table[f"joint_neck_{a}"].dimension)) for a in ("lower", "twist")] == [
+        ((0.2,), "1"),
+        ((0.3,), "1"),
+    ]
+    assert str(table["joint_neck_effort"].dimension) == "M L^2 T^-2"
+    assert [n for n in model.coordinates()[0] if "neck" in n] == [
+        *(f"q[neck:{a}]" for a in "xyzw"),
+        *(f"qdot[neck:{a}]" for a in "xyz"),
+    ]
