@@ -681,8 +681,11 @@ def test_every_commands_first_line_fits_120_characters_on_the_shipped_examples(c
         assert len(first) < 120, (verb, first)
 
 
-def test_verify_shows_its_stages_on_stderr_when_asked(capsys):
+def test_verify_shows_its_stages_on_stderr_when_asked(capsys, monkeypatch):
+    from pitheorem import progress
     from pitheorem.engines.cli import verify_engine
+
+    monkeypatch.setattr(progress, "DELAY", 0.0)  # the bar shows at once (else only after half a second)
 
     model = engines.load(engines.example_path("pendulum.xml"))
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
