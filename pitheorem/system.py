@@ -212,7 +212,7 @@ class System:
         return rep
 
     def with_repeating(self, repeating: Iterable[str] | None) -> System:
-        """The same system with other default repeaters (None: the first valid set without time variables).
+        """The same system with other default repeaters (None: the usual default).
 
         Parameters
         ----------
@@ -749,9 +749,9 @@ class System:
         return tuple(self._variables[j] for j in self._default_basis()[0])
 
     def first_basis(self, *, exclude: Iterable[str] = ()) -> tuple[str, ...] | None:
-        """The first valid repeating set in :meth:`bases` order that avoids `exclude`, or None.
+        """The first valid repeating set that avoids `exclude`, or None.
 
-        The same set as ``next(iter_bases(exclude=exclude), None)``, found
+        The first in :meth:`bases` order: the same set as ``next(iter_bases(exclude=exclude), None)``, found
         by one elimination however many variables the system has.
 
         Parameters
