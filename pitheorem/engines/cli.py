@@ -21,8 +21,9 @@ from ..errors import InvalidRequestError
 from ..modelfile import ModelFile
 from .enginemodel import EngineModel, EngineModelError, UnscalableParameterError
 from .loading import load, scene_options
-from .protocols import EngineNotes, KeepsInputs, RefusesScalings
+from .protocols import EngineNotes, RefusesScalings
 from .verdicts.causes import Cause
+from .verdicts.probes import kept_input_dimensions
 
 __all__ = [
     "CHECK_STAGES",
@@ -337,10 +338,8 @@ def apply_engine(
         if option and option not in (scene or {}):
             raise InvalidRequestError(f"{err}; on the command line: {flags}") from None
         raise
-    kept = {}  # with kept inputs: each number an input passes through, measured with the input taken out
-    if keep_inputs and isinstance(model.runner, KeepsInputs):
-        for ctrl, powers in zip(model.runner.control_dimensions(), model.runner.input_parameters(), strict=True):
-            kept.update({name: ctrl**power for name, power in powers.items()})
+    # with kept inputs: each number an input passes through, measured with the input taken out
+    kept = kept_input_dimensions(model) if keep_inputs else {}
     exponents = (
         (p, scaling.exponent_of(p.dimension / kept[p.name] if p.name in kept else p.dimension))
         for p in model.parameters
