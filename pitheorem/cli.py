@@ -43,6 +43,12 @@ Without ``--fixed``, a search holds every variable of dimension T fixed (so
 the scaled model runs in the same time); ``--fixed`` with no names, or
 ``--no-default-fixed``, lets time change too.
 
+A command that may take more than a moment (``apply`` or ``convert`` on a
+large file, ``check``, ``verify``, ``sweep``) shows a progress bar of its
+stages on stderr while it works, and erases it when done
+(:mod:`pitheorem.progress`); only when stderr is a terminal, never with
+``--format json``.
+
 Exit codes
 ----------
 0
