@@ -810,8 +810,9 @@ def strength_lines(report) -> list[str]:
         when, whose = reset
         lines.append(
             f"{'INCONCLUSIVE: ' if whose == 'original' else ''}the engine gave up on the {whose}'s run at "
-            f"t = {float_text(when)} (MuJoCo resets a run whose acceleration is NaN, infinite or huge: the model "
-            f"is unstable at this time step){'; the runs are compared before it' if whose == 'original' else ''}"
+            f"t = {float_text(when)} (MuJoCo resets a run whose acceleration is NaN, infinite or huge, MJX and "
+            "MuJoCo Warp go on in NaN: the model is unstable at this time step)"
+            f"{'; the runs are compared before it' if whose == 'original' else ''}"
         )
     unseen = report.unseen
     if unseen:
