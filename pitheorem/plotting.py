@@ -250,13 +250,14 @@ def plot_sweep(sweep, ax=None):
     else:
         fig = ax.figure
     s = np.array([float(r.s) for r in rows])
-    positive = [v for r in rows for v in (r.max_deviation, r.yardstick) if v]
+    # a copy the engine gave up on deviates without bound (inf): drawn at the top, like a refused one
+    positive = [v for r in rows for v in (r.max_deviation, r.yardstick) if v and math.isfinite(v)]
     low = min(positive) / 30 if positive else 1e-17
     high = max(positive) * 30 if positive else 1.0
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_ylim(low, high)
-    measured = [(float(r.s), r.yardstick) for r in rows if r.yardstick]
+    measured = [(float(r.s), r.yardstick) for r in rows if r.yardstick and math.isfinite(r.yardstick)]
     if measured:
         xs, ys = zip(*measured, strict=True)
         ax.plot(xs, ys, "-", color="#8250df", lw=1.5, label="yardstick (spread of one-ulp twins)")
@@ -268,7 +269,7 @@ def plot_sweep(sweep, ax=None):
             lw=1,
             label=f"{sweep.baseline_factor:g} x yardstick (margin)",
         )
-    deviations = [(float(r.s), r.max_deviation) for r in rows if r.max_deviation]
+    deviations = [(float(r.s), r.max_deviation) for r in rows if r.max_deviation and math.isfinite(r.max_deviation)]
     if deviations:
         ax.plot(*zip(*deviations, strict=True), "-", color="0.6", lw=1, zorder=1)
     for v, (marker, colour, filled) in _VERDICT_STYLE.items():
@@ -278,7 +279,10 @@ def plot_sweep(sweep, ax=None):
         if v == "refused":
             y = [high / 2] * len(mine)
         else:
-            y = [r.max_deviation if r.max_deviation else low * 2 for r in mine]
+            y = [
+                high / 2 if r.max_deviation and not math.isfinite(r.max_deviation) else r.max_deviation or low * 2
+                for r in mine
+            ]
         label = {"exact": "exact (bit for bit; drawn at the bottom)", "refused": "refused by the compiler (top)"}.get(
             v, v
         )

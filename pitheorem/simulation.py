@@ -715,11 +715,12 @@ class SimilarityReport(TableDisplay):
         they are then exact.  None otherwise.
     engine_reset : tuple of (float, str) or None
         When the engine gave up on a run: the time, and ``"original"`` or
-        ``"copy"``.  MuJoCo resets a run whose acceleration is NaN,
-        infinite or huge (an unstable model, or a time step too long for
-        it).  An original's run is then compared only before that time
-        and the verdict is inconclusive; a copy's alone makes it not
-        similar.  None when every run went to the end.
+        ``"copy"``.  MuJoCo resets a run whose acceleration or velocity is
+        NaN, infinite or huge (an unstable model, or a time step too long
+        for it), and its batched runs stop at any warning (a control
+        beyond 1e10 too).  An original's run is then compared only before
+        that time and the verdict is inconclusive; a copy's alone makes it
+        not similar.  None when every run went to the end.
 
     Examples
     --------

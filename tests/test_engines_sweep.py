@@ -203,6 +203,23 @@ def test_the_figure_marks_verdicts_bands_and_the_fitted_units(pendulum):
     assert "beyond mujoco_minmu at s = 0.0001 to 0.01" in fig.get_label()
 
 
+def test_a_copy_the_engine_gave_up_on_is_drawn_at_the_top_of_the_figure():
+    """A row whose copy broke down (MuJoCo reset it: an infinite deviation) is marked, not an axis limit."""
+    from pitheorem.engines import Sweep, SweepRow
+
+    rows = (
+        SweepRow(1, "exact", 0.0, 1e-12, None, True, None, (), ()),
+        SweepRow(100, "similar", 1e-9, 1e-10, None, True, None, (), ()),
+        SweepRow(1000, "not similar", math.inf, 1e-8, None, True, None, (), ()),
+    )
+    ax = Sweep("robot.xml", "mujoco", None, 1.0, rows).plot().axes[0]
+    _low, high = ax.get_ylim()
+    assert math.isfinite(high)
+    assert high == pytest.approx(1e-8 * 30)  # the largest finite number, with room above it
+    marks = {tuple(xy) for c in ax.collections for xy in c.get_offsets()}
+    assert (1000.0, high / 2) in marks  # the broken-down copy, at the top
+
+
 def test_on_a_dask_cluster_the_rows_are_the_same(pendulum):
     distributed = pytest.importorskip("distributed")
     model, sc = pendulum

@@ -810,9 +810,9 @@ def strength_lines(report) -> list[str]:
         when, whose = reset
         lines.append(
             f"{'INCONCLUSIVE: ' if whose == 'original' else ''}the engine gave up on the {whose}'s run at "
-            f"t = {float_text(when)} (MuJoCo resets a run whose acceleration is NaN, infinite or huge, MJX and "
-            "MuJoCo Warp go on in NaN: the model is unstable at this time step)"
-            f"{'; the runs are compared before it' if whose == 'original' else ''}"
+            f"t = {float_text(when)} (MuJoCo warned of a bad number: it resets a run whose acceleration or "
+            "velocity is NaN, infinite or huge, and a batch stops at a control beyond 1e10; MJX and MuJoCo Warp "
+            f"go on in NaN){'; the runs are compared before it' if whose == 'original' else ''}"
         )
     unseen = report.unseen
     if unseen:

@@ -885,14 +885,15 @@ _MESH_ROWS = {
 def _mark_reset(run: np.ndarray, off_clock: np.ndarray) -> None:
     """Mark the rows of a run after MuJoCo reset it as not a run (NaN), in place.
 
-    When an acceleration is NaN, infinite or huge (an unstable model, or a
-    time step too long for it), MuJoCo warns, resets the data to the model's
-    reference pose and time 0 and goes on; rollout then stops and repeats
-    that state to the end.  Those rows are no simulation of the model, and a
-    copy reset at the same step would match them bit for bit.  The reset
-    shows in the time: it is no longer the time steps added up.  `off_clock`
-    holds, per step, whether that step's time is not (row 0 of `run` is the
-    initial state, before any step).
+    When an acceleration or velocity is NaN, infinite or huge (an unstable
+    model, or a time step too long for it), MuJoCo warns, resets the data to
+    the model's reference pose and time 0 and goes on; rollout stops at any
+    warning (a control beyond 1e10 too) and repeats the state it stopped in
+    to the end.  Those rows are no simulation of the model, and a copy
+    stopped at the same step would match them bit for bit.  It shows in the
+    time: no longer the time steps added up.  `off_clock` holds, per step,
+    whether that step's time is not (row 0 of `run` is the initial state,
+    before any step).
     """
     reset = np.flatnonzero(off_clock)
     if reset.size:
