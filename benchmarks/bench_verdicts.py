@@ -12,7 +12,10 @@ same smooth input before each step.  Against it, for gravity times s with time f
 
 Issue 31's targets: the median verdict within 3x a plain run, with causes within 10x, and
 the three slowest robots under 20 s each.  The corpus is dm_control's model files (suite and
-locomotion, with meshes; ``pip install dm-control``) and gymnasium's, when installed, and
+locomotion, with meshes; ``pip install dm-control``), gymnasium's, robosuite's twelve robots
+(arms, a humanoid, quadrupeds, mobile manipulators, each with its meshes) and four of
+gymnasium-robotics' (Fetch, the Shadow hand, Adroit), each when installed
+(``pip install --no-deps robosuite gymnasium-robotics``: only their files are read), and
 every ``*/scene.xml`` of a MuJoCo Menagerie checkout given with ``--menagerie DIR``.
 Times are the best of ``--repeat`` (default 1).
 
@@ -22,6 +25,7 @@ Run: python benchmarks/bench_verdicts.py [--menagerie DIR] [--only NAME ...] [--
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import statistics
 import warnings
 from pathlib import Path
@@ -37,6 +41,8 @@ DM_SUITE = (
     "point_mass quadruped reacher swimmer walker"
 ).split()
 DM_LOCOMOTION = ("walkers/assets/rodent.xml", "walkers/assets/fruitfly_v2/fruitfly.xml")
+#: gymnasium-robotics' files that are whole robots: Fetch, the Shadow hand and Adroit's hand, alone
+ROBOTICS = ("fetch/reach.xml", "hand/reach.xml", "adroit_hand/adroit_door.xml", "adroit_hand/adroit_relocate.xml")
 
 
 def corpus(menagerie: Path | None) -> list[Path]:
@@ -55,9 +61,27 @@ def corpus(menagerie: Path | None) -> list[Path]:
         print("gymnasium is not installed: its models are left out")
     else:
         out += sorted((Path(gymnasium.__file__).parent / "envs" / "mujoco" / "assets").glob("*.xml"))
+    # robosuite's robot files and gymnasium-robotics' (real arms, hands and mobile manipulators with meshes);
+    # found without importing the packages, whose imports pull in much else (pip install --no-deps is enough)
+    robosuite = _package_dir("robosuite")
+    if robosuite is None:
+        print("robosuite is not installed: its robots are left out (pip install --no-deps robosuite)")
+    else:
+        out += sorted((robosuite / "models" / "assets" / "robots").glob("*/robot.xml"))
+    robotics = _package_dir("gymnasium_robotics")
+    if robotics is None:
+        print("gymnasium-robotics is not installed: its robots are left out (pip install --no-deps gymnasium-robotics)")
+    else:
+        out += [robotics / "envs" / "assets" / rel for rel in ROBOTICS]
     if menagerie is not None:
         out += sorted(Path(menagerie).glob("*/scene.xml"))
     return [p for p in out if p.exists()]
+
+
+def _package_dir(name: str) -> Path | None:
+    """Where an installed package lies, without importing it."""
+    spec = importlib.util.find_spec(name)
+    return None if spec is None or not spec.submodule_search_locations else Path(spec.submodule_search_locations[0])
 
 
 def plain_run(path: Path, controls, n_steps: int) -> None:
@@ -80,7 +104,7 @@ def main(menagerie: Path | None, only: list[str], repeat: int) -> None:
     )
     verdict_ratios, cause_ratios, slowest, meshed = [], [], [], []
     for path in files:
-        name = path.parent.name if path.name == "scene.xml" else path.stem
+        name = path.parent.name if path.name in ("scene.xml", "robot.xml") else path.stem
         try:
             model = engines.load(path)
             sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]

@@ -3,6 +3,7 @@
 Usage::
 
     pip install -e ".[engines]" dm-control gymnasium
+    pip install --no-deps robosuite gymnasium-robotics   # optional: more robots with meshes
     python docs/corpus_verdicts.py [--menagerie DIR] [--gepetto DIR] [--only REGEX]
                                    [--jobs N] [--timeout SECONDS] [--out FILE]
 
@@ -12,6 +13,10 @@ The corpus is every robot file that the installed packages and folders hold:
   third-party robots (the dog, the rodent, the fruit fly, the CMU humanoid, the ant, the
   Jaco arm and hand, ...), with their meshes;
 * gymnasium's MuJoCo models (``gymnasium/envs/mujoco/assets/*.xml``);
+* robosuite's robots (``robosuite/models/assets/robots/*/robot.xml``: arms, a humanoid, a
+  quadruped, mobile manipulators, each alone with its meshes) and four of
+  gymnasium-robotics' (Fetch, the Shadow hand, Adroit's hand), when installed (their files
+  are only read: ``pip install --no-deps robosuite gymnasium-robotics`` is enough);
 * the URDFs of Gepetto's ``example-robot-data`` (``--gepetto``: a checkout, or a bare git
   directory from which the robots are read with ``git cat-file``), one URDF per robot,
   run in PyBullet with the base fixed;
@@ -48,6 +53,7 @@ import argparse
 import concurrent.futures
 import datetime
 import importlib.metadata
+import importlib.util
 import json
 import math
 import os
@@ -89,6 +95,9 @@ DM_LOCOMOTION = (
     "third_party/kinova/jaco_arm.xml",
     "third_party/kinova/jaco_hand.xml",
 )
+
+#: gymnasium-robotics' files that are whole robots, alone (paths below its ``envs/assets`` folder)
+ROBOTICS = ("fetch/reach.xml", "hand/reach.xml", "adroit_hand/adroit_door.xml", "adroit_hand/adroit_relocate.xml")
 
 #: one URDF per robot of example-robot-data (paths below its ``robots`` folder)
 GEPETTO_URDFS = (
@@ -163,10 +172,30 @@ def mjcf_entries(menagerie: pathlib.Path | None) -> list[dict]:
     else:
         assets = pathlib.Path(gymnasium.__file__).parent / "envs" / "mujoco" / "assets"
         out += [entry("gymnasium", path.name, path) for path in sorted(assets.glob("*.xml"))]
+    robosuite = package_dir("robosuite")
+    if robosuite is None:
+        print("robosuite is not installed: its robots are left out", file=sys.stderr)
+    else:
+        for path in sorted((robosuite / "models" / "assets" / "robots").glob("*/robot.xml")):
+            out.append(entry("robosuite", path.parent.name, path))
+    robotics = package_dir("gymnasium_robotics")
+    if robotics is None:
+        print("gymnasium-robotics is not installed: its robots are left out", file=sys.stderr)
+    else:
+        for name in ROBOTICS:
+            out.append(entry("gymnasium-robotics", name, robotics / "envs" / "assets" / name))
     if menagerie is not None:
         for path in sorted(menagerie.glob("*/scene.xml")):
             out.append(entry("MuJoCo Menagerie", path.parent.name, path))
     return out
+
+
+def package_dir(name: str) -> pathlib.Path | None:
+    """Where an installed package lies, found without importing it (robosuite's import pulls in much else)."""
+    spec = importlib.util.find_spec(name)
+    if spec is None or not spec.submodule_search_locations:
+        return None
+    return pathlib.Path(spec.submodule_search_locations[0])
 
 
 def gepetto_entries(source: pathlib.Path | None, folder: pathlib.Path) -> tuple[list[dict], str | None]:
@@ -329,6 +358,7 @@ def report_row(rep, s, seconds: float) -> dict:
             {"kind": c.kind, "element": c.element, "detail": c.detail, "restores": c.restores} for c in rep.causes
         ],
         "scale_free": None if rep.scale_free is None else scale_free_row(rep.scale_free, number),
+        "engine_reset": None if rep.engine_reset is None else [number(rep.engine_reset[0]), rep.engine_reset[1]],
         "seconds": round(seconds, 2),
     }
 
@@ -421,6 +451,8 @@ def main(argv=None) -> int:
             "pybullet": version("pybullet"),
             "dm_control": version("dm-control"),
             "gymnasium": version("gymnasium"),
+            "robosuite": version("robosuite"),
+            "gymnasium-robotics": version("gymnasium-robotics"),
             "example-robot-data": gepetto_commit,
             "python": platform.python_version(),
         },

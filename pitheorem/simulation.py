@@ -706,12 +706,20 @@ class SimilarityReport(TableDisplay):
     inconclusive : bool
         A group's controls (gravity's, or the masses') all passed
         unnoticed: the run cannot show an error in that group, so the
-        verdict is not "similar".
+        verdict is not "similar"; or the engine gave up on the original's
+        run (`engine_reset`).
     scale_free : ScaleFree or None
         At a power of four, when the runs are not bit for bit: both runs
         again with the engine's settings of no pure dimension made
         scale-free (``pitheorem.engines.verdicts.scalefree``), and whether
         they are then exact.  None otherwise.
+    engine_reset : tuple of (float, str) or None
+        When the engine gave up on a run: the time, and ``"original"`` or
+        ``"copy"``.  MuJoCo resets a run whose acceleration is NaN,
+        infinite or huge (an unstable model, or a time step too long for
+        it).  An original's run is then compared only before that time
+        and the verdict is inconclusive; a copy's alone makes it not
+        similar.  None when every run went to the end.
 
     Examples
     --------
@@ -748,6 +756,7 @@ class SimilarityReport(TableDisplay):
     controls: tuple = ()
     inconclusive: bool = False
     scale_free: object | None = None
+    engine_reset: tuple[float, str] | None = None
 
     @property
     def similar(self) -> bool:

@@ -39,6 +39,7 @@ REPORT_KEYS = {
     "first_divergence",
     "causes",
     "scale_free",
+    "engine_reset",
     "seconds",
 }
 
@@ -107,8 +108,15 @@ def report_errors(rep: dict, s, duration: float) -> list[str]:
         errors.append(f"detection limit {rep['detection_limit']} against the controls caught {caught}")
     groups = {c["group"] for c in rep["controls"]}
     unseen = [g for g in groups if not any(c["caught"] for c in rep["controls"] if c["group"] == g)]
-    if rep["inconclusive"] != bool(unseen):
-        errors.append(f"inconclusive = {rep['inconclusive']}, yet the groups no control caught are {unseen}")
+    reset = rep["engine_reset"]  # the time and whose run the engine gave up on (MuJoCo's reset), or None
+    if reset is not None and (len(reset) != 2 or reset[1] not in ("original", "copy")):
+        errors.append(f"engine reset {reset}")
+    original_reset = reset is not None and reset[1] == "original"
+    if rep["inconclusive"] != (bool(unseen) or original_reset):
+        errors.append(
+            f"inconclusive = {rep['inconclusive']}, yet the groups no control caught are {unseen}"
+            f" and the engine reset {reset}"
+        )
     free = rep["scale_free"]
     if free is not None:
         if rep["exact"] or s & (s - 1):

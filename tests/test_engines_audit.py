@@ -201,3 +201,69 @@ def test_a_number_of_no_power_is_a_cause_only_where_the_copy_holds_it_otherwise(
     assert not held_otherwise(before, moved, ~unclean).any()  # entries with an exponent are judged elsewhere
     nan = np.array([np.nan])
     assert not held_otherwise(nan, nan.copy(), np.array([False])).any()
+
+
+VISUAL_AND_COLLISION = """<mujoco>
+  <asset>
+    <mesh name="look" vertex="0 0 0  1 0 0  0 1 0  0 0 1" scale="0.1 0.1 0.1"/>
+    <mesh name="touch" vertex="0 0 0  1 0 0  0 1 0  0 0 1" scale="0.1 0.1 0.1"/>
+  </asset>
+  <worldbody>
+    <geom name="floor" type="plane" size="1 1 0.1"/>
+    <body name="arm" pos="0 0 0.5"><joint name="hinge" axis="0 1 0"/>
+      <geom name="seen" type="mesh" mesh="look" contype="0" conaffinity="0" group="1"/>
+      <geom name="hit" type="mesh" mesh="touch" pos="0.2 0 0"/>
+    </body>
+  </worldbody>
+</mujoco>"""
+
+
+def test_numbers_no_step_reads_are_held_to_nothing_but_a_collision_geoms_are(tmp_path, monkeypatch):
+    """A geom that never collides only draws: its stored pose, and its mesh's vertices and offset, move nothing.
+
+    MuJoCo recomputes a visual mesh's centre from its scaled vertices and may land a few ulps off four times
+    the original's (robosuite's UR5e: 9.05e-07 became 2.26e-07); that is no cause.  The same number of a geom
+    that collides is one.
+    """
+    path = tmp_path / "arm.xml"
+    path.write_text(VISUAL_AND_COLLISION)
+    model = engines.load(path)
+    runner = model.runner
+    m = runner.mjmodel
+    seen, hit = (mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, n) for n in ("seen", "hit"))
+    look = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_MESH, "look")
+    unread = runner.unread_stored()
+    assert unread["geom_pos"].tolist() == [g == seen for g in range(m.ngeom)]
+    assert unread["mesh_pos"].tolist() == [k == look for k in range(m.nmesh)]
+    vert = unread["mesh_vert"]  # the vertices of the visual mesh only, each by the mesh that owns it
+    start, count = m.mesh_vertadr[look], m.mesh_vertnum[look]
+    assert vert[start : start + count].all()
+    assert vert.sum() == count
+    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    model = model.with_values(tolerance=0)  # the solver's stopping rule is a cause of its own
+    assert engines.audit(model, sc, 4).causes == ()
+    copy = model.scaled(sc, 4)
+    stored = type(copy.runner).stored_numbers
+
+    def nudged(geom):
+        def numbers(self):
+            out = stored(self)
+            if self is copy.runner:
+                out["geom_pos"][geom, 2] = out["geom_pos"][geom, 2] * (1 + 1e-6) + 1e-6
+            return out
+
+        return numbers
+
+    monkeypatch.setattr(type(copy.runner), "stored_numbers", nudged(seen))
+    assert [c.element for c in engines.audit(model, sc, 4, scaled=copy).causes] == []
+    monkeypatch.setattr(type(copy.runner), "stored_numbers", nudged(hit))
+    assert [c.element for c in engines.audit(model, sc, 4, scaled=copy).causes] == ["geom_pos"]
+    # a geom in an explicit <pair> collides, and one in the fluid model is pushed by it, whatever its contype
+    for change in (
+        ("</worldbody>", '</worldbody><contact><pair geom1="seen" geom2="floor"/></contact>'),
+        ('group="1"', 'group="1" fluidshape="ellipsoid"'),
+    ):
+        path.write_text(VISUAL_AND_COLLISION.replace(*change))
+        again = engines.load(path).runner.unread_stored()
+        assert "geom_pos" not in again
+        assert "mesh_pos" not in again

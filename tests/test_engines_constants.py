@@ -78,7 +78,7 @@ def test_catalogue_is_read_whole_and_exactly_from_its_data_file():
     # the file's order: engine by engine
     assert [c.engine for c in CATALOGUE] == [e for e in ENGINES for c in CATALOGUE if c.engine == e]
     assert len(hidden_constants("pybullet")) == 23
-    assert len(hidden_constants("mujoco")) == 27
+    assert len(hidden_constants("mujoco")) == 28
     assert len(hidden_constants("mjx")) == 5
     assert hidden_constants(names=["mjx_segment_regularizer"])[0].dimension == pt.Dimension.parse("L^2")
     assert hidden_constants(names=["bullet_time_step"])[0].default == 1 / 240
@@ -418,6 +418,36 @@ def test_impedance_clamps(beyond, at, inside):
     clamped = sphere_drop(at, at)
     assert np.array_equal(sphere_drop(beyond, beyond), clamped)
     assert np.abs(sphere_drop(inside, inside) - clamped).max() > 1e-8  # measured: 3.9e-7
+
+
+def welded_box(s: float):
+    """A box welded to the world at its own pose, every length times s (torquescale too; masses kept): the
+    weld's rows at the first step, each row's MuJoCo softness R and its true inverse weight J M^-1 J'."""
+    mujoco, m = compiled(f"""<mujoco><option gravity="0 0 {-9.81 * s}"/><worldbody>
+      <body name="box" pos="0 0 {0.5 * s}"><freejoint/>
+        <inertial pos="0 0 0" mass="2" diaginertia="{0.01 * s * s} {0.02 * s * s} {0.015 * s * s}"/>
+        <geom type="box" size="{0.1 * s} {0.08 * s} {0.05 * s}" contype="0" conaffinity="0"/></body>
+      </worldbody><equality><weld body1="box" torquescale="{1.0 * s}"/></equality></mujoco>""")
+    d = mujoco.MjData(m)
+    d.qvel[:] = [0.1 * s, 0, 0, 0.3, 0.2, 0.1]
+    mujoco.mj_forward(m, d)
+    jac = np.array(d.efc_J).reshape(d.nefc, m.nv)
+    mass = np.zeros((m.nv, m.nv))
+    mujoco.mj_fullM(m, d, mass)
+    weight = np.einsum("ij,jk,ik->i", jac, np.linalg.inv(mass), jac)
+    return np.array(d.efc_R), weight
+
+
+def test_weld_rotational_weight():
+    # engine_core_constraint.c mj_diagApprox: a weld's rotational rows take body_invweight0's rotation, not
+    # times torquescale^2, while mj_instantiateEquality multiplies those rows' Jacobian by torquescale
+    r1, w1 = welded_box(1.0)
+    r4, w4 = welded_box(4.0)
+    assert r1.shape == (6,)  # three translational rows, then three rotational
+    # the true inverse weights are the original's times 1, rows of rotation as of translation (rounding only)
+    assert np.allclose(w4 / w1, 1.0, rtol=1e-12, atol=0)
+    assert np.array_equal(r4[:3], r1[:3])  # translation: R follows its weight
+    assert np.array_equal(r4[3:], r1[3:] / 16)  # rotation: off by torquescale's 4 squared, exactly
 
 
 def thrown(s: float, options: str = "", steps: int = 300) -> np.ndarray:

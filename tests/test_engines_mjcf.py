@@ -143,6 +143,29 @@ def test_mixed_free_joint_damping_is_reported_and_refused():
     assert str(pickle.loads(pickle.dumps(err))) == str(err)
 
 
+def test_several_numbers_that_cannot_follow_are_named_once_each_kind_with_the_remedy(tmp_path):
+    """Two free joints with damping (gymnasium-robotics' Shadow hand: its block and its target): one message
+    names both, says once why, and keeps the remedy."""
+    path = tmp_path / "two.xml"
+    path.write_text(
+        (DATA / "free_damped.xml")
+        .read_text()
+        .replace(
+            "</worldbody>",
+            '<body name="target" pos="1 0 1"><joint name="aim" type="free" damping="0.2"/>'
+            '<geom type="sphere" size="0.1"/></body></worldbody>',
+        )
+    )
+    model = engines.load(path)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    with pytest.raises(UnscalableParameterError) as caught:
+        model.scaled(sc, 2)
+    text = str(caught.value)
+    assert "2 numbers cannot follow the scaling: 'joint_root_damping', 'joint_aim_damping'." in text
+    assert text.count("acts with dimensions") == 1  # one reason per kind, not per joint
+    assert text.endswith("Set it to 0 or hold the base units it mixes fixed.")
+
+
 def test_scaled_model_compiles_to_the_scaled_numbers(tmp_path):
     model = load("tendon_actuators.xml")
     sc = pt.Scaling.from_unit_change(model.system(), {"M": 1, "L": 1, "T": 1})

@@ -119,3 +119,105 @@ def test_the_diagnosis_reuses_the_scale_free_runs_as_its_counter_runs(tmp_path, 
     pgs_id, newton = int(mujoco.mjtSolver.mjSOL_PGS), int(mujoco.mjtSolver.mjSOL_NEWTON)
     for way in ((0.0, pgs_id), (1e-8, newton), (0.0, newton)):  # the original and the copy, once each
         assert seen.count(way) == 2, way
+
+
+def test_native_convex_collision_off_is_a_way_and_proves_two_meshes_exact():
+    """A tetrahedron on a cube, both meshes, meet through MuJoCo's GJK/EPA: with the native path off in both
+    runs (libccd's, whose tolerance scales with the copy) the copy is bit for bit the original."""
+    model, sc = searched(DATA / "mesh_on_mesh.xml")
+    runner = model.runner
+    assert runner.uses_native_ccd()
+    assert scale_free_options(runner) == [
+        {"tolerance": 0.0},
+        {"native_ccd": False},
+        {"tolerance": 0.0, "native_ccd": False},
+    ]
+    assert not runner.variant(native_ccd=False).uses_native_ccd()  # the flag off: nothing goes through it
+    rep = engines.verify(model, sc, 4, duration=1.0)
+    assert not rep.exact
+    assert rep.scale_free.exact
+    assert rep.scale_free.settings == (("flag nativeccd", "disable"),)
+    # by hand, in plain MuJoCo: both compiled models with the flag off, stepped side by side
+    exponents = 4 ** np.array([sc.exponent_of(d) for d in runner.coordinate_dimensions()[1]], dtype=float)
+    copy = model.scaled(sc, 4)
+    for ccd_on in (True, False):
+        runs = []
+        for m in (runner.mjmodel, copy.runner.mjmodel):
+            m = copy_module.copy(m)
+            if not ccd_on:
+                m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_NATIVECCD)
+            d = mujoco.MjData(m)
+            rows = []
+            for _ in range(500):
+                mujoco.mj_step(m, d)
+                rows.append(np.concatenate([d.qpos, d.qvel]))
+            runs.append(np.array(rows))
+        assert np.array_equal(runs[0], runs[1] / exponents) is not ccd_on
+
+
+def test_native_convex_collision_off_is_tried_but_does_not_make_every_pair_exact():
+    """The egg on its post (sphere against ellipsoid) parts under libccd too: the proof says where."""
+    model, sc = searched(DATA / "egg_on_post.xml")
+    rep = engines.verify(model, sc, 4, duration=1.0)
+    assert {"native_ccd": False} in scale_free_options(model.runner)
+    assert not rep.scale_free.exact
+    assert ("flag nativeccd", "disable") in rep.scale_free.settings  # the last way: every setting changed
+    # a pendulum's capsule on a plane meets it through a primitive function: no such way
+    assert not engines.load(engines.example_path("pendulum.xml")).runner.uses_native_ccd()
+
+
+@pytest.mark.parametrize(
+    ("world", "geoms", "convex"),
+    [
+        ("", '<geom type="sphere" size="0.1"/>', False),  # sphere on the plane: mjc_PlaneSphere
+        ("", '<geom type="ellipsoid" size="0.1 0.05 0.05"/>', False),  # on the plane: mjc_PlaneConvex
+        # two geoms of one body never meet each other: each meets the plane through a primitive function
+        (
+            "",
+            '<geom type="ellipsoid" size="0.1 0.05 0.05"/><geom type="box" size="0.1 0.1 0.1" pos="0 0 -0.3"/>',
+            False,
+        ),
+        ('<geom type="box" size="0.1 0.1 0.1" pos="1 0 0"/>', '<geom type="ellipsoid" size="0.1 0.05 0.05"/>', True),
+        ('<geom type="box" size="0.1 0.1 0.1" pos="1 0 0"/>', '<geom type="cylinder" size="0.1 0.05"/>', True),
+        (  # the cylinder never collides
+            '<geom type="box" size="0.1 0.1 0.1" pos="1 0 0"/>',
+            '<geom type="cylinder" size="0.1 0.05" contype="0" conaffinity="0"/>',
+            False,
+        ),
+    ],
+)
+def test_a_pair_goes_through_native_convex_collision_only_where_it_may_collide_through_no_primitive(
+    tmp_path, world, geoms, convex
+):
+    path = tmp_path / "m.xml"
+    path.write_text(
+        f'<mujoco><worldbody><geom type="plane" size="1 1 0.1"/>{world}'
+        f'<body pos="0 0 1"><freejoint/>{geoms}</body></worldbody></mujoco>'
+    )
+    assert engines.load(path).runner.uses_native_ccd() is convex
+
+
+def test_the_collision_path_is_run_only_where_the_solvers_settings_do_not_prove_it(tmp_path):
+    """The box under PGS, with a cylinder standing far off (so some pair may collide through MuJoCo's convex
+    collision): the tolerance at 0 proves it exact, and native convex collision off is not run for the proof;
+    the egg on its post is not proved by the solver's settings, so it is."""
+    from pitheorem.engines.verdicts.scalefree import scale_free_run
+
+    pgs = tmp_path / "pgs.xml"
+    pgs.write_text(
+        (DATA / "contact.xml")
+        .read_text()
+        .replace('tolerance="0"', 'solver="PGS"')
+        .replace("</worldbody>", '<geom name="far" type="cylinder" size="0.1 0.2" pos="4 4 0.2"/></worldbody>')
+    )
+    for path, proved, n in ((pgs, True, 200), (DATA / "egg_on_post.xml", False, 500)):
+        model, sc = searched(path)
+        assert {"native_ccd": False} in scale_free_options(model.runner)
+        copy = model.scaled(sc, 4)
+        names, dims = model.runner.coordinate_dimensions()
+        factors = 4 ** np.array([sc.exponent_of(d) for d in dims], dtype=float)
+        ran: dict = {}
+        free = scale_free_run(model.runner, copy.runner, n, None, None, factors, np.arange(n + 1) * 0.002, names, ran)
+        assert free.exact is proved
+        with_ccd_off = [key for key in ran if ("native_ccd", False) in key]
+        assert bool(with_ccd_off) is not proved

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -206,6 +207,83 @@ def test_a_batch_run_inherits_nothing_from_the_run_before_it_on_its_thread(tmp_p
     assert all(np.array_equal(x, y) for x, y in zip(one_by_one, together, strict=True))
     assert not np.array_equal(one_by_one[0], one_by_one[2])  # the constraint matters: not a vacuous equality
     assert not np.array_equal(one_by_one[1], one_by_one[2])  # and so does the input
+
+
+def test_a_batch_run_takes_its_own_models_mocap_pose_not_the_run_before_its(tmp_path):
+    """A mocap body's pose is an input a reset takes from the model: a scaled copy's differs from the original's."""
+    path = tmp_path / "platform.xml"
+    path.write_text(
+        '<mujoco><worldbody><body name="platform" mocap="true" pos="0 0 0.5"><geom type="box" size="1 1 0.05"/>'
+        '</body><body name="ball" pos="0 0 1"><freejoint/><geom type="sphere" size="0.05" mass="1"/></body>'
+        "</worldbody></mujoco>"
+    )
+    model = engines.load(path)
+    twice = model.scaled(pt.Scaling.from_unit_change(model.system(), {"L": 1}), 2).runner
+    b = model.runner
+    jobs = [(twice, None, False, None), (b, None, False, None), (twice, None, False, None), (b, None, False, None)]
+    together = b.run_many(300, jobs)
+    one_by_one = [backend.run(300) for backend, *_ in jobs]
+    assert all(np.array_equal(x, y) for x, y in zip(one_by_one, together, strict=True))
+    # not vacuous: each ball lands on its own model's platform, the copy's at twice the height
+    assert 0.55 < one_by_one[1][-1, 2] < 0.65
+    assert 1.1 < one_by_one[0][-1, 2] < 1.3
+
+
+#: a stiff hinge under an explicit spring at a long time step: Euler's oscillation grows tenfold a step until
+#: MuJoCo finds the acceleration huge and resets the run (stiffness 400); at stiffness 100 it is stable
+SPRING_ARM = (
+    '<mujoco><option timestep="0.01"/><worldbody><body name="arm" pos="0 0 1">'
+    '<joint name="hinge" axis="0 1 0" stiffness="{k}" springref="0.5"/>'
+    '<geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.02" mass="0.1"/></body></worldbody>'
+    '<actuator><motor joint="hinge"/></actuator></mujoco>'
+)
+
+
+def _reset_row(path, n_steps):
+    """By hand in plain MuJoCo: the row (1 + the step) at which MuJoCo warns of a bad acceleration and resets."""
+    m = mujoco.MjModel.from_xml_path(str(path))
+    d = mujoco.MjData(m)
+    for i in range(n_steps):
+        mujoco.mj_step(m, d)
+        if d.warning[mujoco.mjtWarning.mjWARN_BADQACC].number:
+            return i + 1
+    return None
+
+
+def test_a_run_mujoco_resets_is_compared_only_before_it_and_is_inconclusive(tmp_path):
+    path = tmp_path / "unstable.xml"
+    path.write_text(SPRING_ARM.format(k=400))
+    model = engines.load(path)
+    k = _reset_row(path, 40)
+    assert k is not None
+    for rows in (model.runner.run(40), model.runner.run(40, policy=lambda m, d: np.zeros(1))):
+        assert np.isfinite(rows[:k]).all()  # open loop (rollout) and closed loop alike
+        assert np.isnan(rows[k:]).all()  # what MuJoCo ran after its reset is no run of this model
+    sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
+    rep = engines.verify(model, sc, 4, duration=0.4)
+    assert rep.exact  # the copy breaks down at the same step, bit for bit: that alone proves nothing
+    assert rep.verdict == "inconclusive"
+    assert rep.engine_reset == (pytest.approx(0.01 * k), "original")
+    assert len(rep.original) == k  # compared before it
+    assert "gave up on the original's run" in str(rep)
+    assert json.loads(format(rep, "json"))["engine_reset"] == [pytest.approx(0.01 * k), "original"]
+    assert rep.causes == ()  # no cause is looked for in a run that is not one
+
+
+def test_a_copy_that_breaks_down_where_the_original_does_not_is_not_similar(tmp_path):
+    path = tmp_path / "stable.xml"
+    path.write_text(SPRING_ARM.format(k=100))
+    model = engines.load(path)
+    assert _reset_row(path, 40) is None
+    sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
+    good = model.scaled(sc, 4)
+    wrong = good.with_values(joint_hinge_stiffness=4 * good.parameter("joint_hinge_stiffness").value[0])
+    rep = engines.verify(model, sc, 4, duration=0.4, scaled=wrong, diagnose=False)
+    assert rep.verdict == "not similar"
+    assert rep.engine_reset is not None
+    assert rep.engine_reset[1] == "copy"
+    assert "gave up on the copy's run" in str(rep)
+    assert engines.verify(model, sc, 4, duration=0.4, diagnose=False).engine_reset is None
 
 
 def test_what_verify_cannot_compare_is_refused_by_name():

@@ -117,8 +117,9 @@ class HiddenConstant(TextDisplay):
 #: the paths by which a run meets an engine's constants, as a diagnosis names a cause: contacts found by
 #: native convex collision detection (GJK/EPA: meshes, ellipsoids, cylinders), contacts of primitive pairs
 #: (analytic sphere, capsule, box, plane functions), contact margins, the constraint solver's stopping
-#: rules, the noslip post-solver, equality constraints, the impedance and softness of every constraint,
-#: friction, and the compiler's processing of meshes
+#: rules, the noslip post-solver, equality constraints (and welds, whose rotational rows are soft by a
+#: term of their own), the impedance and softness of every constraint, friction, and the compiler's
+#: processing of meshes
 CAUSE_PATHS = (
     "native_ccd",
     "primitive",
@@ -126,6 +127,7 @@ CAUSE_PATHS = (
     "solver_tolerance",
     "noslip",
     "equality",
+    "weld",
     "impedance",
     "friction",
     "mesh",
@@ -366,7 +368,7 @@ def broken_constants(scaling, engine: str, *, names: Iterable[str] | None = None
     >>> lengths_only = pt.Scaling.from_unit_change(rod, {"L": 1})
     >>> [c.name for c in broken_constants(lengths_only, "mujoco")]
     ['mujoco_solimp_width', 'mujoco_torsional_friction', 'mujoco_rolling_friction', 'mujoco_geom_density', \
-'mujoco_ccd_tolerance', 'mujoco_ccd_discrete_tolerance', 'mujoco_minval_normal']
+'mujoco_ccd_tolerance', 'mujoco_ccd_discrete_tolerance', 'mujoco_minval_normal', 'mujoco_weld_rotational_weight']
     """
     if not isinstance(scaling, Scaling):
         raise InvalidRequestError(f"broken_constants needs a Scaling, got {type(scaling).__name__}")

@@ -477,15 +477,19 @@ class EngineModel(TableDisplay):
         if len(refused) > 1:
             names = ", ".join(repr(err.name) for err in refused[:6])
             more = f" and {len(refused) - 6} more" if len(refused) > 6 else ""
-            reasons = {}  # one reason per kind: the damping of every link reads alike but for the link's name
+            reasons, remedies = {}, {}  # one of each kind: every link's damping reads alike but for its name
             for err in refused:
-                reasons.setdefault(err.reason.split(";")[0].split(" acts ", 1)[-1], err.reason.split(";")[0])
-            remedy = self._runner.unscalable_remedy if refuses else ""
+                reason, _, remedy = err.reason.partition(";")
+                reasons.setdefault(reason.split(" acts ", 1)[-1], reason.strip())
+                if remedy.strip():
+                    remedies.setdefault(remedy.strip(), None)
+            if refuses and self._runner.unscalable_remedy:
+                remedies = {self._runner.unscalable_remedy: None}
+            sentences = ["; ".join(reasons.values()), *remedies]
             raise UnscalableParameterError(
                 refused[0].name,
                 f"{len(refused)} numbers cannot follow the scaling: {names}{more}. "
-                + "; ".join(reasons.values())
-                + (f". {remedy}" if remedy else ""),
+                + " ".join(f"{text[:1].upper()}{text[1:].rstrip('.')}." for text in sentences),
             )
         if refused:
             raise refused[0]

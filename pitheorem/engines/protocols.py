@@ -234,6 +234,22 @@ class ReadsSomeNumbers(Protocol):
 
 
 @runtime_checkable
+class StoresUnreadNumbers(Protocol):
+    """Optional: stored numbers no step of a run reads, by field (MuJoCo's geoms that never collide, and their meshes).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.protocols import StoresUnreadNumbers
+    >>> isinstance(engines.load(engines.example_path("pendulum.xml")).runner, StoresUnreadNumbers)
+    True
+    """
+
+    def unread_stored(self) -> dict:
+        """Per field of :meth:`stored_numbers`, a mask of its rows that no step of a run reads."""
+
+
+@runtime_checkable
 class HasSceneSettings(Protocol):
     """Optional: settings outside the file, changed by ``EngineModel.with_settings`` (PyBullet's).
 
@@ -315,6 +331,9 @@ class SolverDiagnosis(Protocol):
 
     def equality_names(self) -> list[str]:
         """Each equality constraint, named as the reports name it."""
+
+    def equality_kinds(self) -> list[str]:
+        """Each equality constraint's kind, in the engine's words (``"weld"``, ``"connect"``, ...)."""
 
     def first_contact_difference(self, other, n_steps: int, controls: Controls = None, other_controls: Controls = None):
         """The first step after which other pairs touch in `other`'s run: (step or None, pairs only there, only

@@ -199,6 +199,7 @@ def _similarity_report(report) -> dict:
         "inconclusive": report.inconclusive,
         "controls": [{"group": c.group, "error": c.error, "caught": c.caught} for c in report.controls],
         "scale_free": _scale_free(report.scale_free),
+        "engine_reset": None if report.engine_reset is None else list(report.engine_reset),
     }
 
 
@@ -474,6 +475,7 @@ def _engine_verify_answer(answer) -> dict:
         "first_divergence": None if rep.first_divergence is None else list(rep.first_divergence),
         "causes": [_cause(c) for c in rep.causes],
         "scale_free": _scale_free(rep.scale_free),
+        "engine_reset": None if rep.engine_reset is None else list(rep.engine_reset),
         "notes": list(answer.notes),
         "report": _similarity_report(rep),
     }

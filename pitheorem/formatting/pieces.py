@@ -766,11 +766,20 @@ def strength_lines(report) -> list[str]:
     ['strength: an error of 0.0001 in gravity or the masses is caught; the twins stay together to the end (t = 0.5)']
     """
     free = report.scale_free
-    if report.horizon is None and not report.controls and free is None:
+    reset = getattr(report, "engine_reset", None)
+    if report.horizon is None and not report.controls and free is None and reset is None:
         return []
     lines = [] if free is None else [free.text()]
+    if reset is not None:
+        when, whose = reset
+        lines.append(
+            f"{'INCONCLUSIVE: ' if whose == 'original' else ''}the engine gave up on the {whose}'s run at "
+            f"t = {float_text(when)} (MuJoCo resets a run whose acceleration is NaN, infinite or huge, MJX and "
+            "MuJoCo Warp go on in NaN: the model is unstable at this time step)"
+            f"{'; the runs are compared before it' if whose == 'original' else ''}"
+        )
     unseen = report.unseen
-    if report.inconclusive:
+    if unseen:
         words = {"g": "gravity", "masses": "the masses"}
         what = " or ".join(words.get(g, g) for g in unseen)
         lines.append(

@@ -540,6 +540,8 @@ def _engine_verify_answer(answer) -> str:
     steps = len(rep.original) - 1
     if rep.exact:
         head, tail = ("inconclusive", ", but so do copies made wrong on purpose") if rep.inconclusive else ("exact", "")
+        if rep.engine_reset is not None:  # inconclusive however the controls went: the run itself broke down
+            tail = ", up to where the engine gave up on the run"
         lines = [
             f"{head}: the scaled copy, mapped back, equals the original bit for bit at every step "
             f"(s = {s}, {steps} steps){tail}"

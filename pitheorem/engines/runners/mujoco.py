@@ -179,6 +179,43 @@ class MujocoRunner:
                 out.add(p.name)
         return frozenset(out)
 
+    def unread_stored(self) -> dict[str, np.ndarray]:
+        """Per stored field, a mask of the rows no step of a run reads (fields with none are left out).
+
+        The rows of a geom that never collides (``contype`` and
+        ``conaffinity`` 0, in no ``<pair>``) and takes no part in the fluid
+        model: its pose, size and contact numbers only draw it (MuJoCo used
+        its shape for the body's inertia when it compiled, and that shows
+        in the body's numbers).  And the rows of a mesh that only such geoms
+        use: its vertices, normals and the offset MuJoCo computed for it.
+        A visual mesh's centroid, recomputed from vertices four times
+        larger, may differ from four times the original's in its last bits;
+        that moves nothing in a run.
+        """
+        m = self.mjmodel
+        paired = {int(g) for g in (*m.pair_geom1, *m.pair_geom2)}
+        fluid = np.asarray(m.geom_fluid).reshape(m.ngeom, -1)[:, 0] if m.ngeom else np.zeros(0)
+        idle_geom = np.array(
+            [
+                m.geom_contype[g] == 0 and m.geom_conaffinity[g] == 0 and g not in paired and fluid[g] == 0
+                for g in range(m.ngeom)
+            ],
+            dtype=bool,
+        )
+        mesh_geoms = (np.asarray(m.geom_type) == int(_mujoco().mjtGeom.mjGEOM_MESH)) & ~idle_geom
+        idle_mesh = np.ones(m.nmesh, dtype=bool)
+        idle_mesh[np.asarray(m.geom_dataid)[mesh_geoms]] = False
+        out = {}
+        for field in self._fields():
+            kind, ids = self._element_rows(field)
+            idle = {"geom": idle_geom, "mesh": idle_mesh}.get(kind)
+            if idle is None:
+                continue
+            mask = idle if ids is None else idle[ids]
+            if mask.any():
+                out[field] = mask
+        return out
+
     def coordinate_dimensions(self):
         return self.document.coordinate_dimensions()
 
@@ -342,8 +379,13 @@ class MujocoRunner:
         return out
 
     def uses_native_ccd(self) -> bool:
-        """Whether convex geom pairs (meshes, boxes against meshes, ...) collide through MuJoCo's native CCD."""
-        return not int(self.mjmodel.opt.disableflags) & int(_mujoco().mjtDisableBit.mjDSBL_NATIVECCD)
+        """Whether some geom pair that can collide (meshes, ellipsoids, cylinders against most, ...) goes
+        through MuJoCo's native convex collision, which is on (found once: a copy has the same geoms)."""
+        if int(self.mjmodel.opt.disableflags) & int(_mujoco().mjtDisableBit.mjDSBL_NATIVECCD):
+            return False
+        if getattr(self, "_convex_pairs", None) is None:
+            self._convex_pairs = _has_convex_pairs(self.mjmodel)
+        return self._convex_pairs
 
     def control_ranges(self) -> tuple[np.ndarray, np.ndarray]:
         """Each actuator's control range where the file limits it; -inf and inf where it does not."""
@@ -365,6 +407,11 @@ class MujocoRunner:
     def equality_names(self) -> list[str]:
         """Each equality constraint, named as the reports name it."""
         return [self.element_name("eq_data", i) for i in range(self.mjmodel.neq)]
+
+    def equality_kinds(self) -> list[str]:
+        """Each equality constraint's kind: connect, weld, joint, tendon, flex, ... (mjtEq's names, lower case)."""
+        mj = _mujoco()
+        return [mj.mjtEq(int(k)).name.removeprefix("mjEQ_").lower() for k in self.mjmodel.eq_type]
 
     def engine_notes(self) -> tuple[str, ...]:
         """Known bugs of the installed MuJoCo that can touch a verdict on this model.
@@ -478,8 +525,9 @@ class MujocoRunner:
             rows = np.asarray(getattr(m, field)).shape[0] if "." not in field else 0
             if prefix == "dof" and rows == m.nv:
                 cache[field] = ("joint", np.asarray(m.dof_jntid))
-            elif prefix == "mesh" and rows == m.nmeshvert and m.nmesh:
-                cache[field] = ("mesh", np.searchsorted(m.mesh_vertadr, np.arange(rows), side="right") - 1)
+            elif prefix == "mesh" and field in _MESH_ROWS and rows == np.sum(getattr(m, _MESH_ROWS[field])):
+                # the meshes' rows lie end to end in mesh order, each mesh's count of them
+                cache[field] = ("mesh", np.repeat(np.arange(m.nmesh), getattr(m, _MESH_ROWS[field])))
             elif kind is None or rows != getattr(m, _COUNTS.get(kind, f"n{kind}"), -1):
                 cache[field] = (None, None)
             else:
@@ -524,28 +572,30 @@ class MujocoRunner:
         if self.refusal is not None or any(job[0].refusal is not None for job in jobs):
             (self if self.refusal is not None else next(j[0] for j in jobs if j[0].refusal is not None))._refuse()
         mj = _mujoco()  # names a missing MuJoCo before its submodule is imported
-        physics, user = mj.mjtState.mjSTATE_FULLPHYSICS, mj.mjtState.mjSTATE_USER
-        models, initial, inputs, firsts = [], [], [], []
+        physics = mj.mjtState.mjSTATE_FULLPHYSICS
+        spec = _input_spec(mj, jobs[0][0].mjmodel)
         threads = max(1, min(len(jobs), os.cpu_count() or 1))
         # The jobs' models have the same sizes: one data per thread serves them all, and the first also
         # finds each job's initial state.  A thread's data runs several jobs, and rollout sets only the
-        # full-physics state between them: each job therefore also gets, at every step, every input a
-        # reset leaves in a data (the controls, applied forces, which equality constraints are active,
-        # mocap poses, user data), and a zero warm start, so that no run inherits another's.
+        # full-physics state between them: each job therefore also gets, at every step, every input that
+        # differs between models of these sizes (`_input_spec`), and a zero warm start, so that no run
+        # inherits another's.
         datas = [mj.MjData(jobs[0][0].mjmodel) for _ in range(threads)]
-        for backend, controls, nudge, row in jobs:
+        width = mj.mj_stateSize(jobs[0][0].mjmodel, spec)
+        initial = np.empty((len(jobs), mj.mj_stateSize(jobs[0][0].mjmodel, physics)))
+        inputs = np.empty((len(jobs), n_steps, width))  # filled in place: rollout copies it once more
+        models, firsts = [], []
+        for k, (backend, controls, nudge, row) in enumerate(jobs):
             m = backend.mjmodel
             data, first = backend._start(nudge, row, datas[0])
-            x0, u0 = np.empty(mj.mj_stateSize(m, physics)), np.empty(mj.mj_stateSize(m, user))
-            mj.mj_getState(m, data, x0, physics)
-            mj.mj_getState(m, data, u0, user)
-            rows = np.tile(u0, (n_steps, 1))
+            u0 = np.empty(width)
+            mj.mj_getState(m, data, initial[k], physics)
+            mj.mj_getState(m, data, u0, spec)
+            inputs[k] = u0
             ctrl = backend._control_rows(controls, n_steps)
-            if ctrl is not None:  # the user state starts with the controls
-                rows[:, : m.nu] = ctrl
+            if ctrl is not None:  # the input state starts with the controls
+                inputs[k, :, : m.nu] = ctrl
             models.append(m)
-            initial.append(x0)
-            inputs.append(rows)
             firsts.append(first)
         if n_steps == 0:
             return [first[None, :] for first in firsts]
@@ -553,17 +603,23 @@ class MujocoRunner:
             states, _ = pool.rollout(
                 models,
                 datas,
-                np.array(initial),
-                np.array(inputs),
-                control_spec=user,
+                initial,
+                inputs,
+                control_spec=spec,
                 initial_warmstart=np.zeros((len(jobs), models[0].nv)),
                 nstep=n_steps,
             )
         # the full-physics state is laid out by component: time, then qpos, qvel, act
         out = []
+        clocks: dict = {}  # each time step's times: MuJoCo adds the step to the time (a copy's step may differ)
         for m, first, rows in zip(models, firsts, states, strict=True):
             start = mj.mj_stateSize(m, mj.mjtState.mjSTATE_TIME)
-            out.append(np.concatenate([first[None, :], rows[:, start : start + m.nq + m.nv + m.na]]))
+            run = np.concatenate([first[None, :], rows[:, start : start + m.nq + m.nv + m.na]])
+            dt = float(m.opt.timestep)
+            if dt not in clocks:
+                clocks[dt] = np.add.accumulate(np.full(n_steps, dt))
+            _mark_reset(run, rows[:, 0] != clocks[dt])
+            out.append(run)
         return out
 
     def _start(self, nudge: bool, initial, data=None):
@@ -606,6 +662,7 @@ class MujocoRunner:
         # still the last step's.  mj_step1 computes them first, mj_step2 finishes the step: together the
         # same step as mj_step, except for RK4, which mj_step2 does not take (there mj_forward goes first).
         split = int(m.opt.integrator) != int(mj.mjtIntegrator.mjINT_RK4)
+        clock = data.time
         for i in range(1, n_steps + 1):
             if split:
                 mj.mj_step1(m, data)
@@ -615,6 +672,10 @@ class MujocoRunner:
                 mj.mj_forward(m, data)
                 data.ctrl[:] = policy(m, data)
                 mj.mj_step(m, data)
+            clock += m.opt.timestep
+            if data.time != clock:  # MuJoCo reset the run: what follows is not this run (`_mark_reset`)
+                out[i:] = np.nan
+                break
             qpos[i], qvel[i], act[i] = data.qpos, data.qvel, data.act
         return out
 
@@ -812,6 +873,54 @@ def _stored_fields(m) -> list[str]:
 _POOLS: dict = {}
 
 
+#: the mesh fields with a row per vertex, normal, texture coordinate or polygon, and each mesh's count of them
+_MESH_ROWS = {
+    "mesh_vert": "mesh_vertnum",
+    "mesh_normal": "mesh_normalnum",
+    "mesh_texcoord": "mesh_texcoordnum",
+    "mesh_polynormal": "mesh_polynum",
+}
+
+
+def _mark_reset(run: np.ndarray, off_clock: np.ndarray) -> None:
+    """Mark the rows of a run after MuJoCo reset it as not a run (NaN), in place.
+
+    When an acceleration is NaN, infinite or huge (an unstable model, or a
+    time step too long for it), MuJoCo warns, resets the data to the model's
+    reference pose and time 0 and goes on; rollout then stops and repeats
+    that state to the end.  Those rows are no simulation of the model, and a
+    copy reset at the same step would match them bit for bit.  The reset
+    shows in the time: it is no longer the time steps added up.  `off_clock`
+    holds, per step, whether that step's time is not (row 0 of `run` is the
+    initial state, before any step).
+    """
+    reset = np.flatnonzero(off_clock)
+    if reset.size:
+        run[int(reset[0]) + 1 :] = np.nan
+
+
+def _input_spec(mj, m) -> int:
+    """The inputs a run of `m` takes at every step: its controls, and those of the other inputs that a reset
+    sets from the model (active equalities, mocap poses, user data), where the model has any.
+
+    A thread's data runs one job after another, and these could otherwise carry the last job's values
+    into the next (a scaled copy's mocap poses differ from the original's).  MuJoCo 4's rollout sets
+    them from each job's model itself when they are not sent; they are sent for the 3.x versions whose
+    rollout may not.  The applied forces are left out: a reset zeroes them and no open-loop step writes
+    them, so they are zero in every job, and sending them at every step made the inputs of a robot with
+    many bodies several times larger than its states (the fruit fly's: about 500 numbers a step).
+    """
+    st = mj.mjtState
+    spec = st.mjSTATE_CTRL.value
+    if m.neq:
+        spec |= st.mjSTATE_EQ_ACTIVE.value
+    if m.nmocap:
+        spec |= st.mjSTATE_MOCAP_POS.value | st.mjSTATE_MOCAP_QUAT.value
+    if m.nuserdata:
+        spec |= st.mjSTATE_USERDATA.value
+    return spec
+
+
 @contextmanager
 def _thread_pool(threads: int):
     """A MuJoCo rollout pool of `threads` threads, kept for the next batch.
@@ -910,6 +1019,34 @@ def _collider(m, a: int, b: int) -> tuple[str, tuple[str, ...]]:
     if "hfield" in kinds:
         return f"{kinds[0]}-{kinds[1]}: mjc_ConvexHField", ("native_ccd", *mesh, *margin)
     return f"{kinds[0]}-{kinds[1]}: mjc_Convex (GJK/EPA)", ("native_ccd", *mesh, *margin)
+
+
+def _has_convex_pairs(m) -> bool:
+    """Whether two geoms of `m` that may collide (their contype and conaffinity match, on two rigid bodies, or
+    an explicit ``<pair>``) meet through no primitive collision function of MuJoCo: through its convex one.
+
+    The geoms are grouped by type, contype and conaffinity (a few groups, however many geoms), and each
+    rigid body that holds a group's geoms is noted: two groups meet where their bits match and their geoms
+    lie on at least two bodies.
+    """
+    types = np.asarray(m.geom_type)
+    weld = np.asarray(m.body_weldid)[np.asarray(m.geom_bodyid)]
+    groups: dict[tuple[int, int, int], set[int]] = {}
+    for g in range(m.ngeom):
+        key = (int(types[g]), int(m.geom_contype[g]), int(m.geom_conaffinity[g]))
+        groups.setdefault(key, set()).add(int(weld[g]))
+    pairs = {tuple(sorted((int(types[a]), int(types[b])))) for a, b in zip(m.pair_geom1, m.pair_geom2, strict=True)}
+    keys = sorted(groups)
+    for i, (type_a, contype_a, affinity_a) in enumerate(keys):
+        for type_b, contype_b, affinity_b in keys[i:]:
+            bodies = groups[(type_a, contype_a, affinity_a)] | groups[(type_b, contype_b, affinity_b)]
+            if (contype_a & affinity_b or contype_b & affinity_a) and len(bodies) > 1:
+                pairs.add(tuple(sorted((type_a, type_b))))
+    for pair in pairs:
+        names = tuple(_GEOM_TYPES[k] if k < len(_GEOM_TYPES) else str(k) for k in pair)
+        if names not in _PRIMITIVE_COLLIDERS and "sdf" not in names and names != ("plane", "plane"):
+            return True
+    return False
 
 
 def _touching(data) -> frozenset:

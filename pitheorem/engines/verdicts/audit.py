@@ -34,7 +34,7 @@ from ...formatting import TextDisplay
 from ...immutable import immutable
 from ...scaling import float_power, is_power_of_two
 from ..enginemodel import EngineModel, check_scaling
-from ..protocols import CounterRuns, IgnoredSettings, NamesElements
+from ..protocols import CounterRuns, IgnoredSettings, NamesElements, StoresUnreadNumbers
 from .causes import Cause, sorted_causes
 from .probes import dimension_causes
 
@@ -167,6 +167,8 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
     if original:  # each stored copy of a file's number against the dimension the reader gave it
         causes.extend(dimension_causes(model, scaling, original, probe, PROBE))
     copy = scaled.runner.stored_numbers()
+    # rows no step reads (a visual geom's pose, its mesh): held to nothing, for nothing in a run moves by them
+    unread = backend.unread_stored() if isinstance(backend, StoresUnreadNumbers) else {}
     probed = {}  # field -> (exponents, clean): pass one, for the largest number of each exponent
     scale: dict[float, float] = {}
     for field, before in original.items():
@@ -178,8 +180,14 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
         k, clean_up, residue = _probe_exponents(before, probe[field])
         back, clean_back, _ = _probe_exponents(before, inverse[field])
         clean = clean_up & clean_back & (back == -k)
-        probed[field] = k, clean, residue
+        idle = unread.get(field)
+        if idle is not None:  # a mask of rows, across each row's entries
+            idle = np.broadcast_to(idle.reshape((-1,) + (1,) * (before.ndim - 1)), before.shape)
+            clean = clean & ~idle
         changed = held_otherwise(before, copy[field], clean)
+        if idle is not None:
+            changed &= ~idle
+        probed[field] = k, clean, residue
         if changed.any():
             # the probe that shows it: the one by 4 where that is no power of 4, else the one by 1/4
             i = tuple(np.argwhere(changed)[0]) if changed.ndim else ()

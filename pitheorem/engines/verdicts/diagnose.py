@@ -214,18 +214,23 @@ def find_causes(
             alone = counters(*({"inactive_equalities": (i,)} for i in range(len(equalities))))
             shows = [i for i, counter in enumerate(alone) if counter.shows]
             named = ", ".join(equalities[i] for i in shows)
-            found.append(
-                (
-                    Cause(
-                        "solver",
-                        named or "the equality constraints together",
-                        "an equality constraint the solver does not treat scale-free: with "
-                        f"{'it' if len(shows) == 1 else 'them'} inactive in both runs "
-                        f"{shown(results['equalities'])}",
-                    ),
-                    {"inactive_equalities": tuple(shows) or tuple(range(len(equalities)))},
-                )
+            kinds = original.equality_kinds()
+            welds = [i for i in (shows or range(len(equalities))) if kinds[i] == "weld"]
+            weld = (
+                f"; {'it is a weld' if len(shows) == 1 else 'welds among them'}: MuJoCo's approximate weight of a "
+                "weld's rotational rows leaves out torquescale squared (a length squared), so their softness is "
+                "not the original's times its factor (mujoco_weld_rotational_weight)"
+                if welds
+                else ""
             )
+            cause = Cause(
+                "solver",
+                named or "the equality constraints together",
+                "an equality constraint the solver does not treat scale-free: with "
+                f"{'it' if len(shows) == 1 else 'them'} inactive in both runs "
+                f"{shown(results['equalities'])}{weld}",
+            )
+            found.append((cause, {"inactive_equalities": tuple(shows) or tuple(range(len(equalities)))}))
         found.extend(
             _contact_causes(
                 original, copy, results, shown, counters, n_steps, verdict_parts, u_original, u_scaled, t, model.engine
@@ -269,7 +274,11 @@ def _restoring(found, counters, report, verdict_parts, bits, tried, static: bool
             ]
         )
         return [_marked(cause, True, also)]
-    if not counters(_merged(o for _c, o in found))[0].restores:
+    together = counters(_merged(o for _c, o in found))[0]
+    if not together.restores:
+        # where the runs still part with every cause found removed: that parting, not the first, is unexplained
+        later = together.parts if together.parts is not None and together.parts > verdict_parts else None
+        unknown = [] if static else [_unknown(report, verdict_parts, bits, tried, later)]
         return [*(_marked(c, False) for c, _o in found), *unknown]
     kept = list(found)
     for candidate in reversed(broad):  # the broadest first
@@ -319,14 +328,26 @@ def _marked(cause: Cause, restores: bool, also: str = "") -> Cause:
     )
 
 
-def _unknown(report, verdict_parts: int, bits: bool, tried) -> Cause:
-    """The runs part and no counter-run removes it: where, in which coordinate, and what was tried."""
+def _unknown(report, verdict_parts: int, bits: bool, tried, later: int | None = None) -> Cause:
+    """The runs part and no counter-run removes it: where, in which coordinate, and what was tried.
+
+    `later`: the step at which they still part with every cause found removed in both runs, when that is
+    later than the verdict's: the first parting is explained, that one is not."""
     t, diff = report.original.t, np.abs(report.mapped.y - report.original.y)
     row = diff[verdict_parts]
     j = int(np.nanargmax(np.where(np.isnan(row), np.inf, row))) if row.size else 0
     name = report.original.states[j]
     how = "differ in a bit" if bits else "leave the yardstick"
     counter = f"; the counter-runs tried ({', '.join(tried)}) do not restore it" if tried else ""
+    if later is not None:
+        return Cause(
+            "unknown",
+            f"step {later}",
+            f"the runs first {how} at step {verdict_parts} (t = {float(t[verdict_parts]):.6g}), in {name}, "
+            f"by the causes above; with all of them removed in both runs they still part at step {later} "
+            f"(t = {float(t[later]):.6g}){counter}",
+            False,
+        )
     return Cause(
         "unknown",
         name,

@@ -67,11 +67,14 @@ class ScaleFree:
 def scale_free_options(runner) -> list[dict]:
     """The variant options that make a runner's settings of no pure dimension scale-free, each way to try.
 
-    Each setting alone (the stopping rules at 0; the scale-free solver),
-    then all of them: a solver stopped by a fixed tolerance, or a solver
-    whose steps are not scale-free, may each be the only cause, and with
-    both changed the scale-free solver may stop one iteration apart.
-    Empty where the runner has no such setting.
+    The solver's settings, each alone (the stopping rules at 0; the
+    scale-free solver), then together: a solver stopped by a fixed
+    tolerance, or a solver whose steps are not scale-free, may each be
+    the only cause, and with both changed the scale-free solver may stop
+    one iteration apart.  Then, where some pair can collide through it,
+    the engine's own convex collision off (MuJoCo's GJK and EPA hold
+    lengths against fixed constants), alone and with the solver's
+    settings changed too.  Empty where the runner has no such setting.
 
     Examples
     --------
@@ -90,7 +93,13 @@ def scale_free_options(runner) -> list[dict]:
     each = [{"tolerance": 0.0}] if runner.solver_settings() else []
     if isinstance(runner, SolverDiagnosis) and runner.solver_name() != runner.scale_free_solver:
         each.append({"solver": runner.scale_free_solver})
-    return each if len(each) < 2 else [*each, {k: v for options in each for k, v in options.items()}]
+    ways = each if len(each) < 2 else [*each, {k: v for options in each for k, v in options.items()}]
+    if isinstance(runner, SolverDiagnosis) and runner.uses_native_ccd():
+        # tried after the others, and only where they fail (scale_free_run): another collision path is slow
+        # on large meshes, and a run it restores the diagnosis also needs (its native-CCD counter-run)
+        ccd = {"native_ccd": False}
+        ways += [ccd] if not each else [ccd, {**ways[-1], **ccd}]
+    return ways
 
 
 def scale_free_run(
@@ -98,9 +107,10 @@ def scale_free_run(
 ) -> ScaleFree | None:
     """Run both again under each of :func:`scale_free_options`; None where the runners have no such setting.
 
-    Every way is run in one batch; the first under which the runs are bit
-    for bit is reported, else the last (every setting changed) with where
-    the runs still part.
+    The solver's ways run in one batch, and the collision path's in a
+    second only where none of those is bit for bit; the first under which
+    the runs are bit for bit is reported, else the last run (every setting
+    changed) with where the runs still part.
 
     Parameters
     ----------
@@ -126,21 +136,28 @@ def scale_free_run(
     ways = scale_free_options(original)
     if not ways:
         return None
-    jobs = []
-    for options in ways:
-        jobs += [
-            (original.variant(**options), u_original, False, None),
-            (copy.variant(**options), u_scaled, False, None),
-        ]
-    runs = original.run_many(n_steps, jobs)
-    if ran is not None:
-        for i, options in enumerate(ways):
-            ran[tuple(sorted(options.items()))] = (runs[2 * i], runs[2 * i + 1])
-    pairs = [(runs[2 * i], runs[2 * i + 1] / factors) for i in range(len(ways))]
+    first = [w for w in ways if "native_ccd" not in w] or ways  # the solver's settings; then the collision path
+    pairs = []
+    for batch in (first, ways[len(first) :]):
+        if not batch or any(np.array_equal(run, back) for run, back in pairs):
+            continue
+        jobs = []
+        for options in batch:
+            jobs += [
+                (original.variant(**options), u_original, False, None),
+                (copy.variant(**options), u_scaled, False, None),
+            ]
+        runs = original.run_many(n_steps, jobs)
+        for i, options in enumerate(batch):
+            if ran is not None:
+                ran[tuple(sorted(options.items()))] = (runs[2 * i], runs[2 * i + 1])
+            pairs.append((runs[2 * i], runs[2 * i + 1] / factors))
+    ways = ways[: len(pairs)]
     chosen = next((i for i, (run, back) in enumerate(pairs) if np.array_equal(run, back)), len(ways) - 1)
     options, (run, back) = ways[chosen], pairs[chosen]
     exact = bool(np.array_equal(run, back))
     where = None if exact else first_divergence(Trajectory(t, run, tuple(names)), Trajectory(t, back, tuple(names)))
     zeroed = tuple((f"option {name}", "0") for name in original.solver_settings()) if "tolerance" in options else ()
     solver = (("option solver", options["solver"]),) if "solver" in options else ()
-    return ScaleFree(zeroed + solver, exact, where)
+    ccd = (("flag nativeccd", "disable"),) if "native_ccd" in options else ()
+    return ScaleFree(zeroed + solver + ccd, exact, where)

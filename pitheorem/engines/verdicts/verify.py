@@ -394,8 +394,18 @@ def judge(plan: Plan, rows: list | None, progress=None) -> SimilarityReport:
         )
         control_runs = wrong_runs(p.first_rungs)
 
+    # A run the engine gave up on (MuJoCo resets an unstable run; NaN elsewhere) is compared only before it:
+    # a copy that breaks down at the same step would match its rows bit for bit, and that proves nothing.
+    broken = _first_broken_row(run)
+    cut = len(p.t) if broken is None else max(broken, 1)
+    reset = None if broken is None else (float(p.t[broken]), "original")
+    if reset is None and (copy_broken := _first_broken_row(scaled_run)) is not None:
+        reset = (float(p.t[copy_broken]), "copy")
+    run, scaled_run = run[:cut], scaled_run[:cut]
+    twin_runs, control_runs = [r[:cut] for r in twin_runs], [r[:cut] for r in control_runs]
+
     def trajectory(values):
-        return Trajectory(p.t, values, p.names)
+        return Trajectory(p.t[:cut], values, p.names)
 
     report = similarity_report(
         trajectory(run),
@@ -420,16 +430,20 @@ def judge(plan: Plan, rows: list | None, progress=None) -> SimilarityReport:
     unseen = {c.group for c in controls if not c.caught}
     later = [rung for rung in p.later_rungs if rung[0] in unseen]
     if later:
-        controls += judged(later, wrong_runs(later))
+        controls += judged(later, [r[:cut] for r in wrong_runs(later)])
     controls = tuple(sorted(controls, key=lambda c: (c.group != "g", c.error)))
     seen = [c.error for c in controls if c.caught]
     report = dataclasses.replace(
         report,
-        horizon=horizon(p.t, run, twin_runs) if p.strength else None,
+        horizon=horizon(p.t[:cut], run, twin_runs) if p.strength else None,
         detection_limit=min(seen) if seen else None,
         controls=controls,
-        inconclusive=bool(unseen_groups(controls)),
+        inconclusive=bool(unseen_groups(controls)) or broken is not None,
+        engine_reset=reset,
     )
+    if broken is not None:  # no cause or proof is found in a run that is not one
+        (progress or (lambda done, total: None))(STAGES, STAGES)
+        return report
     ran: dict = {}  # the scale-free runs, by their options: counter-runs the diagnosis need not run again
     if exact_expected and not report.exact and p.controller is None and p.diagnose:
         # the proof of the scaling beside the verdict on the model as written: settings of no pure dimension
@@ -537,6 +551,12 @@ def _check_baseline(base, n_steps: int, inputs, ensemble: int, seed: int, contro
             f"({base.n_steps} steps, {len(base.twins)} twins from seed {base.seed}; this one: {n_steps} steps, "
             f"{ensemble} twins from seed {seed})"
         )
+
+
+def _first_broken_row(rows: np.ndarray) -> int | None:
+    """The first row of a run with a number that is not finite (the engine gave up on the run there), or None."""
+    bad = ~np.isfinite(rows).all(axis=1)
+    return int(np.argmax(bad)) if bad.any() else None
 
 
 def _rungs(ladder: list) -> tuple[list, list]:
