@@ -38,8 +38,13 @@ Then, where a headless Chromium is installed (``chromium``, ``chromium-browser``
 
 * an aligned code or output block that wraps (it shows more lines than its text has): the
   columns of a table printed as text would turn to mush; it must scroll sideways instead;
-* a display equation or a table wider than its column that neither fits nor scrolls
-  inside it (its end is clipped or runs past the column).
+* a display equation wider than its column, even one that scrolls inside it: an equation
+  must be read whole. ``_static/fit-math.js`` sets a wide one smaller until it fits (down
+  to 62 % of its size); one that needs more is broken into lines in its source
+  (``aligned`` or ``gathered``), or, for a cell's output, printed in parts;
+* a table wider than its column that neither fits nor scrolls inside it (its end is
+  clipped or runs past the column);
+* a page wider than the screen (anything that makes the whole page scroll sideways).
 
 Exit status: 0 when every check passes, 1 when one fails (each finding printed as
 ``page: what``), 2 when the build folder is missing or holds no HTML. Only the standard
@@ -103,6 +108,13 @@ function probe(d, w) {
   }
   for (const eq of d.querySelectorAll('mjx-container[display="true"]')) {
     if (clipped(eq)) found.push(`a display equation is clipped: ${eq.textContent.slice(0, 40)}`);
+    else if (eq.scrollWidth > eq.clientWidth + 1) {
+      found.push(`a display equation is wider than its column (${eq.scrollWidth} px in ${eq.clientWidth}): `
+        + eq.textContent.slice(0, 40));
+    }
+  }
+  if (d.documentElement.scrollWidth > w.innerWidth + 1) {
+    found.push(`the page is wider than the screen (${d.documentElement.scrollWidth} px)`);
   }
   for (const table of d.querySelectorAll('article table')) {
     if (clipped(table)) found.push(`a table is clipped (${table.scrollWidth} px wide)`);

@@ -230,6 +230,8 @@ html_theme = "sphinx_book_theme"
 html_title = "pitheorem"
 html_static_path = ["_static", str(_MATHJAX_STATIC)]
 html_css_files = ["custom.css"]
+# a display equation wider than its column is set smaller until it fits (a phone's column)
+html_js_files = [("fit-math.js", {"defer": "defer"})]
 html_last_updated_fmt = None
 html_show_sourcelink = False
 html_copy_source = True  # the download button offers the page's .md source

@@ -43,6 +43,12 @@ Without ``--fixed``, a search holds every variable of dimension T fixed (so
 the scaled model runs in the same time); ``--fixed`` with no names, or
 ``--no-default-fixed``, lets time change too.
 
+A command that may take more than a moment (``apply`` or ``convert`` on a
+large file, ``check``, ``verify``, ``sweep``) shows a progress bar of its
+stages on stderr while it works, and erases it when done
+(:mod:`pitheorem.progress`); only when stderr is a terminal, never with
+``--format json``.
+
 Exit codes
 ----------
 0
@@ -78,6 +84,7 @@ from . import __version__
 from .errors import CommandLineError, InvalidRequestError, LimitError, PiTheoremError
 from .formatting import FORMATS, render
 from .modelfile import EXAMPLES, ModelFile, example_path, examples, load_model_file, model_kind, write_model_file
+from .progress import StageBar, say, wanted
 
 # The answers, the search and the exact readers load when a command needs them (start-up time)
 
@@ -257,7 +264,17 @@ def _run_search(model: ModelFile, args):
 
 
 def _print(answer, args) -> None:
-    print(_as_named(render(answer, args.format)))
+    print(_text(answer, args))
+
+
+def _text(answer, args) -> str:
+    """The answer as the command prints it (rendered while a progress bar still shows: a large table takes time)."""
+    return _as_named(render(answer, args.format))
+
+
+def _stages(args, stages) -> StageBar:
+    """The command's bar of named stages on stderr: shown only on a terminal, never in JSON mode."""
+    return StageBar(args.command, stages, show=wanted(args.format))
 
 
 def _zero_valued(model: ModelFile) -> tuple[str, ...]:
@@ -306,46 +323,58 @@ def _cmd_groups(args) -> int:
     from .answers import GroupsAnswer
 
     engine = args.repeating is None and _engine_path(args.file) is not None
-    if engine:  # the robot's numbers, never a solver's setting
-        model, engine_model = _load_with_engine(args.file, args.scene)
-        repeating = engine_model.default_repeating()
-    else:
-        model = _load(args.file, args.scene)
-        repeating = args.repeating if args.repeating is not None else _default_repeating(model)
-    groups = model.system.pi_groups(repeating=repeating)
-    values = tuple(_group_value(g, model.values) for g in groups)
-    passed_over = () if args.repeating is not None else _zero_valued(model)
-    _print(GroupsAnswer(model.name, model.system, groups, values, passed_over, engine), args)
+    with _stages(args, ("loading", "computing")) as bar:
+        bar.stage("loading")
+        if engine:  # the robot's numbers, never a solver's setting
+            model, engine_model = _load_with_engine(args.file, args.scene)
+            repeating = engine_model.default_repeating()
+        else:
+            model = _load(args.file, args.scene)
+            repeating = args.repeating if args.repeating is not None else _default_repeating(model)
+        bar.stage("computing")
+        groups = model.system.pi_groups(repeating=repeating)
+        values = tuple(_group_value(g, model.values) for g in groups)
+        passed_over = () if args.repeating is not None else _zero_valued(model)
+        text = _text(GroupsAnswer(model.name, model.system, groups, values, passed_over, engine), args)
+    print(text)
     return EXIT_OK
 
 
 def _cmd_bases(args) -> int:
     from .answers import BasesAnswer
 
-    model = _load(args.file, args.scene)
-    system = model.system
     if args.count and args.all:
         raise _CommandError("--count prints only the number of sets and --all lists every one; give one of them")
-    if args.all:
-        bases = system.bases(exclude=args.exclude, require=args.require)
-        count = len(bases)
-    else:  # the count, and the first sets only: a large model has millions
-        count = system.count_bases(exclude=args.exclude, require=args.require)
-        bases = (
-            None
-            if args.count
-            else tuple(islice(system.iter_bases(exclude=args.exclude, require=args.require), BASES_SHOWN))
-        )
-    _print(BasesAnswer(model.name, system.rank, tuple(args.exclude), tuple(args.require), count, bases), args)
+    with _stages(args, ("loading", "counting")) as bar:
+        bar.stage("loading")
+        model = _load(args.file, args.scene)
+        system = model.system
+        bar.stage("counting")
+        if args.all:
+            bases = system.bases(exclude=args.exclude, require=args.require)
+            count = len(bases)
+        else:  # the count, and the first sets only: a large model has millions
+            count = system.count_bases(exclude=args.exclude, require=args.require)
+            bases = (
+                None
+                if args.count
+                else tuple(islice(system.iter_bases(exclude=args.exclude, require=args.require), BASES_SHOWN))
+            )
+        text = _text(BasesAnswer(model.name, system.rank, tuple(args.exclude), tuple(args.require), count, bases), args)
+    print(text)
     return EXIT_OK
 
 
 def _cmd_search(args) -> int:
     from .answers import SearchAnswer
 
-    model = _load(args.file, args.scene)
-    result = _run_search(model, args)
-    _print(SearchAnswer(model.name, result), args)
+    with _stages(args, ("loading", "searching")) as bar:
+        bar.stage("loading")
+        model = _load(args.file, args.scene)
+        bar.stage("searching")
+        result = _run_search(model, args)
+        text = _text(SearchAnswer(model.name, result), args)
+    print(text)
     return EXIT_OK if result.feasible else EXIT_INFEASIBLE
 
 
@@ -379,27 +408,37 @@ def _scaled_scene(args, model, engine_model, result, s, engine=None):
     chosen_sc = _chosen_scaling(chosen_result, args.solution)
     if automatic_scene(chosen[1], chosen_sc, s):  # the user's own options still refuse it: one short line
         raise _CommandError(f"{Path(args.file).name}: {scene_refusal(engine_model, sc, s)}")
-    print(
-        f"pitheorem: note: scene {scene_text(added)} in both runs (the default refuses this scaling; --scene sets it)",
-        file=sys.stderr,
-    )
+    say(f"pitheorem: note: scene {scene_text(added)} in both runs (the default refuses this scaling; --scene sets it)")
     return (*chosen, chosen_result, chosen_sc)
 
 
 def _say_scaling(result, k: int) -> None:
     """One line on stderr: which of several minimal scalings apply or verify uses, and how to pick another."""
     if result.n_scalings > 1:
-        print(
+        say(
             f"pitheorem: note: minimal scaling #{k} of {result.n_scalings}; --solution K picks another "
-            "(pitheorem search lists them)",
-            file=sys.stderr,
+            "(pitheorem search lists them)"
         )
 
 
 def _cmd_apply(args) -> int:
+    with _stages(args, ("loading", "searching", "scaling", "writing")) as bar:
+        answer = _apply(args, bar)
+        if answer is None:  # no scaling meets the request: said on stderr, nothing written
+            return EXIT_INFEASIBLE
+        text = _text(answer[0], args)
+    print(text)
+    if answer[1] is not None:  # an engine file: which of the minimal scalings was used
+        _say_scaling(answer[1], args.solution)
+    return EXIT_OK
+
+
+def _apply(args, bar: StageBar):
+    """``apply``'s answer and, for an engine file, its search result; None when no scaling meets the request."""
     from .answers import ApplyAnswer
     from .exact import read_positive
 
+    bar.stage("loading")
     model, engine_model = _load_with_engine(args.file, args.scene)
     for flag, given in (("--keep-inputs", args.keep_inputs), ("--copy-assets", args.copy_assets)):
         if given and engine_model is None:
@@ -410,10 +449,11 @@ def _cmd_apply(args) -> int:
             f"{args.file}: no variable has a value, so there is nothing to scale; "
             'give values in the model file, e.g. m = { dimension = "M", value = 1.5 }'
         )
+    bar.stage("searching")
     result = _run_search(model, args)
     if not result.feasible:
-        print(f"pitheorem: {result.explanation()} Nothing written.", file=sys.stderr)
-        return EXIT_INFEASIBLE
+        say(f"pitheorem: {result.explanation()} Nothing written.")
+        return None
     sc = _chosen_scaling(result, args.solution)
     if engine_model is not None:  # write the scaled file the engine loads
         from .engines.cli import apply_engine, parse_scene
@@ -427,13 +467,14 @@ def _cmd_apply(args) -> int:
             scene=parse_scene(args.scene),
             keep_inputs=args.keep_inputs,
             copy_assets=args.copy_assets,
+            stage=bar.stage,
         )
-        _print(answer, args)
-        _say_scaling(result, args.solution)
-        return EXIT_OK
+        return answer, result
+    bar.stage("scaling")
     scaled_model = model.with_values(_scaled_values(sc, model.values, s), name=f"{model.name}, scaled with s = {s}")
     output = None
     if args.output:
+        bar.stage("writing")
         out = Path(args.output)
         if model.path and out.exists() and out.resolve() == Path(model.path).resolve():
             raise _CommandError(f"--output {args.output!r} is the input file; choose another name")
@@ -442,8 +483,7 @@ def _cmd_apply(args) -> int:
         except OSError as err:
             raise _CommandError(f"cannot write {args.output!r}: {err.strerror or err}") from None
         output = str(out)
-    _print(ApplyAnswer(model.name, s, args.solution, result, sc, model.values, scaled_model.values, output), args)
-    return EXIT_OK
+    return ApplyAnswer(model.name, s, args.solution, result, sc, model.values, scaled_model.values, output), None
 
 
 def _add_engine_file_flags(p, copy: str) -> None:
@@ -465,21 +505,23 @@ def _add_engine_file_flags(p, copy: str) -> None:
 def _cmd_verify(args) -> int:
     if _engine_path(args.file) is None:
         raise _CommandError(f"{args.file}: verify runs MJCF (.xml) or URDF (.urdf) model files in their engine")
-    model, engine_model = _load_with_engine(args.file, args.scene, args.engine)
+    from .engines.cli import VERIFY_STAGES, verify_engine
     from .exact import read_positive
 
-    s = read_positive(args.s, "--s")
-    duration = read_positive(args.duration, "--duration")
-    result = _run_search(model, args)
-    if not result.feasible:
-        print(f"pitheorem: {result.explanation()} Nothing verified.", file=sys.stderr)
-        return EXIT_ERROR
-    from .engines.cli import verify_engine
-
-    model, engine_model, result, sc = _scaled_scene(args, model, engine_model, result, s, args.engine)
-    show = args.format != "json" and sys.stderr.isatty()
-    answer = verify_engine(engine_model, sc, s, float(duration), args.input, progress=show)
-    _print(answer, args)
+    with _stages(args, ("loading", "searching", *VERIFY_STAGES)) as bar:
+        bar.stage("loading")
+        model, engine_model = _load_with_engine(args.file, args.scene, args.engine)
+        s = read_positive(args.s, "--s")
+        duration = read_positive(args.duration, "--duration")
+        bar.stage("searching")
+        result = _run_search(model, args)
+        if not result.feasible:
+            say(f"pitheorem: {result.explanation()} Nothing verified.")
+            return EXIT_ERROR
+        model, engine_model, result, sc = _scaled_scene(args, model, engine_model, result, s, args.engine)
+        answer = verify_engine(engine_model, sc, s, float(duration), args.input, stage=bar.stage)
+        text = _text(answer, args)
+    print(text)
     _say_scaling(result, args.solution)
     return EXIT_OK if answer.report.similar else EXIT_INFEASIBLE
 
@@ -496,16 +538,19 @@ def _cmd_sweep(args) -> int:
     s = parse_s_values(args.s)
     duration = read_positive(args.duration, "--duration")
     models, scalings = [], []
-    for name in args.file:
-        model, engine_model = _load_with_engine(name, args.scene, args.engine)
-        result = _run_search(model, args)
-        if not result.feasible:
-            print(f"pitheorem: {name}: {result.explanation()} Nothing swept.", file=sys.stderr)
-            return EXIT_ERROR
-        models.append(engine_model)
-        scalings.append(_chosen_scaling(result, args.solution))
+    with _stages(args, ("loading", "searching")) as bar:  # then a bar of the runs
+        for name in args.file:
+            bar.stage("loading")
+            model, engine_model = _load_with_engine(name, args.scene, args.engine)
+            bar.stage("searching")
+            result = _run_search(model, args)
+            if not result.feasible:
+                say(f"pitheorem: {name}: {result.explanation()} Nothing swept.")
+                return EXIT_ERROR
+            models.append(engine_model)
+            scalings.append(_chosen_scaling(result, args.solution))
     client = _dask_client(args.dask) if args.dask else None
-    show = args.format != "json" and sys.stderr.isatty()
+    show = wanted(args.format)
     answer = sweep_engine(
         models,
         scalings,
@@ -544,29 +589,34 @@ def _engine_file(args, command: str) -> str:
 
 def _cmd_check(args) -> int:
     path = _engine_file(args, "check")
-    from .engines.cli import check_engine_model, parse_units
+    from .engines.cli import CHECK_STAGES, check_engine_model, parse_units
 
-    text, clean = check_engine_model(
-        path, from_units=parse_units(args.from_units, "--from"), engine=args.engine, fmt=args.format
-    )
+    from_units = parse_units(args.from_units, "--from")
+    with _stages(args, CHECK_STAGES) as bar:
+        text, clean = check_engine_model(
+            path, from_units=from_units, engine=args.engine, fmt=args.format, stage=bar.stage
+        )
     print(_as_named(text))
     return EXIT_OK if clean else EXIT_INFEASIBLE
 
 
 def _cmd_convert(args) -> int:
     path = _engine_file(args, "convert")
-    from .engines.cli import convert_engine, parse_units
+    from .engines.cli import CONVERT_STAGES, convert_engine, parse_units
 
-    text = convert_engine(
-        path,
-        from_units=parse_units(args.from_units, "--from"),
-        units=parse_units(args.units, "--units"),
-        fit=args.fit,
-        output=args.output,
-        fmt=args.format,
-        keep_inputs=args.keep_inputs,
-        copy_assets=args.copy_assets,
-    )
+    from_units, units = parse_units(args.from_units, "--from"), parse_units(args.units, "--units")
+    with _stages(args, CONVERT_STAGES) as bar:
+        text = convert_engine(
+            path,
+            from_units=from_units,
+            units=units,
+            fit=args.fit,
+            output=args.output,
+            fmt=args.format,
+            keep_inputs=args.keep_inputs,
+            copy_assets=args.copy_assets,
+            stage=bar.stage,
+        )
     print(_as_named(text))
     return EXIT_INFEASIBLE if "no units keep every number clear" in text or '"feasible": false' in text else EXIT_OK
 
@@ -583,7 +633,12 @@ def _cmd_params(args) -> int:
     # the file by its name (a shipped one as example:NAME): the first line stays short whatever its folder
     named = _as_named(args.file)
     name = named if named.startswith("example:") else Path(args.file).name
-    _print(params_answer(engine_path, **parse_scene(args.scene), name=name), args)
+    with _stages(args, ("loading", "printing")) as bar:
+        bar.stage("loading")
+        answer = params_answer(engine_path, **parse_scene(args.scene), name=name)
+        bar.stage("printing")
+        text = _text(answer, args)
+    print(text)
     return EXIT_OK
 
 
@@ -600,7 +655,10 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
     if text in _SHOWN:
         return
     _SHOWN.add(text)
-    print(text, file=sys.stderr if file is None else file)
+    if file is None or file is sys.stderr:
+        say(text)  # above a progress bar that is showing
+    else:
+        print(text, file=file)
 
 
 class _Help(argparse.HelpFormatter):

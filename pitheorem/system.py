@@ -129,6 +129,13 @@ class System:
         ``M L T Theta I``.  ``N`` (amount of substance), ``J`` (luminous
         intensity) and ``A`` (angle) must be listed here to be used,
         because each is also an SI unit symbol (newton, joule, ampere).
+    repeating : iterable of str, optional
+        The system's own default repeaters: ``rank`` variables with
+        independent dimensions, which :meth:`pi_groups` uses when it is
+        given none (:meth:`default_repeating`).  Default: the first valid set
+        without time variables.  The system of an engine model carries the
+        robot's numbers here (:meth:`pitheorem.engines.EngineModel.system`),
+        never a solver's setting.
 
     Examples
     --------
@@ -149,9 +156,9 @@ class System:
     Pi_t = k_theta*t**2/(l**2*m)
     """
 
-    __slots__ = ("_allowed", "_base_dimensions", "_columns", "_dimensions", "_reduced", "_variables")
+    __slots__ = ("_allowed", "_base_dimensions", "_columns", "_dimensions", "_reduced", "_repeating", "_variables")
 
-    def __init__(self, variables, *, base_dimensions: Iterable[str] | None = None):
+    def __init__(self, variables, *, base_dimensions: Iterable[str] | None = None, repeating=None):
         allowed = DEFAULT_BASE_DIMENSIONS if base_dimensions is None else base_dimension_names(base_dimensions)
         if len(set(allowed)) != len(allowed):
             dup = next(b for b in allowed if allowed.count(b) > 1)
@@ -186,9 +193,56 @@ class System:
         set_attribute(self, "_base_dimensions", tuple(order))
         set_attribute(self, "_columns", tuple(tuple(e.get(b, _ZERO) for b in order) for e in exponents))
         set_attribute(self, "_reduced", None)  # independent rows of D, found on first use
+        set_attribute(self, "_repeating", None if repeating is None else self._checked_repeating(repeating))
 
     def __reduce__(self):
-        return (_rebuild_system, (tuple(zip(self._variables, self._dimensions, strict=True)), self._allowed))
+        pairs = tuple(zip(self._variables, self._dimensions, strict=True))
+        return (_rebuild_system, (pairs, self._allowed, self._repeating))
+
+    def _checked_repeating(self, repeating) -> tuple[str, ...]:
+        """`repeating` as a valid repeating set of this system, or the error :meth:`pi_groups` raises."""
+        rep = self.check_names(repeating, "repeating")
+        if len(rep) != self.rank:
+            raise RepeatingCountError(rep, self.rank)
+        sub = self._submatrix([self.index(n) for n in rep])
+        if rank(sub) < len(rep):
+            dependency = nullspace(sub, len(rep))[0]
+            product = PiGroup.from_exponents(dict(zip(rep, dependency, strict=True)))
+            raise DependentRepeatingSetError(rep, str(sympy.sstr(product.expr)))
+        return rep
+
+    def with_repeating(self, repeating: Iterable[str] | None) -> System:
+        """The same system with other default repeaters (None: the usual default).
+
+        Parameters
+        ----------
+        repeating : iterable of str or None
+            ``rank`` variables with independent dimensions.
+
+        Returns
+        -------
+        System
+            Equal variables and dimensions; :meth:`pi_groups` without
+            repeaters uses `repeating`.
+
+        Raises
+        ------
+        RepeatingCountError, DependentRepeatingSetError, UnknownVariableError
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> rod = pt.System({"m": "M", "l": "L", "g": "L T^-2", "k_theta": "M L^2 T^-2"})
+        >>> rod.default_repeating()
+        ('m', 'l', 'g')
+        >>> rod.with_repeating(("m", "l", "k_theta")).pi_groups().repeating
+        ('m', 'l', 'k_theta')
+        """
+        copy = object.__new__(System)
+        for name in System.__slots__:
+            object.__setattr__(copy, name, getattr(self, name))
+        object.__setattr__(copy, "_repeating", None if repeating is None else self._checked_repeating(repeating))
+        return copy
 
     def _independent_rows(self) -> list[list[Fraction]]:
         # r independent rows of D itself (not its RREF): same column
@@ -576,9 +630,10 @@ class System:
         Parameters
         ----------
         repeating : iterable of str, optional
-            ``rank`` variables with independent dimensions.  Default: the
-            first basis of :meth:`bases`, preferring bases without
-            variables of dimension time alone.
+            ``rank`` variables with independent dimensions.  Default:
+            :meth:`default_repeating` (the system's own repeaters, given
+            when it was made, else the first basis of :meth:`bases`
+            without variables of dimension time alone).
 
         Returns
         -------
@@ -652,11 +707,15 @@ class System:
     def _default_basis(self):
         """The default repeaters' columns and the elimination they come from.
 
-        Bases are in lexicographic order of positions, so the first one is
-        the greedy choice: the pivot columns of one elimination with the
-        non-time variables first.  If they do not span, every basis needs
-        time, and the first basis is the pivots in the plain order.
+        The system's own repeaters when it has them.  Else: bases are in
+        lexicographic order of positions, so the first one is the greedy
+        choice: the pivot columns of one elimination with the non-time
+        variables first.  If they do not span, every basis needs time, and
+        the first basis is the pivots in the plain order.
         """
+        if self._repeating is not None:
+            cols = [self.index(n) for n in self._repeating]
+            return cols, self._eliminate(cols)
         time = self.time_variables
         avoid = [j for j, n in enumerate(self._variables) if n not in time]
         reduced, order = self._eliminate(avoid)
@@ -671,7 +730,9 @@ class System:
     def default_repeating(self) -> tuple[str, ...]:
         """The repeaters :meth:`pi_groups` uses when none are given.
 
-        The first basis (in :meth:`bases` order) that avoids variables
+        The system's own, when it was made with ``repeating`` (an engine
+        model's system: the robot's numbers, never a solver's setting).
+        Else the first basis (in :meth:`bases` order) that avoids variables
         whose dimension is time alone, since time is hard to rescale in a
         running simulation; the first basis if every basis needs time.
 
@@ -680,8 +741,47 @@ class System:
         >>> import pitheorem as pt
         >>> pt.System({"t": "T", "l": "L", "g": "L/T^2"}).default_repeating()
         ('l', 'g')
+        >>> pt.System({"t": "T", "l": "L", "g": "L/T^2"}, repeating=("t", "g")).default_repeating()
+        ('t', 'g')
         """
+        if self._repeating is not None:
+            return self._repeating
         return tuple(self._variables[j] for j in self._default_basis()[0])
+
+    def first_basis(self, *, exclude: Iterable[str] = ()) -> tuple[str, ...] | None:
+        """The first valid repeating set that avoids `exclude`, or None.
+
+        The first in :meth:`bases` order: the same set as ``next(iter_bases(exclude=exclude), None)``, found
+        by one elimination however many variables the system has.
+
+        Parameters
+        ----------
+        exclude : iterable of str
+            Variables never used as repeaters.
+
+        Returns
+        -------
+        tuple of str or None
+            None when every valid set uses one of `exclude`.
+
+        Examples
+        --------
+        >>> import pitheorem as pt
+        >>> s = pt.System({"l": "L", "t": "T", "v": "L/T", "x": "L"})
+        >>> s.first_basis(exclude=("l", "v")), s.first_basis(exclude=("t", "v"))
+        (('t', 'x'), None)
+        """
+        if isinstance(exclude, str):
+            exclude = (exclude,)
+        avoid = set(exclude)
+        unknown = avoid - set(self._variables)
+        if unknown:
+            self.index(sorted(unknown)[0], "exclude")  # raises, naming it
+        cols = [j for j, n in enumerate(self._variables) if n not in avoid]
+        (_rows, pivots), order = self._eliminate(cols)
+        if len(pivots) < self.rank or (pivots and pivots[-1] >= len(cols)):
+            return None
+        return tuple(self._variables[order[p]] for p in pivots)
 
     # -- bases ------------------------------------------------------------
     def _basis_arguments(self, exclude, require):
@@ -787,10 +887,16 @@ class System:
     # -- display ----------------------------------------------------------
     def __repr__(self) -> str:
         body = ", ".join(f"{n!r}: {str(d)!r}" for n, d in zip(self._variables, self._dimensions, strict=True))
-        return f"System({{{body}}})"
+        own = "" if self._repeating is None else f", repeating={self._repeating!r}"
+        return f"System({{{body}}}{own})"
 
     def __eq__(self, other) -> bool:
-        return isinstance(other, System) and self.dimensions == other.dimensions and self._variables == other._variables
+        return (
+            isinstance(other, System)
+            and self.dimensions == other.dimensions
+            and self._variables == other._variables
+            and self._repeating == other._repeating
+        )
 
     def __hash__(self) -> int:
         return hash((self._variables, self._dimensions))
@@ -799,9 +905,9 @@ class System:
         return len(self._variables)
 
 
-def _rebuild_system(pairs, allowed) -> System:
-    """Unpickle a System: build it again from its variables and dimensions."""
-    return System(pairs, base_dimensions=allowed)
+def _rebuild_system(pairs, allowed, repeating=None) -> System:
+    """Unpickle a System: build it again from its variables, dimensions and own repeaters."""
+    return System(pairs, base_dimensions=allowed, repeating=repeating)
 
 
 def unit_registry():

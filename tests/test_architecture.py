@@ -40,6 +40,7 @@ LAYERS = {
     "modelfile": 5,
     "answers": 5,
     "cli": 5,
+    "progress": 5,
     "__main__": 5,
     "": 5,  # "" is the package itself
     "engines": 6,

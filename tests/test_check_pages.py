@@ -175,6 +175,8 @@ def test_equation_numbers_must_start_at_one_on_each_page(site):
 # -- the layout at a phone's width, in a headless browser -------------------------------------
 
 SITE_CSS = Path(__file__).resolve().parent.parent / "docs" / "_static" / "custom.css"
+#: the script that sets a display equation wider than its column smaller until it fits
+FIT_MATH = SITE_CSS.with_name("fit-math.js")
 needs_browser = pytest.mark.skipif(check_pages.browser() is None, reason="no headless Chromium on the path")
 
 #: an aligned text table with a line wider than a phone, a display equation and a table wider than one
@@ -185,18 +187,20 @@ WIDE_BLOCK = (
 )
 WIDE_EQUATION = (
     '<div class="math"><mjx-container display="true" style="display: block">'
-    '<span style="display: inline-block; width: 900px">x = 1</span></mjx-container></div>'
+    '<span style="display: inline-block; width: 56em">x = 1</span></mjx-container></div>'
 )
+#: an equation a third wider than a phone's column (MathJax sizes everything in em): it fits when set smaller
+SOMEWHAT_WIDE_EQUATION = WIDE_EQUATION.replace("56em", "28em").replace("x = 1", "y = 2")
 WIDE_TABLE = (
     '<table class="docutils"><tr><td><span style="display: inline-block; width: 900px">a</span></td></tr></table>'
 )
 
 
-def _laid_out(site, style: str) -> list[str]:
+def _laid_out(site, style: str, body: str = WIDE_BLOCK + WIDE_EQUATION + WIDE_TABLE, script: str = "") -> list[str]:
     page = site / "page.html"
     page.write_text(
-        f"<html><head><style>{style}</style></head><body><article>"
-        f"{WIDE_BLOCK}{WIDE_EQUATION}{WIDE_TABLE}</article></body></html>",
+        f"<html><head><style>{style}</style><script>{script}</script></head><body><article>"
+        f"{body}</article></body></html>",
         encoding="utf-8",
     )
     return check_pages.layout_problems([page], site, check_pages.browser())
@@ -210,12 +214,43 @@ def test_layout_check_finds_a_wrapped_block_a_clipped_equation_and_a_clipped_tab
         "pre { white-space: pre-wrap; font-size: 12px; } mjx-container, div.math, table "
         "{ overflow: hidden; } article { width: 360px; }",
     )
-    assert len(found) == 3, found
+    assert len(found) == 4, found
     assert "page.html: at 390 px, an aligned block wraps (2 lines shown on " in found[0]
     assert "a display equation is clipped: x = 1" in found[1]
-    assert "a table is clipped" in found[2]
+    assert "the page is wider than the screen" in found[2]  # the table that runs past the column
+    assert "a table is clipped" in found[3]
 
 
 @needs_browser
-def test_the_site_css_keeps_aligned_columns_and_scrolls_wide_equations_and_tables(site):
-    assert _laid_out(site, SITE_CSS.read_text(encoding="utf-8") + " article { width: 360px; }") == []
+def test_the_site_css_keeps_aligned_columns_and_scrolls_wide_tables(site):
+    assert (
+        _laid_out(site, SITE_CSS.read_text(encoding="utf-8") + " article { width: 360px; }", WIDE_BLOCK + WIDE_TABLE)
+        == []
+    )
+
+
+@needs_browser
+def test_an_equation_wider_than_its_column_fails_even_when_it_scrolls(site):
+    css = SITE_CSS.read_text(encoding="utf-8") + " article { width: 360px; }"
+    found = _laid_out(site, css, SOMEWHAT_WIDE_EQUATION)
+    assert len(found) == 1, found
+    assert "a display equation is wider than its column (" in found[0]
+    assert "in 360): y = 2" in found[0]
+
+
+@needs_browser
+def test_the_site_script_sets_a_wide_equation_smaller_until_it_fits_and_leaves_the_widest_to_be_broken(site):
+    css = SITE_CSS.read_text(encoding="utf-8") + " article { width: 360px; }"
+    script = FIT_MATH.read_text(encoding="utf-8")
+    assert _laid_out(site, css, SOMEWHAT_WIDE_EQUATION, script) == []
+    # twice as wide: more than the script shrinks, so the check asks for the equation to be broken into lines
+    found = _laid_out(site, css, SOMEWHAT_WIDE_EQUATION + WIDE_EQUATION, script)
+    assert len(found) == 1, found
+    assert found[0].endswith(": x = 1")
+    assert "a display equation is wider than its column" in found[0]
+
+
+@needs_browser
+def test_a_page_wider_than_the_screen_fails(site):
+    found = _laid_out(site, "body { margin: 0; } article { width: 700px; }", "<p>a paragraph</p>")
+    assert found == ["page.html: at 390 px, the page is wider than the screen (700 px)"]

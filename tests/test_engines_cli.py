@@ -354,8 +354,13 @@ def test_default_repeaters_are_never_a_solver_setting(capsys, model):
     settings = {p.name for p in engine_model.parameters if p.name not in ("g", "wind", "density", "viscosity")}
     settings = {n for n in settings if engine_model.parameter(n).path.startswith(("option ", "set"))}
     assert main(["groups", model, "--format", "json"]) == 0
-    repeating = json.loads(capsys.readouterr().out)["repeating"]
+    answer = json.loads(capsys.readouterr().out)
+    repeating = answer["repeating"]
     assert repeating == list(engine_model.default_repeating())
+    # Python agrees with the command line: the model's system carries these repeaters as its default
+    groups = engine_model.system().pi_groups()
+    assert list(groups.repeating) == repeating
+    assert [dict(g.exponents) for g in groups] == [g["exponents"] for g in answer["groups"]]
     assert not set(repeating) & (settings | {"ccd_tolerance", "tolerance", "noslip_tolerance", "o_margin"})
     # each repeater is one nonzero number of the file or of gravity: every group gets a value
     assert all(len(engine_model.parameter(n).value) == 1 and engine_model.parameter(n).value[0] != 0 for n in repeating)
@@ -681,8 +686,11 @@ def test_every_commands_first_line_fits_120_characters_on_the_shipped_examples(c
         assert len(first) < 120, (verb, first)
 
 
-def test_verify_shows_its_stages_on_stderr_when_asked(capsys):
+def test_verify_shows_its_stages_on_stderr_when_asked(capsys, monkeypatch):
+    from pitheorem import progress
     from pitheorem.engines.cli import verify_engine
+
+    monkeypatch.setattr(progress, "DELAY", 0.0)  # the bar shows at once (else only after half a second)
 
     model = engines.load(engines.example_path("pendulum.xml"))
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]

@@ -53,6 +53,24 @@ def test_attribute_text_writes_the_exact_decimal_product(digits, places, factor)
     assert attribute_text([value]) == repr(value)
 
 
+@settings(max_examples=300, deadline=None)
+@given(value=st.floats(allow_nan=False, allow_infinity=False), k=st.integers(-40, 40))
+def test_a_power_of_two_factor_gives_the_product_of_the_numbers_as_written(value, k):
+    from pitheorem.engines.parameters import exact_product
+    from pitheorem.exact import read_number
+
+    factor = 2.0**k
+    # oracle: each number read by the package's rule (the simplest fraction that rounds to it), multiplied
+    # exactly and rounded once; the product of huge or tiny numbers beyond the doubles is the float's
+    exact = read_number(value, "v") * read_number(factor, "f")
+    try:
+        expected = float(exact)
+    except OverflowError:
+        expected = value * factor
+    assert exact_product(value, factor) == expected
+    assert math.copysign(1.0, exact_product(value, factor)) == math.copysign(1.0, expected)
+
+
 def test_attribute_text_writes_98_1_for_9_81_times_10():
     from pitheorem.engines.parameters import attribute_text
 

@@ -35,11 +35,13 @@ def test_mujoco_similar_is_mass_by_volume_and_length():
     assert verdict.unit_change == {"M": 3, "L": 1, "T": 0}
     # a global option no frame touches: the convex collision tolerance, a length (issue 10); and the
     # lengths written into MuJoCo's code (mjMINVAL as GJK's stopping distance for polytopes and as the
-    # distance below which a primitive pair's normal falls back), which nothing can set (issue 31)
+    # distance below which a primitive pair's normal falls back), which nothing can set (issue 31); and the
+    # weight of a weld's rotational rows, 1 where torquescale squared (a squared length) belongs
     assert [c.name for c in verdict.broken] == [
         "mujoco_ccd_tolerance",
         "mujoco_ccd_discrete_tolerance",
         "mujoco_minval_normal",
+        "mujoco_weld_rotational_weight",
     ]
     assert not verdict.complete
 

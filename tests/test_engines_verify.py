@@ -389,3 +389,74 @@ def test_progress_is_told_each_stage_in_order():
     seen = []
     engines.verify(model, sc, 4, duration=0.05, progress=lambda done, total: seen.append((done, total)))
     assert seen == [(k, STAGES) for k in range(1, STAGES + 1)]
+
+
+# -- a copy that keeps its inputs: its causes held against the kept copy ----------------------------
+
+#: three unnamed actuators (as many files leave them): a cause names each by its number
+UNNAMED_ACTUATORS = """<mujoco>
+  <option timestep="0.002"/>
+  <worldbody>
+    <body pos="0 0 1"><joint name="hinge" type="hinge" axis="0 1 0" damping="0.05"/>
+      <geom type="capsule" fromto="0 0 0 0 0 -0.5" size="0.03" mass="1"/></body>
+    <body pos="1 0 1"><joint name="slide" type="slide" axis="1 0 0" damping="0.1"/>
+      <geom type="box" size="0.05 0.05 0.05" mass="0.5"/></body>
+    <body pos="2 0 1"><joint name="slide2" type="slide" axis="0 0 1" damping="0.2"/>
+      <geom type="sphere" size="0.05" mass="0.3"/></body>
+  </worldbody>
+  <actuator>
+    <motor joint="hinge" gear="2" ctrlrange="-1 1"/>
+    <position joint="slide" kp="50" kv="2" ctrlrange="-0.1 0.1"/>
+    <general joint="slide2" gainprm="3" ctrlrange="-1 1"/>
+  </actuator>
+</mujoco>
+"""
+
+
+def _three_inputs(t):
+    return [0.5 * math.sin(5 * t), 0.05 * math.cos(3 * t), 0.7 * math.sin(2 * t)]
+
+
+@pytest.mark.parametrize("s", [4, 10])
+@pytest.mark.parametrize("actuator", [1, 2])
+def test_a_kept_inputs_copy_with_one_gain_left_unscaled_is_caught_and_its_cause_names_that_actuator(
+    tmp_path, s, actuator
+):
+    path = tmp_path / "unnamed.xml"
+    path.write_text(UNNAMED_ACTUATORS)
+    model = engines.load(path)
+    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1, "M": 3})
+    kept = model.scaled(sc, s, keep_inputs=True)
+    gain = [p.name for p in model.parameters if p.path.startswith("actuator") and p.name.endswith("gainprm_gain")]
+    assert len(gain) == 3
+    name = gain[actuator]
+    assert kept.parameter(name).value != model.parameter(name).value  # the kept copy carries the factor there
+    wrong = kept.with_values(**{name: model.parameter(name).value[0]})  # that gain left as the original's
+    rep = engines.verify(model, sc, s=s, duration=0.3, controls=_three_inputs, keep_inputs=True, scaled=wrong)
+    assert not rep.similar
+    assert rep.causes, rep
+    # one cause, on that actuator alone: the others keep their inputs as they should
+    assert [c.kind for c in rep.causes] == ["unscaled"], [str(c) for c in rep.causes]
+    assert rep.causes[0].detail.startswith(f"actuator #{actuator}:"), str(rep.causes[0])
+    others = {f"actuator #{k}" for k in range(3) if k != actuator}
+    assert not any(o in str(c) for c in rep.causes for o in others)
+
+
+@pytest.mark.parametrize("s", [4, 10])
+def test_a_right_kept_inputs_copy_diagnoses_no_cause(tmp_path, s):
+    path = tmp_path / "unnamed.xml"
+    path.write_text(UNNAMED_ACTUATORS)
+    model = engines.load(path)
+    sc = pt.Scaling.from_unit_change(model.system(), {"L": 1, "M": 3})
+    kept = model.scaled(sc, s, keep_inputs=True)
+    rep = engines.verify(model, sc, s=s, duration=0.3, controls=_three_inputs, keep_inputs=True, scaled=kept)
+    assert rep.similar
+    assert rep.exact == (s == 4)
+    assert rep.causes == ()
+    # the audit the diagnosis starts from, run on the right copy: nothing held wrong
+    held = engines.audit(model, sc, s, scaled=kept, keep_inputs=True)
+    assert [c for c in held.causes if c.kind != "solver"] == []
+    # held against a copy whose inputs were scaled instead, the same right copy is wrong at every actuator
+    default = engines.audit(model, sc, s, scaled=kept)
+    named = " ".join(str(c) for c in default.causes)
+    assert all(f"actuator #{k}" in named for k in range(3)), named

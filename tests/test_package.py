@@ -234,6 +234,7 @@ def test_every_module_has_its_test_file_and_every_test_file_a_module_or_a_reason
             "modelfile",
             "models",
             "plotting",
+            "progress",
             "scalesearch",
             "scaling",
             "simulation",

@@ -559,3 +559,45 @@ def test_a_name_given_twice_is_named_with_where():
             call()
         assert str(caught.value) == message
         assert caught.value.culprit == culprit
+
+
+# -- a system's own default repeaters (an engine model's: the robot's numbers) -----------------
+
+
+def test_a_system_made_with_repeaters_uses_them_when_given_none(rod):
+    own = pt.System(rod.dimensions, repeating=("m", "l", "t"))
+    assert own.default_repeating() == ("m", "l", "t")
+    assert own.pi_groups().repeating == ("m", "l", "t")
+    assert own.pi_groups().equivalent(own.pi_groups(repeating=("m", "l", "t")))
+    # each group: its own variable over the oracle's product of the repeaters
+    assert [tuple(sorted(g.exponents.items())) for g in own.pi_groups()] == [
+        tuple(sorted(pairs)) for pairs in oracle_groups(rod, ("m", "l", "t"))
+    ]
+    assert rod.default_repeating() != own.default_repeating()  # the plain system avoids time
+    assert own != rod  # the repeaters are part of the value
+    assert own.with_repeating(None) == rod
+    assert rod.with_repeating(("m", "l", "t")) == own
+    assert "repeating=('m', 'l', 't')" in repr(own)
+
+
+def test_a_systems_own_repeaters_survive_pickling_and_are_checked(rod):
+    import pickle
+
+    own = rod.with_repeating(("g", "l", "m"))
+    back = pickle.loads(pickle.dumps(own))
+    assert back == own
+    assert back.default_repeating() == ("g", "l", "m")
+    with pytest.raises(pt.RepeatingCountError):
+        rod.with_repeating(("m", "l"))
+    with pytest.raises(pt.DependentRepeatingSetError, match="t"):
+        rod.with_repeating(("g", "l", "t"))  # g t^2 / l is dimensionless
+    with pytest.raises(pt.UnknownVariableError, match="q"):
+        pt.System({"l": "L"}, repeating=("q",))
+
+
+@given(systems(), st.data())
+@settings(max_examples=60, deadline=None)
+def test_first_basis_is_the_first_of_the_bases_that_avoid_the_names(system, data):
+    exclude = data.draw(st.lists(st.sampled_from(system.variables), unique=True))
+    expected = next(iter(oracle_bases(system, exclude=exclude)), None)
+    assert system.first_basis(exclude=exclude) == expected

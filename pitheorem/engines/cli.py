@@ -12,6 +12,7 @@ line prints in the format asked for.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from fractions import Fraction
 from pathlib import Path
 
@@ -20,10 +21,14 @@ from ..errors import InvalidRequestError
 from ..modelfile import ModelFile
 from .enginemodel import EngineModel, EngineModelError, UnscalableParameterError
 from .loading import load, scene_options
-from .protocols import EngineNotes, KeepsInputs, RefusesScalings
+from .protocols import EngineNotes, RefusesScalings
 from .verdicts.causes import Cause
+from .verdicts.probes import kept_input_dimensions
 
 __all__ = [
+    "CHECK_STAGES",
+    "CONVERT_STAGES",
+    "VERIFY_STAGES",
     "apply_engine",
     "automatic_scene",
     "check_engine_model",
@@ -265,7 +270,15 @@ def params_answer(path: str, *, name: str | None = None, **options) -> ParamsAns
 
 
 def apply_engine(
-    model: EngineModel, scaling, s, output: str | None, scene=None, *, keep_inputs=False, copy_assets=False
+    model: EngineModel,
+    scaling,
+    s,
+    output: str | None,
+    scene=None,
+    *,
+    keep_inputs=False,
+    copy_assets=False,
+    stage: Callable[[str], None] | None = None,
 ) -> EngineApplyAnswer:
     """Scale an engine model file and write it (``pitheorem apply FILE ... --output OUT``).
 
@@ -291,6 +304,9 @@ def apply_engine(
     copy_assets : bool
         Copy the mesh and texture files beside the written file
         (``--copy-assets``; see :meth:`~pitheorem.engines.EngineModel.save`).
+    stage : callable, optional
+        ``stage(name)``, called as ``"scaling"`` and ``"writing"`` begin
+        (the command line's progress bar, :class:`pitheorem.progress.StageBar`).
 
     Returns
     -------
@@ -311,6 +327,8 @@ def apply_engine(
     >>> str(answer).splitlines()[-1].startswith("wrote")
     True
     """
+    stage = stage if stage is not None else (lambda name: None)
+    stage("scaling")
     try:
         scaled = model.scaled(scaling, s, keep_inputs=keep_inputs)
     except UnscalableParameterError as err:
@@ -320,10 +338,8 @@ def apply_engine(
         if option and option not in (scene or {}):
             raise InvalidRequestError(f"{err}; on the command line: {flags}") from None
         raise
-    kept = {}  # with kept inputs: each number an input passes through, measured with the input taken out
-    if keep_inputs and isinstance(model.runner, KeepsInputs):
-        for ctrl, powers in zip(model.runner.control_dimensions(), model.runner.input_parameters(), strict=True):
-            kept.update({name: ctrl**power for name, power in powers.items()})
+    # with kept inputs: each number an input passes through, measured with the input taken out
+    kept = kept_input_dimensions(model) if keep_inputs else {}
     exponents = (
         (p, scaling.exponent_of(p.dimension / kept[p.name] if p.name in kept else p.dimension))
         for p in model.parameters
@@ -334,6 +350,7 @@ def apply_engine(
     details = tuple((p.dimension_text, p.value, scaled.parameter(p.name).value) for p, _ in changed_parameters)
     written, beside = None, ()
     if output:
+        stage("writing")
         out = Path(output)
         if out.exists() and out.resolve() == Path(model.path).resolve():
             raise InvalidRequestError(f"--output {output!r} is the input file; choose another name")
@@ -345,8 +362,21 @@ def apply_engine(
     )
 
 
+#: the stages of a verification as the command line's progress bar names them: the copies made,
+#: the first batch of runs, the controls and the scale-free proof, the causes
+#: (:data:`pitheorem.engines.verdicts.verify.STAGES` of them)
+VERIFY_STAGES = ("making copies", "running", "proving", "diagnosing")
+
+
 def verify_engine(
-    model: EngineModel, scaling, s, duration: float, inputs: str = "smooth", progress: bool = False
+    model: EngineModel,
+    scaling,
+    s,
+    duration: float,
+    inputs: str = "smooth",
+    progress: bool = False,
+    *,
+    stage: Callable[[str], None] | None = None,
 ) -> EngineVerifyAnswer:
     """The command line's ``verify``: the model and its scaled copy run, and the verdict.
 
@@ -360,6 +390,10 @@ def verify_engine(
         :func:`pitheorem.engines.smooth_controls`, or no input.
     progress : bool
         Show a progress bar of the verification's stages on stderr (tqdm).
+    stage : callable, optional
+        ``stage(name)``, called as each of :data:`VERIFY_STAGES` begins
+        (a bar the caller shows, :class:`pitheorem.progress.StageBar`); with
+        it, `progress` is not needed.
 
     Returns
     -------
@@ -379,16 +413,19 @@ def verify_engine(
     strength: an error of 0.0001 in gravity or the masses is caught; the twins stay together to the end (t = 0.5)
     True
     """
-    from .verdicts.verify import STAGES, exact_in_binary, smooth_controls, verify
+    from ..progress import StageBar
+    from .verdicts.verify import exact_in_binary, smooth_controls, verify
 
     controls = smooth_controls(model) if inputs == "smooth" and len(model.inputs()[0]) else None
-    bar = _progress_bar(STAGES, "verify", "stage") if progress else None
-    try:
-        advance = None if bar is None else (lambda done, total: bar.update(done - bar.n))
+    with StageBar("verify", VERIFY_STAGES, show=progress and stage is None) as bar:
+        begin = stage if stage is not None else bar.stage
+
+        def advance(done, total):
+            if done < len(VERIFY_STAGES):
+                begin(VERIFY_STAGES[done])
+
+        begin(VERIFY_STAGES[0])
         rep = verify(model, scaling, s, duration=duration, controls=controls, progress=advance)
-    finally:
-        if bar is not None:
-            bar.close()
     notes = model.runner.engine_notes() if isinstance(model.runner, EngineNotes) else ()
     return EngineVerifyAnswer(
         model.path, model.engine, Fraction(s), duration, inputs, exact_in_binary(model, scaling, s), rep, notes
@@ -433,6 +470,10 @@ def parse_units(items: list[str] | None, option: str) -> dict[str, str]:
     return out
 
 
+#: the stages of ``convert`` as its progress bar names them (:func:`convert_engine`)
+CONVERT_STAGES = ("loading", "converting", "writing", "checking")
+
+
 def convert_engine(
     path: str,
     *,
@@ -443,6 +484,7 @@ def convert_engine(
     fmt: str = "text",
     keep_inputs: bool = False,
     copy_assets: bool = False,
+    stage: Callable[[str], None] | None = None,
 ) -> str:
     """The command line's ``convert``: the same model in other units, written with ``--output``.
 
@@ -464,6 +506,9 @@ def convert_engine(
         Keep every control input's value (``--keep-inputs``).
     copy_assets : bool
         Copy the mesh and texture files beside the written file (``--copy-assets``).
+    stage : callable, optional
+        ``stage(name)``, called as each of :data:`CONVERT_STAGES` begins
+        (the command line's progress bar, :class:`pitheorem.progress.StageBar`).
 
     Returns
     -------
@@ -487,8 +532,11 @@ def convert_engine(
 
     if bool(units) == bool(fit):
         raise InvalidRequestError("convert needs --units BASE=UNIT ... or --fit ENGINE (one of the two)")
+    stage = stage if stage is not None else (lambda name: None)
+    stage("loading")
     model = load(path, units=from_units or None)
     fitted = None
+    stage("converting")
     if fit:
         from .fitting import engine_fit, fitted_units
 
@@ -516,11 +564,13 @@ def convert_engine(
         out = Path(output)
         if out.exists() and out.resolve() == Path(path).resolve():
             raise InvalidRequestError(f"--output {output!r} is the input file; choose another name")
+        stage("writing")
         converted.save(out, copy_assets=copy_assets)
         written = str(out)
     steps = len(conversion(model.system(), model.units, new))
     from .thresholds import check_summary
 
+    stage("checking")
     crossings = tuple(f"{c.element}: {c.detail}" for c in check_summary(converted, fit or None)[0])
     if fmt == "json":
         return json.dumps(
@@ -567,7 +617,18 @@ def _factors_text(old, new) -> dict[str, str]:
     return {b: short_text(unit_size(b, old[b]) / unit_size(b, new[b])) for b in old}
 
 
-def check_engine_model(path: str, *, from_units=None, engine: str | None = None, fmt: str = "text") -> tuple[str, bool]:
+#: the stages of ``check`` as its progress bar names them (:func:`check_engine_model`)
+CHECK_STAGES = ("loading", "checking", "loading in the other engine")
+
+
+def check_engine_model(
+    path: str,
+    *,
+    from_units=None,
+    engine: str | None = None,
+    fmt: str = "text",
+    stage: Callable[[str], None] | None = None,
+) -> tuple[str, bool]:
     """The command line's ``check``: the thresholds a model sits beyond or near, and whether it is clean.
 
     Parameters
@@ -580,6 +641,9 @@ def check_engine_model(path: str, *, from_units=None, engine: str | None = None,
         Hold the numbers against this engine's thresholds (default: the
         model's own engine).
     fmt : {"text", "json"}
+    stage : callable, optional
+        ``stage(name)``, called as each of :data:`CHECK_STAGES` begins
+        (the command line's progress bar, :class:`pitheorem.progress.StageBar`).
 
     Returns
     -------
@@ -599,11 +663,15 @@ def check_engine_model(path: str, *, from_units=None, engine: str | None = None,
     from .packages import check_engine
     from .thresholds import check_summary
 
+    stage = stage if stage is not None else (lambda name: None)
+    stage("loading")
     model = load(path, units=from_units or None)
     engine = model.engine if engine is None else check_engine(engine)
+    stage("checking")
     causes, units_help = check_summary(model, engine)
     refused = None
     if engine != model.engine:  # another engine that compiles the file its own way (MJX) may refuse it: said first
+        stage("loading in the other engine")
         try:
             load(path, units=from_units or None, engine=engine)
         except EngineModelError as err:
@@ -730,10 +798,11 @@ def sweep_engine(
     >>> answer.sweeps[0].verdicts
     ('exact', 'exact')
     """
+    from ..progress import counting_bar
     from .verdicts.sweep import sweep
     from .verdicts.verify import smooth_controls
 
-    bar = _progress_bar(len(models) * len(s)) if progress else None
+    bar = counting_bar(len(models) * len(s), "sweep", "run") if progress else None
     sweeps, plots = [], []
     try:
         for model, scaling in zip(models, scalings, strict=True):
@@ -754,17 +823,6 @@ def sweep_engine(
             out = Path(plot) if len(sweeps) == 1 else Path(plot).with_stem(f"{Path(plot).stem}_{Path(name).stem}")
             plots.append(str(_save_figure(sw, out)))
     return SweepAnswer(tuple(names), tuple(sweeps), tuple(plots))
-
-
-def _progress_bar(total: int, what: str = "sweep", unit: str = "run"):
-    """tqdm's bar on stderr, or None where tqdm is not installed."""
-    try:
-        from tqdm import tqdm
-    except ImportError:
-        return None
-    import sys
-
-    return tqdm(total=total, desc=what, unit=unit, file=sys.stderr, leave=False)
 
 
 def _save_figure(sw, path: Path) -> Path:

@@ -341,7 +341,10 @@ class EngineModel(TableDisplay):
         """The :class:`pitheorem.System` of every parameter and hidden constant.
 
         ``g`` is the magnitude of gravity and ``t`` is time; a mixed number
-        contributes one variable per part (``name_lin``, ``name_rot``).
+        contributes one variable per part (``name_lin``, ``name_rot``).  Its
+        default repeaters are the robot's numbers (:meth:`default_repeating`),
+        so that ``system().pi_groups()`` gives the groups ``pitheorem groups``
+        prints.
 
         Examples
         --------
@@ -351,13 +354,16 @@ class EngineModel(TableDisplay):
         >>> res = pt.search(model.system(), scale={"g": 1})
         >>> res.feasible
         True
+        >>> model.system().pi_groups().repeating
+        ('g', 'body_arm_mass', 'geom_rod_density')
         """
         if self._system is None:  # built once: a System never changes, and neither does this model
             dims: dict[str, Dimension] = {}
             for p in self.parameters:
                 dims.update(p.variables())
             dims["t"] = _TIME
-            object.__setattr__(self, "_system", System(dims))
+            system = System(dims)
+            object.__setattr__(self, "_system", system.with_repeating(self._robot_repeaters(system)))
         return self._system
 
     def default_repeating(self) -> tuple[str, ...]:
@@ -375,22 +381,28 @@ class EngineModel(TableDisplay):
         -------
         tuple of str
 
+        The system carries them: :meth:`system` ``.pi_groups()`` uses them
+        when given no repeaters.
+
         Examples
         --------
         >>> from pitheorem import engines
         >>> model = engines.load(engines.example_path("pendulum.xml"))
         >>> model.default_repeating()
         ('g', 'body_arm_mass', 'geom_rod_density')
-        >>> model.system().pi_groups(repeating=model.default_repeating()).repeating
+        >>> model.system().pi_groups().repeating
         ('g', 'body_arm_mass', 'geom_rod_density')
         """
-        system = self.system()
+        return self.system().default_repeating()
+
+    def _robot_repeaters(self, system: System) -> tuple[str, ...]:
+        """:meth:`default_repeating`, found in the system without default repeaters of its own."""
         settings = {p.name for p in self.parameters if _engine_setting(p)}
         zero = {p.name for p in self.parameters if not p.mixed and all(v == 0 for v in p.value)}
         vectors = {p.name for p in self.parameters if len(p.value) != 1}
         time = set(system.time_variables)
         for avoid in (settings | zero | time | vectors, settings | zero | time, zero | time, zero):
-            first = next(system.iter_bases(exclude=[n for n in system.variables if n in avoid]), None)
+            first = system.first_basis(exclude=[n for n in system.variables if n in avoid])
             if first is not None:
                 return first
         return system.default_repeating()

@@ -39,6 +39,7 @@ from .pieces import (
     sweep_head,
     unit_fit_rows,
     value_text,
+    values_text,
 )
 from .text import explanation, symmetry_head, unit_fit_head
 
@@ -259,7 +260,7 @@ def _parameters(name: str, model) -> str:
         [
             _code(name),
             _latex(dimension) if dimension is not None else escape(text),
-            escape(" ".join(map(value_text, value))),
+            escape(values_text(value)),
             escape(source),
             escape(path),
         ]
@@ -328,7 +329,7 @@ def _engine_apply_answer(answer) -> str:
     head = _p(escape(render(answer, "text").splitlines()[0]))
     head += _p(escape(f"{len(answer.changed)} of {answer.n_parameters} parameters change"))
     rows = [
-        [_code(name), _power_cell(p), escape(" ".join(map(value_text, old))), escape(" ".join(map(value_text, new)))]
+        [_code(name), _power_cell(p), escape(values_text(old)), escape(values_text(new))]
         for name, p, _, old, new in changed_rows(answer)
     ]
     wrote = _p(f"wrote {_code(answer.output)}") if answer.output else ""

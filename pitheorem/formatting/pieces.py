@@ -3,7 +3,8 @@ r"""The pieces every format shares, each written once.
 * powers of the scale factor ``s``: :func:`power_text` (``s^2``, ``1/s``)
   and :func:`power_latex` (``s^{2}``, ``s^{-1}``);
 * exact numbers: :func:`rational_text` for an exponent, :func:`json_number`
-  and :func:`value_text` for a value (a float, or an exact Fraction);
+  and :func:`value_text` for a value (a float, or an exact Fraction), and
+  :func:`values_text` for a parameter's numbers in a table cell;
 * a number in a message or a cause: :func:`float_text`, the shortest text
   that reads back as the same number (``0.004``, ``200``, ``1e+10``);
 * names and text in LaTeX: :func:`latex_name` (``k_theta`` as
@@ -31,6 +32,7 @@ __all__ = [
     "PYTHON_TIME_REMEDY",
     "SWEEP_HEADER",
     "UNCHANGED",
+    "VALUES_SHOWN",
     "align",
     "base_latex",
     "changed_by_kind",
@@ -64,6 +66,7 @@ __all__ = [
     "unit_change_text",
     "unit_fit_rows",
     "value_text",
+    "values_text",
     "which_scaling",
 ]
 
@@ -315,6 +318,39 @@ def value_text(value) -> str:
     if isinstance(value, float):
         return f"{value:.6g}"
     return str(value)
+
+
+#: how many of a parameter's numbers a table cell shows before it says how many there are
+VALUES_SHOWN = 6
+
+
+def values_text(values) -> str:
+    """A parameter's numbers in a table cell: all of a short one, the first few and the count of a long one.
+
+    A mesh's or a skin's vertex list holds tens of thousands of numbers; a
+    table that printed them all would make every row as wide (JSON keeps
+    every number).
+
+    Parameters
+    ----------
+    values : sequence of float or Fraction
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from pitheorem.formatting.pieces import values_text
+    >>> values_text((0.5, 1.0, 2.0))
+    '0.5 1 2'
+    >>> values_text([0.25] * 9000)
+    '0.25 0.25 0.25 0.25 0.25 0.25 ... (9000 numbers)'
+    """
+    values = tuple(values)
+    if len(values) <= VALUES_SHOWN + 1:  # "... (7 numbers)" would be no shorter than the seventh number
+        return " ".join(map(value_text, values))
+    return " ".join(map(value_text, values[:VALUES_SHOWN])) + f" ... ({len(values)} numbers)"
 
 
 # -- LaTeX -----------------------------------------------------------------------------------

@@ -38,6 +38,7 @@ from .pieces import (
     unit_change_text,
     unit_fit_rows,
     value_text,
+    values_text,
     which_scaling,
 )
 
@@ -422,8 +423,7 @@ def parameter_table(model) -> str:
     """
     rows = [("name", "dimension", "value", "source", "path")]
     rows += [
-        (name, text, " ".join(map(value_text, value)), source, path)
-        for name, _, text, value, source, path in parameter_rows(model)
+        (name, text, values_text(value), source, path) for name, _, text, value, source, path in parameter_rows(model)
     ]
     return align(rows)
 
@@ -523,10 +523,7 @@ def _engine_apply_answer(answer) -> str:
         ]
         lines.append("\n".join("  " + line for line in align(rows).splitlines()))
         rows = [["parameter", "factor", "value", "scaled value"]]
-        rows += [
-            [name, power_text(p), " ".join(map(value_text, old)), " ".join(map(value_text, new))]
-            for name, p, _, old, new in changed
-        ]
+        rows += [[name, power_text(p), values_text(old), values_text(new)] for name, p, _, old, new in changed]
         lines += ["", align(rows)]
     if answer.output:
         also = f" (and {', '.join(answer.also_written)})" if answer.also_written else ""

@@ -102,7 +102,7 @@ class Audit(TextDisplay):
     s: float
 
 
-def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) -> Audit:
+def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None, keep_inputs: bool = False) -> Audit:
     """Hold each number the engine stores for a scaled copy against its expected one.
 
     Parameters
@@ -114,7 +114,11 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
         The scale factor.
     scaled : EngineModel, optional
         The scaled model to audit (e.g. a saved and reloaded file);
-        default ``model.scaled(scaling, s)``.
+        default ``model.scaled(scaling, s, keep_inputs=keep_inputs)``.
+    keep_inputs : bool
+        Hold the copy to one whose inputs keep their values
+        (:meth:`~pitheorem.engines.EngineModel.scaled` with ``keep_inputs=True``):
+        the actuators' factors expected on their gains, not on their ranges.
 
     Returns
     -------
@@ -143,18 +147,18 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
     s = read_scale_factor(s)
     check_scaling(scaling)
     if scaled is None:
-        scaled = model.scaled(scaling, s)
+        scaled = model.scaled(scaling, s, keep_inputs=keep_inputs)
     elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:
         raise InvalidRequestError("scaled must be an EngineModel of the same engine as model")
     backend = model.runner
     causes, compared = [], 0
     original = backend.stored_numbers()
     try:
-        probe = model.scaled(scaling, PROBE).runner.stored_numbers()
+        probe = model.scaled(scaling, PROBE, keep_inputs=keep_inputs).runner.stored_numbers()
         # a second probe, the other way: a number that scales by 4**k one way and not by 4**-k the other
         # is not scale-free even where each probe alone looks clean (a rotation found by an iteration
         # that stops at an absolute tolerance, say); and at s = 4 itself the first probe is the copy
-        inverse = model.scaled(scaling, Fraction(1, PROBE)).runner.stored_numbers()
+        inverse = model.scaled(scaling, Fraction(1, PROBE), keep_inputs=keep_inputs).runner.stored_numbers()
     except PiTheoremError as err:  # a probe the engine refuses (a mass below its floor): no exponents
         causes.append(
             Cause(
@@ -165,7 +169,7 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None) 
         )
         original = {}
     if original:  # each stored copy of a file's number against the dimension the reader gave it
-        causes.extend(dimension_causes(model, scaling, original, probe, PROBE))
+        causes.extend(dimension_causes(model, scaling, original, probe, PROBE, keep_inputs=keep_inputs))
     copy = scaled.runner.stored_numbers()
     # rows no step reads (a visual geom's pose, its mesh): held to nothing, for nothing in a run moves by them
     unread = backend.unread_stored() if isinstance(backend, StoresUnreadNumbers) else {}

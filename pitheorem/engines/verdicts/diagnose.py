@@ -44,7 +44,18 @@ SHRINK = 1000.0
 
 
 def find_causes(
-    model, scaled, scaling, s, n_steps, u_original, u_scaled, factors, report, exact_expected: bool, ran=None
+    model,
+    scaled,
+    scaling,
+    s,
+    n_steps,
+    u_original,
+    u_scaled,
+    factors,
+    report,
+    exact_expected: bool,
+    ran=None,
+    keep_inputs: bool = False,
 ) -> tuple[Cause, ...]:
     """The causes of a verdict that is not exact (at a power of four) or not similar.
 
@@ -66,6 +77,8 @@ def find_causes(
     ran : dict, optional
         Runs already made under some options (the scale-free proof's), by their sorted items: the
         original's and the copy's, reused as those counter-runs.
+    keep_inputs : bool
+        The copy keeps its inputs' values (the audit expects the actuators' factors on their gains).
 
     Returns
     -------
@@ -82,7 +95,7 @@ def find_causes(
     (True, [])
     """
     original, copy = model.runner, scaled.runner
-    causes = [c for c in audit(model, scaling, s, scaled=scaled).causes if c.kind != "solver"]
+    causes = [c for c in audit(model, scaling, s, scaled=scaled, keep_inputs=keep_inputs).causes if c.kind != "solver"]
     limits = allowed_deviation(report.original, report.sensitivity, report.baseline_factor)
 
     # Where the runs first part: where every factor is a power of two, the first step at which they differ in

@@ -26,10 +26,10 @@ import numpy as np
 from ...errors import InvalidRequestError, PiTheoremError
 from ...scaling import Scaling
 from ..enginemodel import EngineModel
-from ..protocols import StoresCopies
+from ..protocols import KeepsInputs, StoresCopies
 from .causes import Cause, sorted_causes
 
-__all__ = ["check_dimensions", "dimension_causes"]
+__all__ = ["check_dimensions", "dimension_causes", "kept_input_dimensions"]
 
 #: the probe's scale factor: its powers with half-integer exponents are exact in binary
 PROBE = 4
@@ -37,7 +37,43 @@ PROBE = 4
 ROUNDING = 1e-9
 
 
-def dimension_causes(model: EngineModel, scaling, original: dict, probe: dict, s=PROBE) -> list[Cause]:
+def kept_input_dimensions(model: EngineModel) -> dict:
+    """The part of each number's dimension that is an input's, where the copy keeps its inputs' values.
+
+    With ``keep_inputs=True`` an input keeps its value, so each number that
+    carries it (its range, a gain that multiplies it) takes the factor of its
+    dimension divided by this part (:meth:`~pitheorem.engines.EngineModel.scaled`).
+
+    Parameters
+    ----------
+    model : EngineModel
+
+    Returns
+    -------
+    dict of str to Dimension
+        Parameter name to the input's dimension to that number's power (empty
+        for an engine whose inputs have no gain).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.verdicts.probes import kept_input_dimensions
+    >>> kept = kept_input_dimensions(engines.load(engines.example_path("pendulum.xml")))
+    >>> {name: str(d) for name, d in kept.items() if name.endswith("gain")}
+    {'actuator_torque_gainprm_gain': 'M^-1 L^-2 T^2'}
+    """
+    runner = model.runner
+    if not isinstance(runner, KeepsInputs):
+        return {}
+    kept = {}
+    for ctrl, powers in zip(runner.control_dimensions(), runner.input_parameters(), strict=True):
+        kept.update({name: ctrl**power for name, power in powers.items()})
+    return kept
+
+
+def dimension_causes(
+    model: EngineModel, scaling, original: dict, probe: dict, s=PROBE, *, keep_inputs: bool = False
+) -> list[Cause]:
     """Causes of kind ``"dimension"``: stored copies of the file's numbers that took another power of `s`.
 
     Parameters
@@ -49,6 +85,8 @@ def dimension_causes(model: EngineModel, scaling, original: dict, probe: dict, s
         The stored numbers (``runner.stored_numbers()``) of the model and of its copy scaled at `s`.
     s : int, default 4
         The probe's scale factor.
+    keep_inputs : bool
+        The probe keeps its inputs' values (:func:`kept_input_dimensions`).
 
     Returns
     -------
@@ -70,6 +108,7 @@ def dimension_causes(model: EngineModel, scaling, original: dict, probe: dict, s
     if not isinstance(backend, StoresCopies):
         return []
     seen, causes = set(), []
+    kept = kept_input_dimensions(model) if keep_inputs else {}
     log_s = math.log(float(s))
     for copy in backend.stored_copies():
         dimension, key = copy.dimension, (copy.parameter or copy.element, copy.attribute)
@@ -83,7 +122,9 @@ def dimension_causes(model: EngineModel, scaling, original: dict, probe: dict, s
         nearest = round(2 * took) / 2
         if abs(after / before - float(s) ** nearest) > ROUNDING * float(s) ** nearest:
             continue  # no power of s at all: the audit names it "unscaled"
-        want = Fraction(scaling.exponent_of(dimension))
+        # with kept inputs, an input's part of the dimension keeps its value
+        scaled_as = dimension / kept[copy.parameter] if copy.parameter in kept else dimension
+        want = Fraction(scaling.exponent_of(scaled_as))
         if Fraction(nearest) != want:
             seen.add(key)
             what = (

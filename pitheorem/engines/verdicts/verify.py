@@ -239,6 +239,7 @@ class Plan:
     ensemble: int
     strength: bool
     diagnose: bool
+    keep_inputs: bool = False
 
     @property
     def original(self):
@@ -361,6 +362,7 @@ def prepare(
         ensemble=ensemble,
         strength=strength,
         diagnose=diagnose,
+        keep_inputs=keep_inputs,
     )
 
 
@@ -458,7 +460,18 @@ def judge(plan: Plan, rows: list | None, progress=None) -> SimilarityReport:
     from .diagnose import find_causes
 
     causes = find_causes(
-        model, scaled, p.scaling, p.s, n_steps, u_original, u_scaled, factors, report, exact_expected, ran=ran
+        model,
+        scaled,
+        p.scaling,
+        p.s,
+        n_steps,
+        u_original,
+        u_scaled,
+        factors,
+        report,
+        exact_expected,
+        ran=ran,
+        keep_inputs=p.keep_inputs,
     )
     step(4, STAGES)
     return dataclasses.replace(report, causes=causes)
