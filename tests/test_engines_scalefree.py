@@ -221,3 +221,29 @@ def test_the_collision_path_is_run_only_where_the_solvers_settings_do_not_prove_
         assert free.exact is proved
         with_ccd_off = [key for key in ran if ("native_ccd", False) in key]
         assert bool(with_ccd_off) is not proved
+
+
+def test_every_setting_changed_is_run_only_where_the_collision_path_alone_parts_the_runs_later(monkeypatch):
+    """The egg on its post: native convex collision off alone parts its runs later than the tolerance at 0, so
+    both changed are tried too; where it parts them no later, that last way is not run."""
+    from pitheorem.engines.verdicts import scalefree
+    from pitheorem.engines.verdicts.scalefree import _parts_later, scale_free_run
+
+    a = np.zeros((4, 1))
+    b = np.array([[0.0], [0.0], [1.0], [1.0]])
+    c = np.array([[0.0], [1.0], [1.0], [1.0]])
+    assert _parts_later((a, b), (a, c))
+    assert not _parts_later((a, c), (a, b))
+    assert _parts_later((a, a), (a, b))  # never parting is later than any step
+    model, sc = searched(DATA / "egg_on_post.xml")
+    copy = model.scaled(sc, 4)
+    names, dims = model.runner.coordinate_dimensions()
+    factors = 4 ** np.array([sc.exponent_of(d) for d in dims], dtype=float)
+    both = (("native_ccd", False), ("tolerance", 0.0))
+    for later in (True, False):
+        monkeypatch.setattr(scalefree, "_parts_later", lambda pair, than, later=later: later)
+        ran: dict = {}
+        free = scale_free_run(model.runner, copy.runner, 500, None, None, factors, np.arange(501) * 0.002, names, ran)
+        assert (both in ran) is later
+        assert (("native_ccd", False),) in ran
+        assert free.settings[-1] == ("flag nativeccd", "disable")  # the last way run, with where it parts
