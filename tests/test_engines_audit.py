@@ -267,3 +267,22 @@ def test_numbers_no_step_reads_are_held_to_nothing_but_a_collision_geoms_are(tmp
         again = engines.load(path).runner.unread_stored()
         assert "geom_pos" not in again
         assert "mesh_pos" not in again
+
+
+def test_a_number_derived_from_larger_ones_is_held_to_the_rounding_of_its_field():
+    """A mesh's centre at 1e-8, which MuJoCo finds from vertices of 0.05, rounds at their size, not at its own:
+    a probe off by a few ulps of the field's largest number still shows its power of 4, and in float32 fields
+    the ulps are float32's.  A number off by more (a factor of 3 where 4 is due) is still no power of 4."""
+    from pitheorem.engines.verdicts.audit import RESIDUE, _probe_exponents
+
+    for dtype, small in ((np.float64, 1e-8), (np.float32, 1e-5)):  # each above its field's residue of a zero
+        ulp = float(np.spacing(dtype(0.2)))
+        before = np.array([0.05, small], dtype=dtype)
+        off = np.array([0.2, 4 * float(before[1]) + 8 * ulp], dtype=dtype)  # 8 ulps of the largest, in its precision
+        k, clean, _ = _probe_exponents(before, off)
+        assert clean.tolist() == [True, True]
+        assert k.tolist() == [1.0, 1.0]
+        far = np.array([0.2, 3 * float(before[1])], dtype=dtype)
+        assert _probe_exponents(before, far)[1].tolist() == [True, False]
+        beyond = np.array([0.2, 4 * float(before[1]) + 8 * RESIDUE * ulp], dtype=dtype)  # far past the rounding
+        assert _probe_exponents(before, beyond)[1].tolist() == [True, False]

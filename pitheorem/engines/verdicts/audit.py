@@ -305,15 +305,24 @@ def _probe_exponents(before: np.ndarray, probe: np.ndarray) -> tuple[np.ndarray,
     k = np.zeros(b.shape)
     clean = np.ones(b.shape, dtype=bool)
     finite = np.isfinite(b)
-    floor = RESIDUE * np.spacing(np.max(np.abs(b[finite]), initial=0.0))
+    # the field's rounding, in its own precision (float32 for mesh vertices): RESIDUE of its largest number's ulps
+    largest = (
+        np.max(np.abs(before[finite]), initial=0)
+        if before.dtype.kind == "f"
+        else np.max(np.abs(b[finite]), initial=0.0)
+    )
+    floor = RESIDUE * float(np.spacing(largest))
     zero = np.abs(b) <= floor  # a zero, or the rounding residue of one: held to nothing
     clean[zero] = np.abs(p[zero]) <= PROBE**2 * floor
     live = ~zero & finite
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(live, p / np.where(live, b, 1.0), 1.0)
         half = np.where(ratio > 0, np.round(2 * np.log(np.abs(ratio)) / math.log(PROBE)) / 2, 0.0)
+    power = float(PROBE) ** half[live]
+    # a power of 4 up to rounding: relative to the number, or, for a number the engine derives from larger ones
+    # (a mesh's centre at 1e-8 found from vertices of 0.05), absolute at the rounding of the field's largest
     clean[live] = (ratio[live] > 0) & (
-        np.abs(ratio[live] - float(PROBE) ** half[live]) <= ROUNDING * float(PROBE) ** half[live]
+        (np.abs(ratio[live] - power) <= ROUNDING * power) | (np.abs(p[live] - b[live] * power) <= floor * power)
     )
     k[live] = half[live]
     return k, clean, zero & (b != 0)
