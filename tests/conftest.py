@@ -297,3 +297,33 @@ def loaded_after(code: str, watch=("numpy", "scipy", "matplotlib")) -> set[str]:
     probe = code + f"\nimport sys\nprint('loaded:', *(m for m in {tuple(watch)!r} if m in sys.modules))"
     out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True)
     return set(out.stdout.strip().splitlines()[-1].split()[1:])
+
+
+def plain_mujoco_runs_equal(model, copy, scaling, s, n_steps: int, change=None) -> bool:
+    """An oracle that does not use pitheorem's runs: by hand in plain MuJoCo.
+
+    The compiled models of `model` and of its scaled `copy` are copied, each changed alike by
+    ``change(mjmodel)`` (a counter-run's change: a flag off, a geom out of collision, an equality
+    inactive), stepped `n_steps` times from rest with ``mj_step``, and the copy's positions and
+    velocities, divided by ``s`` to the power of each one's dimension under `scaling`, are held to the
+    original's bit for bit.
+    """
+    import copy as copy_module
+
+    import mujoco
+    import numpy as np
+
+    dims = model.runner.coordinate_dimensions()[1]
+    factors = np.array([float(s) ** float(scaling.exponent_of(d)) for d in dims])
+    out = []
+    for compiled in (model.runner.mjmodel, copy.runner.mjmodel):
+        m = copy_module.copy(compiled)
+        if change is not None:
+            change(m)
+        d = mujoco.MjData(m)
+        rows = []
+        for _ in range(n_steps):
+            mujoco.mj_step(m, d)
+            rows.append(np.concatenate([d.qpos, d.qvel]))
+        out.append(np.array(rows))
+    return bool(np.array_equal(out[0], out[1] / factors[: out[0].shape[1]]))

@@ -6,7 +6,6 @@ and the runs agree.  And the verdict is honest both ways: wrong copies are caugh
 
 from __future__ import annotations
 
-import copy as copy_module
 import json
 import warnings
 from pathlib import Path
@@ -20,6 +19,7 @@ mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip inst
 gymnasium = pytest.importorskip("gymnasium", reason="gymnasium's MuJoCo models are the corpus")
 
 from pitheorem import engines  # noqa: E402
+from tests.conftest import plain_mujoco_runs_equal  # noqa: E402
 
 DATA = Path(__file__).resolve().parent / "data" / "engines"
 ASSETS = Path(gymnasium.__file__).parent / "envs" / "mujoco" / "assets"
@@ -411,24 +411,14 @@ def test_a_contact_the_same_pairs_make_alike_is_named_by_pair_and_collision_func
     )
     assert "mujoco_ccd_tolerance" in first.detail  # the catalogue's constants on the convex path
     # independent of verify: in plain MuJoCo the shell out of collision in both models gives the same bits
-    exponents = 4 ** np.array([sc.exponent_of(d) for d in model.runner.coordinate_dimensions()[1]], dtype=float)
     copy = model.scaled(sc, 4)
 
-    def plain(m, collide: bool):
-        m = copy_module.copy(m)
+    def out_of_collision(m):
         shell = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, "shell")
-        if not collide:
-            m.geom_contype[shell] = m.geom_conaffinity[shell] = 0
-        d = mujoco.MjData(m)
-        rows = []
-        for _ in range(500):
-            mujoco.mj_step(m, d)
-            rows.append(np.concatenate([d.qpos, d.qvel]))
-        return np.array(rows)
+        m.geom_contype[shell] = m.geom_conaffinity[shell] = 0
 
-    for collide in (True, False):
-        a, b = plain(model.runner.mjmodel, collide), plain(copy.runner.mjmodel, collide)
-        assert np.array_equal(a, b / exponents) is not collide
+    assert not plain_mujoco_runs_equal(model, copy, sc, 4, 500)
+    assert plain_mujoco_runs_equal(model, copy, sc, 4, 500, out_of_collision)
 
 
 def test_contact_candidates_take_the_moving_geom_of_each_pair_with_its_collision_function():
@@ -463,20 +453,13 @@ def test_a_weld_is_named_with_the_weight_of_its_rotational_rows_and_holds_up_by_
     assert "it is a weld" in cause.detail
     assert "mujoco_weld_rotational_weight" in cause.detail
     # by hand, in plain MuJoCo: with the weld inactive in both compiled models they are bit for bit
-    exponents = 4 ** np.array([sc.exponent_of(d) for d in model.runner.coordinate_dimensions()[1]], dtype=float)
     copy = model.scaled(sc, 4)
-    for active in (True, False):
-        runs = []
-        for m in (model.runner.mjmodel, copy.runner.mjmodel):
-            m = copy_module.copy(m)
-            m.eq_active0[0] = active
-            d = mujoco.MjData(m)
-            rows = []
-            for _ in range(500):
-                mujoco.mj_step(m, d)
-                rows.append(np.concatenate([d.qpos, d.qvel]))
-            runs.append(np.array(rows))
-        assert np.array_equal(runs[0], runs[1] / exponents) is not active
+    assert not plain_mujoco_runs_equal(model, copy, sc, 4, 500)
+
+    def weld_inactive(m):
+        m.eq_active0[0] = 0
+
+    assert plain_mujoco_runs_equal(model, copy, sc, 4, 500, weld_inactive)
 
 
 def test_what_still_parts_with_every_cause_removed_is_the_unknown_one():

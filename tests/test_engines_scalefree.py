@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import copy as copy_module
 import json
 from pathlib import Path
 
@@ -15,6 +14,7 @@ mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip inst
 
 from pitheorem import engines  # noqa: E402
 from pitheorem.engines.verdicts.scalefree import ScaleFree, scale_free_options  # noqa: E402
+from tests.conftest import plain_mujoco_runs_equal  # noqa: E402
 
 DATA = Path(__file__).resolve().parent / "data" / "engines"
 
@@ -24,23 +24,16 @@ def searched(path):
     return model, pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
 
 
-def plain_runs_equal(model, copy, exponents, n_steps, solver) -> bool:
-    """Independent of pitheorem's runs: both compiled models copied, changed by hand to tolerance 0 (and Newton
-    where asked), and stepped by mj_step from rest."""
-    out = []
-    for m in (model.runner.mjmodel, copy.runner.mjmodel):
-        m = copy_module.copy(m)
+def scale_free_by_hand(solver):
+    """A change for plain_mujoco_runs_equal: tolerance 0 by hand (and Newton where asked)."""
+
+    def change(m):
         if solver == "Newton":
             m.opt.solver = int(mujoco.mjtSolver.mjSOL_NEWTON)
         m.opt.tolerance = 0.0
         m.opt.noslip_tolerance = 0.0
-        d = mujoco.MjData(m)
-        rows = []
-        for _ in range(n_steps):
-            mujoco.mj_step(m, d)
-            rows.append(np.concatenate([d.qpos, d.qvel]))
-        out.append(np.array(rows))
-    return np.array_equal(out[0], out[1] / exponents[: out[0].shape[1]])
+
+    return change
 
 
 def test_a_solver_of_no_pure_dimension_is_proved_scale_free_beside_the_verdict(tmp_path):
@@ -53,11 +46,10 @@ def test_a_solver_of_no_pure_dimension_is_proved_scale_free_beside_the_verdict(t
     assert not rep.exact
     free = rep.scale_free
     assert free.settings == (("option tolerance", "0"),)
-    exponents = 4 ** np.array([sc.exponent_of(d) for d in model.runner.coordinate_dimensions()[1]], dtype=float)
     n_steps = len(rep.original) - 1
     copy = model.scaled(sc, 4)
-    assert plain_runs_equal(model, copy, exponents, n_steps, solver=None)
-    assert not plain_runs_equal(model, copy, exponents, n_steps, solver="Newton")
+    assert plain_mujoco_runs_equal(model, copy, sc, 4, n_steps, scale_free_by_hand(None))
+    assert not plain_mujoco_runs_equal(model, copy, sc, 4, n_steps, scale_free_by_hand("Newton"))
     assert free.exact
     assert free.first_divergence is None
     assert free.text() in str(rep).splitlines()
@@ -138,21 +130,13 @@ def test_native_convex_collision_off_is_a_way_and_proves_two_meshes_exact():
     assert rep.scale_free.exact
     assert rep.scale_free.settings == (("flag nativeccd", "disable"),)
     # by hand, in plain MuJoCo: both compiled models with the flag off, stepped side by side
-    exponents = 4 ** np.array([sc.exponent_of(d) for d in runner.coordinate_dimensions()[1]], dtype=float)
     copy = model.scaled(sc, 4)
-    for ccd_on in (True, False):
-        runs = []
-        for m in (runner.mjmodel, copy.runner.mjmodel):
-            m = copy_module.copy(m)
-            if not ccd_on:
-                m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_NATIVECCD)
-            d = mujoco.MjData(m)
-            rows = []
-            for _ in range(500):
-                mujoco.mj_step(m, d)
-                rows.append(np.concatenate([d.qpos, d.qvel]))
-            runs.append(np.array(rows))
-        assert np.array_equal(runs[0], runs[1] / exponents) is not ccd_on
+
+    def ccd_off(m):
+        m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_NATIVECCD)
+
+    assert not plain_mujoco_runs_equal(model, copy, sc, 4, 500)
+    assert plain_mujoco_runs_equal(model, copy, sc, 4, 500, ccd_off)
 
 
 def test_native_convex_collision_off_is_tried_but_does_not_make_every_pair_exact():
