@@ -327,3 +327,19 @@ def plain_mujoco_runs_equal(model, copy, scaling, s, n_steps: int, change=None) 
             rows.append(np.concatenate([d.qpos, d.qvel]))
         out.append(np.array(rows))
     return bool(np.array_equal(out[0], out[1] / factors[: out[0].shape[1]]))
+
+
+def recorded_batches(monkeypatch, runner_class) -> list:
+    """Patch ``runner_class.run_many`` to record each batch's jobs (a list per call) before running it.
+
+    Returns the record, which fills as the test runs; ``monkeypatch.undo()`` restores the method.
+    """
+    batches: list = []
+    run_many = runner_class.run_many
+
+    def recording(self, n_steps, jobs):
+        batches.append(list(jobs))
+        return run_many(self, n_steps, jobs)
+
+    monkeypatch.setattr(runner_class, "run_many", recording)
+    return batches

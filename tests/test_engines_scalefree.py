@@ -14,7 +14,7 @@ mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip inst
 
 from pitheorem import engines  # noqa: E402
 from pitheorem.engines.verdicts.scalefree import ScaleFree, scale_free_options  # noqa: E402
-from tests.conftest import plain_mujoco_runs_equal  # noqa: E402
+from tests.conftest import plain_mujoco_runs_equal, recorded_batches  # noqa: E402
 
 DATA = Path(__file__).resolve().parent / "data" / "engines"
 
@@ -97,15 +97,9 @@ def test_the_diagnosis_reuses_the_scale_free_runs_as_its_counter_runs(tmp_path, 
     pgs = tmp_path / "pgs.xml"
     pgs.write_text((DATA / "contact.xml").read_text().replace('tolerance="0"', 'solver="PGS"'))
     model, sc = searched(pgs)
-    seen = []
-    run_many = MujocoRunner.run_many
-
-    def recording(self, n_steps, jobs):
-        seen.extend((float(r.mjmodel.opt.tolerance), int(r.mjmodel.opt.solver)) for r, *_ in jobs)
-        return run_many(self, n_steps, jobs)
-
-    monkeypatch.setattr(MujocoRunner, "run_many", recording)
+    batches = recorded_batches(monkeypatch, MujocoRunner)
     rep = engines.verify(model, sc, 4, duration=0.4)
+    seen = [(float(r.mjmodel.opt.tolerance), int(r.mjmodel.opt.solver)) for jobs in batches for r, *_ in jobs]
     assert rep.scale_free is not None
     assert rep.causes
     pgs_id, newton = int(mujoco.mjtSolver.mjSOL_PGS), int(mujoco.mjtSolver.mjSOL_NEWTON)

@@ -19,6 +19,7 @@ from pitheorem.cli import main
 from pitheorem.engines.cli import parse_s_values
 from pitheorem.engines.thresholds import thresholds
 from pitheorem.engines.verdicts.strength import control_factors
+from tests.conftest import recorded_batches
 
 PENDULUM = engines.example_path("pendulum.xml")
 DURATION = 0.1
@@ -93,18 +94,12 @@ def test_in_this_process_the_copies_of_every_s_run_in_one_call(pendulum, monkeyp
 
     model, sc = pendulum
     s = (4, 1e-2, 10, 100)
-    calls = []
-    run_many = MujocoRunner.run_many
-
-    def counting(self, n_steps, jobs):
-        calls.append(len(jobs))
-        return run_many(self, n_steps, jobs)
-
-    monkeypatch.setattr(MujocoRunner, "run_many", counting)
+    batches = recorded_batches(monkeypatch, MujocoRunner)
     sw = engines.sweep(model, sc, s=s, duration=DURATION, controls=push, fit=False, workers=1)
+    calls = [len(jobs) for jobs in batches]
     first_controls = len({g for g, _e, _f in control_factors(model)})
     assert calls[:2] == [1 + 3, len(s) * (1 + first_controls)]  # the original and 3 twins; then every copy
-    monkeypatch.setattr(MujocoRunner, "run_many", run_many)
+    monkeypatch.undo()
     for row in sw.rows:
         rep = verify_alone(model, sc, row.s)
         assert (row.verdict, row.max_deviation, row.horizon) == (rep.verdict, rep.max_deviation, rep.horizon)
@@ -322,16 +317,10 @@ def test_mjx_sweeps_run_in_this_process_and_match_verify(pendulum, monkeypatch):
     pytest.importorskip("mujoco.mjx", reason="MJX is not installed (pip install 'pitheorem[mjx]')")
     model, sc = pendulum
     mjx_class = type(engines.load(PENDULUM, engine="mjx").runner)
-    calls = []
-    run_many = mjx_class.run_many
-
-    def counting(self, n_steps, jobs):
-        calls.append(len(jobs))
-        return run_many(self, n_steps, jobs)
-
-    monkeypatch.setattr(mjx_class, "run_many", counting)
+    batches = recorded_batches(monkeypatch, mjx_class)
     sw = engines.sweep(model, sc, s=(4, 10), duration=0.02, controls=push, engine="mjx", fit=False)
-    monkeypatch.setattr(mjx_class, "run_many", run_many)
+    monkeypatch.undo()
+    calls = [len(jobs) for jobs in batches]
     assert sw.engine == "mjx"
     # the original and its three twins once, then both copies with their first controls in one vectorised call
     assert calls[:2] == [4, 2 * (1 + len({g for g, _e, _f in control_factors(model)}))]
