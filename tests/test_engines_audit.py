@@ -260,7 +260,8 @@ def test_numbers_no_step_reads_are_held_to_nothing_but_a_collision_geoms_are(tmp
     assert [c.element for c in engines.audit(model, sc, 4, scaled=copy).causes] == ["geom_pos"]
     # a geom in an explicit <pair> collides, and one in the fluid model is pushed by it, whatever its contype
     for change in (
-        ("</worldbody>", '</worldbody><contact><pair geom1="seen" geom2="floor"/></contact>'),
+        ("</worldbody>", '</worldbody><contact><pair geom1="seen" geom2="floor"/></contact>'),  # its geom2
+        ("</worldbody>", '</worldbody><contact><pair geom1="seen" geom2="hit"/></contact>'),  # its geom1
         ('group="1"', 'group="1" fluidshape="ellipsoid"'),
     ):
         path.write_text(VISUAL_AND_COLLISION.replace(*change))

@@ -159,12 +159,10 @@ class MujocoRunner:
         when it has no friction loss.
         """
         m = self.mjmodel
-        paired = {int(g) for g in (*m.pair_geom1, *m.pair_geom2)}
         kinds: dict[str, set[str]] = {}  # element path -> attributes never read
-        for i in range(m.ngeom):
-            if m.geom_contype[i] == 0 and m.geom_conaffinity[i] == 0 and i not in paired:
-                name = m.geom(i).name
-                kinds[f"geom {name!r}" if name else f"geom #{i}"] = {"solref", "solimp", "margin", "gap", "friction"}
+        for i in map(int, np.flatnonzero(_never_colliding(m))):
+            name = m.geom(i).name
+            kinds[f"geom {name!r}" if name else f"geom #{i}"] = {"solref", "solimp", "margin", "gap", "friction"}
         for j in range(m.njnt):
             name = m.joint(j).name
             unread = set() if m.jnt_limited[j] else {"solref_limit", "solimp_limit", "margin"}
@@ -193,15 +191,8 @@ class MujocoRunner:
         that moves nothing in a run.
         """
         m = self.mjmodel
-        paired = {int(g) for g in (*m.pair_geom1, *m.pair_geom2)}
         fluid = np.asarray(m.geom_fluid).reshape(m.ngeom, -1)[:, 0] if m.ngeom else np.zeros(0)
-        idle_geom = np.array(
-            [
-                m.geom_contype[g] == 0 and m.geom_conaffinity[g] == 0 and g not in paired and fluid[g] == 0
-                for g in range(m.ngeom)
-            ],
-            dtype=bool,
-        )
+        idle_geom = _never_colliding(m) & (fluid == 0)
         mesh_geoms = (np.asarray(m.geom_type) == int(_mujoco().mjtGeom.mjGEOM_MESH)) & ~idle_geom
         idle_mesh = np.ones(m.nmesh, dtype=bool)
         idle_mesh[np.asarray(m.geom_dataid)[mesh_geoms]] = False
@@ -1020,6 +1011,14 @@ def _collider(m, a: int, b: int) -> tuple[str, tuple[str, ...]]:
     if "hfield" in kinds:
         return f"{kinds[0]}-{kinds[1]}: mjc_ConvexHField", ("native_ccd", *mesh, *margin)
     return f"{kinds[0]}-{kinds[1]}: mjc_Convex (GJK/EPA)", ("native_ccd", *mesh, *margin)
+
+
+def _never_colliding(m) -> np.ndarray:
+    """Per geom, whether it can never collide: ``contype`` and ``conaffinity`` both 0, and in no ``<pair>``."""
+    never = (np.asarray(m.geom_contype) == 0) & (np.asarray(m.geom_conaffinity) == 0)
+    never[np.asarray(m.pair_geom1, dtype=int)] = False
+    never[np.asarray(m.pair_geom2, dtype=int)] = False
+    return never
 
 
 def _has_convex_pairs(m) -> bool:

@@ -443,18 +443,17 @@ def judge(plan: Plan, rows: list | None, progress=None) -> SimilarityReport:
         inconclusive=bool(unseen_groups(controls)) or broken is not None,
         engine_reset=reset,
     )
-    if broken is not None:  # no cause or proof is found in a run that is not one
-        (progress or (lambda done, total: None))(STAGES, STAGES)
-        return report
+    # no proof and no cause is looked for in a run that is not one (the engine gave up on the original's)
+    diagnose = p.diagnose and p.controller is None and broken is None
     ran: dict = {}  # the scale-free runs, by their options: counter-runs the diagnosis need not run again
-    if exact_expected and not report.exact and p.controller is None and p.diagnose:
+    if exact_expected and not report.exact and diagnose:
         # the proof of the scaling beside the verdict on the model as written: settings of no pure dimension
         # (the solver's tolerance, a solver whose steps are not scale-free) made scale-free in both runs
         free = scale_free_run(original, copy, n_steps, u_original, u_scaled, factors, p.t, p.names, ran)
         report = dataclasses.replace(report, scale_free=free)
     step = progress if progress is not None else (lambda done, total: None)
     step(3, STAGES)
-    if not p.diagnose or p.controller is not None or (report.similar and (report.exact or not exact_expected)):
+    if not diagnose or (report.similar and (report.exact or not exact_expected)):
         step(4, STAGES)
         return report
     from .diagnose import find_causes
