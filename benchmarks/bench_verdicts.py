@@ -41,8 +41,6 @@ DM_SUITE = (
     "point_mass quadruped reacher swimmer walker"
 ).split()
 DM_LOCOMOTION = ("walkers/assets/rodent.xml", "walkers/assets/fruitfly_v2/fruitfly.xml")
-#: gymnasium-robotics' files that are whole robots: Fetch, the Shadow hand and Adroit's hand, alone
-ROBOTICS = ("fetch/reach.xml", "hand/reach.xml", "adroit_hand/adroit_door.xml", "adroit_hand/adroit_relocate.xml")
 
 
 def corpus(menagerie: Path | None) -> list[Path]:
@@ -61,27 +59,21 @@ def corpus(menagerie: Path | None) -> list[Path]:
         print("gymnasium is not installed: its models are left out")
     else:
         out += sorted((Path(gymnasium.__file__).parent / "envs" / "mujoco" / "assets").glob("*.xml"))
-    # robosuite's robot files and gymnasium-robotics' (real arms, hands and mobile manipulators with meshes);
-    # found without importing the packages, whose imports pull in much else (pip install --no-deps is enough)
-    robosuite = _package_dir("robosuite")
-    if robosuite is None:
-        print("robosuite is not installed: its robots are left out (pip install --no-deps robosuite)")
-    else:
-        out += sorted((robosuite / "models" / "assets" / "robots").glob("*/robot.xml"))
-    robotics = _package_dir("gymnasium_robotics")
-    if robotics is None:
-        print("gymnasium-robotics is not installed: its robots are left out (pip install --no-deps gymnasium-robotics)")
-    else:
-        out += [robotics / "envs" / "assets" / rel for rel in ROBOTICS]
+    # robosuite's robot files and gymnasium-robotics' (real arms, hands and mobile manipulators with meshes):
+    # the corpus page's, found without importing the packages (pip install --no-deps is enough)
+    out += [path for _corpus, _name, path in _corpus_page().packaged_robots()]
     if menagerie is not None:
         out += sorted(Path(menagerie).glob("*/scene.xml"))
     return [p for p in out if p.exists()]
 
 
-def _package_dir(name: str) -> Path | None:
-    """Where an installed package lies, without importing it."""
-    spec = importlib.util.find_spec(name)
-    return None if spec is None or not spec.submodule_search_locations else Path(spec.submodule_search_locations[0])
+def _corpus_page():
+    """docs/corpus_verdicts.py, the corpus page's script, whose lists of robots this benchmark shares."""
+    path = Path(__file__).resolve().parents[1] / "docs" / "corpus_verdicts.py"
+    spec = importlib.util.spec_from_file_location("corpus_verdicts", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def plain_run(path: Path, controls, n_steps: int) -> None:

@@ -172,21 +172,33 @@ def mjcf_entries(menagerie: pathlib.Path | None) -> list[dict]:
     else:
         assets = pathlib.Path(gymnasium.__file__).parent / "envs" / "mujoco" / "assets"
         out += [entry("gymnasium", path.name, path) for path in sorted(assets.glob("*.xml"))]
-    robosuite = package_dir("robosuite")
-    if robosuite is None:
-        print("robosuite is not installed: its robots are left out", file=sys.stderr)
-    else:
-        for path in sorted((robosuite / "models" / "assets" / "robots").glob("*/robot.xml")):
-            out.append(entry("robosuite", path.parent.name, path))
-    robotics = package_dir("gymnasium_robotics")
-    if robotics is None:
-        print("gymnasium-robotics is not installed: its robots are left out", file=sys.stderr)
-    else:
-        for name in ROBOTICS:
-            out.append(entry("gymnasium-robotics", name, robotics / "envs" / "assets" / name))
+    out += [entry(corpus, name, path) for corpus, name, path in packaged_robots()]
     if menagerie is not None:
         for path in sorted(menagerie.glob("*/scene.xml")):
             out.append(entry("MuJoCo Menagerie", path.parent.name, path))
+    return out
+
+
+def packaged_robots() -> list[tuple[str, str, pathlib.Path]]:
+    """robosuite's robot files and gymnasium-robotics' whole robots, where installed: ``(corpus, name, path)``.
+
+    Also read by ``benchmarks/bench_verdicts.py``.  A package not installed is said on stderr.
+    """
+    out = []
+    robosuite = package_dir("robosuite")
+    if robosuite is None:
+        print("robosuite is not installed: its robots are left out (pip install --no-deps robosuite)", file=sys.stderr)
+    else:
+        for path in sorted((robosuite / "models" / "assets" / "robots").glob("*/robot.xml")):
+            out.append(("robosuite", path.parent.name, path))
+    robotics = package_dir("gymnasium_robotics")
+    if robotics is None:
+        print(
+            "gymnasium-robotics is not installed: its robots are left out (pip install --no-deps gymnasium-robotics)",
+            file=sys.stderr,
+        )
+    else:
+        out += [("gymnasium-robotics", name, robotics / "envs" / "assets" / name) for name in ROBOTICS]
     return out
 
 
