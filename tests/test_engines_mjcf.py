@@ -834,18 +834,20 @@ def _table_row(p) -> str:
     return " | ".join([p.name, p.path, dimension, p.source, " ".join(repr(v) for v in p.value), p.note])
 
 
-def test_the_reader_lists_every_number_of_a_tour_of_elements_with_its_name_place_dimension_and_source():
+@pytest.mark.parametrize("tour", ["walker_tour", "walker_tour_defaults"])
+def test_the_reader_lists_every_number_of_a_tour_of_elements_with_its_name_place_dimension_and_source(tour):
     # walker_tour.xml sets, on one model, an attribute of nearly every kind of element the reader walks
     # (option, statistic, compiler, an inline mesh, a height field, bodies with and without an inertial,
     # geoms, a frame, sites, a camera, a light, hinge, slide and free joints, a fixed tendon over a slide
     # and a hinge, a spatial tendon, ten actuators of every kind, four equalities, a pair and sensors);
-    # walker_tour.txt is its table, in the reader's order, each row checked against MuJoCo's table of units
+    # walker_tour_defaults.xml leaves at MuJoCo's built-in defaults (or sets to them) the numbers of
+    # elements whose defaults the first never holds, and has the kinds of actuator and equality it leaves
+    # out. Each .txt is its model's table, in the reader's order, each row checked by hand against MuJoCo's
+    # table of units and, for its source, against MuJoCo's documented defaults
     expected = [
-        line
-        for line in (DATA / "walker_tour.txt").read_text().splitlines()
-        if line.strip() and not line.startswith("#")
+        line for line in (DATA / f"{tour}.txt").read_text().splitlines() if line.strip() and not line.startswith("#")
     ]
-    got = [_table_row(p) for p in load("walker_tour.xml").parameters]
+    got = [_table_row(p) for p in load(f"{tour}.xml").parameters]
     missing = [row for row in expected if row not in got]
     extra = [row for row in got if row not in expected]
     assert (missing, extra) == ([], [])
@@ -876,3 +878,42 @@ def test_a_scaled_copy_of_the_tour_holds_every_number_times_its_own_factor(tmp_p
         assert " ".join(repr(v) for v in again.parameter(p.name).value) == want, p.name
         checked += factor != 1
     assert checked > 150
+
+
+_REFUSED = (
+    '<mujoco><worldbody><body name="b"><joint name="free" type="free"/><geom size=".1"/></body>'
+    '<body name="c" pos="1 0 0"><joint name="ball" type="ball"/><geom size=".1"/>'
+    '<body pos="0 0 1"><joint name="h" type="hinge"/><geom size=".1"/></body></body></worldbody>'
+    "<actuator>{}</actuator></mujoco>"
+)
+
+
+@pytest.mark.parametrize(
+    ("actuator", "reason"),
+    [
+        ('<motor name="a" joint="free"/>', "an actuator on a free joint mixes forces and torques; not supported"),
+        (
+            '<motor name="a" joint="ball" gear="1 0 0 1 0 0"/>',
+            "ball-joint gear beyond three components is not supported",
+        ),
+        (
+            '<general name="a" joint="h" gaintype="user"/>',
+            "gain type mjGAIN_USER is not supported by pitheorem's scaling",
+        ),
+        (
+            '<general name="a" joint="h" biastype="user"/>',
+            "bias type mjBIAS_USER is not supported by pitheorem's scaling",
+        ),
+        (
+            '<general name="a" joint="h" dyntype="user"/>',
+            "dynamics type mjDYN_USER is not supported by pitheorem's scaling",
+        ),
+    ],
+)
+def test_an_actuator_the_reader_cannot_scale_is_refused_by_name_and_reason(tmp_path, actuator, reason):
+    # MuJoCo compiles each of these; the reader refuses it, naming the actuator and why, in one line
+    path = tmp_path / "refused.xml"
+    path.write_text(_REFUSED.format(actuator))
+    with pytest.raises(EngineModelError) as caught:
+        engines.load(path)
+    assert str(caught.value) == f"{path}: actuator 'a': {reason}"
