@@ -917,3 +917,17 @@ def test_an_actuator_the_reader_cannot_scale_is_refused_by_name_and_reason(tmp_p
     with pytest.raises(EngineModelError) as caught:
         engines.load(path)
     assert str(caught.value) == f"{path}: actuator 'a': {reason}"
+
+
+def test_each_actuators_input_is_carried_by_its_ranges_and_its_gain():
+    # what a copy that keeps every input divides by the input's factor: the control's and the activation's
+    # ranges (in the input's own units: power 1) and the gain's parameters (force per input: power -1); a
+    # muscle's input has no unit, and its gainprm holds its peak force and speed, no gain of the input
+    affine = ("gain", "length", "velocity")
+    gains = {"dmp": affine, "filt": affine, "mus": ()}
+    expected = []
+    for name in ("mot", "pos", "ratio", "vel", "iv", "dmp", "site", "crank", "glue", "mus", "filt"):
+        powers = {f"actuator_{name}_ctrlrange": 1, f"actuator_{name}_actrange": 1}
+        powers.update({f"actuator_{name}_gainprm_{term}": -1 for term in gains.get(name, ("gain",))})
+        expected.append(powers)
+    assert load("walker_tour.xml").runner.input_parameters() == expected
