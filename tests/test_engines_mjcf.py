@@ -908,6 +908,11 @@ _REFUSED = (
             '<general name="a" joint="h" dyntype="user"/>',
             "dynamics type mjDYN_USER is not supported by pitheorem's scaling",
         ),
+        (  # a muscle's passive force is read with a muscle's gain only
+            '<general name="a" joint="h" biastype="muscle" biasprm="0.75 1.05 100 200 0.5 1.6 1.5 1.3 1.2" '
+            'lengthrange="0.5 1.5"/>',
+            "bias type mjBIAS_MUSCLE is not supported by pitheorem's scaling",
+        ),
     ],
 )
 def test_an_actuator_the_reader_cannot_scale_is_refused_by_name_and_reason(tmp_path, actuator, reason):
