@@ -674,37 +674,37 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
 
 @contextlib.contextmanager
 def _engine_warnings(args):
-    """MuJoCo's warnings during an MJCF or URDF command, each kind in one line after it.
+    """The engine's warnings during an MJCF or URDF command, each kind in one line after it.
 
     MuJoCo prints a warning on the console and appends it to ``MUJOCO_LOG.TXT`` in the working
     folder, once per run: a verdict's twins, controls and counter-runs repeat one breakdown a dozen
     times, and the user's folder gets a file.  While a command runs they are collected instead
-    (``mujoco.set_mju_user_warning``; the handler only appends, for MuJoCo calls it from the threads
-    of a batched rollout too), and after it each kind of warning (its text with the numbers left
-    out) is one line: the first text, and how many times MuJoCo gave one of its kind.
+    (:func:`pitheorem.engines.cli.engine_warnings`), and after it each kind (its text with the
+    numbers left out) is one line: the first text, and how many times the engine gave one of its kind.
     """
-    heard: list[str] = []
-    mujoco = None
     try:
-        if _engine_path(str(getattr(args, "file", "") or "")) is not None:
-            import mujoco
-    except (PiTheoremError, ImportError, OSError):  # a bad FILE is the command's to report; no engine installed
-        mujoco = None
-    if mujoco is None:
+        path = _engine_path(str(getattr(args, "file", "") or ""))
+    except PiTheoremError:  # a bad FILE is the command's to report
+        path = None
+    if path is None:
         yield
         return
-    previous = mujoco.get_mju_user_warning()
-    mujoco.set_mju_user_warning(heard.append)
-    try:
-        yield
-    finally:
-        mujoco.set_mju_user_warning(previous)
-        kinds: dict[str, list] = {}
-        for text in heard:
-            kinds.setdefault(re.sub(r"[-+]?\d+(\.\d+)?", "#", text), []).append(text.strip())
-        for texts in kinds.values():
-            times = f" ({len(texts)} times in the runs)" if len(texts) > 1 else ""
-            say(f"pitheorem: warning: MuJoCo: {texts[0]}{times}")
+    from .engines.cli import engine_warnings
+
+    with contextlib.ExitStack() as stack:
+        try:
+            engine, heard = stack.enter_context(engine_warnings(path, getattr(args, "engine", None)))
+        except (PiTheoremError, OSError):  # an unknown engine or an unreadable file: the command reports it
+            engine, heard = "", []
+        try:
+            yield
+        finally:
+            kinds: dict[str, list] = {}
+            for text in heard:
+                kinds.setdefault(re.sub(r"[-+]?\d+(\.\d+)?", "#", text), []).append(text.strip())
+            for texts in kinds.values():
+                times = f" ({len(texts)} times in the runs)" if len(texts) > 1 else ""
+                say(f"pitheorem: warning: {engine}: {texts[0]}{times}")
 
 
 class _Help(argparse.HelpFormatter):

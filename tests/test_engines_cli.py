@@ -759,10 +759,10 @@ def test_mujocos_warnings_are_one_line_each_after_the_command_and_leave_no_log_f
     assert main(["verify", str(path), "--scale", "g=1", "--s", "4", "--duration", "0.4"]) == 1
     out, err = capfd.readouterr()  # file descriptors 1 and 2: MuJoCo's own console lines would land here
     assert "inconclusive" in out
-    told = [line for line in err.splitlines() if "MuJoCo" in line]
+    told = [line for line in err.splitlines() if "mujoco" in line]
     assert len(told) == 1, err
     times = re.fullmatch(
-        r"pitheorem: warning: MuJoCo: Nan, Inf or huge value in QACC .*\((\d+) times in the runs\)", told[0]
+        r"pitheorem: warning: mujoco: Nan, Inf or huge value in QACC .*\((\d+) times in the runs\)", told[0]
     )
     assert times is not None, told
     assert int(times.group(1)) > 1

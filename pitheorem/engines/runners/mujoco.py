@@ -52,6 +52,24 @@ def _mujoco():
     return engine_module("mujoco")
 
 
+@contextmanager
+def warnings_collected(heard: list[str]):
+    """MuJoCo's warnings appended to `heard` while the block runs, instead of printed and logged.
+
+    MuJoCo prints each warning on the console and appends it to ``MUJOCO_LOG.TXT`` in the working
+    folder.  Here its user handler (``mujoco.set_mju_user_warning``) only appends the text, for MuJoCo
+    calls it from the threads of a batched rollout too; the caller's handler is back afterwards.  The
+    optional hook a runner module gives the command line (:func:`pitheorem.engines.cli.engine_warnings`).
+    """
+    mj = _mujoco()
+    previous = mj.get_mju_user_warning()
+    mj.set_mju_user_warning(heard.append)
+    try:
+        yield
+    finally:
+        mj.set_mju_user_warning(previous)
+
+
 #: a parameter's path: its element (``geom 'foot'``, ``geom #3``) and the attribute after it
 _ELEMENT_ATTRIBUTE = re.compile(r"^(\w+ (?:'[^']*'|#\d+)) (\S+)")
 
