@@ -36,6 +36,7 @@ from collections.abc import Callable, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
+from typing import NamedTuple
 from xml.sax.saxutils import escape
 
 import numpy as np
@@ -271,31 +272,30 @@ class _Walker:
         return "default" if same else "file"
 
     def add(self, kind, elem, ident, path, attr, dimension, index=slice(None), suffix="", parts=(), note=""):
-        # called for nearly every number of a file: :meth:`unique`, :meth:`where` and the common case of
-        # :meth:`source` are written out here, each call saved being a tenth of the time of a slot
+        # called for nearly every number of a file: what depends on the attribute alone is found once
+        # (:func:`_form`), and :meth:`unique`, :meth:`where` and the common cases of :meth:`source` are
+        # written out here, each call saved being a tenth of the time of a slot
         values = _floats(getattr(elem, attr))
         chosen = values[index]
         if not chosen or (chosen[0] != chosen[0] and all(v != v for v in chosen)):  # absent, or NaN: "not set"
             return
-        name = f"{ident}_{attr}{suffix}" if ident else f"{attr}{suffix}"
+        tail, tail_path, attrs, default, default_has_nan = _FORMS.get(
+            (kind, attr, index.start, index.stop, index.step, suffix)
+        ) or _form(self.mj, kind, attr, index, suffix)
+        name = f"{ident}_{tail}" if ident else tail
         if name in self.names:
             name = unique_name(name, self.names)
         else:
             self.names.add(name)
-        default = (_DEFAULT_FLOATS.get((kind, attr)) or _default_floats(self.mj, kind, attr))[0]
+        if values == default:
+            source = "default"
+        elif not default_has_nan:
+            source = "file"
+        else:  # NaN in the default: entry by entry (:meth:`source`)
+            source = self.source(kind, elem, attr, values)
+        where = (kind,) if kind in _SINGLES else self.where_of[id(elem)]
         self.slots.append(
-            Slot(
-                name,
-                f"{path} {attr}{suffix.replace('_', ' ')}",
-                None,
-                ((attr, index),),
-                (kind,) if kind in _SINGLES else self.where_of[id(elem)],
-                dimension,
-                "default" if values == default else self.source(kind, elem, attr, values),
-                parts,
-                note,
-                element=elem,
-            )
+            Slot(name, path + tail_path, None, attrs, where, dimension, source, parts, note, element=elem)
         )
 
     def add_set(self, kind, elem, ident, path, attr, dimension, index=slice(None), suffix="", note=""):
@@ -1063,6 +1063,31 @@ def _damping_ratio(mj, act) -> bool:
     """
     gain, bias = np.asarray(act.gainprm, dtype=float), np.asarray(act.biasprm, dtype=float)
     return bool(act.gaintype == mj.mjtGain.mjGAIN_FIXED and bias[2] > 0 and bias[1] == -gain[0])
+
+
+class _Form(NamedTuple):
+    """What a slot of an attribute's entries takes from its kind, attribute, entries and suffix alone."""
+
+    name: str  #: its name after the element's identifier: ``"solref_timeconst"``
+    path: str  #: its path after the element's: ``" solref timeconst"``
+    attrs: tuple  #: its ``attrs``, ``((attribute, entries),)``: one tuple for all the slots alike
+    default: tuple | None  #: MuJoCo's built-in default of the attribute (:func:`_default_floats`)
+    default_has_nan: bool
+
+
+#: each form found, by kind, attribute, the entries' start, stop and step (a slice is no key before Python
+#: 3.12), and suffix: a file asks the same few thousands of times, and a slot's ``attrs`` shared by all the
+#: slots alike are objects fewer for Python's collector to scan when the walk ends (a file's slots outlive it)
+_FORMS: dict[tuple, _Form] = {}
+
+
+def _form(mj, kind: str, attr: str, index: slice, suffix: str) -> _Form:
+    """The form of a slot of the entries `index` of a `kind`'s `attr`, with `suffix` (found once)."""
+    key = (kind, attr, index.start, index.stop, index.step, suffix)
+    if key not in _FORMS:
+        tail_path = f" {attr}{suffix.replace('_', ' ')}"
+        _FORMS[key] = _Form(f"{attr}{suffix}", tail_path, ((attr, index),), *_default_floats(mj, kind, attr))
+    return _FORMS[key]
 
 
 def _set(value) -> bool:
