@@ -195,7 +195,8 @@ def test_a_negative_inertial_mass_or_inertia_is_refused_with_its_body_and_line(t
 def test_a_value_of_digits_points_signs_and_blanks_up_to_300_characters_is_finite(tmp_path):
     # such values skip the reading of each number: none can be NaN or infinite (300 digits: below 1e300)
     largest = "-" + "9" * 299
-    assert float(largest) == -(10.0**299) and len(largest) == 300
+    assert float(largest) == -(10.0**299)
+    assert len(largest) == 300
     for value in (largest, "0 0 0.1", " +1.5 -2. .5 ", "1.2.3 4"):
         path = write(tmp_path, f'<mujoco><worldbody><body><joint damping="{value}"/></body></worldbody></mujoco>')
         assert check_model_file(path) is not None
