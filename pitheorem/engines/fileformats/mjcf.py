@@ -1095,6 +1095,8 @@ def _set(value) -> bool:
 
     Without numpy, whose ``np.any`` of a few numbers takes microseconds: asked of most elements.
     """
+    if isinstance(value, float):  # most: one number, no tuple to build
+        return value != 0
     return any(v != 0 for v in _floats(value))
 
 
