@@ -30,9 +30,9 @@ Before, pitheorem's own part grew faster than the file (MuJoCo's listing of a sp
 quadratic, and Python's garbage collector scanned the growing table again and again); after, it
 was 0.4 ms per body at every size.
 
-Measured on 2026-11-28 (2 cores shared with other work, load average 8 to 11, CPU time), before
-(commit ed45294) and after the walker's plumbing was made cheaper, each size timed in two
-processes one after the other, the old code first (``PYTHONPATH`` set to a checkout of it)::
+Measured on 2026-11-28 (2 cores shared with other work, CPU time), before (commit ed45294) and
+after the walker's plumbing was made cheaper, each size timed in two processes one after the
+other, the old code first (``PYTHONPATH`` set to a checkout of it)::
 
     for n in 100 250 500 1000 2000; do
       for tree in OLD NEW; do
@@ -41,25 +41,27 @@ processes one after the other, the old code first (``PYTHONPATH`` set to a check
       done
     done
 
-======  ======  =================  ===============  =================  ===============
-bodies  MuJoCo  load before        ours per body    load after         ours per body
-======  ======  =================  ===============  =================  ===============
-   100  0.011 s 0.048 s (ratio 4.5) 0.38 ms         0.035 s (ratio 3.2) 0.24 ms
-   250  0.052 s 0.145 s (ratio 2.8) 0.37 ms         0.112 s (ratio 2.1) 0.24 ms
-   500  0.19 s  0.39 s (ratio 2.0)  0.40 ms         0.33 s (ratio 1.7)  0.27 ms
- 1,000  0.79 s  1.20 s (ratio 1.5)  0.40 ms         1.02 s (ratio 1.3)  0.24 ms
- 2,000  3.3 s   4.33 s (ratio 1.3)  0.52 ms         3.99 s (ratio 1.2)  0.29 ms
-======  ======  =================  ===============  =================  ===============
+======  ======  ==================  ===============  ==================  ===============
+bodies  MuJoCo  load before         ours per body    load after          ours per body
+======  ======  ==================  ===============  ==================  ===============
+   100  0.011 s 0.046 s (ratio 3.6)  0.34 ms         0.035 s (ratio 3.2)  0.24 ms
+   250  0.053 s 0.142 s (ratio 2.7)  0.36 ms         0.110 s (ratio 2.1)  0.23 ms
+   500  0.19 s  0.39 s (ratio 2.0)   0.39 ms         0.31 s (ratio 1.6)   0.23 ms
+ 1,000  0.79 s  1.19 s (ratio 1.5)   0.40 ms         1.02 s (ratio 1.3)   0.23 ms
+ 2,000  3.5 s   4.40 s (ratio 1.25)  0.44 ms         4.09 s (ratio 1.17)  0.29 ms
+======  ======  ==================  ===============  ==================  ===============
 
-Each body is 57 numbers of the table: "ours" fell from about 6.6 to 4.2 microseconds a number
-(x1.6; x1.8 at 2,000 bodies).  What is left is Python's own cost of each number: reading the
-attribute from MuJoCo's spec (a pybind call), its floats, its name, its slot (an object), and
-the element methods' own work (MuJoCo's enum comparisons, a few numpy calls).  The goal of 1.5
-is met from 1,000 bodies on, and at 500 it is 1.7.  It cannot be met below: at 100 bodies
-MuJoCo compiles in 11 ms, so 1.5 would leave pitheorem 5.5 ms for 5,722 numbers, under 1
-microsecond each, while checking the file's numbers (``check_model_file``, 2 ms) and listing
-its elements already take 3 ms, and one read of an attribute through MuJoCo's bindings with its
-conversion to floats takes 0.5 microsecond.
+A first run of the same loop, with the machine busier (load average 8 to 11), gave the same
+"after" column within 10 % (500 bodies: ratio 1.7, 0.27 ms) and a "before" one up to 10 % slower.
+Each body is 57 numbers of the table: "ours" fell from about 6.5 to 4 microseconds a number (x1.4
+at 100 bodies, x1.6 at 250, x1.7 at 500 and 1,000, x1.5 at 2,000).  What is left is Python's own cost of each number: reading the
+attribute from MuJoCo's spec (a call through its bindings), its floats, its name, its slot (an
+object, which Python's collector scans once when the walk ends), and the element methods' own
+work (MuJoCo's enum comparisons, a few numpy calls).  The goal of 1.5 is met from 1,000 bodies
+on, and not at 500 (1.6 to 1.7).  It cannot be met at 100 bodies: MuJoCo compiles them in 11 ms,
+so 1.5 leaves pitheorem 5.5 ms for 5,722 numbers, under 1 microsecond each, while checking the
+file's numbers takes 1.5 ms, and reading each attribute through MuJoCo's bindings as floats
+(0.5 microsecond) and making its slot (0.3) take 4.6 ms more, before any name or dimension.
 
 Run: python benchmarks/bench_load.py [--quick] [--sizes 100 250 500 1000 2000]
 """
