@@ -277,7 +277,9 @@ class _Walker:
         # written out here, each call saved being a tenth of the time of a slot
         values = _floats(getattr(elem, attr))
         chosen = values[index]
-        if not chosen or (chosen[0] != chosen[0] and all(v != v for v in chosen)):  # absent, or NaN: "not set"
+        # absent, or NaN: "not set" (MuJoCo's mark of an unset vector is a NaN first entry: a geom's fromto
+        # is nan 0 0 0 0 0 until the file gives one)
+        if not chosen or values[0] != values[0] or all(v != v for v in chosen):
             return
         tail, tail_path, attrs, default, default_has_nan = _FORMS.get(
             (kind, attr, index.start, index.stop, index.step, suffix)
@@ -738,7 +740,8 @@ class _Walker:
         else:
             self.add("tendon", tendon, ident, path, "springlength", q)
         self.spring_and_drive("tendon", tendon, ident, path, kind)
-        self.add("tendon", tendon, ident, path, "width", _L)
+        if not over_joints:  # a spatial tendon's drawn width; MJCF gives a fixed tendon none (nor writes one back)
+            self.add("tendon", tendon, ident, path, "width", _L)
         self.limit_and_friction_softness("tendon", tendon, ident, path, q)
         self.refuse(tendon, path, ("springyield",))
 
