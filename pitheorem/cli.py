@@ -71,8 +71,10 @@ Exit codes
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import os
+import re
 import sys
 import warnings
 from collections.abc import Sequence
@@ -670,6 +672,41 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
         print(text, file=file)
 
 
+@contextlib.contextmanager
+def _engine_warnings(args):
+    """The engine's warnings during an MJCF or URDF command, each kind in one line after it.
+
+    MuJoCo prints a warning on the console and appends it to ``MUJOCO_LOG.TXT`` in the working
+    folder, once per run: a verdict's twins, controls and counter-runs repeat one breakdown a dozen
+    times, and the user's folder gets a file.  While a command runs they are collected instead
+    (:func:`pitheorem.engines.cli.engine_warnings`), and after it each kind (its text with the
+    numbers left out) is one line: the first text, and how many times the engine gave one of its kind.
+    """
+    try:
+        path = _engine_path(str(getattr(args, "file", "") or ""))
+    except PiTheoremError:  # a bad FILE is the command's to report
+        path = None
+    if path is None:
+        yield
+        return
+    from .engines.cli import engine_warnings
+
+    with contextlib.ExitStack() as stack:
+        try:
+            engine, heard = stack.enter_context(engine_warnings(path, getattr(args, "engine", None)))
+        except (PiTheoremError, OSError):  # an unknown engine or an unreadable file: the command reports it
+            engine, heard = "", []
+        try:
+            yield
+        finally:
+            kinds: dict[str, list] = {}
+            for text in heard:
+                kinds.setdefault(re.sub(r"[-+]?\d+(\.\d+)?", "#", text), []).append(text.strip())
+            for texts in kinds.values():
+                times = f" ({len(texts)} times in the runs)" if len(texts) > 1 else ""
+                say(f"pitheorem: warning: {engine}: {texts[0]}{times}")
+
+
 class _Help(argparse.HelpFormatter):
     """Argparse's help, with ``--scene``'s options listed from the engines' own list.
 
@@ -976,7 +1013,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return exc.code if isinstance(exc.code, int) else EXIT_ERROR
     try:
         _SHOWN.clear()
-        with warnings.catch_warnings():  # restores Python's own display when the command returns
+        with warnings.catch_warnings(), _engine_warnings(args):  # both restore the displays on return
             warnings.showwarning = _one_line_warning
             return args.run(args)
     except PiTheoremError as err:

@@ -15,6 +15,7 @@ suggests the dimension or unit meant.
 
 from __future__ import annotations
 
+import functools
 import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
@@ -287,17 +288,18 @@ class Dimension(MathDisplay):
     def __mul__(self, other: Dimension) -> Dimension:
         if not isinstance(other, Dimension):
             return NotImplemented
-        return Dimension._combined(self._exponents + other._exponents)._within_limits()
+        return _product(self._exponents, other._exponents, 1)
 
     def __truediv__(self, other: Dimension) -> Dimension:
         if not isinstance(other, Dimension):
             return NotImplemented
-        return Dimension._combined(self._exponents + tuple((b, -p) for b, p in other._exponents))._within_limits()
+        return _product(self._exponents, other._exponents, -1)
 
     def __pow__(self, exponent) -> Dimension:
         # the power is an exponent as written in a formula, under the same rule and limits; so is the result
-        e = read_exponent(exponent, "the power of a dimension")
-        return Dimension._combined((b, p * e) for b, p in self._exponents)._within_limits()
+        if type(exponent) is int and abs(exponent) <= MAX_EXPONENT:  # the common case, exact and within them
+            return _power(self._exponents, exponent)
+        return _power(self._exponents, read_exponent(exponent, "the power of a dimension"))
 
     # -- display (text, LaTeX and the rest: pitheorem.formatting) -----------
     def __repr__(self) -> str:
@@ -332,6 +334,24 @@ def product_of_powers(factors: Iterable[tuple[Dimension, Fraction]], where: str 
     Dimension.parse('L^1000')
     """
     return Dimension._combined((b, p * Fraction(e)) for d, e in factors for b, p in d._exponents)._within_limits(where)
+
+
+# Products, quotients and powers are remembered: a Dimension never changes, each costs about 10 us of
+# Fraction arithmetic, and a model file's reader asks the same few thousands of times (a joint's force
+# over its coordinate, for every joint).  Keyed by the operands' exponents; a result beyond the limits
+# raises, and is not remembered.
+
+
+@functools.lru_cache(maxsize=4096)
+def _product(a: tuple, b: tuple, sign: int) -> Dimension:
+    """The dimension of exponents `a` times (sign 1) or over (sign -1) those of `b`."""
+    return Dimension._combined(a + (b if sign == 1 else tuple((base, -p) for base, p in b)))._within_limits()
+
+
+@functools.lru_cache(maxsize=4096)
+def _power(a: tuple, e: int | Fraction) -> Dimension:
+    """The dimension of exponents `a` to the exact power `e`."""
+    return Dimension._combined((base, p * e) for base, p in a)._within_limits()
 
 
 def _clean(total: dict[str, Fraction]) -> tuple[tuple[str, Fraction], ...]:

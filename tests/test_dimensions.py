@@ -402,3 +402,45 @@ def test_brackets_one_after_another_do_not_count_as_nesting():
 
 def test_a_one_beside_a_dimension_is_dimensionless():
     assert pt.Dimension.parse("L 1") == pt.Dimension.parse("1 L") == pt.Dimension.parse("L")
+
+
+# -- products, quotients and powers are remembered (a model file's reader asks the same few thousands of times)
+
+exponent_maps = st.dictionaries(st.sampled_from(BASES), rational_exponent, max_size=4)
+
+
+def _by_hand(a: dict, b: dict, sign) -> dict:
+    """The exponents of a * b**sign, added base by base: the oracle, apart from Dimension's algebra."""
+    out = {base: Fraction(p) for base, p in a.items()}
+    for base, p in b.items():
+        out[base] = out.get(base, Fraction(0)) + Fraction(p) * sign
+    return {base: p for base, p in out.items() if p != 0}
+
+
+@given(exponent_maps, exponent_maps, st.integers(-3, 3))
+@settings(max_examples=200)
+def test_a_remembered_product_quotient_or_power_is_the_one_computed_by_hand(a, b, k):
+    x, y = pt.Dimension(a), pt.Dimension(b)
+    for _ in range(2):  # the second time from the memory: the same answers, for equal operands that are new objects
+        assert (x * y).exponents == _by_hand(a, b, 1)
+        assert (x / y).exponents == _by_hand(a, b, -1)
+        assert (x**k).exponents == _by_hand({}, a, k)
+        assert (x ** Fraction(k, 2)).exponents == _by_hand({}, a, Fraction(k, 2))
+        x, y = pt.Dimension(dict(a)), pt.Dimension(dict(b))
+
+
+def test_a_result_beyond_the_limits_is_refused_every_time_not_remembered():
+    big = pt.Dimension.parse("L^999")
+    for _ in range(2):
+        with pytest.raises(pt.LimitError, match="the exponent of 'L' is 1001"):
+            big * pt.Dimension.parse("L^2")
+        with pytest.raises(pt.LimitError, match="the exponent of 'L' is -1001"):
+            pt.Dimension.parse("L^-999") / pt.Dimension.parse("L^2")
+        with pytest.raises(pt.LimitError, match="the power of a dimension is 1001"):
+            pt.Dimension.parse("L") ** 1001
+        with pytest.raises(pt.LimitError, match="the exponent of 'L' is 1998"):
+            big**2
+    assert (pt.Dimension.parse("L") ** 1000).exponents == {"L": 1000}
+    assert (pt.Dimension.parse("L") ** -1000).exponents == {"L": -1000}
+    with pytest.raises(pt.NumberError, match="not a bool"):  # an int by class, not by type: read and refused
+        pt.Dimension.parse("L") ** True

@@ -740,3 +740,32 @@ def test_convert_fit_on_a_urdf_says_in_a_short_first_line_that_no_units_fit(caps
     first, second = capsys.readouterr().out.splitlines()
     assert first == f"{finger.name}: no units keep every number clear of pybullet's thresholds"
     assert second.startswith("its format holds only M=kg L=m T=s; ")
+
+
+def test_mujocos_warnings_are_one_line_each_after_the_command_and_leave_no_log_file(tmp_path, monkeypatch, capfd):
+    import mujoco
+
+    # a spring so stiff for its time step that MuJoCo gives up on the run (a NaN acceleration) a few steps in;
+    # a verdict runs it many times (twins, controls, the copy), and MuJoCo warns in each
+    path = tmp_path / "unstable.xml"
+    path.write_text(
+        '<mujoco><option timestep="0.01"/><worldbody><body name="arm" pos="0 0 1">'
+        '<joint name="hinge" axis="0 1 0" stiffness="400" springref="0.5"/>'
+        '<geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.02" mass="0.1"/></body></worldbody>'
+        '<actuator><motor joint="hinge"/></actuator></mujoco>'
+    )
+    monkeypatch.chdir(tmp_path)
+    before = mujoco.get_mju_user_warning()
+    assert main(["verify", str(path), "--scale", "g=1", "--s", "4", "--duration", "0.4"]) == 1
+    out, err = capfd.readouterr()  # file descriptors 1 and 2: MuJoCo's own console lines would land here
+    assert "inconclusive" in out
+    told = [line for line in err.splitlines() if "mujoco" in line]
+    assert len(told) == 1, err
+    times = re.fullmatch(
+        r"pitheorem: warning: mujoco: Nan, Inf or huge value in QACC .*\((\d+) times in the runs\)", told[0]
+    )
+    assert times is not None, told
+    assert int(times.group(1)) > 1
+    assert "WARNING" not in out + err  # MuJoCo's own console form
+    assert not (tmp_path / "MUJOCO_LOG.TXT").exists()
+    assert mujoco.get_mju_user_warning() is before  # the handler is the caller's again

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 import pickle
 import warnings
@@ -936,3 +937,66 @@ def test_each_actuators_input_is_carried_by_its_ranges_and_its_gain():
         powers.update({f"actuator_{name}_gainprm_{term}": -1 for term in gains.get(name, ("gain",))})
         expected.append(powers)
     assert load("walker_tour.xml").runner.input_parameters() == expected
+
+
+# -- the table pinned: every field of every row, as the reader gave it before the walker was made faster
+
+#: files that hold between them every kind of element the walker reads (frames, cameras, lights, pairs,
+#: equalities, sensors, tendons of both kinds, custom numerics, a height field, the statistic)
+TABLED = ("walker_tour.xml", "rich_elements.xml", "tendon_actuators.xml")
+TABLES = DATA / "mjcf_tables.json"
+
+
+def _table(path: Path) -> dict:
+    """Every field of every row of a file's table, and its warnings, as text (a float as its repr)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        model = engines.load(path)
+    rows = [
+        [
+            p.name,
+            p.path,
+            " ".join(map(repr, p.value)),
+            p.dimension_text,
+            p.source,
+            p.settable,
+            " ".join(f"{part}={d}" for part, d in p.parts),
+            p.note,
+        ]
+        for p in model.parameters
+    ]
+    said = [f"{w.category.__name__}: {w.message}".replace(str(path.parent), "<DATA>") for w in caught]
+    return {"parameters": rows, "warnings": said}
+
+
+def _record_tables() -> None:
+    """Write TABLES (run this file as a script): the reader's tables of the TABLED files, one row a line."""
+    lines = ["{"]
+    for k, name in enumerate(TABLED):
+        table = _table(DATA / name)
+        lines.append(f"  {json.dumps(name)}: {{")
+        lines.append(f'    "warnings": {json.dumps(table["warnings"])},')
+        lines.append('    "parameters": [')
+        lines.extend(f"      {json.dumps(row)}," for row in table["parameters"])
+        lines[-1] = lines[-1].rstrip(",")
+        lines.append("    ]")
+        lines.append("  }" + ("," if k < len(TABLED) - 1 else ""))
+    lines.append("}")
+    TABLES.write_text("\n".join(lines) + "\n", encoding="utf-8")
+
+
+@pytest.mark.parametrize("name", TABLED)
+def test_the_table_of_a_file_is_the_one_recorded_before_the_walker_was_made_faster(name):
+    # recorded by the walker of commit ed45294 (issue 33, before its speed-up), under MuJoCo 4.0.0: the
+    # same names, paths, values, dimensions, sources, parts and notes in the same order, and the same warnings
+    expected = json.loads(TABLES.read_text(encoding="utf-8"))[name]
+    got = _table(DATA / name)
+    assert got["warnings"] == expected["warnings"]
+    missing = [row for row in expected["parameters"] if row not in got["parameters"]]
+    extra = [row for row in got["parameters"] if row not in expected["parameters"]]
+    assert (missing, extra) == ([], [])
+    assert got["parameters"] == expected["parameters"]  # and in the same order
+
+
+if __name__ == "__main__":
+    _record_tables()

@@ -436,6 +436,87 @@ def test_pybullet_data_robots_whose_runs_mujoco_parts_get_a_cause_whose_counter_
         assert not floor.any()
 
 
+_PINNED_WHEEL = """<robot name="pinned_wheel">
+  <link name="base">
+    <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+  </link>
+  <link name="wheel">
+    <inertial><mass value="0.5"/><inertia ixx="5e-4" iyy="5e-4" izz="5e-4" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><sphere radius="0.05"/></geometry></collision>
+  </link>
+  <joint name="axle" type="continuous">
+    <parent link="base"/><child link="wheel"/><origin xyz="0 0 0.149"/><axis xyz="0 1 0"/>
+  </joint>
+  <link name="roller">
+    <inertial><mass value="0.5"/><inertia ixx="5e-4" iyy="5e-4" izz="5e-4" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><origin rpy="1.5707963267948966 0 0"/><geometry><capsule radius="0.02" length="0.1"/></geometry></collision>
+  </link>
+  <joint name="spindle" type="continuous">
+    <parent link="base"/><child link="roller"/><origin xyz="0.05 0 -0.119"/><axis xyz="0 1 0"/>
+  </joint>
+</robot>"""
+
+
+@pytest.mark.parametrize(
+    "change",
+    [{"L": 1, "M": -2}, {"L": 1, "M": 1}, {"M": 2}, {"L": 1}, {"L": -1}],
+    ids=str,
+)
+def test_a_contact_whose_softness_is_mujocos_floor_is_exact_exactly_under_scalings_that_keep_the_mass_unit(
+    tmp_path, change
+):
+    """R2-D2's, the PR2 gripper's and minitaur_single_motor's mechanism on a tiny robot: a ball and a capsule
+    each hinged at its centre, 1 mm into a box of the root (welded to the world).  Neither body of a contact
+    moves along it, so MuJoCo's approximate inverse weight is 0 and R = mjMINVAL in the original and the copy
+    alike; a spin moves the contact point sideways, so the friction rows act.  R is an inverse mass: the
+    floor is the copy's true R when the mass unit is kept, and not otherwise.  The cause is one for both
+    pairs (a sphere-box and a capsule-box pair): either alone off leaves the other's rows at the floor."""
+    path = tmp_path / "pinned_wheel.urdf"
+    path.write_text(_PINNED_WHEEL)
+    model = engines.load(path, engine="mujoco")
+    scaling = pt.Scaling.from_unit_change(model.system(), change)
+    copy = model.scaled(scaling, 4)
+    keeps_mass = change.get("M", 0) == 0
+    # by hand in plain MuJoCo: the contacts found alike, their rows' R at the floor in both, and the friction
+    # rows' Jacobian not zero (the spins move along them)
+    m, c = model.runner.mjmodel, copy.runner.mjmodel
+    assert m.body_invweight0[:, 0].tolist() == c.body_invweight0[:, 0].tolist() == [0.0, 0.0, 0.0]
+    d, e = mujoco.MjData(m), mujoco.MjData(c)
+    mujoco.mj_forward(m, d)
+    mujoco.mj_forward(c, e)
+    length = 4.0 ** change.get("L", 0)
+    assert d.ncon == e.ncon == 3  # the ball's, and the capsule's two (its segment parallel to the face)
+    assert all(x.dist * length == y.dist < 0 for x, y in zip(d.contact, e.contact, strict=True))
+    assert d.efc_R[: d.nefc].tolist() == e.efc_R[: e.nefc].tolist() == [2 * mujoco.mjMINVAL] * 12
+    assert np.abs(d.efc_J[: d.nefc * m.nv]).max() > 0
+    u = engines.smooth_controls(model)
+    torque = 4.0 ** (change.get("M", 0) + 2 * change.get("L", 0) - 2 * change.get("T", 0))
+    angular_velocity = 4.0 ** -change.get("T", 0)
+    equal = []
+    for i in range(150):  # the joints' torques u(t), the copy's times their factor at the copy's time
+        d.ctrl[:] = u(i * m.opt.timestep)
+        e.ctrl[:] = d.ctrl * torque
+        mujoco.mj_step(m, d)
+        mujoco.mj_step(c, e)
+        equal.append(d.qpos.tolist() == e.qpos.tolist() and (d.qvel * angular_velocity).tolist() == e.qvel.tolist())
+    # the contacts, rigid at R = 1e-15, hold both against their motors with forces of 1e15 N whose net
+    # torque is rounding: the runs part in the rounding of those forces
+    assert np.abs(d.qfrc_actuator).min() > 0.1
+    assert np.abs(d.qpos).max() < 1e-12
+    assert d.efc_force[: d.nefc].min() > 1e14
+    assert all(equal) is keeps_mass
+    rep = engines.verify(model, scaling, 4, duration=0.3, controls=u)
+    assert rep.excited
+    assert rep.exact is keeps_mass
+    if not keeps_mass:  # the cause named is the floor, and its counter-run (both pairs off) restores the run
+        assert [c.kind for c in rep.causes] == ["contact"]
+        assert rep.causes[0].restores
+        assert "R at MuJoCo's floor mjMINVAL" in rep.causes[0].element
+        assert "mujoco_minval_softness" in rep.causes[0].element
+        assert rep.causes[0].element.endswith(": geom #0 / geom #1, geom #0 / geom #2")
+
+
 _COMPILER = """<robot name="bounded">
   <mujoco><compiler balanceinertia="true" boundmass="0.05" boundinertia="0.0002"/></mujoco>
   <link name="base"/>

@@ -30,6 +30,8 @@ def write(tmp_path, text, name="m.xml"):
         ("pos", "0 0 nan"),
         ("range", "-1e999 1"),
         ("data", "1 nan"),
+        ("damping", "1" + "0" * 309),  # infinite though it holds digits only (1e309): read like the others
+        ("pos", "0 0 " + "9" * 310),
     ],
 )
 def test_nan_and_infinities_are_refused_naming_element_and_attribute(tmp_path, attribute, value):
@@ -188,3 +190,13 @@ def test_a_negative_inertial_mass_or_inertia_is_refused_with_its_body_and_line(t
     assert "is negative" in str(caught.value)
     # zero stays allowed (a massless frame), and a URDF's own check is untouched
     engines.load(write(tmp_path, text.replace("-1", "0")))
+
+
+def test_a_value_of_digits_points_signs_and_blanks_up_to_300_characters_is_finite(tmp_path):
+    # such values skip the reading of each number: none can be NaN or infinite (300 digits: below 1e300)
+    largest = "-" + "9" * 299
+    assert float(largest) == -(10.0**299)
+    assert len(largest) == 300
+    for value in (largest, "0 0 0.1", " +1.5 -2. .5 ", "1.2.3 4"):
+        path = write(tmp_path, f'<mujoco><worldbody><body><joint damping="{value}"/></body></worldbody></mujoco>')
+        assert check_model_file(path) is not None

@@ -77,3 +77,32 @@ def test_attribute_text_writes_98_1_for_9_81_times_10():
     assert 9.81 * 10 != 98.1  # the float product rounds twice
     assert attribute_text([0, 0, -9.81], 10) == "0.0 0.0 -98.1"
     assert attribute_text([math.inf], 2) == "inf"
+
+
+def test_an_identifier_keeps_exactly_the_alphanumeric_characters_and_underscores():
+    # the oracle: character by character, str.isalnum (the definition in identifier's docstring), over every
+    # code point Python has, against the one substitution identifier makes
+    import sys
+
+    from pitheorem.engines.parameters import identifier
+
+    text = "a" + "".join(map(chr, range(sys.maxunicode + 1)))
+    assert identifier(text) == "".join(c if c.isalnum() or c == "_" else "_" for c in text)
+    assert identifier("9 lives") == "_9_lives"
+    assert identifier("") == "_"
+
+
+def test_a_joint_kinds_coefficient_dimension_is_remembered_for_equal_questions_only():
+    from pitheorem.engines.parameters import JointKind
+
+    for kind in (JointKind.HINGE, JointKind.SLIDE):
+        for numerator in (kind.force, pt.Dimension.parse("M"), pt.Dimension.parse(str(kind.force))):
+            for power in range(-2, 4):
+                for rate in range(3):
+                    # the oracle: numerator / (q T^-rate)^power, exponent by exponent
+                    want = dict(numerator.exponents)
+                    for base, p in {**kind.q.exponents, "T": kind.q.exponent_of("T") - rate}.items():
+                        want[base] = want.get(base, 0) - power * p
+                    want = {base: p for base, p in want.items() if p != 0}
+                    for _ in range(2):  # computed, then remembered
+                        assert kind.per(numerator, power, rate=rate).exponents == want

@@ -11,8 +11,9 @@ line prints in the format asked for.
 
 from __future__ import annotations
 
+import contextlib
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from fractions import Fraction
 from pathlib import Path
 
@@ -20,8 +21,9 @@ from ..answers import EngineApplyAnswer, EngineVerifyAnswer, ParamsAnswer, Sweep
 from ..errors import InvalidRequestError
 from ..modelfile import ModelFile
 from .enginemodel import EngineModel, EngineModelError, UnscalableParameterError
-from .loading import load, scene_options
+from .loading import load, runner_module, scene_options
 from .protocols import EngineNotes, RefusesScalings
+from .registry import file_format, registered
 from .verdicts.causes import Cause
 from .verdicts.probes import kept_input_dimensions
 
@@ -144,6 +146,39 @@ def engine_model_file(path: str, **options) -> tuple[ModelFile, EngineModel]:
     return ModelFile(
         name=name, description=f"{model.engine} model {name}", system=system, values=values, roles=roles, path=str(path)
     ), model
+
+
+@contextlib.contextmanager
+def engine_warnings(path: str, engine: str | None = None) -> Iterator[tuple[str, list[str]]]:
+    """The warnings the engine gives while the block runs on the file `path`, collected, not printed.
+
+    Yields the engine's name and the list their texts are appended to.  The engine is `engine`, or the one the file's
+    format runs in by default; its runner module (or the one it builds on: MJX's and MuJoCo Warp's,
+    MuJoCo's) collects them where it has the hook ``warnings_collected`` (MuJoCo: its warnings would
+    go to the console and to ``MUJOCO_LOG.TXT`` in the working folder, once per run).  Nothing is
+    collected for an engine without the hook, one not installed, or a file of no engine's format.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.cli import engine_warnings
+    >>> path = str(engines.example_path("pendulum.xml"))
+    >>> with engine_warnings(path) as (engine, heard):
+    ...     _ = engines.load(path).with_values(timestep=1e9).run(3)
+    >>> engine, heard[0][:30]
+    ('mujoco', 'Nan, Inf or huge value in QPOS')
+    """
+    heard: list[str] = []
+    fmt = file_format(path)
+    line = registered(engine) if engine else registered(fmt.engine) if fmt is not None else None
+    hook = None
+    if line is not None and line.installed():
+        for name in filter(None, (line.name, line.base)):
+            hook = getattr(runner_module(name), "warnings_collected", None)
+            if hook is not None:
+                break
+    with hook(heard) if hook is not None else contextlib.nullcontext():
+        yield (line.name if line is not None else ""), heard
 
 
 def automatic_scene(model: EngineModel, scaling, s, scene: dict | None = None) -> dict:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 import warnings
 from dataclasses import dataclass
 from fractions import Fraction
@@ -384,13 +385,20 @@ class JointKind:
         >>> str(JointKind.SLIDE.per(JointKind.SLIDE.force, 2))
         'M L^-1 T^-2'
         """
-        return _per(self.q, numerator, power, rate)
+        # remembered by the identities of the two dimensions, which the memo keeps alive (so no other object
+        # takes their ids): a model's joints and tendons ask the same few questions thousands of times, and a
+        # cache keyed by the dimensions themselves would hash their Fractions each time
+        key = (id(self.q), id(numerator), power, rate)
+        known = _PER.get(key)
+        if known is None:
+            if len(_PER) >= 1024:
+                _PER.clear()
+            known = _PER[key] = (self.q, numerator, numerator * (self.q * _TIME ** (-rate)) ** (-power))
+        return known[2]
 
 
-@functools.lru_cache(maxsize=256)
-def _per(q: Dimension, numerator: Dimension, power: int, rate: int) -> Dimension:
-    """:meth:`JointKind.per`, remembered: a model's joints and tendons ask the same few questions."""
-    return numerator * (q * _TIME ** (-rate)) ** (-power)
+#: JointKind.per's answers: (id of q, id of the numerator, power, rate) -> (q, the numerator, the answer)
+_PER: dict[tuple, tuple[Dimension, Dimension, Dimension]] = {}
 
 
 _TIME = dim("T")
@@ -407,8 +415,13 @@ def identifier(text: str) -> str:
     >>> identifier("joint 'left hip'"), identifier("3d")
     ('joint__left_hip_', '_3d')
     """
-    out = "".join(c if c.isalnum() or c == "_" else "_" for c in text)
+    out = _NOT_WORD.sub("_", text)
     return out if out and not out[0].isdigit() else f"_{out}"
+
+
+#: a character that is neither alphanumeric (``str.isalnum``) nor ``_``: what ``\w`` matches in a str
+#: pattern, one substitution where a generator over the characters took a microsecond per name
+_NOT_WORD = re.compile(r"\W")
 
 
 def unique_name(ident: str, taken: set[str]) -> str:

@@ -36,6 +36,7 @@ from collections.abc import Callable, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
+from typing import NamedTuple
 from xml.sax.saxutils import escape
 
 import numpy as np
@@ -94,19 +95,22 @@ def _joint_kind(mj, jtype) -> JointKind | None:
     return None  # free
 
 
-@dataclass
+@dataclass(slots=True)  # a file has a slot per number: no dict per slot for the collector to scan
 class Slot:
     """One dimensional attribute of one element: how to read it, and how to scale it by address.
 
     ``where`` is the element's address in a spec (a collection and an index, or ``("option",)``), so a
     copy of the spec is scaled by looking each element up, with no second walk of the file.  Scaling
     multiplies the entries ``attrs`` names, ``(attribute, index)`` pairs (which a saved file also
-    rewrites as exact decimals); a slot that is no such product gives its own ``write``.
+    rewrites as exact decimals); a slot that is no such product gives its own ``write``.  Its numbers
+    (:meth:`values`) are its ``read()``, or, for most slots, its one attribute's entries read from
+    ``element``: a file has a slot per number, and a function per slot would be five more objects each.
     """
 
     name: str
     path: str
-    read: Callable[[], tuple]
+    #: the numbers, where they are no entries of ``element``'s attribute (None: they are)
+    read: Callable[[], tuple] | None
     attrs: tuple
     where: tuple
     dimension: object
@@ -115,6 +119,15 @@ class Slot:
     note: str = ""
     #: ``write(element, factor)``, where scaling is not the product of `attrs` (a refusal, or nothing)
     write: Callable[[object, float], None] | None = None
+    #: the element whose attribute ``attrs`` names holds the numbers, where ``read`` is None
+    element: object = None
+
+    def values(self) -> tuple:
+        """The slot's numbers, read now."""
+        if self.read is not None:
+            return self.read()
+        ((attr, index),) = self.attrs
+        return _floats(getattr(self.element, attr))[index]
 
     def write_on(self, element, factor: float) -> None:
         """Scale this slot's number on `element`, the element found at its address in some spec."""
@@ -129,13 +142,6 @@ class Slot:
             value = np.array(value, dtype=float)
             value[index] = value[index] * factor
             setattr(element, attr, value)
-
-
-def _array_slot(name, path, elem, attr, index, dimension, source, where, parts=(), note=""):
-    def read():
-        return _floats(getattr(elem, attr))[index]
-
-    return Slot(name, path, read, ((attr, index),), where, dimension, source, parts, note)
 
 
 #: the spec's collections of elements a slot's address names (``spec.<name>[index]``)
@@ -174,18 +180,23 @@ def _listed(spec, collection: str) -> list:
     """
     if collection not in _TREE:
         return list(getattr(spec, collection))
-    found: list = []
+    return _tree_listed(spec)[collection]
+
+
+def _tree_listed(spec) -> dict[str, list]:
+    """Every collection of the body tree, each as :func:`_listed` lists it, in one walk of the tree."""
+    found: dict[str, list] = {collection: [] for collection in _TREE}
+    owned = [found[collection].extend for collection in _TREE[1:]]  # each body's own elements, by collection
     stack = [spec.worldbody]
     try:
         while stack:
             body = stack.pop()
-            if collection == "bodies":
-                found.append(body)
-            else:
-                found.extend(getattr(body, collection))
+            found["bodies"].append(body)
+            for collection, extend in zip(_TREE[1:], owned, strict=True):
+                extend(getattr(body, collection))
             stack.extend(reversed(body.bodies))
-    except ValueError:  # a body's children are refused while the spec holds a compiler error: MuJoCo's list
-        return list(getattr(spec, collection))
+    except ValueError:  # a body's children are refused while the spec holds a compiler error: MuJoCo's lists
+        return {collection: list(getattr(spec, collection)) for collection in _TREE}
     return found
 
 
@@ -200,7 +211,9 @@ class _Elements:
             return getattr(self.spec, where[0])
         collection, index = where
         if collection not in self.lists:
-            self.lists[collection] = _listed(self.spec, collection)
+            self.lists.update(
+                _tree_listed(self.spec) if collection in _TREE else {collection: _listed(self.spec, collection)}
+            )
         return self.lists[collection][index]
 
     @staticmethod
@@ -221,7 +234,8 @@ class _Walker:
         self.input_powers: list = []  # per actuator walked: its parameters that carry its input, with the power
         self.targets: list = []  # per actuator walked: the dimensions of its length and its force
         # every element listed once, kept alive, so that an element's id gives its address
-        self.lists = {collection: _listed(spec, collection) for collection in _COLLECTIONS}
+        tree = _tree_listed(spec)
+        self.lists = {c: tree[c] if c in _TREE else _listed(spec, c) for c in _COLLECTIONS}
         self.where_of = _Elements.addresses(spec, self.lists)
 
     def where(self, kind: str, elem) -> tuple:
@@ -258,34 +272,42 @@ class _Walker:
         return "default" if same else "file"
 
     def add(self, kind, elem, ident, path, attr, dimension, index=slice(None), suffix="", parts=(), note=""):
+        # called for nearly every number of a file: what depends on the attribute alone is found once
+        # (:func:`_form`), and :meth:`unique`, :meth:`where` and the common cases of :meth:`source` are
+        # written out here, each call saved being a tenth of the time of a slot
         values = _floats(getattr(elem, attr))
         chosen = values[index]
-        if not chosen or (chosen[0] != chosen[0] and all(v != v for v in chosen)):  # absent, or NaN: "not set"
+        # absent, or NaN: "not set" (MuJoCo's mark of an unset vector is a NaN first entry: a geom's fromto
+        # is nan 0 0 0 0 0 until the file gives one)
+        if not chosen or values[0] != values[0] or all(v != v for v in chosen):
             return
-        name = self.unique(f"{ident}_{attr}{suffix}" if ident else f"{attr}{suffix}")
+        tail, tail_path, attrs, default, default_has_nan = _FORMS.get(
+            (kind, attr, index.start, index.stop, index.step, suffix)
+        ) or _form(self.mj, kind, attr, index, suffix)
+        name = f"{ident}_{tail}" if ident else tail
+        if name in self.names:
+            name = unique_name(name, self.names)
+        else:
+            self.names.add(name)
+        if values == default:
+            source = "default"
+        elif not default_has_nan:
+            source = "file"
+        else:  # NaN in the default: entry by entry (:meth:`source`)
+            source = self.source(kind, elem, attr, values)
+        where = (kind,) if kind in _SINGLES else self.where_of[id(elem)]
         self.slots.append(
-            _array_slot(
-                name,
-                f"{path} {attr}{suffix.replace('_', ' ')}",
-                elem,
-                attr,
-                index,
-                dimension,
-                self.source(kind, elem, attr, values),
-                self.where(kind, elem),
-                parts,
-                note,
-            )
+            Slot(name, path + tail_path, None, attrs, where, dimension, source, parts, note, element=elem)
         )
 
     def add_set(self, kind, elem, ident, path, attr, dimension, index=slice(None), suffix="", note=""):
         """:meth:`add` where the entries are set (nonzero): an attribute most files leave at zero, kept out
         of their tables."""
-        if np.any(np.asarray(_floats(getattr(elem, attr))[index]) != 0):
+        if any(v != 0 for v in _floats(getattr(elem, attr))[index]):  # NaN is set, too
             self.add(kind, elem, ident, path, attr, dimension, index, suffix, note=note)
 
     def add_solref(self, kind, elem, ident, path, attr):
-        ref = np.asarray(getattr(elem, attr), dtype=float)
+        ref = _floats(getattr(elem, attr))
         if ref[0] >= 0:  # time constant and damping ratio
             self.add(kind, elem, ident, path, attr, _T, slice(0, 1), "_timeconst")
         else:  # direct stiffness and damping of the reference acceleration
@@ -315,7 +337,8 @@ class _Walker:
     def refuse(self, elem, path, attrs):
         """Fail on any of these attributes when it is set (nonzero): their scaling is not known yet."""
         for attr in attrs:
-            if hasattr(elem, attr) and any(v != 0 for v in _floats(getattr(elem, attr))):  # NaN is set, too
+            value = getattr(elem, attr, None)  # None: no such attribute (a spec's numbers are never None)
+            if value is not None and _set(value):
                 self.fail(path, f"attribute {attr} is not supported by pitheorem's scaling yet")
 
     def named_joint_kind(self, name) -> JointKind | None:
@@ -439,16 +462,16 @@ class _Walker:
                 )
                 continue
             self.slots.append(
-                _array_slot(
+                Slot(
                     self.unique(ident),
                     f"{path} data",
-                    numeric,
-                    "data",
-                    slice(None),
+                    None,
+                    (("data", slice(None)),),
+                    self.where("numeric", numeric),
                     dimension,
                     "file",
-                    self.where("numeric", numeric),
                     note="dimension declared in the file",
+                    element=numeric,
                 )
             )
 
@@ -582,7 +605,7 @@ class _Walker:
         self.add("geom", geom, ident, path, "gap", _L)
         self.add_solref("geom", geom, ident, path, "solref")
         self.add_solimp("geom", geom, ident, path, "solimp", _L)
-        if np.any(np.asarray(geom.surfacevel) != 0):  # a linear velocity, then an angular one
+        if _set(geom.surfacevel):  # a linear velocity, then an angular one
             self.add("geom", geom, ident, path, "surfacevel", dim("L T^-1"), slice(0, 3), "_linear")
             self.add("geom", geom, ident, path, "surfacevel", _T**-1, slice(3, 6), "_angular")
         self.add_set("geom", geom, ident, path, "adhesion", _FORCE)
@@ -593,7 +616,7 @@ class _Walker:
         kind = _joint_kind(mj, joint.type)
         self.add("joint", joint, ident, path, "pos", _L)
         self.refuse(joint, path, ("springyield",))
-        if np.any(np.asarray(joint.springdamper) != 0):  # a time constant and a damping ratio (dimensionless)
+        if _set(joint.springdamper):  # a time constant and a damping ratio (dimensionless)
             self.add(
                 "joint",
                 joint,
@@ -717,7 +740,8 @@ class _Walker:
         else:
             self.add("tendon", tendon, ident, path, "springlength", q)
         self.spring_and_drive("tendon", tendon, ident, path, kind)
-        self.add("tendon", tendon, ident, path, "width", _L)
+        if not over_joints:  # a spatial tendon's drawn width; MJCF gives a fixed tendon none (nor writes one back)
+            self.add("tendon", tendon, ident, path, "width", _L)
         self.limit_and_friction_softness("tendon", tendon, ident, path, q)
         self.refuse(tendon, path, ("springyield",))
 
@@ -847,12 +871,12 @@ class _Walker:
         of units reaches; a scaled copy is given the original's range times its factor instead, as
         the file could have said.
         """
-        given = np.asarray(act.lengthrange, dtype=float)
         aid = act.id if act.id >= 0 else index
-        found = np.array(self.model.actuator_lengthrange[aid], dtype=float)
-        if np.any(given != 0) or not np.any(found != 0):
+        found = self.model.actuator_lengthrange[aid].tolist()  # floats, not arrays: asked for every actuator
+        if any(v != 0 for v in _floats(act.lengthrange)) or not any(v != 0 for v in found):
             self.add("actuator", act, ident, path, "lengthrange", length)
             return
+        found = np.array(found, dtype=float)
         name = self.unique(f"{ident}_lengthrange")
 
         def write(element, factor, found=found):
@@ -1014,7 +1038,7 @@ class _Walker:
         self.add_set("sensor", sensor, ident, path, "delay", _T)
         self.add_set("sensor", sensor, ident, path, "interval", _T, note="the sampling period and its phase")
         d = self.sensor_dimension(sensor, path)
-        busy = sensor.cutoff != 0 or np.any(np.asarray(sensor.noise) != 0)
+        busy = sensor.cutoff != 0 or _set(sensor.noise)
         if d is None:
             if busy:
                 self.warning(
@@ -1044,11 +1068,51 @@ def _damping_ratio(mj, act) -> bool:
     return bool(act.gaintype == mj.mjtGain.mjGAIN_FIXED and bias[2] > 0 and bias[1] == -gain[0])
 
 
+class _Form(NamedTuple):
+    """What a slot of an attribute's entries takes from its kind, attribute, entries and suffix alone."""
+
+    name: str  #: its name after the element's identifier: ``"solref_timeconst"``
+    path: str  #: its path after the element's: ``" solref timeconst"``
+    attrs: tuple  #: its ``attrs``, ``((attribute, entries),)``: one tuple for all the slots alike
+    default: tuple | None  #: MuJoCo's built-in default of the attribute (:func:`_default_floats`)
+    default_has_nan: bool
+
+
+#: each form found, by kind, attribute, the entries' start, stop and step (a slice is no key before Python
+#: 3.12), and suffix: a file asks the same few thousands of times, and a slot's ``attrs`` shared by all the
+#: slots alike are objects fewer for Python's collector to scan when the walk ends (a file's slots outlive it)
+_FORMS: dict[tuple, _Form] = {}
+
+
+def _form(mj, kind: str, attr: str, index: slice, suffix: str) -> _Form:
+    """The form of a slot of the entries `index` of a `kind`'s `attr`, with `suffix` (found once)."""
+    key = (kind, attr, index.start, index.stop, index.step, suffix)
+    if key not in _FORMS:
+        tail_path = f" {attr}{suffix.replace('_', ' ')}"
+        _FORMS[key] = _Form(f"{attr}{suffix}", tail_path, ((attr, index),), *_default_floats(mj, kind, attr))
+    return _FORMS[key]
+
+
+def _set(value) -> bool:
+    """Whether any entry of a spec attribute is nonzero; NaN is.
+
+    Without numpy, whose ``np.any`` of a few numbers takes microseconds: asked of most elements.
+    """
+    if isinstance(value, float):  # most: one number, no tuple to build
+        return value != 0
+    return any(v != 0 for v in _floats(value))
+
+
 def _floats(value) -> tuple:
     """A spec attribute's numbers as a tuple of Python floats (a scalar as one)."""
     if isinstance(value, float):  # most of a file's attributes: no array to build
         return (value,)
+    if type(value) is np.ndarray and value.dtype is _FLOAT64 and value.ndim == 1:  # the others: no copy to make
+        return tuple(value.tolist())
     return tuple(np.asarray(value, dtype=float).ravel().tolist())
+
+
+_FLOAT64 = np.dtype(float)
 
 
 def _default_floats(mj, kind: str, attr: str) -> tuple:
@@ -1272,7 +1336,7 @@ class MjcfDocument:
 
     def parameters(self):
         return [
-            Parameter(s.name, s.path, s.read(), s.dimension, s.source, "file", s.parts, s.note) for s in self._slots
+            Parameter(s.name, s.path, s.values(), s.dimension, s.source, "file", s.parts, s.note) for s in self._slots
         ]
 
     def settings(self) -> dict:

@@ -52,6 +52,24 @@ def _mujoco():
     return engine_module("mujoco")
 
 
+@contextmanager
+def warnings_collected(heard: list[str]):
+    """MuJoCo's warnings appended to `heard` while the block runs, instead of printed and logged.
+
+    MuJoCo prints each warning on the console and appends it to ``MUJOCO_LOG.TXT`` in the working
+    folder.  Here its user handler (``mujoco.set_mju_user_warning``) only appends the text, for MuJoCo
+    calls it from the threads of a batched rollout too; the caller's handler is back afterwards.  The
+    optional hook a runner module gives the command line (:func:`pitheorem.engines.cli.engine_warnings`).
+    """
+    mj = _mujoco()
+    previous = mj.get_mju_user_warning()
+    mj.set_mju_user_warning(heard.append)
+    try:
+        yield
+    finally:
+        mj.set_mju_user_warning(previous)
+
+
 #: a parameter's path: its element (``geom 'foot'``, ``geom #3``) and the attribute after it
 _ELEMENT_ATTRIBUTE = re.compile(r"^(\w+ (?:'[^']*'|#\d+)) (\S+)")
 
@@ -984,8 +1002,12 @@ def _collider(m, a: int, b: int) -> tuple[str, tuple[str, ...]]:
     Where neither geom's body can move along a contact at the reference pose (MuJoCo's translational
     ``body_invweight0`` is 0 for both: a body hinged at its own centre of mass, or one welded to the
     world), MuJoCo's approximate inverse weight of their contacts is 0 and the contacts' softness R is
-    its floor ``mjMINVAL`` (engine_core_constraint.c, mj_makeImpedance), a number no scaling moves:
-    that, not the collision function, is named (the contacts themselves scale bit for bit).
+    its floor ``mjMINVAL`` (engine_core_constraint.c, mj_makeImpedance: ``R = mju_max(mjMINVAL,
+    (1-imp)*diagApprox/imp)``; the hidden constant ``mujoco_minval_softness``): that, not the collision
+    function, is named (the contacts themselves scale bit for bit), in one text for every such pair,
+    whatever its geom types.  A contact's R is an inverse mass (its
+    rows' J M^-1 J' is an acceleration per force), so the floor is the copy's true R only under a scaling
+    that keeps the mass unit: the copy is bit for bit there, and under no scaling that changes it.
     """
     first, second = sorted((int(m.geom_type[a]), int(m.geom_type[b])))
     kinds = (
@@ -996,9 +1018,12 @@ def _collider(m, a: int, b: int) -> tuple[str, tuple[str, ...]]:
     weights = m.body_invweight0[body_a, 0] + m.body_invweight0[body_b, 0]
     apart = m.body_weldid[body_a] != m.body_weldid[body_b]  # two geoms of one rigid body never touch
     if apart and weights == 0 and int(m.geom_condim[a]) <= 3 and int(m.geom_condim[b]) <= 3:
+        # one text whatever the geom types, so that the diagnosis takes all such pairs out of collision at once
         return (
-            f"{kinds[0]}-{kinds[1]}: contact softness R at MuJoCo's floor mjMINVAL (neither body "
-            "moves along the contact: inverse weight 0)",
+            "contact softness R at MuJoCo's floor mjMINVAL (neither body "
+            "moves along the contact: inverse weight 0; engine_core_constraint.c mj_makeImpedance, "
+            "mujoco_minval_softness): R is an inverse mass, so only a scaling that keeps the mass unit "
+            "leaves it exact",
             (),
         )
     margin = ("margin",) if m.geom_margin[a] + m.geom_margin[b] > 0 else ()
