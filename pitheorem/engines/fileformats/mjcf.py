@@ -279,7 +279,7 @@ class _Walker:
         chosen = values[index]
         # absent, or NaN: "not set" (MuJoCo's mark of an unset vector is a NaN first entry: a geom's fromto
         # is nan 0 0 0 0 0 until the file gives one)
-        if not chosen or values[0] != values[0] or all(v != v for v in chosen):
+        if not chosen or values[0] != values[0] or (chosen[0] != chosen[0] and all(v != v for v in chosen)):
             return
         tail, tail_path, attrs, default, default_has_nan = _FORMS.get(
             (kind, attr, index.start, index.stop, index.step, suffix)
