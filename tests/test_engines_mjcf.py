@@ -939,6 +939,25 @@ def test_each_actuators_input_is_carried_by_its_ranges_and_its_gain():
     assert load("walker_tour.xml").runner.input_parameters() == expected
 
 
+def test_a_damping_ratio_servo_keeps_its_compiled_damping_in_a_copy_that_keeps_inputs(tmp_path):
+    # a slide servo with kp 50 and dampratio 0.7 on a 2 kg cart: MuJoCo compiles kv = 2 * 0.7 * sqrt(50 * 2) = 14.
+    # Lengths times 4 with the input kept: the same control (now a quarter of the target length it was)
+    # needs four times the gain; the length term (M T^-2) and the damping (M T^-1) keep their values. In the
+    # copy the gain is no longer -biasprm[1], so MuJoCo would read a ratio left in biasprm[2] as a damping:
+    # the copy states the compiled damping instead
+    path = tmp_path / "servo.xml"
+    path.write_text(
+        '<mujoco><worldbody><body name="cart"><joint name="s" type="slide" axis="1 0 0"/>'
+        '<geom type="box" size=".1 .1 .1" mass="2"/></body></worldbody>'
+        '<actuator><position name="p" joint="s" kp="50" dampratio="0.7" ctrlrange="-1 1"/></actuator></mujoco>'
+    )
+    model = engines.load(path)
+    lengths = pt.Scaling.from_unit_change(model.system(), {"L": 1})
+    copy = mujoco.MjModel.from_xml_path(str(model.scaled(lengths, 4, keep_inputs=True).save(tmp_path / "servo4.xml")))
+    assert list(copy.actuator_gainprm[0][:3]) == [200.0, 0.0, 0.0]
+    assert list(copy.actuator_biasprm[0][:3]) == [0.0, -50.0, -14.0]
+
+
 # -- the table pinned: every field of every row, as the reader gave it before the walker was made faster
 
 #: files that hold between them every kind of element the walker reads (frames, cameras, lights, pairs,
