@@ -674,37 +674,40 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
 
 @contextlib.contextmanager
 def _engine_warnings(args):
-    """The engine's warnings during an MJCF or URDF command, each kind in one line after it.
+    """The engines' warnings during an MJCF or URDF command, each kind in one line after it.
 
     MuJoCo prints a warning on the console and appends it to ``MUJOCO_LOG.TXT`` in the working
     folder, once per run: a verdict's twins, controls and counter-runs repeat one breakdown a dozen
     times, and the user's folder gets a file.  While a command runs they are collected instead
-    (:func:`pitheorem.engines.cli.engine_warnings`), and after it each kind (its text with the
-    numbers left out) is one line: the first text, and how many times the engine gave one of its kind.
+    (:func:`pitheorem.engines.cli.engine_warnings`, for every file of a ``sweep``), and after it each
+    kind (its text with the numbers left out) is one line: the first text, and how many times the
+    engine gave one of its kind.
     """
+    files = getattr(args, "file", None) or []
     try:
-        path = _engine_path(str(getattr(args, "file", "") or ""))
+        paths = [p for p in map(_engine_path, [files] if isinstance(files, str) else files) if p is not None]
     except PiTheoremError:  # a bad FILE is the command's to report
-        path = None
-    if path is None:
+        paths = []
+    if not paths:
         yield
         return
     from .engines.cli import engine_warnings
 
     with contextlib.ExitStack() as stack:
         try:
-            engine, heard = stack.enter_context(engine_warnings(path, getattr(args, "engine", None)))
+            collected = stack.enter_context(engine_warnings(paths, getattr(args, "engine", None)))
         except (PiTheoremError, OSError):  # an unknown engine or an unreadable file: the command reports it
-            engine, heard = "", []
+            collected = []
         try:
             yield
         finally:
-            kinds: dict[str, list] = {}
-            for text in heard:
-                kinds.setdefault(re.sub(r"[-+]?\d+(\.\d+)?", "#", text), []).append(text.strip())
-            for texts in kinds.values():
-                times = f" ({len(texts)} times in the runs)" if len(texts) > 1 else ""
-                say(f"pitheorem: warning: {engine}: {texts[0]}{times}")
+            for engine, heard in collected:
+                kinds: dict[str, list] = {}
+                for text in heard:
+                    kinds.setdefault(re.sub(r"[-+]?\d+(\.\d+)?", "#", text), []).append(text.strip())
+                for texts in kinds.values():
+                    times = f" ({len(texts)} times in the runs)" if len(texts) > 1 else ""
+                    say(f"pitheorem: warning: {engine}: {texts[0]}{times}")
 
 
 class _Help(argparse.HelpFormatter):

@@ -742,7 +742,14 @@ def test_convert_fit_on_a_urdf_says_in_a_short_first_line_that_no_units_fit(caps
     assert second.startswith("its format holds only M=kg L=m T=s; ")
 
 
-def test_mujocos_warnings_are_one_line_each_after_the_command_and_leave_no_log_file(tmp_path, monkeypatch, capfd):
+@pytest.mark.parametrize(
+    ("command", "request_", "code"),
+    # sweep takes a list of files, and exits 0 where every copy is inconclusive; verify exits 1 then
+    [("verify", ["--s", "4"], 1), ("sweep", ["--s", "0.25", "4"], 0)],
+)
+def test_mujocos_warnings_are_one_line_each_after_the_command_and_leave_no_log_file(
+    tmp_path, monkeypatch, capfd, command, request_, code
+):
     import mujoco
 
     # a spring so stiff for its time step that MuJoCo gives up on the run (a NaN acceleration) a few steps in;
@@ -756,7 +763,7 @@ def test_mujocos_warnings_are_one_line_each_after_the_command_and_leave_no_log_f
     )
     monkeypatch.chdir(tmp_path)
     before = mujoco.get_mju_user_warning()
-    assert main(["verify", str(path), "--scale", "g=1", "--s", "4", "--duration", "0.4"]) == 1
+    assert main([command, str(path), "--scale", "g=1", *request_, "--duration", "0.4"]) == code
     out, err = capfd.readouterr()  # file descriptors 1 and 2: MuJoCo's own console lines would land here
     assert "inconclusive" in out
     told = [line for line in err.splitlines() if "mujoco" in line]

@@ -149,36 +149,52 @@ def engine_model_file(path: str, **options) -> tuple[ModelFile, EngineModel]:
 
 
 @contextlib.contextmanager
-def engine_warnings(path: str, engine: str | None = None) -> Iterator[tuple[str, list[str]]]:
-    """The warnings the engine gives while the block runs on the file `path`, collected, not printed.
+def engine_warnings(paths, engine: str | None = None) -> Iterator[list[tuple[str, list[str]]]]:
+    """The warnings the engines give while the block runs on the files `paths`, collected, not printed.
 
-    Yields the engine's name and the list their texts are appended to.  The engine is `engine`, or the one the file's
-    format runs in by default; its runner module (or the one it builds on: MJX's and MuJoCo Warp's,
-    MuJoCo's) collects them where it has the hook ``warnings_collected`` (MuJoCo: its warnings would
-    go to the console and to ``MUJOCO_LOG.TXT`` in the working folder, once per run).  Nothing is
-    collected for an engine without the hook, one not installed, or a file of no engine's format.
+    Yields a list of ``(engine name, the list its warnings' texts are appended to)``, one per hook.
+    Each file runs in `engine`, or in the engine its format runs in by default; that engine's runner
+    module (or the one it builds on: MJX's and MuJoCo Warp's, MuJoCo's) collects its warnings where it
+    has the hook ``warnings_collected`` (MuJoCo: they would go to the console and to
+    ``MUJOCO_LOG.TXT`` in the working folder, once per run), each hook once however many files use it.
+    Nothing is collected for an engine without the hook, one not installed, or a file of no engine's
+    format.
+
+    Parameters
+    ----------
+    paths : str or sequence of str
+        The model file, or the files (``pitheorem sweep`` takes several).
+    engine : str, optional
+        The engine every file runs in (the command line's ``--engine``).
 
     Examples
     --------
     >>> from pitheorem import engines
     >>> from pitheorem.engines.cli import engine_warnings
     >>> path = str(engines.example_path("pendulum.xml"))
-    >>> with engine_warnings(path) as (engine, heard):
+    >>> with engine_warnings([path, path]) as collected:
     ...     _ = engines.load(path).with_values(timestep=1e9).run(3)
-    >>> engine, heard[0][:30]
-    ('mujoco', 'Nan, Inf or huge value in QPOS')
+    >>> [(name, heard[0][:30]) for name, heard in collected]
+    [('mujoco', 'Nan, Inf or huge value in QPOS')]
     """
-    heard: list[str] = []
-    fmt = file_format(path)
-    line = registered(engine) if engine else registered(fmt.engine) if fmt is not None else None
-    hook = None
-    if line is not None and line.installed():
+    hooks: dict = {}  # hook -> the engine named for it, in the order first met
+    for path in [paths] if isinstance(paths, str) else paths:
+        fmt = file_format(path)
+        line = registered(engine) if engine else registered(fmt.engine) if fmt is not None else None
+        if line is None or not line.installed():
+            continue
         for name in filter(None, (line.name, line.base)):
             hook = getattr(runner_module(name), "warnings_collected", None)
             if hook is not None:
+                hooks.setdefault(hook, line.name)
                 break
-    with hook(heard) if hook is not None else contextlib.nullcontext():
-        yield (line.name if line is not None else ""), heard
+    collected: list[tuple[str, list[str]]] = []
+    with contextlib.ExitStack() as stack:
+        for hook, name in hooks.items():
+            heard: list[str] = []
+            stack.enter_context(hook(heard))
+            collected.append((name, heard))
+        yield collected
 
 
 def automatic_scene(model: EngineModel, scaling, s, scene: dict | None = None) -> dict:
