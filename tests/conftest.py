@@ -42,6 +42,12 @@ REFERENCE = REPO.parent / "shared" / "reference"
 if str(REPO) not in sys.path:  # lets tests import matlab_ports/ and benchmarks/
     sys.path.insert(0, str(REPO))
 
+# JAX's compiled programs (MJX's batch runner: seconds to tens of seconds of XLA on the CPU) are kept in the
+# environment's build folder, as Warp's kernels are (tests/test_engines_warp.py): the other xdist worker and
+# the next run of the suite load a program instead of compiling it again.  A loaded program is the one
+# compiled (JAX keys it by the program, its shapes, the flags and the versions), so runs are unchanged.
+os.environ.setdefault("JAX_COMPILATION_CACHE_DIR", str(Path(sys.prefix) / "jax-cache"))
+
 
 #: test files whose time is mostly an engine compiling on a cold start (Warp its kernels on the CPU, about
 #: 35 s of CPU with an empty kernel cache; JAX tracing MJX's step), sent first to xdist's workers. By its
