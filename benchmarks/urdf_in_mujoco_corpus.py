@@ -3,9 +3,13 @@
 Run with the engines installed (``pip install "pitheorem[engines]"``, which brings pybullet_data)::
 
     python benchmarks/urdf_in_mujoco_corpus.py [--duration 1.0] [--all] [NAME ...]
+    python benchmarks/urdf_in_mujoco_corpus.py --gepetto DIR [--json FILE] [NAME ...]
 
 For every URDF file of pybullet_data (the thousand generated ones under ``random_urdfs`` only with
-``--all``; NAMEs select files by their path relative to pybullet_data): load it with
+``--all``; NAMEs select files by their path relative to pybullet_data), or with ``--gepetto DIR``
+every robot of Gepetto's example-robot-data that ``docs/corpus_verdicts.py`` runs in PyBullet
+(``GEPETTO_URDFS``; DIR a checkout or a bare git directory, read as that script reads it, with
+the same meaning; NAMEs select robots by their file name): load it with
 ``engine="mujoco"``, or the reason it is refused (by the URDF format or by MuJoCo); search a scaling
 with gravity scaled by s and time fixed; verify the scaled copy at s = 4 for ``--duration`` seconds
 under :func:`pitheorem.engines.smooth_controls` (a motor per movable joint).  At a power of four every
@@ -33,13 +37,30 @@ minitaurs), and 4 have contacts at the softness floor (R2-D2, the PR2 gripper, `
 and ``differential/diff_ring``): with the mass unit kept, R2-D2 and the PR2 gripper are exact as written,
 the other two exact with native convex collision off.  ``minitaur_rainbow_dash_v1`` is exact under none of
 these (see docs/howto/urdf_in_mujoco.md).
+
+With ``--gepetto``, each robot's ``package://example-robot-data/...`` meshes are found as
+``engines.load(..., engine="mujoco")`` finds them (the scheme dropped, the rest looked for in the
+folders above the URDF: the robots are written below a folder named ``example-robot-data``).  A robot
+whose meshes the snapshot lacks (Git LFS, size limits) is reported ``not run`` with them named.  A
+robot of more than ``LARGE_BODIES`` links runs ``LARGE_DURATION`` simulated seconds, as in
+``docs/corpus_verdicts.py`` (the row says ``duration``).  ``--json FILE`` writes the rows, the
+counts, the date, the commit and the versions (``docs/howto/urdf_in_mujoco_fetched.json``, which
+the docs page reads).
 """
 
 from __future__ import annotations
 
 import argparse
+import datetime
+import importlib.util
+import json
+import platform
+import shutil
+import subprocess
+import tempfile
 import time
 import warnings
+import xml.etree.ElementTree as ET
 from collections import Counter
 from pathlib import Path
 
@@ -51,15 +72,20 @@ import pitheorem as pt
 from pitheorem import engines
 
 DATA = Path(pybullet_data.getDataPath())
+HERE = Path(__file__).resolve().parent
+
+
+def corpus_verdicts():
+    """``docs/corpus_verdicts.py``, imported: its example-robot-data list, reader and durations."""
+    spec = importlib.util.spec_from_file_location("corpus_verdicts", HERE.parent / "docs" / "corpus_verdicts.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def _files(everything: bool) -> list[str]:
     names = sorted(p.relative_to(DATA).as_posix() for p in DATA.rglob("*.urdf"))
     return [n for n in names if everything or not n.startswith("random_urdfs/")]
-
-
-def _causes(rep) -> str:
-    return "; ".join(f"{c.kind}{'+' if c.restores else ''} {c.element}" for c in rep.causes) or "no cause named"
 
 
 def _factor(dimension, change, s: float) -> float:
@@ -107,28 +133,50 @@ def by_hand(model, copy, change, s: float, duration: float) -> str:
     return "by hand: exact"
 
 
-def judge(name: str, duration: float) -> tuple[str, str]:
-    """The verdict on one file (exact, similar, not, refused) and what stands behind it."""
+def judge(path: Path, label: str, duration: float, hide: str | None = None) -> dict:
+    """The verdict on one file (exact, similar, inconclusive, not, refused) and what stands behind it.
+
+    `label` stands for the file's path in a refusal's message, and `hide` (a folder) is dropped from it.
+    """
+    row: dict = {"name": label, "duration": duration}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         try:
-            model = engines.load(DATA / name, engine="mujoco")
+            model = engines.load(path, engine="mujoco")
         except pt.PiTheoremError as err:
-            return "refused", " ".join(str(err).replace(str(DATA / name), name).split())[:150]
+            text = str(err).replace(str(path), label)
+            if hide:
+                text = text.replace(hide.rstrip("/") + "/", "")
+            return {**row, "verdict": "refused", "reason": " ".join(text.split())[:150]}
         sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
         rep = engines.verify(model, sc, 4, duration=duration, controls=engines.smooth_controls(model))
     welded = model.runner.mjmodel.njnt == 0
-    motion = "welded" if welded else "moved" if rep.excited else "still"
+    row["motion"] = "welded" if welded else "moved" if rep.excited else "still"
     if rep.exact:
-        return "exact", motion
-    verdict = {"not similar": "not"}.get(rep.verdict, rep.verdict)  # similar, inconclusive or not
+        return {**row, "verdict": "exact"}
+    row["verdict"] = {"not similar": "not"}.get(rep.verdict, rep.verdict)  # similar, inconclusive or not
+    row["causes"] = [{"kind": c.kind, "element": c.element, "restores": bool(c.restores)} for c in rep.causes]
     change = {b: sc.unit_change[b] for b in "MLT"}
     free = rep.scale_free
-    proof = "no scale-free proof" if free is None else free.text()
-    hand = by_hand(model, model.scaled(sc, 4), change, 4, duration)
-    floored = "R at floor in" in hand and "R at floor in 0 " not in hand  # by hand: rows at mjMINVAL
-    kept = mass_kept(model, change, duration) if floored and change["M"] != 0 else ""
-    return verdict, f"{motion}; {_causes(rep)}; {proof}; {hand}{kept}"
+    row["scale_free"] = "no scale-free proof" if free is None else free.text()
+    row["by_hand"] = by_hand(model, model.scaled(sc, 4), change, 4, duration)
+    floored = "R at floor in" in row["by_hand"] and "R at floor in 0 " not in row["by_hand"]  # rows at mjMINVAL
+    if floored and change["M"] != 0:
+        row["mass_kept"] = mass_kept(model, change, duration)
+    return row
+
+
+def detail(row: dict) -> str:
+    """What stands behind a verdict, on one line."""
+    if row["verdict"] == "refused":
+        return row["reason"]
+    if row["verdict"] == "not run":
+        return row["reason"]
+    if row["verdict"] == "exact":
+        return row["motion"]
+    causes = "; ".join(f"{c['kind']}{'+' if c['restores'] else ''} {c['element']}" for c in row["causes"])
+    kept = f"; mass unit kept: {row['mass_kept']}" if "mass_kept" in row else ""
+    return f"{row['motion']}; {causes or 'no cause named'}; {row['scale_free']}; {row['by_hand']}{kept}"
 
 
 def mass_kept(model, change, duration: float) -> str:
@@ -143,40 +191,100 @@ def mass_kept(model, change, duration: float) -> str:
         warnings.simplefilter("ignore")
         rep = engines.verify(model, sc, 4, duration=duration, controls=engines.smooth_controls(model))
     if rep.exact:
-        return "; mass unit kept: exact"
+        return "exact"
     free = rep.scale_free
-    return "; mass unit kept: " + ("not exact" if free is None else free.text().replace("scale-free: ", ""))
+    return "not exact" if free is None else free.text().replace("scale-free: ", "")
+
+
+def gepetto(source: Path, folder: Path) -> tuple[list[tuple[Path, str, str | None]], str | None]:
+    """example-robot-data's robots, as ``docs/corpus_verdicts.py`` reads them: ``(path, name, why not run)``."""
+    items, commit = corpus_verdicts().gepetto_entries(source, folder)
+    return [(Path(i["path"]), i["name"], i.get("skip")) for i in items], commit
+
+
+def links(path: Path) -> int:
+    """The links of a URDF: the count ``docs/corpus_verdicts.py`` weighs a robot's duration by."""
+    return len(ET.parse(path).getroot().findall("link"))
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--duration", type=float, default=1.0)
     parser.add_argument("--all", action="store_true", help="also the generated files under random_urdfs")
+    parser.add_argument("--gepetto", type=Path, help="example-robot-data: a checkout or a bare git directory")
+    parser.add_argument("--json", type=Path, help="write the rows, counts and versions to this file")
     parser.add_argument("names", nargs="*")
     args = parser.parse_args()
-    names = args.names or _files(args.all)
+    folder = Path(tempfile.mkdtemp(prefix="pitheorem-urdf-mujoco-"))
+    verdicts = corpus_verdicts()  # a robot of more than LARGE_BODIES links runs LARGE_DURATION seconds
+    commit = None
+    if args.gepetto is not None:
+        robots, commit = gepetto(args.gepetto, folder)
+        robots = [r for r in robots if not args.names or r[1] in args.names]
+    else:
+        robots = [(DATA / name, name, None) for name in (args.names or _files(args.all))]
     counts: Counter = Counter()
     moved: Counter = Counter()
     start = time.perf_counter()
     proved = 0  # not exact as written, but bit for bit with the settings of no pure dimension made scale-free
     kept = 0  # not exact, but bit for bit (as written or by that proof) with the mass unit kept
-    for name in names:
-        verdict, detail = judge(name, args.duration)
-        counts[verdict] += 1
-        moved[verdict] += detail.startswith("moved")
-        proof = detail.split("; mass unit kept: ")
-        proved += "the copy is bit for bit the original" in proof[0]
-        kept += len(proof) > 1 and (proof[1] == "exact" or "the copy is bit for bit the original" in proof[1])
-        print(f"{name:48s} {verdict:8s} {detail}", flush=True)
-    print(
-        f"\n{len(names)} files: "
+    rows = []
+    for path, name, skip in robots:
+        if skip is not None:
+            row = {"name": name, "verdict": "not run", "reason": skip}
+        else:
+            large = args.gepetto is not None and links(path) > verdicts.LARGE_BODIES
+            row = judge(path, name, verdicts.LARGE_DURATION if large else args.duration, hide=str(folder))
+        rows.append(row)
+        counts[row["verdict"]] += 1
+        moved[row["verdict"]] += row.get("motion") == "moved"
+        proved += "the copy is bit for bit the original" in row.get("scale_free", "")
+        kept += row.get("mass_kept") == "exact" or "the copy is bit for bit the original" in row.get("mass_kept", "")
+        shorter = f" [{row['duration']} s]" if row.get("duration", args.duration) != args.duration else ""
+        print(f"{name:48s} {row['verdict']:8s} {detail(row)}{shorter}", flush=True)
+    summary = (
+        f"{len(robots)} files: "
         + ", ".join(
             f"{counts[v]} {v} ({moved[v]} moved)" for v in ("exact", "similar", "inconclusive", "not") if counts[v]
         )
-        + f", {counts['refused']} refused; {proved} of the others exact by the scale-free proof"
+        + f", {counts['refused']} refused"
+        + (f", {counts['not run']} not run" if counts["not run"] else "")
+        + f"; {proved} of the others exact by the scale-free proof"
         + f", {kept} with the mass unit kept (softness at MuJoCo's floor)"
-        + f" | {time.perf_counter() - start:.0f} s"
     )
+    print(f"\n{summary} | {time.perf_counter() - start:.0f} s")
+    shutil.rmtree(folder, ignore_errors=True)
+    if args.json is not None:
+        data = record(rows, summary, args, commit, verdicts)
+        args.json.write_text(json.dumps(data, indent=1) + "\n")
+
+
+def record(rows: list[dict], summary: str, args, corpus_commit: str | None, verdicts) -> dict:
+    """The JSON a docs page reads: the rows, the counts, the date, the commit and the versions."""
+    commit = subprocess.run(
+        ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=HERE, check=False
+    ).stdout.strip()
+    return {
+        "generated": datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d"),
+        "versions": {
+            "pitheorem": pt.__version__,
+            "commit": commit or None,
+            "mujoco": mujoco.__version__,
+            "example-robot-data": corpus_commit,
+            "python": platform.python_version(),
+        },
+        "settings": {
+            "scale": "g",
+            "fixed": ["t"],
+            "s": 4,
+            "controls": "engines.smooth_controls(model)",
+            "duration": args.duration,
+            "large_duration": verdicts.LARGE_DURATION,
+            "large_bodies": verdicts.LARGE_BODIES,
+        },
+        "summary": summary,
+        "robots": rows,
+    }
 
 
 if __name__ == "__main__":
