@@ -4,7 +4,8 @@ Run with the engines installed::
 
     python benchmarks/urdf_in_mujoco_partings.py [NAME] [--mass M] [--length L] [--time T] [--steps N]
 
-NAME (default ``quadruped/minitaur_rainbow_dash_v1.urdf``) is loaded with ``engine="mujoco"`` and scaled
+NAME (default ``quadruped/minitaur_rainbow_dash_v1.urdf``: a path below pybullet_data, or the path of
+any URDF file, such as one of example-robot-data's written out by ``urdf_in_mujoco_corpus.py --gepetto``) is loaded with ``engine="mujoco"`` and scaled
 at s = 4 under the change of units given (default: lengths by s, the mass unit and time kept, so that no
 contact's softness at MuJoCo's floor mjMINVAL plays a part).  Both compiled models are stepped side by
 side with ``mj_step`` under :func:`pitheorem.engines.smooth_controls` (the copy's inputs times their
@@ -22,6 +23,7 @@ from __future__ import annotations
 import argparse
 import copy as copy_module
 import warnings
+from pathlib import Path
 
 import mujoco
 import numpy as np
@@ -65,6 +67,11 @@ def parting(m, c, u, fq, fv, fu, n_steps: int) -> int | None:
     return None
 
 
+def urdf_path(name: str) -> Path:
+    """A NAME below pybullet_data, or a file's own path."""
+    return DATA / name if (DATA / name).is_file() else Path(name)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("name", nargs="?", default="quadruped/minitaur_rainbow_dash_v1.urdf")
@@ -75,7 +82,7 @@ def main() -> None:
     args = parser.parse_args()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        model = engines.load(DATA / args.name, engine="mujoco")
+        model = engines.load(urdf_path(args.name), engine="mujoco")
     change = {"M": args.mass, "L": args.length, "T": args.time}
     scaling = pt.Scaling.from_unit_change(model.system(), change)
     original, scaled = model.runner.mjmodel, model.scaled(scaling, 4).runner.mjmodel

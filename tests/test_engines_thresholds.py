@@ -669,3 +669,28 @@ def test_check_summary_groups_by_threshold_and_value_says_at_truly_and_skips_num
         "geom_ball_b_solref_timeconst",
         "geom_floor_solref_timeconst",
     ]
+
+
+def test_a_urdfs_tiny_products_of_inertia_cross_no_floor_in_mujoco(tmp_path):
+    # example-robot-data's TIAGo Pro writes products of inertia of 1e-22 (CAD noise): MuJoCo holds
+    # mjMINVAL against principal moments only, compiles the file and runs it; no threshold may be named
+    urdf = tmp_path / "arm.urdf"
+    urdf.write_text("""<robot name="arm">
+      <link name="base"/>
+      <link name="arm"><inertial><mass value="0.5"/>
+        <inertia ixx="1e-3" iyy="2e-3" izz="3e-3" ixy="1e-22" ixz="-2e-22" iyz="0"/></inertial>
+        <collision><geometry><box size="0.1 0.1 0.4"/></geometry></collision></link>
+      <joint name="hinge" type="revolute"><parent link="base"/><child link="arm"/>
+        <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="10" velocity="5"/></joint>
+    </robot>""")
+    model = engines.load(urdf, engine="mujoco")  # MuJoCo's compiler takes it
+    assert model.runner.mjmodel.body_inertia[1:].min() > value("mujoco_minval_mass")  # the world is body 0
+    products = {"link_arm_ixy", "link_arm_ixz"}
+    assert products <= {p.name for p in model.parameters}
+    assert engines.check(model) == ()
+    # scaled so far that a product would sit a factor 1e10 below the floor: still no cause
+    assert crossed("mujoco", model.parameters, dict.fromkeys(products, 1e-3)) == ()
+    # a principal moment shrunk below the floor is still named
+    (cause,) = crossed("mujoco", model.parameters, {"link_arm_izz": 1e-13})
+    assert cause.element == "link_arm_izz"
+    assert "below mujoco_minval_mass" in cause.detail

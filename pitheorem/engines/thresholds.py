@@ -63,11 +63,17 @@ __all__ = [
 BOUNDS = ("below", "above", "internal", "unapplied")
 
 _M, _ML2, _L, _T = (Dimension.parse(d) for d in ("M", "M L^2", "L", "T"))
+_PRODUCTS = (" inertia ixy", " inertia ixz", " inertia iyz")  # a URDF's products of inertia, by their paths
 
 #: the kinds of parameter a threshold is compared with: a description, and the test on a Parameter
 KINDS: Mapping[str, tuple[str, Callable]] = {
     "mass": ("a body's or link's mass", lambda p: p.dimension == _M and p.name.endswith("_mass")),
-    "inertia": ("a body's or link's inertia", lambda p: p.dimension == _ML2 and "inertia" in p.path),
+    "inertia": (
+        "a body's or link's inertia; not a URDF's products of inertia (ixy, ixz, iyz), which are no principal "
+        "moments: MuJoCo holds its floor against the principal moments, and a product of any size, 0 or "
+        "1e-22, compiles",
+        lambda p: p.dimension == _ML2 and "inertia" in p.path and not p.path.endswith(_PRODUCTS),
+    ),
     "friction_length": (
         "torsional and rolling friction (MJCF friction's second and third numbers)",
         lambda p: p.dimension == _L and p.path.endswith("friction torsional rolling"),
