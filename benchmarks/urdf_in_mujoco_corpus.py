@@ -147,7 +147,7 @@ def judge(path: Path, label: str, duration: float, hide: str | None = None) -> d
             text = str(err).replace(str(path), label)
             if hide:
                 text = text.replace(hide.rstrip("/") + "/", "")
-            return {**row, "verdict": "refused", "reason": " ".join(text.split())[:150]}
+            return {**row, "verdict": "refused", "reason": " ".join(text.split())[:300]}
         sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
         rep = engines.verify(model, sc, 4, duration=duration, controls=engines.smooth_controls(model))
     welded = model.runner.mjmodel.njnt == 0
