@@ -9,7 +9,8 @@ For every URDF file of pybullet_data (the thousand generated ones under ``random
 ``--all``; NAMEs select files by their path relative to pybullet_data), or with ``--gepetto DIR``
 every robot of Gepetto's example-robot-data that ``docs/corpus_verdicts.py`` runs in PyBullet
 (``GEPETTO_URDFS``; DIR a checkout or a bare git directory, read as that script reads it, with
-the same meaning; NAMEs select robots by their file name): load it with
+the same meaning; a checkout of another folder name is linked as ``example-robot-data``, which its
+``package://`` paths name; NAMEs select robots by their file name): load it with
 ``engine="mujoco"``, or the reason it is refused (by the URDF format or by MuJoCo); search a scaling
 with gravity scaled by s and time fixed; verify the scaled copy at s = 4 for ``--duration`` seconds
 under :func:`pitheorem.engines.smooth_controls` (a motor per movable joint).  At a power of four every
@@ -198,6 +199,10 @@ def mass_kept(model, change, duration: float) -> str:
 
 def gepetto(source: Path, folder: Path) -> tuple[list[tuple[Path, str, str | None]], str | None]:
     """example-robot-data's robots, as ``docs/corpus_verdicts.py`` reads them: ``(path, name, why not run)``."""
+    if (source / "robots").is_dir() and source.resolve().name != "example-robot-data":
+        # a checkout of another name: package://example-robot-data/... is found from a folder of that name
+        (folder / "example-robot-data").symlink_to(source.resolve(), target_is_directory=True)
+        source = folder / "example-robot-data"
     items, commit = corpus_verdicts().gepetto_entries(source, folder)
     return [(Path(i["path"]), i["name"], i.get("skip")) for i in items], commit
 
