@@ -216,3 +216,32 @@ def test_extract_reads_a_bare_repository_and_counts_absent_files(tmp_path):
     assert corpus_verdicts.extract(["git", "--git-dir", str(bare)], ["robots/arm"], again) == {"robots/arm/mesh.stl"}
     assert (again / "robots" / "arm" / "urdf" / "arm.urdf").is_file()
     assert not (again / "robots" / "arm" / "mesh.stl").exists()
+
+
+def test_urdf_in_mujoco_fetched_json_names_every_gepetto_robot_once_and_counts_agree():
+    """docs/howto/urdf_in_mujoco_fetched.json (benchmarks/urdf_in_mujoco_corpus.py --gepetto), read by its page."""
+    data = json.loads((ROOT / "docs" / "howto" / "urdf_in_mujoco_fetched.json").read_text())
+    assert re.fullmatch(r"\d{4}-\d{2}-\d{2}", data["generated"])
+    assert all(data["versions"][k] for k in ("pitheorem", "mujoco", "example-robot-data", "commit"))
+    rows = data["robots"]
+    assert [r["name"] for r in rows] == [name.split("/")[-1] for name in corpus_verdicts.GEPETTO_URDFS]
+    counts = {}
+    for row in rows:
+        counts[row["verdict"]] = counts.get(row["verdict"], 0) + 1
+        assert row["verdict"] in {"exact", "similar", "inconclusive", "not", "refused", "not run"}
+        if row["verdict"] in ("refused", "not run"):
+            assert row["reason"] and "/tmp/" not in row["reason"]  # the culprit, no machine's folder
+        elif row["verdict"] != "exact":
+            assert row["causes"], row["name"]  # every verdict short of exact names its causes
+            assert {c["kind"] for c in row["causes"]} <= KINDS
+            assert row["scale_free"] and row["by_hand"].startswith("by hand: ")
+        if row["verdict"] != "not run":
+            large = row["duration"] == data["settings"]["large_duration"]
+            assert large or row["duration"] == data["settings"]["duration"]
+    summary = data["summary"]
+    assert summary.startswith(f"{len(rows)} files: ")
+    for verdict in ("exact", "similar", "refused", "not run"):
+        assert f"{counts.get(verdict, 0)} {verdict}" in summary or verdict not in counts
+    page = (ROOT / "docs" / "howto" / "urdf_in_mujoco.md").read_text()
+    assert 'Path("urdf_in_mujoco_fetched.json")' in page
+    assert "--gepetto" in page
