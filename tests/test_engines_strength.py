@@ -48,14 +48,15 @@ def test_a_twin_that_goes_nan_parts_at_once():
     assert horizon(t, run, [np.array([[0.0], [np.nan], [2.0]])]) == 0.0
 
 
-def test_caught_by_any_bit_or_beyond_the_yardstick():
+def test_caught_by_any_bit_or_beyond_the_yardstick_where_the_copy_is_bit_for_bit():
     a = np.array([[1.0, 2.0], [3.0, 4.0]])
     limits = np.array([0.1, 0.1])
-    assert not caught(a, a.copy(), limits, bits=True)
-    assert caught(a, np.nextafter(a, 9.0), limits, bits=True)
-    assert not caught(a, a + 0.05, limits, bits=False)
-    assert caught(a, a + 0.2, limits, bits=False)
-    assert caught(a, np.full_like(a, np.nan), limits, bits=False)
+    assert not caught(a, a.copy(), limits, bits=True, copy=a)
+    assert caught(a, np.nextafter(a, 9.0), limits, bits=True, copy=a)
+    assert not caught(a, a + 0.05, limits, bits=False, copy=a)
+    assert caught(a, a + 0.2, limits, bits=False, copy=a)
+    assert caught(a, np.full_like(a, np.nan), limits, bits=False, copy=a)
+    assert caught(a, np.full_like(a, np.nan), limits, bits=True, copy=a)
 
 
 def test_the_controls_are_gravity_at_each_error_and_the_masses_doubled():
