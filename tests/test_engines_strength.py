@@ -111,16 +111,20 @@ def test_a_control_is_caught_only_beyond_the_copys_own_deviation_in_that_coordin
     a = np.array([[0.0, 0.0], [1.0, 1.0]])
     limits = np.array([1e-6, 1e-6])
     off = 2.0**-10  # exact in binary, as are the sums below
-    copy = a + [[0.0, 0.0], [off, 0.0]]  # the engine parted the copy in the first coordinate only
-    assert not caught(a, a + [[0.0, 0.0], [COPY_MARGIN * off, 0.0]], limits, bits=True, copy=copy)
-    assert caught(a, a + [[0.0, 0.0], [2 * COPY_MARGIN * off, 0.0]], limits, bits=True, copy=copy)
+
+    def late(x, y):  # the runs as the original, but at the second sample
+        return a + np.array([[0.0, 0.0], [x, y]])
+
+    copy = late(off, 0.0)  # the engine parted the copy in the first coordinate only
+    assert not caught(a, late(COPY_MARGIN * off, 0.0), limits, bits=True, copy=copy)
+    assert caught(a, late(2 * COPY_MARGIN * off, 0.0), limits, bits=True, copy=copy)
     # a bit off where the copy is bit for bit is caught (the rule's own bound), beside a coordinate it is not
-    assert caught(a, a + [[0.0, 0.0], [off, 1e-15]], limits, bits=True, copy=copy)
-    assert not caught(a, a + [[0.0, 0.0], [off, 1e-15]], limits, bits=False, copy=copy)  # within the yardstick
+    assert caught(a, late(off, 1e-15), limits, bits=True, copy=copy)
+    assert not caught(a, late(off, 1e-15), limits, bits=False, copy=copy)  # within the yardstick
     # a copy that went NaN in a coordinate hides a control's NaN there, not elsewhere
-    broken = a + [[0.0, 0.0], [np.nan, 0.0]]
+    broken = late(np.nan, 0.0)
     assert not caught(a, broken, limits, bits=True, copy=broken)
-    assert caught(a, a + [[0.0, 0.0], [np.nan, 1.0]], limits, bits=True, copy=broken)
+    assert caught(a, late(np.nan, 1.0), limits, bits=True, copy=broken)
 
 
 # A capsule hinged at its centre, 1 mm into a box welded to the world: neither body moves along the contact, so
