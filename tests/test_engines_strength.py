@@ -181,6 +181,20 @@ def test_a_control_that_differs_from_the_original_only_as_the_right_copy_does_is
     assert any("past it the comparison says little" in line for line in lines)
 
 
+def test_a_wrong_copys_own_deviation_hides_its_controls_and_the_words_do_not_call_it_noise():
+    """Gravity left unscaled on a driven pendulum: not similar.  Its controls, made from that copy, stand no further
+    from the original than it does; the report says the copy is not similar, not that the engine rounds."""
+    model = engines.load(engines.example_path("causes/hanging.xml"))
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    wrong = model.scaled(sc, 10).multiplied(g=0.1)  # gravity as it was
+    rep = engines.verify(model, sc, 10, duration=0.5, scaled=wrong, controls=engines.smooth_controls(model))
+    assert rep.verdict == "not similar"
+    assert all(c.hidden and not c.caught for c in rep.controls)
+    lines = strength_lines(rep)
+    assert any("than the copy itself (which is not similar)" in line for line in lines)
+    assert not any("rounding the engine parts" in line for line in lines)
+
+
 def test_where_the_copy_parts_by_rounding_a_control_that_moves_the_robot_is_still_caught(tmp_path):
     """The stuck capsule beside a hopper: the copy is not bit for bit (the capsule's rounding), yet gravity times
     1.0001 moves the hopper far beyond what the copy deviates: caught at the smallest error, as before."""

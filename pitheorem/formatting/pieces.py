@@ -827,7 +827,9 @@ def strength_lines(report) -> list[str]:
         lines.append(
             f"INCONCLUSIVE: not even {what} doubled move{'s' if len(hidden) == 1 else ''} this run "
             f"{COPY_MARGIN:g} times "
-            "further from the original than the copy itself (rounding the engine parts the runs by, or chaos), "
+            "further from the original than the copy itself "
+            # a copy within the yardstick deviates by the run's own noise; one beyond it may be wrong itself
+            f"({'rounding the engine parts the runs by, or chaos' if report.passed else 'which is not similar'}), "
             f"so it cannot tell an error in {'that' if len(hidden) == 1 else 'them'} from the copy's own deviation"
         )
     if unseen:
