@@ -169,6 +169,7 @@ def test_a_control_that_differs_from_the_original_only_as_the_right_copy_does_is
         ("g", e, False, True) for e in CONTROL_ERRORS
     ]
     lines = strength_lines(rep)
+    assert COPY_MARGIN == 10  # the words state the margin
     assert (
         "INCONCLUSIVE: not even gravity doubled moves this run 10 times further from the original than the copy "
         "itself (rounding the engine parts the runs by, or chaos), so it cannot tell an error in that from the "
