@@ -193,9 +193,10 @@ def scale_free_run(
     later than the solver's settings did, with every setting changed; and
     where still none is, every setting changed with the solver's
     iterations capped (:func:`capped_ways`: one run of the original to count
-    them, then both runs under each cap, in one batch).  The first under
-    which the runs are bit for bit is reported (the largest cap of those),
-    else the last run (a cap of 1) with where the runs still part.
+    them, then both runs under each cap, the largest first, until one is bit
+    for bit or parts the runs no later than the cap before it).  The first
+    under which the runs are bit for bit is reported, else the last run
+    with where the runs still part.
 
     Parameters
     ----------
@@ -243,20 +244,24 @@ def scale_free_run(
                 ran[tuple(sorted(options.items()))] = (runs[2 * i], runs[2 * i + 1])
             pairs.append((runs[2 * i], runs[2 * i + 1] / factors))
     ways = ways[: len(pairs)]
-    if not any(np.array_equal(run, back) for run, back in pairs):
-        capped = capped_ways(original, ways, n_steps, u_original)
-        jobs = []
-        for options in capped:  # one batch: each cap's two runs
-            jobs += [
+    if pairs and not any(np.array_equal(run, back) for run, back in pairs):
+        # one cap at a time, the largest first: each costs both runs again, so the caps stop at the first that
+        # is exact, or at one that parts the runs no later than the runs before it (a cause the iterations do
+        # not touch: a contact at MuJoCo's softness floor parts them at step 1 under every cap)
+        before = pairs[-1]
+        for options in capped_ways(original, ways, n_steps, u_original):
+            jobs = [
                 (original.variant(**options), u_original, False, None),
                 (copy.variant(**options), u_scaled, False, None),
             ]
-        runs = original.run_many(n_steps, jobs) if jobs else []
-        for i, options in enumerate(capped):
+            runs = original.run_many(n_steps, jobs)
             if ran is not None:
-                ran[tuple(sorted(options.items()))] = (runs[2 * i], runs[2 * i + 1])
-            pairs.append((runs[2 * i], runs[2 * i + 1] / factors))
-        ways = [*ways, *capped]
+                ran[tuple(sorted(options.items()))] = (runs[0], runs[1])
+            pairs.append((runs[0], runs[1] / factors))
+            ways = [*ways, options]
+            if np.array_equal(*pairs[-1]) or not _parts_later(pairs[-1], before):
+                break
+            before = pairs[-1]
     chosen = next((i for i, (run, back) in enumerate(pairs) if np.array_equal(run, back)), len(ways) - 1)
     options, (run, back) = ways[chosen], pairs[chosen]
     exact = bool(np.array_equal(run, back))
