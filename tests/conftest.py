@@ -18,6 +18,8 @@ import pytest
 import sympy
 from hypothesis import settings
 from hypothesis import strategies as st
+from sympy import QQ
+from sympy.polys.matrices import DomainMatrix
 
 import pitheorem as pt
 
@@ -39,6 +41,12 @@ REFERENCE = REPO.parent / "shared" / "reference"
 
 if str(REPO) not in sys.path:  # lets tests import matlab_ports/ and benchmarks/
     sys.path.insert(0, str(REPO))
+
+# JAX's compiled programs (MJX's batch runner: seconds to tens of seconds of XLA on the CPU) are kept in the
+# environment's build folder, as Warp's kernels are (tests/test_engines_warp.py): the other xdist worker and
+# the next run of the suite load a program instead of compiling it again.  A loaded program is the one
+# compiled (JAX keys it by the program, its shapes, the flags and the versions), so runs are unchanged.
+os.environ.setdefault("JAX_COMPILATION_CACHE_DIR", str(Path(sys.prefix) / "jax-cache"))
 
 
 #: test files whose time is mostly an engine compiling on a cold start (Warp its kernels on the CPU, about
@@ -201,8 +209,19 @@ def columns_of(system: pt.System) -> list[list[Fraction]]:
     return [[system.dimension(v).exponent_of(b) for b in system.base_dimensions] for v in system.variables]
 
 
+def qq_matrix(rows) -> DomainMatrix:
+    """Rows of Fractions or ints as sympy's exact matrix over the rationals.
+
+    The oracles work in sympy's DomainMatrix (the exact engine under sympy.Matrix, without its
+    conversions: a third of the time, and fewer Python calls for coverage to trace), never in
+    pitheorem's own arithmetic.
+    """
+    rows = [[QQ(Fraction(x).numerator, Fraction(x).denominator) for x in row] for row in rows]
+    return DomainMatrix(rows, (len(rows), len(rows[0]) if rows else 0), QQ)
+
+
 def sympy_rank(cols) -> int:
-    return sympy.Matrix([[sympy.Rational(x.numerator, x.denominator) for x in c] for c in cols]).rank() if cols else 0
+    return qq_matrix(cols).rank() if cols else 0
 
 
 def oracle_bases(system: pt.System, exclude=(), require=()) -> list[tuple[str, ...]]:
@@ -242,31 +261,40 @@ def oracle_groups(system: pt.System, repeating) -> list[tuple[tuple[str, int], .
 
 def oracle_search(system: pt.System, scale: dict, fixed) -> list[tuple[Fraction, ...]]:
     """Support-minimal solutions by trying every set of free variables held at zero, with sympy."""
-    cols = columns_of(system)
-    d_t = sympy.Matrix([[sympy.Rational(str(x)) for x in c] for c in cols])  # a = D^T u
+    d_t = qq_matrix(columns_of(system))  # a = D^T u
     free = [n for n in system.variables if n not in scale and n not in fixed]
     points = set()
     for size in range(len(free) + 1):
         for zero in combinations(free, size):
             held = {
-                **{n: sympy.Rational(str(Fraction(p))) for n, p in scale.items()},
-                **dict.fromkeys([*fixed, *zero], sympy.Integer(0)),
+                **{n: Fraction(p) for n, p in scale.items()},
+                **dict.fromkeys([*fixed, *zero], Fraction(0)),
             }
-            rows = sympy.Matrix([d_t.row(system.variables.index(n)) for n in held])
-            rhs = sympy.Matrix(list(held.values()))
-            try:
-                sol, _ = rows.gauss_jordan_solve(rhs)
-            except ValueError:
-                continue
-            a = d_t * sol
-            if any(x.free_symbols for x in a):
-                continue
-            points.add(tuple(Fraction(int(x.p), int(x.q)) for x in a))
+            point = _unique_image(d_t, [system.variables.index(n) for n in held], list(held.values()))
+            if point is not None:
+                points.add(point)
     supports = {p: frozenset(i for i, x in enumerate(p) if x) for p in points}
     minimal = [p for p in points if not any(supports[q] < supports[p] for q in points)]
     keys = [(len(supports[p]), sorted(supports[p])) for p in minimal]
     assert len({repr(key) for key in keys}) == len(keys), "two minimal points with one support"
     return sorted(minimal, key=lambda p: (len(supports[p]), sorted(supports[p])))
+
+
+def _unique_image(d_t: DomainMatrix, rows: list[int], values: list[Fraction]) -> tuple[Fraction, ...] | None:
+    """a = D^T u where u solves the rows of D^T given (row i of u's image equal to its value), if that a is
+    one point: None where the rows contradict each other or leave a free direction that moves a."""
+    m = d_t.shape[1]
+    held = d_t.extract(rows, range(m))
+    reduced, pivots = held.hstack(qq_matrix([[v] for v in values])).rref()
+    if m in pivots:  # a row 0 = nonzero: no solution
+        return None
+    if len(pivots) < m and not (d_t * held.nullspace().transpose()).is_zero_matrix:
+        return None  # a free direction of u that moves a: the held rows do not pin a point
+    u = [QQ(0)] * m  # the free unknowns at zero
+    for i, j in enumerate(pivots):
+        u[j] = reduced[i, m].element
+    a = d_t * DomainMatrix([[x] for x in u], (m, 1), QQ)
+    return tuple(Fraction(int(a[i, 0].element.numerator), int(a[i, 0].element.denominator)) for i in range(a.shape[0]))
 
 
 @st.composite

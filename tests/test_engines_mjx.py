@@ -1,7 +1,7 @@
 """pitheorem.engines.runners.mjx: MJCF files loaded, scaled, saved and verified in MJX (float32 by default).
 
 Runs only where MJX is installed (``pip install "pitheorem[mjx]"``).  The runs are kept short (the
-pendulum and gymnasium's hopper, 0.2 s each): on the CPU most of the time is JAX compiling the
+pendulum and a small planar hopper, 0.2 s each): on the CPU most of the time is JAX compiling the
 batch runner, once per model's sizes (``benchmarks/mjx_corpus.py`` runs the rest of gymnasium's files).
 """
 
@@ -30,6 +30,7 @@ PENDULUM = engines.example_path("pendulum.xml")
 DURATION = 0.2
 gymnasium = sys.modules.get("gymnasium") or pytest.importorskip("gymnasium")
 ASSETS = Path(gymnasium.__file__).resolve().parent / "envs" / "mujoco" / "assets"
+MARGINS = Path(__file__).parent / "data" / "engines" / "margins_on_floor.xml"
 
 
 def time_free(model):
@@ -77,13 +78,12 @@ def test_float64_on_request_and_jax_left_as_it_was():
         engines.load(PENDULUM, engine="mjx", precision="float16")
 
 
-# the shipped pendulum and gymnasium's hopper (contacts, and margins on its geoms: the copy's static body_margin
-# differs); the rest of gymnasium's files run in benchmarks/mjx_corpus.py
-@pytest.mark.parametrize("path", [PENDULUM, ASSETS / "hopper.xml"], ids=lambda p: Path(p).name)
+# the shipped pendulum, and a small planar hopper with gymnasium's hopper's ingredients (capsules landing on a
+# plane, margins on its geoms: the copy's static body_margin differs), which XLA compiles in a third of the
+# hopper's time; gymnasium's hopper and the rest of its files run in benchmarks/mjx_corpus.py
+@pytest.mark.parametrize("path", [PENDULUM, MARGINS], ids=lambda p: Path(p).name)
 def test_s4_reproduces_the_original_bit_for_bit_in_float32(path):
-    with warnings.catch_warnings():  # gymnasium's custom numerics (frame_skip) have no known dimension
-        warnings.simplefilter("ignore", engines.UnscalableModelWarning)
-        model = engines.load(path, engine="mjx")
+    model = engines.load(path, engine="mjx")
     if model.parameter("tolerance").value[0]:
         model = model.with_values(tolerance=0)  # the solver's stopping rule is not scale-free (as in MuJoCo)
     sc = time_free(model)
@@ -91,6 +91,24 @@ def test_s4_reproduces_the_original_bit_for_bit_in_float32(path):
     assert rep.exact, rep.max_deviation
     assert rep.excited
     assert rep.causes == ()
+
+
+def test_the_small_hopper_lands_and_its_copy_has_other_static_margins():
+    # what makes it a test of contacts and of the batch's static arrays: C MuJoCo finds contacts within the
+    # verification's duration, and the copy's body_margin (static in MJX) is not the original's
+    import mujoco
+
+    model = engines.load(MARGINS, engine="mjx")
+    m = mujoco.MjModel.from_xml_path(str(MARGINS))
+    d = mujoco.MjData(m)
+    contacts = []
+    for _ in range(round(DURATION / m.opt.timestep)):
+        mujoco.mj_step(m, d)
+        contacts.append(d.ncon)
+    assert contacts[0] == 0  # it starts in the air
+    assert max(contacts) > 0  # and lands
+    copy = model.scaled(time_free(model), 4)
+    assert not np.array_equal(copy.runner.device_model().body_margin, model.runner.device_model().body_margin)
 
 
 def test_s10_is_judged_against_the_float32_yardstick(pendulum):

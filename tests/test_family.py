@@ -6,11 +6,11 @@ from fractions import Fraction
 from itertools import combinations
 
 import numpy as np
-import sympy
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from pitheorem import family as family_module
+from tests.conftest import qq_matrix
 
 
 def brute_force_minimal_points(a0, dirs, free):
@@ -19,15 +19,14 @@ def brute_force_minimal_points(a0, dirs, free):
     d = len(dirs)
     points = set()
     for subset in combinations(free, d):
-        minor = sympy.Matrix([[v[j] for j in subset] for v in dirs])  # d x d
+        minor = qq_matrix([[v[j] for j in subset] for v in dirs])  # d x d
         if minor.det() == 0:
             continue
-        coords = minor.T.solve(sympy.Matrix([-a0[j] for j in subset]))  # sum_i c_i v_i[j] = -a0[j] on the subset
+        # sum_i c_i v_i[j] = -a0[j] on the subset
+        solved = minor.transpose().lu_solve(qq_matrix([[-a0[j]] for j in subset]))
+        coords = [Fraction(int(c.numerator), int(c.denominator)) for c in (solved[i, 0].element for i in range(d))]
         points.add(
-            tuple(
-                Fraction(a) + sum(Fraction(int(c.p), int(c.q)) * v[j] for c, v in zip(coords, dirs, strict=True))
-                for j, a in enumerate(a0)
-            )
+            tuple(Fraction(a) + sum(c * v[j] for c, v in zip(coords, dirs, strict=True)) for j, a in enumerate(a0))
         )
     support = {p: [j for j, x in enumerate(p) if x] for p in points}
     return sorted(points, key=lambda p: (len(support[p]), support[p]))
