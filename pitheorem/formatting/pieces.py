@@ -820,14 +820,14 @@ def strength_lines(report) -> list[str]:
     hidden = [g for g in report.unseen if any(c.hidden for c in report.controls if c.group == g)]
     unseen = [g for g in report.unseen if g not in hidden]
     words = {"g": "gravity", "masses": "the masses"}
-    if hidden:
+    if hidden and report.passed:
+        # only beside a copy within the yardstick: a copy beyond it is not similar, a verdict the controls cannot
+        # weaken (they are that wrong copy, wrong once more, so no nearer the original than it is)
         # 10: pitheorem.engines.verdicts.strength.COPY_MARGIN (the engines lie above this layer; a test holds the two)
         what = " or ".join(words.get(g, g) for g in hidden)
         lines.append(
             f"INCONCLUSIVE: not even {what} doubled move{'s' if len(hidden) == 1 else ''} this run 10 times "
-            "further from the original than the copy itself "
-            # a copy within the yardstick deviates by the run's own noise; one beyond it may be wrong itself
-            f"({'rounding the engine parts the runs by, or chaos' if report.passed else 'which is not similar'}), "
+            "further from the original than the copy itself (rounding the engine parts the runs by, or chaos), "
             f"so it cannot tell an error in {'that' if len(hidden) == 1 else 'them'} from the copy's own deviation"
         )
     if unseen:
