@@ -10,12 +10,20 @@ at s = 4 under the change of units given (default: lengths by s, the mass unit a
 contact's softness at MuJoCo's floor mjMINVAL plays a part).  Both compiled models are stepped side by
 side with ``mj_step`` under :func:`pitheorem.engines.smooth_controls` (the copy's inputs times their
 factors), each time with the same options changed in both: as written; native convex collision off;
-then also the line search's ``ls_tolerance`` at 0; then ``tolerance`` at 0 (every iteration run).  Prints
-the first step whose state is not the original's times its factors, and, where that is step 1 with
-``tolerance`` 0, the first count of solver iterations at which that step is no longer bit for bit.
+then also the line search's ``ls_tolerance`` at 0; then ``tolerance`` at 0 (every iteration run); then
+that with ``iterations`` capped in both runs, at the most the original takes in a step as written (native
+convex collision off; the most of any island), that halved, down to 1 (the scale-free proof's last ways,
+``pitheorem.engines.verdicts.scalefree.capped_ways``).  Prints the first step whose state is not the
+original's times its factors, and, where that is step 1 with ``tolerance`` 0, the first count of solver
+iterations at which that step is no longer bit for bit, and each island's iterations in that step.
 
-``minitaur_rainbow_dash_v1`` (mujoco 4.0.0): steps 10, 41, 123 and 1; step 1 is bit for bit with up to 6
-iterations, not with 7; with ``--length 0 --mass 1`` bit for bit in every way.
+``minitaur_rainbow_dash_v1`` (mujoco 4.0.0, 1500 steps): steps 10, 41, 123 and 1; step 1 is bit for bit
+with up to 6 iterations, not with 7; its islands (one per leg) stop after 100, 100, 3 and 6 iterations in
+the original, 100 in each in the copy: the line search stops an island where the norm of its direction
+falls under mjMINVAL (``mujoco_minval_search``), and the copy's slides accelerate 4 times as much.  Capped
+at 5 (the most as written), 2 and 1 iteration: steps 3, 896 and none.  With ``--length 0 --mass 1`` bit
+for bit in every way.  With ``--mass -2`` (the issue's scaling, masses by 1/16) the same steps, the same
+islands' iterations, the same caps.
 """
 
 from __future__ import annotations
@@ -102,6 +110,34 @@ def main() -> None:
                 if parting(changed(original, options, k), changed(scaled, options, k), u, fq, fv, fu, 1) == 1
             )
             print(f"  {'':30s} step 1 bit for bit with up to {first - 1} solver iterations, not with {first}")
+            islands = []
+            for compiled in (original, scaled):
+                m = changed(compiled, options)
+                d = mujoco.MjData(m)
+                d.ctrl[:] = u(0) * (1 if compiled is original else fu)
+                mujoco.mj_step(m, d)
+                islands.append([int(n) for n in d.solver_niter[: max(1, d.nisland)]])
+            print(f"  {'':30s} each island's iterations at step 1: {islands[0]}, in the copy {islands[1]}")
+    capped = dict(WAYS[-1][1])
+    most = most_iterations(changed(original, {"nativeccd": True}), u, args.steps)
+    caps = [most]
+    while caps[-1] > 1:
+        caps.append(caps[-1] // 2)
+    for cap in caps:
+        step = parting(changed(original, capped, cap), changed(scaled, capped, cap), u, fq, fv, fu, args.steps)
+        label = f"and iterations {cap}" + (" (the most)" if cap == most else "")
+        print(f"  {label:30s} {'bit for bit' if step is None else f'part at step {step}'}")
+
+
+def most_iterations(m, u, n_steps: int) -> int:
+    """The most solver iterations any island takes in a step of a run as written."""
+    d = mujoco.MjData(m)
+    most = 0
+    for i in range(n_steps):
+        d.ctrl[:] = u(i * m.opt.timestep)
+        mujoco.mj_step(m, d)
+        most = max(most, int(np.max(d.solver_niter[: max(1, d.nisland)])))
+    return most
 
 
 if __name__ == "__main__":

@@ -372,11 +372,17 @@ def _cmd_search(args) -> int:
 
     with _stages(args, ("loading", "searching")) as bar:
         bar.stage("loading")
-        model = _load(args.file, args.scene)
+        model, engine_model = _load_with_engine(args.file, args.scene)
         bar.stage("searching")
         result = _run_search(model, args)
         text = _text(SearchAnswer(model.name, result), args)
     print(text)
+    if engine_model is not None and result.feasible:  # scalings the file's mixed numbers cannot follow
+        from .engines.cli import search_refusals
+
+        refusal = search_refusals(engine_model, result.scalings)
+        if refusal is not None:
+            say(f"pitheorem: note: {refusal}")
     return EXIT_OK if result.feasible else EXIT_INFEASIBLE
 
 

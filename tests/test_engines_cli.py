@@ -439,6 +439,38 @@ def test_apply_names_a_parameter_no_scene_option_can_fix(capsys):
     assert "--scene" not in err
 
 
+def test_search_says_which_scalings_a_mixed_number_refuses_and_apply_agrees(tmp_path, capsys):
+    # the puck's free-joint damping and friction loss act on lengths and on angles: a scaling that moves L
+    # cannot carry them (each solution counted once, the first number named)
+    path = tmp_path / "puck.xml"
+    path.write_text((DATA / "free_damped.xml").read_text().replace('damping="0.1"', 'damping="0.1" frictionloss="0.2"'))
+    path = str(path)
+    assert main(["search", path, "--scale", "g=1", "--fixed", "--format", "json"]) == 0
+    out, err = capsys.readouterr()
+    solutions = json.loads(out)["scalings"]
+    moves_length = [k for k, sc in enumerate(solutions, 1) if sc["unit_change"].get("L", "0") != "0"]
+    assert 0 < len(moves_length) < len(solutions)  # some solutions keep the length unit, some do not
+    note = err.strip()
+    assert note.startswith("pitheorem: note: apply refuses #")
+    assert f"({len(moves_length)} of {len(solutions)})" in note
+    assert "joint 'root' damping" in note
+    assert err.count("\n") == 1
+    # here the solutions that move L are the last ones, one run of numbers: written as a range
+    assert moves_length == list(range(moves_length[0], len(solutions) + 1))
+    assert f"apply refuses #{moves_length[0]} to #{len(solutions)} ({len(moves_length)} of " in note
+    # and apply refuses exactly those: the first refused, the first kept
+    for k, code in ((moves_length[0], 2), (next(k for k in range(1, 99) if k not in moves_length), 0)):
+        args = ["apply", path, "--scale", "g=1", "--fixed", "--s", "2", "--solution", str(k)]
+        assert main(args) == code
+        capsys.readouterr()
+    # with time fixed every solution moves L: one word for all
+    assert main(["search", path, "--scale", "g=1"]) == 0
+    assert "apply refuses every scaling listed: " in capsys.readouterr().err
+    # a model with no mixed number gets no note
+    assert main(["search", PENDULUM, "--scale", "g=1"]) == 0
+    assert capsys.readouterr().err == ""
+
+
 def test_apply_without_output_reports_the_changes_and_writes_nothing(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     assert main(["apply", PENDULUM, "--scale", "g=1", "--s", "2"]) == 0

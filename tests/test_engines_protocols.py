@@ -11,6 +11,7 @@ from pitheorem.engines.protocols import (
     OPTIONAL,
     REQUIRED,
     CounterRuns,
+    CountsIterations,
     HasSceneSettings,
     IgnoredSettings,
     NamesElements,
@@ -56,7 +57,7 @@ def test_the_required_methods_are_the_runner_and_the_model_file():
 
 def test_mujocos_backend_has_every_part_but_the_scene_and_the_refusals():
     backend = engines.load(engines.example_path("pendulum.xml")).runner
-    for protocol in (Runs, Runner, CounterRuns, SolverDiagnosis, NamesElements, StoresCopies):
+    for protocol in (Runs, Runner, CounterRuns, CountsIterations, SolverDiagnosis, NamesElements, StoresCopies):
         assert isinstance(backend, protocol), protocol
     for protocol in (HasSceneSettings, RefusesScalings, IgnoredSettings):
         assert not isinstance(backend, protocol), protocol
@@ -73,6 +74,7 @@ def test_pybullets_backend_has_the_scene_the_refusals_and_no_solver_diagnosis(tm
     for protocol in (Runner, HasSceneSettings, RefusesScalings, IgnoredSettings, CounterRuns, NamesElements):
         assert isinstance(backend, protocol), protocol
     assert not isinstance(backend, SolverDiagnosis)
+    assert not isinstance(backend, CountsIterations)
 
 
 def test_every_optional_method_is_asked_for_through_its_protocol_not_hasattr():

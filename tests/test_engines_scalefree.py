@@ -13,7 +13,8 @@ import pitheorem as pt
 mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
 
 from pitheorem import engines  # noqa: E402
-from pitheorem.engines.verdicts.scalefree import ScaleFree, scale_free_options  # noqa: E402
+from pitheorem.engines.protocols import CountsIterations  # noqa: E402
+from pitheorem.engines.verdicts.scalefree import ScaleFree, capped_ways, scale_free_options  # noqa: E402
 from tests.conftest import plain_mujoco_runs_equal, recorded_batches  # noqa: E402
 
 DATA = Path(__file__).resolve().parent / "data" / "engines"
@@ -63,7 +64,10 @@ def test_a_run_that_parts_for_another_reason_says_where_even_when_scale_free():
     free = rep.scale_free
     quick = engines.verify(model, sc, 4, duration=1.0, controls=engines.smooth_controls(model), diagnose=False)
     assert quick.scale_free is None  # the verdict alone: no proof, no causes
-    assert free.settings == (("option tolerance", "0"), ("option noslip_tolerance", "0"))
+    # the last way: both stopping rules at 0, and then the solver's iterations capped too, at the most the
+    # original takes with its own tolerance; that cap parts the runs no later, so no smaller one is tried
+    cap = str(model.runner.solver_iterations(500, engines.smooth_controls(model)))  # 1 s of 0.002 s steps
+    assert free.settings == (("option tolerance", "0"), ("option noslip_tolerance", "0"), ("option iterations", cap))
     assert not free.exact
     t, where = free.first_divergence
     assert 0 < t <= 1.0
@@ -71,7 +75,11 @@ def test_a_run_that_parts_for_another_reason_says_where_even_when_scale_free():
     assert "still part" in free.text()
     data = json.loads(format(rep, "json"))
     assert data["scale_free"]["exact"] is False
-    assert data["scale_free"]["settings"] == {"option tolerance": "0", "option noslip_tolerance": "0"}
+    assert data["scale_free"]["settings"] == {
+        "option tolerance": "0",
+        "option noslip_tolerance": "0",
+        "option iterations": cap,
+    }
 
 
 def test_no_scale_free_run_where_the_runs_are_exact_or_cannot_be():
@@ -224,4 +232,81 @@ def test_every_setting_changed_is_run_only_where_the_collision_path_alone_parts_
         free = scale_free_run(model.runner, copy.runner, 500, None, None, factors, np.arange(501) * 0.002, names, ran)
         assert (both in ran) is later
         assert (("native_ccd", False),) in ran
-        assert free.settings[-1] == ("flag nativeccd", "disable")  # the last way run, with where it parts
+        # the last way run, with where it parts: every setting changed, the iterations capped too
+        assert free.settings[-2:] == (("flag nativeccd", "disable"), ("option iterations", "1"))
+
+
+def capped_by_hand(iterations):
+    """A change for plain_mujoco_runs_equal: tolerance 0 and a fixed count of iterations, by hand."""
+
+    def change(m):
+        m.opt.tolerance = 0.0
+        m.opt.iterations = iterations
+
+    return change
+
+
+def test_a_fixed_count_of_iterations_proves_exact_what_a_tolerance_of_0_does_not():
+    """The leg with a sliding shin under the issue's scaling (masses by 1/16, lengths by 4): with the tolerance at
+    0 the two runs' line searches still stop at other iterations (MuJoCo's floor on the norm of the search
+    direction, mujoco_minval_search); capped at the one iteration a step the original takes with its own
+    tolerance, both do the same, and the copy is bit for bit the original, until a step where the original's
+    first search direction is under the floor already (about 0.74 s): the proof then says where."""
+    model, sc = searched(DATA / "slide_leg.xml")
+    assert {b: sc.unit_change[b] for b in "MLT"} == {"M": -2, "L": 1, "T": 0}
+    assert scale_free_options(model.runner) == [{"tolerance": 0.0}]
+    assert capped_ways(model.runner, [{"tolerance": 0.0}], 300) == [{"tolerance": 0.0, "iterations": 1}]
+    rep = engines.verify(model, sc, 4, duration=0.6)
+    assert not rep.exact
+    free = rep.scale_free
+    assert free.exact
+    assert free.settings == (("option tolerance", "0"), ("option iterations", "1"))
+    assert (
+        free.text()
+        == "scale-free: with option tolerance 0, option iterations 1 in both runs the copy is bit for bit the original"
+    )
+    copy = model.scaled(sc, 4)
+    n = len(rep.original) - 1
+    assert not plain_mujoco_runs_equal(model, copy, sc, 4, n, scale_free_by_hand(None))
+    assert plain_mujoco_runs_equal(model, copy, sc, 4, n, capped_by_hand(1))
+    later = engines.verify(model, sc, 4, duration=1.0).scale_free
+    assert not later.exact
+    assert later.settings[-1] == ("option iterations", "1")  # the last cap tried, with where the runs part
+    assert 0.6 < later.first_divergence[0] < 1.0
+
+
+@pytest.mark.parametrize("tolerance", [1e-8, 0.0])
+def test_a_runner_counts_the_most_iterations_a_step_takes(tolerance):
+    """Two legs apart (two islands of the solver; the second, heavier and driven, takes more iterations): capped
+    at the count, a run is the run as written bit for bit; capped one lower, it is not."""
+    model = engines.load(DATA / "two_legs.xml")
+    runner = model.runner.variant(tolerance=tolerance)
+    u = engines.smooth_controls(model)
+    assert isinstance(runner, CountsIterations)
+    most = runner.solver_iterations(300, u)
+    assert 1 < most < runner.mjmodel.opt.iterations  # at 0, the line search's floor stops it short
+    assert np.array_equal(runner.variant(iterations=most).run(300, u), runner.run(300, u))
+    assert not np.array_equal(runner.variant(iterations=most - 1).run(300, u), runner.run(300, u))
+    assert runner.variant(iterations=most - 1).solver_iterations(300, u) == most - 1
+    assert runner.solver_iterations(0, u) == 0
+
+
+def test_caps_halve_down_to_one_and_are_tried_only_where_a_tolerance_is_set_to_0():
+    model = engines.load(DATA / "slide_leg.xml")
+    runner = model.runner.variant(tolerance=0.0)  # every iteration it may: its own count is the floor's
+    assert [w["iterations"] for w in capped_ways(runner, [{"tolerance": 0.0}], 300)] == [2, 1]
+    assert [
+        w["iterations"]
+        for w in capped_ways(model.runner.variant(iterations=100, tolerance=0.0), [{"tolerance": 0.0}], 1000)
+    ] == [2, 1]
+    box = engines.load(DATA / "contact.xml").runner  # its file sets the tolerance to 0: 100 iterations a step
+    assert [w["iterations"] for w in capped_ways(box, [{"tolerance": 0.0}], 200)] == [100, 50, 25, 12, 6, 3, 1]
+    assert capped_ways(model.runner, [{"native_ccd": False}], 300) == []  # no tolerance set to 0: no cap
+    assert capped_ways(model.runner, [], 300) == []
+
+
+def test_a_runner_that_does_not_count_its_iterations_is_not_capped():
+    pytest.importorskip("pybullet", reason="pybullet is not installed (pip install 'pitheorem[engines]')")
+    runner = engines.load(engines.example_path("hinged_rod.urdf")).runner  # a URDF runs in PyBullet
+    assert not isinstance(runner, CountsIterations)
+    assert capped_ways(runner, [{"tolerance": 0.0}], 10) == []

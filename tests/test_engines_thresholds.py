@@ -9,6 +9,7 @@ models whose numbers are put beyond, near and clear of the thresholds.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
 import re
@@ -264,6 +265,46 @@ def test_mujoco_solver_tolerance_is_held_against_a_normalisation_of_no_pure_dime
     # inertias (x 1): it moves by neither factor, so no change of units carries the tolerance
     assert 1 / 16 < inertia_scaled / inertia < 1
     assert max(original) < compile_xml("<mujoco/>").opt.iterations  # the tolerance stops the solver early
+
+
+def line_search_stops(model, scaling, n_steps: int) -> list[tuple[int, int]]:
+    """Each step's count of solver iterations in a model and its copy at s = 4, both at tolerance 0, by hand."""
+    runs = []
+    for compiled in (model.runner.mjmodel, model.scaled(scaling, 4).runner.mjmodel):
+        m = copy.copy(compiled)
+        m.opt.tolerance = 0.0
+        d = mujoco.MjData(m)
+        counts = []
+        for _ in range(n_steps):
+            mujoco.mj_step(m, d)
+            counts.append(int(d.solver_niter[0]))
+        runs.append(counts)
+    return list(zip(*runs, strict=True))
+
+
+def test_mujoco_line_search_stops_where_its_direction_is_under_mjminval_whatever_the_tolerance():
+    """With the tolerance at 0 nothing but the count of iterations and the line search's floor on the norm of its
+    direction (generalized accelerations: hinges' and slides' together) stops MuJoCo's Newton solver; the leg
+    with a sliding shin stops short of opt.iterations, and a copy whose accelerations are not the original's
+    stops elsewhere: with the time unit by 4 (every acceleration by 1/16) never later and somewhere earlier,
+    with the slide's accelerations by 4 (the issue's change: masses by 1/16, lengths by 4) somewhere later;
+    with the mass unit alone changed (no acceleration moves) at the same iteration every step."""
+    (t,) = thresholds(names=["mujoco_minval_search"])
+    assert (t.value, t.bound, t.dimension, t.applies) == (mujoco.mjMINVAL, "internal", None, ())
+    model = engines.load(Path(__file__).parent / "data" / "engines" / "slide_leg.xml")
+    cap = model.runner.mjmodel.opt.iterations
+
+    def change(**units):
+        return pt.Scaling.from_unit_change(model.system(), {"M": 0, "L": 0, "T": 0, **units})
+
+    mass = line_search_stops(model, change(M=1), 300)
+    assert all(a == b for a, b in mass)
+    assert max(a for a, _ in mass) < cap  # the tolerance at 0 stopped nothing: the floor did
+    slower = line_search_stops(model, change(T=1), 300)
+    assert all(b <= a for a, b in slower)
+    assert any(b < a for a, b in slower)
+    issue = line_search_stops(model, change(M=-2, L=1), 300)
+    assert any(b > a for a, b in issue)
 
 
 # -- PyBullet: each clamp, measured ---------------------------------------------------------------

@@ -42,6 +42,7 @@ __all__ = [
     "parse_units",
     "scene_help",
     "scene_text",
+    "search_refusals",
     "sweep_engine",
     "verify_engine",
 ]
@@ -195,6 +196,60 @@ def engine_warnings(paths, engine: str | None = None) -> Iterator[list[tuple[str
             stack.enter_context(hook(heard))
             collected.append((name, heard))
         yield collected
+
+
+def search_refusals(model: EngineModel, scalings) -> str | None:
+    """One line saying which of a search's scalings the file's own numbers refuse, and why; None if none.
+
+    A number that mixes dimensions (a free joint's damping acts on lengths
+    and on angles) follows a scaling only where the scaling moves all of its
+    dimensions alike; a search of the system knows nothing of that, so it may
+    list scalings that ``apply`` then refuses.  The line names the first such
+    number and the listed scalings (``#1``, ...) it refuses.  What a scene
+    option removes (PyBullet's link damping) is not counted: ``apply`` and
+    ``verify`` choose that scene themselves.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.cli import search_refusals
+    >>> import pathlib, tempfile
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "puck.xml"
+    >>> _ = path.write_text('<mujoco><worldbody><body><joint name="root" type="free" damping="0.1"/>'
+    ...                     '<geom size="0.1"/></body></worldbody></mujoco>')
+    >>> puck = engines.load(path)
+    >>> res = pt.search(puck.system(), scale={"g": 1})
+    >>> print(search_refusals(puck, res.scalings))  # doctest: +NORMALIZE_WHITESPACE
+    apply refuses every scaling listed: the one number joint 'root' damping acts with dimensions
+    M T^-1 (lin) | M L^2 T^-1 (rot), so the scaling needs s^-2 as lin, s^0 as rot; set it to 0
+    or hold the base units it mixes fixed
+    >>> search_refusals(engines.load(engines.example_path("pendulum.xml")), res.scalings[:0]) is None
+    True
+    """
+    mixed = model.by_dimension()[1]
+    refused: list[tuple[int, str]] = []
+    for k, scaling in enumerate(scalings, 1):
+        for p in mixed:
+            try:
+                p.factor(scaling, 2)
+            except UnscalableParameterError as err:
+                refused.append((k, err.reason))
+                break
+    if not refused:
+        return None
+    if len(refused) == len(scalings):
+        which = "every scaling listed"
+    else:
+        runs: list[list[int]] = []  # consecutive solutions as one range: #4 to #26
+        for k, _ in refused:
+            if runs and runs[-1][-1] == k - 1:
+                runs[-1].append(k)
+            else:
+                runs.append([k])
+        ranges = ", ".join(f"#{r[0]}" if len(r) == 1 else f"#{r[0]} to #{r[-1]}" for r in runs)
+        which = f"{ranges} ({len(refused)} of {len(scalings)})"
+    return f"apply refuses {which}: {refused[0][1]}"
 
 
 def automatic_scene(model: EngineModel, scaling, s, scene: dict | None = None) -> dict:

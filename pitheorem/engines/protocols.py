@@ -23,7 +23,8 @@ is named here:
   :class:`HasSceneSettings` (settings outside the file, changed by
   ``with_settings``), :class:`KeepsInputs` (copies whose control inputs
   keep their values, the factors on the gains), :class:`CounterRuns` (copies run with another
-  solver tolerance, for the diagnosis), :class:`SolverDiagnosis`
+  solver tolerance, for the diagnosis), :class:`CountsIterations` (the solver's
+  iterations of a run counted, and copies run with a fixed count), :class:`SolverDiagnosis`
   (solver, equality constraints and contacts, named),
   :class:`MultipliesInPlace` (a copy with other gravity or masses, not compiled again),
   :class:`NamesElements` (a stored number's element),
@@ -59,6 +60,7 @@ __all__ = [
     "REQUIRED",
     "Controls",
     "CounterRuns",
+    "CountsIterations",
     "EngineNotes",
     "HasSceneSettings",
     "IgnoredSettings",
@@ -283,6 +285,30 @@ class CounterRuns(Protocol):
 
 
 @runtime_checkable
+class CountsIterations(Protocol):
+    """Optional: the solver's iterations of a run counted, and copies run with a fixed count (MuJoCo's).
+
+    A fixed count of iterations is a pure number: with no tolerance to stop
+    them, the original and its scaled copy do the same iterations every
+    step.  A runner with it also takes ``iterations`` in ``variant``
+    (:class:`CounterRuns`).
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.protocols import CountsIterations
+    >>> runner = engines.load(engines.example_path("causes/contact.xml")).runner  # a box on the floor
+    >>> isinstance(runner, CountsIterations)
+    True
+    >>> runner.solver_iterations(200), runner.variant(iterations=3).solver_iterations(200)
+    (100, 3)
+    """
+
+    def solver_iterations(self, n_steps: int, controls: Controls = None) -> int:
+        """The most iterations the constraint solver takes in a step of an open-loop run from rest (0: none)."""
+
+
+@runtime_checkable
 class MultipliesInPlace(Protocol):
     """Optional: copies with gravity, or every body's mass and inertia, times a factor, not compiled again.
 
@@ -422,6 +448,7 @@ OPTIONAL = {
         HasSceneSettings,
         KeepsInputs,
         CounterRuns,
+        CountsIterations,
         MultipliesInPlace,
         SolverDiagnosis,
         NamesElements,

@@ -362,13 +362,16 @@ class MujocoRunner:
         integrator: str | None = None,
         native_ccd: bool = True,
         contactless_geoms: tuple[int, ...] = (),
+        iterations: int | None = None,
     ) -> MujocoRunner:
-        """A copy run with another solver, tolerance or integrator, with contacts switched off (all, or some
-        geoms'), or with some equality constraints inactive: a counter-run's model (or the rod's, in another
-        integrator)."""
+        """A copy run with another solver, tolerance, count of iterations or integrator, with contacts switched
+        off (all, or some geoms'), or with some equality constraints inactive: a counter-run's model (or the
+        rod's, in another integrator)."""
         mj = _mujoco()
         out = self._with_model_copy()
         m = out.mjmodel
+        if iterations is not None:  # the most the constraint solver takes in a step (opt.iterations)
+            m.opt.iterations = iterations
         if integrator is not None:
             m.opt.integrator = int(getattr(mj.mjtIntegrator, f"mjINT_{integrator.upper()}"))
         for i in inactive_equalities:
@@ -412,6 +415,27 @@ class MujocoRunner:
             for name in ("tolerance", "noslip_tolerance")
             if getattr(opt, name) != 0 and (name == "tolerance" or opt.noslip_iterations > 0)
         }
+
+    def solver_iterations(self, n_steps: int, controls=None) -> int:
+        """The most iterations the constraint solver takes in a step of an open-loop run from rest, in any island.
+
+        Stepped with ``mj_step`` from the model's reference pose under
+        `controls` (as :meth:`run`); MuJoCo counts each island's iterations
+        of the last step in ``data.solver_niter`` (the first entry where
+        islands are off).  0 where the solver never ran.
+        """
+        mj, m = _mujoco(), self.mjmodel
+        if self.refusal is not None:
+            self._refuse()
+        data, _first = self._start(False, None)
+        rows = self._control_rows(controls, n_steps)
+        most = 0
+        for i in range(n_steps):
+            if rows is not None:
+                data.ctrl[:] = rows[i]
+            mj.mj_step(m, data)
+            most = max(most, int(np.max(data.solver_niter[: max(1, data.nisland)])))
+        return most
 
     def equality_names(self) -> list[str]:
         """Each equality constraint, named as the reports name it."""

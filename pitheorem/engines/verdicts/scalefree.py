@@ -11,7 +11,15 @@ Where every factor is a power of two and the runs as written are not bit
 for bit, :func:`scale_free_run` runs the original and the copy again with
 those settings made scale-free in both (a tolerance of 0: every
 iteration done; the scale-free solver), and says whether the runs are
-then exact.  It is a proof *of the scaling*, stated beside the verdict on
+then exact.  A tolerance of 0 is not the end of it: past convergence the
+iterations are rounding noise, and MuJoCo's Newton line search stops an
+island's iterations where the norm of its search direction (accelerations
+of hinges and slides together) falls under ``mjMINVAL`` = 1e-15
+(``mujoco_minval_search`` among the thresholds), which one run meets
+and its scaled copy does not.  So, last, where a runner counts its
+solver's iterations (:class:`~pitheorem.engines.protocols.CountsIterations`),
+both runs are capped at a fixed count of iterations, a pure number: the
+most the original takes in a step with its own tolerance, then fewer.  It is a proof *of the scaling*, stated beside the verdict on
 the model as written (``rep.scale_free``): the verdict stays what the
 model as written does.
 """
@@ -24,9 +32,9 @@ import numpy as np
 
 from ...immutable import immutable
 from ...simulation import Trajectory, first_divergence
-from ..protocols import CounterRuns, SolverDiagnosis
+from ..protocols import CounterRuns, CountsIterations, SolverDiagnosis
 
-__all__ = ["ScaleFree", "scale_free_options", "scale_free_run"]
+__all__ = ["ScaleFree", "capped_ways", "scale_free_options", "scale_free_run"]
 
 
 @immutable
@@ -38,7 +46,8 @@ class ScaleFree:
     ----------
     settings : tuple of (str, str)
         Each setting changed, and its value in both runs
-        (``("option tolerance", "0")``, ``("option solver", "Newton")``).
+        (``("option tolerance", "0")``, ``("option solver", "Newton")``,
+        ``("option iterations", "3")``).
     exact : bool
         Whether the runs are then bit for bit equal (coordinates mapped back).
     first_divergence : tuple of (float, str) or None
@@ -75,6 +84,9 @@ def scale_free_options(runner) -> list[dict]:
     the engine's own convex collision off (MuJoCo's GJK and EPA hold
     lengths against fixed constants), alone and with the solver's
     settings changed too.  Empty where the runner has no such setting.
+    The last ways of all, fixed counts of iterations (:func:`capped_ways`),
+    need a run to count them, and :func:`scale_free_run` adds them only
+    where these fail.
 
     Examples
     --------
@@ -102,6 +114,65 @@ def scale_free_options(runner) -> list[dict]:
     return ways
 
 
+def capped_ways(original, ways: list[dict], n_steps: int, controls=None) -> list[dict]:
+    """The last ways: every setting of `ways` changed, and the solver's iterations capped, each cap a way.
+
+    With the tolerance at 0 nothing stops the solver but its count of
+    iterations and its line search's floor on the norm of the search
+    direction (``mujoco_minval_search``), which the original and its copy
+    meet apart once the iterations are rounding noise.  A fixed count of
+    iterations is a pure number: capped at a count that every island
+    reaches before its iterations turn to noise, both runs do the same
+    iterations.  The caps tried are the most iterations the original takes
+    in a step with its own tolerance (and the ways' other settings), then
+    that halved, down to 1: the most is what the model as written needs,
+    yet its last iterations may be noise already in some island.  Empty
+    where the runner does not count its iterations
+    (:class:`~pitheorem.engines.protocols.CountsIterations`), where no way
+    sets the tolerance to 0, or where the original's solver never runs.
+
+    Parameters
+    ----------
+    original : Runner
+        The original's runner.
+    ways : list of dict
+        The ways tried before (:func:`scale_free_options`).
+    n_steps : int
+    controls : ndarray, callable or None
+        The original's open-loop inputs.
+
+    Returns
+    -------
+    list of dict
+        The options of each way, ``iterations`` among them, the largest cap first.
+
+    Examples
+    --------
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.verdicts.scalefree import capped_ways, scale_free_options
+    >>> model = engines.load(engines.example_path("causes/contact.xml"))  # a box on the floor
+    >>> runner = model.runner.variant(tolerance=1e-8)  # the file sets 0
+    >>> ways = scale_free_options(runner)
+    >>> ways
+    [{'tolerance': 0.0}]
+    >>> capped_ways(runner, ways, 200)  # one iteration a step with its own tolerance
+    [{'tolerance': 0.0, 'iterations': 1}]
+    >>> [way["iterations"] for way in capped_ways(model.runner, ways, 200)]  # at 0 it runs all it may
+    [100, 50, 25, 12, 6, 3, 1]
+    """
+    every = {k: v for options in ways for k, v in options.items()}
+    if not isinstance(original, CountsIterations) or "tolerance" not in every:
+        return []
+    own = original.variant(**{k: v for k, v in every.items() if k != "tolerance"})
+    cap, caps = own.solver_iterations(n_steps, controls), []
+    while cap:
+        caps.append(cap)
+        cap //= 2
+    if caps and caps[-1] != 1:
+        caps.append(1)
+    return [{**every, "iterations": cap} for cap in caps]
+
+
 def _parts_later(pair, than) -> bool:
     """Whether the runs of one way part later than another's (or never)."""
 
@@ -119,9 +190,13 @@ def scale_free_run(
 
     The solver's ways run in one batch; where none of those is bit for
     bit, the collision path's alone, and then, where that parts the runs
-    later than the solver's settings did, with every setting changed.  The
-    first under which the runs are bit for bit is reported, else the last
-    run with where the runs still part.
+    later than the solver's settings did, with every setting changed; and
+    where still none is, every setting changed with the solver's
+    iterations capped (:func:`capped_ways`: one run of the original to count
+    them, then both runs under each cap, the largest first, until one is bit
+    for bit or parts the runs no later than the cap before it).  The first
+    under which the runs are bit for bit is reported, else the last run
+    with where the runs still part.
 
     Parameters
     ----------
@@ -169,6 +244,24 @@ def scale_free_run(
                 ran[tuple(sorted(options.items()))] = (runs[2 * i], runs[2 * i + 1])
             pairs.append((runs[2 * i], runs[2 * i + 1] / factors))
     ways = ways[: len(pairs)]
+    if pairs and not any(np.array_equal(run, back) for run, back in pairs):
+        # one cap at a time, the largest first: each costs both runs again, so the caps stop at the first that
+        # is exact, or at one that parts the runs no later than the runs before it (a cause the iterations do
+        # not touch: a contact at MuJoCo's softness floor parts them at step 1 under every cap)
+        before = pairs[-1]
+        for options in capped_ways(original, ways, n_steps, u_original):
+            jobs = [
+                (original.variant(**options), u_original, False, None),
+                (copy.variant(**options), u_scaled, False, None),
+            ]
+            runs = original.run_many(n_steps, jobs)
+            if ran is not None:
+                ran[tuple(sorted(options.items()))] = (runs[0], runs[1])
+            pairs.append((runs[0], runs[1] / factors))
+            ways = [*ways, options]
+            if np.array_equal(*pairs[-1]) or not _parts_later(pairs[-1], before):
+                break
+            before = pairs[-1]
     chosen = next((i for i, (run, back) in enumerate(pairs) if np.array_equal(run, back)), len(ways) - 1)
     options, (run, back) = ways[chosen], pairs[chosen]
     exact = bool(np.array_equal(run, back))
@@ -176,4 +269,5 @@ def scale_free_run(
     zeroed = tuple((f"option {name}", "0") for name in original.solver_settings()) if "tolerance" in options else ()
     solver = (("option solver", options["solver"]),) if "solver" in options else ()
     ccd = (("flag nativeccd", "disable"),) if "native_ccd" in options else ()
-    return ScaleFree(zeroed + solver + ccd, exact, where)
+    cap = (("option iterations", str(options["iterations"])),) if "iterations" in options else ()
+    return ScaleFree(zeroed + solver + ccd + cap, exact, where)

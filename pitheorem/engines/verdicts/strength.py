@@ -17,12 +17,14 @@ says which:
   ``e`` (gravity times ``1 + e``; every mass, density and inertia times ``1 + e``),
   run in the same batch and judged by the same rule as the copy itself
   (bit for bit where every factor is a power of two, else against the
-  yardstick).  The smallest ``e`` a control is caught at is the run's
+  yardstick), and against the right copy's own deviation: see
+  :func:`caught`.  The smallest ``e`` a control is caught at is the run's
   :attr:`detection_limit`: a relative error in a dimensionless group
   smaller than it would pass unnoticed.  When a group's controls all pass
   unnoticed, not even gravity doubled (a gravity-compensated arm, a planar
-  model), the run cannot show an error in that group: the verdict is
-  *inconclusive*, never *similar*, and the report names the group.
+  model, a run whose own copy parts from it as far: rounding the engine
+  parts, chaos), the run cannot show an error in that group: the verdict
+  is *inconclusive*, never *similar*, and the report names the group.
 
 The margin of the yardstick (a copy may deviate 10 times as far as the
 twins) is what the controls calibrate: the detection limit is what that
@@ -40,6 +42,7 @@ from ...simulation import unseen_groups
 
 __all__ = [
     "CONTROL_ERRORS",
+    "COPY_MARGIN",
     "HORIZON_FRACTION",
     "STILL",
     "Control",
@@ -61,6 +64,16 @@ CONTROL_ERRORS = (1e-4, 1e-2, 1.0)
 #: "similar" with a detection limit above this is weak evidence, and the report says so
 WEAK_LIMIT = 1e-2
 
+#: a control is caught only where it leaves the original by more than this many times the right copy's own
+#: deviation (coordinate by coordinate): the copy is the noise floor of the very run the control is judged in.
+#: The copy's deviation is one sample of that noise (rounding the engine parts the runs by, chaos past the
+#: horizon), and one sample bounds the next no better than one twin bounds the copy: the yardstick lets a copy
+#: reach 10 times the twins' spread for that reason, and a control must stand as far clear of the copy.  A control
+#: whose error shows grows in proportion to it, and CONTROL_ERRORS are a factor of 100 apart, so the margin costs
+#: at most one rung of the detection limit; the controls that only differ by noise (R2-D2's wheels in MuJoCo: 1.00
+#: to 1.01 times the copy's deviation) stay far below it.
+COPY_MARGIN = 10.0
+
 
 @immutable
 @dataclass(frozen=True, slots=True)
@@ -75,19 +88,28 @@ class Control:
     error : float
         The relative error ``e``: the group is times ``1 + e``.
     caught : bool
-        Whether the run saw it: not bit for bit where that was expected,
-        else beyond the yardstick.
+        Whether the run saw it (:func:`caught`): in some coordinate, not
+        bit for bit where that was expected, else beyond the yardstick,
+        and beyond :data:`COPY_MARGIN` times the right copy's own
+        deviation there.
+    hidden : bool
+        Not caught only for the right copy's own deviation: the control
+        left the rule's bound (a bit, the yardstick) but stayed within
+        :data:`COPY_MARGIN` times what the copy itself deviates (rounding
+        the engine parts the runs by, chaos), so this run's own noise
+        hides it.
 
     Examples
     --------
     >>> from pitheorem.engines.verdicts.strength import Control
-    >>> Control("g", 0.01, True).caught
-    True
+    >>> Control("g", 0.01, True).caught, Control("g", 0.01, False, hidden=True).hidden
+    (True, True)
     """
 
     group: str
     error: float
     caught: bool
+    hidden: bool = False
 
 
 def horizon(t: np.ndarray, original: np.ndarray, twins) -> float:
@@ -189,20 +211,58 @@ def _inertial(dimension) -> bool:
     return dimension.exponent_of("M") != 0 and dimension.exponent_of("T") == 0
 
 
-def caught(original: np.ndarray, back: np.ndarray, limits: np.ndarray, bits: bool) -> bool:
-    """Whether a run mapped back (`back`) is told apart from the original: by any bit, or beyond `limits`.
+def caught(original: np.ndarray, back: np.ndarray, limits: np.ndarray, bits: bool, *, copy: np.ndarray) -> bool:
+    """Whether a run mapped back (`back`) is told apart from the original, beyond the right copy's own deviation.
+
+    Coordinate by coordinate, each run's deviation is its largest
+    distance from the original over the run (a NaN where the original
+    has a number is infinitely far).  The control is caught when in some
+    coordinate its deviation exceeds both the rule's own bound (any bit
+    where `bits`, every factor a power of two; else `limits`, the
+    yardstick) and :data:`COPY_MARGIN` times the deviation of the right
+    `copy` (mapped back) in that coordinate.  Where the copy is bit for bit
+    its deviation is 0 and the rule is the bound alone.  Where the engine
+    parts the copy from the original on its own (a contact's softness at
+    MuJoCo's floor, native CCD, chaos), a control that differs only by as
+    much is no error seen: every wrong copy differs by that too.
+
+    Parameters
+    ----------
+    original, back, copy : array of shape (n, k)
+        The original's run, the control's and the right copy's, both
+        mapped back to original units.
+    limits : array of shape (k,)
+        The yardstick, per coordinate (used where not `bits`).
+    bits : bool
+        Whether the rule is bit for bit.
+
+    Returns
+    -------
+    bool
 
     Examples
     --------
     >>> import numpy as np
     >>> from pitheorem.engines.verdicts.strength import caught
-    >>> a = np.array([[1.0, 2.0]])
-    >>> caught(a, a + 1e-17, np.array([1e-9, 1e-9]), bits=True), caught(a, a + 1e-12, np.array([1e-9, 1e-9]), bits=False)
+    >>> a, lim = np.array([[1.0, 2.0]]), np.array([1e-9, 1e-9])
+    >>> caught(a, a + 1e-17, lim, bits=True, copy=a), caught(a, a + 1e-12, lim, bits=False, copy=a)
     (False, False)
-    >>> caught(a, np.nextafter(a, 3.0), np.array([1e-9, 1e-9]), bits=True)
+    >>> caught(a, np.nextafter(a, 3.0), lim, bits=True, copy=a)  # the copy bit for bit: any bit counts
     True
+    >>> noisy = np.nextafter(a, 0.0)  # a copy the engine parted by one ulp: a control as far is no error seen
+    >>> caught(a, np.nextafter(a, 3.0), lim, bits=True, copy=noisy), caught(a, a + 1e-6, lim, bits=True, copy=noisy)
+    (False, True)
     """
-    if bits:
-        return not np.array_equal(original, back)
+    far = _deviation(original, back)
+    floor = _deviation(original, copy)
     with np.errstate(invalid="ignore"):
-        return bool(np.any(~(np.abs(back - original) <= limits)))
+        beyond = far > 0 if bits else ~(far <= limits)  # a NaN yardstick catches, as before
+    return bool(np.any(beyond & (far > COPY_MARGIN * floor)))
+
+
+def _deviation(original: np.ndarray, run: np.ndarray) -> np.ndarray:
+    """Each coordinate's largest distance of `run` from `original`; a NaN on either side is infinitely far."""
+    with np.errstate(invalid="ignore"):
+        gap = np.abs(np.asarray(run, dtype=float) - np.asarray(original, dtype=float))
+    gap = np.where(np.isnan(gap), np.inf, gap)
+    return np.max(gap, axis=0, initial=0.0)

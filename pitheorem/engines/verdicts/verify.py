@@ -422,11 +422,19 @@ def judge(plan: Plan, rows: list | None, progress=None) -> SimilarityReport:
     exact_expected = p.exact_expected
     limits = allowed_deviation(report.original, report.sensitivity, p.baseline_factor)
 
+    # a control is caught only beyond the right copy's own deviation (strength.caught): where the engine parts the
+    # copy from the original on its own, every wrong copy differs by as much, and that is no error seen
+    mapped = scaled_run / factors
+
     def judged(rungs, rows_of_each):
-        return [
-            Control(group, error, caught(run, values / factors, limits, bits=exact_expected))
-            for (group, error, _f), values in zip(rungs, rows_of_each, strict=True)
-        ]
+        out = []
+        for (group, error, _f), values in zip(rungs, rows_of_each, strict=True):
+            back = values / factors
+            seen = caught(run, back, limits, bits=exact_expected, copy=mapped)
+            # hidden: caught against a copy bit for bit, not against this one (the report says why it passed)
+            hidden = not seen and caught(run, back, limits, bits=exact_expected, copy=run)
+            out.append(Control(group, error, seen, hidden=hidden))
+        return out
 
     controls = judged(p.first_rungs, control_runs)
     unseen = {c.group for c in controls if not c.caught}
