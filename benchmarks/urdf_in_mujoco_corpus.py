@@ -210,6 +210,10 @@ def gepetto(source: Path, folder: Path) -> tuple[list[tuple[Path, str, str | Non
         (folder / "example-robot-data").symlink_to(source.resolve(), target_is_directory=True)
         source = folder / "example-robot-data"
     items, commit = corpus_verdicts().gepetto_entries(source, folder)
+    if commit is None and (source / ".git").exists():  # a git checkout: its commit
+        git = ["git", "-C", str(source), "rev-parse", "HEAD"]
+        done = subprocess.run(git, capture_output=True, text=True, check=False)
+        commit = done.stdout.strip() or None
     return [(Path(i["path"]), i["name"], i.get("skip")) for i in items], commit
 
 
