@@ -224,14 +224,10 @@ def scale_free_run(
         return None
     first = [w for w in ways if "native_ccd" not in w] or ways  # the solver's settings; then the collision path
     rest = ways[len(first) :]
-    pairs = []
-    for k, batch in enumerate((first, rest[:1], rest[1:])):
-        if not batch or any(np.array_equal(run, back) for run, back in pairs):
-            continue
-        if k == 2 and not _parts_later(pairs[-1], pairs[len(first) - 1]):
-            # the collision path alone parted the runs no later than the solver's settings did: both changed
-            # are no nearer, and on a large model (the fruit fly, 10,000 steps a second) its runs are seconds
-            break
+    pairs, tried = [], []  # each way run: (the original's run, the copy's mapped back), and its options
+
+    def run_both(batch):
+        """Both runs of every way of `batch`, in one call."""
         jobs = []
         for options in batch:
             jobs += [
@@ -239,31 +235,31 @@ def scale_free_run(
                 (copy.variant(**options), u_scaled, False, None),
             ]
         runs = original.run_many(n_steps, jobs)
-        for i, options in enumerate(batch):
+        for options, mine, its in zip(batch, runs[::2], runs[1::2], strict=True):
             if ran is not None:
-                ran[tuple(sorted(options.items()))] = (runs[2 * i], runs[2 * i + 1])
-            pairs.append((runs[2 * i], runs[2 * i + 1] / factors))
-    ways = ways[: len(pairs)]
+                ran[tuple(sorted(options.items()))] = (mine, its)
+            pairs.append((mine, its / factors))
+            tried.append(options)
+
+    for k, batch in enumerate((first, rest[:1], rest[1:])):
+        if not batch or any(np.array_equal(run, back) for run, back in pairs):
+            continue
+        if k == 2 and not _parts_later(pairs[-1], pairs[len(first) - 1]):
+            # the collision path alone parted the runs no later than the solver's settings did: both changed
+            # are no nearer, and on a large model (the fruit fly, 10,000 steps a second) its runs are seconds
+            break
+        run_both(batch)
     if pairs and not any(np.array_equal(run, back) for run, back in pairs):
         # one cap at a time, the largest first: each costs both runs again, so the caps stop at the first that
         # is exact, or at one that parts the runs no later than the runs before it (a cause the iterations do
         # not touch: a contact at MuJoCo's softness floor parts them at step 1 under every cap)
-        before = pairs[-1]
-        for options in capped_ways(original, ways, n_steps, u_original):
-            jobs = [
-                (original.variant(**options), u_original, False, None),
-                (copy.variant(**options), u_scaled, False, None),
-            ]
-            runs = original.run_many(n_steps, jobs)
-            if ran is not None:
-                ran[tuple(sorted(options.items()))] = (runs[0], runs[1])
-            pairs.append((runs[0], runs[1] / factors))
-            ways = [*ways, options]
+        for options in capped_ways(original, tried, n_steps, u_original):
+            before = pairs[-1]
+            run_both([options])
             if np.array_equal(*pairs[-1]) or not _parts_later(pairs[-1], before):
                 break
-            before = pairs[-1]
-    chosen = next((i for i, (run, back) in enumerate(pairs) if np.array_equal(run, back)), len(ways) - 1)
-    options, (run, back) = ways[chosen], pairs[chosen]
+    chosen = next((i for i, (run, back) in enumerate(pairs) if np.array_equal(run, back)), len(pairs) - 1)
+    options, (run, back) = tried[chosen], pairs[chosen]
     exact = bool(np.array_equal(run, back))
     where = None if exact else first_divergence(Trajectory(t, run, tuple(names)), Trajectory(t, back, tuple(names)))
     zeroed = tuple((f"option {name}", "0") for name in original.solver_settings()) if "tolerance" in options else ()
