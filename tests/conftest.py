@@ -216,7 +216,7 @@ def qq_matrix(rows) -> DomainMatrix:
     conversions: a third of the time, and fewer Python calls for coverage to trace), never in
     pitheorem's own arithmetic.
     """
-    rows = [[QQ(Fraction(x).numerator, Fraction(x).denominator) for x in row] for row in rows]
+    rows = [[QQ(f.numerator, f.denominator) for f in map(Fraction, row)] for row in rows]
     return DomainMatrix(rows, (len(rows), len(rows[0]) if rows else 0), QQ)
 
 

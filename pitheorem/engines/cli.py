@@ -224,7 +224,8 @@ def search_refusals(model: EngineModel, scalings) -> str | None:
     apply refuses every scaling listed: the one number joint 'root' damping acts with dimensions
     M T^-1 (lin) | M L^2 T^-1 (rot), so the scaling needs s^-2 as lin, s^0 as rot; set it to 0
     or hold the base units it mixes fixed
-    >>> search_refusals(engines.load(engines.example_path("pendulum.xml")), res.scalings[:0]) is None
+    >>> pendulum = engines.load(engines.example_path("pendulum.xml"))  # no number mixes dimensions
+    >>> search_refusals(pendulum, pt.search(pendulum.system(), scale={"g": 1}).scalings) is None
     True
     """
     mixed = model.by_dimension()[1]
