@@ -327,14 +327,15 @@ def loaded_after(code: str, watch=("numpy", "scipy", "matplotlib")) -> set[str]:
     return set(out.stdout.strip().splitlines()[-1].split()[1:])
 
 
-def plain_mujoco_runs_equal(model, copy, scaling, s, n_steps: int, change=None) -> bool:
+def plain_mujoco_runs_equal(model, copy, scaling, s, n_steps: int, change=None, controls=None) -> bool:
     """An oracle that does not use pitheorem's runs: by hand in plain MuJoCo.
 
     The compiled models of `model` and of its scaled `copy` are copied, each changed alike by
     ``change(mjmodel)`` (a counter-run's change: a flag off, a geom out of collision, an equality
     inactive), stepped `n_steps` times from rest with ``mj_step``, and the copy's positions and
     velocities, divided by ``s`` to the power of each one's dimension under `scaling`, are held to the
-    original's bit for bit.
+    original's bit for bit.  `controls`, a function of the step's start time, gives the original's
+    inputs; the copy's are those times ``s`` to the power of each input's dimension.
     """
     import copy as copy_module
 
@@ -343,14 +344,17 @@ def plain_mujoco_runs_equal(model, copy, scaling, s, n_steps: int, change=None) 
 
     dims = model.runner.coordinate_dimensions()[1]
     factors = np.array([float(s) ** float(scaling.exponent_of(d)) for d in dims])
+    inputs = np.array([float(s) ** float(scaling.exponent_of(d)) for d in model.inputs()[0]])
     out = []
-    for compiled in (model.runner.mjmodel, copy.runner.mjmodel):
+    for compiled, times in ((model.runner.mjmodel, 1.0), (copy.runner.mjmodel, inputs)):
         m = copy_module.copy(compiled)
         if change is not None:
             change(m)
         d = mujoco.MjData(m)
         rows = []
-        for _ in range(n_steps):
+        for i in range(n_steps):
+            if controls is not None:
+                d.ctrl[:] = np.asarray(controls(i * model.runner.mjmodel.opt.timestep)) * times
             mujoco.mj_step(m, d)
             rows.append(np.concatenate([d.qpos, d.qvel]))
         out.append(np.array(rows))

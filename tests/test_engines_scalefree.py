@@ -275,6 +275,40 @@ def test_a_fixed_count_of_iterations_proves_exact_what_a_tolerance_of_0_does_not
     assert 0.6 < later.first_divergence[0] < 1.0
 
 
+def test_caps_go_on_halving_while_each_parts_the_runs_later_than_the_one_before():
+    """pybullet_data's minitaur_rainbow_dash_v1 in MuJoCo, the issue's scaling, 1 s under the smooth input: its
+    original takes at most 5 iterations a step, and capped at 5 the runs still part (at step 3, later than with
+    every iteration run: step 1); capped at 2 they are bit for bit, which the proof reports."""
+    pybullet_data = pytest.importorskip("pybullet_data", reason="pybullet_data comes with the engines extra")
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = engines.load(
+            Path(pybullet_data.getDataPath()) / "quadruped/minitaur_rainbow_dash_v1.urdf", engine="mujoco"
+        )
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    u = engines.smooth_controls(model)
+    n = 500  # 1 s of 0.002 s steps
+    assert model.runner.variant(native_ccd=False).solver_iterations(n, u) == 5
+    free = engines.verify(model, sc, 4, duration=1.0, controls=u).scale_free
+    assert free.exact
+    assert free.settings == (("option tolerance", "0"), ("flag nativeccd", "disable"), ("option iterations", "2"))
+    # by hand: capped at 5 the runs part, capped at 2 they do not
+    copy = model.scaled(sc, 4)
+
+    def capped_no_ccd(cap):
+        def change(m):
+            m.opt.tolerance = 0.0
+            m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_NATIVECCD)
+            m.opt.iterations = cap
+
+        return change
+
+    assert not plain_mujoco_runs_equal(model, copy, sc, 4, n, capped_no_ccd(5), controls=u)
+    assert plain_mujoco_runs_equal(model, copy, sc, 4, n, capped_no_ccd(2), controls=u)
+
+
 @pytest.mark.parametrize("tolerance", [1e-8, 0.0])
 def test_a_runner_counts_the_most_iterations_a_step_takes(tolerance):
     """Two legs apart (two islands of the solver; the second, heavier and driven, takes more iterations): capped
