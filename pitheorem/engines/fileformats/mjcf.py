@@ -79,8 +79,11 @@ NONNEGATIVE = {"inertial": ("mass", "diaginertia")}
 DIMENSION_TEXT = "dimension:"
 
 _ONE = dim("1")
+#: every entry of an attribute (a slice, no key before Python 3.12: :data:`_FORMS` keys its bounds)
+_EVERY = slice(None)
 _L, _M, _T = dim("L"), dim("M"), dim("T")
 _FORCE, _TORQUE = dim("M L T^-2"), dim("M L^2 T^-2")
+_PER_TIME = dim("T^-1")
 
 
 def _mujoco():
@@ -88,11 +91,27 @@ def _mujoco():
 
 
 def _joint_kind(mj, jtype) -> JointKind | None:
-    if jtype == mj.mjtJoint.mjJNT_SLIDE:
-        return JointKind.SLIDE
-    if jtype in (mj.mjtJoint.mjJNT_HINGE, mj.mjtJoint.mjJNT_BALL):
-        return JointKind.HINGE
-    return None  # free
+    """The kind of a joint of MuJoCo's type `jtype`; None for a free joint."""
+    if not _JOINT_KINDS:  # by the type's number: comparing MuJoCo's enums takes a tenth of a microsecond each
+        _JOINT_KINDS.update(
+            {
+                int(mj.mjtJoint.mjJNT_SLIDE): JointKind.SLIDE,
+                int(mj.mjtJoint.mjJNT_HINGE): JointKind.HINGE,
+                int(mj.mjtJoint.mjJNT_BALL): JointKind.HINGE,
+            }
+        )
+    return _JOINT_KINDS.get(int(jtype))  # None: free
+
+
+_JOINT_KINDS: dict[int, JointKind] = {}
+
+#: a free joint's numbers that act on its translation and its rotation alike: (attribute, the dimension
+#: of each part, the entries read)
+_FREE_JOINT_MIXED = (
+    ("damping", (("lin", dim("M T^-1")), ("rot", dim("M L^2 T^-1"))), slice(0, 1)),
+    ("armature", (("lin", dim("M")), ("rot", dim("M L^2"))), _EVERY),
+    ("frictionloss", (("lin", dim("M L T^-2")), ("rot", dim("M L^2 T^-2"))), _EVERY),
+)
 
 
 @dataclass(slots=True)  # a file has a slot per number: no dict per slot for the collector to scan
@@ -104,12 +123,14 @@ class Slot:
     multiplies the entries ``attrs`` names, ``(attribute, index)`` pairs (which a saved file also
     rewrites as exact decimals); a slot that is no such product gives its own ``write``.  Its numbers
     (:meth:`values`) are its ``read()``, or, for most slots, its one attribute's entries read from
-    ``element``: a file has a slot per number, and a function per slot would be five more objects each.
+    ``element``, or else ``value`` (a body's mass and inertia, read from the compiled model with every
+    other body's): a file has a slot per number, and a function per slot would be five more objects
+    each, a tuple of its numbers one more for Python's collector to scan when the walk ends.
     """
 
     name: str
     path: str
-    #: the numbers, where they are no entries of ``element``'s attribute (None: they are)
+    #: the numbers, where they are no entries of ``element``'s attribute, nor ``value`` (None: they are)
     read: Callable[[], tuple] | None
     attrs: tuple
     where: tuple
@@ -121,11 +142,15 @@ class Slot:
     write: Callable[[object, float], None] | None = None
     #: the element whose attribute ``attrs`` names holds the numbers, where ``read`` is None
     element: object = None
+    #: the numbers, where neither ``read`` nor ``element`` gives them
+    value: tuple = ()
 
     def values(self) -> tuple:
         """The slot's numbers, read now."""
         if self.read is not None:
             return self.read()
+        if self.element is None:
+            return self.value
         ((attr, index),) = self.attrs
         return _floats(getattr(self.element, attr))[index]
 
@@ -222,6 +247,15 @@ class _Elements:
         return {id(item): (collection, i) for collection, items in lists.items() for i, item in enumerate(items)}
 
 
+#: a body's numbers MuJoCo's compiler computes (from its geoms, unless the file gives them): its mass, its
+#: inertia and the inertia's position, each with its dimension and the spec attributes a scaling multiplies
+_BODY_COMPUTED = (
+    ("mass", _M, (("mass", _EVERY),)),
+    ("inertia", dim("M L^2"), (("inertia", _EVERY), ("fullinertia", _EVERY))),
+    ("ipos", _L, (("ipos", _EVERY),)),
+)
+
+
 class _Walker:
     """Walk a spec's elements in a fixed order and list their dimensional attributes."""
 
@@ -233,6 +267,8 @@ class _Walker:
         self.inputs: list = []  # per actuator walked: its control's and its activation's dimensions
         self.input_powers: list = []  # per actuator walked: its parameters that carry its input, with the power
         self.targets: list = []  # per actuator walked: the dimensions of its length and its force
+        self.computed_rows = None  # the compiled bodies' masses, inertias and their positions, when first asked
+        self.inertia_from_geoms = False
         # every element listed once, kept alive, so that an element's id gives its address
         tree = _tree_listed(spec)
         self.lists = {c: tree[c] if c in _TREE else _listed(spec, c) for c in _COLLECTIONS}
@@ -271,18 +307,22 @@ class _Walker:
         same = all(a == b or (a != a and b != b) for a, b in zip(values, default, strict=True))
         return "default" if same else "file"
 
-    def add(self, kind, elem, ident, path, attr, dimension, index=slice(None), suffix="", parts=(), note=""):
+    def add(self, kind, elem, ident, path, attr, dimension, index=_EVERY, suffix="", parts=(), note=""):
         # called for nearly every number of a file: what depends on the attribute alone is found once
-        # (:func:`_form`), and :meth:`unique`, :meth:`where` and the common cases of :meth:`source` are
-        # written out here, each call saved being a tenth of the time of a slot
-        values = _floats(getattr(elem, attr))
+        # (:func:`_form`), and :meth:`unique`, :meth:`where`, :func:`_floats` and the common cases of
+        # :meth:`source` are written out here, each call saved being a tenth of the time of a slot
+        value = getattr(elem, attr)
+        if value.__class__ is np.ndarray and value.dtype is _FLOAT64 and value.ndim == 1:  # most vectors
+            values = tuple(value.tolist())
+        else:
+            values = _floats(value)
         chosen = values[index]
         # absent, or NaN: "not set" (MuJoCo's mark of an unset vector is a NaN first entry: a geom's fromto
         # is nan 0 0 0 0 0 until the file gives one)
         if not chosen or values[0] != values[0] or (chosen[0] != chosen[0] and all(v != v for v in chosen)):
             return
         tail, tail_path, attrs, default, default_has_nan = _FORMS.get(
-            (kind, attr, index.start, index.stop, index.step, suffix)
+            (kind, attr, suffix) if index is _EVERY else (kind, attr, index.start, index.stop, index.step, suffix)
         ) or _form(self.mj, kind, attr, index, suffix)
         name = f"{ident}_{tail}" if ident else tail
         if name in self.names:
@@ -296,11 +336,9 @@ class _Walker:
         else:  # NaN in the default: entry by entry (:meth:`source`)
             source = self.source(kind, elem, attr, values)
         where = (kind,) if kind in _SINGLES else self.where_of[id(elem)]
-        self.slots.append(
-            Slot(name, path + tail_path, None, attrs, where, dimension, source, parts, note, element=elem)
-        )
+        self.slots.append(Slot(name, path + tail_path, None, attrs, where, dimension, source, parts, note, None, elem))
 
-    def add_set(self, kind, elem, ident, path, attr, dimension, index=slice(None), suffix="", note=""):
+    def add_set(self, kind, elem, ident, path, attr, dimension, index=_EVERY, suffix="", note=""):
         """:meth:`add` where the entries are set (nonzero): an attribute most files leave at zero, kept out
         of their tables."""
         if any(v != 0 for v in _floats(getattr(elem, attr))[index]):  # NaN is set, too
@@ -548,37 +586,26 @@ class _Walker:
     def body(self, body, index):
         if index == 0:
             return  # the world
-        model = self.model
         ident, path = self.label("body", body, index)
         self.add("body", body, ident, path, "pos", _L)
-        bid = body.id if body.id >= 0 else index
-        derived = (
-            not body.explicitinertial
-            or self.spec.compiler.inertiafromgeom == self.mj.mjtInertiaFromGeom.mjINERTIAFROMGEOM_TRUE
-        )
-        source = "derived" if derived else "file"
-        for attr, compiled, d, spec_attrs in (
-            ("mass", "body_mass", _M, (("mass", slice(None)),)),
-            ("inertia", "body_inertia", dim("M L^2"), (("inertia", slice(None)), ("fullinertia", slice(None)))),
-            ("ipos", "body_ipos", _L, (("ipos", slice(None)),)),
-        ):
-            values = np.atleast_1d(getattr(model, compiled)[bid])
-
-            def read(values=values):
-                return tuple(float(v) for v in values)
-
+        bid = body.id
+        if bid < 0:
+            bid = index
+        if self.computed_rows is None:  # each compiled field listed once, as rows of floats
+            model, self.computed_rows = self.model, []
+            for compiled in ("body_mass", "body_inertia", "body_ipos"):
+                rows = getattr(model, compiled).tolist()
+                self.computed_rows.append([(row,) if isinstance(row, float) else tuple(row) for row in rows])
+            self.inertia_from_geoms = (
+                self.spec.compiler.inertiafromgeom == self.mj.mjtInertiaFromGeom.mjINERTIAFROMGEOM_TRUE
+            )
+        derived = not body.explicitinertial or self.inertia_from_geoms
+        source, note = ("derived", "computed by MuJoCo from the geoms") if derived else ("file", "")
+        where = self.where_of[id(body)]
+        for (attr, d, spec_attrs), rows in zip(_BODY_COMPUTED, self.computed_rows, strict=True):
             name = self.unique(f"{ident}_{attr}")
             self.slots.append(
-                Slot(
-                    name,
-                    f"{path} {attr}",
-                    read,
-                    spec_attrs,
-                    self.where("body", body),
-                    d,
-                    source,
-                    note="computed by MuJoCo from the geoms" if derived else "",
-                )
+                Slot(name, f"{path} {attr}", None, spec_attrs, where, d, source, (), note, None, None, rows[bid])
             )
 
     def friction(self, kind, elem, ident, path, n):
@@ -629,14 +656,7 @@ class _Walker:
                 note="the compiler turns it and the damping ratio into stiffness and damping",
             )
         if kind is None:  # free joint: translation and rotation share each number
-            for attr, lin, rot in (
-                ("damping", "M T^-1", "M L^2 T^-1"),
-                ("armature", "M", "M L^2"),
-                ("frictionloss", "M L T^-2", "M L^2 T^-2"),
-            ):
-                parts = (("lin", dim(lin)), ("rot", dim(rot)))
-                index_ = slice(0, 1) if attr == "damping" else slice(None)
-                value = np.atleast_1d(np.asarray(getattr(joint, attr), dtype=float))
+            for attr, parts, index_ in _FREE_JOINT_MIXED:
                 self.add(
                     "joint",
                     joint,
@@ -648,7 +668,7 @@ class _Walker:
                     parts=parts,
                     note="one number for the translational and the rotational coordinates",
                 )
-                if attr == "damping" and np.any(value[1:] != 0):
+                if attr == "damping" and any(v != 0 for v in _floats(joint.damping)[1:]):
                     self.fail(path, "damping polynomial terms on a free joint mix dimensions; not supported")
             return
         for attr in ("range", "ref", "springref", "margin"):
@@ -745,15 +765,19 @@ class _Walker:
         self.limit_and_friction_softness("tendon", tendon, ident, path, q)
         self.refuse(tendon, path, ("springyield",))
 
-    def actuator_target(self, act, path) -> tuple[object, object]:
-        """Dimensions of the actuator's length and force (gear taken dimensionless)."""
+    def actuator_target(self, act, path, trn=None) -> tuple[object, object]:
+        """Dimensions of the actuator's length and force (gear taken dimensionless).  `trn` is its
+        transmission's type, if it was already read."""
         mj, spec = self.mj, self.spec
-        trn = act.trntype
+        if trn is None:
+            trn = act.trntype
         if trn in (mj.mjtTrn.mjTRN_JOINT, mj.mjtTrn.mjTRN_JOINTINPARENT):
-            kind = self.named_joint_kind(act.target)
+            joint = spec.joint(act.target)
+            jtype = joint.type if joint is not None else None
+            kind = _joint_kind(mj, jtype) if joint is not None else None
             if kind is None:
                 self.fail(path, "an actuator on a free joint mixes forces and torques; not supported")
-            if spec.joint(act.target).type == mj.mjtJoint.mjJNT_BALL and np.any(np.asarray(act.gear)[3:] != 0):
+            if jtype == mj.mjtJoint.mjJNT_BALL and any(v != 0 for v in _floats(act.gear)[3:]):
                 self.fail(path, "ball-joint gear beyond three components is not supported")
             return kind.q, kind.force
         if trn == mj.mjtTrn.mjTRN_TENDON:
@@ -769,21 +793,24 @@ class _Walker:
         self.fail(path, f"transmission type {trn} is not known to pitheorem")
         raise AssertionError  # pragma: no cover
 
-    def control_dimension(self, act, path):
-        """Dimensions of ctrl, of the activation, and of the gain's unit input."""
+    def control_dimension(self, act, path, types=None):
+        """Dimensions of ctrl, of the activation, and of the gain's unit input.
+
+        `types` is the actuator's transmission, gain, bias and dynamics types, if they were already read.
+        """
         mj = self.mj
-        length, force = self.actuator_target(act, path)
-        gain, bias = act.gaintype, act.biastype
-        biasprm = np.asarray(act.biasprm, dtype=float)
+        trn, gain, bias, dyn = types or (act.trntype, act.gaintype, act.biastype, act.dyntype)
+        length, force = self.actuator_target(act, path, trn)
+        biasprm = _floats(act.biasprm)
         if gain == mj.mjtGain.mjGAIN_FIXED:
-            if act.trntype == mj.mjtTrn.mjTRN_BODY and bias == mj.mjtBias.mjBIAS_NONE:
+            if trn == mj.mjtTrn.mjTRN_BODY and bias == mj.mjtBias.mjBIAS_NONE:
                 ctrl = _ONE  # adhesion: MuJoCo's gain is the force, the input a nonnegative fraction of it
             elif bias == mj.mjtBias.mjBIAS_NONE or (biasprm[1] == 0 and biasprm[2] == 0):
                 ctrl = force  # a motor: the input is the force
             elif biasprm[1] != 0:
                 ctrl = length  # a position servo: the input is a target length
             else:
-                ctrl = length / _T  # a velocity servo: a target velocity
+                ctrl = _quotient(length, _T)  # a velocity servo: a target velocity
         elif gain == mj.mjtGain.mjGAIN_AFFINE:
             ctrl = _ONE  # a damper-like gain: the input is a dimensionless fraction
         elif gain == mj.mjtGain.mjGAIN_MUSCLE:
@@ -795,14 +822,13 @@ class _Walker:
             muscle and bias == mj.mjtBias.mjBIAS_MUSCLE
         ):
             self.fail(path, f"bias type {bias.name} is not supported by pitheorem's scaling")
-        dyn = act.dyntype
         if dyn == mj.mjtDyn.mjDYN_MUSCLE:
             act_dim = _ONE  # the activation, between 0 and 1
         elif dyn == mj.mjtDyn.mjDYN_INTEGRATOR:
             act_dim = ctrl * _T
             if gain == mj.mjtGain.mjGAIN_FIXED and bias == mj.mjtBias.mjBIAS_AFFINE and biasprm[1] != 0:
                 # intvelocity: the activation is the target length, so ctrl is a velocity
-                ctrl, act_dim = length / _T, length
+                ctrl, act_dim = _quotient(length, _T), length
         elif dyn in (mj.mjtDyn.mjDYN_NONE, mj.mjtDyn.mjDYN_FILTER, mj.mjtDyn.mjDYN_FILTEREXACT):
             act_dim = ctrl
         else:
@@ -812,35 +838,39 @@ class _Walker:
     def actuator(self, act, index):
         mj = self.mj
         ident, path = self.label("actuator", act, index)
-        length, force, ctrl, act_dim = self.control_dimension(act, path)
+        # each type read once: a read through MuJoCo's bindings and a comparison of its enums take a few
+        # tenths of a microsecond each, asked of every actuator
+        trn, gain, bias, dyn = types = act.trntype, act.gaintype, act.biastype, act.dyntype
+        length, force, ctrl, act_dim = self.control_dimension(act, path, types)
         # the input of the force: the activation when there are dynamics, else ctrl
-        dynamic = act.dyntype != mj.mjtDyn.mjDYN_NONE
+        dynamic = dyn != mj.mjtDyn.mjDYN_NONE
         driven = act_dim if dynamic else ctrl
         self.inputs.append((ctrl, act_dim if dynamic else None))
         self.targets.append((length, force))
         first = len(self.slots)
-        if act.trntype == mj.mjtTrn.mjTRN_SITE:
+        if trn == mj.mjtTrn.mjTRN_SITE:
             self.add("actuator", act, ident, path, "gear", _L, slice(3, 6), "_torque")
-        if act.trntype == mj.mjtTrn.mjTRN_SLIDERCRANK:
+        if trn == mj.mjtTrn.mjTRN_SLIDERCRANK:
             self.add("actuator", act, ident, path, "cranklength", _L)
         self.add("actuator", act, ident, path, "ctrlrange", ctrl)
         self.add("actuator", act, ident, path, "forcerange", force)
         self.add("actuator", act, ident, path, "actrange", act_dim)
         self.lengthrange(act, index, ident, path, length)
         self.add_set("actuator", act, ident, path, "delay", _T)
-        if act.dyntype in (mj.mjtDyn.mjDYN_FILTER, mj.mjtDyn.mjDYN_FILTEREXACT):
+        if dyn in (mj.mjtDyn.mjDYN_FILTER, mj.mjtDyn.mjDYN_FILTEREXACT):
             self.add("actuator", act, ident, path, "dynprm", _T, slice(0, 1), "_timeconst")
-        if act.gaintype == mj.mjtGain.mjGAIN_MUSCLE:
+        muscle = gain == mj.mjtGain.mjGAIN_MUSCLE
+        if muscle:
             self.muscle(act, ident, path, force)
-        elif act.gaintype == mj.mjtGain.mjGAIN_FIXED:
-            self.add("actuator", act, ident, path, "gainprm", force / driven, slice(0, 1), "_gain")
+        elif gain == mj.mjtGain.mjGAIN_FIXED:
+            self.add("actuator", act, ident, path, "gainprm", _quotient(force, driven), slice(0, 1), "_gain")
         else:
             self.add("actuator", act, ident, path, "gainprm", force, slice(0, 1), "_gain")
-            self.add("actuator", act, ident, path, "gainprm", force / length, slice(1, 2), "_length")
-            self.add("actuator", act, ident, path, "gainprm", force * _T / length, slice(2, 3), "_velocity")
-        if act.biastype == mj.mjtBias.mjBIAS_AFFINE:
+            self.add("actuator", act, ident, path, "gainprm", _quotient(force, length), slice(1, 2), "_length")
+            self.add("actuator", act, ident, path, "gainprm", _per_velocity(force, length), slice(2, 3), "_velocity")
+        if bias == mj.mjtBias.mjBIAS_AFFINE:
             self.add("actuator", act, ident, path, "biasprm", force, slice(0, 1), "_offset")
-            self.add("actuator", act, ident, path, "biasprm", force / length, slice(1, 2), "_length")
+            self.add("actuator", act, ident, path, "biasprm", _quotient(force, length), slice(1, 2), "_length")
             if _damping_ratio(mj, act):
                 self.add(
                     "actuator",
@@ -854,11 +884,13 @@ class _Walker:
                     note="a damping ratio: the compiler turns it into kv from kp and the joint's inertia",
                 )
             else:
-                self.add("actuator", act, ident, path, "biasprm", force * _T / length, slice(2, 3), "_velocity")
+                self.add(
+                    "actuator", act, ident, path, "biasprm", _per_velocity(force, length), slice(2, 3), "_velocity"
+                )
         self.refuse(act, path, ("damping", "armature", "ffrange", "velrange"))
         # the numbers the input passes through: its range and the activation's (an activation is the input
         # filtered or integrated), and the gain that turns it into a force (a muscle's input has no unit)
-        powers = {"ctrlrange": 1, "actrange": 1, "gainprm": 0 if act.gaintype == mj.mjtGain.mjGAIN_MUSCLE else -1}
+        powers = _MUSCLE_INPUT_POWERS if muscle else _INPUT_POWERS
         self.input_powers.append(
             {s.name: powers[s.attrs[0][0]] for s in self.slots[first:] if s.attrs and powers.get(s.attrs[0][0])}
         )
@@ -1055,6 +1087,32 @@ _DEFAULT_FLOATS: dict = {}  # (kind, attr) -> the default as a tuple of floats, 
 _DEFAULTS_CACHE: dict = {}
 
 
+#: the power of an actuator's input in each of its numbers that carries it: its range, its activation's
+#: range, and its gain (which turns it into a force); a muscle's gain carries none (its input has no unit)
+_INPUT_POWERS = {"ctrlrange": 1, "actrange": 1, "gainprm": -1}
+_MUSCLE_INPUT_POWERS = {"ctrlrange": 1, "actrange": 1, "gainprm": 0}
+
+#: the walker's quotients of dimensions, by the identities of the two (kept alive here, so that no other
+#: object takes their ids): every actuator asks for its force over its input, a division of Fractions
+_QUOTIENTS: dict[tuple[int, int], tuple] = {}
+
+
+def _quotient(a: Dimension, b: Dimension) -> Dimension:
+    """``a / b``, found once per pair of dimensions."""
+    key = (id(a), id(b))
+    known = _QUOTIENTS.get(key)
+    if known is None:
+        if len(_QUOTIENTS) >= 1024:
+            _QUOTIENTS.clear()
+        known = _QUOTIENTS[key] = (a, b, a / b)
+    return known[2]
+
+
+def _per_velocity(force: Dimension, length: Dimension) -> Dimension:
+    """``force * T / length``: the dimension of a gain or bias on an actuator's velocity, found once per pair."""
+    return _quotient(_quotient(force, _PER_TIME), length)
+
+
 def _damping_ratio(mj, act) -> bool:
     """Whether a position servo's ``biasprm[2]`` is a damping ratio (``dampratio``), not ``-kv``.
 
@@ -1064,7 +1122,7 @@ def _damping_ratio(mj, act) -> bool:
     ``-2 dampratio sqrt(kp m)``, ``m`` the inertia the actuator moves: a
     dimensionless number, which a change of units leaves alone.
     """
-    gain, bias = np.asarray(act.gainprm, dtype=float), np.asarray(act.biasprm, dtype=float)
+    gain, bias = _floats(act.gainprm), _floats(act.biasprm)
     return bool(act.gaintype == mj.mjtGain.mjGAIN_FIXED and bias[2] > 0 and bias[1] == -gain[0])
 
 
@@ -1079,14 +1137,14 @@ class _Form(NamedTuple):
 
 
 #: each form found, by kind, attribute, the entries' start, stop and step (a slice is no key before Python
-#: 3.12), and suffix: a file asks the same few thousands of times, and a slot's ``attrs`` shared by all the
+#: 3.12; none for :data:`_EVERY`, the whole attribute, most of them), and suffix: a file asks the same few thousands of times, and a slot's ``attrs`` shared by all the
 #: slots alike are objects fewer for Python's collector to scan when the walk ends (a file's slots outlive it)
 _FORMS: dict[tuple, _Form] = {}
 
 
 def _form(mj, kind: str, attr: str, index: slice, suffix: str) -> _Form:
     """The form of a slot of the entries `index` of a `kind`'s `attr`, with `suffix` (found once)."""
-    key = (kind, attr, index.start, index.stop, index.step, suffix)
+    key = (kind, attr, suffix) if index is _EVERY else (kind, attr, index.start, index.stop, index.step, suffix)
     if key not in _FORMS:
         tail_path = f" {attr}{suffix.replace('_', ' ')}"
         _FORMS[key] = _Form(f"{attr}{suffix}", tail_path, ((attr, index),), *_default_floats(mj, kind, attr))
@@ -1100,6 +1158,8 @@ def _set(value) -> bool:
     """
     if isinstance(value, float):  # most: one number, no tuple to build
         return value != 0
+    if value.__class__ is np.ndarray:  # a Python number is true where it is nonzero, NaN included
+        return any(value.ravel().tolist())
     return any(v != 0 for v in _floats(value))
 
 
