@@ -415,6 +415,8 @@ def identifier(text: str) -> str:
     >>> identifier("joint 'left hip'"), identifier("3d")
     ('joint__left_hip_', '_3d')
     """
+    if text.isascii() and text.isidentifier():  # most names: letters, digits and _ only, not a digit first
+        return text
     out = _NOT_WORD.sub("_", text)
     return out if out and not out[0].isdigit() else f"_{out}"
 

@@ -105,6 +105,23 @@ def _joint_kind(mj, jtype) -> JointKind | None:
 
 _JOINT_KINDS: dict[int, JointKind] = {}
 
+
+def _polynomial_terms(kind: JointKind) -> tuple:
+    """A joint kind's spring and damper polynomial terms: (entry, suffix, stiffness's and damping's dimension)
+    each, found once per kind (kept here with it, so that no other object takes its id)."""
+    known = _TERMS.get(id(kind))
+    if known is None:
+        force = kind.force
+        terms = tuple(
+            (slice(i, i + 1), "" if i == 0 else f"_poly{i}", kind.per(force, i + 1), kind.per(force, i + 1, rate=1))
+            for i in range(3)
+        )
+        known = _TERMS[id(kind)] = (kind, terms)
+    return known[1]
+
+
+_TERMS: dict[int, tuple] = {}
+
 #: a free joint's numbers that act on its translation and its rotation alike: (attribute, the dimension
 #: of each part, the entries read)
 _FREE_JOINT_MIXED = (
@@ -358,10 +375,10 @@ class _Walker:
     def spring_and_drive(self, kind, elem, ident, path, joint_kind: JointKind):
         """A joint's or a tendon's spring and damper polynomials, armature, friction loss and force range."""
         force = joint_kind.force
-        for i in range(3):  # a polynomial shorter than three terms stops early (add skips what is absent)
-            suffix = "" if i == 0 else f"_poly{i}"
-            self.add(kind, elem, ident, path, "stiffness", joint_kind.per(force, i + 1), slice(i, i + 1), suffix)
-            self.add(kind, elem, ident, path, "damping", joint_kind.per(force, i + 1, rate=1), slice(i, i + 1), suffix)
+        # a polynomial shorter than three terms stops early (add skips what is absent)
+        for index, suffix, stiffness, damping in _polynomial_terms(joint_kind):
+            self.add(kind, elem, ident, path, "stiffness", stiffness, index, suffix)
+            self.add(kind, elem, ident, path, "damping", damping, index, suffix)
         self.add(kind, elem, ident, path, "armature", joint_kind.per(force, 1, rate=2))
         self.add(kind, elem, ident, path, "frictionloss", force)
         self.add(kind, elem, ident, path, "actfrcrange", force)

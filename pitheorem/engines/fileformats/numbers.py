@@ -113,9 +113,10 @@ def _line(text: str, root: ET.Element, element: ET.Element) -> int | None:
     return starts[k] if k is not None and k < len(starts) else None
 
 
-def _where(path, text: str, root: ET.Element, element: ET.Element, parents: dict) -> str:
+def _where(path, text: str, root: ET.Element, element: ET.Element) -> str:
     """The element of a message, after its line where it is known: ``line 5, <joint> in <default class='soft'>``."""
     line = _line(text, root, element)
+    parents = {child: parent for parent in root.iter() for child in parent}  # only for a message
     return (f"line {line}, " if line is not None else "") + _element(element, parents)
 
 
@@ -189,7 +190,6 @@ def check_model_file(path, *, nonnegative: Mapping[str, tuple[str, ...]] | None 
         root = ET.fromstring(text.strip().rstrip("\x00").strip())
     except ET.ParseError:
         return None  # the engine's reader names the fault, with its own words
-    parents = {child: parent for parent in root.iter() for child in parent}
     for element in root.iter():
         for attr, value in element.attrib.items():
             if attr in _NAMES or attr.startswith("file") or _PLAIN.fullmatch(value):
@@ -202,7 +202,7 @@ def check_model_file(path, *, nonnegative: Mapping[str, tuple[str, ...]] | None 
                 if not math.isfinite(number):
                     raise EngineModelError(
                         str(path),
-                        _where(path, text, root, element, parents),
+                        _where(path, text, root, element),
                         f"{attr}={value!r} is not a finite number; a model holds finite numbers only",
                     )
     for tag, attrs in (nonnegative or {}).items():
@@ -211,7 +211,7 @@ def check_model_file(path, *, nonnegative: Mapping[str, tuple[str, ...]] | None 
                 if any(x < 0 for x in _numbers(element.get(attr))):
                     raise EngineModelError(
                         str(path),
-                        _where(path, text, root, element, parents),
+                        _where(path, text, root, element),
                         f"{attr}={element.get(attr)!r} is negative, which the engine's compiler would make 0 "
                         "without a word; give 0 or more",
                     )
