@@ -11,6 +11,8 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 import pitheorem as pt
 from pitheorem import engines
@@ -57,6 +59,47 @@ def test_control_dimensions_follow_the_actuator_kind():
     assert d["actuator_filtered_dynprm_timeconst"] == "T"
     controls = [str(x) for x in model.runner.control_dimensions()]
     assert controls == ["M L T^-2", "1", "L T^-1", "T^-1", "1", "M L T^-2"]
+
+
+def test_a_ball_joint_a_derived_mass_and_a_partly_set_vector_keep_their_dimensions_and_sources(tmp_path):
+    # a ball joint turns like a hinge; a body whose inertial the compiler replaces (inertiafromgeom="true")
+    # has the mass MuJoCo computes from its geom (the oracle: a sphere's volume times its density); a surface
+    # velocity whose first entry alone is set is listed; a free joint's damping polynomial mixes dimensions
+    path = tmp_path / "kinds.xml"
+    path.write_text("""<mujoco><compiler inertiafromgeom="true"/><worldbody>
+      <body name="a"><joint name="ball" type="ball" damping="0.5" range="0 1"/>
+        <inertial pos="0 0 0" mass="2" diaginertia="1 1 1"/>
+        <geom name="belt" size=".1" density="1000" surfacevel="1 0 0 0 0 0"/></body>
+    </worldbody></mujoco>""")
+    model = load(path)
+    d = dims(model)
+    assert d["joint_ball_damping"] == "M L^2 T^-1"
+    assert d["joint_ball_range"] == "1"
+    assert d["geom_belt_surfacevel_linear"] == "L T^-1"
+    mass = model.parameter("body_a_mass")
+    assert mass.source == "derived"
+    assert mass.value[0] == pytest.approx(4 / 3 * math.pi * 0.1**3 * 1000, rel=1e-12)
+    free = tmp_path / "free.xml"
+    free.write_text(
+        '<mujoco><worldbody><body><joint type="free" damping="0 1"/><geom size=".1"/></body></worldbody></mujoco>'
+    )
+    with pytest.raises(EngineModelError, match="damping polynomial terms on a free joint"):
+        load(free)
+
+
+@given(st.lists(st.floats() | st.sampled_from([0.0, -0.0, math.nan]), max_size=6))
+def test_an_attribute_is_set_where_any_entry_is_nonzero_or_nan(values):
+    # the oracle: the definition entry by entry, on the forms MuJoCo's spec hands out (a float, a vector of
+    # floats) and on integers
+    from pitheorem.engines.fileformats.mjcf import _set
+
+    want = any(v != 0 for v in values)
+    assert _set(np.array(values, dtype=float)) is want
+    assert _set(np.array(values, dtype=float).reshape(len(values), 1)) is want
+    if values:
+        assert _set(values[0]) is (values[0] != 0)
+    whole = [int(v) for v in values if abs(v) < 2**62]  # NaN is no integer
+    assert _set(np.array(whole, dtype=int)) is any(v != 0 for v in whole)
 
 
 def test_an_adhesion_gain_is_a_force_and_its_input_a_fraction(tmp_path):

@@ -92,6 +92,20 @@ def test_an_identifier_keeps_exactly_the_alphanumeric_characters_and_underscores
     assert identifier("") == "_"
 
 
+@given(st.text(alphabet=st.characters(max_codepoint=0x7F) | st.sampled_from("é²\u0301ａ٣"), max_size=12))
+def test_an_identifier_of_a_short_name_keeps_the_same_characters_whether_or_not_it_is_one_already(text):
+    # a name that is already an ASCII identifier is returned as it is, the others substituted: the oracle is
+    # the character-by-character definition, a leading digit (or nothing) given a "_"
+    from pitheorem.engines.parameters import identifier
+
+    kept = "".join(c if c.isalnum() or c == "_" else "_" for c in text)
+    assert identifier(text) == (kept if kept and not kept[0].isdigit() else f"_{kept}")
+    assert identifier(f"geom_{text}") == f"geom_{kept}"  # as the walker names an element
+    # a Python identifier that is not ASCII may hold what is no word character: a combining accent
+    assert "joint_e\u0301".isidentifier()
+    assert identifier("joint_e\u0301") == "joint_e_"
+
+
 def test_a_joint_kinds_coefficient_dimension_is_remembered_for_equal_questions_only():
     from pitheorem.engines.parameters import JointKind
 
