@@ -26,6 +26,7 @@ says so).
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping
 from fractions import Fraction
 
@@ -89,6 +90,12 @@ def unit_size(base: str, unit) -> Fraction:
         if size <= 0:
             raise InvalidRequestError(f"the size of the {base} unit must be positive, got {unit!r}", culprit=unit)
         return size
+    return _named_size(base, unit)
+
+
+@functools.lru_cache(maxsize=256)
+def _named_size(base: str, unit: str) -> Fraction:
+    """:func:`unit_size` of a unit name, asked of pint once per name (every load reads SI's three names)."""
     from ..system import unit_registry
 
     try:

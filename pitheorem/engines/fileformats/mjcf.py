@@ -329,7 +329,9 @@ class _Walker:
         # (:func:`_form`), and :meth:`unique`, :meth:`where`, :func:`_floats` and the common cases of
         # :meth:`source` are written out here, each call saved being a tenth of the time of a slot
         value = getattr(elem, attr)
-        if value.__class__ is np.ndarray and value.dtype is _FLOAT64 and value.ndim == 1:  # most vectors
+        if value.__class__ is float:  # most numbers
+            values = (value,)
+        elif value.__class__ is np.ndarray and value.dtype is _FLOAT64 and value.ndim == 1:  # most vectors
             values = tuple(value.tolist())
         else:
             values = _floats(value)
