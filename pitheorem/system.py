@@ -40,6 +40,9 @@ if TYPE_CHECKING:
 _TIME = Dimension({"T": 1})
 _ZERO = Fraction(0)
 
+#: the rows of a chunk of repeating sets :meth:`System.iter_bases` turns into names at a time
+_ROWS_AT_A_TIME = 1024
+
 __all__ = ["System"]
 
 # pint's names for the SI base dimensions, mapped to ours
@@ -822,8 +825,11 @@ class System:
 
         names = self._variables
         for chunk in independent_chunks(*self._basis_arguments(exclude, require)):
-            for subset in chunk.tolist():
-                yield tuple(names[j] for j in subset)
+            # a few rows at a time: a caller that wants the first sets (the command line shows a few
+            # of a large model's millions) does not wait for a whole chunk turned into Python lists
+            for start in range(0, len(chunk), _ROWS_AT_A_TIME):
+                for subset in chunk[start : start + _ROWS_AT_A_TIME].tolist():
+                    yield tuple(names[j] for j in subset)
 
     def bases(self, *, exclude: Iterable[str] = (), require: Iterable[str] = ()) -> BasisSequence:
         """Every valid repeating-variable set, in deterministic order.

@@ -4,6 +4,7 @@ check pitheorem against."""
 
 from __future__ import annotations
 
+import functools
 import os
 import subprocess
 import sys
@@ -47,6 +48,42 @@ if str(REPO) not in sys.path:  # lets tests import matlab_ports/ and benchmarks/
 # the next run of the suite load a program instead of compiling it again.  A loaded program is the one
 # compiled (JAX keys it by the program, its shapes, the flags and the versions), so runs are unchanged.
 os.environ.setdefault("JAX_COMPILATION_CACHE_DIR", str(Path(sys.prefix) / "jax-cache"))
+# XLA's backend without LLVM's optimisation passes: a cold compile of MJX's step takes a third less CPU, and
+# a run of the tests' few steps no longer.  The properties tested (a copy bit for bit at s = 4, within the
+# float32 yardstick at s = 10) hold for any deterministic program: both runs are the same compiled program.
+os.environ.setdefault("XLA_FLAGS", "--xla_backend_optimization_level=0")
+
+
+def untraced(function):
+    """`function`, called with Python's trace function off and then put back as it was.
+
+    Coverage measures pitheorem through that trace function, which Python calls at every call of every
+    function, pitheorem's or not.  An engine stepped from Python (MJWarp launches a few hundred kernels a
+    step, each through several calls of Warp's launch code) ran 2.5 times slower traced, for lines coverage
+    does not measure.  Wrapped around such a step, nothing of pitheorem runs untraced.
+    """
+
+    @functools.wraps(function)
+    def call(*args, **kwargs):
+        tracer = sys.gettrace()
+        sys.settrace(None)
+        try:
+            return function(*args, **kwargs)
+        finally:
+            sys.settrace(tracer)
+
+    return call
+
+
+@pytest.fixture(scope="module")
+def mjx_untraced():
+    """MJX's step, data and model making without coverage's tracing (:func:`untraced`): JAX traces MJX's
+    Python once per program, which coverage made twice as slow; pitheorem's own lines are still measured."""
+    mjx = pytest.importorskip("mujoco.mjx", reason="mujoco-mjx is not installed (pip install 'pitheorem[mjx]')")
+    with pytest.MonkeyPatch.context() as patch:
+        for name in ("step", "make_data", "put_model"):
+            patch.setattr(mjx, name, untraced(getattr(mjx, name)))
+        yield
 
 
 #: test files whose time is mostly an engine compiling on a cold start (Warp its kernels on the CPU, about

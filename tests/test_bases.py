@@ -22,6 +22,7 @@ from hypothesis import strategies as st
 
 import pitheorem as pt
 from pitheorem import bases as bases_module
+from pitheorem import system as system_module
 from pitheorem.bases import count_independent_subsets, independent_chunks, independent_subsets
 from tests.conftest import PRIMES, columns_of, oracle_bases, sympy_rank, systems
 
@@ -152,6 +153,9 @@ def test_small_chunks_keep_answers_and_order(system, chunk):
     with mock.patch.object(bases_module, "_CHUNK", chunk):
         assert system.bases() == oracle_bases(system)
         assert system.count_bases() == len(oracle_bases(system))
+    # iter_bases names a chunk's rows a few at a time: every row once, in order, across the slices
+    with mock.patch.object(system_module, "_ROWS_AT_A_TIME", chunk):
+        assert list(system.iter_bases()) == oracle_bases(system)
 
 
 @settings(max_examples=40, deadline=None)

@@ -24,6 +24,8 @@ pytest.importorskip("mujoco.mjx", reason="mujoco-mjx is not installed (pip insta
 from pitheorem import engines  # noqa: E402
 from pitheorem.engines.runners import mjx as mjx_backend  # noqa: E402
 
+pytestmark = pytest.mark.usefixtures("mjx_untraced")
+
 PENDULUM = engines.example_path("pendulum.xml")
 #: every verification of a model runs this long: the same number of steps and batch, so that JAX compiles
 #: the batch runner once per model, not once per test

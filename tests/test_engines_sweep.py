@@ -313,7 +313,7 @@ def test_the_command_line_json_has_the_rows_of_the_python_call(pendulum, capsys)
     assert [r["max_deviation"] for r in doc["sweeps"][0]["rows"]] == [r.max_deviation for r in sw.rows]
 
 
-def test_mjx_sweeps_run_in_this_process_and_match_verify(pendulum, monkeypatch):
+def test_mjx_sweeps_run_in_this_process_and_match_verify(pendulum, monkeypatch, mjx_untraced):
     pytest.importorskip("mujoco.mjx", reason="MJX is not installed (pip install 'pitheorem[mjx]')")
     model, sc = pendulum
     mjx_class = type(engines.load(PENDULUM, engine="mjx").runner)
