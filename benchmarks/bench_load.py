@@ -92,13 +92,14 @@ bodies  MuJoCo   load before         ours per body    load after          ours p
  2,000  3.3 s    3.81 s (ratio 1.15)  0.25 ms         3.64 s (ratio 1.10)  0.17 ms
 ======  =======  ==================  ===============  ==================  ===============
 
-Each body is 55 numbers of the table: "ours" fell from about 4.3 to 3.2 microseconds a number
-(x1.3 at every size), flat per body from 100 to 2,000 bodies.  At 500 bodies, three more pairs
-of runs right after gave 1.57 to 1.62 before and 1.43 to 1.50 after: the goal of 1.5 is met at
-500 bodies and above, by a small margin at 500.  A second run of the whole loop, with the machine
-busier, gave no gain at all from 100 to 1,000 bodies (500: 1.61 before, 1.66 after) and x1.15 at
-2,000; the three pairs at 500 run right after it did not repeat that, and CPU time on this shared
-machine moves by that much between two processes.  What is left in "ours" at 500 bodies
+A second run of the loop gave the same within 10 % (ratios after: 2.64, 1.85, 1.47, 1.24, 1.11;
+before: 3.09, 2.11, 1.61, 1.30, 1.14), and three more pairs of runs at 500 bodies gave 1.57 to
+1.62 before and 1.43 to 1.50 after.  Run the loop from a folder that holds no checkout:
+``python -c`` puts the current folder first on the path, ahead of ``PYTHONPATH``, so that from a
+checkout both arms time that checkout's code (a run from ``/work/main`` timed main against
+itself, and showed no change).  Each body is 55 numbers of the table: "ours" fell from about 4.3
+to 3.2 microseconds a number (x1.3 at every size), flat per body from 100 to 2,000 bodies.  The
+goal of 1.5 is met from 500 bodies on, by a small margin at 500.  What is left in "ours" at 500 bodies
 (about 90 ms): checking the file's numbers (8 ms, of which ElementTree's parse is 5), listing the
 spec's elements (3.5 ms), the walk's call per number (about 1.6 microseconds: reading the
 attribute through MuJoCo's bindings is 0.35 of it, its slot 0.25, its name, form and source the
