@@ -87,7 +87,7 @@ def mjx_untraced():
 
 
 #: test files whose time is mostly an engine compiling on a cold start (Warp its kernels on the CPU, about
-#: 35 s of CPU with an empty kernel cache; JAX tracing MJX's step), sent first to xdist's workers. By its
+#: 16 s of CPU at -O0 with an empty kernel cache; JAX tracing MJX's step), sent first to xdist's workers. By its
 #: own rule (the files with the most tests first) xdist sent them last: on a fresh clone the suite waited
 #: at its end for the Warp file's compile.
 FIRST = ("tests/test_engines_warp.py", "tests/test_engines_mjx.py")

@@ -561,7 +561,9 @@ def test_a_scaled_copy_shares_the_batch_unless_a_heightfield_reads_its_bounds(pe
 
 def test_a_batch_starts_from_given_states_nudged_by_one_float32_ulp(pendulum):
     b = pendulum.runner
-    n = round(DURATION / b.timestep())  # the batch size and length of the verifications above: compiled once
+    # seven runs of DURATION: the batch and length of the pendulum's verifications above (the original, its
+    # copy, three twins and two negative controls), one program that XLA compiles once
+    n = round(DURATION / b.timestep())
     given = np.array([0.5, -0.25])  # a first row: qpos, qvel (the pendulum has no activation)
     inputs = np.full((n, 1), 0.1)
     runs = b.run_many(
@@ -572,6 +574,8 @@ def test_a_batch_starts_from_given_states_nudged_by_one_float32_ulp(pendulum):
             (b, None, False, given),
             (b, inputs, False, None),
             (b, lambda t: [0.1], False, None),
+            (b, None, True, None),
+            (b, inputs, False, given),
         ],
     )
     swinging = runs[2]
@@ -579,7 +583,7 @@ def test_a_batch_starts_from_given_states_nudged_by_one_float32_ulp(pendulum):
     state = swinging[k]
     assert state[0] != 0
     assert state[1] != 0  # swinging: a state no rest pose has
-    from_state = b.run_many(n, [(b, None, False, state)] * 5)
+    from_state = b.run_many(n, [(b, None, False, state)] * 7)
     assert all(np.array_equal(run, from_state[0]) for run in from_state)
     # a run from the state at step k goes on as the run it was taken from
     np.testing.assert_allclose(from_state[0][: n - k + 1], swinging[k:], rtol=1e-5, atol=1e-6)
@@ -590,8 +594,10 @@ def test_a_batch_starts_from_given_states_nudged_by_one_float32_ulp(pendulum):
     assert runs[1][0].tolist() == [0.5 + eps, -0.25 + eps]
     assert not np.array_equal(runs[1], runs[2])
     # at rest, a coordinate at exactly zero moves to the ulp of 1, not to NaN; from 1 and up, to the next float32
-    _qpos, qvel = mjx_backend._initial(b, True, None, np.float32)
+    qpos, qvel = mjx_backend._initial(b, True, None, np.float32)
     assert qvel.tolist() == [eps]
+    assert runs[5][0].tolist() == [*qpos.tolist(), eps]  # the batch starts a nudged run at rest there
+    assert not np.array_equal(runs[6], runs[2])  # from the same state, the inputs act
     assert mjx_backend._nudged(np.array([2.0, -1.0]), np.float32).tolist() == [2.0 + 2 * eps, -1.0 + eps / 2]
     # inputs as rows and as a function of time give the same run, and the inputs act
     assert np.array_equal(runs[3], runs[4])

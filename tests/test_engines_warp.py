@@ -1,9 +1,9 @@
 """pitheorem.engines.runners.warp: MJCF files loaded, scaled, saved and verified in MuJoCo Warp, on Warp's CPU.
 
 Runs only where MuJoCo Warp is installed (``pip install "pitheorem[warp]"``).  With an empty kernel cache
-this file takes 60 s of CPU, 25 s with a full one (measured alone, 2026-11-27): Warp compiles MJWarp's
-kernels on the CPU for the first model (the hopper, about 35 s of CPU), and a few more for each model of
-other sizes (seconds each).  Warp keeps them in its kernel cache, which this module points at
+this file takes 39 s of CPU, 23 s with a full one (measured alone, 2026-11-28, kernels at -O0; 50 s and
+21 s at Warp's default -O2): Warp compiles MJWarp's kernels on the CPU for the first model (the hopper),
+and a few more for each model of other sizes (seconds each).  Warp keeps them in its kernel cache, which this module points at
 ``warp-cache`` in the Python environment (``.venv/warp-cache``, which git ignores): a second run loads
 them in seconds.  The models are loaded once per module and every verification runs the same duration,
 so that each model's kernels compile once; the whole file runs on one xdist worker (``--dist
