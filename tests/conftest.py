@@ -398,6 +398,15 @@ def plain_mujoco_runs_equal(model, copy, scaling, s, n_steps: int, change=None, 
     return bool(np.array_equal(out[0], out[1] / factors[: out[0].shape[1]]))
 
 
+def expected_verdict(rep) -> str:
+    """The verdict read off a report's fields (passed, inconclusive, exact), as verify's report defines it."""
+    if not rep.passed:
+        return "not similar"
+    if rep.inconclusive:
+        return "inconclusive"
+    return "exact" if rep.exact else "similar"
+
+
 def recorded_batches(monkeypatch, runner_class) -> list:
     """Patch ``runner_class.run_many`` to record each batch's jobs (a list per call) before running it.
 

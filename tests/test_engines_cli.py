@@ -536,20 +536,6 @@ def test_convert_fit_that_changes_nothing_says_so_and_writes_nothing(tmp_path, c
     assert not out.exists()
 
 
-def test_check_says_first_that_another_engine_refuses_the_file(tmp_path, capsys):
-    pytest.importorskip("mujoco.mjx", reason="mujoco-mjx is not installed (pip install 'pitheorem[mjx]')")
-    path = tmp_path / "pgs.xml"
-    path.write_text(
-        '<mujoco><option solver="PGS"/><worldbody><body><joint type="hinge"/>'
-        '<geom size=".1" mass="1"/></body></worldbody></mujoco>'
-    )
-    assert main(["check", str(path)]) == 0  # MuJoCo runs it
-    capsys.readouterr()
-    assert main(["check", str(path), "--engine", "mjx"]) == 1
-    first = capsys.readouterr().out.splitlines()[0]
-    assert first.startswith("pgs.xml: mjx refuses the file (option solver: MJX does not support the PGS solver")
-
-
 def test_check_exits_0_on_a_clean_model_and_reads_the_units_given(capsys):
     assert main(["check", "example:pendulum.xml"]) == 0
     assert "clear of every catalogued threshold of mujoco" in capsys.readouterr().out
@@ -585,29 +571,6 @@ def test_verify_runs_a_file_in_the_engine_named(capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1
     assert "unknown engine 'ode'" in err[0]
-    pytest.importorskip("mujoco.mjx", reason="MJX is not installed (pip install 'pitheorem[mjx]')")
-    capsys.readouterr()  # what importing MJX here printed (a note on a missing warp): the command silences it
-    assert (
-        main(
-            [
-                "verify",
-                PENDULUM,
-                "--scale",
-                "g=1",
-                "--s",
-                "4",
-                "--engine",
-                "mjx",
-                "--duration",
-                "0.2",
-                "--format",
-                "json",
-            ]
-        )
-        == 0
-    )
-    doc = json.loads(capsys.readouterr().out)  # nothing but the answer: not MJX's note on a missing warp
-    assert (doc["engine"], doc["exact"]) == ("mjx", True)
 
 
 # -- issue 32's rules on a sample of the corpus (tests/robots/cli_corpus.py runs them on the whole) -----

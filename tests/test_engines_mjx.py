@@ -664,3 +664,60 @@ def test_an_mjx_copy_keeps_its_inputs_as_mujocos_does():
     np.testing.assert_array_equal(kept.inputs()[1], model.inputs()[1])
     np.testing.assert_array_equal(kept.inputs()[2], model.inputs()[2])
     assert [repr(p.value) for p in kept.parameters] == [repr(p.value) for p in in_mujoco.parameters]  # NaN: unset
+
+
+# -- MJX from the command line and in a sweep (here rather than beside the other commands' tests, so that one
+# xdist worker imports MJX, and the pendulum's verifications share one compiled program: DURATION, 7 runs) ----
+
+
+def test_check_says_first_that_another_engine_refuses_the_file(tmp_path, capsys):
+    from pitheorem.cli import main
+
+    path = tmp_path / "pgs.xml"
+    path.write_text(
+        '<mujoco><option solver="PGS"/><worldbody><body><joint type="hinge"/>'
+        '<geom size=".1" mass="1"/></body></worldbody></mujoco>'
+    )
+    assert main(["check", str(path)]) == 0  # MuJoCo runs it
+    capsys.readouterr()
+    assert main(["check", str(path), "--engine", "mjx"]) == 1
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith("pgs.xml: mjx refuses the file (option solver: MJX does not support the PGS solver")
+
+
+def test_verify_on_the_command_line_runs_in_mjx(capsys):
+    import json
+
+    import mujoco.mjx  # noqa: F401  (its note on a missing warp, if any, printed before the command)
+
+    from pitheorem.cli import main
+
+    capsys.readouterr()
+    argv = ["verify", str(PENDULUM), "--scale", "g=1", "--s", "4", "--engine", "mjx", "--duration", str(DURATION)]
+    assert main([*argv, "--format", "json"]) == 0
+    doc = json.loads(capsys.readouterr().out)  # nothing but the answer: not MJX's note on a missing warp
+    assert (doc["engine"], doc["exact"]) == ("mjx", True)
+
+
+def test_mjx_sweeps_run_in_this_process_and_match_verify(monkeypatch):
+    from pitheorem.engines.verdicts.strength import control_factors
+    from tests.conftest import expected_verdict, recorded_batches
+
+    def push(t):
+        return [0.1 * np.sin(7.0 * t)]
+
+    model = engines.load(PENDULUM)
+    sc = time_free(model)
+    mjx_class = type(engines.load(PENDULUM, engine="mjx").runner)
+    batches = recorded_batches(monkeypatch, mjx_class)
+    sw = engines.sweep(model, sc, s=(4, 10), duration=DURATION, controls=push, engine="mjx", fit=False)
+    monkeypatch.undo()
+    calls = [len(jobs) for jobs in batches]
+    assert sw.engine == "mjx"
+    # the original and its three twins once, then both copies with their first controls in one vectorised call
+    assert calls[:2] == [4, 2 * (1 + len({g for g, _e, _f in control_factors(model)}))]
+    mjx = engines.load(PENDULUM, engine="mjx")
+    for row in sw.rows:
+        rep = engines.verify(mjx, sc, row.s, duration=DURATION, controls=push)
+        assert (row.verdict, row.max_deviation) == (expected_verdict(rep), rep.max_deviation)
+    assert np.isfinite([r.yardstick for r in sw.rows]).all()

@@ -7,7 +7,6 @@ import math
 from fractions import Fraction
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 import pitheorem as pt
@@ -19,7 +18,7 @@ from pitheorem.cli import main
 from pitheorem.engines.cli import parse_s_values
 from pitheorem.engines.thresholds import thresholds
 from pitheorem.engines.verdicts.strength import control_factors
-from tests.conftest import recorded_batches
+from tests.conftest import expected_verdict, recorded_batches
 
 PENDULUM = engines.example_path("pendulum.xml")
 DURATION = 0.1
@@ -39,15 +38,6 @@ def push(t):
 def pendulum():
     model = engines.load(PENDULUM)
     return model, pt.search(model.system(), scale={"g": 1}).scalings[0]
-
-
-def expected_verdict(rep) -> str:
-    """The verdict read off a report's fields (passed, inconclusive, exact), as verify's report defines it."""
-    if not rep.passed:
-        return "not similar"
-    if rep.inconclusive:
-        return "inconclusive"
-    return "exact" if rep.exact else "similar"
 
 
 def verify_alone(model, sc, s, controls=push):
@@ -311,21 +301,3 @@ def test_the_command_line_json_has_the_rows_of_the_python_call(pendulum, capsys)
     assert code == 0
     assert [r["verdict"] for r in doc["sweeps"][0]["rows"]] == list(sw.verdicts)
     assert [r["max_deviation"] for r in doc["sweeps"][0]["rows"]] == [r.max_deviation for r in sw.rows]
-
-
-def test_mjx_sweeps_run_in_this_process_and_match_verify(pendulum, monkeypatch, mjx_untraced):
-    pytest.importorskip("mujoco.mjx", reason="MJX is not installed (pip install 'pitheorem[mjx]')")
-    model, sc = pendulum
-    mjx_class = type(engines.load(PENDULUM, engine="mjx").runner)
-    batches = recorded_batches(monkeypatch, mjx_class)
-    sw = engines.sweep(model, sc, s=(4, 10), duration=0.02, controls=push, engine="mjx", fit=False)
-    monkeypatch.undo()
-    calls = [len(jobs) for jobs in batches]
-    assert sw.engine == "mjx"
-    # the original and its three twins once, then both copies with their first controls in one vectorised call
-    assert calls[:2] == [4, 2 * (1 + len({g for g, _e, _f in control_factors(model)}))]
-    mjx = engines.load(PENDULUM, engine="mjx")
-    for row in sw.rows:
-        rep = engines.verify(mjx, sc, row.s, duration=0.02, controls=push)
-        assert (row.verdict, row.max_deviation) == (expected_verdict(rep), rep.max_deviation)
-    assert np.isfinite([r.yardstick for r in sw.rows]).all()
