@@ -7,6 +7,7 @@ batch runner, once per model's sizes (``benchmarks/mjx_corpus.py`` runs the rest
 
 from __future__ import annotations
 
+import importlib.util
 import re
 import sys
 import warnings
@@ -18,8 +19,11 @@ import pytest
 import pitheorem as pt
 
 pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
-jax = pytest.importorskip("jax", reason="jax is not installed (pip install 'pitheorem[mjx]')")
-pytest.importorskip("mujoco.mjx", reason="mujoco-mjx is not installed (pip install 'pitheorem[mjx]')")
+# found, not imported: importing MJX (JAX, and Warp's kernel definitions) takes seconds, twice as long under
+# coverage, and the xdist worker that collects this file but runs none of it would pay for it
+for _module in ("jax", "mujoco.mjx"):
+    if importlib.util.find_spec(_module) is None:
+        pytest.skip(f"{_module} is not installed (pip install 'pitheorem[mjx]')", allow_module_level=True)
 
 from pitheorem import engines  # noqa: E402
 from pitheorem.engines.runners import mjx as mjx_backend  # noqa: E402
@@ -70,6 +74,8 @@ def test_an_mjcf_file_loads_scales_and_saves_in_mjx(pendulum, tmp_path):
 
 
 def test_float64_on_request_and_jax_left_as_it_was():
+    import jax
+
     before = jax.config.jax_enable_x64
     model = engines.load(PENDULUM, engine="mjx", precision="float64")
     assert {a.dtype for a in model.runner.stored_numbers().values()} == {np.dtype(np.float64)}
@@ -126,6 +132,8 @@ def test_s10_is_judged_against_the_float32_yardstick(pendulum):
 
 
 def test_the_runs_of_a_verification_are_one_vmapped_call(pendulum, monkeypatch):
+    import jax
+
     runner = mjx_backend._runner(jax, "float32")
     batches = []
 
@@ -223,6 +231,8 @@ def test_a_closed_loop_controller_is_refused(pendulum):
 
 
 def test_mjx_segment_regularizer_is_measured_as_catalogued():
+    import jax
+
     # MJX's closest point on a segment adds 1e-6 to the squared length: the point of a segment of length l
     # is off by 1e-6 / l^2 relative, a constant of dimension L^2 (catalogued as mjx_segment_regularizer)
     from mujoco.mjx._src import math as mjx_math
@@ -243,6 +253,8 @@ def test_mjx_segment_regularizer_is_measured_as_catalogued():
 
 
 def test_capsule_regularizer_passes_float32s_resolution_below_its_threshold():
+    import jax
+
     # MJX's closest point on a capsule's segment, in float32, against the point without the 1e-6 (numpy, float64
     # from the same float32 inputs): off by about 1e-6 / (2 h^2) of h, above float32's rounding below h = 2
     from mujoco.mjx._src import math as mjx_math
@@ -273,6 +285,7 @@ def test_capsule_regularizer_passes_float32s_resolution_below_its_threshold():
 def test_mjx_takes_cylinders_shorter_than_2_mm_as_lying_on_a_plane():
     from types import SimpleNamespace
 
+    import jax
     from mujoco.mjx._src.collision_primitive import plane_cylinder
 
     (t,) = engines.thresholds.thresholds("mjx", names=["mjx_cylinder_plane_parallel"])
@@ -291,6 +304,8 @@ def test_mjx_takes_cylinders_shorter_than_2_mm_as_lying_on_a_plane():
 
 
 def test_numbers_beyond_float32s_range_are_flushed_or_infinite_and_checked(tmp_path):
+    import jax
+
     (low, high) = engines.thresholds.thresholds("mjx", names=["mjx_float32_min_normal", "mjx_float32_max"])
     assert low.value == float(np.finfo(np.float32).tiny)
     assert high.value == float(np.finfo(np.float32).max)
@@ -378,6 +393,8 @@ def test_a_shrunk_hopper_is_flagged_for_mjx_and_fitted_units_clear_it(tmp_path):
 
 
 def test_mjx_floors_the_fluid_models_masses_and_moments_at_1e_12(tmp_path):
+    import jax
+
     # a free body moving in a fluid: MJX's fluid forces (qfrc_passive, nothing else acts) against MuJoCo's
     # (qfrc_fluid, which floors the moments at 1e-15 and not the mass)
     import mujoco
@@ -497,6 +514,8 @@ def test_the_pairs_thresholds_reads_are_mjxs_own(name):
 
 @pytest.mark.parametrize("name", ["hopper.xml", "ant.xml"])
 def test_a_scaled_copy_is_one_program_with_its_original(name):
+    import jax
+
     # a copy whose static arrays differ from its original's runs in a call of its own, a program XLA compiles
     # apart, which may round differently: the hopper's copy then parted from its original after one step
     with warnings.catch_warnings():

@@ -12,6 +12,7 @@ loadfile``), sent first (``FIRST`` in ``conftest.py``), so that the compile runs
 
 from __future__ import annotations
 
+import importlib.util
 import sys
 import warnings
 from pathlib import Path
@@ -23,7 +24,10 @@ import pitheorem as pt
 
 pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
 warp = pytest.importorskip("warp", reason="warp-lang is not installed (pip install 'pitheorem[warp]')")
-mjw = pytest.importorskip("mujoco_warp", reason="mujoco-warp is not installed (pip install 'pitheorem[warp]')")
+# found, not imported: MJWarp's kernel definitions take seconds to import, twice as long under coverage, and
+# the xdist worker that collects this file but runs none of it would pay for them (tests import it: mjw())
+if importlib.util.find_spec("mujoco_warp") is None:
+    pytest.skip("mujoco-warp is not installed (pip install 'pitheorem[warp]')", allow_module_level=True)
 
 # before Warp initialises: the kernels compiled here are kept in the environment's build folder
 warp.config.kernel_cache_dir = str(Path(sys.prefix) / "warp-cache")
@@ -57,12 +61,19 @@ def load(path):
     return model
 
 
+def mjw():
+    """MuJoCo Warp's package, imported on first use."""
+    import mujoco_warp
+
+    return mujoco_warp
+
+
 @pytest.fixture(scope="module", autouse=True)
 def _mjwarps_step_untraced():
     """MJWarp's step without coverage's tracing (:func:`tests.conftest.untraced`): this file's runs 2.5 times
     faster under ``make test``, every line of pitheorem still measured."""
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(mjw, "step", untraced(mjw.step))
+        patch.setattr(mjw(), "step", untraced(mjw().step))
         yield
 
 
@@ -145,13 +156,13 @@ def test_the_hopper_at_s10_is_similar_against_the_float32_yardstick(hopper):
 
 def test_the_runs_of_a_verification_are_the_worlds_of_one_call(pendulum, monkeypatch):
     worlds = []
-    make_data = mjw.make_data
+    make_data = mjw().make_data
 
     def counting(m, nworld=1, **kw):
         worlds.append(nworld)
         return make_data(m, nworld=nworld, **kw)
 
-    monkeypatch.setattr(mjw, "make_data", counting)
+    monkeypatch.setattr(mjw(), "make_data", counting)
     engines.verify(pendulum, time_free(pendulum), s=4, duration=DURATION, ensemble=3, diagnose=False)
     # the original, its scaled copy, three twins and each group's first negative control (gravity off by 1e-4,
     # the masses doubled where something else carries mass), each world with its own gravity, masses and
