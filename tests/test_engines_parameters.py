@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 
 import pitheorem as pt
 from pitheorem.engines import Parameter
-from pitheorem.engines.parameters import dim, dimension_factor
+from pitheorem.engines.parameters import dim, dimension_factor, new_parameter
 
 
 def test_a_parameter_stands_for_one_variable_or_one_per_part():
@@ -120,3 +120,38 @@ def test_a_joint_kinds_coefficient_dimension_is_remembered_for_equal_questions_o
                     want = {base: p for base, p in want.items() if p != 0}
                     for _ in range(2):  # computed, then remembered
                         assert kind.per(numerator, power, rate=rate).exponents == want
+
+
+_TEXT = st.text(max_size=8)
+_FIELDS = st.tuples(
+    _TEXT,
+    _TEXT,
+    st.lists(st.floats(allow_nan=False), max_size=3).map(tuple),
+    st.sampled_from([None, dim("M"), dim("L T^-2"), dim("1")]),
+    st.sampled_from(["file", "default", "derived", "engine"]),
+    _TEXT,
+    st.lists(st.tuples(_TEXT, st.sampled_from([dim("M"), dim("M L^2")])), max_size=2).map(tuple),
+    _TEXT,
+)
+
+
+@given(_FIELDS)
+def test_a_parameter_made_quickly_is_the_one_its_constructor_makes(fields):
+    import dataclasses
+
+    quick, made = new_parameter(*fields), Parameter(*fields)
+    assert type(quick) is Parameter
+    assert quick == made
+    assert hash(quick) == hash(made)
+    assert repr(quick) == repr(made)
+    # every field, the same object (not a copy), in the class's order: a field added later must be set too
+    assert [getattr(quick, f.name) for f in dataclasses.fields(Parameter)] == list(fields)
+    assert all(getattr(quick, f.name) is v for f, v in zip(dataclasses.fields(Parameter), fields, strict=True))
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        quick.name = "other"
+
+
+def test_a_parameter_made_quickly_takes_the_constructors_defaults():
+    quick = new_parameter("l", "geom 'g' size", (1.0,), dim("L"), "file", "file")
+    assert quick == Parameter("l", "geom 'g' size", (1.0,), dim("L"), "file", "file")
+    assert (quick.parts, quick.note) == ((), "")

@@ -12,6 +12,7 @@ an engine.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 import re
@@ -37,6 +38,7 @@ __all__ = [
     "dimension_factors",
     "exact_product",
     "identifier",
+    "new_parameter",
     "unique_name",
     "warn_unscalable",
 ]
@@ -190,6 +192,49 @@ class Parameter:
         if not self.parts:
             return "mixed"
         return " | ".join(f"{dim} ({part})" for part, dim in self.parts)
+
+
+#: each field of a :class:`Parameter`, in order: its slot's setter, for :func:`new_parameter`
+_FIELD_SETTERS = tuple(Parameter.__dict__[f.name].__set__ for f in dataclasses.fields(Parameter))
+
+
+def new_parameter(name, path, value, dimension, source, settable, parts=(), note="") -> Parameter:
+    """``Parameter(name, path, ...)``, made in half the time, for a reader's table of thousands.
+
+    A frozen dataclass's constructor sets each field through ``object.__setattr__``, a lookup
+    of the name per field; here each field's slot is written directly.  The result is the
+    same immutable, equal :class:`Parameter` (the class has no checks of its own to skip).
+
+    Parameters
+    ----------
+    name, path, value, dimension, source, settable, parts, note
+        The fields of :class:`Parameter`, in its order.
+
+    Returns
+    -------
+    Parameter
+
+    Examples
+    --------
+    >>> from pitheorem.engines.parameters import Parameter, dim, new_parameter
+    >>> args = ("body_torso_mass", "body 'torso' mass", (3.5,), dim("M"), "derived", "file")
+    >>> new_parameter(*args) == Parameter(*args)
+    True
+    """
+    p = _new(Parameter)
+    set_name, set_path, set_value, set_dimension, set_source, set_settable, set_parts, set_note = _FIELD_SETTERS
+    set_name(p, name)
+    set_path(p, path)
+    set_value(p, value)
+    set_dimension(p, dimension)
+    set_source(p, source)
+    set_settable(p, settable)
+    set_parts(p, parts)
+    set_note(p, note)
+    return p
+
+
+_new = object.__new__
 
 
 def dimension_factor(scaling, s, dimension) -> float:

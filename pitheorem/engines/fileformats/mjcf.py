@@ -49,11 +49,11 @@ from ..enginemodel import EngineModelError
 from ..packages import engine_module
 from ..parameters import (
     JointKind,
-    Parameter,
     dim,
     dimension_factors,
     exact_product,
     identifier,
+    new_parameter,
     unique_name,
     warn_unscalable,
 )
@@ -139,10 +139,12 @@ class Slot:
     copy of the spec is scaled by looking each element up, with no second walk of the file.  Scaling
     multiplies the entries ``attrs`` names, ``(attribute, index)`` pairs (which a saved file also
     rewrites as exact decimals); a slot that is no such product gives its own ``write``.  Its numbers
-    (:meth:`values`) are its ``read()``, or, for most slots, its one attribute's entries read from
-    ``element``, or else ``value`` (a body's mass and inertia, read from the compiled model with every
-    other body's): a file has a slot per number, and a function per slot would be five more objects
-    each, a tuple of its numbers one more for Python's collector to scan when the walk ends.
+    (:meth:`values`) are its ``read()``, or else ``value``: for most slots, its one attribute's entries
+    as the walk read them from ``element`` (to tell a set number from an absent one, and the file's
+    from MuJoCo's default), kept, so that the table made later does not read each through MuJoCo's
+    bindings again; for a body's mass and inertia, read from the compiled model with every other
+    body's.  A slot with neither (a custom numeric's data) reads its attribute from ``element`` when
+    asked.  A file has a slot per number: a function per slot would be five more objects each.
     """
 
     name: str
@@ -159,14 +161,15 @@ class Slot:
     write: Callable[[object, float], None] | None = None
     #: the element whose attribute ``attrs`` names holds the numbers, where ``read`` is None
     element: object = None
-    #: the numbers, where neither ``read`` nor ``element`` gives them
+    #: the numbers, where ``read`` is None: the element's entries as the walk read them, or computed ones;
+    #: empty where ``element``'s attribute is read when asked
     value: tuple = ()
 
     def values(self) -> tuple:
-        """The slot's numbers, read now."""
+        """The slot's numbers: read now, or as the walk read them (the spec is not changed after its walk)."""
         if self.read is not None:
             return self.read()
-        if self.element is None:
+        if self.value or self.element is None:
             return self.value
         ((attr, index),) = self.attrs
         return _floats(getattr(self.element, attr))[index]
@@ -355,7 +358,9 @@ class _Walker:
         else:  # NaN in the default: entry by entry (:meth:`source`)
             source = self.source(kind, elem, attr, values)
         where = (kind,) if kind in _SINGLES else self.where_of[id(elem)]
-        self.slots.append(Slot(name, path + tail_path, None, attrs, where, dimension, source, parts, note, None, elem))
+        self.slots.append(
+            Slot(name, path + tail_path, None, attrs, where, dimension, source, parts, note, None, elem, chosen)
+        )
 
     def add_set(self, kind, elem, ident, path, attr, dimension, index=_EVERY, suffix="", note=""):
         """:meth:`add` where the entries are set (nonzero): an attribute most files leave at zero, kept out
@@ -1414,9 +1419,13 @@ class MjcfDocument:
         return self._walked
 
     def parameters(self):
-        return [
-            Parameter(s.name, s.path, s.values(), s.dimension, s.source, "file", s.parts, s.note) for s in self._slots
-        ]
+        # made on first use, from the numbers the walk kept: thousands of objects, and no collection finds
+        # any of them free (:func:`_collection_paused`)
+        slots = self._slots
+        with _collection_paused():
+            return [
+                new_parameter(s.name, s.path, s.values(), s.dimension, s.source, "file", s.parts, s.note) for s in slots
+            ]
 
     def settings(self) -> dict:
         return {}
