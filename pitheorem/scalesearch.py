@@ -341,8 +341,16 @@ def _unpickle_result(state: dict) -> SearchResult:
 
 
 def _scaling(system: System, generators, is_units: bool, coords) -> Scaling:
-    vector = tuple(_dot(coords, [g[i] for g in generators]) for i in range(len(system.variables)))
-    return Scaling(system, vector, tuple(coords) if is_units else None)
+    # variables with the same column of the generators (the same dimension, for changes of units) take the
+    # same exponent: each column is summed once (a robot file's thousands of numbers have a few dozen)
+    exponents: dict[tuple, Fraction] = {}
+    vector = []
+    for i in range(len(system.variables)):
+        column = tuple(g[i] for g in generators)
+        if column not in exponents:
+            exponents[column] = _dot(coords, column)
+        vector.append(exponents[column])
+    return Scaling(system, tuple(vector), tuple(coords) if is_units else None)
 
 
 def _solve(
