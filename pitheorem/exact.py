@@ -408,27 +408,41 @@ def simplest_fraction_rounding_to(x: float) -> Fraction:
         return -simplest_fraction_rounding_to(-x)
     if x == 0:
         return Fraction(0)
-    exact = Fraction(x)
-    low = (exact + Fraction(math.nextafter(x, 0))) / 2
-    high = (exact + Fraction(math.nextafter(x, math.inf))) / 2 if x < sys.float_info.max else None
+    # the ends, in integers (a third of the time of Fraction's arithmetic): the midpoints between x = n / d and
+    # its neighbours below and above
+    n, d = x.as_integer_ratio()
+    below_n, below_d = math.nextafter(x, 0).as_integer_ratio()
+    low_n, low_d = n * below_d + below_n * d, 2 * d * below_d
+    if x < sys.float_info.max:
+        above_n, above_d = math.nextafter(x, math.inf).as_integer_ratio()
+        high = (n * above_d + above_n * d, 2 * d * above_d)
+    else:
+        high = None
     ties_to_x = int(x / math.ulp(x)) % 2 == 0  # round half to even: an even significand keeps the ties
-    return _simplest_between(low, high, ties_to_x)
+    return _simplest_between(low_n, low_d, high, ties_to_x)
 
 
-def _simplest_between(low: Fraction, high: Fraction | None, closed: bool) -> Fraction:
-    """The simplest fraction in the interval from `low` > 0 to `high` (None: no upper end), ends included if `closed`.
+def _simplest_between(low_n: int, low_d: int, high: tuple[int, int] | None, closed: bool) -> Fraction:
+    """The simplest fraction from ``low_n / low_d`` > 0 to ``high`` (a ratio ``(n, d)``; None: no upper end),
+    ends included if `closed`.
 
-    Stern-Brocot descent through continued fractions: take the smallest
-    integer in the interval if there is one; else both ends share an integer
-    part n, and the answer is n + 1/y for the simplest y between the
-    reciprocals of the ends' fractional parts.
+    Stern-Brocot descent through continued fractions, in integers: take the
+    smallest integer in the interval if there is one; else both ends share an
+    integer part a, and the answer is a + 1/y for the simplest y between the
+    reciprocals of the ends' fractional parts.  The partial quotients a are
+    folded into the convergents p/q as they come, so that the last one, w,
+    gives the answer (w p + p') / (w q + q').
     """
-    whole = math.floor(low) if closed and low.denominator == 1 else math.floor(low) + 1
-    if high is None or whole < high or (closed and whole == high):
-        return Fraction(whole)
-    n = math.floor(low)
-    inverse_high = None if low == n else 1 / (low - n)  # low == n: an open end at n, no upper end for y
-    return n + 1 / _simplest_between(1 / (high - n), inverse_high, closed)
+    p_before, q_before, p, q = 0, 1, 1, 0  # the convergents before the first quotient
+    while True:
+        a, rest = divmod(low_n, low_d)
+        whole = a if closed and rest == 0 else a + 1
+        if high is None or whole * high[1] < high[0] or (closed and whole * high[1] == high[0]):
+            return Fraction(whole * p + p_before, whole * q + q_before)
+        p_before, q_before, p, q = p, q, a * p + p_before, a * q + q_before
+        # y runs from 1 / (high - a) to 1 / (low - a); low == a: an open end at a, no upper end for y
+        high_n, high_d = high
+        low_n, low_d, high = high_d, high_n - a * high_d, (None if rest == 0 else (low_d, rest))
 
 
 def _from_text(text: str, value, what: str) -> Fraction:

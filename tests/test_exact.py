@@ -301,6 +301,26 @@ def test_the_simplest_fraction_at_the_ends_of_the_doubles_rounds_back(x):
     assert simplest_fraction_rounding_to(-x) == -read
 
 
+@given(st.integers(1, 10**6), st.integers(1, 10**6))
+def test_a_fraction_of_small_terms_is_the_simplest_that_rounds_to_its_double(p, q):
+    # two fractions of denominators up to 10^6 differ by at least 10^-12, more than four ulps of a number below
+    # 1024 (2.3e-13 at most): no simpler fraction rounds to the same double, so the reading is p/q itself
+    assume(p < 1024 * q)
+    assert simplest_fraction_rounding_to(p / q) == Fraction(p, q)
+
+
+@given(st.floats(min_value=5e-324, max_value=1.7976931348623157e308, allow_nan=False, allow_infinity=False))
+def test_no_fraction_of_a_smaller_denominator_rounds_to_the_double(x):
+    # the closest fraction of a smaller denominator (Python's limit_denominator, not pitheorem's descent)
+    # rounds to another double; away from a power of two, where the neighbours' spacings differ, the closest is
+    # the first that would round to x
+    assume(math.frexp(x)[0] != 0.5)
+    read = simplest_fraction_rounding_to(x)
+    assert float(read) == x
+    if read.denominator > 1:
+        assert float(Fraction(x).limit_denominator(read.denominator - 1)) != x
+
+
 def test_rounding_ties_belong_to_the_double_with_an_even_significand():
     # 2**53 + 2 has an odd significand at spacing 2: the odd integers beside it are ties that round to its
     # even neighbours, so the only integer in its interval is itself; 2**53 + 4 (even) owns its ties
