@@ -86,11 +86,22 @@ def mjx_untraced():
         yield
 
 
-#: test files whose time is mostly an engine compiling on a cold start (Warp its kernels on the CPU, about
-#: 16 s of CPU at -O0 with an empty kernel cache; JAX tracing MJX's step), sent first to xdist's workers. By its
-#: own rule (the files with the most tests first) xdist sent them last: on a fresh clone the suite waited
-#: at its end for the Warp file's compile.
-FIRST = ("tests/test_engines_warp.py", "tests/test_engines_mjx.py")
+#: the test files that take longest, longest first, sent to xdist's workers before the others: each worker
+#: takes the next file when it is nearly done with its last, so that sending the long ones first leaves the
+#: short ones to even out the end.  Seconds of CPU under ``make test`` on a fresh clone (2026-11-28): MJX
+#: 47, Warp 38 (both mostly compiling with empty caches: JAX tracing and XLA compiling MJX's step, Warp its
+#: kernels), the command line 29, the verdicts' causes 25, the corpus 18, SUPERball 11, the fuzz 8.  By its own
+#: rule (the files with the most tests first) xdist sent the engines' files last, and the suite waited at its
+#: end for the Warp file's compile.
+FIRST = (
+    "tests/test_engines_mjx.py",
+    "tests/test_engines_warp.py",
+    "tests/test_engines_cli.py",
+    "tests/test_engines_diagnose.py",
+    "tests/test_engines_corpus.py",
+    "tests/test_engines_superball.py",
+    "tests/test_fuzz.py",
+)
 
 
 def pytest_configure(config):
