@@ -288,12 +288,12 @@ class Dimension(MathDisplay):
     def __mul__(self, other: Dimension) -> Dimension:
         if not isinstance(other, Dimension):
             return NotImplemented
-        return _product(self._exponents, other._exponents, 1)
+        return _remembered(self, other, 1)
 
     def __truediv__(self, other: Dimension) -> Dimension:
         if not isinstance(other, Dimension):
             return NotImplemented
-        return _product(self._exponents, other._exponents, -1)
+        return _remembered(self, other, -1)
 
     def __pow__(self, exponent) -> Dimension:
         # the power is an exponent as written in a formula, under the same rule and limits; so is the result
@@ -339,7 +339,22 @@ def product_of_powers(factors: Iterable[tuple[Dimension, Fraction]], where: str 
 # Products, quotients and powers are remembered: a Dimension never changes, each costs about 10 us of
 # Fraction arithmetic, and a model file's reader asks the same few thousands of times (a joint's force
 # over its coordinate, for every joint).  Keyed by the operands' exponents; a result beyond the limits
-# raises, and is not remembered.
+# raises, and is not remembered.  A product or quotient of the very same two objects is found first by
+# their identities (:data:`_BY_IDENTITY`), without hashing their exponents' Fractions: 0.2 us, not 1.3.
+
+#: (id(a), id(b), sign) -> (a, b, the result): the operands kept, so that no other object takes their ids
+_BY_IDENTITY: dict[tuple[int, int, int], tuple] = {}
+
+
+def _remembered(a: Dimension, b: Dimension, sign: int) -> Dimension:
+    """`a` times (sign 1) or over (sign -1) `b`, remembered."""
+    key = (id(a), id(b), sign)
+    known = _BY_IDENTITY.get(key)
+    if known is None:
+        if len(_BY_IDENTITY) >= 4096:
+            _BY_IDENTITY.clear()
+        known = _BY_IDENTITY[key] = (a, b, _product(a._exponents, b._exponents, sign))
+    return known[2]
 
 
 @functools.lru_cache(maxsize=4096)

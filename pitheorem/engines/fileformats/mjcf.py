@@ -83,7 +83,6 @@ _ONE = dim("1")
 _EVERY = slice(None)
 _L, _M, _T = dim("L"), dim("M"), dim("T")
 _FORCE, _TORQUE = dim("M L T^-2"), dim("M L^2 T^-2")
-_PER_TIME = dim("T^-1")
 
 
 def _mujoco():
@@ -834,7 +833,7 @@ class _Walker:
             elif biasprm[1] != 0:
                 ctrl = length  # a position servo: the input is a target length
             else:
-                ctrl = _quotient(length, _T)  # a velocity servo: a target velocity
+                ctrl = length / _T  # a velocity servo: a target velocity
         elif gain == mj.mjtGain.mjGAIN_AFFINE:
             ctrl = _ONE  # a damper-like gain: the input is a dimensionless fraction
         elif gain == mj.mjtGain.mjGAIN_MUSCLE:
@@ -852,7 +851,7 @@ class _Walker:
             act_dim = ctrl * _T
             if gain == mj.mjtGain.mjGAIN_FIXED and bias == mj.mjtBias.mjBIAS_AFFINE and biasprm[1] != 0:
                 # intvelocity: the activation is the target length, so ctrl is a velocity
-                ctrl, act_dim = _quotient(length, _T), length
+                ctrl, act_dim = length / _T, length
         elif dyn in (mj.mjtDyn.mjDYN_NONE, mj.mjtDyn.mjDYN_FILTER, mj.mjtDyn.mjDYN_FILTEREXACT):
             act_dim = ctrl
         else:
@@ -887,14 +886,14 @@ class _Walker:
         if muscle:
             self.muscle(act, ident, path, force)
         elif gain == mj.mjtGain.mjGAIN_FIXED:
-            self.add("actuator", act, ident, path, "gainprm", _quotient(force, driven), slice(0, 1), "_gain")
+            self.add("actuator", act, ident, path, "gainprm", force / driven, slice(0, 1), "_gain")
         else:
             self.add("actuator", act, ident, path, "gainprm", force, slice(0, 1), "_gain")
-            self.add("actuator", act, ident, path, "gainprm", _quotient(force, length), slice(1, 2), "_length")
-            self.add("actuator", act, ident, path, "gainprm", _per_velocity(force, length), slice(2, 3), "_velocity")
+            self.add("actuator", act, ident, path, "gainprm", force / length, slice(1, 2), "_length")
+            self.add("actuator", act, ident, path, "gainprm", force * _T / length, slice(2, 3), "_velocity")
         if bias == mj.mjtBias.mjBIAS_AFFINE:
             self.add("actuator", act, ident, path, "biasprm", force, slice(0, 1), "_offset")
-            self.add("actuator", act, ident, path, "biasprm", _quotient(force, length), slice(1, 2), "_length")
+            self.add("actuator", act, ident, path, "biasprm", force / length, slice(1, 2), "_length")
             if _damping_ratio(mj, act):
                 self.add(
                     "actuator",
@@ -908,9 +907,7 @@ class _Walker:
                     note="a damping ratio: the compiler turns it into kv from kp and the joint's inertia",
                 )
             else:
-                self.add(
-                    "actuator", act, ident, path, "biasprm", _per_velocity(force, length), slice(2, 3), "_velocity"
-                )
+                self.add("actuator", act, ident, path, "biasprm", force * _T / length, slice(2, 3), "_velocity")
         self.refuse(act, path, ("damping", "armature", "ffrange", "velrange"))
         # the numbers the input passes through: its range and the activation's (an activation is the input
         # filtered or integrated), and the gain that turns it into a force (a muscle's input has no unit)
@@ -1115,26 +1112,6 @@ _DEFAULTS_CACHE: dict = {}
 #: range, and its gain (which turns it into a force); a muscle's gain carries none (its input has no unit)
 _INPUT_POWERS = {"ctrlrange": 1, "actrange": 1, "gainprm": -1}
 _MUSCLE_INPUT_POWERS = {"ctrlrange": 1, "actrange": 1, "gainprm": 0}
-
-#: the walker's quotients of dimensions, by the identities of the two (kept alive here, so that no other
-#: object takes their ids): every actuator asks for its force over its input, a division of Fractions
-_QUOTIENTS: dict[tuple[int, int], tuple] = {}
-
-
-def _quotient(a: Dimension, b: Dimension) -> Dimension:
-    """``a / b``, found once per pair of dimensions."""
-    key = (id(a), id(b))
-    known = _QUOTIENTS.get(key)
-    if known is None:
-        if len(_QUOTIENTS) >= 1024:
-            _QUOTIENTS.clear()
-        known = _QUOTIENTS[key] = (a, b, a / b)
-    return known[2]
-
-
-def _per_velocity(force: Dimension, length: Dimension) -> Dimension:
-    """``force * T / length``: the dimension of a gain or bias on an actuator's velocity, found once per pair."""
-    return _quotient(_quotient(force, _PER_TIME), length)
 
 
 def _damping_ratio(mj, act) -> bool:
