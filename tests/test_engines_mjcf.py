@@ -337,7 +337,8 @@ def test_mixed_fixed_tendon_cannot_be_rewritten(tmp_path):
     path = tmp_path / "mixed.xml"
     path.write_text(text)
     model = engines.load(path)
-    assert model.parameter("tendon_couple_coef1").dimension_text == "L^-1"
+    coefficient = model.parameter("tendon_couple_coef1")  # the path's second entry, as the file gives it
+    assert (coefficient.dimension_text, coefficient.value) == ("L^-1", (-0.5,))
     with pytest.raises(UnscalableParameterError, match="tendon 'couple'"):
         model.scaled(pt.Scaling.from_unit_change(model.system(), {"L": 1}), 2)
     # lengths unchanged: the coefficient needs no change, so the copy is made

@@ -58,15 +58,24 @@ def test_every_corpus_file_agrees_with_the_engine(name):
     assert check_dimensions(load_quiet(ASSETS / name)) == ()
 
 
+def misread(monkeypatch, kind: str, attr: str, dimension) -> None:
+    """Make the MJCF walker give every `kind`'s `attr` the wrong `dimension`.
+
+    Every attribute's slots are made by ``_Walker.add_forms``, whether asked for one attribute at a time
+    (``add``) or by a plan (``add_each``): the forms it is given carry each attribute's dimension.
+    """
+    real = mjcf._Walker.add_forms
+
+    def wrong(self, kind_, elem, ident, path, forms, *args, **kwargs):
+        if kind_ == kind:
+            forms = tuple((f[0], f[1], dimension, *f[3:]) if f[0] == attr else f for f in forms)
+        return real(self, kind_, elem, ident, path, forms, *args, **kwargs)
+
+    monkeypatch.setattr(mjcf._Walker, "add_forms", wrong)
+
+
 def test_a_wrong_dimension_given_on_purpose_is_found(box, monkeypatch):
-    real = mjcf._Walker.add
-
-    def wrong(self, kind, elem, ident, path, attr, dimension, *args, **kwargs):
-        if attr == "density":
-            dimension = dim("M L^-2")  # a density read as a mass per area
-        return real(self, kind, elem, ident, path, attr, dimension, *args, **kwargs)
-
-    monkeypatch.setattr(mjcf._Walker, "add", wrong)
+    misread(monkeypatch, "geom", "density", dim("M L^-2"))  # a density read as a mass per area
     causes = check_dimensions(load_quiet(box))
     assert causes
     assert {c.kind for c in causes} == {"dimension"}
@@ -94,14 +103,7 @@ def test_a_wrong_dimension_of_a_copied_number_is_found(box, monkeypatch):
 
 
 def test_audit_reports_a_dimension_cause(box, monkeypatch):
-    real = mjcf._Walker.add
-
-    def wrong(self, kind, elem, ident, path, attr, dimension, *args, **kwargs):
-        if attr == "size" and kind == "geom":
-            dimension = dim("L^2")
-        return real(self, kind, elem, ident, path, attr, dimension, *args, **kwargs)
-
-    monkeypatch.setattr(mjcf._Walker, "add", wrong)
+    misread(monkeypatch, "geom", "size", dim("L^2"))
     model = load_quiet(box)
     sc = pt.Scaling.from_unit_change(model.system(), {"L": 1})
     kinds = [c.kind for c in engines.audit(model, sc, s=2).causes]

@@ -282,12 +282,13 @@ class _Walker:
         self.mj, self.spec, self.model, self.path, self.warn = mj, spec, model, path, warn
         self.slots: list[Slot] = []
         self.names: set[str] = set()
-        self.tendon_kinds: dict = {}  # tendon (name or id) -> (tendon, its kind), found once
+        self.tendon_kinds: dict[str, JointKind] = {}  # tendon name -> its kind, found when it is walked
         self.inputs: list = []  # per actuator walked: its control's and its activation's dimensions
         self.input_powers: list = []  # per actuator walked: its parameters that carry its input, with the power
         self.targets: list = []  # per actuator walked: the dimensions of its length and its force
         self.computed_rows = None  # the compiled bodies' masses, inertias and their positions, when first asked
         self.inertia_from_geoms = False
+        self.meshes = None  # the meshes' names, when first asked
         # every element listed once, kept alive, so that an element's id gives its address
         tree = _tree_listed(spec)
         self.lists = {c: tree[c] if c in _TREE else _listed(spec, c) for c in _COLLECTIONS}
@@ -327,39 +328,64 @@ class _Walker:
         return "default" if same else "file"
 
     def add(self, kind, elem, ident, path, attr, dimension, index=_EVERY, suffix="", parts=(), note=""):
-        # called for nearly every number of a file: what depends on the attribute alone is found once
-        # (:func:`_form`), and :meth:`unique`, :meth:`where`, :func:`_floats` and the common cases of
-        # :meth:`source` are written out here, each call saved being a tenth of the time of a slot
-        value = getattr(elem, attr)
-        if value.__class__ is float:  # most numbers
-            values = (value,)
-        elif value.__class__ is np.ndarray and value.dtype is _FLOAT64 and value.ndim == 1:  # most vectors
-            values = tuple(value.tolist())
-        else:
-            values = _floats(value)
-        chosen = values[index]
-        # absent, or NaN: "not set" (MuJoCo's mark of an unset vector is a NaN first entry: a geom's fromto
-        # is nan 0 0 0 0 0 until the file gives one)
-        if not chosen or values[0] != values[0] or (chosen[0] != chosen[0] and all(v != v for v in chosen)):
-            return
-        tail, tail_path, attrs, default, default_has_nan = _FORMS.get(
+        """A slot for the entries `index` of `elem`'s `attr`, unless they are absent (or NaN: not set)."""
+        form = _FORMS.get(
             (kind, attr, suffix) if index is _EVERY else (kind, attr, index.start, index.stop, index.step, suffix)
         ) or _form(self.mj, kind, attr, index, suffix)
-        name = f"{ident}_{tail}" if ident else tail
-        if name in self.names:
-            name = unique_name(name, self.names)
-        else:
-            self.names.add(name)
-        if values == default:
-            source = "default"
-        elif not default_has_nan:
-            source = "file"
-        else:  # NaN in the default: entry by entry (:meth:`source`)
-            source = self.source(kind, elem, attr, values)
-        where = (kind,) if kind in _SINGLES else self.where_of[id(elem)]
-        self.slots.append(
-            Slot(name, path + tail_path, None, attrs, where, dimension, source, parts, note, None, elem, chosen)
-        )
+        self.add_forms(kind, elem, ident, path, ((attr, index, dimension, *form),), parts, note)
+
+    def add_each(self, kind, elem, ident, path, plan: tuple, read: dict | None = None):
+        """:meth:`add` for each ``(attribute, dimension, entries, suffix)`` of `plan`, in its order.
+
+        `plan` is a tuple kept for the life of the process (a module's constant, or one the functions
+        ``_*_plan`` made once), whose forms are found once; `read` holds attributes already read.
+        """
+        known = _PLANS.get((kind, id(plan)))
+        if known is None or known[0] is not plan:
+            known = _PLANS[(kind, id(plan))] = (plan, _resolved(self.mj, kind, plan))
+        self.add_forms(kind, elem, ident, path, known[1], read=read)
+
+    def add_forms(self, kind, elem, ident, path, forms: tuple, parts=(), note="", read: dict | None = None):
+        """The slots of `elem`'s entries that `forms` names, each an attribute, its entries, its dimension and
+        its :class:`_Form`; absent entries (or NaN: not set) are skipped."""
+        # called for nearly every number of a file: :meth:`unique`, :meth:`where`, :func:`_floats` and the
+        # common cases of :meth:`source` are written out here, and an attribute several entries share is read
+        # once, each call saved being a tenth of the time of a slot
+        names, slots, where = self.names, self.slots, None
+        if read is None:
+            read = {}
+        for attr, index, dimension, tail, tail_path, attrs, default, entrywise in forms:
+            values = read.get(attr)
+            if values is None:
+                value = getattr(elem, attr)
+                if value.__class__ is float:  # most numbers
+                    values = (value,)
+                elif value.__class__ is np.ndarray and value.dtype is _FLOAT64 and value.ndim == 1:  # most vectors
+                    values = tuple(value.tolist())
+                else:
+                    values = _floats(value)
+                read[attr] = values
+            chosen = values[index]
+            # absent, or NaN: "not set" (MuJoCo's mark of an unset vector is a NaN first entry: a geom's fromto
+            # is nan 0 0 0 0 0 until the file gives one)
+            if not chosen or values[0] != values[0] or (chosen[0] != chosen[0] and all(v != v for v in chosen)):
+                continue
+            name = f"{ident}_{tail}" if ident else tail
+            if name in names:
+                name = unique_name(name, names)
+            else:
+                names.add(name)
+            if values == default:
+                source = "default"
+            elif not entrywise:
+                source = "file"
+            else:  # a NaN in the default after its first entry: entry by entry (:meth:`source`)
+                source = self.source(kind, elem, attr, values)
+            if where is None:
+                where = (kind,) if kind in _SINGLES else self.where_of[id(elem)]
+            slots.append(
+                Slot(name, path + tail_path, None, attrs, where, dimension, source, parts, note, None, elem, chosen)
+            )
 
     def add_set(self, kind, elem, ident, path, attr, dimension, index=_EVERY, suffix="", note=""):
         """:meth:`add` where the entries are set (nonzero): an attribute most files leave at zero, kept out
@@ -369,25 +395,16 @@ class _Walker:
 
     def add_solref(self, kind, elem, ident, path, attr):
         ref = _floats(getattr(elem, attr))
-        if ref[0] >= 0:  # time constant and damping ratio
-            self.add(kind, elem, ident, path, attr, _T, slice(0, 1), "_timeconst")
-        else:  # direct stiffness and damping of the reference acceleration
-            self.add(kind, elem, ident, path, attr, dim("T^-2"), slice(0, 1), "_stiffness")
-            self.add(kind, elem, ident, path, attr, dim("T^-1"), slice(1, 2), "_damping")
+        # time constant and damping ratio; or (negative) direct stiffness and damping of the reference acceleration
+        self.add_each(kind, elem, ident, path, _solref_plan(attr, direct=ref[0] < 0), read={attr: ref})
 
     def add_solimp(self, kind, elem, ident, path, attr, violation):
-        self.add(kind, elem, ident, path, attr, violation, slice(2, 3), "_width")
+        self.add_each(kind, elem, ident, path, _solimp_plan(attr, violation))
 
     def spring_and_drive(self, kind, elem, ident, path, joint_kind: JointKind):
         """A joint's or a tendon's spring and damper polynomials, armature, friction loss and force range."""
-        force = joint_kind.force
-        # a polynomial shorter than three terms stops early (add skips what is absent)
-        for index, suffix, stiffness, damping in _polynomial_terms(joint_kind):
-            self.add(kind, elem, ident, path, "stiffness", stiffness, index, suffix)
-            self.add(kind, elem, ident, path, "damping", damping, index, suffix)
-        self.add(kind, elem, ident, path, "armature", joint_kind.per(force, 1, rate=2))
-        self.add(kind, elem, ident, path, "frictionloss", force)
-        self.add(kind, elem, ident, path, "actfrcrange", force)
+        # a polynomial shorter than three terms stops early (absent entries are skipped)
+        self.add_each(kind, elem, ident, path, _spring_plan(joint_kind))
 
     def limit_and_friction_softness(self, kind, elem, ident, path, q):
         """The soft-constraint parameters of a joint's or a tendon's limit and of its friction loss."""
@@ -401,6 +418,12 @@ class _Walker:
             value = getattr(elem, attr, None)  # None: no such attribute (a spec's numbers are never None)
             if value is not None and _set(value):
                 self.fail(path, f"attribute {attr} is not supported by pitheorem's scaling yet")
+
+    def mesh_names(self) -> set[str]:
+        """The names of the spec's meshes, listed once (asked by every mesh geom)."""
+        if self.meshes is None:
+            self.meshes = {mesh.name for mesh in self.lists["meshes"]}
+        return self.meshes
 
     def named_joint_kind(self, name) -> JointKind | None:
         """The kind of the joint of that name; None for a free joint (or no joint of that name)."""
@@ -453,11 +476,11 @@ class _Walker:
             ("camera", lists["cameras"], ("pos",)),
             ("light", lists["lights"], ("pos",)),
         ):
+            # the attributes this MuJoCo's elements of the kind have (a site's fromto is recent), all lengths
+            plan = _lengths_plan(kind, attrs, items[0]) if items else ()
             for i, item in enumerate(items):
                 ident, path = self.label(kind, item, i)
-                for attr in attrs:
-                    if hasattr(item, attr):
-                        self.add(kind, item, ident, path, attr, _L)
+                self.add_each(kind, item, ident, path, plan)
                 if kind == "light":  # 1 / (a0 + a1 d + a2 d^2): a1 per length, a2 per area
                     self.add_set(kind, item, ident, path, "attenuation", _L**-1, slice(1, 2), "_linear")
                     self.add_set(kind, item, ident, path, "attenuation", _L**-2, slice(2, 3), "_quadratic")
@@ -639,22 +662,10 @@ class _Walker:
     def geom(self, geom, index):
         ident, path = self.label("geom", geom, index)
         mj = self.mj
-        if (
-            geom.type == mj.mjtGeom.mjGEOM_MESH
-            and geom.meshname
-            and geom.meshname not in [m.name for m in self.spec.meshes]
-        ):
+        if geom.type == mj.mjtGeom.mjGEOM_MESH and geom.meshname and geom.meshname not in self.mesh_names():
             self.fail(path, f"mesh {geom.meshname!r} is not defined")
-        self.add("geom", geom, ident, path, "size", _L)
-        self.add("geom", geom, ident, path, "pos", _L)
-        self.add("geom", geom, ident, path, "fromto", _L)
-        self.add("geom", geom, ident, path, "mass", _M)
-        self.add("geom", geom, ident, path, "density", dim("M L^-3"))
-        self.friction("geom", geom, ident, path, 3)
-        self.add("geom", geom, ident, path, "margin", _L)
-        self.add("geom", geom, ident, path, "gap", _L)
-        self.add_solref("geom", geom, ident, path, "solref")
-        self.add_solimp("geom", geom, ident, path, "solimp", _L)
+        solref = _floats(geom.solref)
+        self.add_each("geom", geom, ident, path, _geom_plan(direct=solref[0] < 0), read={"solref": solref})
         if _set(geom.surfacevel):  # a linear velocity, then an angular one
             self.add("geom", geom, ident, path, "surfacevel", dim("L T^-1"), slice(0, 3), "_linear")
             self.add("geom", geom, ident, path, "surfacevel", _T**-1, slice(3, 6), "_angular")
@@ -694,30 +705,37 @@ class _Walker:
                 if attr == "damping" and any(v != 0 for v in _floats(joint.damping)[1:]):
                     self.fail(path, "damping polynomial terms on a free joint mix dimensions; not supported")
             return
-        for attr in ("range", "ref", "springref", "margin"):
-            self.add("joint", joint, ident, path, attr, kind.q)
-        self.spring_and_drive("joint", joint, ident, path, kind)
-        self.limit_and_friction_softness("joint", joint, ident, path, kind.q)
+        # its coordinates, its spring and drive (:meth:`spring_and_drive`), and the softness of its limit and
+        # friction loss (:meth:`limit_and_friction_softness`), in one plan
+        limit, friction = _floats(joint.solref_limit), _floats(joint.solref_friction)
+        plan = _joint_plan(kind, direct=(limit[0] < 0, friction[0] < 0))
+        self.add_each("joint", joint, ident, path, plan, read={"solref_limit": limit, "solref_friction": friction})
 
-    def tendon_kind(self, tendon, path, wraps=None) -> JointKind:
-        """A spatial tendon measures a length; a fixed one the first joint's coordinate (found once per tendon:
-        reading a tendon's path from the spec is slow, and actuators and equalities ask again).  `wraps` is
-        the tendon's path, if it was already read."""
-        key = tendon.name or id(tendon)  # the spec hands out a new wrapper each time; a name is the same
-        if key not in self.tendon_kinds:  # the tendon kept beside its kind: an id stays its own while it lives
-            joint = self.mj.mjtWrap.mjWRAP_JOINT
-            joints = [w for w in (tendon.path if wraps is None else wraps) if w.type == joint]
-            self.tendon_kinds[key] = (tendon, self.wrapped_joint_kind(joints[0], path) if joints else JointKind.SLIDE)
-        return self.tendon_kinds[key][1]
+    def tendon_kind(self, tendon) -> JointKind:
+        """A spatial tendon measures a length; a fixed one the first joint's coordinate.  Found when the tendon
+        was walked (before the actuators, equalities and sensors that ask, each naming it)."""
+        return self.tendon_kinds[tendon.name]
 
-    def wrapped_joint_kind(self, wrap, path) -> JointKind:
-        """The kind of a joint a fixed tendon runs over; a free joint would mix dimensions."""
-        kind = _joint_kind(self.mj, wrap.target.type)
-        if kind is None:
-            self.fail(path, "a fixed tendon over a free joint mixes dimensions")
-        return kind
+    def wrapped_joints(self, tid: int, path) -> list[tuple[int, JointKind]]:
+        """The entries of the compiled tendon `tid`'s path that are joints: (place in the path, joint kind) each.
 
-    def fixed_coefficient(self, wrap, ident, path, k, dimension):
+        Read from the compiled model (the spec's ``tendon.path`` takes about 70 microseconds a tendon to
+        read); a free joint would mix dimensions, and is refused.
+        """
+        model = self.model
+        first, count = int(model.tendon_adr[tid]), int(model.tendon_num[tid])
+        joint = int(self.mj.mjtWrap.mjWRAP_JOINT)
+        types, objects = model.wrap_type[first : first + count].tolist(), model.wrap_objid[first : first + count]
+        joints = []
+        for k, kind in enumerate(types):
+            if kind == joint:
+                jk = _joint_kind(self.mj, model.jnt_type[objects[k]])
+                if jk is None:
+                    self.fail(path, "a fixed tendon over a free joint mixes dimensions")
+                joints.append((k, jk))
+        return joints
+
+    def fixed_coefficient(self, coef: float, ident, path, k, dimension):
         """A fixed tendon's coefficient between joints of two types: MjSpec cannot rewrite it."""
         name = self.unique(f"{ident}_coef{k}")
 
@@ -733,7 +751,7 @@ class _Walker:
             Slot(
                 name,
                 f"{path} joint #{k} coef",
-                lambda: (float(wrap.coef),),
+                lambda: (coef,),
                 (),
                 ("option",),
                 dimension,
@@ -743,29 +761,23 @@ class _Walker:
         )
 
     def tendon(self, tendon, index):
-        mj = self.mj
         ident, path = self.label("tendon", tendon, index)
-        # the spec's path is slow to read: read it only for a tendon over joints (the compiled model tells)
+        # the path's joints and their kinds from the compiled model: the spec's path is slow to read
         tid = tendon.id if tendon.id >= 0 else index
-        first = self.model.tendon_adr[tid]
-        over_joints = np.any(
-            self.model.wrap_type[first : first + self.model.tendon_num[tid]] == mj.mjtWrap.mjWRAP_JOINT
-        )
-        wraps = list(tendon.path) if over_joints else []
-        kind = self.tendon_kind(tendon, path, wraps)
+        joints = self.wrapped_joints(tid, path)
+        over_joints = bool(joints)
+        kind = joints[0][1] if joints else JointKind.SLIDE
+        self.tendon_kinds[tendon.name] = kind  # asked again by name (an unnamed tendon is never asked for)
         q = kind.q
-        joint = mj.mjtWrap.mjWRAP_JOINT  # a pulley's divisor is a dimensionless ratio, a site or geom no number
-        for k, wrap in enumerate(wraps):
-            if wrap.type == joint:
-                jk = self.wrapped_joint_kind(wrap, path)
-                if jk.q != q:  # coefficient converts this joint's coordinate into the tendon's length
-                    self.fixed_coefficient(wrap, ident, path, k, q / jk.q)
+        first = int(self.model.tendon_adr[tid])
+        for k, jk in joints:  # a pulley's divisor is a dimensionless ratio, a site or geom no number
+            if jk.q != q:  # coefficient converts this joint's coordinate into the tendon's length
+                self.fixed_coefficient(float(self.model.wrap_prm[first + k]), ident, path, k, q / jk.q)
         self.add("tendon", tendon, ident, path, "range", q)
         self.add("tendon", tendon, ident, path, "margin", q)
         if np.all(np.asarray(tendon.springlength, dtype=float) == -1):
             # MuJoCo's sentinel: the spring's rest length is the tendon's length at qpos0, computed by the
             # compiler from the scaled geometry; scaling the -1 itself would turn it into a real length
-            tid = tendon.id if tendon.id >= 0 else index
             rest = tuple(float(v) for v in self.model.tendon_lengthspring[tid])
             self.slots.append(
                 Slot(
@@ -805,7 +817,7 @@ class _Walker:
             return kind.q, kind.force
         if trn == mj.mjtTrn.mjTRN_TENDON:
             tendon = spec.tendon(act.target)
-            kind = self.tendon_kind(tendon, path)
+            kind = self.tendon_kind(tendon)
             return kind.q, kind.force
         if trn == mj.mjtTrn.mjTRN_SLIDERCRANK:
             return _L, _FORCE
@@ -1009,8 +1021,8 @@ class _Walker:
                 k1 = self.named_joint_kind(eq.name1)
                 k2 = self.named_joint_kind(eq.name2) if eq.name2 else k1
             else:
-                k1 = self.tendon_kind(self.spec.tendon(eq.name1), path)
-                k2 = self.tendon_kind(self.spec.tendon(eq.name2), path) if eq.name2 else k1
+                k1 = self.tendon_kind(self.spec.tendon(eq.name1))
+                k2 = self.tendon_kind(self.spec.tendon(eq.name2)) if eq.name2 else k1
             if k1 is None or k2 is None:
                 self.fail(path, "an equality on a free joint is not supported")
             for i in range(5):  # q1 = c0 + c1 q2 + c2 q2^2 + ...
@@ -1076,7 +1088,7 @@ class _Walker:
         if sensor.type in (*tendons, S.mjSENS_TENDONLIMITFRC, S.mjSENS_TENDONACTFRC):
             tendon = self.spec.tendon(sensor.objname)
             if tendon is not None:
-                kind = self.tendon_kind(tendon, path)
+                kind = self.tendon_kind(tendon)
                 rate = 1 if sensor.type in tendons[2:] else 0
                 return kind.force if sensor.type not in tendons else kind.q / _T**rate
         if sensor.type in (S.mjSENS_ACTUATORPOS, S.mjSENS_ACTUATORVEL, S.mjSENS_ACTUATORFRC):
@@ -1134,7 +1146,10 @@ class _Form(NamedTuple):
     path: str  #: its path after the element's: ``" solref timeconst"``
     attrs: tuple  #: its ``attrs``, ``((attribute, entries),)``: one tuple for all the slots alike
     default: tuple | None  #: MuJoCo's built-in default of the attribute (:func:`_default_floats`)
-    default_has_nan: bool
+    #: whether telling the default needs a comparison entry by entry, NaN equal to NaN: where the default
+    #: holds a NaN after its first entry (a first NaN marks an unset attribute, whose slot is never made, so
+    #: that a slot of one differs from it and is the file's)
+    entrywise: bool
 
 
 #: each form found, by kind, attribute, the entries' start, stop and step (a slice is no key before Python
@@ -1148,8 +1163,126 @@ def _form(mj, kind: str, attr: str, index: slice, suffix: str) -> _Form:
     key = (kind, attr, suffix) if index is _EVERY else (kind, attr, index.start, index.stop, index.step, suffix)
     if key not in _FORMS:
         tail_path = f" {attr}{suffix.replace('_', ' ')}"
-        _FORMS[key] = _Form(f"{attr}{suffix}", tail_path, ((attr, index),), *_default_floats(mj, kind, attr))
+        default, has_nan = _default_floats(mj, kind, attr)
+        entrywise = has_nan and default[0] == default[0]
+        _FORMS[key] = _Form(f"{attr}{suffix}", tail_path, ((attr, index),), default, entrywise)
     return _FORMS[key]
+
+
+#: each plan's forms (:meth:`_Walker.add_each`), by the element's kind and the plan's identity: the plan kept
+#: beside them, so that no other object takes its id
+_PLANS: dict[tuple, tuple] = {}
+
+
+def _resolved(mj, kind: str, plan: tuple) -> tuple:
+    """A plan's entries, ``(attribute, dimension, entries, suffix)`` each, as :meth:`_Walker.add_forms` reads
+    them: the attribute, its entries, its dimension and its form's fields."""
+    return tuple((attr, index, d, *_form(mj, kind, attr, index, suffix)) for attr, d, index, suffix in plan)
+
+
+#: the plans made for a dimension or a joint kind, by its identity, each kept beside its plan (as :data:`_PLANS`)
+_MADE: dict[tuple, tuple] = {}
+
+
+def _made(key: tuple, keep, build) -> tuple:
+    """The plan `build()` made once for `key`, which names `keep` by its id."""
+    known = _MADE.get(key)
+    if known is None or known[0] is not keep:
+        known = _MADE[key] = (keep, build())
+    return known[1]
+
+
+#: a solref's plan, by attribute and form: a time constant (its damping ratio has no dimension) or, negative,
+#: a direct stiffness and damping of the reference acceleration
+_SOLREF_PLANS: dict[tuple, tuple] = {}
+
+
+def _solref_plan(attr: str, *, direct: bool) -> tuple:
+    """The slots of a solref attribute, in one of its two forms."""
+    known = _SOLREF_PLANS.get((attr, direct))
+    if known is None:
+        if direct:
+            known = ((attr, dim("T^-2"), slice(0, 1), "_stiffness"), (attr, dim("T^-1"), slice(1, 2), "_damping"))
+        else:
+            known = ((attr, _T, slice(0, 1), "_timeconst"),)
+        _SOLREF_PLANS[(attr, direct)] = known
+    return known
+
+
+def _solimp_plan(attr: str, violation) -> tuple:
+    """A solimp attribute's width, a violation of the constraint: of its dimension (a length, or a joint's
+    coordinate); its other entries have none."""
+    return _made(("solimp", attr, id(violation)), violation, lambda: ((attr, violation, slice(2, 3), "_width"),))
+
+
+def _spring_plan(kind: JointKind) -> tuple:
+    """A joint kind's spring and damper polynomial terms, armature, friction loss and actuator force range."""
+
+    def build():
+        force = kind.force
+        terms = [
+            entry
+            for index, suffix, stiffness, damping in _polynomial_terms(kind)
+            for entry in (("stiffness", stiffness, index, suffix), ("damping", damping, index, suffix))
+        ]
+        armature = ("armature", kind.per(force, 1, rate=2), _EVERY, "")
+        return (*terms, armature, ("frictionloss", force, _EVERY, ""), ("actfrcrange", force, _EVERY, ""))
+
+    return _made(("spring", id(kind)), kind, build)
+
+
+def _joint_plan(kind: JointKind, direct: tuple[bool, bool]) -> tuple:
+    """A hinge's or a slide's range, reference positions and limit margin (in its coordinate), its spring and
+    drive (:func:`_spring_plan`), and the softness of its limit and its friction loss, each solref in the form
+    `direct` says (limit, friction)."""
+
+    def build():
+        coordinates = tuple((a, kind.q, _EVERY, "") for a in ("range", "ref", "springref", "margin"))
+        softness = tuple(
+            entry
+            for constraint, direct_ in zip(("limit", "friction"), direct, strict=True)
+            for entry in (
+                *_solref_plan(f"solref_{constraint}", direct=direct_),
+                *_solimp_plan(f"solimp_{constraint}", kind.q),
+            )
+        )
+        return (*coordinates, *_spring_plan(kind), *softness)
+
+    return _made(("joint", id(kind), *direct), kind, build)
+
+
+#: a geom's numbers before its solref, in the walk's order: lengths, a mass, a density, and its friction's
+#: torsional and rolling coefficients (torques per normal force: lengths; sliding is dimensionless)
+_GEOM_PLAN = (
+    ("size", _L, _EVERY, ""),
+    ("pos", _L, _EVERY, ""),
+    ("fromto", _L, _EVERY, ""),
+    ("mass", _M, _EVERY, ""),
+    ("density", dim("M L^-3"), _EVERY, ""),
+    ("friction", _L, slice(1, 3), "_torsional_rolling"),
+    ("margin", _L, _EVERY, ""),
+    ("gap", _L, _EVERY, ""),
+)
+
+
+#: by element kind: the plan of its attributes that are lengths, those its elements have
+_LENGTHS_PLANS: dict[str, tuple] = {}
+
+
+def _lengths_plan(kind: str, attrs: tuple, element) -> tuple:
+    """The plan of `attrs`, each a length, that `element` (one of its `kind`) has."""
+    if kind not in _LENGTHS_PLANS:
+        _LENGTHS_PLANS[kind] = tuple((attr, _L, _EVERY, "") for attr in attrs if hasattr(element, attr))
+    return _LENGTHS_PLANS[kind]
+
+
+def _geom_plan(*, direct: bool) -> tuple:
+    """A geom's numbers: :data:`_GEOM_PLAN`, then its solref in the form `direct` says, and its solimp's width."""
+    return _made(
+        ("geom", direct),
+        _GEOM_PLAN,
+        lambda: (*_GEOM_PLAN, *_solref_plan("solref", direct=direct), *_solimp_plan("solimp", _L)),
+    )
 
 
 def _set(value) -> bool:
@@ -1371,8 +1504,11 @@ class MjcfDocument:
         try:
             with _muted():
                 self.mjmodel = spec.compile()
-                if _inline_skins(spec, self.mjmodel):  # a skin's file written into the model: scaled as lengths
-                    self.mjmodel = spec.compile()
+                # a skin's file written into the spec, as this model holds it: scaled as lengths.  The model is
+                # not compiled again: a skin is drawn, never simulated, and the second compile only normalised
+                # its bone weights again (last bits of float32) and dropped its file's name (dm_control's dog:
+                # 130 ms, as long as the file's first compile)
+                _inline_skins(spec, self.mjmodel)
         except ValueError as err:
             raise _rejected(path, err, spec) from None
         # warn once, when the file is read; not again for each scaled copy, whose table is read only when
@@ -1962,7 +2098,7 @@ def _relative_assets(spec, text: str, folder: Path) -> str:
     return text
 
 
-def _inline_skins(spec, m) -> bool:
+def _inline_skins(spec, m) -> None:
     """Write each skin read from a file (``<skin file="dog.skn">``) into the spec, as MuJoCo compiled it.
 
     A skin is a render-only mesh bound to bodies; its vertices, bind
@@ -1970,9 +2106,7 @@ def _inline_skins(spec, m) -> bool:
     for a skin read from a file (they are read when it compiles), so they are
     taken from the compiled model `m` and the file is no longer needed: the
     scaled copy holds them scaled, and travels without the ``.skn`` file.
-    Returns whether any skin was read from a file.
     """
-    inlined = False
     for i, skin in enumerate(spec.skins):
         if not skin.file:
             continue
@@ -1991,8 +2125,6 @@ def _inline_skins(spec, m) -> bool:
         skin.vertid = [m.skin_bonevertid[a : a + n].tolist() for a, n in zip(starts, counts, strict=True)]
         skin.vertweight = [m.skin_bonevertweight[a : a + n].tolist() for a, n in zip(starts, counts, strict=True)]
         skin.file = ""
-        inlined = True
-    return inlined
 
 
 def read_mjcf(path) -> MjcfDocument:
