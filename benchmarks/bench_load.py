@@ -153,7 +153,7 @@ MuJoCo's compile where it was 1.80; the goal of 1.5 for ``engines.load`` alone (
 here) is unchanged by this work.  What is left of the table's cost is the ``Parameter`` object
 itself (about 0.5 microsecond: a new object and eight fields written) and the call per slot.
 
-Run: python benchmarks/bench_load.py [--quick] [--sizes 100 250 500 1000 2000]
+Run: python benchmarks/bench_load.py [--quick] [--sizes 100 250 500 1000 2000] [--files robot.xml ...]
 """
 
 from __future__ import annotations
@@ -214,6 +214,24 @@ def first_table(path, repeats: int) -> tuple[float, int]:
     return best, len(table)
 
 
+def files(paths, repeat: int) -> None:
+    """The same columns for model files of your own (real robots: meshes, tendons, sensors, skins)."""
+    import mujoco
+
+    print(f"{'MuJoCo':>8s} {'load':>8s} {'ratio':>6s} {'params':>7s} {'+table':>8s} {'ratio':>6s}  file")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        len(engines.load(engines.example_path("pendulum.xml")).parameters)  # imports and caches, outside the timings
+        for path in map(Path, paths):
+            t_engine = best_cpu(lambda path=path: mujoco.MjModel.from_xml_path(str(path)), repeat)
+            t_load = best_cpu(lambda path=path: engines.load(path), repeat)
+            t_table, params = first_table(path, repeat)
+            print(
+                f"{t_engine:7.4f}s {t_load:7.4f}s {t_load / t_engine:6.2f} {params:7d} "
+                f"{t_table:7.4f}s {(t_load + t_table) / t_engine:6.2f}  {path}"
+            )
+
+
 def main(sizes, repeat: int) -> None:
     import mujoco
 
@@ -244,5 +262,9 @@ if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help=f"sizes {QUICK}, one call each")
     parser.add_argument("--sizes", type=int, nargs="+", help=f"numbers of bodies (default {SIZES})")
+    parser.add_argument("--files", nargs="+", help="MJCF files of your own to time instead (no generated file)")
     args = parser.parse_args()
-    main(args.sizes or (QUICK if args.quick else SIZES), 1 if args.quick else 3)
+    if args.files:
+        files(args.files, 1 if args.quick else 3)
+    else:
+        main(args.sizes or (QUICK if args.quick else SIZES), 1 if args.quick else 3)

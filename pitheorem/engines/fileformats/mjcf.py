@@ -1034,69 +1034,32 @@ class _Walker:
         self.add_solimp("equality", eq, ident, path, "solimp", width)
 
     def sensor_dimension(self, sensor, path):
-        mj = self.mj
-        S = mj.mjtSensor
-        table = {
-            S.mjSENS_TOUCH: _FORCE,
-            S.mjSENS_ACCELEROMETER: dim("L T^-2"),
-            S.mjSENS_VELOCIMETER: dim("L T^-1"),
-            S.mjSENS_GYRO: dim("T^-1"),
-            S.mjSENS_FORCE: _FORCE,
-            S.mjSENS_TORQUE: _TORQUE,
-            S.mjSENS_RANGEFINDER: _L,
-            S.mjSENS_FRAMEPOS: _L,
-            S.mjSENS_FRAMEQUAT: _ONE,
-            S.mjSENS_FRAMEXAXIS: _ONE,
-            S.mjSENS_FRAMEYAXIS: _ONE,
-            S.mjSENS_FRAMEZAXIS: _ONE,
-            S.mjSENS_FRAMELINVEL: dim("L T^-1"),
-            S.mjSENS_FRAMEANGVEL: dim("T^-1"),
-            S.mjSENS_FRAMELINACC: dim("L T^-2"),
-            S.mjSENS_FRAMEANGACC: dim("T^-2"),
-            S.mjSENS_SUBTREECOM: _L,
-            S.mjSENS_SUBTREELINVEL: dim("L T^-1"),
-            S.mjSENS_SUBTREEANGMOM: dim("M L^2 T^-1"),
-            S.mjSENS_BALLQUAT: _ONE,
-            S.mjSENS_BALLANGVEL: dim("T^-1"),
-            S.mjSENS_GEOMDIST: _L,
-            S.mjSENS_GEOMFROMTO: _L,
-            S.mjSENS_E_POTENTIAL: _TORQUE,
-            S.mjSENS_E_KINETIC: _TORQUE,
-            S.mjSENS_CLOCK: _T,
-        }
-        if sensor.type in table:
-            return table[sensor.type]
-        if sensor.type in (
-            S.mjSENS_JOINTPOS,
-            S.mjSENS_JOINTVEL,
-            S.mjSENS_JOINTLIMITPOS,
-            S.mjSENS_JOINTLIMITVEL,
-            S.mjSENS_JOINTLIMITFRC,
-            S.mjSENS_JOINTACTFRC,
-        ):
+        """The dimension of a sensor's reading (so of its cutoff and noise); None where it is not known."""
+        known = _sensor_types(self.mj).get(int(sensor.type))
+        if known is None:
+            return None
+        owner, what, rate = known
+        if owner == "reading":
+            return what
+        if owner == "joint":
             kind = self.named_joint_kind(sensor.objname)
-            if kind is not None:
-                return {
-                    S.mjSENS_JOINTPOS: kind.q,
-                    S.mjSENS_JOINTVEL: kind.q / _T,
-                    S.mjSENS_JOINTLIMITPOS: kind.q,
-                    S.mjSENS_JOINTLIMITVEL: kind.q / _T,
-                    S.mjSENS_JOINTLIMITFRC: kind.force,
-                    S.mjSENS_JOINTACTFRC: kind.force,
-                }[sensor.type]
-        tendons = (S.mjSENS_TENDONPOS, S.mjSENS_TENDONLIMITPOS, S.mjSENS_TENDONVEL, S.mjSENS_TENDONLIMITVEL)
-        if sensor.type in (*tendons, S.mjSENS_TENDONLIMITFRC, S.mjSENS_TENDONACTFRC):
+            if kind is None:
+                return None
+            q, force = kind.q, kind.force
+        elif owner == "tendon":
             tendon = self.spec.tendon(sensor.objname)
-            if tendon is not None:
-                kind = self.tendon_kind(tendon)
-                rate = 1 if sensor.type in tendons[2:] else 0
-                return kind.force if sensor.type not in tendons else kind.q / _T**rate
-        if sensor.type in (S.mjSENS_ACTUATORPOS, S.mjSENS_ACTUATORVEL, S.mjSENS_ACTUATORFRC):
+            if tendon is None:
+                return None
+            kind = self.tendon_kind(tendon)
+            q, force = kind.q, kind.force
+        else:
             act = self.spec.actuator(sensor.objname)
-            if act is not None:
-                length, force = self.actuator_target(act, path)
-                return {S.mjSENS_ACTUATORPOS: length, S.mjSENS_ACTUATORVEL: length / _T}.get(sensor.type, force)
-        return None
+            if act is None:
+                return None
+            q, force = self.actuator_target(act, path)
+        if what == "force":
+            return force
+        return q / _T if rate else q
 
     def sensor(self, sensor, index):
         ident, path = self.label("sensor", sensor, index)
@@ -1114,6 +1077,75 @@ class _Walker:
             return
         self.add("sensor", sensor, ident, path, "cutoff", d)
         self.add("sensor", sensor, ident, path, "noise", d)
+
+
+#: the dimension of a sensor's reading, by MuJoCo's name of its type: each of one dimension whatever it reads
+_SENSOR_READINGS = {
+    "mjSENS_TOUCH": _FORCE,
+    "mjSENS_ACCELEROMETER": dim("L T^-2"),
+    "mjSENS_VELOCIMETER": dim("L T^-1"),
+    "mjSENS_GYRO": dim("T^-1"),
+    "mjSENS_FORCE": _FORCE,
+    "mjSENS_TORQUE": _TORQUE,
+    "mjSENS_RANGEFINDER": _L,
+    "mjSENS_FRAMEPOS": _L,
+    "mjSENS_FRAMEQUAT": _ONE,
+    "mjSENS_FRAMEXAXIS": _ONE,
+    "mjSENS_FRAMEYAXIS": _ONE,
+    "mjSENS_FRAMEZAXIS": _ONE,
+    "mjSENS_FRAMELINVEL": dim("L T^-1"),
+    "mjSENS_FRAMEANGVEL": dim("T^-1"),
+    "mjSENS_FRAMELINACC": dim("L T^-2"),
+    "mjSENS_FRAMEANGACC": dim("T^-2"),
+    "mjSENS_SUBTREECOM": _L,
+    "mjSENS_SUBTREELINVEL": dim("L T^-1"),
+    "mjSENS_SUBTREEANGMOM": dim("M L^2 T^-1"),
+    "mjSENS_BALLQUAT": _ONE,
+    "mjSENS_BALLANGVEL": dim("T^-1"),
+    "mjSENS_GEOMDIST": _L,
+    "mjSENS_GEOMFROMTO": _L,
+    "mjSENS_E_POTENTIAL": _TORQUE,
+    "mjSENS_E_KINETIC": _TORQUE,
+    "mjSENS_CLOCK": _T,
+}
+
+#: sensors of a joint's, a tendon's or an actuator's coordinate (``"q"``) or force, by MuJoCo's name of their
+#: type: (what they read, the power of T^-1 on it)
+_OWNED_SENSORS = {
+    "joint": {
+        "mjSENS_JOINTPOS": ("q", 0),
+        "mjSENS_JOINTVEL": ("q", 1),
+        "mjSENS_JOINTLIMITPOS": ("q", 0),
+        "mjSENS_JOINTLIMITVEL": ("q", 1),
+        "mjSENS_JOINTLIMITFRC": ("force", 0),
+        "mjSENS_JOINTACTFRC": ("force", 0),
+    },
+    "tendon": {
+        "mjSENS_TENDONPOS": ("q", 0),
+        "mjSENS_TENDONLIMITPOS": ("q", 0),
+        "mjSENS_TENDONVEL": ("q", 1),
+        "mjSENS_TENDONLIMITVEL": ("q", 1),
+        "mjSENS_TENDONLIMITFRC": ("force", 0),
+        "mjSENS_TENDONACTFRC": ("force", 0),
+    },
+    "actuator": {"mjSENS_ACTUATORPOS": ("q", 0), "mjSENS_ACTUATORVEL": ("q", 1), "mjSENS_ACTUATORFRC": ("force", 0)},
+}
+
+_SENSOR_TYPES: dict[int, tuple] = {}
+
+
+def _sensor_types(mj) -> dict[int, tuple]:
+    """By the number of MuJoCo's sensor type: ``("reading", its dimension, 0)``, or the element that owns what
+    it reads with what and the power of T^-1 (:data:`_OWNED_SENSORS`).  Found once: comparing MuJoCo's
+    enums takes a tenth of a microsecond each, and a sensor would ask of 26."""
+    if not _SENSOR_TYPES:
+        kinds = mj.mjtSensor
+        for name, d in _SENSOR_READINGS.items():
+            _SENSOR_TYPES[int(getattr(kinds, name))] = ("reading", d, 0)
+        for owner, table in _OWNED_SENSORS.items():
+            for name, (what, rate) in table.items():
+                _SENSOR_TYPES[int(getattr(kinds, name))] = (owner, what, rate)
+    return _SENSOR_TYPES
 
 
 _DEFAULT_FLOATS: dict = {}  # (kind, attr) -> the default as a tuple of floats, and whether it has a NaN
