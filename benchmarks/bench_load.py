@@ -1,8 +1,9 @@
-"""Time ``engines.load`` of a large MJCF file against MuJoCo's own compile of it, at a few sizes.
+"""Time ``engines.load`` of an MJCF file against MuJoCo's own compile of it: generated files of a few sizes, or yours.
 
-The file is generated here: ``n`` repeated bodies, each a free box with a hinged capsule, a site and
-a motor (about 500 bytes and 55 numbers of the parameter table per body), so that every size has
-the same mix of elements.  Both are timed in the same run, each the best of a few calls:
+The generated file is ``n`` repeated bodies, each a free box with a hinged capsule, a site and a
+motor (about 500 bytes and 55 numbers of the parameter table per body), so that every size has
+the same mix of elements.  ``--files`` times model files of your own instead (real robots bring
+meshes, tendons, sensors and skins).  Both are timed in the same run, each the best of a few calls:
 
 * MuJoCo: ``mujoco.MjModel.from_xml_path`` (its parser and compiler);
 * pitheorem: ``engines.load``, which reads the file as text and checks every attribute's numbers
@@ -17,37 +18,18 @@ the same mix of elements.  Both are timed in the same run, each the best of a fe
   own in the column ``+table``.
 
 The columns ``+table`` and the second ``ratio`` are what a user who loads a file and then lists
-its parameters (``model.parameters``, ``model.system()``, a search) pays: the first
-``model.parameters`` of a model just loaded, and load plus that table against MuJoCo's compile.
-Issue 33's goal of 1.5 is stated for ``engines.load`` alone (the first ``ratio``); the table
-adds to it what the measurements below say (at 500 bodies, 0.3 of MuJoCo's compile before the
-last change, 0.1 after).
+its parameters (``model.parameters``, ``model.system()``, a search) pays.  Issue 33's goal of 1.5
+is stated for ``engines.load`` alone (the first ``ratio``), growing linearly with the file.  The
+times are the process's CPU time (``time.process_time``), not the wall clock: on a machine shared
+with other work the wall clock of the same compile varied by x2, the CPU time much less.  Run the
+loop below from a folder that holds no checkout: ``python -c`` puts the current folder first on
+the path, ahead of ``PYTHONPATH``, so that from a checkout both arms would time that checkout.
 
-The times are the process's CPU time (``time.process_time``), not the wall clock: on a machine
-shared with other work the wall clock of the same compile varied by x2, the CPU time much less.
-
-Issue 33's goal: ``engines.load`` within 1.5 times MuJoCo's compile at every size, and growing
-linearly with the file.  MuJoCo's own compile grows faster than the file (about x4.5 for x2 bodies
-here), so the columns ``ours`` (load minus MuJoCo's compile) and ``ours per body`` show the part
-that is pitheorem's, which should stay flat per body.
-
-Measured on 2026-11-27 (2 shared cores, CPU time), before and after issue 33's first work, in one run:
-
-======  ======  =================  ===============  =================  ===============
-bodies  MuJoCo  load before        ours per body    load after         ours per body
-======  ======  =================  ===============  =================  ===============
-   500  0.20 s  0.59 s (ratio 2.9)  0.78 ms         0.40 s (ratio 2.0)  0.40 ms
- 1,000  0.78 s  1.73 s (ratio 2.2)  0.95 ms         1.19 s (ratio 1.5)  0.39 ms
- 2,000  3.4 s   5.87 s (ratio 1.7)  1.24 ms         4.29 s (ratio 1.2)  0.42 ms
-======  ======  =================  ===============  =================  ===============
-
-Before, pitheorem's own part grew faster than the file (MuJoCo's listing of a spec's geoms is
-quadratic, and Python's garbage collector scanned the growing table again and again); after, it
-was 0.4 ms per body at every size.
-
-Measured on 2026-11-28 (2 cores shared with other work, CPU time), before (commit ed45294) and
-after the walker's plumbing was made cheaper, each size timed in two processes one after the
-other, the old code first (``PYTHONPATH`` set to a checkout of it)::
+Measured on 2026-11-28 (2 cores, CPU time, best of 3 calls, one process per size and tree), at
+commit 1d7ff07 ("before") and after a tendon's joints were read from the compiled model (the
+spec's ``tendon.path`` took 70 microseconds a tendon), a skin's model compiled once (the second
+compile only normalised its bone weights again), geoms' and joints' numbers read in one plan
+each, and a sensor's dimension found in a table made once::
 
     for n in 100 250 500 1000 2000; do
       for tree in OLD NEW; do
@@ -56,102 +38,48 @@ other, the old code first (``PYTHONPATH`` set to a checkout of it)::
       done
     done
 
-======  ======  ==================  ===============  ==================  ===============
-bodies  MuJoCo  load before         ours per body    load after          ours per body
-======  ======  ==================  ===============  ==================  ===============
-   100  0.011 s 0.046 s (ratio 3.6)  0.34 ms         0.035 s (ratio 3.2)  0.24 ms
-   250  0.053 s 0.142 s (ratio 2.7)  0.36 ms         0.110 s (ratio 2.1)  0.23 ms
-   500  0.19 s  0.39 s (ratio 2.0)   0.39 ms         0.31 s (ratio 1.6)   0.23 ms
- 1,000  0.79 s  1.19 s (ratio 1.5)   0.40 ms         1.02 s (ratio 1.3)   0.23 ms
- 2,000  3.5 s   4.40 s (ratio 1.25)  0.44 ms         4.09 s (ratio 1.17)  0.29 ms
-======  ======  ==================  ===============  ==================  ===============
+======  =======  ===================  ===================  =================  ============
+bodies  MuJoCo   load before          load after           ours per body      +table after
+======  =======  ===================  ===================  =================  ============
+   100  0.011 s  0.030 s (ratio 2.76)  0.029 s (ratio 2.57)  0.192 -> 0.179 ms  ratio 2.92
+   250  0.053 s  0.097 s (ratio 1.83)  0.096 s (ratio 1.85)  0.176 -> 0.177 ms  ratio 2.03
+   500  0.19 s   0.286 s (ratio 1.48)  0.274 s (ratio 1.42)  0.186 -> 0.162 ms  ratio 1.52
+ 1,000  0.79 s   0.968 s (ratio 1.24)  0.957 s (ratio 1.22)  0.184 -> 0.172 ms  ratio 1.27
+ 2,000  3.3 s    3.74 s (ratio 1.12)   3.75 s (ratio 1.11)   0.197 -> 0.186 ms  ratio 1.13
+======  =======  ===================  ===================  =================  ============
 
-A first run of the same loop, with the machine busier (load average 8 to 11), gave the same
-"after" column within 10 % (500 bodies: ratio 1.7, 0.27 ms) and a "before" one up to 10 % slower.
-Each body is 57 numbers of the table: "ours" fell from about 6.5 to 4 microseconds a number (x1.4
-at 100 bodies, x1.6 at 250, x1.7 at 500 and 1,000, x1.5 at 2,000).  What is left is Python's own cost of each number: reading the
-attribute from MuJoCo's spec (a call through its bindings), its floats, its name, its slot (an
-object, which Python's collector scans once when the walk ends), and the element methods' own
-work (MuJoCo's enum comparisons, a few numpy calls).  The goal of 1.5 is met from 1,000 bodies
-on, and not at 500 (1.6 to 1.7).  It cannot be met at 100 bodies: MuJoCo compiles them in 11 ms,
-so 1.5 leaves pitheorem 5.5 ms for 5,722 numbers, under 1 microsecond each, while checking the
-file's numbers takes 1.5 ms, and reading each attribute through MuJoCo's bindings as floats
-(0.5 microsecond) and making its slot (0.3) take 4.6 ms more, before any name or dimension.
+Pitheorem's own part is flat per body from 100 to 2,000 bodies (linear in the file), and the goal
+of 1.5 holds from 500 bodies on.  The same day, the same way, with ``--files`` on robots that
+ship with dm_control, Gymnasium, Gymnasium-Robotics and MuJoCo Warp's tests (load's ratio,
+before -> after): dm_control's dog 2.02 -> 1.11 (a skin: compiled twice before) and humanoid
+1.08 -> 1.07; MuJoCo Warp's ALOHA scene 1.10 to 1.22 (noise of the machine: no change in its
+walk) and ``n_humanoid`` 1.38 -> 1.34; the Shadow hand with 92 touch sensors 2.62 -> 1.77, the
+Adroit pen (44 tendons) 3.27 -> 2.13; Gymnasium's ant 2.11 -> 1.80, humanoid 2.77 -> 2.37,
+pusher 3.86 -> 3.25.  Of the 89 MJCF files of those four packages that load (each the best of 5
+calls), every one that MuJoCo compiles in 25 ms or more loads within 1.4 (24 files), and the 58
+over 1.5 all compile in under 11 ms.
 
-Measured later on 2026-11-28, the same way (the loop above, 2 cores shared with other work,
-load average 2 to 3), before (commit 0789708) and after the walker's work per element was cut:
-a body's computed mass, inertia and their position read with every other body's rows (no function
-per slot), a free joint's and an actuator's numbers read without numpy on tiny arrays and each
-actuator type read once, a joint's kind found by its type's number, a joint kind's polynomial
-terms and the actuators' gain dimensions found once (not by Fraction arithmetic per element), a
-whole attribute's form looked up without its slice, a name that is already an identifier kept
-without a substitution, the file check's element parents built only for a message, and the SI
-unit names asked of pint once per process instead of at every load (the pendulum example loads
-in 1.05 ms, from 1.8)::
+Why a small file cannot come within 1.5 of MuJoCo's compile: MuJoCo parses and compiles 100 of
+these bodies (5,521 numbers of the table) in 11 ms, 2 microseconds a number, in C.  Loading them
+does that same work again (``MjSpec.from_file`` and ``compile``: 11 ms), so a ratio of 1.5 leaves
+5.5 ms for the rest, 1 microsecond a number: the file's check (1.5 ms, of which ElementTree's
+parse is 1) and the walk.  Reading one attribute through MuJoCo's bindings takes 0.1 to 0.45
+microseconds (more on the first touch of a spec's element), keeping its slot 0.3, its name and
+source 0.2: the walk's own floor, measured on a loop that does nothing else, is 0.8 to 1.1
+microseconds a number, and the walk takes 2.1.  A file MuJoCo compiles in half a millisecond
+(Gymnasium's pusher, the pendulum example) leaves a quarter of a millisecond for the check, the
+walk and the call's own overhead (finding the format and the engine, opening the file), which
+alone take more.  Only a walk deferred until the numbers are first asked for would meet the goal
+there, and every use of a loaded model in pitheorem (the table, a scaled or converted copy, a
+verification) asks for them, so that it would move the time, not save it.
 
-======  =======  ==================  ===============  ==================  ===============
-bodies  MuJoCo   load before         ours per body    load after          ours per body
-======  =======  ==================  ===============  ==================  ===============
-   100  0.011 s  0.034 s (ratio 3.0)  0.23 ms         0.028 s (ratio 2.6)  0.17 ms
-   250  0.053 s  0.107 s (ratio 2.0)  0.22 ms         0.094 s (ratio 1.8)  0.16 ms
-   500  0.20 s   0.315 s (ratio 1.6)  0.24 ms         0.284 s (ratio 1.46) 0.18 ms
- 1,000  0.79 s   1.03 s (ratio 1.3)   0.24 ms         0.96 s (ratio 1.23)  0.18 ms
- 2,000  3.3 s    3.81 s (ratio 1.15)  0.25 ms         3.64 s (ratio 1.10)  0.17 ms
-======  =======  ==================  ===============  ==================  ===============
-
-A second run of the loop gave the same within 10 % (ratios after: 2.64, 1.85, 1.47, 1.24, 1.11;
-before: 3.09, 2.11, 1.61, 1.30, 1.14), and three more pairs of runs at 500 bodies gave 1.57 to
-1.62 before and 1.43 to 1.50 after.  Run the loop from a folder that holds no checkout:
-``python -c`` puts the current folder first on the path, ahead of ``PYTHONPATH``, so that from a
-checkout both arms time that checkout's code (a run from ``/work/main`` timed main against
-itself, and showed no change).  Each body is 55 numbers of the table: "ours" fell from about 4.3
-to 3.2 microseconds a number (x1.3 at every size), flat per body from 100 to 2,000 bodies.  The
-goal of 1.5 is met from 500 bodies on, by a small margin at 500.  What is left in "ours" at 500 bodies
-(about 90 ms): checking the file's numbers (8 ms, of which ElementTree's parse is 5), listing the
-spec's elements (3.5 ms), the walk's call per number (about 1.6 microseconds: reading the
-attribute through MuJoCo's bindings is 0.35 of it, its slot 0.25, its name, form and source the
-rest), each element's own work (about 40 microseconds per repeated body, the actuator 14 of it:
-its types, its transmission's joint looked up by name, MuJoCo's enum comparisons) and Python's
-collector scanning the slots once when the walk ends (5 ms).  At 100 bodies the goal is still out
-of reach, for the reason above: MuJoCo compiles them in 11 ms, which leaves 5.5 ms for 5,521
-numbers, 1 microsecond each, less than reading each one through the bindings and making its slot.
-
-Measured later on 2026-11-28, the same way (the loop above, with this script's ``+table`` column,
-2 cores shared with other work, load average 2 to 3), before (commit 351482c) and after the
-table's first build was made cheaper: the walk keeps in each slot the numbers it read anyway
-(to tell a set number from an absent one, and the file's from MuJoCo's default), so that the
-table does not read each attribute through MuJoCo's bindings again; each ``Parameter`` is made by
-``parameters.new_parameter``, which writes its eight fields' slots directly where the frozen
-dataclass's constructor calls ``object.__setattr__`` per field (0.48 against 0.84 microseconds);
-and Python's collector is paused while the table is made, as it is while the file is walked.
-The table is the same, entry for entry (every MJCF file of the tests, the examples, Gymnasium's
-and dm_control's suite, and the URDFs of the tests and of ``pybullet_data`` in PyBullet and in
-MuJoCo, dumped before and after: 68,207 parameters; the one entry that differed,
-``pybullet_data``'s ``random_urdfs/168`` link inertia that Bullet computes, also differs between
-two runs of the code before, 1.8e-06 in one and 2e+59 in the other, and is no reading of this
-walker)::
-
-======  =======  ====================  ====================  ====================  ====================
-bodies  MuJoCo   load before           load after            +table before         +table after
-======  =======  ====================  ====================  ====================  ====================
-   100  0.011 s  0.030 s (ratio 2.66)  0.031 s (ratio 2.72)  0.011 s (ratio 3.65)  0.004 s (ratio 3.07)
-   250  0.053 s  0.098 s (ratio 1.83)  0.097 s (ratio 1.84)  0.028 s (ratio 2.36)  0.010 s (ratio 2.03)
-   500  0.19 s   0.284 s (ratio 1.48)  0.285 s (ratio 1.46)  0.062 s (ratio 1.80)  0.020 s (ratio 1.56)
- 1,000  0.77 s   0.947 s (ratio 1.23)  0.967 s (ratio 1.23)  0.179 s (ratio 1.46)  0.039 s (ratio 1.28)
- 2,000  3.2 s    3.65 s (ratio 1.13)   3.63 s (ratio 1.12)   0.316 s (ratio 1.23)  0.078 s (ratio 1.14)
-======  =======  ====================  ====================  ====================  ====================
-
-The ``+table`` ratios are load plus the table against MuJoCo's compile.  A second run of the
-loop gave the same within 10 % (``+table`` after: 0.004, 0.010, 0.020, 0.039, 0.078 s; before:
-0.011, 0.028, 0.058, 0.180, 0.315 s), and ``load`` unchanged within the noise of the machine
-(four more pairs of processes at 500 bodies, best of 7 loads each: 285.8 ms before, 287.2 ms
-after, on average).  The table's first build fell from 2.2 to 0.73 microseconds a number at 500
-bodies (x3), and from 3.3 and 2.9 to 0.71 at 1,000 and 2,000 (x4.6, x4): before, it grew faster
-than the file (x2.9 for x2 bodies from 500 to 1,000); after, it is flat per number from 100 to
-2,000 bodies.  So a user who loads 500 bodies and lists their parameters pays 1.56 times
-MuJoCo's compile where it was 1.80; the goal of 1.5 for ``engines.load`` alone (1.46 to 1.48
-here) is unchanged by this work.  What is left of the table's cost is the ``Parameter`` object
-itself (about 0.5 microsecond: a new object and eight fields written) and the call per slot.
+Earlier measurements (the same generated file): on 2026-11-27, 500 bodies loaded in 2.9 times
+MuJoCo's compile before the garbage collector was paused during the walk and the spec's geoms
+were listed by a walk of its tree (2.0 after), and 2,000 bodies in 1.7 (1.2 after); "ours" per
+body fell from 0.78 to 0.40 ms and stopped growing faster than the file.  On 2026-11-28 the
+walker's plumbing (no numpy on tiny arrays, each actuator type and a joint kind's polynomial
+terms found once, pint's unit names asked once per process) took it to 0.17 ms a body (500
+bodies: 1.46), and the table's first build fell from 2.2 to 0.73 microseconds a number.
 
 Run: python benchmarks/bench_load.py [--quick] [--sizes 100 250 500 1000 2000] [--files robot.xml ...]
 """
