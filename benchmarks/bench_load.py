@@ -69,9 +69,12 @@ source 0.2: the walk's own floor, measured on a loop that does nothing else, is 
 microseconds a number, and the walk takes 2.1.  A file MuJoCo compiles in half a millisecond
 (Gymnasium's pusher, the pendulum example) leaves a quarter of a millisecond for the check, the
 walk and the call's own overhead (finding the format and the engine, opening the file), which
-alone take more.  Only a walk deferred until the numbers are first asked for would meet the goal
-there, and every use of a loaded model in pitheorem (the table, a scaled or converted copy, a
-verification) asks for them, so that it would move the time, not save it.
+alone take more.  Skipping the walk altogether (measured the same day by loading with the walk
+switched off, which no user could do: it leaves no table) brings 100 bodies to 1.04 and the Adroit
+pen to 1.10, but leaves the pendulum example and Gymnasium's pusher at 1.65: a walk deferred until
+the numbers are first asked for would not reach 1.5 at every size either, and every use of a
+loaded model in pitheorem (the table, a scaled or converted copy, a verification) asks for them,
+so that it would move the time, not save it.
 
 Earlier measurements (the same generated file): on 2026-11-27, 500 bodies loaded in 2.9 times
 MuJoCo's compile before the garbage collector was paused during the walk and the spec's geoms
