@@ -57,28 +57,28 @@ for line in table_lines("_GEOM_PLAN"):
 # the plan functions and the walker's new lines: by hand
 hand = [
     (
-        'known = ((attr, dim("T^-2"), slice(0, 1), "_stiffness"), (attr, dim("T^-1"), slice(1, 2), "_damping"))',
-        'known = ((attr, dim("T^-1"), slice(0, 1), "_stiffness"), (attr, dim("T^-1"), slice(1, 2), "_damping"))',
+        'return ((attr, dim("T^-2"), slice(0, 1), "_stiffness"), (attr, dim("T^-1"), slice(1, 2), "_damping"))',
+        'return ((attr, dim("T^-1"), slice(0, 1), "_stiffness"), (attr, dim("T^-1"), slice(1, 2), "_damping"))',
     ),
     (
-        'known = ((attr, dim("T^-2"), slice(0, 1), "_stiffness"), (attr, dim("T^-1"), slice(1, 2), "_damping"))',
-        'known = ((attr, dim("T^-2"), slice(0, 1), "_stiffness"), (attr, dim("T^-2"), slice(1, 2), "_damping"))',
+        'return ((attr, dim("T^-2"), slice(0, 1), "_stiffness"), (attr, dim("T^-1"), slice(1, 2), "_damping"))',
+        'return ((attr, dim("T^-2"), slice(0, 1), "_stiffness"), (attr, dim("T^-2"), slice(1, 2), "_damping"))',
     ),
     (
-        'known = ((attr, dim("T^-2"), slice(0, 1), "_stiffness"), (attr, dim("T^-1"), slice(1, 2), "_damping"))',
-        'known = ((attr, dim("T^-2"), slice(0, 1), "_stiffness"), (attr, dim("T^-1"), slice(0, 2), "_damping"))',
+        'return ((attr, dim("T^-2"), slice(0, 1), "_stiffness"), (attr, dim("T^-1"), slice(1, 2), "_damping"))',
+        'return ((attr, dim("T^-2"), slice(0, 1), "_stiffness"), (attr, dim("T^-1"), slice(0, 2), "_damping"))',
     ),
-    ('known = ((attr, _T, slice(0, 1), "_timeconst"),)', 'known = ((attr, _T, slice(0, 2), "_timeconst"),)'),
-    ('known = ((attr, _T, slice(0, 1), "_timeconst"),)', 'known = ((attr, _T**-1, slice(0, 1), "_timeconst"),)'),
+    ('return ((attr, _T, slice(0, 1), "_timeconst"),)', 'return ((attr, _T, slice(0, 2), "_timeconst"),)'),
+    ('return ((attr, _T, slice(0, 1), "_timeconst"),)', 'return ((attr, _T**-1, slice(0, 1), "_timeconst"),)'),
     ('lambda: ((attr, violation, slice(2, 3), "_width"),)', 'lambda: ((attr, violation, slice(1, 3), "_width"),)'),
     ('lambda: ((attr, violation, slice(2, 3), "_width"),)', 'lambda: ((attr, _L, slice(2, 3), "_width"),)'),
     (
-        'for entry in (("stiffness", stiffness, index, suffix), ("damping", damping, index, suffix))',
-        'for entry in (("stiffness", damping, index, suffix), ("damping", damping, index, suffix))',
+        'terms.append(("stiffness", kind.per(force, i + 1), index, suffix))',
+        'terms.append(("stiffness", kind.per(force, i + 1, rate=1), index, suffix))',
     ),
     (
-        'for entry in (("stiffness", stiffness, index, suffix), ("damping", damping, index, suffix))',
-        'for entry in (("stiffness", stiffness, index, suffix), ("damping", stiffness, index, suffix))',
+        'terms.append(("damping", kind.per(force, i + 1, rate=1), index, suffix))',
+        'terms.append(("damping", kind.per(force, i + 1), index, suffix))',
     ),
     (
         'armature = ("armature", kind.per(force, 1, rate=2), _EVERY, "")',
@@ -101,10 +101,10 @@ hand = [
         'coordinates = tuple((a, _L, _EVERY, "") for a in ("range", "ref", "springref", "margin"))',
     ),
     (
-        'for constraint, direct_ in zip(("limit", "friction"), direct, strict=True)',
-        'for constraint, direct_ in zip(("limit", "friction"), direct[::-1], strict=True)',
+        '*_solref_plan("solref_limit", direct=limit_direct),',
+        '*_solref_plan("solref_limit", direct=friction_direct),',
     ),
-    ('*_solimp_plan(f"solimp_{constraint}", kind.q),', '*_solimp_plan(f"solimp_{constraint}", _L),'),
+    ('*_solimp_plan("solimp_limit", q),', '*_solimp_plan("solimp_limit", _L),'),
     ("return (*coordinates, *_spring_plan(kind), *softness)", "return (*coordinates, *softness)"),
     (
         'lambda: (*_GEOM_PLAN, *_solref_plan("solref", direct=direct), *_solimp_plan("solimp", _L)),',
@@ -115,8 +115,8 @@ hand = [
         'lambda: (*_GEOM_PLAN, *_solref_plan("solref", direct=direct), *_solimp_plan("solimp", _M)),',
     ),
     (
-        '_LENGTHS_PLANS[kind] = tuple((attr, _L, _EVERY, "") for attr in attrs if hasattr(element, attr))',
-        '_LENGTHS_PLANS[kind] = tuple((attr, _L, _EVERY, "") for attr in attrs[:-1] if hasattr(element, attr))',
+        'lambda: tuple((a, _L, _EVERY, "") for a in attrs if hasattr(element, a))',
+        'lambda: tuple((a, _L, _EVERY, "") for a in attrs[:-1] if hasattr(element, a))',
     ),
     ("            if kind == joint:", "            if kind != joint:"),
     (
@@ -151,8 +151,8 @@ hand = [
     ),
     ("solref = _floats(geom.solref)\n", "solref = _floats(geom.solimp)\n"),
     (
-        "plan = _joint_plan(kind, direct=(limit[0] < 0, friction[0] < 0))",
-        "plan = _joint_plan(kind, direct=(limit[0] < 0, limit[0] < 0))",
+        'return _softness_plan(q, read["solref_limit"][0] < 0, read["solref_friction"][0] < 0), read',
+        'return _softness_plan(q, read["solref_limit"][0] < 0, read["solref_limit"][0] < 0), read',
     ),
     (
         "self.add_each(kind, elem, ident, path, _solref_plan(attr, direct=ref[0] < 0), read={attr: ref})",

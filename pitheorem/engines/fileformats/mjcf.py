@@ -105,22 +105,6 @@ def _joint_kind(mj, jtype) -> JointKind | None:
 _JOINT_KINDS: dict[int, JointKind] = {}
 
 
-def _polynomial_terms(kind: JointKind) -> tuple:
-    """A joint kind's spring and damper polynomial terms: (entry, suffix, stiffness's and damping's dimension)
-    each, found once per kind (kept here with it, so that no other object takes its id)."""
-    known = _TERMS.get(id(kind))
-    if known is None:
-        force = kind.force
-        terms = tuple(
-            (slice(i, i + 1), "" if i == 0 else f"_poly{i}", kind.per(force, i + 1), kind.per(force, i + 1, rate=1))
-            for i in range(3)
-        )
-        known = _TERMS[id(kind)] = (kind, terms)
-    return known[1]
-
-
-_TERMS: dict[int, tuple] = {}
-
 #: a free joint's numbers that act on its translation and its rotation alike: (attribute, the dimension
 #: of each part, the entries read)
 _FREE_JOINT_MIXED = (
@@ -408,9 +392,8 @@ class _Walker:
 
     def limit_and_friction_softness(self, kind, elem, ident, path, q):
         """The soft-constraint parameters of a joint's or a tendon's limit and of its friction loss."""
-        for constraint in ("limit", "friction"):
-            self.add_solref(kind, elem, ident, path, f"solref_{constraint}")
-            self.add_solimp(kind, elem, ident, path, f"solimp_{constraint}", q)
+        plan, read = _softness(elem, q)
+        self.add_each(kind, elem, ident, path, plan, read=read)
 
     def refuse(self, elem, path, attrs):
         """Fail on any of these attributes when it is set (nonzero): their scaling is not known yet."""
@@ -707,9 +690,8 @@ class _Walker:
             return
         # its coordinates, its spring and drive (:meth:`spring_and_drive`), and the softness of its limit and
         # friction loss (:meth:`limit_and_friction_softness`), in one plan
-        limit, friction = _floats(joint.solref_limit), _floats(joint.solref_friction)
-        plan = _joint_plan(kind, direct=(limit[0] < 0, friction[0] < 0))
-        self.add_each("joint", joint, ident, path, plan, read={"solref_limit": limit, "solref_friction": friction})
+        softness, read = _softness(joint, kind.q)
+        self.add_each("joint", joint, ident, path, _joint_plan(kind, softness), read=read)
 
     def tendon_kind(self, tendon) -> JointKind:
         """A spatial tendon measures a length; a fixed one the first joint's coordinate.  Found when the tendon
@@ -1212,33 +1194,30 @@ def _resolved(mj, kind: str, plan: tuple) -> tuple:
     return tuple((attr, index, d, *_form(mj, kind, attr, index, suffix)) for attr, d, index, suffix in plan)
 
 
-#: the plans made for a dimension or a joint kind, by its identity, each kept beside its plan (as :data:`_PLANS`)
+#: the plans made once, by what they are made of: a dimension or a joint kind by its identity, kept beside its
+#: plan (as :data:`_PLANS`), an attribute or a form by its value
 _MADE: dict[tuple, tuple] = {}
 
 
 def _made(key: tuple, keep, build) -> tuple:
-    """The plan `build()` made once for `key`, which names `keep` by its id."""
+    """The plan `build()` made once for `key`, which names `keep` by its id (None: `key` names no object by
+    its id)."""
     known = _MADE.get(key)
     if known is None or known[0] is not keep:
         known = _MADE[key] = (keep, build())
     return known[1]
 
 
-#: a solref's plan, by attribute and form: a time constant (its damping ratio has no dimension) or, negative,
-#: a direct stiffness and damping of the reference acceleration
-_SOLREF_PLANS: dict[tuple, tuple] = {}
-
-
 def _solref_plan(attr: str, *, direct: bool) -> tuple:
-    """The slots of a solref attribute, in one of its two forms."""
-    known = _SOLREF_PLANS.get((attr, direct))
-    if known is None:
+    """The slots of a solref attribute, in one of its two forms: a time constant (its damping ratio has no
+    dimension) or, `direct` (negative), a stiffness and a damping of the reference acceleration."""
+
+    def build():
         if direct:
-            known = ((attr, dim("T^-2"), slice(0, 1), "_stiffness"), (attr, dim("T^-1"), slice(1, 2), "_damping"))
-        else:
-            known = ((attr, _T, slice(0, 1), "_timeconst"),)
-        _SOLREF_PLANS[(attr, direct)] = known
-    return known
+            return ((attr, dim("T^-2"), slice(0, 1), "_stiffness"), (attr, dim("T^-1"), slice(1, 2), "_damping"))
+        return ((attr, _T, slice(0, 1), "_timeconst"),)
+
+    return _made(("solref", attr, direct), None, build)
 
 
 def _solimp_plan(attr: str, violation) -> tuple:
@@ -1252,35 +1231,47 @@ def _spring_plan(kind: JointKind) -> tuple:
 
     def build():
         force = kind.force
-        terms = [
-            entry
-            for index, suffix, stiffness, damping in _polynomial_terms(kind)
-            for entry in (("stiffness", stiffness, index, suffix), ("damping", damping, index, suffix))
-        ]
+        terms = []  # the i-th term of each polynomial: a force per coordinate^(i+1) (per its rate, for damping)
+        for i in range(3):
+            index, suffix = slice(i, i + 1), "" if i == 0 else f"_poly{i}"
+            terms.append(("stiffness", kind.per(force, i + 1), index, suffix))
+            terms.append(("damping", kind.per(force, i + 1, rate=1), index, suffix))
         armature = ("armature", kind.per(force, 1, rate=2), _EVERY, "")
         return (*terms, armature, ("frictionloss", force, _EVERY, ""), ("actfrcrange", force, _EVERY, ""))
 
     return _made(("spring", id(kind)), kind, build)
 
 
-def _joint_plan(kind: JointKind, direct: tuple[bool, bool]) -> tuple:
+def _softness(elem, q) -> tuple[tuple, dict]:
+    """The plan of a joint's or a tendon's limit and friction-loss softness (:func:`_softness_plan`), each
+    solref in the form the element gives, and the solrefs as read."""
+    read = {attr: _floats(getattr(elem, attr)) for attr in ("solref_limit", "solref_friction")}
+    return _softness_plan(q, read["solref_limit"][0] < 0, read["solref_friction"][0] < 0), read
+
+
+def _softness_plan(q, limit_direct: bool, friction_direct: bool) -> tuple:
+    """A limit's and a friction loss's solref (in the form each says) and solimp width (in the coordinate `q`)."""
+    return _made(
+        ("softness", id(q), limit_direct, friction_direct),
+        q,
+        lambda: (
+            *_solref_plan("solref_limit", direct=limit_direct),
+            *_solimp_plan("solimp_limit", q),
+            *_solref_plan("solref_friction", direct=friction_direct),
+            *_solimp_plan("solimp_friction", q),
+        ),
+    )
+
+
+def _joint_plan(kind: JointKind, softness: tuple) -> tuple:
     """A hinge's or a slide's range, reference positions and limit margin (in its coordinate), its spring and
-    drive (:func:`_spring_plan`), and the softness of its limit and its friction loss, each solref in the form
-    `direct` says (limit, friction)."""
+    drive (:func:`_spring_plan`), and its `softness` (one of :func:`_softness_plan`'s)."""
 
     def build():
         coordinates = tuple((a, kind.q, _EVERY, "") for a in ("range", "ref", "springref", "margin"))
-        softness = tuple(
-            entry
-            for constraint, direct_ in zip(("limit", "friction"), direct, strict=True)
-            for entry in (
-                *_solref_plan(f"solref_{constraint}", direct=direct_),
-                *_solimp_plan(f"solimp_{constraint}", kind.q),
-            )
-        )
         return (*coordinates, *_spring_plan(kind), *softness)
 
-    return _made(("joint", id(kind), *direct), kind, build)
+    return _made(("joint", id(kind), id(softness)), softness, build)
 
 
 #: a geom's numbers before its solref, in the walk's order: lengths, a mass, a density, and its friction's
@@ -1297,15 +1288,9 @@ _GEOM_PLAN = (
 )
 
 
-#: by element kind: the plan of its attributes that are lengths, those its elements have
-_LENGTHS_PLANS: dict[str, tuple] = {}
-
-
 def _lengths_plan(kind: str, attrs: tuple, element) -> tuple:
     """The plan of `attrs`, each a length, that `element` (one of its `kind`) has."""
-    if kind not in _LENGTHS_PLANS:
-        _LENGTHS_PLANS[kind] = tuple((attr, _L, _EVERY, "") for attr in attrs if hasattr(element, attr))
-    return _LENGTHS_PLANS[kind]
+    return _made(("lengths", kind), None, lambda: tuple((a, _L, _EVERY, "") for a in attrs if hasattr(element, a)))
 
 
 def _geom_plan(*, direct: bool) -> tuple:
