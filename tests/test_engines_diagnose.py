@@ -356,31 +356,93 @@ def test_a_model_whose_coordinates_are_all_angles_is_not_held_to_bits_at_s_10():
     assert [c.element for c in rep.causes] == ["option solver = PGS"]
 
 
-def test_of_two_causes_the_one_that_parts_the_runs_first_is_named():
+def test_of_three_causes_each_hidden_by_the_one_before_all_are_named():
     """MuJoCo's own test model (in its wheel): a weld to the world parts the runs from the first step; with
-    it inactive they agree at s = 4, and at s = 10 part only much later, where the float32 meshes take over."""
+    it inactive they part at t = 0.65 (contacts); with contacts off too, at t = 0.728, by the limit of joint
+    'slider'; with all three removed they are bit for bit (each checked by hand in plain MuJoCo below)."""
     path = Path(mujoco.__file__).parent / "testdata" / "model.xml"
     if not path.is_file():
         pytest.skip("this MuJoCo wheel ships no testdata/model.xml")
     model, sc = searched(path)
     u = engines.smooth_controls(model)
     proof = engines.verify(model, sc, 4, duration=1.0, controls=u)
-    # the weld inactive moves the first difference from the first step to t = 0.65, but restores nothing
-    # (checked by hand in plain MuJoCo: 7e-7 apart at step 325); no counter-run restores that later parting,
-    # so it is the "unknown" one: the first is the weld's (its rotational rows' weight)
     assert [(c.kind, c.element, c.restores) for c in proof.causes] == [
-        ("solver", "equality #0", False),
-        ("unknown", "step 325", False),
+        ("solver", "equality #0", True),
+        ("solver", "the limit of joint 'slider'", True),
+        (
+            "contact",
+            "every contact (14 pairs touch until the runs part (step 325, t = 0.65), alike in both runs)",
+            True,
+        ),
     ]
-    assert "they part later: first at t = 0.65" in proof.causes[0].detail
-    assert "it is a weld" in proof.causes[0].detail
-    assert "first differ in a bit at step 1 (t = 0.002), in qvel[joint12][4]" in proof.causes[1].detail
-    assert "still part at step 325 (t = 0.65)" in proof.causes[1].detail
+    weld, limit, contacts = proof.causes
+    assert "they part later: first at t = 0.65 instead of t = 0.002" in weld.detail
+    assert "it is a weld" in weld.detail
+    assert (
+        "with contacts off in both runs and with equality #0 inactive too, they part later: first at t = 0.728 "
+        "instead of t = 0.65" in contacts.detail
+    )
+    assert "with it off in both runs and with equality #0 inactive" in limit.detail
+    assert "they are equal bit for bit" in limit.detail
+    # by hand: the weld inactive, bit for bit until step 325; with contacts off too, until step 364; with the
+    # slider's limit off as well, to the end
+    copy = model.scaled(sc, 4)
+    slider = mujoco.mj_name2id(model.runner.mjmodel, mujoco.mjtObj.mjOBJ_JOINT, "slider")
+
+    def weld_inactive(m):
+        m.eq_active0[0] = 0
+
+    def and_no_contacts(m):
+        weld_inactive(m)
+        m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
+
+    def and_no_limit(m):
+        and_no_contacts(m)
+        m.jnt_limited[slider] = 0
+
+    assert plain_mujoco_runs_equal(model, copy, sc, 4, 324, weld_inactive, controls=u)
+    assert not plain_mujoco_runs_equal(model, copy, sc, 4, 325, weld_inactive, controls=u)
+    assert plain_mujoco_runs_equal(model, copy, sc, 4, 363, and_no_contacts, controls=u)
+    assert not plain_mujoco_runs_equal(model, copy, sc, 4, 364, and_no_contacts, controls=u)
+    assert plain_mujoco_runs_equal(model, copy, sc, 4, 500, and_no_limit, controls=u)
     judged = engines.verify(model, sc, 10, duration=1.0, controls=u)
     weld = [c for c in judged.causes if c.element == "equality #0"]
     assert len(weld) == 1
     assert "they part later" in weld[0].detail
     assert "precision" in {c.kind for c in judged.causes}
+
+
+def test_a_cause_hidden_by_one_that_parts_the_runs_first_is_found_with_that_one_removed():
+    """A weld parts the runs from the first step and hides a contact that parts them at step 203: contacts
+    off alone change nothing, so the contact shows only in counter-runs made with the weld inactive too.
+    Both are named, and together restore the run bit for bit, as plain MuJoCo confirms."""
+    model, sc = searched(DATA / "weld_and_egg.xml")
+    rep = engines.verify(model, sc, 4, duration=0.5)
+    assert [(c.kind, c.element, c.restores) for c in rep.causes] == [
+        ("solver", "equality #0", True),
+        ("contact", "geom 'post' / geom 'shell' (sphere-ellipsoid: mjc_Convex (GJK/EPA))", True),
+    ]
+    assert "they part later: first at t = 0.406 instead of t = 0.002" in rep.causes[0].detail
+    assert (
+        "with these contacts off in both runs and with equality #0 inactive too, they are equal bit for bit"
+        in rep.causes[1].detail
+    )
+    copy = model.scaled(sc, 4)
+    shell = mujoco.mj_name2id(model.runner.mjmodel, mujoco.mjtObj.mjOBJ_GEOM, "shell")
+
+    def weld_inactive(m):
+        m.eq_active0[0] = 0
+
+    def shell_out(m):
+        m.geom_contype[shell] = m.geom_conaffinity[shell] = 0
+
+    def both(m):
+        weld_inactive(m)
+        shell_out(m)
+
+    assert not plain_mujoco_runs_equal(model, copy, sc, 4, 250, weld_inactive)
+    assert not plain_mujoco_runs_equal(model, copy, sc, 4, 250, shell_out)
+    assert plain_mujoco_runs_equal(model, copy, sc, 4, 250, both)
 
 
 def test_the_solver_remedy_names_every_stopping_rule_and_it_works():
@@ -489,3 +551,30 @@ def test_what_still_parts_with_every_cause_removed_is_the_unknown_one():
 
     _, unknown = _restoring(found, never, report, 1, True, ["equalities"], static=False)
     assert unknown.element == "q"
+
+
+def test_a_limit_counter_run_switches_off_the_limits_it_names_and_no_others():
+    """``limit_names`` lists every joint, then every tendon, whose range is a constraint (MuJoCo's own
+    ``jnt_limited`` and ``tendon_limited``); ``variant(unlimited=...)`` switches off those it indexes in a copy."""
+    path = Path(mujoco.__file__).parent / "testdata" / "model.xml"
+    if not path.is_file():
+        pytest.skip("this MuJoCo wheel ships no testdata/model.xml")
+    runner = searched(path)[0].runner
+    m = runner.mjmodel
+    joints = [
+        f"joint '{mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, i)}'" for i in range(m.njnt) if m.jnt_limited[i]
+    ]
+    tendons = [
+        f"tendon '{mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_TENDON, i)}'"
+        for i in range(m.ntendon)
+        if m.tendon_limited[i]
+    ]
+    names = runner.limit_names()
+    assert names == joints + tendons
+    assert "joint 'slider'" in names and "tendon 'spatial'" in names
+    off = (names.index("joint 'slider'"), names.index("tendon 'spatial'"))
+    v = runner.variant(unlimited=off).mjmodel
+    slider = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, "slider")
+    assert v.jnt_limited[slider] == 0 and v.tendon_limited.sum() == 0
+    assert v.jnt_limited.sum() == m.jnt_limited.sum() - 1  # the others keep theirs
+    assert m.jnt_limited[slider] == 1 and m.tendon_limited.sum() == 1  # the runner's own model is untouched

@@ -278,7 +278,7 @@ class CounterRuns(Protocol):
     """
 
     def variant(self, *, tolerance: float | None = None) -> CounterRuns:
-        """A copy run with another tolerance (MuJoCo's also take contacts, solver, inactive_equalities)."""
+        """A copy run with another tolerance (MuJoCo's also take contacts, solver, inactive_equalities, unlimited)."""
 
     def solver_settings(self) -> dict[str, float]:
         """The solver's stopping rules that have no pure dimension, nonzero ones only."""
@@ -360,6 +360,10 @@ class SolverDiagnosis(Protocol):
 
     def equality_kinds(self) -> list[str]:
         """Each equality constraint's kind, in the engine's words (``"weld"``, ``"connect"``, ...)."""
+
+    def limit_names(self) -> list[str]:
+        """Each joint and tendon whose range is a constraint (``variant(unlimited=...)`` indexes them), named as
+        the reports name it."""
 
     def first_contact_difference(self, other, n_steps: int, controls: Controls = None, other_controls: Controls = None):
         """The first step after which other pairs touch in `other`'s run: (step or None, pairs only there, only

@@ -363,10 +363,11 @@ class MujocoRunner:
         native_ccd: bool = True,
         contactless_geoms: tuple[int, ...] = (),
         iterations: int | None = None,
+        unlimited: tuple[int, ...] = (),
     ) -> MujocoRunner:
         """A copy run with another solver, tolerance, count of iterations or integrator, with contacts switched
-        off (all, or some geoms'), or with some equality constraints inactive: a counter-run's model (or the
-        rod's, in another integrator)."""
+        off (all, or some geoms'), with some equality constraints inactive, or with some limits off (indices
+        into :meth:`limit_names`): a counter-run's model (or the rod's, in another integrator)."""
         mj = _mujoco()
         out = self._with_model_copy()
         m = out.mjmodel
@@ -388,6 +389,10 @@ class MujocoRunner:
             m.geom_conaffinity[g] = 0
         if not native_ccd:  # convex pairs through MuJoCo's older libccd path instead of its native GJK/EPA
             m.opt.disableflags |= int(mj.mjtDisableBit.mjDSBL_NATIVECCD)
+        limited = self._limited() if unlimited else []
+        for k in unlimited:  # the joint or tendon moves past its range: no limit constraint is made for it
+            field, i = limited[k]
+            getattr(m, field)[i] = 0
         return out
 
     def uses_native_ccd(self) -> bool:
@@ -440,6 +445,16 @@ class MujocoRunner:
     def equality_names(self) -> list[str]:
         """Each equality constraint, named as the reports name it."""
         return [self.element_name("eq_data", i) for i in range(self.mjmodel.neq)]
+
+    def limit_names(self) -> list[str]:
+        """Each joint and tendon with a limit (its range a constraint), named as the reports name it: the
+        joints first, then the tendons."""
+        return [self.element_name("jnt_range" if f == "jnt_limited" else "tendon_range", i) for f, i in self._limited()]
+
+    def _limited(self) -> list[tuple[str, int]]:
+        """The field that switches each limit (``jnt_limited``, ``tendon_limited``) and the element's index."""
+        m = self.mjmodel
+        return [(f, int(i)) for f in ("jnt_limited", "tendon_limited") for i in np.flatnonzero(getattr(m, f))]
 
     def equality_kinds(self) -> list[str]:
         """Each equality constraint's kind: connect, weld, joint, tendon, flex, ... (mjtEq's names, lower case)."""

@@ -9,13 +9,17 @@ Each cause is established, not presumed:
   settings the engine ignores);
 * ``solver``: the original and the scaled copy run again with the
   solver's tolerance at 0 (every iteration done), with the scale-free
-  solver, and with the equality constraints inactive (then each one alone);
+  solver, with the equality constraints inactive (then each one alone),
+  and with the joints' and tendons' limits off (then each one alone);
 * ``contact``: with MuJoCo's native convex collision (native CCD) off,
   and with contacts off; the geom pairs in contact after each step are
   compared, and the first pair that touches in one run only is named.
 
 A counter-run *shows* a cause when the runs, with it removed from both,
-part later or never.  A cause is named only as part of the smallest set
+part later or never.  A cause that parts the runs first hides the others
+(a weld acting from the first step hides a contact that would part them
+later), so the counter-runs are made again with the causes found removed
+in both runs, round after round, until nothing new shows.  A cause is named only as part of the smallest set
 whose counter-runs together *restore* the run: bit for bit where every
 factor is a power of two ("nearly" is not agreement there), else within
 the yardstick; each such cause says so (``cause.restores``).  Causes
@@ -147,25 +151,6 @@ def find_causes(
 
     t = report.original.t
 
-    def shown(counter: Counter) -> str:
-        """What a counter-run that shows a cause showed, in words: never "agree" for "nearly"."""
-        if counter.exact:
-            return "they are equal bit for bit"
-        if counter.restores:
-            return (
-                f"they stay within the yardstick (largest deviation {float_text(counter.worst)} instead of "
-                f"{float_text(report.max_deviation)})"
-            )
-        if counter.parts > verdict_parts:
-            return (
-                f"they part later: first at t = {float(t[counter.parts]):.6g} instead of t = "
-                f"{float(t[verdict_parts]):.6g}, where another cause takes over"
-            )
-        return (
-            f"they come closer (largest deviation {float_text(counter.worst)} instead of "
-            f"{float_text(report.max_deviation)}) but still part at t = {float(t[counter.parts]):.6g}"
-        )
-
     if not isinstance(original, CounterRuns):
         return sorted_causes(causes or [_unknown(report, verdict_parts, bits, ())])
     solver = original.solver_settings()
@@ -175,39 +160,75 @@ def find_causes(
     if solver:
         variants["tolerance"] = {"tolerance": 0.0}
     equalities = original.equality_names() if diagnosable else ()
+    limited = original.limit_names() if diagnosable else ()  # joints and tendons with a limit
     if diagnosable:
         if original.solver_name() != original.scale_free_solver:
             variants["newton"] = {"solver": original.scale_free_solver}
         if equalities:
             variants["equalities"] = {"inactive_equalities": tuple(range(len(equalities)))}
+        if limited:
+            variants["limits"] = {"unlimited": tuple(range(len(limited)))}
         if original.uses_native_ccd():
             variants["native_ccd"] = {"native_ccd": False}
         variants["contacts"] = {"contacts": False}
-    results = dict(zip(variants, counters(*variants.values()), strict=True)) if variants else {}
-    # each cause a counter-run shows, with the options of that counter-run: (cause, options)
-    found: list[tuple[Cause, dict]] = []
 
-    if "tolerance" in results and results["tolerance"].shows:
-        names = ", ".join(f"option {k} = {float_text(v)}" for k, v in solver.items())
-        found.append(
-            (
-                Cause(
-                    "solver",
-                    names,
-                    "a stopping rule of no pure dimension: the scaled run stops after "
-                    f"other iterations; with it at 0 in both runs {shown(results['tolerance'])}; load with "
-                    f"with_values({', '.join(f'{k}=0' for k in solver)})",
-                ),
-                variants["tolerance"],
+    def shown_causes(base: dict, ref_parts: int, ref_worst: float, besides: str) -> list[tuple[Cause, dict]]:
+        """Each cause a counter-run shows with the options of `base` (causes already found) in both runs too:
+        (cause, its own options).  It shows one when the runs part later than at step `ref_parts` (the runs
+        with `base`), or never, or stay a thousand times closer than `ref_worst`."""
+
+        def relative(counter: Counter) -> Counter:
+            later = counter.parts is None or counter.parts > ref_parts
+            return counter._replace(shows=later or counter.worst < ref_worst / SHRINK)
+
+        def with_base(*options) -> list[Counter]:
+            return [relative(c) for c in counters(*(_merged([base, o]) for o in options))]
+
+        also = f" and with {besides} too," if besides else ""
+
+        def shown(counter: Counter) -> str:
+            """What a counter-run that shows a cause showed, in words: never "agree" for "nearly"."""
+            if counter.exact:
+                return f"{also} they are equal bit for bit"
+            if counter.restores:
+                return (
+                    f"{also} they stay within the yardstick (largest deviation {float_text(counter.worst)} "
+                    f"instead of {float_text(ref_worst)})"
+                )
+            if counter.parts > ref_parts:
+                return (
+                    f"{also} they part later: first at t = {float(t[counter.parts]):.6g} instead of t = "
+                    f"{float(t[ref_parts]):.6g}, where another cause takes over"
+                )
+            return (
+                f"{also} they come closer (largest deviation {float_text(counter.worst)} instead of "
+                f"{float_text(ref_worst)}) but still part at t = {float(t[counter.parts]):.6g}"
             )
-        )
-    if diagnosable:
+
+        results = dict(zip(variants, with_base(*variants.values()), strict=True)) if variants else {}
+        found: list[tuple[Cause, dict]] = []  # each cause a counter-run shows, with its options
+        if "tolerance" in results and results["tolerance"].shows:
+            names = ", ".join(f"option {k} = {float_text(v)}" for k, v in solver.items())
+            found.append(
+                (
+                    Cause(
+                        "solver",
+                        names,
+                        "a stopping rule of no pure dimension: the scaled run stops after "
+                        f"other iterations; with it at 0 in both runs{shown(results['tolerance'])}; load with "
+                        f"with_values({', '.join(f'{k}=0' for k in solver)})",
+                    ),
+                    variants["tolerance"],
+                )
+            )
+        if not diagnosable:
+            return found
         newton, remedy = results.get("newton"), original.solver_remedy(tolerance_zero=False)
         newton_options = variants.get("newton")
         if newton is not None and not (newton.exact or (newton.shows and not exact_expected)):
             # the solver's own stopping rule may stop it at another iteration too: with it at 0, bit for bit
             zero = {"solver": original.scale_free_solver, "tolerance": 0.0}
-            stopped = counters(zero)[0]
+            stopped = with_base(zero)[0]
             if stopped.exact or (stopped.shows and not newton.shows):
                 newton, remedy, newton_options = stopped, original.solver_remedy(tolerance_zero=True), zero
         if newton is not None and newton.shows:
@@ -217,14 +238,14 @@ def find_causes(
                         "solver",
                         f"option solver = {original.solver_name()}",
                         "this solver's iterations are "
-                        f"not scale-free; with {original.scale_free_solver}'s in both runs {shown(newton)}: "
+                        f"not scale-free; with {original.scale_free_solver}'s in both runs{shown(newton)}: "
                         f"{remedy} to scale it",
                     ),
                     newton_options,
                 )
             )
         if "equalities" in results and results["equalities"].shows:  # which of them: each one off alone
-            alone = counters(*({"inactive_equalities": (i,)} for i in range(len(equalities))))
+            alone = with_base(*({"inactive_equalities": (i,)} for i in range(len(equalities))))
             shows = [i for i, counter in enumerate(alone) if counter.shows]
             named = ", ".join(equalities[i] for i in shows)
             kinds = original.equality_kinds()
@@ -240,15 +261,45 @@ def find_causes(
                 "solver",
                 named or "the equality constraints together",
                 "an equality constraint the solver does not treat scale-free: with "
-                f"{'it' if len(shows) == 1 else 'them'} inactive in both runs "
+                f"{'it' if len(shows) == 1 else 'them'} inactive in both runs"
                 f"{shown(results['equalities'])}{weld}",
             )
             found.append((cause, {"inactive_equalities": tuple(shows) or tuple(range(len(equalities)))}))
-        found.extend(
-            _contact_causes(
-                original, copy, results, shown, counters, n_steps, verdict_parts, u_original, u_scaled, t, model.engine
+        if "limits" in results and results["limits"].shows:  # which of them: each one off alone
+            alone = with_base(*({"unlimited": (i,)} for i in range(len(limited))))
+            shows = [i for i, counter in enumerate(alone) if counter.shows]
+            cause = Cause(
+                "solver",
+                f"the limit of {', '.join(limited[i] for i in shows)}" if shows else "the limits together",
+                "a limit (a joint's or tendon's range) whose constraint force the solver does not find "
+                f"scale-free: with {'it' if len(shows) == 1 else 'them'} off in both runs{shown(results['limits'])}",
             )
+            found.append((cause, {"unlimited": tuple(shows) or tuple(range(len(limited)))}))
+        # a contact is looked for in the runs as `base` leaves them (stepped again with its options)
+        pair = (original.variant(**base), copy.variant(**base)) if base else (original, copy)
+        found.extend(
+            _contact_causes(*pair, results, shown, with_base, n_steps, ref_parts, u_original, u_scaled, t, model.engine)
         )
+        return found
+
+    # A cause that parts the runs first hides the others: with it removed, the runs may part later by another
+    # that removed alone changed nothing (a weld from the first step, contacts from the third).  So the
+    # counter-runs are made again with the causes found removed in both runs, until they restore the run, part
+    # no later, or show nothing new.
+    found = shown_causes({}, verdict_parts, report.max_deviation, "")
+    ref_parts = verdict_parts
+    while found and not any(c.restores for c in counters(*(o for _c, o in found))):  # (alone: as _restoring)
+        base = _merged(o for _c, o in found)
+        together = counters(base)[0]
+        if together.restores or together.parts is None or together.parts <= ref_parts:
+            break
+        besides = _in_words(base, original, equalities, limited)
+        more = [
+            (c, o) for c, o in shown_causes(base, together.parts, together.worst, besides) if _merged([base, o]) != base
+        ]
+        if not more:
+            break
+        found, ref_parts = [*found, *more], together.parts
     found = [(_with_constants(c, o, model.engine), o) for c, o in found]
     static = bool(causes)  # the audit's: numbers the copy holds wrong, which no counter-run removes
     return sorted_causes([*causes, *_restoring(found, counters, report, verdict_parts, bits, list(variants), static)])
@@ -328,9 +379,31 @@ def _merged(options) -> dict:
     out: dict = {}
     for o in options:
         for key, value in o.items():
-            many = key in ("inactive_equalities", "contactless_geoms")
+            many = key in ("inactive_equalities", "contactless_geoms", "unlimited")
             out[key] = tuple(sorted(set(out.get(key, ())) | set(value))) if many else value
     return out
+
+
+def _in_words(options: dict, runner, equalities, limited) -> str:
+    """The options of a counter-run in words: ``equality #0 inactive, contacts off``."""
+    parts = []
+    if "solver" in options:
+        parts.append(f"{options['solver']}'s solver")
+    if "tolerance" in options:
+        parts.append(f"the tolerance at {float_text(options['tolerance'])}")
+    if options.get("inactive_equalities"):
+        parts.append(f"{', '.join(equalities[i] for i in options['inactive_equalities'])} inactive")
+    if options.get("unlimited"):
+        parts.append(f"the limit of {', '.join(limited[i] for i in options['unlimited'])} off")
+    if options.get("contacts") is False:  # every contact off: the collision paths below with it
+        parts.append("contacts off")
+    else:
+        if options.get("native_ccd") is False:
+            parts.append("native CCD off")
+        if options.get("contactless_geoms"):
+            geoms = ", ".join(runner.element_name("geom_size", g) for g in options["contactless_geoms"])
+            parts.append(f"{geoms} out of collision")
+    return ", ".join(parts[:-1]) + f" and {parts[-1]}" if len(parts) > 1 else "".join(parts)
 
 
 def _marked(cause: Cause, restores: bool, also: str = "") -> Cause:
@@ -387,7 +460,7 @@ def _contact_causes(
                     "contact",
                     "native CCD (convex pairs: meshes, boxes)",
                     "MuJoCo's own convex collision (GJK/EPA, stopped by ccd_tolerance and ccd_iterations) finds "
-                    f"other contacts in the scaled run; with it off in both runs {shown(ccd)}: set "
+                    f"other contacts in the scaled run; with it off in both runs{shown(ccd)}: set "
                     '<flag nativeccd="disable"/> in both, or see the hidden constants page',
                 ),
                 {"native_ccd": False},
@@ -407,7 +480,7 @@ def _contact_causes(
         more = f" (and {extra} other pair{'s' if extra > 1 else ''})" if extra else ""
         detail = (
             f"in contact in {where} after step {step} (t = {float(t[step]):.6g}){more}: a contact that starts "
-            f"or ends at another step; with contacts off in both runs {shown(contacts)}"
+            f"or ends at another step; with contacts off in both runs{shown(contacts)}"
         )
         return [*out, (Cause("contact", " / ".join(pair), detail), {"contacts": False})]
     # the same pairs touch at every step before the runs part: the contact computed for some pair is not
@@ -435,12 +508,12 @@ def _contact_causes(
         if counter.shows:
             detail = (
                 f"the same pairs touch in both runs {parted}, but the contacts computed here are not "
-                f"scale-free: with these contacts off in both runs {shown(counter)}"
+                f"scale-free: with these contacts off in both runs{shown(counter)}"
             )
             out.append((_with_paths(Cause("contact", label, detail), paths, engine), option))
     touch = "1 pair touches" if len(touched) == 1 else f"{len(touched)} pairs touch"
     everything = f"every contact ({touch} {parted}, alike in both runs)"
-    detail = f"the same pairs touch in both runs {parted}; with contacts off in both runs {shown(contacts)}"
+    detail = f"the same pairs touch in both runs {parted}; with contacts off in both runs{shown(contacts)}"
     return [*out, (Cause("contact", everything, detail), {"contacts": False})]
 
 
