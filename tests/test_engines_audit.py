@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
@@ -113,8 +114,10 @@ def test_the_audit_reads_as_text():
     assert "solver: option tolerance" in text
 
 
-def test_a_probe_the_engine_refuses_is_named_not_raised(tmp_path):
-    """A speck whose inertia sits just above mjMINVAL: the probe at 1/4 of its mass unit does not compile."""
+def test_a_probe_the_engine_refuses_is_named_on_the_copys_side_and_passed_over_on_the_other(tmp_path):
+    """A speck whose inertia sits just above mjMINVAL: the probe at 1/4 of its mass unit does not compile.  A
+    copy lighter than the original (s = 1/2) is on its way to that floor: the refusal is its threshold cause,
+    and nothing is compared.  A heavier one (s = 2) is not: the probe by 4 alone gives the exponents."""
     speck = tmp_path / "speck.xml"
     speck.write_text(
         '<mujoco><option timestep="0.002"/><worldbody><geom type="plane" size="1 1 0.1"/>'
@@ -125,12 +128,37 @@ def test_a_probe_the_engine_refuses_is_named_not_raised(tmp_path):
     unit = pt.Scaling.from_unit_change(model.system(), {"M": 1})
     with pytest.raises(engines.EngineModelError, match="mjMINVAL"):  # independent of audit: MuJoCo refuses it
         model.scaled(unit, 0.25)
-    audit = engines.audit(model, unit, 2)
-    assert audit.compared == 0
-    refused = [c for c in audit.causes if c.element == "the probes at s = 4 and 1/4"]
-    assert len(refused) == 1
-    assert refused[0].kind == "threshold"
+    lighter = engines.audit(model, unit, Fraction(1, 2))
+    assert lighter.compared == 0
+    refused = [c for c in lighter.causes if c.kind == "threshold"]
+    assert [c.element for c in refused] == ["the probe at s = 1/4"]
     assert "mjMINVAL" in refused[0].detail
+    heavier = engines.audit(model, unit, 2)
+    assert heavier.compared > 0
+    assert not [c for c in heavier.causes if c.kind in ("threshold", "unscaled", "dimension")]
+    # the probe by 4 alone still sees a number the copy holds wrong: the speck's mass left as it was
+    wrong = model.scaled(unit, 2).with_values(geom1_mass=6e-11)
+    assert [c.kind for c in engines.audit(model, unit, 2, scaled=wrong).causes if c.kind == "unscaled"]
+
+
+def test_the_probe_by_a_quarter_alone_gives_the_exponents_when_the_probe_by_four_is_refused(monkeypatch):
+    """The other way round: a copy lighter than the original, and an engine that refuses the probe by 4 (made
+    to here); the probe by 1/4 alone holds the copy to its factors, and catches a number left as it was."""
+    model, sc = searched(engines.example_path("pendulum.xml"))
+    right, wrong = model.scaled(sc, Fraction(1, 2)), model.scaled(sc, Fraction(1, 2)).multiplied(g=2)
+    scaled = type(model).scaled
+
+    def refusing_four(self, scaling, s, **options):
+        if s == 4:
+            raise engines.EngineModelError("probe", "", "refused for this test")
+        return scaled(self, scaling, s, **options)
+
+    monkeypatch.setattr(type(model), "scaled", refusing_four)
+    clean = engines.audit(model, sc, Fraction(1, 2), scaled=right)
+    assert clean.compared > 0
+    assert not [c for c in clean.causes if c.kind in ("threshold", "unscaled", "dimension")]
+    caught = engines.audit(model, sc, Fraction(1, 2), scaled=wrong)
+    assert [c.element for c in caught.causes if c.kind == "unscaled"] == ["opt.gravity"]
 
 
 def test_the_solver_cause_names_the_engines_own_setting_and_its_remedy():

@@ -16,7 +16,7 @@ from pitheorem.engines.verdicts.strength import (
     control_factors,
     horizon,
 )
-from pitheorem.formatting.pieces import strength_lines
+from pitheorem.formatting.pieces import float_text, strength_lines
 
 mujoco = pytest.importorskip("mujoco")
 
@@ -369,3 +369,22 @@ def test_the_masses_are_a_control_only_where_something_else_carries_mass(tmp_pat
     rep = engines.verify(falling, sc, 10, duration=0.5)
     assert rep.verdict == "similar"  # gravity is seen, and the masses form no group
     assert [c.group for c in rep.controls] == ["g"]
+
+
+def test_a_model_without_gravity_is_said_to_catch_errors_in_its_masses_only(tmp_path):
+    """No gravity in the file: no gravity control runs, and the strength line names only the masses."""
+    free = tmp_path / "free.xml"
+    free.write_text(
+        '<mujoco><option timestep="0.002" gravity="0 0 0"/><worldbody><body><joint name="x" type="slide" '
+        'axis="1 0 0" damping="0.2"/><geom type="box" size="0.1 0.1 0.1" mass="1"/></body></worldbody>'
+        '<actuator><motor joint="x" gear="1"/></actuator></mujoco>'
+    )
+    model = engines.load(free)
+    sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
+    rep = engines.verify(model, sc, 10, duration=0.5, controls=engines.smooth_controls(model))
+    assert {c.group for c in rep.controls} == {"masses"}
+    line = next(line for line in str(rep).splitlines() if line.startswith("strength:"))
+    assert f"an error of {float_text(rep.detection_limit)} in the masses is caught" in line
+    assert "gravity" not in line
+    worst = max(rep.sensitivity.values())
+    assert f"(yardstick: 10x each state's one-ulp sensitivity (the largest {worst:.3g}))" in str(rep).splitlines()[0]

@@ -811,7 +811,7 @@ def test_scaling_text_divides_by_negative_powers():
 
 def test_report_texts_name_what_was_measured():
     judged = sample("similarity_report_baseline")
-    assert f"(largest {max(judged.sensitivity.values()):.3g})" in str(judged)
+    assert f"(the largest {max(judged.sensitivity.values()):.3g})" in str(judged)
     engine = sample("engine_similarity_report")
     assert f"; pure ODE: {engine.ode_report.max_deviation:.3g}" in str(engine)
     assert str(engine).endswith(f"; engine vs exact ODE: {engine.engine_vs_ode:.3g}")

@@ -445,7 +445,7 @@ def test_baseline_report_names_the_largest_sensitivity(hinged, figure5):
     assert math.isnan(rep.tol)
     largest = max(rep.sensitivity.values())
     assert largest > min(rep.sensitivity.values()) > 0
-    assert f"(largest {largest:.3g})" in str(rep)
+    assert f"(the largest {largest:.3g})" in str(rep)
 
 
 def test_non_similarity_names_a_group_it_changes(hinged):

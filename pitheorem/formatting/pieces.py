@@ -837,12 +837,17 @@ def strength_lines(report) -> list[str]:
             f"its yardstick, so it cannot show an error in {'that' if len(unseen) == 1 else 'them'}"
         )
     if "g" in unseen:
+        # not "gravity cannot act": a yardstick widened by the run's own sensitivity (a contact at the edge, chaos)
+        # hides gravity acting in full (robosuite's Sawyer at s = 10: gravity off moves it by 14.6, within it)
         lines.append(
-            "gravity cannot act on this run's motion (compensated, balanced or planar): a gravity error cannot be seen"
+            "either gravity barely acts on this run's motion (compensated, balanced or planar) or the run's own "
+            "sensitivity, its yardstick, is wider than gravity's effect: a gravity error cannot be seen"
         )
     parts = []
     if report.detection_limit is not None:
-        parts.append(f"an error of {float_text(report.detection_limit)} in gravity or the masses is caught")
+        # the groups whose controls ran: a model without gravity (spot in robosuite) has no gravity control
+        ran = " or ".join(words.get(g, g) for g in dict.fromkeys(c.group for c in report.controls))
+        parts.append(f"an error of {float_text(report.detection_limit)} in {ran or 'gravity or the masses'} is caught")
     end = float(report.original.t[-1]) if len(report.original) else 0.0
     if report.horizon is not None:
         if report.horizon < end:

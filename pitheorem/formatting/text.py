@@ -249,7 +249,7 @@ def _similarity_report(report) -> str:
     per = ", ".join(f"{n}: {d:.3g}" for n, d in report.deviation.items())
     if report.sensitivity is not None:
         worst = max(report.sensitivity.values(), default=0.0)
-        judged = f"within {report.baseline_factor:g}x the one-ulp sensitivity (largest {worst:.3g}) per state"
+        judged = f"yardstick: {report.baseline_factor:g}x each state's one-ulp sensitivity (the largest {worst:.3g})"
     else:
         judged = f"tol {report.tol:g}"
     exact = report.exact and report.sensitivity is not None

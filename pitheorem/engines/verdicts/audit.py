@@ -153,23 +153,31 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None, 
     backend = model.runner
     causes, compared = [], 0
     original = backend.stored_numbers()
-    try:
-        probe = model.scaled(scaling, PROBE, keep_inputs=keep_inputs).runner.stored_numbers()
-        # a second probe, the other way: a number that scales by 4**k one way and not by 4**-k the other
-        # is not scale-free even where each probe alone looks clean (a rotation found by an iteration
-        # that stops at an absolute tolerance, say); and at s = 4 itself the first probe is the copy
-        inverse = model.scaled(scaling, Fraction(1, PROBE), keep_inputs=keep_inputs).runner.stored_numbers()
-    except PiTheoremError as err:  # a probe the engine refuses (a mass below its floor): no exponents
+    # two probes, by 4 and by 1/4: a number that scales by 4**k one way and not by 4**-k the other is not
+    # scale-free even where each probe alone looks clean (a rotation found by an iteration that stops at an
+    # absolute tolerance, say); and at s = 4 itself the first probe is the copy
+    probe, inverse, refused = {}, {}, []
+    for factor, into in ((PROBE, probe), (Fraction(1, PROBE), inverse)):
+        try:
+            into.update(model.scaled(scaling, factor, keep_inputs=keep_inputs).runner.stored_numbers())
+        except PiTheoremError as err:  # a probe the engine refuses (a mass below its floor): no exponents by it
+            refused.append((factor, err))
+    # a probe refused on the copy's side of 1 (or both) is a threshold this copy is on its way to: nothing is
+    # compared.  One refused on the other side says nothing of this copy (robosuite's Sawyer at s = 10, whose
+    # meshes at 1/4 fall below MuJoCo's volume floor): the other probe alone gives the exponents
+    if refused and (len(refused) == 2 or (refused[0][0] > 1) == (s > 1) or s == 1):
         causes.append(
             Cause(
                 "threshold",
-                "the probes at s = 4 and 1/4",
-                f"the engine refuses one: {str(err).splitlines()[0]}; the stored numbers were not compared",
+                f"the probe{'s' if len(refused) == 2 else ''} at s = {' and '.join(str(f) for f, _e in refused)}",
+                f"the engine refuses {'them' if len(refused) == 2 else 'it'}: {str(refused[0][1]).splitlines()[0]}; "
+                "the stored numbers were not compared",
             )
         )
         original = {}
     if original:  # each stored copy of a file's number against the dimension the reader gave it
-        causes.extend(dimension_causes(model, scaling, original, probe, PROBE, keep_inputs=keep_inputs))
+        one, by = (probe, PROBE) if probe else (inverse, Fraction(1, PROBE))
+        causes.extend(dimension_causes(model, scaling, original, one, by, keep_inputs=keep_inputs))
     copy = scaled.runner.stored_numbers()
     # rows no step reads (a visual geom's pose, its mesh): held to nothing, for nothing in a run moves by them
     unread = backend.unread_stored() if isinstance(backend, StoresUnreadNumbers) else {}
@@ -178,12 +186,20 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None, 
     for field, before in original.items():
         if field in NOT_STEPPED:
             continue
-        if field not in copy or copy[field].shape != before.shape or probe[field].shape != before.shape:
+        probes = [p[field] for p in (probe, inverse) if p]
+        if field not in copy or copy[field].shape != before.shape or any(p.shape != before.shape for p in probes):
             causes.append(Cause("unscaled", field, "the scaled model holds another number of values here"))
             continue
-        k, clean_up, residue = _probe_exponents(before, probe[field])
-        back, clean_back, _ = _probe_exponents(before, inverse[field])
-        clean = clean_up & clean_back & (back == -k)
+        if probe:
+            k, clean_up, residue = _probe_exponents(before, probe[field])
+        else:  # the probe by 1/4 alone: its exponents are those by 4, negated
+            k, clean_up, residue = _probe_exponents(before, inverse[field])
+            k = -k
+        clean_back = np.ones(before.shape, dtype=bool)
+        if probe and inverse:
+            back, clean_back, _ = _probe_exponents(before, inverse[field])
+            clean_back &= back == -k
+        clean = clean_up & clean_back
         idle = unread.get(field)
         if idle is not None:  # a mask of rows, across each row's entries
             idle = np.broadcast_to(idle.reshape((-1,) + (1,) * (before.ndim - 1)), before.shape)
@@ -195,7 +211,11 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None, 
         if changed.any():
             # the probe that shows it: the one by 4 where that is no power of 4, else the one by 1/4
             i = tuple(np.argwhere(changed)[0]) if changed.ndim else ()
-            shown = (PROBE, probe[field]) if not clean_up[i] else (Fraction(1, PROBE), inverse[field])
+            shown = (
+                (PROBE, probe[field])
+                if probe and (not clean_up[i] or not inverse)
+                else (Fraction(1, PROBE), inverse[field])
+            )
             causes.append(_not_a_power(backend, field, before, shown, changed))
         magnitude = np.abs(before.astype(float))
         for e in np.unique(k[clean]):

@@ -179,7 +179,7 @@ def find_causes(
 
         def relative(counter: Counter) -> Counter:
             later = counter.parts is None or counter.parts > ref_parts
-            return counter._replace(shows=later or counter.worst < ref_worst / SHRINK)
+            return Counter(later or counter.worst < ref_worst / SHRINK, *counter[1:])
 
         def with_base(*options) -> list[Counter]:
             return [relative(c) for c in counters(*(_merged([base, o]) for o in options))]
