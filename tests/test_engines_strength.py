@@ -303,16 +303,20 @@ def test_a_gravity_control_made_in_the_compiled_model_runs_as_one_compiled_from_
     assert a.qpos[0] != 0.3
 
 
+def _slider(path, option: str = ""):
+    """A box on a horizontal slide joint pushed by a motor, written to `path` (`option`: more of <option>)."""
+    path.write_text(
+        f'<mujoco><option timestep="0.002" {option}/><worldbody><body><joint name="x" type="slide" '
+        'axis="1 0 0" damping="0.2"/><geom type="box" size="0.1 0.1 0.1" mass="1"/></body></worldbody>'
+        '<actuator><motor joint="x" gear="1"/></actuator></mujoco>'
+    )
+    return path
+
+
 def test_a_copy_with_gravity_left_wrong_on_a_planar_model_is_inconclusive_not_similar(tmp_path):
     """A slider moving in the horizontal plane: gravity cannot act on it, so a copy with gravity left unscaled
     moves exactly like a right one.  Its masses are seen (a motor pushes them), gravity is not: inconclusive."""
-    planar = tmp_path / "planar.xml"
-    planar.write_text(
-        '<mujoco><option timestep="0.002"/><worldbody><body><joint name="x" type="slide" axis="1 0 0" '
-        'damping="0.2"/><geom type="box" size="0.1 0.1 0.1" mass="1"/></body></worldbody>'
-        '<actuator><motor joint="x" gear="1"/></actuator></mujoco>'
-    )
-    model = engines.load(planar)
+    model = engines.load(_slider(tmp_path / "planar.xml"))
     sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
     u = engines.smooth_controls(model)
     wrong = model.scaled(sc, 10).multiplied(g=0.1)  # gravity as it was
@@ -373,13 +377,7 @@ def test_the_masses_are_a_control_only_where_something_else_carries_mass(tmp_pat
 
 def test_a_model_without_gravity_is_said_to_catch_errors_in_its_masses_only(tmp_path):
     """No gravity in the file: no gravity control runs, and the strength line names only the masses."""
-    free = tmp_path / "free.xml"
-    free.write_text(
-        '<mujoco><option timestep="0.002" gravity="0 0 0"/><worldbody><body><joint name="x" type="slide" '
-        'axis="1 0 0" damping="0.2"/><geom type="box" size="0.1 0.1 0.1" mass="1"/></body></worldbody>'
-        '<actuator><motor joint="x" gear="1"/></actuator></mujoco>'
-    )
-    model = engines.load(free)
+    model = engines.load(_slider(tmp_path / "free.xml", 'gravity="0 0 0"'))
     sc = pt.search(model.system(), scale={"g": 1}, fixed=("t",)).scalings[0]
     rep = engines.verify(model, sc, 10, duration=0.5, controls=engines.smooth_controls(model))
     assert {c.group for c in rep.controls} == {"masses"}
