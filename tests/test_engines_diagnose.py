@@ -6,6 +6,7 @@ and the runs agree.  And the verdict is honest both ways: wrong copies are caugh
 
 from __future__ import annotations
 
+import copy as copy_module
 import json
 import warnings
 from pathlib import Path
@@ -571,10 +572,70 @@ def test_a_limit_counter_run_switches_off_the_limits_it_names_and_no_others():
     ]
     names = runner.limit_names()
     assert names == joints + tendons
-    assert "joint 'slider'" in names and "tendon 'spatial'" in names
+    assert "joint 'slider'" in names
+    assert "tendon 'spatial'" in names
     off = (names.index("joint 'slider'"), names.index("tendon 'spatial'"))
     v = runner.variant(unlimited=off).mjmodel
     slider = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, "slider")
-    assert v.jnt_limited[slider] == 0 and v.tendon_limited.sum() == 0
+    assert v.jnt_limited[slider] == 0
+    assert v.tendon_limited.sum() == 0
     assert v.jnt_limited.sum() == m.jnt_limited.sum() - 1  # the others keep theirs
-    assert m.jnt_limited[slider] == 1 and m.tendon_limited.sum() == 1  # the runner's own model is untouched
+    assert m.jnt_limited[slider] == 1
+    assert m.tendon_limited.sum() == 1
+
+
+def test_a_number_the_copy_holds_wrong_is_a_cause_only_where_a_run_shows_it():
+    """Wrong copies at s = 4, numbers left as they were.  The cart's damping acts: set right in the copy, the
+    run is bit for bit again, and the cause says so.  The far ball's margin acts on nothing: the audit lists
+    it, but the verdict names no cause for it, alone (the run is bit for bit) or beside the damping (set right
+    in the copy, the copy's run is the very same bits).  Plain MuJoCo confirms both."""
+    model, sc = searched(DATA / "cart_and_far_ball.xml")
+    u = engines.smooth_controls(model)
+    right = model.scaled(sc, 4)
+    both = right.with_values(geom_far_margin=0.01, joint_x_damping=0.2)
+    rep = engines.verify(model, sc, 4, duration=0.3, controls=u, scaled=both)
+    assert not rep.similar
+    assert [(c.kind, c.element, c.restores) for c in rep.causes] == [("unscaled", "dof_damping", True)]
+    assert (
+        "with it set right in the copy (the original's times its factor) they are equal bit for bit"
+        in rep.causes[0].detail
+    )
+    assert {"geom_margin", "dof_damping"} <= {c.element for c in engines.audit(model, sc, 4, scaled=both).causes}
+    margin = right.with_values(geom_far_margin=0.01)
+    alone = engines.verify(model, sc, 4, duration=0.3, controls=u, scaled=margin)
+    assert alone.exact
+    assert [c for c in alone.causes if c.kind == "unscaled"] == []
+    # two numbers that part the runs from the same step: neither set right alone shows, both together do (the
+    # armature's stored number itself is not read by a step here; its derived diagonal dof_M0 is)
+    three = right.with_values(geom_far_margin=0.01, joint_x_damping=0.2, joint_x_armature=0.05)
+    rep3 = engines.verify(model, sc, 4, duration=0.3, controls=u, scaled=three)
+    assert [(c.kind, c.element, c.restores) for c in rep3.causes] == [
+        ("unscaled", "dof_M0", True),
+        ("unscaled", "dof_damping", True),
+    ]
+    assert all(
+        "with every number the copy holds wrong set right they are equal bit for bit" in c.detail for c in rep3.causes
+    )
+    # by hand in plain MuJoCo: the original, and each wrong copy with the named numbers set to the right copy's,
+    # stepped under the same inputs (the copy's times its motor's factor): the same bits, mapped back
+    dims = model.runner.coordinate_dimensions()[1]
+    back = np.array([float(4 ** sc.exponent_of(d)) for d in dims])
+    u_factor = float(4 ** sc.exponent_of(model.inputs()[0][0]))
+
+    def stepped(compiled, times, fields=()):
+        m = copy_module.copy(compiled)
+        for field in fields:
+            getattr(m, field)[:] = getattr(right.runner.mjmodel, field)
+        d = mujoco.MjData(m)
+        rows = []
+        for i in range(150):
+            d.ctrl[:] = np.asarray(u(i * 0.002)) * times
+            mujoco.mj_step(m, d)
+            rows.append(np.concatenate([d.qpos, d.qvel]))
+        return np.array(rows)
+
+    original = stepped(model.runner.mjmodel, 1.0)
+    assert np.array_equal(original, stepped(both.runner.mjmodel, u_factor, ["dof_damping"]) / back)
+    assert not np.array_equal(original, stepped(both.runner.mjmodel, u_factor) / back)  # as it stands, it parts
+    assert np.array_equal(original, stepped(three.runner.mjmodel, u_factor, ["dof_M0", "dof_damping"]) / back)
+    assert not np.array_equal(original, stepped(three.runner.mjmodel, u_factor, ["dof_damping"]) / back)

@@ -73,6 +73,7 @@ __all__ = [
     "Runs",
     "SolverDiagnosis",
     "StoresCopies",
+    "WritesStored",
 ]
 
 #: open-loop inputs: None (zero input), rows of inputs (one per step) or ``t -> inputs``
@@ -285,6 +286,21 @@ class CounterRuns(Protocol):
 
 
 @runtime_checkable
+class WritesStored(Protocol):
+    """Optional: a copy with some stored numbers set (MuJoCo's): a static cause's counter-run, the copy repaired.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.protocols import WritesStored
+    >>> WritesStored.__name__
+    'WritesStored'
+    """
+
+    def with_stored(self, values) -> WritesStored:
+        """A copy whose stored numbers (fields of ``stored_numbers``) are `values`, nothing derived again."""
+
+
+@runtime_checkable
 class CountsIterations(Protocol):
     """Optional: the solver's iterations of a run counted, and copies run with a fixed count (MuJoCo's).
 
@@ -453,6 +469,7 @@ OPTIONAL = {
         KeepsInputs,
         CounterRuns,
         CountsIterations,
+        WritesStored,
         MultipliesInPlace,
         SolverDiagnosis,
         NamesElements,

@@ -296,6 +296,19 @@ class MujocoRunner:
                 getattr(holder, attr)[...] = moved
         return twin
 
+    def with_stored(self, values) -> MujocoRunner:
+        """A copy whose stored numbers (fields of :meth:`stored_numbers`) are `values` (field -> array of its
+        shape): the compiled model copied, nothing derived again (a static cause's counter-run: the copy
+        repaired)."""
+        out = self._with_model_copy()
+        for field, array in values.items():
+            holder, attr = _holder(out.mjmodel, field)
+            if np.ndim(getattr(holder, attr)) == 0:
+                setattr(holder, attr, np.asarray(array).item())
+            else:
+                getattr(holder, attr)[...] = np.asarray(array).reshape(np.shape(getattr(holder, attr)))
+        return out
+
     def with_gravity_times(self, factor: float) -> MujocoRunner:
         """A copy with gravity times `factor`: the compiled model copied, for MuJoCo derives nothing else from
         gravity when it compiles (a negative control of the verdict)."""

@@ -150,7 +150,17 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None, 
         scaled = model.scaled(scaling, s, keep_inputs=keep_inputs)
     elif not isinstance(scaled, EngineModel) or scaled.engine != model.engine:
         raise InvalidRequestError("scaled must be an EngineModel of the same engine as model")
+    return audited(model, scaling, s, scaled, keep_inputs)[0]
+
+
+def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bool = False) -> tuple[Audit, dict]:
+    """:func:`audit` of a scaled copy, and the copy's stored numbers repaired: for each field an
+    ``"unscaled"`` cause names, the copy's values with those it holds wrong set to the original's times
+    their factor (a number no power of s carries, by the field's one power where it has one; a field held
+    in float32 and rounded by a factor that is no power of two cannot be repaired).  :func:`~pitheorem.engines.verdicts.diagnose.find_causes`
+    runs the copy repaired, field by field, to show whether each such number acts on the run."""
     backend = model.runner
+    repairs: dict[str, np.ndarray] = {}
     causes, compared = [], 0
     original = backend.stored_numbers()
     # two probes, by 4 and by 1/4: a number that scales by 4**k one way and not by 4**-k the other is not
@@ -217,6 +227,10 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None, 
                 else (Fraction(1, PROBE), inverse[field])
             )
             causes.append(_not_a_power(backend, field, before, shown, changed))
+            powers = np.unique(k[clean & ~residue & (before != 0)])  # a zero takes every power
+            if powers.size == 1:  # the field's one power of s (a mesh's centre, a length): set right by it
+                factor = _factors(s, np.full(before.shape, powers[0]), np.ones(before.shape, dtype=bool))
+                repairs[field] = _repaired(copy[field], before.astype(float) * factor, changed)
         magnitude = np.abs(before.astype(float))
         for e in np.unique(k[clean]):
             scale[e] = max(scale.get(e, 0.0), float(np.max(magnitude[clean & (k == e)], initial=0.0)))
@@ -233,11 +247,11 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None, 
             off = ok & (got != expected)
             if off.any():
                 # at s a power of two nothing is rounded by the scaling: what differs was processed
-                causes.append(
-                    _reprocessed(backend, field, got, expected, off)
-                    if is_power_of_two(s)
-                    else _rounded(backend, field, before, got, expected, off)
-                )
+                if is_power_of_two(s):
+                    causes.append(_reprocessed(backend, field, got, expected, off))
+                    repairs[field] = _repaired(repairs.get(field, copy[field]), expected, off)
+                else:
+                    causes.append(_rounded(backend, field, before, got, expected, off))
             continue
         # rounding: relative to the number, or to the largest number of its dimension (a residue of 1e-16
         # left by a difference of lengths of order one is rounding too)
@@ -249,6 +263,7 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None, 
                 derived.append((field, float(rel.max()), off, got, expected))
             else:
                 causes.append(_mismatch(backend, field, got, expected, off))
+                repairs[field] = _repaired(repairs.get(field, copy[field]), expected, off)
     if derived and any(c.kind == "precision" for c in causes):
         fields = ", ".join(f for f, *_ in derived[:6]) + (f" and {len(derived) - 6} more" if len(derived) > 6 else "")
         worst = max(r for _, r, *_ in derived)
@@ -260,7 +275,9 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None, 
             )
         )
     else:
-        causes.extend(_mismatch(backend, field, got, expected, off) for field, _, off, got, expected in derived)
+        for field, _, off, got, expected in derived:
+            causes.append(_mismatch(backend, field, got, expected, off))
+            repairs[field] = _repaired(repairs.get(field, copy[field]), expected, off)
     for name, value in (backend.solver_settings() if isinstance(backend, CounterRuns) else {}).items():
         causes.append(
             Cause(
@@ -289,7 +306,14 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None, 
     else:  # a file the user made: read it
         causes.extend(crossed(model.engine, scaled.parameters, **how))
     causes.extend(crossed(model.engine, model.parameters, **how))
-    return Audit(sorted_causes(causes), compared, float(s))
+    return Audit(sorted_causes(causes), compared, float(s)), repairs
+
+
+def _repaired(values: np.ndarray, expected: np.ndarray, off: np.ndarray) -> np.ndarray:
+    """`values` (a stored field of the copy) with the entries `off` set to `expected`, in the field's precision."""
+    out = np.array(values, copy=True)
+    out[off] = expected[off].astype(out.dtype)
+    return out
 
 
 def held_otherwise(before: np.ndarray, copy: np.ndarray, clean: np.ndarray) -> np.ndarray:

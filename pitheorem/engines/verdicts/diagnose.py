@@ -37,8 +37,8 @@ import numpy as np
 from pitheorem.formatting.pieces import float_text
 
 from ...simulation import allowed_deviation
-from ..protocols import CounterRuns, SolverDiagnosis
-from .audit import audit
+from ..protocols import CounterRuns, SolverDiagnosis, WritesStored
+from .audit import audited
 from .causes import Cause, sorted_causes
 
 __all__ = ["SHRINK", "find_causes"]
@@ -99,7 +99,11 @@ def find_causes(
     (True, [])
     """
     original, copy = model.runner, scaled.runner
-    causes = [c for c in audit(model, scaling, s, scaled=scaled, keep_inputs=keep_inputs).causes if c.kind != "solver"]
+    found_static, repairs = audited(model, scaling, s, scaled, keep_inputs)
+    causes = [c for c in found_static.causes if c.kind != "solver"]
+    # a number the copy holds wrong, where the engine can set it right in a copy: shown by a run, not presumed
+    to_show = [c for c in causes if c.element in repairs] if isinstance(copy, WritesStored) else []
+    causes = [c for c in causes if c not in to_show]
     limits = allowed_deviation(report.original, report.sensitivity, report.baseline_factor)
 
     # Where the runs first part: where every factor is a power of two, the first step at which they differ in
@@ -118,7 +122,8 @@ def find_causes(
 
     verdict_parts = parting(report.original.y, report.mapped.y)
     if verdict_parts is None:  # nothing to explain by a run: the static causes (the audit's) only
-        return sorted_causes(causes)
+        # bit for bit, a number the copy holds wrong (that it could hold right) did not act on this run
+        return sorted_causes([*causes, *([] if bits else to_show)])
 
     done: dict[tuple, Counter] = {}  # a counter-run asked for twice (alone, then in the smallest set) runs once
 
@@ -132,9 +137,11 @@ def find_causes(
         jobs = []
         for key in todo:
             options = dict(key)
+            fields = options.pop("repaired", ())  # the copy's numbers set right: the copy alone changes
+            other = copy.variant(**options)
             jobs += [
                 (original.variant(**options), u_original, False, None),
-                (copy.variant(**options), u_scaled, False, None),
+                (other.with_stored({f: repairs[f] for f in fields}) if fields else other, u_scaled, False, None),
             ]
         runs = jobs[0][0].run_many(n_steps, jobs) if jobs else []
         for key, run, other in zip(todo, runs[::2], runs[1::2], strict=True):
@@ -147,12 +154,16 @@ def find_causes(
         worst = _largest(back - run)
         # it shows a cause: the runs part later, or stay a thousand times closer than the verdict's
         shows = parts is None or parts > verdict_parts or worst < report.max_deviation / SHRINK
-        done[key] = Counter(shows, parts is None, worst, parts, bool(np.array_equal(run, back)))
+        rows = len(report.mapped.y)  # the verdict's copy, cut where an engine reset it
+        unchanged = back.shape[1:] == report.mapped.y.shape[1:] and np.array_equal(
+            back[:rows], report.mapped.y, equal_nan=True
+        )
+        done[key] = Counter(shows, parts is None, worst, parts, bool(np.array_equal(run, back)), bool(unchanged))
 
     t = report.original.t
 
     if not isinstance(original, CounterRuns):
-        return sorted_causes(causes or [_unknown(report, verdict_parts, bits, ())])
+        return sorted_causes([*causes, *to_show] or [_unknown(report, verdict_parts, bits, ())])
     solver = original.solver_settings()
     diagnosable = isinstance(original, SolverDiagnosis)  # a runner without: no solver to switch, no contact list
     # every counter-run a cause may need, in one batch (MuJoCo's rollout spreads them over the cores)
@@ -171,6 +182,8 @@ def find_causes(
         if original.uses_native_ccd():
             variants["native_ccd"] = {"native_ccd": False}
         variants["contacts"] = {"contacts": False}
+    for cause in to_show:
+        variants[f"repaired {cause.element}"] = {"repaired": (cause.element,)}
 
     def shown_causes(base: dict, ref_parts: int, ref_worst: float, besides: str) -> list[tuple[Cause, dict]]:
         """Each cause a counter-run shows with the options of `base` (causes already found) in both runs too:
@@ -221,6 +234,21 @@ def find_causes(
                     variants["tolerance"],
                 )
             )
+        for cause in to_show:  # a number the copy holds wrong: the copy run again with it set right
+            counter = results[f"repaired {cause.element}"]
+            if counter.shows:
+                detail = (
+                    f"{cause.detail}; with it set right in the copy (the original's times its factor){shown(counter)}"
+                )
+                found.append((Cause(cause.kind, cause.element, detail), {"repaired": (cause.element,)}))
+        if len(to_show) > 1 and not any("repaired" in o for _c, o in found):
+            # two numbers held wrong that each part the runs from the same step: set right together, or neither
+            # shows (the smallest set that restores the run is then kept by _restoring)
+            every = with_base({"repaired": tuple(c.element for c in to_show)})[0]
+            if every.shows:
+                for cause in to_show:
+                    detail = f"{cause.detail}; with every number the copy holds wrong set right{shown(every)}"
+                    found.append((Cause(cause.kind, cause.element, detail), {"repaired": (cause.element,)}))
         if not diagnosable:
             return found
         newton, remedy = results.get("newton"), original.solver_remedy(tolerance_zero=False)
@@ -300,6 +328,17 @@ def find_causes(
         if not more:
             break
         found, ref_parts = [*found, *more], together.parts
+    # a number held wrong whose counter-run never showed it: where the copy set right runs the very same bits, it
+    # does not act on this run and is no cause of it (engines.audit still lists it); else it stays as the audit
+    # found it, with what setting it right did
+    shown_fields = {f for _c, o in found for f in o.get("repaired", ())}
+    for cause in to_show:
+        if cause.element in shown_fields:
+            continue
+        counter = counters({"repaired": (cause.element,)})[0]
+        if not counter.unchanged:
+            detail = f"{cause.detail}; set right in the copy alone, the run changes but parts no later"
+            causes.append(Cause(cause.kind, cause.element, detail))
     found = [(_with_constants(c, o, model.engine), o) for c, o in found]
     static = bool(causes)  # the audit's: numbers the copy holds wrong, which no counter-run removes
     return sorted_causes([*causes, *_restoring(found, counters, report, verdict_parts, bits, list(variants), static)])
@@ -379,7 +418,7 @@ def _merged(options) -> dict:
     out: dict = {}
     for o in options:
         for key, value in o.items():
-            many = key in ("inactive_equalities", "contactless_geoms", "unlimited")
+            many = key in ("inactive_equalities", "contactless_geoms", "unlimited", "repaired")
             out[key] = tuple(sorted(set(out.get(key, ())) | set(value))) if many else value
     return out
 
@@ -391,6 +430,8 @@ def _in_words(options: dict, runner, equalities, limited) -> str:
         parts.append(f"{options['solver']}'s solver")
     if "tolerance" in options:
         parts.append(f"the tolerance at {float_text(options['tolerance'])}")
+    if options.get("repaired"):
+        parts.append(f"the copy's {', '.join(options['repaired'])} set right")
     if options.get("inactive_equalities"):
         parts.append(f"{', '.join(equalities[i] for i in options['inactive_equalities'])} inactive")
     if options.get("unlimited"):
@@ -529,13 +570,15 @@ def _contact_steps(original, copy, n_steps, u_original, u_scaled):
 class Counter(NamedTuple):
     """What one counter-run showed: whether its runs part later than the verdict's (or never), whether they
     never part (bit for bit where every factor is a power of two, else within the yardstick), the largest
-    deviation, the step at which they first part (None: never), and whether they are equal bit for bit."""
+    deviation, the step at which they first part (None: never), whether they are equal bit for bit, and whether
+    the copy ran the very bits of the verdict's copy (a number set right in it that does not act on the run)."""
 
     shows: bool
     restores: bool
     worst: float
     parts: int | None
     exact: bool
+    unchanged: bool = False  # the copy ran the very bits of the verdict's copy
 
 
 def _largest(diff: np.ndarray) -> float:
