@@ -618,24 +618,70 @@ def test_a_number_the_copy_holds_wrong_is_a_cause_only_where_a_run_shows_it():
     )
     # by hand in plain MuJoCo: the original, and each wrong copy with the named numbers set to the right copy's,
     # stepped under the same inputs (the copy's times its motor's factor): the same bits, mapped back
-    dims = model.runner.coordinate_dimensions()[1]
-    back = np.array([float(4 ** sc.exponent_of(d)) for d in dims])
+    back = _back_factors(model, sc, 4)
     u_factor = float(4 ** sc.exponent_of(model.inputs()[0][0]))
+    original = _plain_run(model.runner.mjmodel, 150, u)
+    assert np.array_equal(original, _plain_run(both.runner.mjmodel, 150, u, u_factor, right, ["dof_damping"]) / back)
+    assert not np.array_equal(original, _plain_run(both.runner.mjmodel, 150, u, u_factor) / back)  # as it stands
+    fixed = _plain_run(three.runner.mjmodel, 150, u, u_factor, right, ["dof_M0", "dof_damping"])
+    assert np.array_equal(original, fixed / back)
+    assert not np.array_equal(
+        original, _plain_run(three.runner.mjmodel, 150, u, u_factor, right, ["dof_damping"]) / back
+    )
 
-    def stepped(compiled, times, fields=()):
-        m = copy_module.copy(compiled)
-        for field in fields:
-            getattr(m, field)[:] = getattr(right.runner.mjmodel, field)
-        d = mujoco.MjData(m)
-        rows = []
-        for i in range(150):
-            d.ctrl[:] = np.asarray(u(i * 0.002)) * times
-            mujoco.mj_step(m, d)
-            rows.append(np.concatenate([d.qpos, d.qvel]))
-        return np.array(rows)
 
-    original = stepped(model.runner.mjmodel, 1.0)
-    assert np.array_equal(original, stepped(both.runner.mjmodel, u_factor, ["dof_damping"]) / back)
-    assert not np.array_equal(original, stepped(both.runner.mjmodel, u_factor) / back)  # as it stands, it parts
-    assert np.array_equal(original, stepped(three.runner.mjmodel, u_factor, ["dof_M0", "dof_damping"]) / back)
-    assert not np.array_equal(original, stepped(three.runner.mjmodel, u_factor, ["dof_damping"]) / back)
+def _back_factors(model, scaling, s):
+    """Each recorded coordinate's factor at `s` (positions, then velocities)."""
+    return np.array([float(s ** scaling.exponent_of(d)) for d in model.runner.coordinate_dimensions()[1]])
+
+
+def _plain_run(compiled, n_steps, controls=None, times=1.0, right=None, fields=(), change=None):
+    """An oracle that does not use pitheorem's runs: a copy of a compiled MuJoCo model, `fields` set to those of
+    `right` (an EngineModel), changed by ``change(m)``, stepped `n_steps` times from rest with ``mj_step`` under
+    ``controls(t)`` times `times`: its positions and velocities after each step."""
+    m = copy_module.copy(compiled)
+    for field in fields:
+        getattr(m, field)[:] = getattr(right.runner.mjmodel, field)
+    if change is not None:
+        change(m)
+    d = mujoco.MjData(m)
+    rows = []
+    for i in range(n_steps):
+        if controls is not None:
+            d.ctrl[:] = np.asarray(controls(i * m.opt.timestep)) * times
+        mujoco.mj_step(m, d)
+        rows.append(np.concatenate([d.qpos, d.qvel]))
+    return np.array(rows)
+
+
+def test_a_number_held_wrong_that_a_run_shows_is_named_even_where_contacts_off_cover_it():
+    """The weld and the egg, and a copy whose egg has its contact's softness width left 1.5 times too wide: the
+    runs now part at t = 0.06.  Set right in the copy, with the weld inactive, they part only at t = 0.406 (the
+    egg's GJK contact); the three together restore the run.  Taking the egg out of collision would cover the
+    wrong width too, but a number the copy holds wrong is a fault of the copy, and is named."""
+    model, sc = searched(DATA / "weld_and_egg.xml")
+    right = model.scaled(sc, 4)
+    wrong = right.multiplied(geom_shell_solimp_width=1.5)
+    rep = engines.verify(model, sc, 4, duration=0.5, scaled=wrong)
+    assert [(c.kind, c.element, c.restores) for c in rep.causes] == [
+        ("unscaled", "geom_solimp", True),
+        ("solver", "equality #0", True),
+        ("contact", "geom 'post' / geom 'shell' (sphere-ellipsoid: mjc_Convex (GJK/EPA))", True),
+    ]
+    assert (
+        "with it set right in the copy (the original's times its factor) and with equality #0 inactive too, they "
+        "part later: first at t = 0.406 instead of t = 0.06" in rep.causes[0].detail
+    )
+    # by hand: with the weld inactive in both, the wrong copy parts at step 30 (t = 0.06), set right at step 203
+    back = _back_factors(model, sc, 4)
+
+    def weld_inactive(m):
+        m.eq_active0[0] = 0
+
+    original = _plain_run(model.runner.mjmodel, 250, change=weld_inactive)
+    as_is = _plain_run(wrong.runner.mjmodel, 250, change=weld_inactive) / back
+    set_right = _plain_run(wrong.runner.mjmodel, 250, right=right, fields=["geom_solimp"], change=weld_inactive) / back
+    assert np.array_equal(original[:29], as_is[:29])
+    assert not np.array_equal(original[29], as_is[29])
+    assert np.array_equal(original[:202], set_right[:202])
+    assert not np.array_equal(original[202], set_right[202])

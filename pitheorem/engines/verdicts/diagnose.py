@@ -15,11 +15,17 @@ Each cause is established, not presumed:
   and with contacts off; the geom pairs in contact after each step are
   compared, and the first pair that touches in one run only is named.
 
+A number the copy holds wrong that the engine can hold right (the audit's
+``unscaled`` ones, mostly) is shown the same way: the copy is run again
+with it set right.  Where that run is the very same bits, the number acts
+on nothing in this run and is no cause of it.
+
 A counter-run *shows* a cause when the runs, with it removed from both,
 part later or never.  A cause that parts the runs first hides the others
 (a weld acting from the first step hides a contact that would part them
 later), so the counter-runs are made again with the causes found removed
-in both runs, round after round, until nothing new shows.  A cause is named only as part of the smallest set
+in both runs, round after round, until nothing new shows.  A cause is
+named only as part of the smallest set
 whose counter-runs together *restore* the run: bit for bit where every
 factor is a power of two ("nearly" is not agreement there), else within
 the yardstick; each such cause says so (``cause.restores``).  Causes
@@ -127,6 +133,14 @@ def find_causes(
 
     done: dict[tuple, Counter] = {}  # a counter-run asked for twice (alone, then in the smallest set) runs once
 
+    def runners(options: dict):
+        """The original's and the copy's runners under a counter-run's options; ``repaired`` (fields the copy
+        holds wrong, set right) changes the copy alone."""
+        options = dict(options)
+        fields = options.pop("repaired", ())
+        there = copy.variant(**options)
+        return original.variant(**options), there.with_stored({f: repairs[f] for f in fields}) if fields else there
+
     def counters(*variants) -> list[Counter]:
         """Both runs again under each variant's options, those not yet run in one batch: what each shows."""
         keys = [tuple(sorted(options.items())) for options in variants]
@@ -136,13 +150,8 @@ def find_causes(
         todo = list(dict.fromkeys(k for k in keys if k not in done))
         jobs = []
         for key in todo:
-            options = dict(key)
-            fields = options.pop("repaired", ())  # the copy's numbers set right: the copy alone changes
-            other = copy.variant(**options)
-            jobs += [
-                (original.variant(**options), u_original, False, None),
-                (other.with_stored({f: repairs[f] for f in fields}) if fields else other, u_scaled, False, None),
-            ]
+            here, there = runners(dict(key))
+            jobs += [(here, u_original, False, None), (there, u_scaled, False, None)]
         runs = jobs[0][0].run_many(n_steps, jobs) if jobs else []
         for key, run, other in zip(todo, runs[::2], runs[1::2], strict=True):
             judged(key, run, other)
@@ -241,12 +250,13 @@ def find_causes(
                     f"{cause.detail}; with it set right in the copy (the original's times its factor){shown(counter)}"
                 )
                 found.append((Cause(cause.kind, cause.element, detail), {"repaired": (cause.element,)}))
-        if len(to_show) > 1 and not any("repaired" in o for _c, o in found):
-            # two numbers held wrong that each part the runs from the same step: set right together, or neither
-            # shows (the smallest set that restores the run is then kept by _restoring)
-            every = with_base({"repaired": tuple(c.element for c in to_show)})[0]
+        # two numbers held wrong that each part the runs from the same step: set right together, or neither shows
+        # (those that change the copy's run at all: one whose copy set right runs the same bits acts on nothing)
+        acting = [c for c in to_show if not counters({"repaired": (c.element,)})[0].unchanged]  # alone: round one's
+        if len(acting) > 1 and not any("repaired" in o for _c, o in found):
+            every = with_base({"repaired": tuple(c.element for c in acting)})[0]
             if every.shows:
-                for cause in to_show:
+                for cause in acting:
                     detail = f"{cause.detail}; with every number the copy holds wrong set right{shown(every)}"
                     found.append((Cause(cause.kind, cause.element, detail), {"repaired": (cause.element,)}))
         if not diagnosable:
@@ -304,7 +314,7 @@ def find_causes(
             )
             found.append((cause, {"unlimited": tuple(shows) or tuple(range(len(limited)))}))
         # a contact is looked for in the runs as `base` leaves them (stepped again with its options)
-        pair = (original.variant(**base), copy.variant(**base)) if base else (original, copy)
+        pair = runners(base) if base else (original, copy)
         found.extend(
             _contact_causes(*pair, results, shown, with_base, n_steps, ref_parts, u_original, u_scaled, t, model.engine)
         )
@@ -355,16 +365,23 @@ def _restoring(found, counters, report, verdict_parts, bits, tried, static: bool
     others do not need, and each one kept ``restores``.  When even all of them do not, each is named as
     found (``restores=False``) and, unless the audit named a number the copy holds wrong (`static`), the
     run's parting is a cause of kind ``"unknown"``.
+
+    A number the copy holds wrong that a run showed (set right in the copy, option ``repaired``) is never
+    dropped: it is a fault of the copy, even where a broader counter-run (contacts off) covers it too.
     """
     unknown = [] if static else [_unknown(report, verdict_parts, bits, tried)]
     if not found:
         return unknown
     broad = sorted(found, key=lambda f: ("contacts" in f[1], "native_ccd" in f[1]))  # specific ones first
+    held_wrong = [f for f in broad if "repaired" in f[1]]
     alone = counters(*(o for _c, o in broad))
     restoring = [f for f, counter in zip(broad, alone, strict=True) if counter.restores]
     if restoring:
         (cause, _o), others = restoring[0], restoring[1:]
-        partial = [c.element for (c, _o), counter in zip(broad, alone, strict=True) if not counter.restores]
+        others = [f for f in others if f not in held_wrong]
+        partial = [
+            f[0].element for f, counter in zip(broad, alone, strict=True) if not (counter.restores or f in held_wrong)
+        ]
         also = "".join(
             [
                 f"; removed alone, each of these restores it too: {', '.join(c.element for c, _ in others)}"
@@ -376,7 +393,8 @@ def _restoring(found, counters, report, verdict_parts, bits, tried, static: bool
                 else "",
             ]
         )
-        return [_marked(cause, True, also)]
+        # with it removed, the run is restored whatever else is: each number held wrong is named beside it
+        return [_marked(cause, True, also), *(_marked(c, True) for c, o in held_wrong if c is not cause)]
     together = counters(_merged(o for _c, o in found))[0]
     if not together.restores:
         # where the runs still part with every cause found removed: that parting, not the first, is unexplained
@@ -385,7 +403,7 @@ def _restoring(found, counters, report, verdict_parts, bits, tried, static: bool
         return [*(_marked(c, False) for c, _o in found), *unknown]
     kept = list(found)
     for candidate in reversed(broad):  # the broadest first
-        if len(kept) > 1:
+        if len(kept) > 1 and candidate not in held_wrong:
             trial = [f for f in kept if f is not candidate]
             if counters(_merged(o for _c, o in trial))[0].restores:
                 kept = trial
