@@ -385,28 +385,41 @@ def plain_mujoco_runs_equal(model, copy, scaling, s, n_steps: int, change=None, 
     original's bit for bit.  `controls`, a function of the step's start time, gives the original's
     inputs; the copy's are those times ``s`` to the power of each input's dimension.
     """
-    import copy as copy_module
-
-    import mujoco
     import numpy as np
 
     dims = model.runner.coordinate_dimensions()[1]
     factors = np.array([float(s) ** float(scaling.exponent_of(d)) for d in dims])
     inputs = np.array([float(s) ** float(scaling.exponent_of(d)) for d in model.inputs()[0]])
-    out = []
-    for compiled, times in ((model.runner.mjmodel, 1.0), (copy.runner.mjmodel, inputs)):
-        m = copy_module.copy(compiled)
-        if change is not None:
-            change(m)
-        d = mujoco.MjData(m)
-        rows = []
-        for i in range(n_steps):
-            if controls is not None:
-                d.ctrl[:] = np.asarray(controls(i * model.runner.mjmodel.opt.timestep)) * times
-            mujoco.mj_step(m, d)
-            rows.append(np.concatenate([d.qpos, d.qvel]))
-        out.append(np.array(rows))
-    return bool(np.array_equal(out[0], out[1] / factors[: out[0].shape[1]]))
+    ran = plain_mujoco_run(model.runner.mjmodel, n_steps, controls, 1.0, change=change)
+    copied = plain_mujoco_run(copy.runner.mjmodel, n_steps, controls, inputs, change=change)
+    return bool(np.array_equal(ran, copied / factors[: ran.shape[1]]))
+
+
+def plain_mujoco_run(compiled, n_steps: int, controls=None, times=1.0, *, change=None, right=None, fields=()):
+    """Positions and velocities after each of `n_steps` steps of ``mj_step``, from rest, in plain MuJoCo.
+
+    A copy of the compiled model `compiled` is run: its `fields` first set to those of `right` (an
+    EngineModel: a copy's numbers set right), then changed by ``change(m)``; ``controls(t)`` (of the
+    step's start time) times `times` gives the inputs.
+    """
+    import copy as copy_module
+
+    import mujoco
+    import numpy as np
+
+    m = copy_module.copy(compiled)
+    for field in fields:
+        getattr(m, field)[:] = getattr(right.runner.mjmodel, field)
+    if change is not None:
+        change(m)
+    d = mujoco.MjData(m)
+    rows = []
+    for i in range(n_steps):
+        if controls is not None:
+            d.ctrl[:] = np.asarray(controls(i * m.opt.timestep)) * times
+        mujoco.mj_step(m, d)
+        rows.append(np.concatenate([d.qpos, d.qvel]))
+    return np.array(rows)
 
 
 def expected_verdict(rep) -> str:

@@ -6,7 +6,6 @@ and the runs agree.  And the verdict is honest both ways: wrong copies are caugh
 
 from __future__ import annotations
 
-import copy as copy_module
 import json
 import warnings
 from pathlib import Path
@@ -20,7 +19,7 @@ mujoco = pytest.importorskip("mujoco", reason="mujoco is not installed (pip inst
 gymnasium = pytest.importorskip("gymnasium", reason="gymnasium's MuJoCo models are the corpus")
 
 from pitheorem import engines  # noqa: E402
-from tests.conftest import plain_mujoco_runs_equal  # noqa: E402
+from tests.conftest import plain_mujoco_run, plain_mujoco_runs_equal  # noqa: E402
 
 DATA = Path(__file__).resolve().parent / "data" / "engines"
 ASSETS = Path(gymnasium.__file__).parent / "envs" / "mujoco" / "assets"
@@ -620,38 +619,21 @@ def test_a_number_the_copy_holds_wrong_is_a_cause_only_where_a_run_shows_it():
     # stepped under the same inputs (the copy's times its motor's factor): the same bits, mapped back
     back = _back_factors(model, sc, 4)
     u_factor = float(4 ** sc.exponent_of(model.inputs()[0][0]))
-    original = _plain_run(model.runner.mjmodel, 150, u)
-    assert np.array_equal(original, _plain_run(both.runner.mjmodel, 150, u, u_factor, right, ["dof_damping"]) / back)
-    assert not np.array_equal(original, _plain_run(both.runner.mjmodel, 150, u, u_factor) / back)  # as it stands
-    fixed = _plain_run(three.runner.mjmodel, 150, u, u_factor, right, ["dof_M0", "dof_damping"])
+    original = plain_mujoco_run(model.runner.mjmodel, 150, u)
+    assert np.array_equal(
+        original, plain_mujoco_run(both.runner.mjmodel, 150, u, u_factor, right=right, fields=["dof_damping"]) / back
+    )
+    assert not np.array_equal(original, plain_mujoco_run(both.runner.mjmodel, 150, u, u_factor) / back)  # as it stands
+    fixed = plain_mujoco_run(three.runner.mjmodel, 150, u, u_factor, right=right, fields=["dof_M0", "dof_damping"])
     assert np.array_equal(original, fixed / back)
     assert not np.array_equal(
-        original, _plain_run(three.runner.mjmodel, 150, u, u_factor, right, ["dof_damping"]) / back
+        original, plain_mujoco_run(three.runner.mjmodel, 150, u, u_factor, right=right, fields=["dof_damping"]) / back
     )
 
 
 def _back_factors(model, scaling, s):
     """Each recorded coordinate's factor at `s` (positions, then velocities)."""
     return np.array([float(s ** scaling.exponent_of(d)) for d in model.runner.coordinate_dimensions()[1]])
-
-
-def _plain_run(compiled, n_steps, controls=None, times=1.0, right=None, fields=(), change=None):
-    """An oracle that does not use pitheorem's runs: a copy of a compiled MuJoCo model, `fields` set to those of
-    `right` (an EngineModel), changed by ``change(m)``, stepped `n_steps` times from rest with ``mj_step`` under
-    ``controls(t)`` times `times`: its positions and velocities after each step."""
-    m = copy_module.copy(compiled)
-    for field in fields:
-        getattr(m, field)[:] = getattr(right.runner.mjmodel, field)
-    if change is not None:
-        change(m)
-    d = mujoco.MjData(m)
-    rows = []
-    for i in range(n_steps):
-        if controls is not None:
-            d.ctrl[:] = np.asarray(controls(i * m.opt.timestep)) * times
-        mujoco.mj_step(m, d)
-        rows.append(np.concatenate([d.qpos, d.qvel]))
-    return np.array(rows)
 
 
 def test_a_number_held_wrong_that_a_run_shows_is_named_even_where_contacts_off_cover_it():
@@ -678,9 +660,11 @@ def test_a_number_held_wrong_that_a_run_shows_is_named_even_where_contacts_off_c
     def weld_inactive(m):
         m.eq_active0[0] = 0
 
-    original = _plain_run(model.runner.mjmodel, 250, change=weld_inactive)
-    as_is = _plain_run(wrong.runner.mjmodel, 250, change=weld_inactive) / back
-    set_right = _plain_run(wrong.runner.mjmodel, 250, right=right, fields=["geom_solimp"], change=weld_inactive) / back
+    original = plain_mujoco_run(model.runner.mjmodel, 250, change=weld_inactive)
+    as_is = plain_mujoco_run(wrong.runner.mjmodel, 250, change=weld_inactive) / back
+    set_right = (
+        plain_mujoco_run(wrong.runner.mjmodel, 250, right=right, fields=["geom_solimp"], change=weld_inactive) / back
+    )
     assert np.array_equal(original[:29], as_is[:29])
     assert not np.array_equal(original[29], as_is[29])
     assert np.array_equal(original[:202], set_right[:202])
