@@ -315,3 +315,24 @@ def test_a_number_derived_from_larger_ones_is_held_to_the_rounding_of_its_field(
         assert _probe_exponents(before, far)[1].tolist() == [True, False]
         beyond = np.array([0.2, 4 * float(before[1]) + 8 * RESIDUE * ulp], dtype=dtype)  # far past the rounding
         assert _probe_exponents(before, beyond)[1].tolist() == [True, False]
+
+
+def test_a_small_number_below_its_fields_float32_floor_that_scales_exactly_is_no_residue():
+    """In float32 the residue floor of a field that holds a table's inertia (241) beside a block's (2.7e-5: the two
+    bodies of Meta-World's block scene in MuJoCo Warp) lies above the block's; a probe that carries the block's by
+    an exact power of 4 shows it is a number, not a residue of zero.  One the probe does not carry so stays one."""
+    from pitheorem.engines.verdicts.audit import RESIDUE, _probe_exponents
+
+    before = np.array([[0.0, 0.0, 0.0], [127.6, 241.0, 223.3], [2.6666667e-05] * 3], dtype=np.float32)
+    floor = RESIDUE * float(np.spacing(np.float32(241.0)))
+    assert before[2, 0] < floor  # the case: the block's inertia is below the field's floor
+    probe = before * np.float32(1024.0)  # 4**5: exact in float32
+    k, clean, residue = _probe_exponents(before, probe)
+    assert clean.all()
+    assert k[1:].tolist() == [[5.0] * 3] * 2
+    assert not residue.any()
+    noisy = probe.copy()
+    noisy[2] = np.float32(3e-5)  # no power of 4, and small: a residue, held to nothing
+    k, clean, residue = _probe_exponents(before, noisy)
+    assert residue[2].all()
+    assert clean[2].all()

@@ -669,3 +669,34 @@ def test_a_number_held_wrong_that_a_run_shows_is_named_even_where_contacts_off_c
     assert not np.array_equal(original[29], as_is[29])
     assert np.array_equal(original[:202], set_right[:202])
     assert not np.array_equal(original[202], set_right[202])
+
+
+def test_a_cause_hidden_at_the_same_step_shows_once_the_first_is_removed():
+    """A weld and a cart whose spring the copy holds 0.1% too stiff both part the runs at the first step: the weld
+    by much, the spring by little.  With the weld inactive the runs still part at the first step, but a thousand
+    times closer: the next round sets the stiffness right too, and the two together restore the run bit for bit,
+    as plain MuJoCo confirms."""
+    model, sc = searched(DATA / "weld_and_cart.xml")
+    u = engines.smooth_controls(model)
+    right = model.scaled(sc, 4)
+    wrong = right.multiplied(joint_x_stiffness=1.001)
+    rep = engines.verify(model, sc, 4, duration=0.3, controls=u, scaled=wrong)
+    assert [(c.kind, c.element, c.restores) for c in rep.causes] == [
+        ("unscaled", "jnt_stiffness", True),
+        ("solver", "equality #0", True),
+    ]
+    assert "and with equality #0 inactive too, they are equal bit for bit" in rep.causes[0].detail
+    back = _back_factors(model, sc, 4)
+    u_factor = float(4 ** sc.exponent_of(model.inputs()[0][0]))
+
+    def weld_inactive(m):
+        m.eq_active0[0] = 0
+
+    original = plain_mujoco_run(model.runner.mjmodel, 150, u, change=weld_inactive)
+    as_is = plain_mujoco_run(wrong.runner.mjmodel, 150, u, u_factor, change=weld_inactive) / back
+    assert not np.array_equal(original[0], as_is[0])  # the weld inactive, the spring still parts them at once
+    assert np.abs(original - as_is).max() < 1e-3 * rep.max_deviation  # ... but a thousand times closer
+    fixed = plain_mujoco_run(
+        wrong.runner.mjmodel, 150, u, u_factor, right=right, fields=["jnt_stiffness"], change=weld_inactive
+    )
+    assert np.array_equal(original, fixed / back)
