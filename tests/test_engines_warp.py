@@ -155,15 +155,16 @@ def test_the_hopper_at_s10_is_similar_against_the_float32_yardstick(hopper):
 
 
 def test_the_runs_of_a_verification_are_the_worlds_of_one_call(pendulum, monkeypatch):
-    worlds = []
-    make_data = mjw().make_data
+    stepped = {}  # each data stepped, kept (make_data is also called for one world, to read its first rows)
+    step = mjw().step
 
-    def counting(m, nworld=1, **kw):
-        worlds.append(nworld)
-        return make_data(m, nworld=nworld, **kw)
+    def counting(m, d):
+        stepped.setdefault(id(d), d)
+        return step(m, d)
 
-    monkeypatch.setattr(mjw(), "make_data", counting)
+    monkeypatch.setattr(mjw(), "step", counting)
     engines.verify(pendulum, time_free(pendulum), s=4, duration=DURATION, ensemble=3, diagnose=False)
+    worlds = [d.nworld for d in stepped.values()]
     # the original, its scaled copy, three twins and each group's first negative control (gravity off by 1e-4,
     # the masses doubled where something else carries mass), each world with its own gravity, masses and
     # sizes: one call; gravity's larger errors, where 1e-4 passes unnoticed, a second
@@ -332,6 +333,46 @@ def test_each_world_starts_with_its_own_models_mocap_bodies(tmp_path):
     assert rep.exact  # the copy's mocap body is at its own, scaled, place: the bob is pulled alike
     rows = model.runner.run(25)
     assert rows[-1, 0] > 0.01  # the bob moves toward the mocap target at x = 0.3
+
+
+#: a free box dropped onto a table fixed to the world, off the origin: the table's pose is one of what MJWarp's
+#: make_data computes once (geoms fixed to the world are never moved by a step), and a scaled copy's is elsewhere
+TABLE = (
+    '<mujoco>{asset}<option gravity="0 0 -9.81"/><worldbody>{table}'
+    '<body pos="0.1 0 1.101"><freejoint/><geom type="box" size="0.1 0.1 0.1" mass="1"/></body>'
+    "</worldbody></mujoco>"
+)
+#: the table as a box (the original and its copy are two worlds of one call), or a mesh (a scaled mesh's
+#: vertices are no per-world array: the copy runs in a call of its own)
+TABLES = {
+    "box": ("", '<geom type="box" pos="0 0 0.5" size="0.5 0.5 0.5"/>'),
+    "mesh": (
+        '<asset><mesh name="slab" vertex="-.5 -.5 -.5  .5 -.5 -.5  -.5 .5 -.5  .5 .5 -.5'
+        '  -.5 -.5 .5  .5 -.5 .5  -.5 .5 .5  .5 .5 .5"/></asset>',
+        '<geom type="mesh" mesh="slab" pos="0 0 0.5"/>',
+    ),
+}
+
+
+@pytest.mark.parametrize("table", sorted(TABLES))
+def test_each_world_runs_from_its_own_models_fixed_geoms_as_it_runs_alone(table, tmp_path):
+    asset, geom = TABLES[table]
+    path = tmp_path / "table.xml"
+    path.write_text(TABLE.format(asset=asset, table=geom))
+    model = load(path)
+    original, copy = model.runner, model.scaled(time_free(model), 4).runner
+    n = 50
+    alone = [original.run(n), copy.run(n)]  # each model the one world of its call: make_data of its own
+    assert abs(alone[0][-1, 2] - 1.1) < 0.005  # it rests on the table top (without it, it would fall to 1.05)
+    for jobs, runs in (
+        ([original, copy], alone),
+        ([copy, original], alone[::-1]),
+    ):
+        batch = original.run_many(n, [(runner, None, False, None) for runner in jobs])
+        for world, run in zip(batch, runs, strict=True):
+            assert np.array_equal(world, run)
+    rep = engines.verify(model, time_free(model), s=4, duration=DURATION, ensemble=1, diagnose=False)
+    assert rep.exact, rep.max_deviation
 
 
 def test_a_urdf_runs_in_warp_through_mujocos_urdf_reader():

@@ -160,6 +160,8 @@ class WarpRunner(MujocoCompiledRunner):
         The models must have the same sizes (a model, its scaled copies and
         its twins do).  Their per-world arrays are stacked, one row per
         world; jobs whose shared arrays differ run in calls of their own.
+        Each world starts from its own model's data (:func:`_data`), so that
+        it runs bit for bit as it runs alone.
         ``controls`` is None, rows of inputs (one per step) or
         ``t -> inputs``; ``initial`` is None or a first row (qpos, qvel, act).
         """
@@ -170,13 +172,13 @@ class WarpRunner(MujocoCompiledRunner):
         for i, model in enumerate(models):
             groups.setdefault(_shared_key(model), []).append(i)
         out: list = [None] * len(jobs)
-        m = reference.mjcf.mjmodel
         with wp.ScopedDevice(self.device):
             for members in groups.values():
                 batch = _worlds([models[i] for i in members], self.device)
+                m = jobs[members[0]][0].mjcf.mjmodel  # the sizes, the same for all
                 starts = np.stack([_initial(jobs[i][0], jobs[i][2], jobs[i][3]) for i in members])
                 rows = np.stack([_control_rows(jobs[i][1], n_steps, m.nu, jobs[i][0].timestep()) for i in members])
-                data = mjw.make_data(m, nworld=len(members))
+                data = _data([jobs[i][0].mjcf.mjmodel for i in members])
                 data.qpos.assign(starts[:, : m.nq])
                 data.qvel.assign(starts[:, m.nq : m.nq + m.nv])
                 if m.na:
@@ -197,6 +199,37 @@ class WarpRunner(MujocoCompiledRunner):
                 for k, i in enumerate(members):
                     out[i] = runs[k].astype(float)
         return out
+
+
+def _data(mjmodels: list):
+    """MJWarp's data for worlds of these MuJoCo models, each world's first state as its own model's alone.
+
+    ``mujoco_warp.make_data`` fills every world from the one model it is
+    given, and some of what it fills the steps never recompute: the
+    poses of the geoms fixed to the world (``geom_xpos``, ``geom_xmat``,
+    from ``mj_kinematics`` at ``qpos0``; MJWarp's step skips them).  A
+    scaled copy moves them, so each world's rows are taken from the data
+    of its own model, made for one world: what a run of it alone starts
+    from.
+    """
+    wp, mjw = _warp()
+    nworld = len(mjmodels)
+    data = mjw.make_data(mjmodels[0], nworld=nworld)
+    distinct = {id(mjm): mjm for mjm in mjmodels}
+    if len(distinct) == 1:
+        return data
+    alone = {key: mjw.make_data(mjm, nworld=1) for key, mjm in distinct.items()}
+    for f in dataclasses.fields(data):
+        array = getattr(data, f.name)
+        if not isinstance(array, wp.array) or not array.ndim or array.shape[0] != nworld:
+            continue
+        rows = [getattr(alone[id(mjm)], f.name) for mjm in mjmodels]
+        if any(not isinstance(row, wp.array) or row.shape != (1, *array.shape[1:]) for row in rows):
+            continue  # not one row per world
+        values = [row.numpy() for row in rows]
+        if not all(np.array_equal(v, values[0]) for v in values[1:]):
+            array.assign(np.concatenate(values))
+    return data
 
 
 def _mocap(mjmodel, field: str) -> np.ndarray:
