@@ -721,3 +721,25 @@ def test_mjx_sweeps_run_in_this_process_and_match_verify(monkeypatch):
         rep = engines.verify(mjx, sc, row.s, duration=DURATION, controls=push)
         assert (row.verdict, row.max_deviation) == (expected_verdict(rep), rep.max_deviation)
     assert np.isfinite([r.yardstick for r in sw.rows]).all()
+
+
+def test_a_variant_switches_contacts_equalities_and_limits_off_as_mujocos_does():
+    """MJX keeps no contact list for a pair's counter-run, but it switches contacts off, equality constraints
+    inactive and limits off as MuJoCo's runner does (the diagnosis's counter-runs: tested through MuJoCo Warp,
+    whose runs compile faster); the runner's own model is untouched."""
+    import mujoco
+
+    from pitheorem.engines.protocols import SolverDiagnosis, SwitchesConstraints
+
+    path = Path(__file__).resolve().parent / "data" / "engines" / "weld_and_egg.xml"
+    runner = engines.load(path, engine="mjx").runner
+    assert isinstance(runner, SwitchesConstraints)
+    assert not isinstance(runner, SolverDiagnosis)
+    assert runner.equality_names() == engines.load(path).runner.equality_names() == ["equality #0"]
+    assert runner.equality_kinds() == ["weld"]
+    variant = runner.variant(contacts=False, inactive_equalities=(0,))
+    contact = int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
+    assert int(variant.device_model().opt.disableflags) & contact
+    assert np.asarray(variant.device_model().eq_active0).tolist() == [False]
+    assert not int(runner.device_model().opt.disableflags) & contact
+    assert np.asarray(runner.device_model().eq_active0).tolist() == [True]

@@ -382,3 +382,34 @@ def test_a_urdf_runs_in_warp_through_mujocos_urdf_reader():
     assert model.parameters == engines.load(path, engine="mujoco").parameters  # MuJoCo's reading of the URDF
     rep = engines.verify(model, time_free(model), s=4, duration=DURATION)
     assert rep.exact, rep.max_deviation
+
+
+def test_the_weld_is_named_by_its_counter_run_and_holds_in_plain_mujoco_warp():
+    """MuJoCo Warp switches equality constraints off as MuJoCo does, so a counter-run names the weld of the weld
+    and egg (its rotational rows' weight), which alone restores the run (Warp's GJK keeps the egg's contact
+    scale-free here).  By hand in MuJoCo Warp itself (``put_model``, ``make_data``, ``step``): with the weld
+    inactive in both compiled models, the copy is the original's bits mapped back; as written, it is not."""
+    import copy as copy_module
+
+    model = load(Path(__file__).resolve().parent / "data" / "engines" / "weld_and_egg.xml")
+    sc = time_free(model)
+    rep = engines.verify(model, sc, 4, duration=DURATION)
+    assert [(c.kind, c.element, c.restores) for c in rep.causes] == [("solver", "equality #0", True)]
+    assert "with it inactive in both runs they are equal bit for bit" in rep.causes[0].detail
+    scaled = model.scaled(sc, 4)
+    back = np.array([4.0 ** float(sc.exponent_of(d)) for d in model.runner.coordinate_dimensions()[1]])
+
+    def run(compiled, weld: bool):
+        m = copy_module.copy(compiled)
+        m.eq_active0[0] = int(weld)
+        with warp.ScopedDevice("cpu"):
+            device, data = mjw().put_model(m), mjw().make_data(m)
+            rows = []
+            for _ in range(100):
+                mjw().step(device, data)
+                rows.append(np.concatenate([data.qpos.numpy()[0], data.qvel.numpy()[0]]).astype(float))
+        return np.array(rows)
+
+    for weld, same in ((True, False), (False, True)):
+        original = run(model.runner.mjcf.mjmodel, weld)
+        assert np.array_equal(original, run(scaled.runner.mjcf.mjmodel, weld) / back) is same

@@ -73,6 +73,7 @@ __all__ = [
     "Runs",
     "SolverDiagnosis",
     "StoresCopies",
+    "SwitchesConstraints",
     "WritesStored",
 ]
 
@@ -349,8 +350,34 @@ class MultipliesInPlace(Protocol):
 
 
 @runtime_checkable
+class SwitchesConstraints(Protocol):
+    """Optional: counter-runs with contacts off, equality constraints inactive, limits off (MuJoCo's, MJX's, Warp's).
+
+    Its ``variant`` also takes ``contacts`` (False: every contact off),
+    ``inactive_equalities`` (indices into :meth:`equality_names`) and
+    ``unlimited`` (indices into :meth:`limit_names`).
+
+    Examples
+    --------
+    >>> from pitheorem.engines.protocols import SwitchesConstraints
+    >>> SwitchesConstraints.__name__
+    'SwitchesConstraints'
+    """
+
+    def equality_names(self) -> list[str]:
+        """Each equality constraint, named as the reports name it."""
+
+    def equality_kinds(self) -> list[str]:
+        """Each equality constraint's kind, in the engine's words (``"weld"``, ``"connect"``, ...)."""
+
+    def limit_names(self) -> list[str]:
+        """Each joint and tendon whose range is a constraint (``variant(unlimited=...)`` indexes them), named as
+        the reports name it."""
+
+
+@runtime_checkable
 class SolverDiagnosis(Protocol):
-    """Optional: the solver, the equality constraints and the contacts of each step, named (MuJoCo's).
+    """Optional: the solver and the contacts of each step, named (MuJoCo's).
 
     Examples
     --------
@@ -370,16 +397,6 @@ class SolverDiagnosis(Protocol):
 
     def uses_native_ccd(self) -> bool:
         """Whether convex pairs collide through the engine's own convex collision (``variant(native_ccd=False)``)."""
-
-    def equality_names(self) -> list[str]:
-        """Each equality constraint, named as the reports name it."""
-
-    def equality_kinds(self) -> list[str]:
-        """Each equality constraint's kind, in the engine's words (``"weld"``, ``"connect"``, ...)."""
-
-    def limit_names(self) -> list[str]:
-        """Each joint and tendon whose range is a constraint (``variant(unlimited=...)`` indexes them), named as
-        the reports name it."""
 
     def first_contact_difference(self, other, n_steps: int, controls: Controls = None, other_controls: Controls = None):
         """The first step after which other pairs touch in `other`'s run: (step or None, pairs only there, only
@@ -471,6 +488,7 @@ OPTIONAL = {
         CountsIterations,
         WritesStored,
         MultipliesInPlace,
+        SwitchesConstraints,
         SolverDiagnosis,
         NamesElements,
         StoresCopies,

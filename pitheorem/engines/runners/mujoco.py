@@ -831,9 +831,29 @@ class MujocoCompiledRunner:
 
     # -- counter-runs: another solver tolerance ------------------------------------------------
 
-    def variant(self, *, tolerance: float | None = None) -> MujocoCompiledRunner:
-        """A copy run with another solver tolerance: a counter-run's model."""
-        return self._rebuilt(self.mjcf.variant(tolerance=tolerance), same_numbers=False)
+    def variant(
+        self,
+        *,
+        tolerance: float | None = None,
+        contacts: bool = True,
+        inactive_equalities: tuple[int, ...] = (),
+        unlimited: tuple[int, ...] = (),
+    ) -> MujocoCompiledRunner:
+        """A copy run with another solver tolerance, contacts off, some equality constraints inactive or some
+        limits off (as :meth:`MujocoRunner.variant`): a counter-run's model."""
+        changed = self.mjcf.variant(
+            tolerance=tolerance, contacts=contacts, inactive_equalities=inactive_equalities, unlimited=unlimited
+        )
+        return self._rebuilt(changed, same_numbers=False)
+
+    def equality_names(self) -> list[str]:
+        return self.mjcf.equality_names()
+
+    def equality_kinds(self) -> list[str]:
+        return self.mjcf.equality_kinds()
+
+    def limit_names(self) -> list[str]:
+        return self.mjcf.limit_names()
 
     def solver_settings(self) -> dict[str, float]:
         return {k: v for k, v in self.mjcf.solver_settings().items() if k == "tolerance"}

@@ -43,7 +43,7 @@ import numpy as np
 from pitheorem.formatting.pieces import float_text
 
 from ...simulation import allowed_deviation
-from ..protocols import CounterRuns, SolverDiagnosis, WritesStored
+from ..protocols import CounterRuns, SolverDiagnosis, SwitchesConstraints, WritesStored
 from .audit import audited
 from .causes import Cause, sorted_causes
 
@@ -179,17 +179,18 @@ def find_causes(
     variants = {}
     if solver:
         variants["tolerance"] = {"tolerance": 0.0}
-    equalities = original.equality_names() if diagnosable else ()
-    limited = original.limit_names() if diagnosable else ()  # joints and tendons with a limit
-    if diagnosable:
-        if original.solver_name() != original.scale_free_solver:
-            variants["newton"] = {"solver": original.scale_free_solver}
-        if equalities:
-            variants["equalities"] = {"inactive_equalities": tuple(range(len(equalities)))}
-        if limited:
-            variants["limits"] = {"unlimited": tuple(range(len(limited)))}
-        if original.uses_native_ccd():
-            variants["native_ccd"] = {"native_ccd": False}
+    switches = isinstance(original, SwitchesConstraints)  # contacts off, equalities inactive, limits off
+    equalities = original.equality_names() if switches else ()
+    limited = original.limit_names() if switches else ()  # joints and tendons with a limit
+    if diagnosable and original.solver_name() != original.scale_free_solver:
+        variants["newton"] = {"solver": original.scale_free_solver}
+    if equalities:
+        variants["equalities"] = {"inactive_equalities": tuple(range(len(equalities)))}
+    if limited:
+        variants["limits"] = {"unlimited": tuple(range(len(limited)))}
+    if diagnosable and original.uses_native_ccd():
+        variants["native_ccd"] = {"native_ccd": False}
+    if switches:
         variants["contacts"] = {"contacts": False}
     for cause in to_show:
         variants[f"repaired {cause.element}"] = {"repaired": (cause.element,)}
@@ -259,9 +260,8 @@ def find_causes(
                 for cause in acting:
                     detail = f"{cause.detail}; with every number the copy holds wrong set right{shown(every)}"
                     found.append((Cause(cause.kind, cause.element, detail), {"repaired": (cause.element,)}))
-        if not diagnosable:
-            return found
-        newton, remedy = results.get("newton"), original.solver_remedy(tolerance_zero=False)
+        newton = results.get("newton")  # only where the runner names its solver (SolverDiagnosis)
+        remedy = original.solver_remedy(tolerance_zero=False) if newton is not None else ""
         newton_options = variants.get("newton")
         if newton is not None and not (newton.exact or (newton.shows and not exact_expected)):
             # the solver's own stopping rule may stop it at another iteration too: with it at 0, bit for bit
@@ -313,6 +313,14 @@ def find_causes(
                 f"scale-free: with {'it' if len(shows) == 1 else 'them'} off in both runs{shown(results['limits'])}",
             )
             found.append((cause, {"unlimited": tuple(shows) or tuple(range(len(limited)))}))
+        if not diagnosable:
+            if "contacts" in results and results["contacts"].shows:  # all of them: no pair is named here
+                detail = (
+                    "the engine's contacts are not computed scale-free: with contacts off in both runs"
+                    f"{shown(results['contacts'])}"
+                )
+                found.append((Cause("contact", "every contact", detail), {"contacts": False}))
+            return found
         # a contact is looked for in the runs as `base` leaves them (stepped again with its options)
         pair = runners(base) if base else (original, copy)
         found.extend(
