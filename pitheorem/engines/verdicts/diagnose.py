@@ -228,7 +228,12 @@ def find_causes(
                 f"{float_text(ref_worst)}) but still part at t = {float(t[counter.parts]):.6g}"
             )
 
-        results = dict(zip(variants, with_base(*variants.values()), strict=True)) if variants else {}
+        # the limits' counter-run only where no other restores the run on its own: a humanoid's seventeen limits
+        # would cost a run in every diagnosis, to be said at most "brings the runs closer"
+        first = {k: v for k, v in variants.items() if k != "limits"}
+        results = dict(zip(first, with_base(*first.values()), strict=True)) if first else {}
+        if "limits" in variants and not any(c.restores for c in results.values()):
+            results["limits"] = with_base(variants["limits"])[0]
         found: list[tuple[Cause, dict]] = []  # each cause a counter-run shows, with its options
         if "tolerance" in results and results["tolerance"].shows:
             names = ", ".join(f"option {k} = {float_text(v)}" for k, v in solver.items())
@@ -303,8 +308,11 @@ def find_causes(
                 f"{shown(results['equalities'])}{weld}",
             )
             found.append((cause, {"inactive_equalities": tuple(shows) or tuple(range(len(equalities)))}))
-        if "limits" in results and results["limits"].shows:  # which of them: each one off alone
-            alone = with_base(*({"unlimited": (i,)} for i in range(len(limited))))
+        if "limits" in results and results["limits"].shows:
+            # which of them, each one off alone, where all off restore the run: not to say of each of a
+            # humanoid's seventeen only that it brings the runs closer
+            refine = results["limits"].restores
+            alone = with_base(*({"unlimited": (i,)} for i in range(len(limited)))) if refine else []
             shows = [i for i, counter in enumerate(alone) if counter.shows]
             cause = Cause(
                 "solver",
