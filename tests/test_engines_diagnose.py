@@ -159,6 +159,7 @@ def test_the_twins_move_every_stored_number_by_one_ulp_and_zeros_not_at_all():
         assert np.array_equal(a == 0, b == 0), field
         live = a != 0
         gap = np.abs(b[live].astype(np.float64) - a[live].astype(np.float64))
+        assert np.all(gap > 0), field  # every nonzero number moved, the scalars of opt and stat too
         assert np.all(gap == np.abs(np.spacing(a[live]))) or np.all(gap <= np.abs(np.spacing(a[live]))), field
         moved += int(live.sum())
     assert moved > 100

@@ -287,13 +287,8 @@ class MujocoRunner:
         chosen = np.where(np.random.default_rng(seed).random(up.size) < 0.5, up, down)
         twin = self._with_model_copy()
         m = twin.mjmodel
-        for field, start, stop, shape, dtype in fields:  # one draw, then each field written in place
-            holder, attr = _holder(m, field)
-            moved = chosen[start:stop].astype(dtype).reshape(shape)
-            if shape == ():
-                setattr(holder, attr, moved.item())
-            else:
-                getattr(holder, attr)[...] = moved
+        for field, start, stop, _shape, dtype in fields:  # one draw, then each field written in place
+            _write(m, field, chosen[start:stop].astype(dtype))
         return twin
 
     def with_stored(self, values) -> MujocoRunner:
@@ -302,11 +297,7 @@ class MujocoRunner:
         repaired)."""
         out = self._with_model_copy()
         for field, array in values.items():
-            holder, attr = _holder(out.mjmodel, field)
-            if np.ndim(getattr(holder, attr)) == 0:
-                setattr(holder, attr, np.asarray(array).item())
-            else:
-                getattr(holder, attr)[...] = np.asarray(array).reshape(np.shape(getattr(holder, attr)))
+            _write(out.mjmodel, field, array)
         return out
 
     def with_gravity_times(self, factor: float) -> MujocoRunner:
@@ -1149,6 +1140,15 @@ def _has_convex_pairs(m) -> bool:
 def _touching(data) -> frozenset:
     """The geom pairs (ids) of a data's contacts."""
     return frozenset(map(tuple, data.contact.geom[: data.ncon].tolist()))
+
+
+def _write(m, field: str, values) -> None:
+    """Set a field of :func:`_stored_fields` in the model `m` to `values`, in place, shaped as the field."""
+    holder, attr = _holder(m, field)
+    if np.ndim(getattr(holder, attr)) == 0:
+        setattr(holder, attr, np.asarray(values).item())
+    else:
+        getattr(holder, attr)[...] = np.asarray(values).reshape(np.shape(getattr(holder, attr)))
 
 
 def _holder(m, field: str):

@@ -163,6 +163,7 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
     repairs: dict[str, np.ndarray] = {}
     causes, compared = [], 0
     original = backend.stored_numbers()
+
     # two probes, by 4 and by 1/4: a number that scales by 4**k one way and not by 4**-k the other is not
     # scale-free even where each probe alone looks clean (a rotation found by an iteration that stops at an
     # absolute tolerance, say); and at s = 4 itself the first probe is the copy
@@ -189,6 +190,13 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
         one, by = (probe, PROBE) if probe else (inverse, Fraction(1, PROBE))
         causes.extend(dimension_causes(model, scaling, original, one, by, keep_inputs=keep_inputs))
     copy = scaled.runner.stored_numbers()
+
+    def repair(field: str, expected: np.ndarray, off: np.ndarray) -> None:
+        """The copy's field, as repaired so far, with the entries `off` set to `expected`, in its precision."""
+        out = np.array(repairs.get(field, copy[field]), copy=True)
+        out[off] = expected[off].astype(out.dtype)
+        repairs[field] = out
+
     # rows no step reads (a visual geom's pose, its mesh): held to nothing, for nothing in a run moves by them
     unread = backend.unread_stored() if isinstance(backend, StoresUnreadNumbers) else {}
     probed = {}  # field -> (exponents, clean): pass one, for the largest number of each exponent
@@ -230,7 +238,7 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
             powers = np.unique(k[clean & ~residue & (before != 0)])  # a zero takes every power
             if powers.size == 1:  # the field's one power of s (a mesh's centre, a length): set right by it
                 factor = _factors(s, np.full(before.shape, powers[0]), np.ones(before.shape, dtype=bool))
-                repairs[field] = _repaired(copy[field], before.astype(float) * factor, changed)
+                repair(field, before.astype(float) * factor, changed)
         magnitude = np.abs(before.astype(float))
         for e in np.unique(k[clean]):
             scale[e] = max(scale.get(e, 0.0), float(np.max(magnitude[clean & (k == e)], initial=0.0)))
@@ -249,7 +257,7 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
                 # at s a power of two nothing is rounded by the scaling: what differs was processed
                 if is_power_of_two(s):
                     causes.append(_reprocessed(backend, field, got, expected, off))
-                    repairs[field] = _repaired(repairs.get(field, copy[field]), expected, off)
+                    repair(field, expected, off)
                 else:
                     causes.append(_rounded(backend, field, before, got, expected, off))
             continue
@@ -263,7 +271,7 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
                 derived.append((field, float(rel.max()), off, got, expected))
             else:
                 causes.append(_mismatch(backend, field, got, expected, off))
-                repairs[field] = _repaired(repairs.get(field, copy[field]), expected, off)
+                repair(field, expected, off)
     if derived and any(c.kind == "precision" for c in causes):
         fields = ", ".join(f for f, *_ in derived[:6]) + (f" and {len(derived) - 6} more" if len(derived) > 6 else "")
         worst = max(r for _, r, *_ in derived)
@@ -277,7 +285,7 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
     else:
         for field, _, off, got, expected in derived:
             causes.append(_mismatch(backend, field, got, expected, off))
-            repairs[field] = _repaired(repairs.get(field, copy[field]), expected, off)
+            repair(field, expected, off)
     for name, value in (backend.solver_settings() if isinstance(backend, CounterRuns) else {}).items():
         causes.append(
             Cause(
@@ -307,13 +315,6 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
         causes.extend(crossed(model.engine, scaled.parameters, **how))
     causes.extend(crossed(model.engine, model.parameters, **how))
     return Audit(sorted_causes(causes), compared, float(s)), repairs
-
-
-def _repaired(values: np.ndarray, expected: np.ndarray, off: np.ndarray) -> np.ndarray:
-    """`values` (a stored field of the copy) with the entries `off` set to `expected`, in the field's precision."""
-    out = np.array(values, copy=True)
-    out[off] = expected[off].astype(out.dtype)
-    return out
 
 
 def held_otherwise(before: np.ndarray, copy: np.ndarray, clean: np.ndarray) -> np.ndarray:
@@ -360,19 +361,18 @@ def _probe_exponents(before: np.ndarray, probe: np.ndarray) -> tuple[np.ndarray,
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(nonzero, p / np.where(nonzero, b, 1.0), 1.0)
         half = np.where(ratio > 0, np.round(2 * np.log(np.abs(ratio)) / math.log(PROBE)) / 2, 0.0)
+        power = float(PROBE) ** half
+        # a power of 4 up to rounding: relative to the number, or, for a number the engine derives from larger
+        # ones (a mesh's centre at 1e-8 found from vertices of 0.05), absolute at the rounding of the field's largest
+        exact = nonzero & (ratio > 0) & (np.abs(ratio - power) <= ROUNDING * power)
+        near = (ratio > 0) & (np.abs(p - b * power) <= floor * power)
     # a zero, or the rounding residue of one: held to nothing.  Not a number below the floor that the probe
     # carries by an exact power: in float32 the floor of a field that mixes a table's inertia (241) with a
     # block's (2.7e-5, Meta-World's in MuJoCo Warp) lies above the block's, which is no residue
-    exact = nonzero & (ratio > 0) & (np.abs(ratio - float(PROBE) ** half) <= ROUNDING * float(PROBE) ** half)
     zero = (np.abs(b) <= floor) & ~exact
     clean[zero] = np.abs(p[zero]) <= PROBE**2 * floor
     live = ~zero & finite
-    power = float(PROBE) ** half[live]
-    # a power of 4 up to rounding: relative to the number, or, for a number the engine derives from larger ones
-    # (a mesh's centre at 1e-8 found from vertices of 0.05), absolute at the rounding of the field's largest
-    clean[live] = (ratio[live] > 0) & (
-        (np.abs(ratio[live] - power) <= ROUNDING * power) | (np.abs(p[live] - b[live] * power) <= floor * power)
-    )
+    clean[live] = exact[live] | near[live]
     k[live] = half[live]
     return k, clean, zero & (b != 0)
 

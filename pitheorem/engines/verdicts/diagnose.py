@@ -161,8 +161,7 @@ def find_causes(
         back = other / factors
         parts = parting(run, back)
         worst = _largest(back - run)
-        # it shows a cause: the runs part later, or stay a thousand times closer than the verdict's
-        shows = parts is None or parts > verdict_parts or worst < report.max_deviation / SHRINK
+        shows = _shows(parts, worst, verdict_parts, report.max_deviation)  # against the verdict's runs
         rows = len(report.mapped.y)  # the verdict's copy, cut where an engine reset it
         unchanged = back.shape[1:] == report.mapped.y.shape[1:] and np.array_equal(
             back[:rows], report.mapped.y, equal_nan=True
@@ -201,8 +200,7 @@ def find_causes(
         with `base`), or never, or stay a thousand times closer than `ref_worst`."""
 
         def relative(counter: Counter) -> Counter:
-            later = counter.parts is None or counter.parts > ref_parts
-            return Counter(later or counter.worst < ref_worst / SHRINK, *counter[1:])
+            return Counter(_shows(counter.parts, counter.worst, ref_parts, ref_worst), *counter[1:])
 
         def with_base(*options) -> list[Counter]:
             return [relative(c) for c in counters(*(_merged([base, o]) for o in options))]
@@ -347,8 +345,8 @@ def find_causes(
         together = counters(base)[0]
         # another round where the causes found moved the parting on: later, or a thousand times closer at the same
         # step (Meta-World's Sawyer with a hammer: the weld inactive leaves 4e-6 from step 1, the contacts' share)
-        moved = together.parts is not None and (together.parts > ref_parts or together.worst < ref_worst / SHRINK)
-        if together.restores or not moved:
+        moved = _shows(together.parts, together.worst, ref_parts, ref_worst)
+        if together.restores or together.parts is None or not moved:
             break
         besides = _in_words(base, original, equalities, limited)
         more = [
@@ -616,6 +614,12 @@ class Counter(NamedTuple):
     parts: int | None
     exact: bool
     unchanged: bool = False  # the copy ran the very bits of the verdict's copy
+
+
+def _shows(parts: int | None, worst: float, ref_parts: int, ref_worst: float) -> bool:
+    """Whether a counter-run shows a cause against reference runs that part at step `ref_parts` by `ref_worst`:
+    its runs part later (or never), or stay a thousand times closer."""
+    return parts is None or parts > ref_parts or worst < ref_worst / SHRINK
 
 
 def _largest(diff: np.ndarray) -> float:
