@@ -154,11 +154,36 @@ def audit(model: EngineModel, scaling, s, *, scaled: EngineModel | None = None, 
 
 
 def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bool = False) -> tuple[Audit, dict]:
-    """:func:`audit` of a scaled copy, and the copy's stored numbers repaired: for each field an
-    ``"unscaled"`` cause names, the copy's values with those it holds wrong set to the original's times
-    their factor (a number no power of s carries, by the field's one power where it has one; a field held
-    in float32 and rounded by a factor that is no power of two cannot be repaired).  :func:`~pitheorem.engines.verdicts.diagnose.find_causes`
-    runs the copy repaired, field by field, to show whether each such number acts on the run."""
+    """:func:`audit` of a scaled copy, and the copy's stored numbers repaired.
+
+    For each field an ``"unscaled"`` cause names: the copy's values with
+    those it holds wrong set to the original's times their factor (a
+    number no power of s carries, by the field's one power where it has
+    one; a field held in float32 and rounded by a factor that is no power
+    of two cannot be repaired).
+    :func:`~pitheorem.engines.verdicts.diagnose.find_causes` runs the copy
+    repaired, field by field, to show whether each such number acts on the
+    run.  The arguments are :func:`audit`'s, checked there.
+
+    Returns
+    -------
+    tuple of (Audit, dict of str to ndarray)
+        The audit, and field -> the copy's values, repaired.
+
+    Examples
+    --------
+    >>> import pitheorem as pt
+    >>> from pitheorem import engines
+    >>> from pitheorem.engines.verdicts.audit import audited
+    >>> model = engines.load(engines.example_path("pendulum.xml"))
+    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    >>> wrong = model.scaled(sc, 4).multiplied(g=0.25)  # gravity left as it was
+    >>> found, repairs = audited(model, sc, 4, wrong)
+    >>> [c.element for c in found.causes if c.kind == "unscaled"], list(repairs)
+    (['opt.gravity'], ['opt.gravity'])
+    >>> model.runner.stored_numbers()["opt.gravity"][2], repairs["opt.gravity"][2]  # the original's times 4
+    (np.float64(-9.81), np.float64(-39.24))
+    """
     backend = model.runner
     repairs: dict[str, np.ndarray] = {}
     causes, compared = [], 0
