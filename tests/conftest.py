@@ -88,7 +88,7 @@ def mjx_untraced():
 
 #: the test files that take longest, longest first, sent to xdist's workers before the others: each worker
 #: takes the next file when it is nearly done with its last, so that sending the long ones first leaves the
-#: short ones to even out the end.  Seconds of CPU under ``make test`` on a fresh clone (2026-11-28): MJX
+#: short ones to even out the end.  Seconds of CPU under ``make coverage`` on a fresh clone (2026-11-28): MJX
 #: 47, Warp 38 (both mostly compiling with empty caches: JAX tracing and XLA compiling MJX's step, Warp its
 #: kernels), the command line 29, the verdicts' causes 25, the corpus 18, SUPERball 11, the fuzz 8.  By its own
 #: rule (the files with the most tests first) xdist sent the engines' files last, and the suite waited at its
