@@ -376,6 +376,26 @@ def test_each_world_runs_from_its_own_models_fixed_geoms_as_it_runs_alone(table,
         assert rep.exact, rep.max_deviation
 
 
+def test_a_twins_world_starts_with_its_fixed_geoms_where_its_moved_numbers_put_them(tmp_path):
+    """A twin moves every number by one float32 unit, the fixed table's position too; the table's pose in its
+    world (computed once, by make_data, from MuJoCo's model) must be the moved one, or the yardstick's twin
+    would run against the original's table."""
+    path = tmp_path / "table.xml"
+    path.write_text(TABLE.format(asset="", table=TABLES["box"][1]))
+    original = load(path).runner
+    twins = [original.twin(seed) for seed in (1, 2)]
+    with warp.ScopedDevice("cpu"):
+        poses = warp_runner._data([original, *twins]).geom_xpos.numpy()
+    # the table is the world body's geom 0: its pose is its stored position, as each runner holds it
+    for world, runner in enumerate([original, *twins]):
+        assert np.array_equal(poses[world, 0], runner.stored_numbers()["geom_pos"][0])
+    assert not np.array_equal(poses[1, 0], poses[0, 0])
+    # what MJWarp holds otherwise than MuJoCo (the solver's tolerance, raised to a float32 floor) is its own:
+    # the MuJoCo model a twin's world starts from keeps MuJoCo's
+    assert original.stored_numbers()["opt.tolerance"][0] != np.float32(original.mjcf.mjmodel.opt.tolerance)
+    assert all(t._start_mjmodel.opt.tolerance == original.mjcf.mjmodel.opt.tolerance for t in twins)
+
+
 def test_a_urdf_runs_in_warp_through_mujocos_urdf_reader():
     path = engines.example_path("hinged_rod.urdf")
     model = engines.load(path, engine="warp", device="cpu")

@@ -120,7 +120,7 @@ class WarpRunner(MujocoCompiledRunner):
         self.mjcf = mjcf
         self.device = device
         self._moved = dict(moved or {})
-        self._device_model = _put(mjcf, device, self._moved)
+        self._device_model, self._start_mjmodel = _put(mjcf, device, self._moved)
 
     def _rebuilt(self, mjcf: MujocoRunner, *, same_numbers: bool) -> WarpRunner:
         return WarpRunner(mjcf, self.device, self._moved if same_numbers else None)
@@ -178,14 +178,14 @@ class WarpRunner(MujocoCompiledRunner):
                 m = jobs[members[0]][0].mjcf.mjmodel  # the sizes, the same for all
                 starts = np.stack([_initial(jobs[i][0], jobs[i][2], jobs[i][3]) for i in members])
                 rows = np.stack([_control_rows(jobs[i][1], n_steps, m.nu, jobs[i][0].timestep()) for i in members])
-                data = _data([jobs[i][0].mjcf.mjmodel for i in members])
+                data = _data([jobs[i][0] for i in members])
                 data.qpos.assign(starts[:, : m.nq])
                 data.qvel.assign(starts[:, m.nq : m.nq + m.nv])
                 if m.na:
                     data.act.assign(starts[:, m.nq + m.nv :])
                 if m.nmocap:  # each world's mocap bodies where its own model puts them, as mj_resetData does
-                    data.mocap_pos.assign(np.stack([_mocap(jobs[i][0].mjcf.mjmodel, "body_pos") for i in members]))
-                    data.mocap_quat.assign(np.stack([_mocap(jobs[i][0].mjcf.mjmodel, "body_quat") for i in members]))
+                    data.mocap_pos.assign(np.stack([_mocap(jobs[i][0]._start_mjmodel, "body_pos") for i in members]))
+                    data.mocap_quat.assign(np.stack([_mocap(jobs[i][0]._start_mjmodel, "body_quat") for i in members]))
                 runs = np.empty((len(members), n_steps + 1, m.nq + m.nv + m.na), dtype=np.float32)
                 runs[:, 0] = starts
                 for step in range(n_steps):
@@ -201,18 +201,20 @@ class WarpRunner(MujocoCompiledRunner):
         return out
 
 
-def _data(mjmodels: list):
-    """MJWarp's data for worlds of these MuJoCo models, each world's first state as its own model's alone.
+def _data(runners: list):
+    """MJWarp's data for worlds of these runners, each world's first state as its own model's alone.
 
-    ``mujoco_warp.make_data`` fills every world from the one model it is
-    given, and some of what it fills the steps never recompute: the
-    poses of the geoms fixed to the world (``geom_xpos``, ``geom_xmat``,
-    from ``mj_kinematics`` at ``qpos0``; MJWarp's step skips them).  A
-    scaled copy moves them, so each world's rows are taken from the data
-    of its own model, made for one world: what a run of it alone starts
-    from.
+    ``mujoco_warp.make_data`` fills every world from the one MuJoCo model
+    it is given, and some of what it fills the steps never recompute:
+    the poses of the geoms fixed to the world (``geom_xpos``,
+    ``geom_xmat``, from ``mj_kinematics`` at ``qpos0``; MJWarp's step
+    skips them).  A scaled copy moves them, and so does a twin's one
+    float32 unit, so each world's rows are taken from the data of its
+    own model (a twin's with its moved numbers written in), made for one
+    world: what a run of it alone starts from.
     """
     wp, mjw = _warp()
+    mjmodels = [runner._start_mjmodel for runner in runners]
     nworld = len(mjmodels)
     data = mjw.make_data(mjmodels[0], nworld=nworld)
     distinct = {id(mjm): mjm for mjm in mjmodels}
@@ -240,7 +242,8 @@ def _mocap(mjmodel, field: str) -> np.ndarray:
 
 
 def _put(mjcf: MujocoRunner, device: str, moved: dict):
-    """The ``mujoco_warp.Model`` of a MuJoCo model on `device`, `moved` arrays replaced; refusals by name."""
+    """The ``mujoco_warp.Model`` of a MuJoCo model on `device`, `moved` arrays replaced, and the MuJoCo model its
+    worlds start from (:func:`_start_mjmodel`); refusals by name."""
     wp, mjw = _warp()
     with wp.ScopedDevice(device):
         try:
@@ -250,11 +253,40 @@ def _put(mjcf: MujocoRunner, device: str, moved: dict):
             raise EngineModelError(
                 mjcf.path, _unsupported(reason), f"MuJoCo Warp does not support {reason}; run the file in 'mujoco'"
             ) from None
+        held = {}
         for field, value in moved.items():
             holder, name = (model.opt, field[4:]) if field.startswith("opt.") else (model, field)
             old = getattr(holder, name)
+            held[field] = old.numpy()
             setattr(holder, name, wp.array(value, dtype=old.dtype, shape=old.shape))
-    return model
+    return model, _start_mjmodel(mjcf.mjmodel, moved, held)
+
+
+def _start_mjmodel(mjmodel, moved: dict, held: dict):
+    """The MuJoCo model whose data a world starts from: `mjmodel`, or a copy with a twin's `moved` numbers written in.
+
+    ``make_data`` computes with C MuJoCo what MJWarp's steps never
+    recompute (the poses of the geoms fixed to the world), so a twin's
+    must come from its moved numbers.  A field is written where MJWarp
+    holds it as MuJoCo does: its unmoved values (`held`) are MuJoCo's
+    rounded to float32, element for element.  The others are MJWarp's
+    own (derived, or laid out otherwise), which MuJoCo does not read.
+    """
+    if not moved:
+        return mjmodel
+    out = copy.copy(mjmodel)  # MuJoCo's own copy of every array
+    for field, value in moved.items():
+        holder, name = (out.opt, field[4:]) if field.startswith("opt.") else (out, field)
+        mine = getattr(holder, name, None)
+        if not isinstance(mine, float | np.ndarray) or np.size(mine) != value.size:
+            continue
+        if not np.array_equal(np.asarray(mine, dtype=np.float32).ravel(), held[field].ravel()):
+            continue
+        if isinstance(mine, np.ndarray):
+            mine[...] = value.reshape(mine.shape)
+        else:
+            setattr(holder, name, float(value.ravel()[0]))
+    return out
 
 
 def _unsupported(reason: str) -> str:
