@@ -47,6 +47,7 @@ __all__ = [
     "STILL",
     "Control",
     "caught",
+    "caught_or_hidden",
     "control_factors",
     "horizon",
     "unseen_groups",
@@ -253,11 +254,43 @@ def caught(original: np.ndarray, back: np.ndarray, limits: np.ndarray, bits: boo
     >>> caught(a, np.nextafter(a, 3.0), lim, bits=True, copy=noisy), caught(a, a + 1e-6, lim, bits=True, copy=noisy)
     (False, True)
     """
+    return caught_or_hidden(original, back, limits, bits, copy=copy)[0]
+
+
+def caught_or_hidden(
+    original: np.ndarray, back: np.ndarray, limits: np.ndarray, bits: bool, *, copy: np.ndarray
+) -> tuple[bool, bool]:
+    """Whether a control is :func:`caught`, and whether, uncaught, it is *hidden*: caught against a copy bit for bit.
+
+    A hidden control passed only because the engine parts the right copy
+    from the original as far as the control's error (the report says why).
+    The control's deviation is computed once for both.
+
+    Parameters
+    ----------
+    original, back, copy, limits, bits
+        As for :func:`caught`.
+
+    Returns
+    -------
+    tuple of bool
+        (caught, hidden); hidden is never true of a control caught.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pitheorem.engines.verdicts.strength import caught_or_hidden
+    >>> a, lim = np.array([[1.0, 2.0]]), np.array([1e-9, 1e-9])
+    >>> caught_or_hidden(a, np.nextafter(a, 3.0), lim, True, copy=a)
+    (True, False)
+    >>> caught_or_hidden(a, np.nextafter(a, 3.0), lim, True, copy=np.nextafter(a, 0.0))  # the copy parted as far
+    (False, True)
+    """
     far = _deviation(original, back)
-    floor = _deviation(original, copy)
     with np.errstate(invalid="ignore"):
         beyond = far > 0 if bits else ~(far <= limits)  # a NaN yardstick catches, as before
-    return bool(np.any(beyond & (far > COPY_MARGIN * floor)))
+    seen = bool(np.any(beyond & (far > COPY_MARGIN * _deviation(original, copy))))
+    return seen, not seen and bool(np.any(beyond & (far > 0)))  # far > 0: beyond a copy's zero deviation
 
 
 def _deviation(original: np.ndarray, run: np.ndarray) -> np.ndarray:

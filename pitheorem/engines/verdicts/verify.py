@@ -52,7 +52,7 @@ from ..enginemodel import EngineModel, check_scaling
 from ..parameters import dim, dimension_factors
 from ..protocols import KeepsInputs, MultipliesInPlace, Runs
 from .scalefree import scale_free_run
-from .strength import Control, caught, control_factors, horizon, unseen_groups
+from .strength import Control, caught_or_hidden, control_factors, horizon, unseen_groups
 
 __all__ = ["STAGES", "Baseline", "Plan", "Runs", "baseline", "judge", "prepare", "smooth_controls", "verify"]
 
@@ -430,9 +430,7 @@ def judge(plan: Plan, rows: list | None, progress=None) -> SimilarityReport:
         out = []
         for (group, error, _f), values in zip(rungs, rows_of_each, strict=True):
             back = values / factors
-            seen = caught(run, back, limits, bits=exact_expected, copy=mapped)
-            # hidden: caught against a copy bit for bit, not against this one (the report says why it passed)
-            hidden = not seen and caught(run, back, limits, bits=exact_expected, copy=run)
+            seen, hidden = caught_or_hidden(run, back, limits, exact_expected, copy=mapped)
             out.append(Control(group, error, seen, hidden=hidden))
         return out
 
