@@ -479,12 +479,8 @@ def test_apply_without_output_reports_the_changes_and_writes_nothing(tmp_path, c
     assert list(tmp_path.iterdir()) == []
 
 
-def test_verify_says_when_a_run_moved_nothing_and_expects_bits_where_every_factor_is_a_power_of_two(capsys):
-    from fractions import Fraction
-
-    import pitheorem as pt
+def test_verify_says_when_a_run_moved_nothing(capsys):
     from pitheorem.cli import main
-    from pitheorem.engines.verdicts.verify import exact_in_binary
 
     hanging = str(Path(__file__).parent / "data" / "engines" / "hanging.xml")
     assert main(["verify", hanging, "--scale", "g=1", "--s", "10", "--input", "zero"]) == 1  # inconclusive
@@ -493,16 +489,6 @@ def test_verify_says_when_a_run_moved_nothing_and_expects_bits_where_every_facto
     assert out.startswith("inconclusive: the copy matches bit for bit (s = 10, ")
     assert len(out.splitlines()[0]) < 120
     assert "a gravity error cannot be seen" in out
-    model = engines.load(PENDULUM)
-    half = pt.Scaling.from_unit_change(model.system(), {"L": Fraction(1, 2)})  # lengths times s^(1/2)
-    powers = [
-        s for s in ("4", "16", "1/4", "1/64", "2", "8", "10", "3/4", "1") if exact_in_binary(model, half, Fraction(s))
-    ]
-    assert powers == ["4", "16", "1/4", "1/64", "1"]
-    whole = pt.Scaling.from_unit_change(model.system(), {"L": 1})  # whole exponents: every power of two
-    assert [s for s in ("2", "8", "1/2", "3") if exact_in_binary(model, whole, Fraction(s))] == ["2", "8", "1/2"]
-    angles = pt.Scaling.from_unit_change(model.system(), {"M": 1})  # masses only: the coordinates keep factor 1
-    assert not exact_in_binary(model, angles, 10)
 
 
 def test_convert_writes_the_same_model_in_other_units_and_check_reads_it(tmp_path, capsys):

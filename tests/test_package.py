@@ -269,6 +269,7 @@ def test_every_module_has_its_test_file_and_every_test_file_a_module_or_a_reason
             "thresholds",
             "units",
             "verdicts.audit",
+            "verdicts.binary",
             "verdicts.causes",
             "verdicts.diagnose",
             "verdicts.probes",

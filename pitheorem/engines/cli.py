@@ -521,7 +521,8 @@ def verify_engine(
     True
     """
     from ..progress import StageBar
-    from .verdicts.verify import exact_in_binary, smooth_controls, verify
+    from .verdicts.binary import exact_in_binary
+    from .verdicts.verify import smooth_controls, verify
 
     controls = smooth_controls(model) if inputs == "smooth" and len(model.inputs()[0]) else None
     with StageBar("verify", VERIFY_STAGES, show=progress and stage is None) as bar:

@@ -35,6 +35,7 @@ from ...immutable import immutable
 from ...scaling import float_power, is_power_of_two
 from ..enginemodel import EngineModel, check_scaling
 from ..protocols import CounterRuns, IgnoredSettings, NamesElements, StoresUnreadNumbers
+from .binary import exact_in_binary
 from .causes import Cause, sorted_causes
 from .probes import dimension_causes
 
@@ -268,6 +269,7 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
         for e in np.unique(k[clean]):
             scale[e] = max(scale.get(e, 0.0), float(np.max(magnitude[clean & (k == e)], initial=0.0)))
     derived = []  # float64 mismatches small enough to come from float32 numbers rounded
+    in_binary = exact_in_binary(model, scaling, s)  # every number of the file times a power of two: none rounded
     for field, (k, clean, residue) in probed.items():
         before = original[field]
         factor = _factors(s, k, clean)
@@ -281,7 +283,7 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
             if off.any():
                 # at s a power of two nothing is rounded by the scaling: what differs was processed
                 if is_power_of_two(s):
-                    causes.append(_reprocessed(backend, field, got, expected, off))
+                    causes.append(_reprocessed(backend, field, got, expected, off, float32=True))
                     repair(field, expected, off)
                 else:
                     causes.append(_rounded(backend, field, before, got, expected, off))
@@ -290,6 +292,13 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
         # left by a difference of lengths of order one is rounding too)
         allowed = ROUNDING * np.abs(expected) + RESIDUE * np.spacing(np.vectorize(scale.get)(k, 0.0)) * factor
         off = ok & (np.abs(got - expected) > allowed)
+        # where every factor is a power of two nothing need be rounded: a number off by less than rounding was
+        # computed by the engine from the file, at each size otherwise (the quadrature of an ellipsoid's added
+        # mass in MuJoCo's compiler), and a copy it parts from the original is no longer bit for bit
+        otherwise = ok & ~off & (got != expected)
+        if in_binary and otherwise.any():
+            causes.append(_reprocessed(backend, field, got, expected, otherwise, float32=False))
+            repair(field, expected, otherwise)
         if off.any():
             rel = _relative(got[off], expected[off])
             if rel.max() <= DERIVED:
@@ -451,15 +460,21 @@ def _rounded(backend, field, before, got, expected, mask) -> Cause:
     )
 
 
-def _reprocessed(backend, field, got, expected, mask) -> Cause:
-    rel = _relative(got[mask], expected[mask])
-    return Cause(
-        "unscaled",
-        field,
-        f"{int(mask.sum())} float32 values ({_where(backend, field, mask)}) differ from "
-        f"the original times an exact factor, by up to {float(rel.max()):.2g} relative: the engine "
-        "computes them from the file in a way that is not scale-free",
-    )
+def _reprocessed(backend, field, got, expected, mask, *, float32: bool) -> Cause:
+    """A number the engine computes from the file, not the original's times its exact factor (a power of two)."""
+    rel, where = float(_relative(got[mask], expected[mask]).max()), _where(backend, field, mask)
+    if float32:
+        detail = (
+            f"{int(mask.sum())} float32 values ({where}) differ from the original times an exact factor, by up to "
+            f"{rel:.2g} relative: the engine computes them from the file in a way that is not scale-free"
+        )
+    else:
+        detail = (
+            f"{int(mask.sum())} values ({where}) are the original times an exact factor but for rounding (up to "
+            f"{rel:.2g} relative): the engine computes them from the file and at this size rounds them otherwise, "
+            "where a power of two needs no rounding"
+        )
+    return Cause("unscaled", field, detail)
 
 
 def _mismatch(backend, field, got, expected, mask) -> Cause:

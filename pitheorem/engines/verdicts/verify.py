@@ -46,11 +46,11 @@ import numpy as np
 
 from ...errors import InvalidRequestError
 from ...exact import read_count, read_scale_factor
-from ...scaling import is_power_of_two
 from ...simulation import SimilarityReport, Trajectory, allowed_deviation, positive_float, similarity_report
 from ..enginemodel import EngineModel, check_scaling
 from ..parameters import dim, dimension_factors
 from ..protocols import KeepsInputs, MultipliesInPlace, Runs
+from .binary import every_factor_a_power_of_two
 from .scalefree import scale_free_run
 from .strength import Control, caught_or_hidden, control_factors, horizon, unseen_groups
 
@@ -357,7 +357,7 @@ def prepare(
         t=np.arange(n_steps + 1) * dt,
         batched=batched,
         exponents={n: exponent_of[d] for n, d in zip(names, dims, strict=True)},
-        exact_expected=_every_factor_a_power_of_two(model, factor),
+        exact_expected=every_factor_a_power_of_two(model, factor),
         baseline_factor=baseline_factor,
         ensemble=ensemble,
         strength=strength,
@@ -611,44 +611,6 @@ def _wrong_copy(model: EngineModel, scaled: EngineModel, group: str, wrong: dict
     else:
         made = scaled.multiplied(**wrong)
     return made.runner if compiled else made
-
-
-def exact_in_binary(model: EngineModel, scaling, s) -> bool:
-    """Whether a scaling multiplies every number of a model by a power of two (and the runs must agree bit for bit).
-
-    Every number, not only every recorded coordinate: a humanoid's coordinates are angles, of
-    factor 1 under any scaling that keeps time, while its lengths and masses are not exact at
-    ``s = 10``.  At ``s`` a power of four every factor ``s**e`` (``e`` a multiple of 1/2) is one.
-
-    Parameters
-    ----------
-    model : EngineModel
-    scaling : Scaling
-    s : float or Fraction
-
-    Returns
-    -------
-    bool
-
-    Examples
-    --------
-    >>> import pitheorem as pt
-    >>> from pitheorem import engines
-    >>> from pitheorem.engines.verdicts.verify import exact_in_binary
-    >>> model = engines.load(engines.example_path("pendulum.xml"))
-    >>> sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
-    >>> exact_in_binary(model, sc, 4), exact_in_binary(model, sc, 10), exact_in_binary(model, sc, 3)
-    (True, False, False)
-    """
-    return _every_factor_a_power_of_two(model, dimension_factors(scaling, read_scale_factor(s))[0])
-
-
-def _every_factor_a_power_of_two(model: EngineModel, factor) -> bool:
-    """:func:`exact_in_binary` with the factors of a scaling already at hand (``factor(dimension)``)."""
-    by_dimension, mixed = model.by_dimension()
-    dimensions = [d for d, _names in by_dimension] + [d for p in mixed for _part, d in p.parts]
-    _names, coordinates = model.coordinates()
-    return all(is_power_of_two(factor(d)) for d in (*dimensions, *coordinates, dim("T")))
 
 
 def smooth_controls(model: EngineModel, amplitude: float = 0.3, period: float = 0.5):
