@@ -8,9 +8,9 @@ import pytest
 
 pytest.importorskip("mujoco", reason="mujoco is not installed (pip install 'pitheorem[engines]')")
 
-import pitheorem as pt  # noqa: E402
-from pitheorem import engines  # noqa: E402
-from pitheorem.engines.verdicts.binary import every_factor_a_power_of_two, exact_in_binary  # noqa: E402
+import pitheorem as pt
+from pitheorem import engines
+from pitheorem.engines.verdicts.binary import every_factor_a_power_of_two, exact_in_binary
 
 PENDULUM = engines.example_path("pendulum.xml")
 

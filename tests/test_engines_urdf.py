@@ -399,6 +399,41 @@ def test_compound_meshes_are_the_collision_objs_of_several_parts_found_as_pybull
     ]
 
 
+def test_a_package_path_is_found_under_ros_package_path_then_at_a_package_root_named_otherwise(tmp_path, monkeypatch):
+    """``package://kr16_support/meshes/m.obj`` from ``kr16/urdf/robot.urdf``: PyBullet's search (a folder
+    ``kr16_support`` beside the file or above it) finds nothing; ROS finds the package under
+    ``ROS_PACKAGE_PATH``; without it, the package's root is the folder above ``urdf/``, named otherwise."""
+    import os
+
+    from pitheorem.engines.fileformats.urdf import read_urdf
+
+    folder = tmp_path / "kr16" / "urdf"
+    folder.mkdir(parents=True)
+    path = folder / "robot.urdf"
+    inertial = '<inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>'
+    path.write_text(
+        f'<robot name="r"><link name="base">{inertial}<collision><geometry>'
+        '<mesh filename="package://kr16_support/meshes/m.obj"/></geometry></collision></link></robot>'
+    )
+    obj = "o x\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n"
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    with pytest.raises(EngineModelError, match="mesh file not found"):
+        read_urdf(path)
+    in_root = tmp_path / "kr16" / "meshes" / "m.obj"
+    in_root.parent.mkdir()
+    in_root.write_text(obj)
+    assert str(in_root.resolve()) in read_urdf(path).portable_text()
+    in_ws = tmp_path / "ws" / "kr16_support" / "meshes" / "m.obj"
+    in_ws.parent.mkdir(parents=True)
+    in_ws.write_text(obj)
+    monkeypatch.setenv("ROS_PACKAGE_PATH", os.pathsep.join([str(tmp_path / "nowhere"), str(tmp_path / "ws")]))
+    assert str(in_ws.resolve()) in read_urdf(path).portable_text()  # the package ROS names comes first
+    beside = folder / "kr16_support" / "meshes" / "m.obj"  # and PyBullet's own search before it
+    beside.parent.mkdir(parents=True)
+    beside.write_text(obj)
+    assert str(beside.resolve()) in read_urdf(path).portable_text()
+
+
 def test_a_mesh_is_looked_for_in_every_folder_above_the_file_as_pybullet_does(tmp_path):
     from pitheorem.engines.fileformats.urdf import read_urdf
 

@@ -385,16 +385,25 @@ def _mesh_path(filename: str, source_dir: Path, mesh_folder: Path | None = None)
     (its ``UrdfFindMeshFile``): ``package://`` and ``model://`` dropped, the name is looked for in
     the URDF's folder and in every folder above it, nearest first (a ROS package's meshes sit
     beside its ``urdf`` folder; pybullet_data's ``differential/diff_ring.urdf`` names
-    ``differential/diff_ring.stl`` from the folder above), then as given.
+    ``differential/diff_ring.stl`` from the folder above), then as given.  A
+    ``package://NAME/rest`` path is then looked for as ROS finds it, in ``NAME`` under each folder
+    of ``ROS_PACKAGE_PATH``, and last as ``rest`` in the URDF's folder and each folder above it:
+    the package's root, where its folder is not named as the package (robotics-toolbox's KUKA
+    KR16 in ``kuka_kr16/`` names ``package://kuka_kr16_support/meshes/...``).
     """
-    name = filename
+    name, package = filename, None
     for scheme in ("package://", "model://"):
         if name.startswith(scheme):
             name = name[len(scheme) :]
+            package = name.partition("/") if scheme == "package://" else None
             break
-    candidates = [folder / name for folder in (source_dir, *source_dir.parents)] + [Path(name)]
+    above = (source_dir, *source_dir.parents)
+    candidates = [folder / name for folder in above] + [Path(name)]
     if mesh_folder is not None and name == filename:
         candidates.insert(0, mesh_folder / name)
+    if package is not None and package[2]:
+        roots = [Path(p) for p in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p]
+        candidates += [root / name for root in roots] + [folder / package[2] for folder in above]
     for c in candidates:
         if c.is_file():
             return c

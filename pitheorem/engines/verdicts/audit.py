@@ -462,17 +462,18 @@ def _rounded(backend, field, before, got, expected, mask) -> Cause:
 
 def _reprocessed(backend, field, got, expected, mask, *, float32: bool) -> Cause:
     """A number the engine computes from the file, not the original's times its exact factor (a power of two)."""
-    rel, where = float(_relative(got[mask], expected[mask]).max()), _where(backend, field, mask)
+    rel, where, n = float(_relative(got[mask], expected[mask]).max()), _where(backend, field, mask), int(mask.sum())
+    values, them = ("values", "them") if n > 1 else ("value", "it")
     if float32:
         detail = (
-            f"{int(mask.sum())} float32 values ({where}) differ from the original times an exact factor, by up to "
-            f"{rel:.2g} relative: the engine computes them from the file in a way that is not scale-free"
+            f"{n} float32 {values} ({where}) differ{'' if n > 1 else 's'} from the original times an exact factor, "
+            f"by up to {rel:.2g} relative: the engine computes {them} from the file in a way that is not scale-free"
         )
     else:
         detail = (
-            f"{int(mask.sum())} values ({where}) are the original times an exact factor but for rounding (up to "
-            f"{rel:.2g} relative): the engine computes them from the file and at this size rounds them otherwise, "
-            "where a power of two needs no rounding"
+            f"{n} {values} ({where}) {'are' if n > 1 else 'is'} the original times an exact factor but for rounding "
+            f"(up to {rel:.2g} relative), which a power of two never needs: the engine computes {them} from the "
+            f"file and at this size rounds {them} otherwise (or the file's own numbers are off by as little)"
         )
     return Cause("unscaled", field, detail)
 
