@@ -336,3 +336,23 @@ def test_a_small_number_below_its_fields_float32_floor_that_scales_exactly_is_no
     k, clean, residue = _probe_exponents(before, noisy)
     assert residue[2].all()
     assert clean[2].all()
+
+
+def test_a_field_is_named_once_and_set_right_whole_where_numbers_are_held_wrong_and_rounded_otherwise():
+    """A copy whose ball weighs twice what it should and whose box's density is off by 1e-12 relative: the
+    box's mass is the original's times its factor but for rounding, which at s = 4 no number needs, and the
+    ball's is wrong.  Each field is named once (for its wrong number), and its repair sets both right."""
+    from pitheorem.engines.verdicts.audit import audited
+
+    model = engines.load(engines.example_path("causes/contact.xml"))
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    wrong = model.scaled(sc, 4).multiplied(geom1_mass=2.0, geom2_density=1 + 1e-12)
+    found, repairs = audited(model, sc, 4, wrong)
+    elements = [c.element for c in found.causes]
+    assert "body_mass" in elements
+    assert len(elements) == len(set(elements))
+    box = model.runner.mjmodel.body("box").id
+    held, original = wrong.runner.mjmodel.body_mass[box], model.runner.mjmodel.body_mass[box]
+    factor = float(4 ** sc.exponent_of(pt.Dimension.parse("M")))
+    assert held != original * factor  # the box's mass rounded otherwise ...
+    assert repairs["body_mass"][box] == original * factor  # ... and set right with the ball's

@@ -297,7 +297,8 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
         # mass in MuJoCo's compiler), and a copy it parts from the original is no longer bit for bit
         otherwise = ok & ~off & (got != expected)
         if in_binary and otherwise.any():
-            causes.append(_reprocessed(backend, field, got, expected, otherwise, float32=False))
+            if not off.any() and all(c.element != field for c in causes):  # else set right under the field's cause
+                causes.append(_reprocessed(backend, field, got, expected, otherwise, float32=False))
             repair(field, expected, otherwise)
         if off.any():
             rel = _relative(got[off], expected[off])
