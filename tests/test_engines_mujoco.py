@@ -235,8 +235,30 @@ def test_bad_mujoco_settings_of_a_urdf_are_refused_by_name(tmp_path):
         engines.load(source, engine="mujoco", settings=tmp_path / "missing.json")
     with pytest.raises(engines.EngineModelError, match="SI units"):
         engines.load(source, engine="mujoco", units={"M": "g", "L": "cm", "T": "s"})
-    with pytest.raises(engines.EngineModelError, match="MuJoCo's compiler"):  # MuJoCo's own refusal
-        engines.load(PYBULLET_DATA / "cube_no_rotation.urdf", engine="mujoco")
+    with pytest.raises(engines.EngineModelError, match="inertia must have positive eigenvalues") as refused:
+        engines.load(PYBULLET_DATA / "cube_no_rotation.urdf", engine="mujoco")  # MuJoCo's own refusal
+    assert refused.value.element == "link 'x_prismatic'"  # the link MuJoCo's message names
+
+
+def test_a_moving_link_without_inertia_is_named_with_what_mujoco_needs(tmp_path):
+    """PyBullet runs a URDF whose moving links are point masses (robotics-toolbox's AL5D and PUMA 560); MuJoCo's
+    compiler refuses them, naming the first such body only in a line of its own.  The refusal names the link and
+    what to give it."""
+    inertial = (
+        '<inertial><mass value="{m}"/><inertia ixx="{i}" iyy="{i}" izz="{i}" ixy="0" ixz="0" iyz="0"/></inertial>'
+    )
+    path = tmp_path / "arm.urdf"
+    path.write_text(
+        f'<robot name="arm"><link name="base">{inertial.format(m=1, i=0.1)}</link>'
+        f'<link name="upper">{inertial.format(m=0.2, i=0)}</link>'
+        '<joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><axis xyz="0 1 0"/>'
+        '<limit lower="-1" upper="1" effort="10" velocity="1"/></joint></robot>'
+    )
+    assert engines.load(path, engine="pybullet").engine == "pybullet"
+    with pytest.raises(engines.EngineModelError, match="mass and inertia of moving bodies") as refused:
+        engines.load(path, engine="mujoco")
+    assert refused.value.element == "link 'upper'"
+    assert "give the link an <inertial> with a mass and moments of inertia above 1e-15" in refused.value.reason
 
 
 def test_mujoco_4_0_0s_sparse_cholesky_bug_is_noted_where_a_model_meets_it(tmp_path, capsys):

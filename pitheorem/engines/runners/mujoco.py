@@ -1411,7 +1411,7 @@ class UrdfInMujoco:
                 warnings.simplefilter("ignore")
                 self.mjmodel = spec.compile()
         except ValueError as err:
-            raise EngineModelError(self.path, "MuJoCo's compiler", _first_line(str(err))) from None
+            raise _compile_refusal(self.path, err) from None
         self._coordinates = None
 
     @property
@@ -1612,6 +1612,21 @@ def urdf_runner(path, *, settings=None) -> MujocoRunner:
         elif settings not in (None, True):
             raise EngineModelError(str(saved), "", "no such settings file")
     return MujocoRunner(UrdfInMujoco(document, table))
+
+
+def _compile_refusal(path: str, err: ValueError) -> EngineModelError:
+    """MuJoCo's compiler's refusal of a URDF: the link it names (its ``Element name '...'`` line), and a remedy
+    where one is known (a moving link without mass or inertia, which PyBullet takes and MuJoCo does not)."""
+    text = str(err)
+    named = re.search(r"Element name '([^']*)'", text)
+    reason = _first_line(text)
+    if "mass and inertia of moving bodies" in text:
+        reason += (
+            "; give the link an <inertial> with a mass and moments of inertia above 1e-15 (mjMINVAL), as every "
+            "moving link needs in MuJoCo (PyBullet runs the file as it is)"
+        )
+    culprit = f"link {named.group(1)!r}" if named and named.group(1) else "MuJoCo's compiler"
+    return EngineModelError(path, culprit, reason)
 
 
 def load_urdf(path, *, settings=None) -> EngineModel:
