@@ -434,6 +434,41 @@ def test_a_package_path_is_found_under_ros_package_path_then_at_a_package_root_n
     assert str(beside.resolve()) in read_urdf(path).portable_text()
 
 
+def test_a_package_is_found_by_its_manifest_under_ros_package_path_or_in_an_ament_prefix(tmp_path, monkeypatch):
+    """ROS 1 finds a package by the ``<name>`` of its ``package.xml`` anywhere below ``ROS_PACKAGE_PATH`` (its folder
+    may be named otherwise); ROS 2 in ``share/NAME`` under each prefix of ``AMENT_PREFIX_PATH``."""
+    from pitheorem.engines.fileformats.urdf import read_urdf
+
+    path = tmp_path / "robot.urdf"
+    inertial = '<inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>'
+    path.write_text(
+        f'<robot name="r"><link name="base">{inertial}<collision><geometry>'
+        '<mesh filename="package://arm_support/meshes/m.obj"/></geometry></collision></link></robot>'
+    )
+    obj = "o x\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n"
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    ament = tmp_path / "install" / "share" / "arm_support" / "meshes" / "m.obj"
+    ament.parent.mkdir(parents=True)
+    ament.write_text(obj)
+    with pytest.raises(EngineModelError, match="mesh file not found"):
+        read_urdf(path)
+    monkeypatch.setenv("AMENT_PREFIX_PATH", str(tmp_path / "install"))
+    assert str(ament.resolve()) in read_urdf(path).portable_text()
+    package = tmp_path / "catkin" / "src" / "vendor_arm"  # its folder named otherwise: found by its manifest
+    (package / "meshes").mkdir(parents=True)
+    (package / "package.xml").write_text('<?xml version="1.0"?><package format="2"><name>arm_support</name></package>')
+    (package / "meshes" / "m.obj").write_text(obj)
+    decoy = package / "nested" / "package.xml"  # a manifest inside a package is not looked at (ROS's crawl)
+    decoy.parent.mkdir()
+    decoy.write_text("<package><name>elsewhere</name></package>")
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path / "catkin"))
+    assert str((package / "meshes" / "m.obj").resolve()) in read_urdf(path).portable_text()  # before AMENT's
+    from pitheorem.engines.fileformats.urdf import _manifests
+
+    assert set(_manifests(str(tmp_path / "catkin"))) == {"arm_support"}
+
+
 def test_a_mesh_is_looked_for_in_every_folder_above_the_file_as_pybullet_does(tmp_path):
     from pitheorem.engines.fileformats.urdf import read_urdf
 

@@ -21,6 +21,7 @@ keeps PyBullet's beside the file.  Nothing here imports an engine.
 from __future__ import annotations
 
 import copy
+import functools
 import math
 import os
 import re
@@ -386,8 +387,8 @@ def _mesh_path(filename: str, source_dir: Path, mesh_folder: Path | None = None)
     the URDF's folder and in every folder above it, nearest first (a ROS package's meshes sit
     beside its ``urdf`` folder; pybullet_data's ``differential/diff_ring.urdf`` names
     ``differential/diff_ring.stl`` from the folder above), then as given.  A
-    ``package://NAME/rest`` path is then looked for as ROS finds it, in ``NAME`` under each folder
-    of ``ROS_PACKAGE_PATH``, and last as ``rest`` in the URDF's folder and each folder above it:
+    ``package://NAME/rest`` path is then looked for as ROS finds the package (:func:`_ros_packages`),
+    and last as ``rest`` in the URDF's folder and each folder above it:
     the package's root, where its folder is not named as the package (robotics-toolbox's KUKA
     KR16 in ``kuka_kr16/`` names ``package://kuka_kr16_support/meshes/...``).
     """
@@ -402,12 +403,40 @@ def _mesh_path(filename: str, source_dir: Path, mesh_folder: Path | None = None)
     if mesh_folder is not None and name == filename:
         candidates.insert(0, mesh_folder / name)
     if package is not None and package[2]:
-        roots = [Path(p) for p in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p]
-        candidates += [root / name for root in roots] + [folder / package[2] for folder in above]
+        found = [folder / package[2] for folder in _ros_packages(package[0])]
+        candidates += found + [folder / package[2] for folder in above]
     for c in candidates:
         if c.is_file():
             return c
     return None
+
+
+def _ros_packages(name: str) -> list[Path]:
+    """The folders of the ROS package `name` as ROS finds them: ``NAME`` in each folder of ``ROS_PACKAGE_PATH``, a
+    folder below one whose ``package.xml`` names it (ROS 1's crawl), and ``share/NAME`` under each prefix of
+    ``AMENT_PREFIX_PATH`` (ROS 2's)."""
+    roots = [Path(p) for p in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p]
+    prefixes = [Path(p) for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
+    named = [folder for root in roots for folder in _manifests(str(root)).get(name, ())]
+    return [root / name for root in roots] + named + [prefix / "share" / name for prefix in prefixes]
+
+
+@functools.lru_cache(maxsize=16)
+def _manifests(root: str) -> dict[str, tuple[Path, ...]]:
+    """Package name -> its folders under `root`: each folder with a ``package.xml``, not looked into further (as
+    ROS's crawl does).  Read once per root and process."""
+    out: dict[str, list[Path]] = {}
+    for folder, subfolders, files in os.walk(root):
+        if "package.xml" in files:
+            subfolders.clear()
+            try:
+                text = (Path(folder) / "package.xml").read_text(errors="replace")
+                package = ET.fromstring(text).findtext("name")
+            except (OSError, ET.ParseError):
+                continue
+            if package:
+                out.setdefault(package.strip(), []).append(Path(folder))
+    return {k: tuple(v) for k, v in out.items()}
 
 
 def _portable_text(tree: ET.ElementTree, source_dir: Path, folder_at=None) -> str | None:
