@@ -338,10 +338,6 @@ def find_causes(
         )
         return found
 
-    # A cause that parts the runs first hides the others: with it removed, the runs may part later by another
-    # that removed alone changed nothing (a weld from the first step, contacts from the third).  So the
-    # counter-runs are made again with the causes found removed in both runs, until they restore the run, part
-    # no later, or show nothing new.
     def found_together() -> list[tuple[Cause, dict]]:
         """Where no counter-run shows a cause alone: the fewest counter-runs that together restore the run (none
         where all of them do not), each shown with the others removed in both runs.  Two causes that part the runs
@@ -350,7 +346,10 @@ def find_causes(
         kept = list(variants.values())
         if len(kept) < 2 or not counters(_merged(kept))[0].restores:
             return []
-        for options in reversed(list(variants.values())):  # the numbers set right first, then contacts, ...
+        # the broadest dropped first (contacts off, then native CCD, ...), a number the copy holds wrong last: it is
+        # a fault of the copy, named even where a broader counter-run covers it too (as _restoring keeps it)
+        order = sorted(reversed(kept), key=lambda o: "repaired" in o)
+        for options in order:
             trial = [o for o in kept if o is not options]
             if trial and counters(_merged(trial))[0].restores:
                 kept = trial
@@ -366,6 +365,10 @@ def find_causes(
                     out.append((cause, own))
         return out
 
+    # A cause that parts the runs first hides the others: with it removed, the runs may part later by another
+    # that removed alone changed nothing (a weld from the first step, contacts from the third).  So the
+    # counter-runs are made again with the causes found removed in both runs, until they restore the run, part
+    # no later, or show nothing new.
     found = shown_causes({}, verdict_parts, report.max_deviation, "") or found_together()
     ref_parts, ref_worst = verdict_parts, report.max_deviation
     while found and not any(c.restores for c in counters(*(o for _c, o in found))):  # (alone: as _restoring)
