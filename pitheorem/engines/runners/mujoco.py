@@ -44,7 +44,16 @@ from ..fileformats.urdf import UrdfDocument, read_urdf, refuse_units
 from ..packages import engine_module
 from ..parameters import JointKind, Parameter, dim
 
-__all__ = ["MujocoCompiledRunner", "MujocoRunner", "UrdfInMujoco", "add_joint_motors", "load_mjcf", "load_urdf"]
+__all__ = [
+    "MujocoCompiledRunner",
+    "MujocoRunner",
+    "UrdfInMujoco",
+    "add_joint_motors",
+    "field_holder",
+    "load_mjcf",
+    "load_urdf",
+    "write_field",
+]
 
 
 @functools.cache  # asked once; a missing MuJoCo raises (named with its extra) and is not cached
@@ -265,7 +274,7 @@ class MujocoRunner:
         for field in self._fields():
             if field in unread:
                 continue
-            holder, attr = _holder(m, field)
+            holder, attr = field_holder(m, field)
             out[field] = np.array(getattr(holder, attr), copy=True, ndmin=1)
         return out
 
@@ -288,7 +297,7 @@ class MujocoRunner:
         twin = self._with_model_copy()
         m = twin.mjmodel
         for field, start, stop, _shape, dtype in fields:  # one draw, then each field written in place
-            _write(m, field, chosen[start:stop].astype(dtype))
+            write_field(m, field, chosen[start:stop].astype(dtype))
         return twin
 
     def with_stored(self, values) -> MujocoRunner:
@@ -297,7 +306,7 @@ class MujocoRunner:
         repaired)."""
         out = self._with_model_copy()
         for field, array in values.items():
-            _write(out.mjmodel, field, array)
+            write_field(out.mjmodel, field, array)
         return out
 
     def with_gravity_times(self, factor: float) -> MujocoRunner:
@@ -331,7 +340,7 @@ class MujocoRunner:
             for field in self._fields():
                 if field == "opt.timestep":
                     continue
-                holder, attr = _holder(self.mjmodel, field)
+                holder, attr = field_holder(self.mjmodel, field)
                 value = np.asarray(getattr(holder, attr))
                 flat = value.reshape(-1)
                 zero = flat == 0
@@ -1142,17 +1151,40 @@ def _touching(data) -> frozenset:
     return frozenset(map(tuple, data.contact.geom[: data.ncon].tolist()))
 
 
-def _write(m, field: str, values) -> None:
-    """Set a field of :func:`_stored_fields` in the model `m` to `values`, in place, shaped as the field."""
-    holder, attr = _holder(m, field)
+def write_field(m, field: str, values) -> None:
+    """Set a stored field (``"geom_pos"``, ``"opt.gravity"``) of a MuJoCo model `m` to `values`, in place.
+
+    The values are shaped as the field (a scalar option as a number), in
+    the field's own precision: a twin's moved numbers, a copy's numbers
+    set right.
+
+    Examples
+    --------
+    >>> import mujoco
+    >>> from pitheorem.engines.runners.mujoco import write_field
+    >>> m = mujoco.MjModel.from_xml_string("<mujoco><worldbody><geom size='1'/></worldbody></mujoco>")
+    >>> write_field(m, "opt.gravity", [0, 0, -1]); write_field(m, "opt.timestep", [0.004])
+    >>> m.opt.gravity.tolist(), m.opt.timestep
+    ([0.0, 0.0, -1.0], 0.004)
+    """
+    holder, attr = field_holder(m, field)
     if np.ndim(getattr(holder, attr)) == 0:
         setattr(holder, attr, np.asarray(values).item())
     else:
         getattr(holder, attr)[...] = np.asarray(values).reshape(np.shape(getattr(holder, attr)))
 
 
-def _holder(m, field: str):
-    """The object and attribute name of a field of :func:`_stored_fields`."""
+def field_holder(m, field: str):
+    """The object and attribute name of a stored field: ``m`` and ``"geom_pos"``, or ``m.opt`` and ``"gravity"``.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> from pitheorem.engines.runners.mujoco import field_holder
+    >>> m = SimpleNamespace(opt=SimpleNamespace(gravity=None))
+    >>> field_holder(m, "opt.gravity")[1], field_holder(m, "geom_pos")[1]
+    ('gravity', 'geom_pos')
+    """
     if "." in field:
         struct, attr = field.split(".")
         return getattr(m, struct), attr

@@ -52,7 +52,7 @@ from ...errors import EngineModelError, InvalidRequestError
 from ..enginemodel import EngineModel
 from ..fileformats.mjcf import read_mjcf
 from ..packages import engine_module
-from .mujoco import MujocoCompiledRunner, MujocoRunner, urdf_runner
+from .mujoco import MujocoCompiledRunner, MujocoRunner, field_holder, urdf_runner, write_field
 
 __all__ = ["PRECISION", "WarpRunner", "load_urdf", "load_warp"]
 
@@ -255,7 +255,7 @@ def _put(mjcf: MujocoRunner, device: str, moved: dict):
             ) from None
         held = {}
         for field, value in moved.items():
-            holder, name = (model.opt, field[4:]) if field.startswith("opt.") else (model, field)
+            holder, name = field_holder(model, field)
             old = getattr(holder, name)
             held[field] = old.numpy()
             setattr(holder, name, wp.array(value, dtype=old.dtype, shape=old.shape))
@@ -276,16 +276,12 @@ def _start_mjmodel(mjmodel, moved: dict, held: dict):
         return mjmodel
     out = copy.copy(mjmodel)  # MuJoCo's own copy of every array
     for field, value in moved.items():
-        holder, name = (out.opt, field[4:]) if field.startswith("opt.") else (out, field)
+        holder, name = field_holder(out, field)
         mine = getattr(holder, name, None)
         if not isinstance(mine, float | np.ndarray) or np.size(mine) != value.size:
             continue
-        if not np.array_equal(np.asarray(mine, dtype=np.float32).ravel(), held[field].ravel()):
-            continue
-        if isinstance(mine, np.ndarray):
-            mine[...] = value.reshape(mine.shape)
-        else:
-            setattr(holder, name, float(value.ravel()[0]))
+        if np.array_equal(np.asarray(mine, dtype=np.float32).ravel(), held[field].ravel()):
+            write_field(out, field, value)
     return out
 
 
@@ -371,7 +367,7 @@ def _worlds(models: list, device: str):
     for field, array, batched in _arrays(first):
         if not batched:
             continue
-        holder, name = (out.opt, field[4:]) if field.startswith("opt.") else (out, field)
+        holder, name = field_holder(out, field)
         values = [table[field].numpy() for table in tables]
         if all(np.array_equal(v, values[0]) for v in values[1:]):
             continue

@@ -348,11 +348,7 @@ def find_causes(
             return []
         # the broadest dropped first (contacts off, then native CCD, ...), a number the copy holds wrong last: it is
         # a fault of the copy, named even where a broader counter-run covers it too (as _restoring keeps it)
-        order = sorted(reversed(kept), key=lambda o: "repaired" in o)
-        for options in order:
-            trial = [o for o in kept if o is not options]
-            if trial and counters(_merged(trial))[0].restores:
-                kept = trial
+        kept = _fewest(kept, sorted(reversed(kept), key=lambda o: "repaired" in o), lambda o: o, counters)
         out: list[tuple[Cause, dict]] = []
         for options in kept:
             base = _merged(o for o in kept if o is not options)
@@ -449,13 +445,19 @@ def _restoring(found, counters, report, verdict_parts, bits, tried, static: bool
         later = together.parts if together.parts is not None and together.parts > verdict_parts else None
         unknown = [] if static else [_unknown(report, verdict_parts, bits, tried, later)]
         return [*(_marked(c, False) for c, _o in found), *unknown]
-    kept = list(found)
-    for candidate in reversed(broad):  # the broadest first
-        if len(kept) > 1 and candidate not in held_wrong:
-            trial = [f for f in kept if f is not candidate]
-            if counters(_merged(o for _c, o in trial))[0].restores:
-                kept = trial
-    return [_marked(c, True) for c, _o in kept]
+    droppable = [f for f in reversed(broad) if f not in held_wrong]  # the broadest first
+    return [_marked(c, True) for c, _o in _fewest(found, droppable, lambda f: f[1], counters)]
+
+
+def _fewest(kept: list, droppable, options, counters) -> list:
+    """`kept` less each of `droppable`, in turn, whose counter-run the others' together do not need to restore
+    the run (``options(item)``: an item's options); at least one is kept."""
+    kept = list(kept)
+    for candidate in droppable:
+        trial = [k for k in kept if k is not candidate]
+        if trial and counters(_merged(options(k) for k in trial))[0].restores:
+            kept = trial
+    return kept
 
 
 #: the catalogue's cause path (``engines.constants.CAUSE_PATHS``) of each counter-run's option
