@@ -739,6 +739,38 @@ def test_causes_that_hide_each_other_at_the_same_step_are_found_together(monkeyp
     assert not np.array_equal(original_free[0], weld_off[0] / back)
 
 
+def test_a_copy_with_gravity_left_unscaled_is_not_similar_and_its_gravity_named_where_causes_hide_each_other():
+    """The weld and the egg, with the copy's gravity left as it was: the weld, the egg's contact and gravity each
+    part the runs from the first steps, so no counter-run shows a cause alone and they are found together; the
+    others' counter-runs then restore the run without some of those kept, which shows nothing more (this once
+    stopped the diagnosis with a TypeError).  Gravity is named, and with it set right, the weld inactive and
+    contacts off in plain MuJoCo the copy runs the original's bits."""
+    import mujoco
+
+    model, sc = searched(DATA / "weld_and_egg.xml")
+    right = model.scaled(sc, 4)
+    wrong = right.multiplied(g=0.25)
+    u = engines.smooth_controls(model)
+    rep = engines.verify(model, sc, 4, duration=0.3, controls=u, scaled=wrong)
+    assert not rep.similar
+    assert ("unscaled", "opt.gravity", True) in [(c.kind, c.element, c.restores) for c in rep.causes]
+    back = _back_factors(model, sc, 4)
+
+    def removed(m):
+        m.eq_active0[0] = 0
+        m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT
+
+    def removed_and_gravity_right(m):
+        removed(m)
+        m.opt.gravity[:] = right.runner.mjmodel.opt.gravity
+
+    u_factor = np.array([float(4 ** sc.exponent_of(d)) for d in model.inputs()[0]])
+    original = plain_mujoco_run(model.runner.mjmodel, 150, u, change=removed)
+    fixed = plain_mujoco_run(wrong.runner.mjmodel, 150, u, u_factor, change=removed_and_gravity_right)
+    assert np.array_equal(original, fixed / back)
+    assert not np.array_equal(original, plain_mujoco_run(wrong.runner.mjmodel, 150, u, u_factor, change=removed) / back)
+
+
 def test_numbers_the_engine_rounds_otherwise_at_a_power_of_four_are_named_and_set_right_restore_the_run():
     """MuJoCo's compiler computes an ellipsoid's added mass and moment (``geom_fluid``, for the ellipsoid fluid
     model) by quadrature over its semi-axes.  At s = 4 the copy's are 64 times the original's but for their last

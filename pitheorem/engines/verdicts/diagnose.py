@@ -355,6 +355,8 @@ def find_causes(
             if not base:  # one counter-run restores alone after all: the first round would have shown it
                 continue
             with_it = counters(base)[0]
+            if with_it.parts is None:  # the others restore the run without it after all: it shows nothing more
+                continue
             besides = _in_words(base, original, equalities, limited)
             for cause, own in shown_causes(base, with_it.parts, with_it.worst, besides):
                 if _merged([base, own]) != base and all(cause != c for c, _o in out):
