@@ -72,6 +72,29 @@ def test_mesh_vertices_kept_in_float32_are_a_precision_cause_except_at_powers_of
     assert engines.audit(model, sc, 0.25).causes == ()
 
 
+def test_float32_numbers_rounded_at_a_power_of_two_whose_exponent_is_half_are_precision_not_unscaled():
+    """At s = 2 a scaling whose lengths take s**(1/2) multiplies the wedge's vertices by 2**(1/2), which float32
+    rounds: their mismatch (and the normals MuJoCo computes from them) is rounding, not a number computed otherwise,
+    though s is a power of two."""
+    model, sc = searched(DATA / "mesh_drop.xml")
+    half = sc ** Fraction(1, 2)
+    assert half.exponent_of(pt.Dimension.parse("L")) == Fraction(1, 2)
+    # the oracle, in numpy: some vertex times 2**(1/2) is no float32 number
+    vertices = np.array(model.parameter("mesh_wedge_uservert").value, dtype=np.float64)
+    assert (vertices * 2**0.5 != (vertices * 2**0.5).astype(np.float32)).any()
+    audit = engines.audit(model, half, 2)
+    by_field = {c.element: c.kind for c in audit.causes}
+    assert by_field["mesh_vert"] == "precision"
+    assert by_field["mesh_normal"] == "precision"  # computed from the rounded vertices
+    assert "unscaled" not in by_field.values()
+    assert engines.audit(model, half, 4).causes == ()  # 4**(1/2) = 2: exact
+    # where every float32 factor is a power of two, vertices that differ were not rounded: held wrong
+    wrong = model.scaled(sc, 4).multiplied(mesh_wedge_uservert=1 + 1e-6)
+    held_wrong = {c.element: c.kind for c in engines.audit(model, sc, 4, scaled=wrong).causes}
+    assert held_wrong["mesh_vert"] == "unscaled"
+    assert "precision" not in held_wrong.values()
+
+
 def test_a_tendon_rest_length_left_to_mujoco_stays_a_sentinel():
     model, sc = searched(DATA / "spring_tendon.xml")
     p = model.parameter("tendon_spring_springlength")

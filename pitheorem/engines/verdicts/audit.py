@@ -14,8 +14,10 @@ exact in binary, so a number that scales at all shows its exponent ``k``
 exactly; a number whose probe ratio is no power of 4 (a sentinel, a value
 the engine derives in a way no change of units reaches) is itself a cause.
 Then at the requested ``s`` each number must equal the original times
-``s**k``: where it does not, a float32 field is named as ``precision`` and
-a float64 field, off by more than rounding, as ``unscaled``.
+``s**k``: where it does not, a float32 number is named as ``precision``
+(rounded, where its factor is no power of two) or ``unscaled`` (computed
+otherwise, where it is), and a float64 number, off by more than rounding,
+as ``unscaled``.
 """
 
 from __future__ import annotations
@@ -32,7 +34,7 @@ from ...errors import InvalidRequestError, PiTheoremError
 from ...exact import read_scale_factor
 from ...formatting import TextDisplay
 from ...immutable import immutable
-from ...scaling import float_power, is_power_of_two
+from ...scaling import float_power
 from ..enginemodel import EngineModel, check_scaling
 from ..protocols import CounterRuns, IgnoredSettings, NamesElements, StoresUnreadNumbers
 from .binary import exact_in_binary
@@ -268,6 +270,15 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
         magnitude = np.abs(before.astype(float))
         for e in np.unique(k[clean]):
             scale[e] = max(scale.get(e, 0.0), float(np.max(magnitude[clean & (k == e)], initial=0.0)))
+    # is any float32 number rounded by the scaling, its own factor no power of two (s = 10; or s = 2 where a
+    # field takes s**(1/2))?  Then every float32 number that differs is put down to rounding, as MuJoCo computes
+    # some from others (a mesh's normals from its vertices); else what differs was computed otherwise.  Each
+    # number's own factor, not the model's: a time's factor of 2**(1/2) rounds no mesh vertex
+    rounded32 = any(
+        (clean & ~residue & (before != 0) & (np.frexp(_factors(s, k, clean))[0] != 0.5)).any()
+        for field, (k, clean, residue) in probed.items()
+        if (before := original[field]).dtype == np.float32
+    )
     derived = []  # float64 mismatches small enough to come from float32 numbers rounded
     in_binary = exact_in_binary(model, scaling, s)  # every number of the file times a power of two: none rounded
     for field, (k, clean, residue) in probed.items():
@@ -281,12 +292,11 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
         if before.dtype == np.float32:
             off = ok & (got != expected)
             if off.any():
-                # at s a power of two nothing is rounded by the scaling: what differs was processed
-                if is_power_of_two(s):
+                if rounded32:
+                    causes.append(_rounded(backend, field, before, got, expected, off))
+                else:  # nothing in float32 rounded by the scaling: what differs was processed otherwise
                     causes.append(_reprocessed(backend, field, got, expected, off, float32=True))
                     repair(field, expected, off)
-                else:
-                    causes.append(_rounded(backend, field, before, got, expected, off))
             continue
         # rounding: relative to the number, or to the largest number of its dimension (a residue of 1e-16
         # left by a difference of lengths of order one is rounding too)
@@ -456,8 +466,9 @@ def _rounded(backend, field, before, got, expected, mask) -> Cause:
         "precision",
         field,
         f"{int(mask.sum())} of {before.size} values ({_where(backend, field, mask)}) "
-        f"rounded to float32, by up to {float(rel.max()):.2g} relative: the engine keeps them in float32, "
-        "where only a power-of-4 s scales them exactly",
+        f"rounded to float32 (or computed from float32 numbers that were), by up to {float(rel.max()):.2g} "
+        "relative: the engine keeps them in float32, "
+        "where only a factor that is a power of two scales them exactly",
     )
 
 
