@@ -261,6 +261,76 @@ def test_a_moving_link_without_inertia_is_named_with_what_mujoco_needs(tmp_path)
     assert "give the link an <inertial> with a mass and moments of inertia above 1e-15" in refused.value.reason
 
 
+def _two_link_urdf(tmp_path, *, upper_inertia="0.01 0.01 0.01 0 0 0", mesh=None, block=""):
+    """A URDF of a base and an upper arm on a hinge: the arm's <inertia> (ixx iyy izz ixy ixz iyz) and its mesh."""
+    ixx, iyy, izz, ixy, ixz, iyz = upper_inertia.split()
+    collision = f'<collision><geometry><mesh filename="{mesh}"/></geometry></collision>' if mesh else ""
+    path = tmp_path / "arm.urdf"
+    path.write_text(
+        f'<robot name="arm">{block}<link name="base"><inertial><mass value="1"/>'
+        '<inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+        f'<link name="upper"><inertial><mass value="0.2"/><inertia ixx="{ixx}" iyy="{iyy}" izz="{izz}" '
+        f'ixy="{ixy}" ixz="{ixz}" iyz="{iyz}"/></inertial>{collision}</link>'
+        '<joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><axis xyz="0 1 0"/>'
+        '<limit lower="-1" upper="1" effort="10" velocity="1"/></joint></robot>'
+    )
+    return path
+
+
+def test_a_mesh_mujoco_cannot_read_is_named_with_the_links_that_use_it(tmp_path):
+    """MuJoCo's refusal names a mesh by the stem of its file and does not say it is a mesh: the refusal says so,
+    with the link that uses it (example-robot-data's Kinova arm: mesh 'base.dae' of link 'j2s6s200_link_base',
+    which was called link 'base'), and what to do.  An ASCII STL file, which MuJoCo cannot read and PyBullet
+    can, is told apart by its first bytes."""
+    (tmp_path / "shell.dae").write_text("<COLLADA/>")
+    with pytest.raises(engines.EngineModelError, match="no decoder found") as refused:
+        engines.load(_two_link_urdf(tmp_path, mesh="shell.dae"), engine="mujoco")
+    assert refused.value.element == "mesh 'shell' (of link 'upper')"
+    assert "MuJoCo reads mesh files in STL, OBJ and MSH only" in refused.value.reason
+
+    facet = "facet normal 0 0 1\nouter loop\nvertex {}\nvertex {}\nvertex {}\nendloop\nendfacet\n"
+    corners = ("0 0 0", "0.1 0 0", "0 0.1 0", "0 0 0.1")
+    faces = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
+    (tmp_path / "wedge.stl").write_text(
+        "solid wedge\n" + "".join(facet.format(*(corners[i] for i in f)) for f in faces) + "endsolid wedge\n"
+    )
+    path = _two_link_urdf(tmp_path, mesh="wedge.stl")
+    assert engines.load(path, engine="pybullet").engine == "pybullet"
+    with pytest.raises(engines.EngineModelError, match="stl_decoder") as refused:
+        engines.load(path, engine="mujoco")
+    assert refused.value.element == "mesh 'wedge' (of link 'upper')"
+    assert "MuJoCo reads binary STL only" in refused.value.reason
+    # a binary STL whose 80-byte header happens to begin with 'solid' is no ASCII file
+    (tmp_path / "wedge.stl").write_bytes(b"solid but binary".ljust(80, b" ") + (0).to_bytes(4, "little"))
+    with pytest.raises(engines.EngineModelError, match="stl_decoder") as refused:
+        engines.load(path, engine="mujoco")
+    assert "binary STL only" not in refused.value.reason
+
+
+def test_moments_of_inertia_mujoco_refuses_are_named_with_the_remedy_that_works(tmp_path):
+    """Allegro's hand and Go1 (example-robot-data) in MuJoCo: moments that break A + B >= C, and an <inertia> of
+    all 1e-6 (no positive definite matrix).  PyBullet takes both.  The remedy given for the first, MuJoCo's
+    balanceinertia in the URDF's <mujoco> block, loads the file, with the three moments set to their mean."""
+    unbalanced = _two_link_urdf(tmp_path, upper_inertia="0.01 0.01 0.03 0 0 0")
+    with pytest.raises(engines.EngineModelError, match="A \\+ B >= C") as refused:
+        engines.load(unbalanced, engine="mujoco")
+    assert refused.value.element == "link 'upper'"
+    assert '<mujoco><compiler balanceinertia="true"/></mujoco> inside <robot>' in refused.value.reason
+    balanced = _two_link_urdf(
+        tmp_path, upper_inertia="0.01 0.01 0.03 0 0 0", block='<mujoco><compiler balanceinertia="true"/></mujoco>'
+    )
+    model = engines.load(balanced, engine="mujoco")
+    upper = model.runner.mjmodel.body("upper").id
+    assert model.runner.mjmodel.body_inertia[upper].tolist() == pytest.approx([0.05 / 3] * 3)
+
+    singular = _two_link_urdf(tmp_path, upper_inertia="1e-6 1e-6 1e-6 1e-6 1e-6 1e-6")
+    assert engines.load(singular, engine="pybullet").engine == "pybullet"
+    with pytest.raises(engines.EngineModelError, match="positive eigenvalues") as refused:
+        engines.load(singular, engine="mujoco")
+    assert refused.value.element == "link 'upper'"
+    assert "no positive definite matrix" in refused.value.reason
+
+
 def test_mujoco_4_0_0s_sparse_cholesky_bug_is_noted_where_a_model_meets_it(tmp_path, capsys):
     """Issue 35 item 4: the Newton solver with sparse Jacobians, in MuJoCo 4.0.0 (fixed in 4.0.1, MuJoCo #3767)."""
     import mujoco

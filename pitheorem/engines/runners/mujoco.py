@@ -1443,7 +1443,7 @@ class UrdfInMujoco:
                 warnings.simplefilter("ignore")
                 self.mjmodel = spec.compile()
         except ValueError as err:
-            raise _compile_refusal(self.path, err) from None
+            raise _compile_refusal(self.path, err, spec) from None
         self._coordinates = None
 
     @property
@@ -1646,19 +1646,73 @@ def urdf_runner(path, *, settings=None) -> MujocoRunner:
     return MujocoRunner(UrdfInMujoco(document, table))
 
 
-def _compile_refusal(path: str, err: ValueError) -> EngineModelError:
-    """MuJoCo's compiler's refusal of a URDF: the link it names (its ``Element name '...'`` line), and a remedy
-    where one is known (a moving link without mass or inertia, which PyBullet takes and MuJoCo does not)."""
+#: what a URDF's author can do about MuJoCo's refusals that PyBullet does not share: a fragment of MuJoCo's
+#: message, and the remedy appended to it (MuJoCo 4.0's XML reference: compiler balanceinertia, mesh file)
+_URDF_REMEDIES = (
+    (
+        "mass and inertia of moving bodies",
+        "give the link an <inertial> with a mass and moments of inertia above 1e-15 (mjMINVAL), as every "
+        "moving link needs in MuJoCo",
+    ),
+    (
+        "inertia must satisfy A + B >= C",
+        "the link's principal moments of inertia break the triangle inequality; correct its <inertia>, or put "
+        '<mujoco><compiler balanceinertia="true"/></mujoco> inside <robot>, and MuJoCo sets the three moments '
+        "of such a link to their mean (which changes its dynamics)",
+    ),
+    (
+        "inertia must have positive eigenvalues",
+        "the link's <inertia> (ixx to izz) is no positive definite matrix, as MuJoCo needs: a moment of 0 "
+        "or products of inertia too large for the moments",
+    ),
+    (
+        "no decoder found for mesh file",
+        "MuJoCo reads mesh files in STL, OBJ and MSH only; convert the mesh to one of them (a Collada .dae "
+        "file, say, to .obj), or load the file with engine='pybullet'",
+    ),
+)
+
+
+def _compile_refusal(path: str, err: ValueError, spec) -> EngineModelError:
+    """MuJoCo's compiler's refusal of a URDF: the element it names (its ``Element name '...'`` line: a link, or
+    a mesh and the links that use it), and a remedy where one is known (a refusal that PyBullet does not
+    share: a point-mass link, unbalanced or singular moments of inertia, a mesh format MuJoCo cannot read, an
+    ASCII STL file)."""
     text = str(err)
     named = re.search(r"Element name '([^']*)'", text)
     reason = _first_line(text)
-    if "mass and inertia of moving bodies" in text:
-        reason += (
-            "; give the link an <inertial> with a mass and moments of inertia above 1e-15 (mjMINVAL), as every "
-            "moving link needs in MuJoCo (PyBullet runs the file as it is)"
+    remedies = [remedy for fragment, remedy in _URDF_REMEDIES if fragment in text]
+    stl = re.search(r"stl_decoder: .* in STL file '([^']*)'", text)
+    if stl and _ascii_stl(Path(spec.modelfiledir or Path(path).parent, spec.meshdir or "", stl.group(1))):
+        remedies.append(
+            "it is (it begins with 'solid' and a facet), and MuJoCo reads binary STL only: save it as binary STL or OBJ"
         )
-    culprit = f"link {named.group(1)!r}" if named and named.group(1) else "MuJoCo's compiler"
+    if remedies:
+        reason += "; " + "; ".join(remedies) + " (PyBullet runs the file as it is)"
+    culprit = _refused_element(spec, named.group(1), text) if named and named.group(1) else "MuJoCo's compiler"
     return EngineModelError(path, culprit, reason)
+
+
+def _refused_element(spec, name: str, text: str) -> str:
+    """The element MuJoCo's refusal names, which its message gives by name only: a mesh (named after its file, as
+    MuJoCo's URDF reader names it) where the refusal is about a mesh, with the links that use it; else a link."""
+    about_mesh = re.search(r"mesh|STL|OBJ|decoder", text, flags=re.IGNORECASE) is not None
+    if about_mesh and spec.mesh(name) is not None:
+        users = sorted({geom.parent.name for geom in spec.geoms if geom.meshname == name})
+        shown = ", ".join(map(repr, users[:3])) + (f" and {len(users) - 3} more" if len(users) > 3 else "")
+        return f"mesh {name!r}" + (f" (of link{'s' if len(users) > 1 else ''} {shown})" if users else "")
+    return f"link {name!r}"
+
+
+def _ascii_stl(path: str) -> bool:
+    """Whether an STL file is ASCII: it begins with ``solid`` and a line of text (a binary one has 80 bytes of any
+    header, which may begin with ``solid`` too, then a count of triangles)."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(512)
+    except OSError:
+        return False
+    return head.lstrip().startswith(b"solid") and b"facet" in head
 
 
 def load_urdf(path, *, settings=None) -> EngineModel:
