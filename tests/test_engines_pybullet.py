@@ -18,7 +18,8 @@ pytest.importorskip("pybullet", reason="pybullet is not installed (pip install '
 from pitheorem import engines
 from pitheorem.engines import EngineModelError, UnscalableParameterError
 
-ARM = Path(__file__).resolve().parent / "data" / "engines" / "slider_arm.urdf"
+DATA = Path(__file__).resolve().parent / "data" / "engines"
+ARM = DATA / "slider_arm.urdf"
 
 
 def test_engine_defaults_are_pybullets_own():
@@ -592,3 +593,50 @@ def test_a_link_without_a_mass_in_its_file_gets_pybullets_and_follows_the_scalin
     assert rep.exact
     saved = copy.save(tmp_path / "two4.urdf")
     assert engines.load(saved).parameter("link_tip_mass").value == (4.0,)
+
+
+def test_bullets_velocity_clamp_is_a_cause_shown_by_a_run():
+    """Bullet clamps every coordinate velocity of a body at one number (100), the base's speed as well as the
+    joints' angular speeds, whatever link changeDynamics(maxJointVelocity) names.  Example-robot-data's Allegro
+    hand (its inertias unbalanced) flew off at the clamp in PyBullet, and the verdict named only a margin.  Here a
+    box with a flap falls under a large gravity: the copy at s = 4 falls four times as fast and is cut at 100
+    too.  The cause is named, and lifting the clamp in both runs restores the run bit for bit."""
+    import pybullet as pb
+
+    path = DATA / "falling_flap.urdf"
+    dt, steps = 1 / 240, 36  # the original reaches 75 (below the clamp), the copy 300, cut at 100
+
+    def speed(g: float, clamp: float | None) -> float:
+        """By hand, in plain PyBullet: the box's downward speed after `steps` steps, under gravity `g`."""
+        client = pb.connect(pb.DIRECT)
+        try:
+            pb.setGravity(0, 0, -g, physicsClientId=client)
+            pb.setTimeStep(dt, physicsClientId=client)
+            body = pb.loadURDF(str(path), physicsClientId=client)
+            for link in (-1, 0):
+                pb.changeDynamics(body, link, linearDamping=0, angularDamping=0, physicsClientId=client)
+            if clamp is not None:
+                pb.changeDynamics(body, -1, maxJointVelocity=clamp, physicsClientId=client)
+            for _ in range(steps):
+                pb.stepSimulation(physicsClientId=client)
+            return -pb.getBaseVelocity(body, physicsClientId=client)[0][2]
+        finally:
+            pb.disconnect(physicsClientId=client)
+
+    # the premise: the original stays below the clamp, the copy (gravity times 4) is cut at it; lifted, it is not
+    assert speed(500.0, None) < 100.0
+    assert speed(2000.0, None) == 100.0
+    assert speed(2000.0, float("inf")) == 4 * speed(500.0, float("inf")) > 100.0
+
+    model = engines.load(path, engine="pybullet", damping=0.0, split_impulse=False).with_values(g=500.0)
+    assert model.runner.velocity_clamp()[0] == 100.0
+    sc = pt.search(model.system(), scale={"g": 1}, fixed=("timestep",)).scalings[0]
+    rep = engines.verify(model, sc, 4, duration=steps * dt)
+    assert not rep.exact
+    clamp = next(c for c in rep.causes if c.element == "velocity clamp")
+    assert clamp.kind == "threshold"
+    assert clamp.restores is True
+    assert "equal bit for bit" in clamp.detail
+    # below the clamp nothing of it shows: a gravity the copy's speed stays under is exact
+    calm = model.with_values(g=50.0)
+    assert engines.verify(calm, sc, 4, duration=steps * dt).exact

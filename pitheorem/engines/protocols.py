@@ -58,6 +58,7 @@ import numpy as np
 __all__ = [
     "OPTIONAL",
     "REQUIRED",
+    "ClampsVelocities",
     "Controls",
     "CounterRuns",
     "CountsIterations",
@@ -350,6 +351,27 @@ class MultipliesInPlace(Protocol):
 
 
 @runtime_checkable
+class ClampsVelocities(Protocol):
+    """Optional: a clamp on every coordinate's velocity, and counter-runs with it raised (PyBullet's).
+
+    Its ``variant`` also takes ``velocity_clamp`` (a float: the clamp in
+    both runs; ``math.inf`` lifts it).
+
+    Examples
+    --------
+    >>> from pitheorem.engines.protocols import ClampsVelocities
+    >>> ClampsVelocities.__name__
+    'ClampsVelocities'
+    """
+
+    def velocity_clamp(self) -> tuple[float, str]:
+        """The clamp in effect, and what it is in the engine's words (its name, what it acts on)."""
+
+    def reaches_velocity_clamp(self, rows) -> bool:
+        """Whether a run (its rows, as ``run`` records them) may have met the clamp: a velocity at or beyond it."""
+
+
+@runtime_checkable
 class SwitchesConstraints(Protocol):
     """Optional: counter-runs with contacts off, equality constraints inactive, limits off (MuJoCo's, MJX's, Warp's).
 
@@ -486,6 +508,7 @@ OPTIONAL = {
         KeepsInputs,
         CounterRuns,
         CountsIterations,
+        ClampsVelocities,
         WritesStored,
         MultipliesInPlace,
         SwitchesConstraints,

@@ -141,6 +141,7 @@ class PybulletRunner:
         # shares its original's instead of loading the file again
         self._info = self._probe() if info is None else info
         self.nudge_start = False  # a twin starts one ulp off
+        self._clamp = None  # a counter-run's velocity clamp, written last (None: the file's and PyBullet's)
 
     # -- reading -------------------------------------------------------------------------------
 
@@ -423,6 +424,8 @@ class PybulletRunner:
             calls.append(call)
         for j, _jname, _jtype in self._info["joints"]:
             calls.append({"linkIndex": j, "maxJointVelocity": self._max_joint_velocity(j)})
+        if self._clamp is not None:  # one number per body: the last written holds for every coordinate
+            calls.append({"linkIndex": -1, "maxJointVelocity": self._clamp})
         return calls
 
     # -- scaling --------------------------------------------------------------------------------
@@ -708,12 +711,68 @@ class PybulletRunner:
         value = float(self._settings["solverResidualThreshold"])
         return {"solverResidualThreshold": value} if value else {}
 
-    def variant(self, *, tolerance: float | None = None) -> PybulletRunner:
-        """A copy run with another residual threshold: a counter-run's model."""
+    def variant(self, *, tolerance: float | None = None, velocity_clamp: float | None = None) -> PybulletRunner:
+        """A copy run with another residual threshold, or another velocity clamp: a counter-run's model."""
         out = copy.copy(self)
         if tolerance is not None:
             out._settings = {**self._settings, "solverResidualThreshold": float(tolerance)}
+        if velocity_clamp is not None:
+            out._clamp = float(velocity_clamp)
         return out
+
+    def velocity_clamp(self) -> tuple[float, str]:
+        """The velocity clamp in effect, and what it is.
+
+        Bullet clamps every coordinate velocity of a multibody (the base's three
+        linear and three angular ones, each joint's) at one number, its
+        ``m_maxCoordinateVelocity`` (100).  PyBullet's
+        ``changeDynamics(maxJointVelocity=...)`` sets that number whatever link
+        it names, so the last call holds for all: a speed for the base and
+        prismatic joints, an angular speed for the base's turning and the
+        revolute joints.  A run that never reaches it does not feel it.
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> model = engines.load(engines.example_path("causes/quadruped.urdf"), engine="pybullet")
+        >>> model.runner.velocity_clamp()[0]
+        100.0
+        >>> engines.load(engines.example_path("hinged_rod.urdf"), engine="pybullet").runner.velocity_clamp()[0]
+        1e+30
+        """
+        if self._clamp is not None:
+            value = self._clamp
+        elif self._info["joints"]:
+            value = float(self._max_joint_velocity(self._info["joints"][-1][0]))  # the last one written
+        else:
+            value = _BULLET["bullet_max_joint_velocity"].default
+        return value, (
+            f"Bullet's clamp on every coordinate velocity of a body (m_maxCoordinateVelocity, {float_text(value)}: "
+            "the base's linear and angular velocities and each joint's, one number of no one dimension, set by "
+            "changeDynamics(maxJointVelocity) whatever link it names; bullet_max_joint_velocity)"
+        )
+
+    def reaches_velocity_clamp(self, rows) -> bool:
+        """Whether a run may have met the clamp: a joint's speed, or the size of the base's linear or angular
+        velocity, at or beyond it (Bullet clamps the base's in the base's own frame; a run records them in the
+        world's, whose size is no smaller than any of its components).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from pitheorem import engines
+        >>> runner = engines.load(engines.example_path("causes/quadruped.urdf"), engine="pybullet").runner
+        >>> run = runner.run(3)
+        >>> runner.reaches_velocity_clamp(run), runner.reaches_velocity_clamp(run * 1e6)
+        (False, True)
+        """
+        rows = np.asarray(rows, dtype=float)
+        nvel = self._layout()[-1][3].stop if self._info["joints"] else 0
+        clamp = self.velocity_clamp()[0] * (1 - 1e-12)
+        with np.errstate(invalid="ignore"):
+            base = np.maximum(np.linalg.norm(rows[:, 7:10], axis=1), np.linalg.norm(rows[:, 10:13], axis=1))
+            joints = np.abs(rows[:, rows.shape[1] - nvel :]) if nvel else np.zeros((len(rows), 0))
+            return bool((base >= clamp).any() or (joints >= clamp).any())
 
     def run_many(self, n_steps: int, jobs) -> list[np.ndarray]:
         """The runs of ``(backend, controls, nudge, state)`` jobs, one after the other, in one PyBullet client.

@@ -13,7 +13,10 @@ Each cause is established, not presumed:
   and with the joints' and tendons' limits off (then each one alone);
 * ``contact``: with MuJoCo's native convex collision (native CCD) off,
   and with contacts off; the geom pairs in contact after each step are
-  compared, and the first pair that touches in one run only is named.
+  compared, and the first pair that touches in one run only is named;
+* ``threshold``: with an engine's clamp on velocities lifted in both runs
+  (PyBullet's, one number for a body's speeds and angular speeds), where a
+  run may have met it.
 
 A number the copy holds wrong that the engine can hold right (the audit's
 ``unscaled`` ones, mostly) is shown the same way: the copy is run again
@@ -47,7 +50,7 @@ import numpy as np
 from pitheorem.formatting.pieces import float_text
 
 from ...simulation import allowed_deviation
-from ..protocols import CounterRuns, SolverDiagnosis, SwitchesConstraints, WritesStored
+from ..protocols import ClampsVelocities, CounterRuns, SolverDiagnosis, SwitchesConstraints, WritesStored
 from .audit import audited
 from .causes import Cause, sorted_causes
 
@@ -195,6 +198,13 @@ def find_causes(
         variants["native_ccd"] = {"native_ccd": False}
     if switches:
         variants["contacts"] = {"contacts": False}
+    # a clamp on the velocities (PyBullet's, one number for a body's speeds and angular speeds alike): raised in
+    # both runs where either may have met it, as a run that stays below it does not feel it
+    clamped = isinstance(original, ClampsVelocities) and (
+        original.reaches_velocity_clamp(report.original.y) or copy.reaches_velocity_clamp(report.mapped.y * factors)
+    )
+    if clamped:
+        variants["velocity_clamp"] = {"velocity_clamp": float("inf")}
     for cause in to_show:
         variants[f"repaired {cause.element}"] = {"repaired": (cause.element,)}
 
@@ -323,6 +333,15 @@ def find_causes(
                 f"scale-free: with {'it' if len(shows) == 1 else 'them'} off in both runs{shown(results['limits'])}",
             )
             found.append((cause, {"unlimited": tuple(shows) or tuple(range(len(limited)))}))
+        if "velocity_clamp" in results and results["velocity_clamp"].shows:
+            _clamp, what = original.velocity_clamp()
+            cause = Cause(
+                "threshold",
+                "velocity clamp",
+                f"{what}: a run reaches it, and a clamp on speeds that no scaling changes cuts the copy's at "
+                f"another point of its motion; with it lifted in both runs{shown(results['velocity_clamp'])}",
+            )
+            found.append((cause, variants["velocity_clamp"]))
         if not diagnosable:
             if "contacts" in results and results["contacts"].shows:  # all of them: no pair is named here
                 detail = (
@@ -506,6 +525,8 @@ def _in_words(options: dict, runner, equalities, limited) -> str:
         parts.append(f"{', '.join(equalities[i] for i in options['inactive_equalities'])} inactive")
     if options.get("unlimited"):
         parts.append(f"the limit of {', '.join(limited[i] for i in options['unlimited'])} off")
+    if "velocity_clamp" in options:
+        parts.append("the velocity clamp lifted")
     if options.get("contacts") is False:  # every contact off: the collision paths below with it
         parts.append("contacts off")
     else:
