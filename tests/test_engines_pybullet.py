@@ -640,3 +640,40 @@ def test_bullets_velocity_clamp_is_a_cause_shown_by_a_run():
     # below the clamp nothing of it shows: a gravity the copy's speed stays under is exact
     calm = model.with_values(g=50.0)
     assert engines.verify(calm, sc, 4, duration=steps * dt).exact
+
+
+def test_a_body_of_more_links_than_pybullet_reports_is_refused_at_load(tmp_path):
+    """Example-robot-data's TIAGo with two arms (130 links) loaded in PyBullet and the run then stopped with
+    pybullet.error "GetBasePositionAndOrientation failed".  PyBullet reports the state of a body of 128 links (its
+    base and 127 joints) at most; one more is refused at load, by name, and 128 load."""
+    import pybullet as pb
+
+    from pitheorem.engines.runners.pybullet import MAX_LINKS
+
+    def chain(n: int) -> Path:
+        """A URDF of a base and `n` links, each fixed to the one before."""
+        inertial = '<inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>'
+        links = "\n".join(f'<link name="l{i}">{inertial}</link>' for i in range(n + 1))
+        joints = "\n".join(
+            f'<joint name="j{i}" type="fixed"><parent link="l{i}"/><child link="l{i + 1}"/></joint>' for i in range(n)
+        )
+        path = tmp_path / f"chain{n}.urdf"
+        path.write_text(f'<robot name="chain">\n{links}\n{joints}\n</robot>\n')
+        return path
+
+    # by hand, in plain PyBullet: the state of 129 links (128 joints) is not reported, that of 128 is
+    client = pb.connect(pb.DIRECT)
+    try:
+        body = pb.loadURDF(str(chain(MAX_LINKS)), physicsClientId=client)
+        with pytest.raises(pb.error, match="GetBasePositionAndOrientation failed"):
+            pb.getBasePositionAndOrientation(body, physicsClientId=client)
+        body = pb.loadURDF(str(chain(MAX_LINKS - 1)), physicsClientId=client)
+        assert len(pb.getBasePositionAndOrientation(body, physicsClientId=client)) == 2
+    finally:
+        pb.disconnect(physicsClientId=client)
+
+    with pytest.raises(EngineModelError, match="cannot report its state") as refused:
+        engines.load(chain(MAX_LINKS), engine="pybullet")
+    assert refused.value.element == "<robot>"
+    assert f"body of {MAX_LINKS + 1} links" in refused.value.reason
+    assert engines.load(chain(MAX_LINKS - 1), engine="pybullet").runner.run(2).shape == (3, 13)

@@ -50,7 +50,7 @@ from ..fileformats.urdf import UrdfDocument, joint_kind, read_urdf, refuse_units
 from ..packages import engine_module, quiet_stdout
 from ..parameters import Parameter, attribute_text, dim, identifier
 
-__all__ = ["SCENE_OPTIONS", "PybulletRunner", "load_urdf", "scene_option"]
+__all__ = ["MAX_LINKS", "SCENE_OPTIONS", "PybulletRunner", "load_urdf", "scene_option"]
 
 _ONE, _L, _T, _M = dim("1"), dim("L"), dim("T"), dim("M")
 
@@ -115,6 +115,12 @@ def _joint_speed_parameter(joint: str) -> str:
 def _spring_parameters(joint: str) -> tuple[str, str]:
     """The parameter names of a joint spring's stiffness and rest position."""
     return identifier(f"joint_{joint}_spring_stiffness"), identifier(f"joint_{joint}_spring_rest")
+
+
+#: the most links of a body, its base among them, whose state PyBullet reports (MAX_NUM_LINKS in its
+#: SharedMemoryPublic.h; measured: 127 joints are reported, 128 are not): example-robot-data's TIAGo with two
+#: arms has 130
+MAX_LINKS = 128
 
 
 class PybulletRunner:
@@ -189,6 +195,17 @@ class PybulletRunner:
                 body = self._load(pb, client)
             except pb.error as err:
                 raise EngineModelError(self.path, "", f"PyBullet could not load the file: {err}") from None
+            try:  # PyBullet reports no state of a body of more links than its shared memory holds (128)
+                pb.getBasePositionAndOrientation(body, physicsClientId=client)
+            except pb.error:
+                raise EngineModelError(
+                    self.path,
+                    "<robot>",
+                    f"PyBullet loads this body of {pb.getNumJoints(body, physicsClientId=client) + 1} links (its "
+                    "base and a link per joint, fixed ones too) but cannot report its state "
+                    f"(getBasePositionAndOrientation fails): its shared memory holds {MAX_LINKS} links at most "
+                    "(MAX_NUM_LINKS); merge links joined by fixed joints in the file, or run it in another engine",
+                ) from None
             links = [(-1, pb.getBodyInfo(body, physicsClientId=client)[0].decode())]
             joints = []
             for j in range(pb.getNumJoints(body, physicsClientId=client)):
