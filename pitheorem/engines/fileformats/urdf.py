@@ -588,6 +588,10 @@ def read_urdf(path, *, mesh_folder: tuple[str, str] | None = None) -> UrdfDocume
             tree = ET.parse(path)
         except ET.ParseError as err:
             raise EngineModelError(str(path), f"line {err.position[0]}", f"not well-formed XML ({err})") from None
+    root = tree.getroot()
+    if root.tag == "robot" and root.find("link") is None:  # (another root is refused by name when it is read)
+        # as ROS's URDF parser refuses it; MuJoCo would compile an empty world, PyBullet say "Cannot load URDF file."
+        raise EngineModelError(str(path), "<robot>", "a URDF file needs at least one <link>; this one has none")
     # a symbolic link not followed
     return UrdfDocument(tree, str(path), Path(os.path.abspath(path)).parent, mesh_folder=mesh_folder)
 

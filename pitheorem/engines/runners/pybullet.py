@@ -189,8 +189,6 @@ class PybulletRunner:
     def _probe(self) -> dict:
         pb, client = self._connect()
         try:
-            if self.tree.getroot().find("link") is None:  # PyBullet says only "Cannot load URDF file."
-                raise EngineModelError(self.path, "<robot>", "a URDF file needs at least one <link>; this one has none")
             try:
                 body = self._load(pb, client)
             except pb.error as err:
