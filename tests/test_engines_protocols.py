@@ -10,6 +10,7 @@ from pitheorem import engines
 from pitheorem.engines.protocols import (
     OPTIONAL,
     REQUIRED,
+    ClampsVelocities,
     CounterRuns,
     CountsIterations,
     HasSceneSettings,
@@ -20,6 +21,7 @@ from pitheorem.engines.protocols import (
     Runs,
     SolverDiagnosis,
     StoresCopies,
+    SwitchesConstraints,
 )
 from tests.conftest import REPO
 
@@ -71,7 +73,16 @@ def test_pybullets_backend_has_the_scene_the_refusals_and_no_solver_diagnosis(tm
         '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>'
     )
     backend = engines.load(urdf).runner
-    for protocol in (Runner, HasSceneSettings, RefusesScalings, IgnoredSettings, CounterRuns, NamesElements):
+    for protocol in (
+        Runner,
+        HasSceneSettings,
+        RefusesScalings,
+        IgnoredSettings,
+        CounterRuns,
+        NamesElements,
+        SwitchesConstraints,
+        ClampsVelocities,
+    ):
         assert isinstance(backend, protocol), protocol
     assert not isinstance(backend, SolverDiagnosis)
     assert not isinstance(backend, CountsIterations)

@@ -366,18 +366,27 @@ def test_a_compound_collision_mesh_is_named_as_a_setting_cause_and_matters_only_
     pybullet_data = pytest.importorskip("pybullet_data")
     duck = Path(pybullet_data.getDataPath()) / "duck_vhacd.urdf"
 
-    def judged(ground):
+    def judged(ground, g=9.81):
         with pytest.warns(engines.UnscalableModelWarning, match="convex parts"):
             model = engines.load(duck, base_position=(0, 0, 0.2), ground=ground, damping=0.0, split_impulse=False)
-        model = model.with_values(solverResidualThreshold=0.0)
+        model = model.with_values(solverResidualThreshold=0.0, g=g)
         sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
         return engines.verify(model, sc, 4, duration=0.5)
 
     on_the_ground = judged(True)
     assert not on_the_ground.exact
     assert [c.element for c in on_the_ground.causes] == ["link 'baseLink' collision mesh 'duck_vhacd.obj'"]
-    assert on_the_ground.causes[0].kind == "setting"
-    assert judged(False).exact  # the counter-run: with nothing to touch, the margins play no part
+    cause = on_the_ground.causes[0]
+    assert cause.kind == "setting"
+    # shown by a run: with every contact off in both runs (the duck's and the ground's) they are the same bits
+    assert cause.restores is True
+    assert "with contacts off in both runs they are equal bit for bit" in cause.detail
+    assert judged(False).exact  # with nothing to touch, the margins play no part
+    # falling fast enough for the copy (four times as fast) to meet Bullet's velocity clamp, with nothing to touch:
+    # the clamp is named, and the margins, which a run with contacts off shows act on nothing here, are not
+    fast = judged(False, g=60.0)
+    assert not fast.exact
+    assert [c.element for c in fast.causes] == ["velocity clamp"]
 
 
 def test_a_file_pybullet_reads_despite_blank_lines_a_nul_or_a_material_inside_a_visual_geometry(tmp_path):
@@ -677,3 +686,43 @@ def test_a_body_of_more_links_than_pybullet_reports_is_refused_at_load(tmp_path)
     assert refused.value.element == "<robot>"
     assert f"body of {MAX_LINKS + 1} links" in refused.value.reason
     assert engines.load(chain(MAX_LINKS - 1), engine="pybullet").runner.run(2).shape == (3, 13)
+
+
+def test_a_counter_run_whose_original_breaks_down_before_the_runs_part_is_said_to_show_nothing():
+    """The flap's hinge has negative damping: its speed grows until the velocity clamp holds it.  The copy's fall,
+    four times as fast, is cut by the clamp at another point; lifting the clamp (the counter-run) lets the flap's
+    speed blow up before that point, so that counter-run can show nothing, and the unexplained parting says so.
+    Example-robot-data's double pendulum (free base) does the same in PyBullet."""
+    import pybullet as pb
+
+    path = DATA / "unstable_flap.urdf"
+    client = pb.connect(pb.DIRECT)  # by hand, in plain PyBullet: without the clamp the run breaks down
+    try:
+        pb.setGravity(0, 0, -25.0, physicsClientId=client)
+        body = pb.loadURDF(str(path), physicsClientId=client)
+        for link in (-1, 0):
+            pb.changeDynamics(body, link, linearDamping=0, angularDamping=0, physicsClientId=client)
+        pb.setJointMotorControl2(body, 0, pb.VELOCITY_CONTROL, force=0, physicsClientId=client)
+        pb.changeDynamics(body, -1, maxJointVelocity=float("inf"), physicsClientId=client)
+        speeds = []
+        for _ in range(30):
+            pb.stepSimulation(physicsClientId=client)
+            speeds.append(pb.getJointState(body, 0, physicsClientId=client)[1])
+        assert not np.isfinite(speeds).all()
+    finally:
+        pb.disconnect(physicsClientId=client)
+
+    model = engines.load(path, engine="pybullet", damping=0.0, split_impulse=False).with_values(g=25.0)
+    sc = pt.search(model.system(), scale={"g": 1}, fixed=("timestep",)).scalings[0]
+    rep = engines.verify(model, sc, 4, duration=1.2)
+    assert not rep.exact
+    unknown = next(c for c in rep.causes if c.kind == "unknown")
+    broken = re.search(
+        r"velocity_clamp \(with it, the original's run breaks down at step (\d+), before the runs part\)",
+        unknown.detail,
+    )
+    parts = re.search(r"differ in a bit at step (\d+)", unknown.detail)
+    assert broken is not None
+    assert parts is not None
+    assert int(broken.group(1)) < int(parts.group(1))
+    assert "velocity clamp" not in [c.element for c in rep.causes]

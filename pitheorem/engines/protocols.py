@@ -473,6 +473,10 @@ class IgnoredSettings(Protocol):
     def ignored_settings(self) -> tuple:
         """A Cause for each setting the engine ignores."""
 
+    def removed_by(self, cause) -> dict | None:
+        """The options of a counter-run (:class:`CounterRuns`) that remove an ignored setting's effect from both
+        runs (contacts off, for a collision margin), or None where none does."""
+
 
 @runtime_checkable
 class EngineNotes(Protocol):

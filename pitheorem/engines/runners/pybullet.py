@@ -117,6 +117,9 @@ def _spring_parameters(joint: str) -> tuple[str, str]:
     return identifier(f"joint_{joint}_spring_stiffness"), identifier(f"joint_{joint}_spring_rest")
 
 
+#: the element of the cause "these links keep another collision margin than the one set" (ignored_settings)
+_MARGINS = "changeDynamics(collisionMargin)"
+
 #: the most links of a body, its base among them, whose state PyBullet reports (MAX_NUM_LINKS in its
 #: SharedMemoryPublic.h; measured: 127 joints are reported, 128 are not): example-robot-data's TIAGo with two
 #: arms has 130
@@ -148,6 +151,7 @@ class PybulletRunner:
         self._info = self._probe() if info is None else info
         self.nudge_start = False  # a twin starts one ulp off
         self._clamp = None  # a counter-run's velocity clamp, written last (None: the file's and PyBullet's)
+        self._contacts = True  # False: a counter-run's, with every contact off (the robot's and the ground's)
 
     # -- reading -------------------------------------------------------------------------------
 
@@ -593,6 +597,7 @@ class PybulletRunner:
             **{n: st[n] for n, *_ in ENGINE_PARAMETERS},
             physicsClientId=client,
         )
+        ground = None
         if self.scene["ground"]:
             plane = pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=client)
             ground = pb.createMultiBody(0, plane, physicsClientId=client)
@@ -603,6 +608,12 @@ class PybulletRunner:
             index = call.pop("linkIndex")
             for key, value in call.items():  # one setting per call (see rod.py on pybullet 3.2.7)
                 pb.changeDynamics(body, index, **{key: value}, physicsClientId=client)
+        if not self._contacts:  # in no collision group and colliding with none: no contact is made
+            shapes = [(body, link) for link, _name in self._info["links"]] + (
+                [(ground, -1)] if ground is not None else []
+            )
+            for owner, link in shapes:
+                pb.setCollisionFilterGroupMask(owner, link, 0, 0, physicsClientId=client)
         for j, _n, jtype in self._info["joints"]:
             if jtype == "spherical":  # its default motor pulls it to rest: no force, no gain on position
                 pb.setJointMotorControlMultiDof(
@@ -702,7 +713,7 @@ class PybulletRunner:
         return (
             Cause(
                 "setting",
-                "changeDynamics(collisionMargin)",
+                _MARGINS,
                 f"{len(missed)} link(s) ({names}) keep "
                 f"another margin than the one set (link {lname!r}: set {float_text(wanted)}, PyBullet keeps "
                 f"{float_text(held)}): the call does not reach these links' shapes, so their margins are not "
@@ -726,14 +737,58 @@ class PybulletRunner:
         value = float(self._settings["solverResidualThreshold"])
         return {"solverResidualThreshold": value} if value else {}
 
-    def variant(self, *, tolerance: float | None = None, velocity_clamp: float | None = None) -> PybulletRunner:
-        """A copy run with another residual threshold, or another velocity clamp: a counter-run's model."""
+    def variant(
+        self,
+        *,
+        tolerance: float | None = None,
+        velocity_clamp: float | None = None,
+        contacts: bool | None = None,
+        inactive_equalities: tuple = (),
+        unlimited: tuple = (),
+    ) -> PybulletRunner:
+        """A copy run with another residual threshold, another velocity clamp, or every contact off: a
+        counter-run's model.  A URDF has no equality constraint, and no limit is switched off here
+        (:meth:`equality_names` and :meth:`limit_names` are empty)."""
+        if inactive_equalities or unlimited:
+            raise InvalidRequestError(
+                f"{self.path}: PyBullet's runner has no equality constraint and switches no limit off "
+                f"(asked for {inactive_equalities or unlimited})"
+            )
         out = copy.copy(self)
         if tolerance is not None:
             out._settings = {**self._settings, "solverResidualThreshold": float(tolerance)}
         if velocity_clamp is not None:
             out._clamp = float(velocity_clamp)
+        if contacts is not None:
+            out._contacts = bool(contacts)
         return out
+
+    def equality_names(self) -> list[str]:
+        """None: a URDF states no equality constraint (a mimic joint is no constraint PyBullet makes)."""
+        return []
+
+    def equality_kinds(self) -> list[str]:
+        """None, as :meth:`equality_names`."""
+        return []
+
+    def limit_names(self) -> list[str]:
+        """None: no counter-run switches a joint's limit off in PyBullet here."""
+        return []
+
+    def removed_by(self, cause) -> dict | None:
+        """The counter-run's options that remove an ignored setting's effect from both runs: contacts off for a
+        collision margin (it acts through contacts only); None for another setting.
+
+        Examples
+        --------
+        >>> from pitheorem import engines
+        >>> from pitheorem.engines.verdicts.causes import Cause
+        >>> runner = engines.load(engines.example_path("causes/quadruped.urdf"), engine="pybullet").runner
+        >>> runner.removed_by(Cause("setting", "changeDynamics(collisionMargin)", "..."))
+        {'contacts': False}
+        """
+        margin = cause.element == _MARGINS or " collision mesh " in cause.element  # as ignored_settings names them
+        return {"contacts": False} if cause.kind == "setting" and margin else None
 
     def velocity_clamp(self) -> tuple[float, str]:
         """The velocity clamp in effect, and what it is.

@@ -50,7 +50,14 @@ import numpy as np
 from pitheorem.formatting.pieces import float_text
 
 from ...simulation import allowed_deviation
-from ..protocols import ClampsVelocities, CounterRuns, SolverDiagnosis, SwitchesConstraints, WritesStored
+from ..protocols import (
+    ClampsVelocities,
+    CounterRuns,
+    IgnoredSettings,
+    SolverDiagnosis,
+    SwitchesConstraints,
+    WritesStored,
+)
 from .audit import audited
 from .causes import Cause, sorted_causes
 
@@ -117,6 +124,12 @@ def find_causes(
     # a number the copy holds wrong, where the engine can set it right in a copy: shown by a run, not presumed
     to_show = [c for c in causes if c.element in repairs] if isinstance(copy, WritesStored) else []
     causes = [c for c in causes if c not in to_show]
+    # a setting the engine ignores whose effect a counter-run removes from both runs (PyBullet's collision margins,
+    # which act through contacts only: contacts off): shown by that run, or found to act on nothing in it
+    removable = []
+    if isinstance(copy, IgnoredSettings) and isinstance(original, CounterRuns):
+        removable = [(c, options) for c in causes if (options := copy.removed_by(c))]
+        causes = [c for c in causes if all(c is not r for r, _o in removable)]
     limits = allowed_deviation(report.original, report.sensitivity, report.baseline_factor)
 
     # Where the runs first part: where every factor is a power of two, the first step at which they differ in
@@ -136,7 +149,7 @@ def find_causes(
     verdict_parts = parting(report.original.y, report.mapped.y)
     if verdict_parts is None:  # nothing to explain by a run: the static causes (the audit's) only
         # bit for bit, a number the copy holds wrong (that it could hold right) did not act on this run
-        return sorted_causes([*causes, *([] if bits else to_show)])
+        return sorted_causes([*causes, *([] if bits else [*to_show, *(c for c, _o in removable)])])
 
     done: dict[tuple, Counter] = {}  # a counter-run asked for twice (alone, then in the smallest set) runs once
 
@@ -173,7 +186,20 @@ def find_causes(
         unchanged = back.shape[1:] == report.mapped.y.shape[1:] and np.array_equal(
             back[:rows], report.mapped.y, equal_nan=True
         )
-        done[key] = Counter(shows, parts is None, worst, parts, bool(np.array_equal(run, back)), bool(unchanged))
+        original_unchanged = run.shape[1:] == report.original.y.shape[1:] and np.array_equal(
+            run[:rows], report.original.y, equal_nan=True
+        )
+        broken = np.nonzero(~np.isfinite(run).all(axis=1))[0]
+        done[key] = Counter(
+            shows,
+            parts is None,
+            worst,
+            parts,
+            bool(np.array_equal(run, back)),
+            bool(unchanged),
+            original_unchanged,
+            int(broken[0]) if broken.size else None,
+        )
 
     t = report.original.t
 
@@ -207,6 +233,8 @@ def find_causes(
         variants["velocity_clamp"] = {"velocity_clamp": float("inf")}
     for cause in to_show:
         variants[f"repaired {cause.element}"] = {"repaired": (cause.element,)}
+    for cause, options in removable:
+        variants[f"removed {cause.element}"] = options
 
     def shown_causes(base: dict, ref_parts: int, ref_worst: float, besides: str) -> list[tuple[Cause, dict]]:
         """Each cause a counter-run shows with the options of `base` (causes already found) in both runs too:
@@ -268,6 +296,16 @@ def find_causes(
                     f"{cause.detail}; with it set right in the copy (the original's times its factor){shown(counter)}"
                 )
                 found.append((Cause(cause.kind, cause.element, detail), {"repaired": (cause.element,)}))
+        for cause, options in removable:  # a setting the engine ignores: the counter-run that removes its effect
+            counter = results[f"removed {cause.element}"]
+            if counter.shows:
+                words = _in_words(options, original, equalities, limited)
+                found.append(
+                    (
+                        Cause(cause.kind, cause.element, f"{cause.detail}; with {words} in both runs{shown(counter)}"),
+                        options,
+                    )
+                )
         # two numbers held wrong that each part the runs from the same step: set right together, or neither shows
         # (those that change the copy's run at all: one whose copy set right runs the same bits acts on nothing)
         acting = [c for c in to_show if not counters({"repaired": (c.element,)})[0].unchanged]  # alone: round one's
@@ -414,9 +452,35 @@ def find_causes(
         if not counter.unchanged:
             detail = f"{cause.detail}; set right in the copy alone, the run changes but parts no later"
             causes.append(Cause(cause.kind, cause.element, detail))
+    # a setting the engine ignores that no counter-run showed: where removing its effect leaves both runs the very
+    # same bits (no contact in either run, for a margin), it acts on nothing here (engines.audit still lists it)
+    shown_settings = {c.element for c, _o in found}
+    for cause, options in removable:
+        if cause.element in shown_settings:
+            continue
+        counter = counters(options)[0]
+        if not (counter.unchanged and counter.original_unchanged):
+            words = _in_words(options, original, equalities, limited)
+            causes.append(
+                Cause(
+                    cause.kind,
+                    cause.element,
+                    f"{cause.detail}; with {words} in both runs, the runs change but part no later",
+                )
+            )
     found = [(_with_constants(c, o, model.engine), o) for c, o in found]
     static = bool(causes)  # the audit's: numbers the copy holds wrong, which no counter-run removes
-    return sorted_causes([*causes, *_restoring(found, counters, report, verdict_parts, bits, list(variants), static)])
+    # a counter-run whose original breaks down (NaN, infinity) before the verdict's runs part shows nothing: said so
+    tried = []
+    for name, options in variants.items():
+        counter = done.get(tuple(sorted(options.items())))
+        broken = counter.broken if counter is not None else None
+        tried.append(
+            name
+            if broken is None or broken > verdict_parts
+            else f"{name} (with it, the original's run breaks down at step {broken}, before the runs part)"
+        )
+    return sorted_causes([*causes, *_restoring(found, counters, report, verdict_parts, bits, tried, static)])
 
 
 def _restoring(found, counters, report, verdict_parts, bits, tried, static: bool) -> list[Cause]:
@@ -661,8 +725,10 @@ def _contact_steps(original, copy, n_steps, u_original, u_scaled):
 class Counter(NamedTuple):
     """What one counter-run showed: whether its runs part later than the verdict's (or never), whether they
     never part (bit for bit where every factor is a power of two, else within the yardstick), the largest
-    deviation, the step at which they first part (None: never), whether they are equal bit for bit, and whether
-    the copy ran the very bits of the verdict's copy (a number set right in it that does not act on the run)."""
+    deviation, the step at which they first part (None: never), whether they are equal bit for bit, whether
+    the copy ran the very bits of the verdict's copy (a number set right in it that does not act on the run) and
+    the original the very bits of the verdict's original (with the copy's: what it removes acts on neither run),
+    and the step at which the original's run breaks down (a NaN or an infinity; None: never)."""
 
     shows: bool
     restores: bool
@@ -670,6 +736,8 @@ class Counter(NamedTuple):
     parts: int | None
     exact: bool
     unchanged: bool = False  # the copy ran the very bits of the verdict's copy
+    original_unchanged: bool = False  # the original ran the very bits of the verdict's original
+    broken: int | None = None  # the first step at which the original's run holds a NaN or an infinity
 
 
 def _shows(parts: int | None, worst: float, ref_parts: int, ref_worst: float) -> bool:
