@@ -316,6 +316,8 @@ class PybulletRunner:
                     joint_kind(jtype).q / _T,
                     "engine",
                     "changeDynamics(maxJointVelocity=...)",
+                    note="Bullet holds one clamp per body, the last one written, for every coordinate velocity (the "
+                    "base's too): a run that reaches it is diagnosed with it lifted (velocity_clamp)",
                 )
             )
         for j, jname, jtype in self._info["joints"]:
