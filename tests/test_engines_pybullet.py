@@ -726,3 +726,24 @@ def test_a_counter_run_whose_original_breaks_down_before_the_runs_part_is_said_t
     assert parts is not None
     assert int(broken.group(1)) < int(parts.group(1))
     assert "velocity clamp" not in [c.element for c in rep.causes]
+
+
+def test_pybullets_counter_runs_switch_contacts_off_and_name_what_they_cannot_switch():
+    """The runner's counter-runs: every contact off (the robot's and the ground's), the velocity clamp lifted; a URDF
+    has no equality constraint and no limit is switched off, so asking for one is refused by name.  A collision
+    margin is removed by the contacts-off run; no other ignored setting is."""
+    from pitheorem.engines.verdicts.causes import Cause
+
+    model = engines.load(ARM, ground=True, base_position=(0, 0, 0.3), damping=0.0, split_impulse=False)
+    runner = model.runner
+    assert runner.equality_names() == runner.equality_kinds() == runner.limit_names() == []
+    with pytest.raises(pt.InvalidRequestError, match="no equality constraint"):
+        runner.variant(inactive_equalities=(0,))
+    # on the ground, the arm's base rests on it; with every contact off it falls through
+    resting, falling = runner.run(120), runner.variant(contacts=False).run(120)  # 0.5 s
+    assert resting[-1, 2] > 0.0  # the base's height
+    assert falling[-1, 2] < -0.5
+    assert runner.variant(velocity_clamp=5.0).velocity_clamp()[0] == 5.0
+    assert runner.removed_by(Cause("setting", "link 'base' collision mesh 'parts.obj'", "")) == {"contacts": False}
+    assert runner.removed_by(Cause("setting", "changeDynamics(restitution)", "")) is None
+    assert runner.removed_by(Cause("threshold", "changeDynamics(collisionMargin)", "")) is None
