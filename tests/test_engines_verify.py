@@ -460,3 +460,30 @@ def test_a_right_kept_inputs_copy_diagnoses_no_cause(tmp_path, s):
     default = engines.audit(model, sc, s, scaled=kept)
     named = " ".join(str(c) for c in default.causes)
     assert all(f"actuator #{k}" in named for k in range(3)), named
+
+
+def test_a_number_whose_probe_overflows_takes_no_power_and_stops_nothing(tmp_path):
+    """A margin of -1e308 (found by a fuzz of the test models) is -inf in the probe by 4: no power of s, so the
+    probe check names nothing for it, and a verification of the file ends in a verdict, not an OverflowError."""
+    from pitheorem.engines.verdicts.probes import dimension_causes
+
+    path = tmp_path / "huge_margin.xml"
+    path.write_text((DATA / "cart_and_far_ball.xml").read_text().replace('margin="0.01"', 'margin="-1e308"'))
+    model = engines.load(path)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    probe = model.scaled(sc, 4).runner.stored_numbers()
+    assert not np.isfinite(probe["geom_margin"]).all()  # the premise: the probe overflows
+    assert dimension_causes(model, sc, model.runner.stored_numbers(), probe) == []
+    assert engines.verify(model, sc, 4, duration=0.02).verdict in ("exact", "similar", "not similar", "inconclusive")
+
+
+def test_a_time_step_too_short_for_the_duration_is_refused_by_name():
+    """A time step of 1e-320 (found by a fuzz of the test models) makes a run of 0.02 s 2e318 steps: refused by
+    name, with both numbers, by verify and baseline alike, not an OverflowError."""
+    from pitheorem.engines.verdicts.verify import baseline
+
+    model = engines.load(engines.example_path("pendulum.xml")).with_values(timestep=1e-320)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    for run in (lambda: engines.verify(model, sc, 4, duration=0.02), lambda: baseline(model, 0.02)):
+        with pytest.raises(pt.InvalidRequestError, match=r"time step 1e-320 s is more than 1e\+09 steps"):
+            run()

@@ -116,11 +116,12 @@ def dimension_causes(
             continue
         before = float(np.ravel(original[copy.field])[copy.index])
         after = float(np.ravel(probe[copy.field])[copy.index])
-        if before == 0 or not math.isfinite(before) or after / before <= 0:
-            continue  # a zero takes every power; a sign change is the audit's "unscaled"
-        took = math.log(after / before) / log_s
+        ratio = after / before if before != 0 else 0.0
+        if not (math.isfinite(ratio) and ratio > 0):
+            continue  # a zero takes every power; a sign change is the audit's "unscaled", as is an overflow
+        took = math.log(ratio) / log_s
         nearest = round(2 * took) / 2
-        if abs(after / before - float(s) ** nearest) > ROUNDING * float(s) ** nearest:
+        if abs(ratio - float(s) ** nearest) > ROUNDING * float(s) ** nearest:
             continue  # no power of s at all: the audit names it "unscaled"
         # with kept inputs, an input's part of the dimension keeps its value
         scaled_as = dimension / kept[copy.parameter] if copy.parameter in kept else dimension

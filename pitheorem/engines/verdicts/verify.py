@@ -54,7 +54,19 @@ from .binary import every_factor_a_power_of_two
 from .scalefree import scale_free_run
 from .strength import Control, caught_or_hidden, control_factors, horizon, unseen_groups
 
-__all__ = ["STAGES", "Baseline", "Plan", "Runs", "baseline", "judge", "prepare", "smooth_controls", "verify"]
+__all__ = [
+    "MAX_STEPS",
+    "STAGES",
+    "Baseline",
+    "Plan",
+    "Runs",
+    "baseline",
+    "judge",
+    "prepare",
+    "smooth_controls",
+    "steps_of",
+    "verify",
+]
 
 
 def verify(
@@ -303,7 +315,7 @@ def prepare(
         raise InvalidRequestError(
             f"the scaled model's time step {copy.timestep()!r} is not the original's {dt!r} times {f_time!r}"
         )
-    n_steps = max(1, round(duration / dt))
+    n_steps = steps_of(duration, dt)
     names, dims = original.coordinate_dimensions()
     if len(copy.coordinate_dimensions()[0]) != len(names):
         raise InvalidRequestError("the scaled model has other coordinates than the original")
@@ -545,7 +557,7 @@ def baseline(model: EngineModel, duration: float = 1.0, controls=None, *, ensemb
     seed = read_count(seed, "seed")
     runner = model.runner
     dt = runner.timestep()
-    n_steps = max(1, round(duration / dt))
+    n_steps = steps_of(duration, dt)
     inputs = _open_loop_rows(controls, n_steps, dt, len(runner.control_dimensions()))
     twins = [runner.twin(seed + k) for k in range(ensemble)]
     run, *twin_runs = runner.run_many(n_steps, [(r, inputs, False, None) for r in (runner, *twins)])
@@ -569,6 +581,33 @@ def _check_baseline(base, n_steps: int, inputs, ensemble: int, seed: int, contro
             f"({base.n_steps} steps, {len(base.twins)} twins from seed {base.seed}; this one: {n_steps} steps, "
             f"{ensemble} twins from seed {seed})"
         )
+
+
+#: the most steps a run is asked for: 10**9 steps of even the cheapest model take hours
+MAX_STEPS = 10**9
+
+
+def steps_of(duration: float, dt: float) -> int:
+    """The steps of a run of `duration` at the model's time step `dt` (at least one), or an error that names both.
+
+    Examples
+    --------
+    >>> from pitheorem.engines.verdicts.verify import steps_of
+    >>> steps_of(1.0, 0.002), steps_of(0.0001, 0.002)
+    (500, 1)
+    >>> try:
+    ...     steps_of(0.02, 1e-320)
+    ... except ValueError as err:
+    ...     print(str(err)[:75])
+    duration 0.02 s at the model's time step 1e-320 s is more than 1e+09 steps:
+    """
+    steps = duration / dt
+    if not steps <= MAX_STEPS:  # NaN and infinity too
+        raise InvalidRequestError(
+            f"duration {duration!r} s at the model's time step {dt!r} s is more than {MAX_STEPS:.0e} steps: "
+            "give a shorter duration, or a model with a longer time step"
+        )
+    return max(1, round(steps))
 
 
 def _first_broken_row(rows: np.ndarray) -> int | None:
