@@ -487,3 +487,8 @@ def test_a_time_step_too_short_for_the_duration_is_refused_by_name():
     for run in (lambda: engines.verify(model, sc, 4, duration=0.02), lambda: baseline(model, 0.02)):
         with pytest.raises(pt.InvalidRequestError, match=r"time step 1e-320 s is more than 1e\+09 steps"):
             run()
+    # a time step of 0 or below (MuJoCo compiles both: a run that never advances) is refused too
+    for dt in (0.0, -0.0, -0.002):
+        still = model.with_values(timestep=dt)
+        with pytest.raises(pt.InvalidRequestError, match="a run needs a positive one"):
+            engines.verify(still, sc, 4, duration=0.02)

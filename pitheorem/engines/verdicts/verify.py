@@ -601,6 +601,8 @@ def steps_of(duration: float, dt: float) -> int:
     ...     print(str(err)[:75])
     duration 0.02 s at the model's time step 1e-320 s is more than 1e+09 steps:
     """
+    if not dt > 0:  # MuJoCo compiles a time step of 0, or below: a run that never advances
+        raise InvalidRequestError(f"the model's time step is {dt!r} s: a run needs a positive one")
     steps = duration / dt
     if not steps <= MAX_STEPS:  # NaN and infinity too
         raise InvalidRequestError(
