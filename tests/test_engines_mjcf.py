@@ -1101,3 +1101,30 @@ def test_the_table_of_a_file_is_the_one_recorded_before_the_walker_was_made_fast
 
 if __name__ == "__main__":
     _record_tables()
+
+
+def test_an_mjcf_file_of_any_suffix_the_format_reads_loads_with_its_includes_and_assets(tmp_path):
+    """MuJoCo 4.0's MjSpec.from_file has a decoder for ``.xml`` alone: a ``.mjcf`` or ``.XML`` file, which the format
+    reads and MjModel.from_xml_path loads, was refused ("could not find decoder").  Such a file now loads, nested
+    includes and a mesh found as from the file, and compiles to MuJoCo's own model of it."""
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / "wedge.obj").write_text(
+        "v 0 0 0\nv 0.13 0 0\nv 0 0.11 0\nv 0 0 0.07\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
+    )
+    (tmp_path / "wedge.xml").write_text(
+        '<mujocoinclude><body name="wedge" pos="0 0 1"><freejoint/>'
+        '<geom type="mesh" mesh="wedge" density="700"/></body></mujocoinclude>'
+    )
+    (tmp_path / "bodies.xml").write_text('<mujocoinclude><include file="wedge.xml"/></mujocoinclude>')
+    text = (
+        '<mujoco><compiler meshdir="meshes"/><asset><mesh name="wedge" file="wedge.obj"/></asset>'
+        '<worldbody><geom type="plane" size="1 1 1"/><include file="bodies.xml"/></worldbody></mujoco>'
+    )
+    for name in ("model.mjcf", "model.XML", "model.xml"):
+        path = tmp_path / name
+        path.write_text(text)
+        own = mujoco.MjModel.from_xml_path(str(path))  # the oracle: MuJoCo's reader of any suffix
+        model = engines.load(path)
+        assert model.runner.mjmodel.nbody == own.nbody == 2
+        assert model.runner.mjmodel.body_mass.tolist() == own.body_mass.tolist()
+        assert model.runner.mjmodel.mesh_vert.tolist() == own.mesh_vert.tolist()

@@ -69,3 +69,20 @@ def test_installed_is_false_for_a_module_that_cannot_be_found():
     assert not Engine("x", "x", (), ("no_such_module_here",)).installed()
     assert not Engine("x", "x", (), ("no_such_module_here.sub",)).installed()
     assert registered("bullet") is registered("pybullet")
+
+
+def test_a_model_is_written_only_under_a_suffix_its_format_reads(tmp_path):
+    """An MJCF copy saved as ``copy.urdf`` was written (``apply --output x.urdf``) and then read as a URDF file and
+    refused; a URDF saved as ``.mjcf`` would not load at all.  Both are refused by name before anything is written,
+    and the suffixes each format reads are written, in any case."""
+    import pitheorem as pt
+    from pitheorem import engines
+
+    mjcf = engines.load(engines.example_path("pendulum.xml"))
+    urdf = engines.load(engines.example_path("hinged_rod.urdf"), engine="mujoco")
+    for model, bad, good in ((mjcf, "copy.urdf", "copy.MJCF"), (urdf, "copy.mjcf", "copy.xml")):
+        with pytest.raises(pt.InvalidRequestError, match="format names its files"):
+            model.save(tmp_path / bad)
+        assert not (tmp_path / bad).exists()
+        out = model.save(tmp_path / good)
+        assert engines.load(out, engine="mujoco").parameter("g").value == model.parameter("g").value

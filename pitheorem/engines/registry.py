@@ -42,7 +42,18 @@ from types import MappingProxyType
 
 from ..errors import InvalidRequestError
 
-__all__ = ["ALIASES", "FORMATS", "REGISTRY", "Engine", "Format", "backends", "file_format", "formats", "registered"]
+__all__ = [
+    "ALIASES",
+    "FORMATS",
+    "REGISTRY",
+    "Engine",
+    "Format",
+    "backends",
+    "check_written_suffix",
+    "file_format",
+    "formats",
+    "registered",
+]
 
 
 @dataclass(frozen=True, slots=True)
@@ -264,6 +275,35 @@ def file_format(path) -> Format | None:
         if len(roots) == 1:
             return roots[0]
     return candidates[0] if candidates else None
+
+
+def check_written_suffix(path, name: str) -> None:
+    """Refuse to write a file of format `name` under a suffix that format is not read by.
+
+    Such a file would not load again, or would be read as another format (an MJCF
+    model named ``.urdf`` is read as a URDF file, and refused).
+
+    Raises
+    ------
+    InvalidRequestError
+
+    Examples
+    --------
+    >>> from pitheorem.engines.registry import check_written_suffix
+    >>> check_written_suffix("copy.XML", "mjcf")
+    >>> try:
+    ...     check_written_suffix("copy.urdf", "mjcf")
+    ... except ValueError as err:
+    ...     print(err)
+    copy.urdf: the MJCF format names its files .xml or .mjcf, not .urdf; a file named so would not load again as this model
+    """
+    written = next(f for f in FORMATS if f.name == name)
+    suffix = Path(path).suffix
+    if suffix.lower() not in written.suffixes:
+        raise InvalidRequestError(
+            f"{path}: the {written.title} format names its files {' or '.join(written.suffixes)}, "
+            f"not {suffix or 'without a suffix'}; a file named so would not load again as this model"
+        )
 
 
 def backends() -> tuple[str, ...]:

@@ -57,6 +57,7 @@ from ..parameters import (
     unique_name,
     warn_unscalable,
 )
+from ..registry import check_written_suffix
 from .assets import AssetCopies, assets_folder
 from .numbers import check_model_file
 
@@ -70,6 +71,7 @@ __all__ = [
     "read_mjcf",
     "record_units",
     "recorded_units",
+    "spec_from_file",
 ]
 
 #: attributes that MuJoCo's compiler turns to 0 when negative, without a word: refused when the file is read
@@ -1695,6 +1697,7 @@ class MjcfDocument:
         (:func:`~pitheorem.engines.fileformats.assets.assets_folder`), and the
         file names the copies.
         """
+        check_written_suffix(path, "mjcf")  # else it would not load again, or load as another format
         spec = self._portable_spec()
         if copy_assets:
             copies = AssetCopies(assets_folder(os.path.abspath(path)))
@@ -1917,6 +1920,51 @@ def _rejected(path: str, err: ValueError, spec=None) -> EngineModelError:
     return EngineModelError(path, _culprit(str(err), spec), _first_line(str(err)))
 
 
+def spec_from_file(mj, path):
+    """MuJoCo's spec of an MJCF file, whatever its suffix: ``.mjcf`` and ``.XML`` too.
+
+    MuJoCo 4.0's ``MjSpec.from_file`` picks a decoder by the file's suffix and has
+    one for ``.xml`` alone (``MjModel.from_xml_path`` reads them all).  Another
+    suffix is read from the file's text, each ``<include>`` (nested ones too)
+    handed over by its contents, and its folder set as the spec's, so that its
+    assets are found as from the file.
+
+    Examples
+    --------
+    >>> import mujoco, pathlib, tempfile
+    >>> from pitheorem.engines.fileformats.mjcf import spec_from_file
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (folder / "body.xml").write_text('<mujocoinclude><body><geom size="0.1"/></body></mujocoinclude>')
+    >>> _ = (folder / "model.mjcf").write_text('<mujoco><worldbody><include file="body.xml"/></worldbody></mujoco>')
+    >>> spec_from_file(mujoco, folder / "model.mjcf").compile().nbody
+    2
+    """
+    path = Path(path)
+    if path.suffix == ".xml":
+        return mj.MjSpec.from_file(str(path))
+    text = path.read_text(encoding="utf-8", errors="replace")
+    include, todo = {}, [text]
+    while todo:  # each included file, found in the text of the files that include it
+        for element in _included(todo.pop()):
+            name = element.get("file")
+            if name and name not in include and (path.parent / name).is_file():  # else MuJoCo names it
+                include[name] = (path.parent / name).read_bytes()
+                todo.append(include[name].decode("utf-8", errors="replace"))
+    spec = mj.MjSpec.from_string(text, include=include)
+    spec.modelfiledir = str(path.parent)
+    return spec
+
+
+def _included(text: str) -> list:
+    """The ``<include>`` elements of an MJCF text (none in a text that is no XML: MuJoCo says what is wrong)."""
+    import xml.etree.ElementTree as ET
+
+    try:
+        return list(ET.fromstring(text).iter("include"))
+    except ET.ParseError:
+        return []
+
+
 def _first_line(text: str) -> str:
     """MuJoCo's reason, without the element line (named separately)."""
     lines = [ln.strip() for ln in text.strip().splitlines() if ln.strip() and not ln.strip().startswith("Element")]
@@ -2022,8 +2070,8 @@ def _attached_asset_dirs(mj, path: Path, root=None) -> dict:
             continue
         child_path = (path.resolve().parent / file).resolve()
         try:
-            child = mj.MjSpec.from_file(str(child_path))
-        except ValueError:
+            child = spec_from_file(mj, child_path)
+        except (ValueError, OSError):
             continue
         prefix = attach.get("prefix", "")
         folders = {"mesh": child.meshdir, "hfield": child.meshdir, "texture": child.texturedir}
@@ -2179,7 +2227,7 @@ def read_mjcf(path) -> MjcfDocument:
             path, nonnegative=NONNEGATIVE
         )  # MuJoCo drops damping="nan" and keeps "inf"; a non-UTF-8 byte breaks its names
     try:
-        spec = mj.MjSpec.from_file(str(path))
+        spec = spec_from_file(mj, path)
     except ValueError as err:
         raise _rejected(str(path), err) from None
     asset_dirs = _attached_asset_dirs(mj, path, root)

@@ -33,6 +33,7 @@ from pathlib import Path
 from ...formatting.pieces import float_text
 from ..enginemodel import EngineModelError
 from ..parameters import JointKind, Parameter, attribute_text, dim, identifier, unique_name, warn_unscalable
+from ..registry import check_written_suffix
 from .assets import AssetCopies, assets_folder
 from .numbers import check_model_file, check_numbers
 
@@ -534,6 +535,7 @@ class UrdfDocument:
         With `copy_assets` the mesh and texture files are copied into
         ``<stem>_assets`` beside the file, and the file names the copies.
         """
+        check_written_suffix(path, "urdf")  # else it would not load again, or load as another format
         tree = copy.deepcopy(self.tree)
         folder = Path(os.path.abspath(path)).parent
         copies = AssetCopies(assets_folder(os.path.abspath(path))) if copy_assets else None
