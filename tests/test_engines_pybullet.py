@@ -747,3 +747,44 @@ def test_pybullets_counter_runs_switch_contacts_off_and_name_what_they_cannot_sw
     assert runner.removed_by(Cause("setting", "link 'base' collision mesh 'parts.obj'", "")) == {"contacts": False}
     assert runner.removed_by(Cause("setting", "changeDynamics(restitution)", "")) is None
     assert runner.removed_by(Cause("threshold", "changeDynamics(collisionMargin)", "")) is None
+
+
+def test_joints_set_other_velocity_clamps_than_the_one_pybullet_holds_are_a_setting_cause_where_a_run_reaches_it():
+    """A copy of the slider arm at s = 4 asks for a clamp of 400 m/s on its slide and 100 rad/s on its swing joint;
+    PyBullet holds one, the last written, for both.  Where no run reaches it, it acts on nothing and is not named;
+    where the slide is driven so hard that the copy's (four times as fast) reaches 100, it is named and shown by a
+    run with the clamp lifted in both."""
+    import pybullet as pb
+
+    client = pb.connect(pb.DIRECT)  # by hand, in plain PyBullet: the swing's clamp, written last, holds the slide
+    try:
+        pb.setGravity(0, 0, 0, physicsClientId=client)
+        body = pb.loadURDF(str(ARM), useFixedBase=True, physicsClientId=client)
+        speeds = {}
+        for clamps in ({0: 400.0}, {0: 400.0, 1: 100.0}):
+            for joint, clamp in clamps.items():
+                pb.changeDynamics(body, joint, maxJointVelocity=clamp, physicsClientId=client)
+            pb.resetJointState(body, 0, 0.0, 150.0, physicsClientId=client)
+            pb.stepSimulation(physicsClientId=client)
+            speeds[len(clamps)] = pb.getJointState(body, 0, physicsClientId=client)[1]
+        assert speeds[2] <= 100.0 < speeds[1]  # cut at the clamp (less the step's joint damping), or not
+    finally:
+        pb.disconnect(physicsClientId=client)
+
+    model = engines.load(ARM, fixed_base=True, damping=0.0, split_impulse=False)
+    model = model.with_values(solverResidualThreshold=0.0)
+    sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
+    audited = [c for c in engines.audit(model, sc, 4).causes if c.element == "changeDynamics(maxJointVelocity)"]
+    assert len(audited) == 1
+    assert "joint 'slide': set 400, PyBullet keeps 100" in audited[0].detail
+    gentle = engines.verify(model, sc, 4, duration=0.2, controls=lambda t: [50.0, 0.0])
+    assert gentle.exact
+    assert gentle.causes == ()
+    at_ten = engines.verify(model, sc, 10, duration=0.2, controls=lambda t: [50.0, 0.0])
+    assert at_ten.similar
+    assert "changeDynamics(maxJointVelocity)" not in [c.element for c in at_ten.causes]  # no run reaches it
+    hard = engines.verify(model, sc, 4, duration=0.2, controls=lambda t: [1500.0, 0.0])
+    assert not hard.exact
+    assert [c.element for c in hard.causes] == ["changeDynamics(maxJointVelocity)"]
+    assert hard.causes[0].restores is True
+    assert "with the velocity clamp lifted in both runs they are equal bit for bit" in hard.causes[0].detail

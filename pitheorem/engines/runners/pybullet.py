@@ -120,6 +120,9 @@ def _spring_parameters(joint: str) -> tuple[str, str]:
 #: the element of the cause "these links keep another collision margin than the one set" (ignored_settings)
 _MARGINS = "changeDynamics(collisionMargin)"
 
+#: the element of the cause "these joints are set another velocity clamp than the body's one" (ignored_settings)
+_CLAMPS = "changeDynamics(maxJointVelocity)"
+
 #: the most links of a body, its base among them, whose state PyBullet reports (MAX_NUM_LINKS in its
 #: SharedMemoryPublic.h; measured: 127 joints are reported, 128 are not): example-robot-data's TIAGo with two
 #: arms has 130
@@ -696,7 +699,29 @@ class PybulletRunner:
             )
             for link, filename, parts in self.document.compound_meshes()
         ]
-        return tuple(compound) + self._ignored_margins()
+        return tuple(compound) + self._ignored_margins() + self._ignored_clamps()
+
+    def _ignored_clamps(self) -> tuple:
+        """The joints whose maxJointVelocity is not the one clamp PyBullet holds for the body (the last written): a
+        scaled copy asks a prismatic joint's in m/s times its factor and a revolute joint's in rad/s."""
+        from ..verdicts.causes import Cause
+
+        held = self.velocity_clamp()[0]
+        missed = [(jname, v) for j, jname, _t in self._info["joints"] if (v := self._max_joint_velocity(j)) != held]
+        if not missed:
+            return ()
+        jname, wanted = missed[0]
+        names = ", ".join(repr(n) for n, _v in missed[:3]) + (f" and {len(missed) - 3} more" if len(missed) > 3 else "")
+        return (
+            Cause(
+                "setting",
+                _CLAMPS,
+                f"{len(missed)} joint(s) ({names}) are set another velocity clamp than the one PyBullet holds (joint "
+                f"{jname!r}: set {float_text(wanted)}, PyBullet keeps {float_text(held)}, the last one written, for "
+                "every coordinate velocity of the body): Bullet holds one clamp per body, so a clamp in m/s and one "
+                "in rad/s cannot both be scaled",
+            ),
+        )
 
     def _ignored_margins(self) -> tuple:
         """The links whose margin PyBullet keeps other than the one set."""
@@ -779,7 +804,8 @@ class PybulletRunner:
 
     def removed_by(self, cause) -> dict | None:
         """The counter-run's options that remove an ignored setting's effect from both runs: contacts off for a
-        collision margin (it acts through contacts only); None for another setting.
+        collision margin (it acts through contacts only), the velocity clamp lifted for a clamp (it acts on a
+        run that reaches it only); None for another setting.
 
         Examples
         --------
@@ -788,9 +814,15 @@ class PybulletRunner:
         >>> runner = engines.load(engines.example_path("causes/quadruped.urdf"), engine="pybullet").runner
         >>> runner.removed_by(Cause("setting", "changeDynamics(collisionMargin)", "..."))
         {'contacts': False}
+        >>> runner.removed_by(Cause("setting", "changeDynamics(maxJointVelocity)", "..."))
+        {'velocity_clamp': inf}
         """
+        if cause.kind != "setting":
+            return None
+        if cause.element == _CLAMPS:  # the clamp acts on a run that reaches it only: lifted in both runs
+            return {"velocity_clamp": math.inf}
         margin = cause.element == _MARGINS or " collision mesh " in cause.element  # as ignored_settings names them
-        return {"contacts": False} if cause.kind == "setting" and margin else None
+        return {"contacts": False} if margin else None
 
     def velocity_clamp(self) -> tuple[float, str]:
         """The velocity clamp in effect, and what it is.

@@ -130,6 +130,12 @@ def find_causes(
     if isinstance(copy, IgnoredSettings) and isinstance(original, CounterRuns):
         removable = [(c, options) for c in causes if (options := copy.removed_by(c))]
         causes = [c for c in causes if all(c is not r for r, _o in removable)]
+    # a clamp on the velocities (PyBullet's, one number for a body's speeds and angular speeds alike) acts on a run
+    # that reaches it only: lifted in both runs where either may have met it, else acting on nothing here
+    clamped = isinstance(original, ClampsVelocities) and (
+        original.reaches_velocity_clamp(report.original.y) or copy.reaches_velocity_clamp(report.mapped.y * factors)
+    )
+    removable = [(c, options) for c, options in removable if clamped or "velocity_clamp" not in options]
     limits = allowed_deviation(report.original, report.sensitivity, report.baseline_factor)
 
     # Where the runs first part: where every factor is a power of two, the first step at which they differ in
@@ -224,11 +230,6 @@ def find_causes(
         variants["native_ccd"] = {"native_ccd": False}
     if switches:
         variants["contacts"] = {"contacts": False}
-    # a clamp on the velocities (PyBullet's, one number for a body's speeds and angular speeds alike): raised in
-    # both runs where either may have met it, as a run that stays below it does not feel it
-    clamped = isinstance(original, ClampsVelocities) and (
-        original.reaches_velocity_clamp(report.original.y) or copy.reaches_velocity_clamp(report.mapped.y * factors)
-    )
     if clamped:
         variants["velocity_clamp"] = {"velocity_clamp": float("inf")}
     for cause in to_show:
