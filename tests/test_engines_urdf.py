@@ -80,6 +80,40 @@ def test_dimensions_follow_the_joint_type():
         ("not xml at all", "not well-formed XML"),
         ("<mujoco/>", "root element must be <robot>"),
         ('<robot name="r"><!-- only a comment --></robot>', "a URDF file needs at least one <link>; this one has none"),
+        # links and joints that make no tree, refused as ROS's URDF parser refuses them; PyBullet crashes the
+        # process (a segmentation fault) on a joint given twice, found by a fuzz of the test models
+        (
+            '<robot name="r"><link name="a"/><link name="b"/>'
+            + '<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>' * 2
+            + "</robot>",
+            "joint 'j': two joints are named 'j'",
+        ),
+        ('<robot name="r"><link name="a"/><link name="a"/></robot>', "link 'a': two links are named 'a'"),
+        (
+            '<robot name="r"><link name="a"/><joint name="j" type="fixed"><parent link="a"/></joint></robot>',
+            "joint 'j': a joint needs a <child link=...>",
+        ),
+        (
+            '<robot name="r"><link name="a"/><joint name="j" type="fixed"><parent link="a"/><child link="z"/>'
+            "</joint></robot>",
+            "joint 'j': its child link 'z' is no link of the file",
+        ),
+        (
+            '<robot name="r"><link name="a"/><link name="b"/><link name="c"/>'
+            '<joint name="j" type="fixed"><parent link="a"/><child link="c"/></joint>'
+            '<joint name="k" type="fixed"><parent link="b"/><child link="c"/></joint></robot>',
+            "joint 'k': link 'c' is the child of two joints",
+        ),
+        (
+            '<robot name="r"><link name="a"/><link name="b"/></robot>',
+            "<robot>: 2 links are no joint's child ('a', 'b')",
+        ),
+        (
+            '<robot name="r"><link name="a"/><link name="b"/><link name="c"/>'
+            '<joint name="j" type="fixed"><parent link="b"/><child link="c"/></joint>'
+            '<joint name="k" type="fixed"><parent link="c"/><child link="b"/></joint></robot>',
+            "its joints make a loop",
+        ),
         (
             '<robot name="r"><link name="a"><collision><geometry><mesh filename="gone.stl"/></geometry></collision>'
             "</link></robot>",
@@ -101,9 +135,10 @@ def test_bad_urdf_files_name_the_element(tmp_path, text, culprit):
     path.write_text(text)
     with pytest.raises(EngineModelError) as caught:
         engines.load(path)
-    if "<link>" in culprit:  # the format's refusal, whatever the engine: MuJoCo compiles an empty world
-        with pytest.raises(EngineModelError, match=culprit):
-            engines.load(path, engine="mujoco")
+    # the format's refusals, whatever the engine (MuJoCo compiled an empty <robot> as an empty world)
+    with pytest.raises(EngineModelError) as in_mujoco:
+        engines.load(path, engine="mujoco")
+    assert culprit in str(in_mujoco.value)
     message = str(caught.value)
     assert culprit in message
     assert "bad.urdf" in message

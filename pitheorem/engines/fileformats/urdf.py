@@ -594,8 +594,70 @@ def read_urdf(path, *, mesh_folder: tuple[str, str] | None = None) -> UrdfDocume
     if root.tag == "robot" and root.find("link") is None:  # (another root is refused by name when it is read)
         # as ROS's URDF parser refuses it; MuJoCo would compile an empty world, PyBullet say "Cannot load URDF file."
         raise EngineModelError(str(path), "<robot>", "a URDF file needs at least one <link>; this one has none")
+    if root.tag == "robot":
+        _check_tree(root, str(path))
     # a symbolic link not followed
     return UrdfDocument(tree, str(path), Path(os.path.abspath(path)).parent, mesh_folder=mesh_folder)
+
+
+def _check_tree(root: ET.Element, path: str) -> None:
+    """Refuse, by name, a URDF whose links and joints make no tree, as ROS's URDF parser does.
+
+    PyBullet crashes the whole process (a segmentation fault) on a joint given
+    twice, so these are refused before an engine reads the file: names given twice,
+    a joint without a parent or a child link or naming a link the file has not, a
+    link that is the child of two joints, and links that make no single tree (no
+    root: a loop; several roots: unconnected parts).
+    """
+    links: list[str] = []
+    for kind in ("link", "joint"):
+        seen: set[str] = set()
+        for element in root.findall(kind):
+            name = element.get("name")
+            if not name:
+                raise EngineModelError(path, f"<{kind}>", f"a {kind} needs a name; this one has none")
+            if name in seen:
+                raise EngineModelError(
+                    path, f"{kind} {name!r}", f"two {kind}s are named {name!r}: names must be unique"
+                )
+            seen.add(name)
+        if kind == "link":
+            links = list(seen)
+    parent_of: dict[str, str] = {}
+    for joint in root.findall("joint"):
+        where = f"joint {joint.get('name')!r}"
+        ends = {}
+        for end in ("parent", "child"):
+            element = joint.find(end)
+            name = element.get("link") if element is not None else None
+            if not name:
+                raise EngineModelError(path, where, f"a joint needs a <{end} link=...>; this one has none")
+            if name not in links:
+                raise EngineModelError(path, where, f"its {end} link {name!r} is no link of the file")
+            ends[end] = name
+        if ends["child"] in parent_of:
+            raise EngineModelError(
+                path,
+                where,
+                f"link {ends['child']!r} is the child of two joints (this one and the one from "
+                f"{parent_of[ends['child']]!r}): the links must make a tree",
+            )
+        parent_of[ends["child"]] = ends["parent"]
+    roots = sorted(set(links) - set(parent_of))
+    if len(roots) != 1:
+        shown = ", ".join(map(repr, roots[:4])) + (f" and {len(roots) - 4} more" if len(roots) > 4 else "")
+        reason = (
+            "every link is some joint's child: the joints make a loop"
+            if not roots
+            else f"{len(roots)} links are no joint's child ({shown}): the links must make one tree, with one root"
+        )
+        raise EngineModelError(path, "<robot>", reason)
+    for link in links:  # from each link up to the root: a loop below the root never reaches it
+        steps, here = 0, link
+        while here in parent_of:
+            here, steps = parent_of[here], steps + 1
+            if steps > len(links):
+                raise EngineModelError(path, f"link {link!r}", "its joints make a loop: the links must make a tree")
 
 
 def refuse_units(path: str, units: Mapping[str, str]) -> None:
