@@ -145,6 +145,8 @@ def test_controller_misuse_is_named():
         engines.verify(model, sc, 2, duration=0.01, controller=lambda run_model: "no policy")
     with pytest.raises(pt.InvalidRequestError, match=f"{nu} inputs, got 1"):
         engines.verify(model, sc, 2, duration=0.01, controller=lambda run_model: lambda m, d: [0.0])
+    with pytest.raises(pt.InvalidRequestError, match=f"the controller's policy must give {nu} numbers, got 'x'"):
+        engines.verify(model, sc, 2, duration=0.01, controller=lambda run_model: lambda m, d: "x")
 
 
 def test_runs_in_one_batch_equal_the_runs_one_by_one():
@@ -176,6 +178,13 @@ def test_smooth_controls_and_controls_refuse_what_they_cannot_use():
         engines.smooth_controls(model, period=0)
     with pytest.raises(pt.InvalidRequestError, match="controls must be a callable t -> inputs, got list"):
         engines.verify(model, sc, 2, duration=0.1, controls=[0.1])
+    # what the callable gives: numbers, as many as the inputs, finite (an API fuzz's "x" raised numpy's ValueError)
+    with pytest.raises(pt.InvalidRequestError, match=r"controls\(t\) at t = 0 must give 1 numbers, got 'x'"):
+        engines.verify(model, sc, 2, duration=0.1, controls=lambda t: "x")
+    with pytest.raises(pt.InvalidRequestError, match="must give 1 inputs, got 2"):
+        engines.verify(model, sc, 2, duration=0.1, controls=lambda t: [0.1, 0.2])
+    with pytest.raises(pt.InvalidRequestError, match=r"at t = 0.002 gave \[nan\]: every input must be finite"):
+        engines.verify(model, sc, 2, duration=0.1, controls=lambda t: [0.1 if t == 0 else float("nan")])
     u = engines.smooth_controls(model, amplitude=0.5, period=2.0)
     assert float(u(0.5)[0]) == pytest.approx(0.5 * np.sin(np.pi / 2))  # the sine at a quarter period
 

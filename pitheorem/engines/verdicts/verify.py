@@ -713,11 +713,22 @@ def _open_loop_rows(controls, n_steps: int, dt: float, size: int):
         raise InvalidRequestError(f"controls must be a callable t -> inputs, got {type(controls).__name__}")
     rows = np.empty((n_steps, size))
     for i in range(n_steps):
-        u = np.asarray(controls(i * dt), dtype=float).reshape(-1)
-        if u.shape != (size,):
-            raise InvalidRequestError(f"controls(t) must give {size} inputs, got {u.size}")
+        u = _numbers(controls(i * dt), size, f"controls(t) at t = {i * dt:.6g}")
+        if not np.isfinite(u).all():
+            raise InvalidRequestError(f"controls(t) at t = {i * dt:.6g} gave {u.tolist()}: every input must be finite")
         rows[i] = u
     return rows
+
+
+def _numbers(value, size: int, what: str) -> np.ndarray:
+    """`value` as `size` floats, or an error that says what gave what."""
+    try:
+        u = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        raise InvalidRequestError(f"{what} must give {size} numbers, got {value!r:.60}") from None
+    if u.shape != (size,):
+        raise InvalidRequestError(f"{what} must give {size} inputs, got {u.size}")
+    return u
 
 
 def _policies(controller, size: int):
@@ -731,10 +742,7 @@ def _policies(controller, size: int):
             raise InvalidRequestError(f"controller(model) must return a callable policy, got {type(law).__name__}")
 
         def checked(*state):
-            u = np.asarray(law(*state), dtype=float).reshape(-1)
-            if u.shape != (size,):
-                raise InvalidRequestError(f"the controller's policy must give {size} inputs, got {u.size}")
-            return u
+            return _numbers(law(*state), size, "the controller's policy")
 
         return checked
 
