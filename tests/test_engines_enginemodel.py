@@ -286,3 +286,16 @@ def test_a_urdf_compiled_by_mujoco_refuses_to_keep_its_inputs_as_pybullet_does()
     with pytest.raises(pt.errors.InputsNotKeptError, match="joint forces, with no gain to carry a factor"):
         model.scaled(sc, 4, keep_inputs=True)
     model.scaled(sc, 4)  # the default stays as it is
+
+
+def test_save_names_a_path_it_cannot_write_before_writing(tmp_path):
+    """An API fuzz's save("/nonexistent/x.xml") raised Python's FileNotFoundError from deep in the writer; a folder
+    given as the path, or a folder that does not exist, is refused by name, and nothing is written."""
+    import pitheorem as pt
+
+    model = engines.load(engines.example_path("pendulum.xml"))
+    with pytest.raises(pt.InvalidRequestError, match="is a folder"):
+        model.save(tmp_path)
+    with pytest.raises(pt.InvalidRequestError, match="folder that does not exist"):
+        model.save(tmp_path / "missing" / "copy.xml")
+    assert list(tmp_path.iterdir()) == []

@@ -628,6 +628,12 @@ class EngineModel(TableDisplay):
         -------
         Path
 
+        Raises
+        ------
+        InvalidRequestError
+            For a path that is a folder, or in a folder that does not exist,
+            or whose suffix the model's format does not read.
+
         Examples
         --------
         >>> import os, tempfile
@@ -637,8 +643,16 @@ class EngineModel(TableDisplay):
         ...     out = model.save(os.path.join(tmp, "copy.xml"))
         ...     engines.load(out).parameter("g").value
         (9.81,)
+        >>> try:
+        ...     model.save("/no/such/folder/copy.xml")
+        ... except ValueError as err:
+        ...     print(err)
+        /no/such/folder/copy.xml is in a folder that does not exist (/no/such/folder): give the path of the file to write
         """
         path = Path(path)
+        if path.is_dir() or not path.parent.is_dir():  # named before anything is written beside it
+            where = "is a folder" if path.is_dir() else f"is in a folder that does not exist ({path.parent})"
+            raise InvalidRequestError(f"{path} {where}: give the path of the file to write")
         self._runner.save(path, copy_assets=copy_assets)
         return path
 
