@@ -411,7 +411,8 @@ def test_a_file_pybullet_reads_despite_blank_lines_a_nul_or_a_material_inside_a_
     bad.write_text(
         body.replace(
             "</robot>",
-            '<link name="decor"><collision><geometry><material name="grey"/></geometry></collision></link></robot>',
+            '<link name="decor"><collision><geometry><material name="grey"/></geometry></collision></link>'
+            '<joint name="decor_fixed" type="fixed"><parent link="base"/><child link="decor"/></joint></robot>',
         )
     )
     with pytest.raises(EngineModelError, match="unknown geometry"):

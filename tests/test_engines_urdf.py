@@ -418,6 +418,7 @@ def _mesh_robot(tmp_path) -> Path:
         '<material name="skin"><texture filename="skin.png"/></material></visual></link>'
         '<link name="hand"><collision><geometry><mesh filename="package://tools/meshes/hand.obj"/></geometry>'
         "</collision></link>"
+        '<joint name="wrist" type="fixed"><parent link="base"/><child link="hand"/></joint>'
         '<gazebo><plugin name="p" filename="libplugin.so"/></gazebo></robot>'
     )
     return path
