@@ -719,7 +719,7 @@ def test_a_counter_run_whose_original_breaks_down_before_the_runs_part_is_said_t
     assert not rep.exact
     unknown = next(c for c in rep.causes if c.kind == "unknown")
     broken = re.search(
-        r"velocity_clamp \(with it, the original's run breaks down at step (\d+), before the runs part\)",
+        r"the velocity clamp lifted \(with it, the original's run breaks down at step (\d+), before the runs part\)",
         unknown.detail,
     )
     parts = re.search(r"differ in a bit at step (\d+)", unknown.detail)

@@ -476,10 +476,15 @@ def find_causes(
     for name, options in variants.items():
         counter = done.get(tuple(sorted(options.items())))
         broken = counter.broken if counter is not None else None
+        said = _TRIED.get(name) or (
+            f"{name.removeprefix('repaired ')} set right"
+            if name.startswith("repaired ")
+            else f"{name.removeprefix('removed ')} removed"
+        )
         tried.append(
-            name
+            said
             if broken is None or broken > verdict_parts
-            else f"{name} (with it, the original's run breaks down at step {broken}, before the runs part)"
+            else f"{said} (with it, the original's run breaks down at step {broken}, before the runs part)"
         )
     return sorted_causes([*causes, *_restoring(found, counters, report, verdict_parts, bits, tried, static)])
 
@@ -533,6 +538,19 @@ def _restoring(found, counters, report, verdict_parts, bits, tried, static: bool
         return [*(_marked(c, False) for c, _o in found), *unknown]
     droppable = [f for f in reversed(broad) if f not in held_wrong]  # the broadest first
     return [_marked(c, True) for c, _o in _fewest(found, droppable, lambda f: f[1], counters)]
+
+
+#: each counter-run, as the cause that names the runs' parting says it was tried (one per ``variants`` key; a
+#: number set right is "FIELD set right", a setting removed "SETTING removed")
+_TRIED = {
+    "tolerance": "the tolerance at 0",
+    "newton": "the scale-free solver",
+    "equalities": "the equality constraints inactive",
+    "limits": "the limits off",
+    "native_ccd": "native CCD off",
+    "contacts": "contacts off",
+    "velocity_clamp": "the velocity clamp lifted",
+}
 
 
 def _fewest(kept: list, droppable, options, counters) -> list:
