@@ -472,9 +472,13 @@ def find_causes(
     found = [(_with_constants(c, o, model.engine), o) for c, o in found]
     static = bool(causes)  # the audit's: numbers the copy holds wrong, which no counter-run removes
     # a counter-run whose original breaks down (NaN, infinity) before the verdict's runs part shows nothing: said so
-    tried = []
+    tried, said_before = [], set()
     for name, options in variants.items():
-        counter = done.get(tuple(sorted(options.items())))
+        key = tuple(sorted(options.items()))
+        if key in said_before:  # the same counter-run as one said (a margin's effect removed: contacts off)
+            continue
+        said_before.add(key)
+        counter = done.get(key)
         broken = counter.broken if counter is not None else None
         said = _TRIED.get(name) or (
             f"{name.removeprefix('repaired ')} set right"
