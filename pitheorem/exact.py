@@ -225,8 +225,8 @@ def read_positive(value, what: str, *, irrational_ok: bool = False) -> Fraction:
     return number
 
 
-def read_count(value, what: str, least: int = 0) -> int:
-    """Read a count, such as a number of steps: a whole number of at least `least`.
+def read_count(value, what: str, least: int = 0, most: int | None = None) -> int:
+    """Read a count, such as a number of steps: a whole number of at least `least` (and at most `most`).
 
     Parameters
     ----------
@@ -237,6 +237,9 @@ def read_count(value, what: str, least: int = 0) -> int:
         What the count is, for the error message (``"n_steps"``).
     least : int
         The smallest count allowed (default 0).
+    most : int, optional
+        The largest count allowed: a count that would make that many runs,
+        copies or rows of memory is refused before any is made.
 
     Returns
     -------
@@ -258,9 +261,20 @@ def read_count(value, what: str, least: int = 0) -> int:
     ... except InvalidRequestError as err:
     ...     print(err)
     ensemble must be a whole number of at least 1, got 0
+    >>> try:
+    ...     read_count(2**70, "ensemble", least=1, most=100)
+    ... except InvalidRequestError as err:
+    ...     print(err)
+    ensemble must be a whole number from 1 to 100, got 1180591620717411303424
     """
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < least:
-        raise InvalidRequestError(f"{what} must be a whole number of at least {least}, got {value!r}", culprit=value)
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, numbers.Integral)
+        or value < least
+        or (most is not None and value > most)
+    ):
+        wanted = f"of at least {least}" if most is None else f"from {least} to {most}"
+        raise InvalidRequestError(f"{what} must be a whole number {wanted}, got {value!r}", culprit=value)
     return int(value)
 
 

@@ -488,14 +488,25 @@ def test_a_number_whose_probe_overflows_takes_no_power_and_stops_nothing(tmp_pat
 
 def test_a_time_step_too_short_for_the_duration_is_refused_by_name():
     """A time step of 1e-320 (found by a fuzz of the test models) makes a run of 0.02 s 2e318 steps: refused by
-    name, with both numbers, by verify and baseline alike, not an OverflowError."""
+    name, with both numbers, by verify and baseline alike, not an OverflowError.  So are more twins, steps or
+    sweep workers than pitheorem makes (an API fuzz's ensemble of 2**70 filled 12 GB of memory making twins)."""
     from pitheorem.engines.verdicts.verify import baseline
 
     model = engines.load(engines.example_path("pendulum.xml")).with_values(timestep=1e-320)
     sc = pt.search(model.system(), scale={"g": 1}).scalings[0]
     for run in (lambda: engines.verify(model, sc, 4, duration=0.02), lambda: baseline(model, 0.02)):
-        with pytest.raises(pt.InvalidRequestError, match=r"time step 1e-320 s is more than 1e\+09 steps"):
+        with pytest.raises(pt.InvalidRequestError, match=r"time step 1e-320 s is more than 1e\+07 steps"):
             run()
+    from pitheorem.engines.verdicts.sweep import MAX_WORKERS
+    from pitheorem.engines.verdicts.verify import MAX_STEPS, MAX_TWINS
+
+    fine = engines.load(engines.example_path("pendulum.xml"))
+    with pytest.raises(pt.InvalidRequestError, match=f"ensemble must be a whole number from 1 to {MAX_TWINS}"):
+        engines.verify(fine, sc, 4, duration=0.02, ensemble=2**70)
+    with pytest.raises(pt.InvalidRequestError, match=f"n_steps must be a whole number from 0 to {MAX_STEPS}"):
+        fine.run(MAX_STEPS + 1)
+    with pytest.raises(pt.InvalidRequestError, match=f"workers must be a whole number from 1 to {MAX_WORKERS}"):
+        engines.sweep(fine, sc, [4], duration=0.02, workers=MAX_WORKERS + 1)
     # a time step of 0 or below (MuJoCo compiles both: a run that never advances) is refused too
     for dt in (0.0, -0.0, -0.002):
         still = model.with_values(timestep=dt)

@@ -475,6 +475,19 @@ def test_read_count_takes_whole_numbers_from_its_least_up(value, least):
             assert caught.value.culprit == given_as
 
 
+@given(st.integers(min_value=-5, max_value=50), st.integers(min_value=0, max_value=3), st.integers(0, 40))
+def test_read_count_takes_whole_numbers_from_its_least_to_its_most(value, least, span):
+    from pitheorem.exact import read_count
+
+    most = least + span
+    if least <= value <= most:
+        assert read_count(value, "n", least, most) == value
+    else:
+        with pytest.raises(pt.InvalidRequestError) as caught:
+            read_count(value, "n", least, most)
+        assert str(caught.value) == f"n must be a whole number from {least} to {most}, got {value!r}"
+
+
 @pytest.mark.parametrize("value", [True, 2.0, "2", None, Fraction(2)])
 def test_read_count_refuses_what_is_no_integer(value):
     from pitheorem.exact import read_count

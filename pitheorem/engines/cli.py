@@ -850,7 +850,7 @@ def parse_s_values(items: list[str]) -> tuple:
             raise InvalidRequestError(f"--s {item!r}: a range is A:B:N (from A to B, N factors)", culprit=item)
         a, b = (read_positive(p, "--s") for p in parts[:2])
         count = parts[2].strip()
-        n = read_count(int(count) if count.isdigit() else count, "the count of an --s range", least=2)
+        n = read_count(int(count) if count.isdigit() else count, "the count of an --s range", least=2, most=10_000)
         low, high = math.log10(a), math.log10(b)
         for k in range(n):
             e = low + (high - low) * k / (n - 1)

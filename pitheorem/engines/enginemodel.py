@@ -764,7 +764,9 @@ class EngineModel(TableDisplay):
         """
         import numpy as np
 
-        n_steps = read_count(n_steps, "n_steps")
+        from .verdicts.verify import MAX_STEPS
+
+        n_steps = read_count(n_steps, "n_steps", most=MAX_STEPS)
         if initial is not None:
             names = self.coordinates()[0]
             try:

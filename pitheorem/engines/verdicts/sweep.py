@@ -50,7 +50,10 @@ from ...simulation import positive_float
 from ..enginemodel import EngineModel, check_scaling
 from .causes import Cause
 
-__all__ = ["NO_FORK_PACKAGES", "VERDICTS", "Sweep", "SweepRow", "sweep"]
+__all__ = ["MAX_WORKERS", "NO_FORK_PACKAGES", "VERDICTS", "Sweep", "SweepRow", "sweep"]
+
+#: the most worker processes a sweep starts on this machine (each loads the engine and the model)
+MAX_WORKERS = 1024
 
 #: the verdicts of a row: a report's own (``SimilarityReport.verdict``), or a refusal of the copy
 VERDICTS = ("exact", "similar", "not similar", "inconclusive", "refused")
@@ -308,7 +311,7 @@ def sweep(
     if controls is not None and not callable(controls):
         raise InvalidRequestError(f"controls must be a callable t -> inputs, got {type(controls).__name__}")
     if workers is not None:
-        workers = read_count(workers, "workers", least=1)
+        workers = read_count(workers, "workers", least=1, most=MAX_WORKERS)
     baseline_factor = positive_float(baseline_factor, "baseline_factor")
     from .verify import baseline
 

@@ -56,6 +56,7 @@ from .strength import Control, caught_or_hidden, control_factors, horizon, unsee
 
 __all__ = [
     "MAX_STEPS",
+    "MAX_TWINS",
     "STAGES",
     "Baseline",
     "Plan",
@@ -296,7 +297,7 @@ def prepare(
     check_scaling(scaling)
     duration = positive_float(duration, "duration")
     baseline_factor = positive_float(baseline_factor, "baseline_factor")
-    ensemble = read_count(ensemble, "ensemble", least=1)
+    ensemble = read_count(ensemble, "ensemble", least=1, most=MAX_TWINS)
     seed = read_count(seed, "seed")
     if scaled is None:
         scaled = model.scaled(scaling, s, keep_inputs=keep_inputs)
@@ -553,7 +554,7 @@ def baseline(model: EngineModel, duration: float = 1.0, controls=None, *, ensemb
     if not isinstance(model, EngineModel):
         raise InvalidRequestError(f"baseline needs an EngineModel (engines.load(...)), got {type(model).__name__}")
     duration = positive_float(duration, "duration")
-    ensemble = read_count(ensemble, "ensemble", least=1)
+    ensemble = read_count(ensemble, "ensemble", least=1, most=MAX_TWINS)
     seed = read_count(seed, "seed")
     runner = model.runner
     dt = runner.timestep()
@@ -583,8 +584,12 @@ def _check_baseline(base, n_steps: int, inputs, ensemble: int, seed: int, contro
         )
 
 
-#: the most steps a run is asked for: 10**9 steps of even the cheapest model take hours
-MAX_STEPS = 10**9
+#: the most steps a run is asked for: a run keeps a row of every coordinate per step (10**7 rows of a humanoid's
+#: 55 are 4.4 GB), and a verification makes ten runs and more
+MAX_STEPS = 10**7
+
+#: the most twins of a yardstick: each is a copy of the model, run in full
+MAX_TWINS = 100
 
 
 def steps_of(duration: float, dt: float) -> int:
@@ -599,7 +604,7 @@ def steps_of(duration: float, dt: float) -> int:
     ...     steps_of(0.02, 1e-320)
     ... except ValueError as err:
     ...     print(str(err)[:75])
-    duration 0.02 s at the model's time step 1e-320 s is more than 1e+09 steps:
+    duration 0.02 s at the model's time step 1e-320 s is more than 1e+07 steps:
     """
     if not dt > 0:  # MuJoCo compiles a time step of 0, or below: a run that never advances
         raise InvalidRequestError(f"the model's time step is {dt!r} s: a run needs a positive one")
