@@ -95,9 +95,9 @@ def test_a_model_runs_in_its_engine_without_handing_out_the_engine_object():
 @pytest.mark.parametrize(
     ("n_steps", "initial", "says"),
     [
-        (-1, None, "n_steps must be a whole number of at least 0, got -1"),
-        (2.5, None, "n_steps must be a whole number of at least 0, got 2.5"),
-        (True, None, "n_steps must be a whole number of at least 0, got True"),
+        (-1, None, "n_steps must be a whole number from 0 to 10000000, got -1"),
+        (2.5, None, "n_steps must be a whole number from 0 to 10000000, got 2.5"),
+        (True, None, "n_steps must be a whole number from 0 to 10000000, got True"),
         (3, (0.1,), "initial is a row of 2 finite numbers (qpos[hinge], qvel[hinge]), got [0.1]"),
         (3, (0.1, float("nan")), "got [0.1, nan]"),
         (3, ("up", 0), "initial is a row of 2 numbers, got ('up', 0)"),

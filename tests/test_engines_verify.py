@@ -310,16 +310,16 @@ def test_what_verify_cannot_compare_is_refused_by_name():
         engines.verify(model, sc, 2, duration=0.01, scaled=other)
     assert engines.verify(model, sc, 2, duration=0.01).passed  # its own scaled copy: no refusal
     # ensemble and seed: whole numbers, at least 1 and at least 0
-    for what, bad, least in (
-        ("ensemble", 0, 1),
-        ("ensemble", 2.0, 1),
-        ("ensemble", True, 1),
-        ("seed", -1, 0),
-        ("seed", "1", 0),
+    for what, bad, wanted in (
+        ("ensemble", 0, "from 1 to 100"),
+        ("ensemble", 2.0, "from 1 to 100"),
+        ("ensemble", True, "from 1 to 100"),
+        ("seed", -1, "of at least 0"),
+        ("seed", "1", "of at least 0"),
     ):
         with pytest.raises(pt.InvalidRequestError) as caught:
             engines.verify(model, sc, 2, duration=0.01, **{what: bad})
-        assert str(caught.value) == f"{what} must be a whole number of at least {least}, got {bad!r}"
+        assert str(caught.value) == f"{what} must be a whole number {wanted}, got {bad!r}"
     assert engines.verify(model, sc, 2, duration=0.01, ensemble=np.int64(1), seed=0).passed
 
 
