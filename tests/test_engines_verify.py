@@ -497,8 +497,9 @@ def test_a_time_step_too_short_for_the_duration_is_refused_by_name():
     for run in (lambda: engines.verify(model, sc, 4, duration=0.02), lambda: baseline(model, 0.02)):
         with pytest.raises(pt.InvalidRequestError, match=r"time step 1e-320 s is more than 1e\+07 steps"):
             run()
+    from pitheorem.engines.enginemodel import MAX_STEPS
     from pitheorem.engines.verdicts.sweep import MAX_WORKERS
-    from pitheorem.engines.verdicts.verify import MAX_STEPS, MAX_TWINS
+    from pitheorem.engines.verdicts.verify import MAX_TWINS
 
     fine = engines.load(engines.example_path("pendulum.xml"))
     with pytest.raises(pt.InvalidRequestError, match=f"ensemble must be a whole number from 1 to {MAX_TWINS}"):

@@ -40,6 +40,7 @@ if TYPE_CHECKING:  # numpy only for the annotations: loading a model's table nee
     import numpy as np
 
 __all__ = [
+    "MAX_STEPS",
     "EngineModel",
     "EngineModelError",
     "InputsNotKeptError",
@@ -48,6 +49,10 @@ __all__ = [
     "UnscalableParameterError",
     "example_path",
 ]
+
+#: the most steps a run is asked for (``run``, ``verify``): a run keeps a row of every coordinate per step (10**7
+#: rows of a humanoid's 55 are 4.4 GB), and a verification makes ten runs and more
+MAX_STEPS = 10**7
 
 _TIME = dim("T")
 
@@ -763,8 +768,6 @@ class EngineModel(TableDisplay):
         array([0.5, 0. ])
         """
         import numpy as np
-
-        from .verdicts.verify import MAX_STEPS
 
         n_steps = read_count(n_steps, "n_steps", most=MAX_STEPS)
         if initial is not None:

@@ -47,7 +47,7 @@ import numpy as np
 from ...errors import InvalidRequestError
 from ...exact import read_count, read_scale_factor
 from ...simulation import SimilarityReport, Trajectory, allowed_deviation, positive_float, similarity_report
-from ..enginemodel import EngineModel, check_scaling
+from ..enginemodel import MAX_STEPS, EngineModel, check_scaling
 from ..parameters import dim, dimension_factors
 from ..protocols import KeepsInputs, MultipliesInPlace, Runs
 from .binary import every_factor_a_power_of_two
@@ -55,7 +55,6 @@ from .scalefree import scale_free_run
 from .strength import Control, caught_or_hidden, control_factors, horizon, unseen_groups
 
 __all__ = [
-    "MAX_STEPS",
     "MAX_TWINS",
     "STAGES",
     "Baseline",
@@ -583,10 +582,6 @@ def _check_baseline(base, n_steps: int, inputs, ensemble: int, seed: int, contro
             f"{ensemble} twins from seed {seed})"
         )
 
-
-#: the most steps a run is asked for: a run keeps a row of every coordinate per step (10**7 rows of a humanoid's
-#: 55 are 4.4 GB), and a verification makes ten runs and more
-MAX_STEPS = 10**7
 
 #: the most twins of a yardstick: each is a copy of the model, run in full
 MAX_TWINS = 100
