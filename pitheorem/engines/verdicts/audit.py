@@ -274,16 +274,17 @@ def audited(model: EngineModel, scaling, s, scaled: EngineModel, keep_inputs: bo
     # field takes s**(1/2))?  Then every float32 number that differs is put down to rounding, as MuJoCo computes
     # some from others (a mesh's normals from its vertices); else what differs was computed otherwise.  Each
     # number's own factor, not the model's: a time's factor of 2**(1/2) rounds no mesh vertex
+    factors = {field: _factors(s, k, clean) for field, (k, clean, _residue) in probed.items()}
     rounded32 = any(
-        (clean & ~residue & (before != 0) & (np.frexp(_factors(s, k, clean))[0] != 0.5)).any()
-        for field, (k, clean, residue) in probed.items()
+        (clean & ~residue & (before != 0) & (np.frexp(factors[field])[0] != 0.5)).any()
+        for field, (_k, clean, residue) in probed.items()
         if (before := original[field]).dtype == np.float32
     )
     derived = []  # float64 mismatches small enough to come from float32 numbers rounded
     in_binary = exact_in_binary(model, scaling, s)  # every number of the file times a power of two: none rounded
     for field, (k, clean, residue) in probed.items():
         before = original[field]
-        factor = _factors(s, k, clean)
+        factor = factors[field]
         expected = before.astype(float) * factor
         got = copy[field].astype(float)
         # a residue has no exponent to hold it to (a mesh vertex at 1e-9 beside vertices of 0.1)
