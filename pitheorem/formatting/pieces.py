@@ -498,16 +498,19 @@ def scale_text(result) -> str:
     return ", ".join(f"{n} by {power_text(p)}" for n, p in result.scale.items())
 
 
-def names_text(names, *, code=str, shown: int = NAMES_SHOWN) -> str:
+def names_text(names, *, code=str, shown: int = NAMES_SHOWN, in_all: bool = True) -> str:
     """Names for a sentence: all of a few, or the first few and how many more.
 
     Parameters
     ----------
     names : sequence of str
     code : callable, optional
-        Marks up each name (HTML wraps them in ``<code>``).
+        Marks up each name (HTML wraps them in ``<code>``; ``repr`` quotes them).
     shown : int, optional
         How many names a long list keeps (default :data:`NAMES_SHOWN`).
+    in_all : bool, optional
+        Say how many there are in all (default True; False where the sentence
+        says it already).
 
     Returns
     -------
@@ -520,11 +523,14 @@ def names_text(names, *, code=str, shown: int = NAMES_SHOWN) -> str:
     't, dt'
     >>> names_text([f"x{k}" for k in range(10)], shown=3)
     'x0, x1, x2 and 7 more (10 in all)'
+    >>> names_text([f"x{k}" for k in range(10)], code=repr, shown=3, in_all=False)
+    "'x0', 'x1', 'x2' and 7 more"
     """
     names = list(names)
     if len(names) <= shown + 1:
         return ", ".join(map(code, names))
-    return f"{', '.join(map(code, names[:shown]))} and {len(names) - shown} more ({len(names)} in all)"
+    more = f"{', '.join(map(code, names[:shown]))} and {len(names) - shown} more"
+    return f"{more} ({len(names)} in all)" if in_all else more
 
 
 def default_text(default: float) -> str:

@@ -30,7 +30,7 @@ import xml.etree.ElementTree as ET
 from collections.abc import Mapping
 from pathlib import Path
 
-from ...formatting.pieces import float_text
+from ...formatting.pieces import float_text, names_text
 from ..enginemodel import EngineModelError
 from ..parameters import JointKind, Parameter, attribute_text, dim, identifier, unique_name, warn_unscalable
 from ..registry import check_written_suffix
@@ -590,12 +590,8 @@ def read_urdf(path, *, mesh_folder: tuple[str, str] | None = None) -> UrdfDocume
             tree = ET.parse(path)
         except ET.ParseError as err:
             raise EngineModelError(str(path), f"line {err.position[0]}", f"not well-formed XML ({err})") from None
-    root = tree.getroot()
-    if root.tag == "robot" and root.find("link") is None:  # (another root is refused by name when it is read)
-        # as ROS's URDF parser refuses it; MuJoCo would compile an empty world, PyBullet say "Cannot load URDF file."
-        raise EngineModelError(str(path), "<robot>", "a URDF file needs at least one <link>; this one has none")
-    if root.tag == "robot":
-        _check_tree(root, str(path))
+    if tree.getroot().tag == "robot":  # another root is refused by name when the file is read
+        _check_tree(tree.getroot(), str(path))
     # a symbolic link not followed
     return UrdfDocument(tree, str(path), Path(os.path.abspath(path)).parent, mesh_folder=mesh_folder)
 
@@ -604,26 +600,31 @@ def _check_tree(root: ET.Element, path: str) -> None:
     """Refuse, by name, a URDF whose links and joints make no tree, as ROS's URDF parser does.
 
     PyBullet crashes the whole process (a segmentation fault) on a joint given
-    twice, so these are refused before an engine reads the file: names given twice,
-    a joint without a parent or a child link or naming a link the file has not, a
-    link that is the child of two joints, and links that make no single tree (no
-    root: a loop; several roots: unconnected parts).
+    twice or on two root links, and MuJoCo compiles an empty world from a file
+    with no link, so these are refused before an engine reads the file: no link,
+    names given twice, a joint without a parent or a child link or naming a link
+    the file has not, a link that is the child of two joints, and links that make
+    no single tree (no root: a loop; several roots: unconnected parts).  Links are
+    named in the file's order.
     """
-    links: list[str] = []
+    if root.find("link") is None:
+        raise EngineModelError(path, "<robot>", "a URDF file needs at least one <link>; this one has none")
+    names: dict[str, list[str]] = {}
     for kind in ("link", "joint"):
-        seen: set[str] = set()
+        names[kind] = []
         for element in root.findall(kind):
             name = element.get("name")
             if not name:
                 raise EngineModelError(path, f"<{kind}>", f"a {kind} needs a name; this one has none")
-            if name in seen:
+            if name in names[kind]:
                 raise EngineModelError(
                     path, f"{kind} {name!r}", f"two {kind}s are named {name!r}: names must be unique"
                 )
-            seen.add(name)
-        if kind == "link":
-            links = list(seen)
+            names[kind].append(name)
+    links = names["link"]
+    known = set(links)
     parent_of: dict[str, str] = {}
+    children: dict[str, list[str]] = {}
     for joint in root.findall("joint"):
         where = f"joint {joint.get('name')!r}"
         ends = {}
@@ -632,7 +633,7 @@ def _check_tree(root: ET.Element, path: str) -> None:
             name = element.get("link") if element is not None else None
             if not name:
                 raise EngineModelError(path, where, f"a joint needs a <{end} link=...>; this one has none")
-            if name not in links:
+            if name not in known:
                 raise EngineModelError(path, where, f"its {end} link {name!r} is no link of the file")
             ends[end] = name
         if ends["child"] in parent_of:
@@ -643,21 +644,24 @@ def _check_tree(root: ET.Element, path: str) -> None:
                 f"{parent_of[ends['child']]!r}): the links must make a tree",
             )
         parent_of[ends["child"]] = ends["parent"]
-    roots = sorted(set(links) - set(parent_of))
+        children.setdefault(ends["parent"], []).append(ends["child"])
+    roots = [link for link in links if link not in parent_of]
     if len(roots) != 1:
-        shown = ", ".join(map(repr, roots[:4])) + (f" and {len(roots) - 4} more" if len(roots) > 4 else "")
         reason = (
             "every link is some joint's child: the joints make a loop"
             if not roots
-            else f"{len(roots)} links are no joint's child ({shown}): the links must make one tree, with one root"
+            else f"{len(roots)} links are no joint's child ({names_text(roots, code=repr, shown=4, in_all=False)}): "
+            "the links must make one tree, with one root"
         )
         raise EngineModelError(path, "<robot>", reason)
-    for link in links:  # from each link up to the root: a loop below the root never reaches it
-        steps, here = 0, link
-        while here in parent_of:
-            here, steps = parent_of[here], steps + 1
-            if steps > len(links):
-                raise EngineModelError(path, f"link {link!r}", "its joints make a loop: the links must make a tree")
+    reached, todo = set(roots), list(roots)
+    while todo:  # down from the root: a link it never reaches is in a loop of its own below it
+        for child in children.get(todo.pop(), ()):
+            reached.add(child)
+            todo.append(child)
+    looped = next((link for link in links if link not in reached), None)
+    if looped is not None:
+        raise EngineModelError(path, f"link {looped!r}", "its joints make a loop: the links must make a tree")
 
 
 def refuse_units(path: str, units: Mapping[str, str]) -> None:

@@ -37,6 +37,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import EngineModelError, InvalidRequestError
+from ...formatting.pieces import names_text
 from ...simulation import nudged
 from ..enginemodel import EngineModel
 from ..fileformats.mjcf import read_mjcf
@@ -1699,7 +1700,7 @@ def _refused_element(spec, name: str, text: str) -> str:
     about_mesh = re.search(r"mesh|STL|OBJ|decoder", text, flags=re.IGNORECASE) is not None
     if about_mesh and spec.mesh(name) is not None:
         users = sorted({geom.parent.name for geom in spec.geoms if geom.meshname == name})
-        shown = ", ".join(map(repr, users[:3])) + (f" and {len(users) - 3} more" if len(users) > 3 else "")
+        shown = names_text(users, code=repr, shown=3, in_all=False)
         return f"mesh {name!r}" + (f" (of link{'s' if len(users) > 1 else ''} {shown})" if users else "")
     return f"link {name!r}"
 

@@ -39,7 +39,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from pitheorem.formatting.pieces import float_text
+from pitheorem.formatting.pieces import float_text, names_text
 
 from ...errors import InvalidRequestError, UnscalableParameterError
 from ...exact import read_number
@@ -711,7 +711,7 @@ class PybulletRunner:
         if not missed:
             return ()
         jname, wanted = missed[0]
-        names = ", ".join(repr(n) for n, _v in missed[:3]) + (f" and {len(missed) - 3} more" if len(missed) > 3 else "")
+        names = names_text((n for n, _v in missed), code=repr, shown=3, in_all=False)
         return (
             Cause(
                 "setting",
@@ -736,7 +736,7 @@ class PybulletRunner:
         if not missed:
             return ()
         lname, wanted, held = missed[0]
-        names = ", ".join(repr(n) for n, *_ in missed[:3]) + (f" and {len(missed) - 3} more" if len(missed) > 3 else "")
+        names = names_text((n for n, *_ in missed), code=repr, shown=3, in_all=False)
         return (
             Cause(
                 "setting",
