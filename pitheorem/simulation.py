@@ -40,6 +40,7 @@ __all__ = [
     "ModelScaling",
     "SimilarityReport",
     "Trajectory",
+    "first_broken_row",
     "fixed_steps",
     "nudged",
     "positive_float",
@@ -1184,6 +1185,20 @@ def unseen_groups(controls) -> tuple[str, ...]:
     """
     groups = dict.fromkeys(c.group for c in controls)
     return tuple(g for g in groups if not any(c.caught for c in controls if c.group == g))
+
+
+def first_broken_row(rows) -> int | None:
+    """The first row of a run with a number that is not finite (the engine gave up on the run there), or None.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pitheorem.simulation import first_broken_row
+    >>> first_broken_row(np.array([[0.0, 1.0], [2.0, np.nan], [np.inf, 0.0]])), first_broken_row(np.zeros((2, 2)))
+    (1, None)
+    """
+    bad = ~np.isfinite(rows).all(axis=1)
+    return int(np.argmax(bad)) if bad.any() else None
 
 
 def first_divergence(original: Trajectory, mapped: Trajectory) -> tuple[float, str] | None:

@@ -49,7 +49,7 @@ import numpy as np
 
 from pitheorem.formatting.pieces import float_text
 
-from ...simulation import allowed_deviation
+from ...simulation import allowed_deviation, first_broken_row
 from ..protocols import (
     ClampsVelocities,
     CounterRuns,
@@ -195,7 +195,6 @@ def find_causes(
         original_unchanged = run.shape[1:] == report.original.y.shape[1:] and np.array_equal(
             run[:rows], report.original.y, equal_nan=True
         )
-        broken = np.nonzero(~np.isfinite(run).all(axis=1))[0]
         done[key] = Counter(
             shows,
             parts is None,
@@ -204,7 +203,7 @@ def find_causes(
             bool(np.array_equal(run, back)),
             bool(unchanged),
             original_unchanged,
-            int(broken[0]) if broken.size else None,
+            first_broken_row(run),
         )
 
     t = report.original.t

@@ -46,7 +46,14 @@ import numpy as np
 
 from ...errors import InvalidRequestError
 from ...exact import read_count, read_scale_factor
-from ...simulation import SimilarityReport, Trajectory, allowed_deviation, positive_float, similarity_report
+from ...simulation import (
+    SimilarityReport,
+    Trajectory,
+    allowed_deviation,
+    first_broken_row,
+    positive_float,
+    similarity_report,
+)
 from ..enginemodel import MAX_STEPS, EngineModel, check_scaling
 from ..parameters import dim, dimension_factors
 from ..protocols import KeepsInputs, MultipliesInPlace, Runs
@@ -410,10 +417,10 @@ def judge(plan: Plan, rows: list | None, progress=None) -> SimilarityReport:
 
     # A run the engine gave up on (MuJoCo resets an unstable run; NaN elsewhere) is compared only before it:
     # a copy that breaks down at the same step would match its rows bit for bit, and that proves nothing.
-    broken = _first_broken_row(run)
+    broken = first_broken_row(run)
     cut = len(p.t) if broken is None else max(broken, 1)
     reset = None if broken is None else (float(p.t[broken]), "original")
-    if reset is None and (copy_broken := _first_broken_row(scaled_run)) is not None:
+    if reset is None and (copy_broken := first_broken_row(scaled_run)) is not None:
         reset = (float(p.t[copy_broken]), "copy")
     run, scaled_run = run[:cut], scaled_run[:cut]
     twin_runs, control_runs = [r[:cut] for r in twin_runs], [r[:cut] for r in control_runs]
@@ -610,12 +617,6 @@ def steps_of(duration: float, dt: float) -> int:
             "give a shorter duration, or a model with a longer time step"
         )
     return max(1, round(steps))
-
-
-def _first_broken_row(rows: np.ndarray) -> int | None:
-    """The first row of a run with a number that is not finite (the engine gave up on the run there), or None."""
-    bad = ~np.isfinite(rows).all(axis=1)
-    return int(np.argmax(bad)) if bad.any() else None
 
 
 def _rungs(ladder: list) -> tuple[list, list]:
