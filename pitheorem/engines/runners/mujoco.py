@@ -1705,7 +1705,7 @@ def _refused_element(spec, name: str, text: str) -> str:
     return f"link {name!r}"
 
 
-def _ascii_stl(path: str) -> bool:
+def _ascii_stl(path) -> bool:
     """Whether an STL file is ASCII: it begins with ``solid`` and a line of text (a binary one has 80 bytes of any
     header, which may begin with ``solid`` too, then a count of triangles)."""
     try:
